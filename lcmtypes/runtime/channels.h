@@ -1,0 +1,27 @@
+// LCM channel names. Every channel starts with a prefix (default "MRSIM") so
+// several simulations can share a network; robot channels end in the robot
+// name so several robots can share a simulation.
+#pragma once
+
+#include <string>
+
+namespace mrsim {
+
+inline constexpr const char* kDefaultChannelPrefix = "MRSIM";
+
+inline std::string StateChannel(const std::string& prefix,
+                                const std::string& robot) {
+  return prefix + "_STATE_" + robot;
+}
+inline std::string CommandChannel(const std::string& prefix,
+                                  const std::string& robot) {
+  return prefix + "_COMMAND_" + robot;
+}
+inline std::string SimControlChannel(const std::string& prefix) {
+  return prefix + "_SIM_CONTROL";
+}
+inline std::string SimStatusChannel(const std::string& prefix) {
+  return prefix + "_SIM_STATUS";
+}
+
+}  // namespace mrsim

@@ -1,0 +1,84 @@
+// The MuJoCo world built from a Scenario: owns mjModel/mjData, servos the
+// hinges with the P-on-speed law and reads every part back as RobotState.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <mujoco/mujoco.h>
+
+#include "sim_core/robot_state.h"
+#include "sim_core/scenario.h"
+
+namespace mrsim {
+
+struct MjModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct MjDataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
+using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
+
+// Thrown when the simulation becomes unstable (NaN, MuJoCo warning).
+class PhysicsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Physics {
+ public:
+  // Builds the MJCF in memory and compiles it. Throws std::runtime_error
+  // naming the part that failed (e.g. an unreadable mesh).
+  explicit Physics(const Scenario& scenario);
+  ~Physics();
+  Physics(const Physics&) = delete;
+  Physics& operator=(const Physics&) = delete;
+
+  // Advances one timestep; throws PhysicsError on instability.
+  void Step();
+  // Advances n timesteps.
+  void Step(int n);
+  // Back to the initial state of the scenario; joint targets back to zero.
+  void Reset();
+
+  double time() const;
+  double timestep() const;
+
+  int robot_count() const;
+  const std::string& robot_name(int robot) const;
+  // Index of the robot with this name, or -1.
+  int robot_index(const std::string& name) const;
+  // Hinge joints of a robot, in chain order.
+  int joint_count(int robot) const;
+  Axis joint_axis(int robot, int joint) const;
+  double joint_lower_limit(int robot, int joint) const;
+  double joint_upper_limit(int robot, int joint) const;
+
+  // Targets (rad) for every hinge of a robot; clamped to the joint limits.
+  // Throws std::invalid_argument on a wrong count or a non-finite value.
+  void SetJointTargets(int robot, const std::vector<double>& targets);
+  const std::vector<double>& joint_targets(int robot) const;
+
+  RobotState ReadRobotState(int robot) const;
+  Eigen::Vector3d CenterOfMass(int robot) const;
+
+  // The full physics state (time, qpos, qvel, act, warm start, targets) as
+  // bytes; LoadState restores it so stepping continues bit for bit.
+  std::vector<unsigned char> SaveState() const;
+  void LoadState(const std::vector<unsigned char>& bytes);
+
+  const Scenario& scenario() const;
+  const mjModel* model() const;
+  const mjData* data() const;
+  mjData* mutable_data();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,45 @@
+// A snapshot of one robot read from the physics: plain data that the
+// processes turn into LCM messages and the optimiser scores.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace mrsim {
+
+// World pose (Z up, metres).
+struct Pose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+struct JointState {
+  double angle = 0.0;   // rad
+  double speed = 0.0;   // rad/s
+  double torque = 0.0;  // N m, actuator torque
+  Pose world;           // anchor position and child frame orientation
+};
+
+struct SensorModuleState {
+  Pose pose;
+  bool has_force = false;
+  double force = 0.0;               // N, magnitude
+  std::vector<double> distances;    // m, one per distance sensor
+  std::vector<int> distance_faces;  // face (0..5) of each distance sensor
+};
+
+struct RobotState {
+  double time = 0.0;  // s, simulation time
+  std::string robot;
+  std::vector<Pose> modules;  // module centres
+  std::vector<Pose> frames;   // two per module: left, right
+  std::vector<JointState> joints;  // hinge joints in chain order
+  std::vector<SensorModuleState> sensor_modules;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+};
+
+}  // namespace mrsim

@@ -1,0 +1,204 @@
+// The scenario model: plain data describing robots, terrain, scene objects and
+// contact materials, usable with no physics running. Field names follow the
+// original MRSim XML layout (domain.md section 3); units are SI, angles of
+// joint limits in radians, Euler rotations in degrees (as MRSim stored them).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace mrsim {
+
+// Which axis convention positions and rotations in a file use. Files say it
+// explicitly (root attribute frame="z-up" or frame="unity-y-up"); the model
+// in memory is always kZUp.
+enum class FrameConvention { kZUp, kUnityYUp };
+
+enum class Axis { kPitch, kYaw };
+enum class JointType { kHinge, kLock };
+enum class PrimitiveShape { kBox, kSphere, kCylinder, kCapsule };
+
+// A rigid body of a module: a Box (full extents = scale) or a mesh file
+// (OBJ/STL, path relative to the scenario file, scaled by scale).
+struct Frame {
+  std::string guid;
+  std::string shape = "Box";  // "Box" or a mesh path
+  Eigen::Vector3d scale = Eigen::Vector3d(0.05, 0.05, 0.05);
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // Euler, degrees
+  Eigen::Quaterniond quat_rotation = Eigen::Quaterniond::Identity();
+  double mass = 0.1;
+  bool is_static = false;
+  std::string material_name = "plastic";
+
+  bool is_mesh() const { return shape != "Box"; }
+};
+
+// A connection between two frames: a motorised hinge (position servo as a P
+// law on speed) or a rigid lock. Limits in rad, max_vel in rad/s.
+struct Joint {
+  std::string guid;
+  std::string left_frame_guid;
+  std::string right_frame_guid;
+  JointType type = JointType::kHinge;
+  double lower_range_limit = -1.5708;
+  double upper_range_limit = 1.5708;
+  double kp = 10.0;
+  double max_vel = 3.0;
+};
+
+// Two frames joined by a hinge whose axis is given by `axis`.
+struct Module {
+  int mod_nr = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Axis axis = Axis::kPitch;
+  std::array<Frame, 2> frames;
+  Joint joint;
+};
+
+// A plate locked to one face of a sensor module; reads the magnitude of the
+// force carried by that lock. sensor_position: 0 bottom, 1 left, 2 top,
+// 3 right.
+struct ForceSensor {
+  std::string guid;
+  double force_value = 0.0;
+  int sensor_position = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  std::string material_name = "plastic";
+  double mass = 0.005;
+  Eigen::Vector3d size = Eigen::Vector3d(0.04, 0.04, 0.002);
+};
+
+// A ray from one face (0..5) of a sensor module along ray_direction (in the
+// sensor module's frame); reads the distance to the first hit or
+// max_ray_distance.
+struct DistanceSensor {
+  std::string guid;
+  int sensor_position = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond quat_rotation = Eigen::Quaterniond::Identity();
+  double mass = 0.001;
+  Eigen::Vector3d size = Eigen::Vector3d(0.01, 0.01, 0.01);
+  double max_ray_distance = 2.0;
+  Eigen::Vector3d ray_direction = Eigen::Vector3d::UnitX();
+  int ray_resolution = 1;
+};
+
+// A box between two modules (left_mod_nr/right_mod_nr, -1 = chain end)
+// carrying at most one force sensor and up to six distance sensors.
+struct SensorModule {
+  std::string guid;
+  int left_mod_nr = -1;
+  int right_mod_nr = -1;
+  std::optional<ForceSensor> force_sensor;
+  std::optional<Joint> force_sensor_lock;
+  Eigen::Vector3d force_lock_position = Eigen::Vector3d::Zero();
+  std::vector<DistanceSensor> distance_sensors;
+  Eigen::Vector3d distance_lock_position = Eigen::Vector3d::Zero();
+  std::vector<Joint> distance_sensor_locks;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d size = Eigen::Vector3d(0.05, 0.05, 0.05);
+  Eigen::Quaterniond quat_rotation = Eigen::Quaterniond::Identity();
+  double mass = 0.05;
+  std::string material_name = "plastic";
+};
+
+// A chain of modules with sensor modules between them. `locks` are the rigid
+// joints between consecutive parts (frame guids, or a sensor module guid).
+struct Robot {
+  std::string name;  // unique in the scenario; used in LCM channel names
+  std::vector<Module> modules;
+  std::vector<SensorModule> sensor_modules;
+  std::vector<Joint> locks;
+};
+
+// Terrain: a height field from a grey-scale image, or a flat plane when
+// height_image is empty. height_image is a path (relative to the scenario
+// file) or base64-encoded image bytes ("base64:" prefix optional when the
+// string does not name a file). position is the terrain's corner.
+struct Scene {
+  std::string guid;
+  std::string height_image;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string material_name = "ground";
+  double height = 0.0;            // height of the brightest pixel (m)
+  double meters_per_pixel = 0.05;  // horizontal extent of one pixel (m)
+};
+
+// A free-standing primitive: obstacle, ball, ramp. For Box, size is the full
+// extents; Sphere uses size.x as diameter; Cylinder/Capsule size.x diameter
+// and size.z length.
+struct SceneObject {
+  std::string guid;
+  Eigen::Vector3d size = Eigen::Vector3d(0.1, 0.1, 0.1);
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond quat_rotation = Eigen::Quaterniond::Identity();
+  std::string material_name = "plastic";
+  PrimitiveShape shape = PrimitiveShape::kBox;
+  double mass = 0.1;
+  bool is_static = false;
+};
+
+// Contact parameters for a pair of materials (order does not matter).
+struct ContactFriction {
+  std::string material1;
+  std::string material2;
+  double restitution = 0.0;
+  double friction = 0.5;
+  double youngs_modulus = 1e6;
+};
+
+enum class FluidKind { kWater, kAir };
+
+// An axis-aligned box region of fluid: water gives buoyancy and drag, air
+// gives drag (optionally with wind velocity).
+struct FluidRegion {
+  std::string guid;
+  FluidKind kind = FluidKind::kWater;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // centre
+  Eigen::Vector3d size = Eigen::Vector3d(1, 1, 1);     // full extents
+  double density = 1000.0;                             // kg/m^3
+  double viscosity = 0.0009;                           // Pa s
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // flow/wind m/s
+};
+
+// Physics settings that are not part of the robot.
+struct SimulationSettings {
+  double timestep = 0.002;  // s
+  Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);
+};
+
+// Everything needed to start a simulation. Frames, joints, sensor modules
+// and scene objects may also appear without a robot (loose_* lists).
+struct Scenario {
+  std::vector<Robot> robots;
+  Scene scene;
+  std::vector<SceneObject> scene_objects;
+  std::vector<ContactFriction> contact_frictions;
+  std::vector<FluidRegion> fluid_regions;
+  SimulationSettings settings;
+  std::vector<Frame> loose_frames;
+  std::vector<Joint> loose_joints;
+  std::vector<SensorModule> loose_sensor_modules;
+
+  // Directory of the file it was read from; relative mesh and image paths
+  // resolve against it. Not written to XML.
+  std::string base_dir;
+};
+
+const char* ToString(Axis axis);
+const char* ToString(JointType type);
+const char* ToString(PrimitiveShape shape);
+const char* ToString(FluidKind kind);
+const char* ToString(FrameConvention frame);
+
+}  // namespace mrsim

@@ -1,0 +1,54 @@
+// A real child process for multi-process tests: started with posix_spawn,
+// its output captured to a file, stopped with a signal, reaped on
+// destruction so no test leaves a process behind.
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace mrsim::testing {
+
+class ChildProcess {
+ public:
+  // Starts argv[0] (a path) with the given arguments; stdout and stderr go
+  // to `log_path` (or /dev/null when empty).
+  ChildProcess(const std::vector<std::string>& argv,
+               const std::string& log_path = "");
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+  bool running();
+  void Signal(int sig);
+  // Waits up to timeout_s for exit; returns the exit code, 128+signal when
+  // killed by a signal, or -1 on timeout.
+  int Wait(double timeout_s);
+  // SIGTERM, then SIGKILL after grace_s. Returns as Wait.
+  int Stop(double grace_s = 5.0);
+  // What it printed so far (empty without a log file).
+  std::string Output() const;
+
+ private:
+  pid_t pid_ = -1;
+  int status_ = -1;
+  bool reaped_ = false;
+  std::string log_path_;
+};
+
+// A multicast URL on loopback with its own port and ttl=0, so concurrent
+// tests never hear each other.
+inline std::string TestLcmUrl(int port) {
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+}
+
+// Path of a built program, e.g. BinaryPath("sim_core/sim_process/mrsim-sim").
+std::string BinaryPath(const std::string& relative);
+// Path of a file in the source tree, e.g. SourcePath("scenarios/snake.xml").
+std::string SourcePath(const std::string& relative);
+// A fresh empty directory under the build tree for one test.
+std::string TempDir(const std::string& name);
+
+}  // namespace mrsim::testing
