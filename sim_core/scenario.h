@@ -4,13 +4,12 @@
 // joint limits in radians, Euler rotations in degrees (as MRSim stored them).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace mrsim {
 
@@ -129,7 +128,7 @@ struct Scene {
   std::string height_image;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::string material_name = "ground";
-  double height = 0.0;            // height of the brightest pixel (m)
+  double height = 0.0;             // height of the brightest pixel (m)
   double meters_per_pixel = 0.05;  // horizontal extent of one pixel (m)
 };
 
@@ -194,6 +193,66 @@ struct Scenario {
   // resolve against it. Not written to XML.
   std::string base_dir;
 };
+
+// Exact, field-by-field equality (doubles with ==, quaternions by
+// coefficients), as the XML round trip promises. Scenario::base_dir is
+// where a file was read from, not content, and is not compared.
+bool operator==(const Frame& a, const Frame& b);
+bool operator==(const Joint& a, const Joint& b);
+bool operator==(const Module& a, const Module& b);
+bool operator==(const ForceSensor& a, const ForceSensor& b);
+bool operator==(const DistanceSensor& a, const DistanceSensor& b);
+bool operator==(const SensorModule& a, const SensorModule& b);
+bool operator==(const Robot& a, const Robot& b);
+bool operator==(const Scene& a, const Scene& b);
+bool operator==(const SceneObject& a, const SceneObject& b);
+bool operator==(const ContactFriction& a, const ContactFriction& b);
+bool operator==(const FluidRegion& a, const FluidRegion& b);
+bool operator==(const SimulationSettings& a, const SimulationSettings& b);
+bool operator==(const Scenario& a, const Scenario& b);
+inline bool operator!=(const Frame& a, const Frame& b) { return !(a == b); }
+inline bool operator!=(const Joint& a, const Joint& b) { return !(a == b); }
+inline bool operator!=(const Module& a, const Module& b) { return !(a == b); }
+inline bool operator!=(const ForceSensor& a, const ForceSensor& b) {
+  return !(a == b);
+}
+inline bool operator!=(const DistanceSensor& a, const DistanceSensor& b) {
+  return !(a == b);
+}
+inline bool operator!=(const SensorModule& a, const SensorModule& b) {
+  return !(a == b);
+}
+inline bool operator!=(const Robot& a, const Robot& b) { return !(a == b); }
+inline bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
+inline bool operator!=(const SceneObject& a, const SceneObject& b) {
+  return !(a == b);
+}
+inline bool operator!=(const ContactFriction& a, const ContactFriction& b) {
+  return !(a == b);
+}
+inline bool operator!=(const FluidRegion& a, const FluidRegion& b) {
+  return !(a == b);
+}
+inline bool operator!=(const SimulationSettings& a,
+                       const SimulationSettings& b) {
+  return !(a == b);
+}
+inline bool operator!=(const Scenario& a, const Scenario& b) {
+  return !(a == b);
+}
+
+// Frame conventions (docs/scenario.md). Unity is Y-up and left-handed; the
+// model is Z-up and right-handed. Positions, sizes, scales and directions
+// swap y and z; quaternions (x,y,z,w) become (-x,-z,-y,w); Euler angles
+// (x,y,z) become (-x,-z,-y). Each function is the other's exact inverse.
+void ConvertUnityToZUp(Scenario* scenario);
+void ConvertZUpToUnity(Scenario* scenario);
+
+// Multiplies every length (positions, sizes, scales, lock positions, ray
+// range, terrain height and pixel size, fluid regions, gravity and flow
+// velocity) by `factor`, e.g. to turn Unity scene units into metres.
+// Masses, angles and directions are unchanged.
+void ScaleLengths(Scenario* scenario, double factor);
 
 const char* ToString(Axis axis);
 const char* ToString(JointType type);
