@@ -1,0 +1,193 @@
+#include "launcher/launch_file.h"
+
+#include <tinyxml2.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+
+namespace mrsim {
+namespace {
+
+std::string Where(const std::string& path, int line) {
+  return path + ":" + std::to_string(line) + ": ";
+}
+
+std::string Substitute(const std::string& text,
+                       const std::map<std::string, std::string>& vars,
+                       const std::string& where) {
+  std::string out;
+  size_t i = 0;
+  while (i < text.size()) {
+    if (text.compare(i, 2, "${") == 0) {
+      const size_t end = text.find('}', i + 2);
+      if (end == std::string::npos) {
+        throw LaunchError(where + "unterminated '${' in '" + text + "'");
+      }
+      const std::string name = text.substr(i + 2, end - i - 2);
+      const auto it = vars.find(name);
+      if (it == vars.end()) {
+        throw LaunchError(where + "unknown variable ${" + name +
+                          "}: declare it with <arg name=\"" + name +
+                          "\" .../>");
+      }
+      out += it->second;
+      i = end + 1;
+    } else {
+      out += text[i++];
+    }
+  }
+  return out;
+}
+
+bool ParseBool(const char* text, bool fallback, const std::string& where,
+               const char* attribute) {
+  if (text == nullptr) return fallback;
+  const std::string s(text);
+  if (s == "true" || s == "1") return true;
+  if (s == "false" || s == "0") return false;
+  throw LaunchError(where + "attribute " + attribute +
+                    ": expected true or false, got '" + s + "'");
+}
+
+}  // namespace
+
+std::vector<std::string> SplitArgs(const std::string& text) {
+  std::vector<std::string> args;
+  std::string current;
+  bool in_word = false;
+  char quote = 0;
+  for (char c : text) {
+    if (quote != 0) {
+      if (c == quote) {
+        quote = 0;
+      } else {
+        current += c;
+      }
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+      in_word = true;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      if (in_word) args.push_back(current);
+      current.clear();
+      in_word = false;
+    } else {
+      current += c;
+      in_word = true;
+    }
+  }
+  if (quote != 0) throw std::invalid_argument("unterminated quote");
+  if (in_word) args.push_back(current);
+  return args;
+}
+
+LaunchFile ReadLaunchFile(const std::string& path,
+                          const std::map<std::string, std::string>& overrides) {
+  namespace fs = std::filesystem;
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+    const int line = doc.ErrorLineNum();
+    throw LaunchError(Where(path, line) + "cannot read launch file: " +
+                      (doc.ErrorStr() ? doc.ErrorStr() : "unknown error"));
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (root == nullptr || std::string(root->Name()) != "launch") {
+    throw LaunchError(Where(path, root ? root->GetLineNum() : 1) +
+                      "expected a <launch> root element");
+  }
+
+  LaunchFile file;
+  file.path = path;
+  file.name = root->Attribute("name") ? root->Attribute("name")
+                                      : fs::path(path).stem().string();
+  file.variables["launch_dir"] =
+      fs::absolute(fs::path(path)).parent_path().lexically_normal().string();
+  file.variables["cwd"] = fs::current_path().string();
+
+  std::set<std::string> used_overrides;
+  for (const auto* e = root->FirstChildElement("arg"); e != nullptr;
+       e = e->NextSiblingElement("arg")) {
+    const std::string where = Where(path, e->GetLineNum());
+    const char* name = e->Attribute("name");
+    if (name == nullptr || *name == '\0') {
+      throw LaunchError(where + "<arg> needs a name attribute");
+    }
+    const auto it = overrides.find(name);
+    if (it != overrides.end()) {
+      file.variables[name] = it->second;
+      used_overrides.insert(name);
+    } else if (const char* def = e->Attribute("default")) {
+      file.variables[name] = Substitute(def, file.variables, where);
+    } else {
+      throw LaunchError(where + "arg '" + name +
+                        "' has no default: give it with --set " + name +
+                        "=VALUE");
+    }
+  }
+  for (const auto& [name, value] : overrides) {
+    if (used_overrides.count(name) == 0) {
+      throw LaunchError(path + ": --set " + name +
+                        ": the launch file declares no <arg name=\"" + name +
+                        "\">");
+    }
+  }
+
+  std::set<std::string> names;
+  for (const auto* e = root->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    const std::string where = Where(path, e->GetLineNum());
+    if (tag == "arg") continue;
+    if (tag != "process") {
+      throw LaunchError(where + "unexpected <" + tag +
+                        ">: expected <arg> or <process>");
+    }
+    ProcessSpec spec;
+    spec.line = e->GetLineNum();
+    const char* name = e->Attribute("name");
+    const char* program = e->Attribute("program");
+    if (name == nullptr || *name == '\0') {
+      throw LaunchError(where + "<process> needs a name attribute");
+    }
+    if (program == nullptr || *program == '\0') {
+      throw LaunchError(where + "process '" + name +
+                        "' needs a program attribute");
+    }
+    spec.name = name;
+    if (!names.insert(spec.name).second) {
+      throw LaunchError(where + "a process named '" + spec.name +
+                        "' is declared twice");
+    }
+    spec.program = Substitute(program, file.variables, where);
+    try {
+      spec.args =
+          SplitArgs(Substitute(e->Attribute("args") ? e->Attribute("args") : "",
+                               file.variables, where));
+    } catch (const std::invalid_argument&) {
+      throw LaunchError(where + "process '" + spec.name +
+                        "': unterminated quote in args");
+    }
+    spec.required =
+        ParseBool(e->Attribute("required"), false, where, "required");
+    spec.enabled = ParseBool(
+        e->Attribute("enabled")
+            ? Substitute(e->Attribute("enabled"), file.variables, where).c_str()
+            : nullptr,
+        true, where, "enabled");
+    if (e->Attribute("delay") != nullptr &&
+        (e->QueryDoubleAttribute("delay", &spec.delay_s) !=
+             tinyxml2::XML_SUCCESS ||
+         spec.delay_s < 0)) {
+      throw LaunchError(where +
+                        "attribute delay: expected seconds >= 0, got '" +
+                        e->Attribute("delay") + "'");
+    }
+    file.processes.push_back(std::move(spec));
+  }
+  if (file.processes.empty()) {
+    throw LaunchError(path + ": no <process> to start");
+  }
+  return file;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,53 @@
+// A launch file: which mrsim processes to start, with what arguments, and
+// which of them ends the run when it exits. XML, with ${variables}:
+//
+//   <launch name="demo">
+//     <arg name="out" default="out/demo"/>
+//     <process name="sim" program="mrsim-sim" required="true"
+//              args="${launch_dir}/../scenarios/case_study.xml --duration 20"/>
+//     <process name="viewer" program="mrsim-view" delay="0.5"
+//              args="... --out ${out}/demo.mp4"/>
+//   </launch>
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mrsim {
+
+// A bad launch file; what() names the file, line and what was expected.
+class LaunchError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ProcessSpec {
+  std::string name;
+  std::string program;  // a name looked up on the search path, or a path
+  std::vector<std::string> args;  // after variable substitution and splitting
+  bool required = false;          // when it exits, the whole launch stops
+  bool enabled = true;            // enabled="false" or --without leaves it out
+  double delay_s = 0.0;           // start this long after the previous process
+  int line = 0;                   // where it was declared, for messages
+};
+
+struct LaunchFile {
+  std::string path;
+  std::string name;
+  std::map<std::string, std::string> variables;  // after overrides
+  std::vector<ProcessSpec> processes;            // in start order
+};
+
+// Reads and checks a launch file. `overrides` replace <arg> defaults (an
+// override for an undeclared arg is an error). Built-in variables:
+// ${launch_dir} (the file's directory) and ${cwd}.
+LaunchFile ReadLaunchFile(const std::string& path,
+                          const std::map<std::string, std::string>& overrides);
+
+// Splits a command line on white space, honouring '...' and "..." quotes.
+// Throws std::invalid_argument on an unterminated quote.
+std::vector<std::string> SplitArgs(const std::string& text);
+
+}  // namespace mrsim

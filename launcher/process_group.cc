@@ -1,0 +1,220 @@
+#include "launcher/process_group.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace mrsim {
+namespace {
+
+constexpr int kColours[] = {36, 33, 32, 35, 34, 31};
+
+std::string DescribeStatus(int status) {
+  if (WIFEXITED(status)) {
+    return "exited with code " + std::to_string(WEXITSTATUS(status));
+  }
+  if (WIFSIGNALED(status)) {
+    return std::string("killed by signal ") + strsignal(WTERMSIG(status));
+  }
+  return "ended";
+}
+
+}  // namespace
+
+ProcessGroup::ProcessGroup(std::FILE* out)
+    : out_(out), colour_(isatty(fileno(out)) != 0) {}
+
+ProcessGroup::~ProcessGroup() { StopAll(2.0); }
+
+void ProcessGroup::Start(const ProcessSpec& spec,
+                         const std::string& program_path) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    throw std::runtime_error("cannot create a pipe for " + spec.name);
+  }
+  std::vector<std::string> argv_strings{program_path};
+  argv_strings.insert(argv_strings.end(), spec.args.begin(), spec.args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null",
+                                   O_RDONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, program_path.c_str(), &actions, nullptr,
+                             argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  if (rc != 0) {
+    close(fds[0]);
+    throw std::runtime_error("cannot start " + spec.name + " (" + program_path +
+                             "): " + std::strerror(rc));
+  }
+  Child child;
+  child.spec = spec;
+  child.pid = pid;
+  child.out_fd = fds[0];
+  child.running = true;
+  child.colour = kColours[children_.size() % std::size(kColours)];
+  name_width_ = std::max(name_width_, spec.name.size());
+  children_.push_back(std::move(child));
+  Say("started " + spec.name + " (pid " + std::to_string(pid) +
+      "): " + program_path);
+}
+
+void ProcessGroup::PrintLine(const Child& child, const std::string& line) {
+  if (colour_) {
+    std::fprintf(out_, "\033[%dm[%-*s]\033[0m %s\n", child.colour,
+                 static_cast<int>(name_width_), child.spec.name.c_str(),
+                 line.c_str());
+  } else {
+    std::fprintf(out_, "[%-*s] %s\n", static_cast<int>(name_width_),
+                 child.spec.name.c_str(), line.c_str());
+  }
+  std::fflush(out_);
+}
+
+void ProcessGroup::Say(const std::string& line) {
+  std::fprintf(out_, "[%-*s] %s\n", static_cast<int>(name_width_), "launch",
+               line.c_str());
+  std::fflush(out_);
+}
+
+void ProcessGroup::Forward(Child& child, bool flush_partial) {
+  if (child.out_fd < 0) return;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(child.out_fd, buffer, sizeof(buffer));
+    if (n > 0) {
+      child.pending.append(buffer, static_cast<size_t>(n));
+      size_t start = 0;
+      for (size_t nl;
+           (nl = child.pending.find('\n', start)) != std::string::npos;
+           start = nl + 1) {
+        PrintLine(child, child.pending.substr(start, nl - start));
+      }
+      child.pending.erase(0, start);
+      if (n < static_cast<ssize_t>(sizeof(buffer))) break;
+      continue;
+    }
+    if (n == 0 || (errno != EINTR && errno != EAGAIN)) {
+      // End of output: the process closed its side.
+      if (!child.pending.empty()) PrintLine(child, child.pending);
+      child.pending.clear();
+      close(child.out_fd);
+      child.out_fd = -1;
+    }
+    break;
+  }
+  if (flush_partial && !child.pending.empty()) {
+    PrintLine(child, child.pending);
+    child.pending.clear();
+  }
+}
+
+void ProcessGroup::Reap(Child& child, int status) {
+  child.running = false;
+  child.status = status;
+  Forward(child, true);
+  Say(child.spec.name + " " + DescribeStatus(status));
+}
+
+std::string ProcessGroup::Poll(int timeout_ms) {
+  std::vector<pollfd> fds;
+  std::vector<Child*> owners;
+  for (auto& c : children_) {
+    if (c.out_fd >= 0) {
+      fds.push_back({c.out_fd, POLLIN, 0});
+      owners.push_back(&c);
+    }
+  }
+  if (fds.empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
+  } else if (poll(fds.data(), fds.size(), timeout_ms) > 0) {
+    for (size_t i = 0; i < fds.size(); ++i) {
+      if (fds[i].revents != 0) Forward(*owners[i], false);
+    }
+  }
+  std::string ended_required;
+  for (auto& c : children_) {
+    if (!c.running) continue;
+    int status = 0;
+    if (waitpid(c.pid, &status, WNOHANG) == c.pid) {
+      Reap(c, status);
+      if (c.spec.required && ended_required.empty()) {
+        ended_required = c.spec.name;
+      }
+    }
+  }
+  return ended_required;
+}
+
+void ProcessGroup::StopAll(double grace_s) {
+  using Clock = std::chrono::steady_clock;
+  const int signals[] = {SIGINT, SIGTERM, SIGKILL};
+  for (int sig : signals) {
+    bool any = false;
+    // Stop in reverse start order: consumers before the simulator.
+    for (auto it = children_.rbegin(); it != children_.rend(); ++it) {
+      if (it->running) {
+        it->stopped_by_us = true;
+        kill(it->pid, sig);
+        any = true;
+      }
+    }
+    if (!any) break;
+    const auto deadline = Clock::now() + std::chrono::duration<double>(
+                                             sig == SIGKILL ? 5.0 : grace_s);
+    while (AnyRunning() && Clock::now() < deadline) Poll(50);
+    if (!AnyRunning()) break;
+    Say(std::string("some processes ignored ") + strsignal(sig) +
+        ", escalating");
+  }
+  for (auto& c : children_) {
+    if (c.out_fd >= 0) Forward(c, true);
+  }
+}
+
+bool ProcessGroup::AnyRunning() const {
+  return std::any_of(children_.begin(), children_.end(),
+                     [](const Child& c) { return c.running; });
+}
+
+bool ProcessGroup::AllClean() const {
+  for (const auto& c : children_) {
+    if (c.running) return false;
+    const bool exit_ok = WIFEXITED(c.status) && WEXITSTATUS(c.status) == 0;
+    const bool our_signal =
+        c.stopped_by_us && WIFSIGNALED(c.status) &&
+        (WTERMSIG(c.status) == SIGINT || WTERMSIG(c.status) == SIGTERM);
+    if (!exit_ok && !our_signal) return false;
+  }
+  return true;
+}
+
+std::string ProcessGroup::Summary() const {
+  std::string s;
+  for (const auto& c : children_) {
+    s += "  " + c.spec.name + ": " +
+         (c.running ? std::string("running") : DescribeStatus(c.status)) + "\n";
+  }
+  return s;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,64 @@
+// The processes of one launch: starts them, forwards their output line by
+// line prefixed with their names, notices when one exits and stops them all.
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "launcher/launch_file.h"
+
+namespace mrsim {
+
+class ProcessGroup {
+ public:
+  // Output goes to `out` (stdout in the launcher); colours when it is a tty.
+  explicit ProcessGroup(std::FILE* out);
+  ~ProcessGroup();
+  ProcessGroup(const ProcessGroup&) = delete;
+  ProcessGroup& operator=(const ProcessGroup&) = delete;
+
+  // Starts `spec` running `program_path`. Throws std::runtime_error when the
+  // program cannot be started.
+  void Start(const ProcessSpec& spec, const std::string& program_path);
+
+  // Forwards output for up to timeout_ms and reaps processes that ended.
+  // Returns the name of a required process that exited, or "".
+  std::string Poll(int timeout_ms);
+
+  // SIGINT to all that run, then SIGTERM after grace_s, then SIGKILL;
+  // forwards their last output. Returns when every process has ended.
+  void StopAll(double grace_s);
+
+  bool AnyRunning() const;
+  // True when every process ended with exit code 0 or by our stop signal.
+  bool AllClean() const;
+  // One line per process: name, how it ended.
+  std::string Summary() const;
+  // Prints a line prefixed with the launcher's own name.
+  void Say(const std::string& line);
+
+ private:
+  struct Child {
+    ProcessSpec spec;
+    pid_t pid = -1;
+    int out_fd = -1;
+    std::string pending;  // partial line not yet printed
+    bool running = false;
+    int status = 0;
+    bool stopped_by_us = false;
+    int colour = 0;
+  };
+  void Forward(Child& child, bool flush_partial);
+  void Reap(Child& child, int status);
+  void PrintLine(const Child& child, const std::string& line);
+
+  std::FILE* out_;
+  bool colour_;
+  size_t name_width_ = 6;
+  std::vector<Child> children_;
+};
+
+}  // namespace mrsim

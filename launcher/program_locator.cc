@@ -1,0 +1,49 @@
+#include "launcher/program_locator.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace mrsim {
+
+std::vector<std::string> ProgramSearchPath(const std::string& argv0) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> dirs;
+  if (argv0.find('/') != std::string::npos) {
+    dirs.push_back(fs::absolute(argv0).parent_path().string());
+  }
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    dirs.push_back((self.parent_path().parent_path() / "bin").string());
+  }
+  if (const char* path = std::getenv("PATH")) {
+    std::stringstream ss(path);
+    for (std::string dir; std::getline(ss, dir, ':');) {
+      if (!dir.empty()) dirs.push_back(dir);
+    }
+  }
+  return dirs;
+}
+
+std::string FindProgram(const std::string& program,
+                        const std::vector<std::string>& search_path) {
+  if (program.find('/') != std::string::npos) {
+    if (access(program.c_str(), X_OK) == 0) return program;
+    throw std::runtime_error("program " + program + " is not executable");
+  }
+  for (const auto& dir : search_path) {
+    const std::string candidate = dir + "/" + program;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  std::string tried;
+  for (const auto& dir : search_path) tried += "\n  " + dir;
+  throw std::runtime_error("cannot find program '" + program +
+                           "'; looked in:" + tried +
+                           "\n(build it, or add its directory to PATH)");
+}
+
+}  // namespace mrsim
