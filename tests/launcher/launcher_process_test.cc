@@ -1,0 +1,108 @@
+// Runs the real `mrsim` program on launch files of shell processes.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::TempDir;
+
+std::string WriteLaunch(const std::string& dir, const std::string& text) {
+  const std::string path = dir + "/test.launch";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Launcher, RequiredProcessEndingStopsTheOthersAndPrefixesOutput) {
+  const std::string dir = TempDir("launcher_required");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="forever" program="/bin/sh"
+           args="-c 'echo up; trap &quot;echo flushed; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+  <process name="short" program="/bin/sh" required="true" delay="0.3"
+           args="-c 'echo hello from short; exit 0'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  const int code = mrsim.Wait(30);
+  const std::string out = mrsim.Output();
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("[short "), std::string::npos) << out;
+  EXPECT_NE(out.find("hello from short"), std::string::npos) << out;
+  EXPECT_NE(out.find("] up"), std::string::npos) << out;
+  // The long-running one was told to stop and flushed.
+  EXPECT_NE(out.find("flushed"), std::string::npos) << out;
+}
+
+TEST(Launcher, InterruptStopsEveryProcessCleanly) {
+  const std::string dir = TempDir("launcher_interrupt");
+  const std::string marker = dir + "/stopped";
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <arg name="marker" default=")" + marker + R"("/>
+  <process name="a" program="/bin/sh"
+           args="-c 'trap &quot;touch ${marker}.a; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+  <process name="b" program="/bin/sh"
+           args="-c 'trap &quot;touch ${marker}.b; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  mrsim.Signal(SIGINT);
+  EXPECT_EQ(mrsim.Wait(30), 0) << mrsim.Output();
+  EXPECT_TRUE(std::ifstream(marker + ".a").good()) << mrsim.Output();
+  EXPECT_TRUE(std::ifstream(marker + ".b").good()) << mrsim.Output();
+}
+
+TEST(Launcher, ReportsAProcessThatDies) {
+  const std::string dir = TempDir("launcher_dies");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="crasher" program="/bin/sh" args="-c 'exit 3'"/>
+  <process name="main" program="/bin/sh" required="true" delay="0.5"
+           args="-c 'sleep 0.5'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(30), 1);
+  EXPECT_NE(mrsim.Output().find("crasher exited with code 3"),
+            std::string::npos)
+      << mrsim.Output();
+}
+
+TEST(Launcher, UnknownProgramStartsNothingAndExitsTwo) {
+  const std::string dir = TempDir("launcher_unknown");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="a" program="/bin/sh" args="-c 'touch )" +
+                                                  dir +
+                                                  R"(/started'"/>
+  <process name="b" program="mrsim-no-such-program"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_NE(mrsim.Wait(30), 0);
+  EXPECT_NE(mrsim.Output().find("mrsim-no-such-program"), std::string::npos);
+  EXPECT_FALSE(std::ifstream(dir + "/started").good());
+}
+
+TEST(Launcher, WithoutLeavesAProcessOut) {
+  const std::string dir = TempDir("launcher_without");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="a" program="/bin/sh" required="true" args="-c 'echo A-ran'"/>
+  <process name="b" program="/bin/sh" args="-c 'echo B-ran'"/>
+</launch>)");
+  ChildProcess mrsim(
+      {BinaryPath("launcher/mrsim"), "launch", launch, "--without", "b"},
+      dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(30), 0);
+  EXPECT_NE(mrsim.Output().find("A-ran"), std::string::npos);
+  EXPECT_EQ(mrsim.Output().find("B-ran"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrsim
