@@ -1,0 +1,25 @@
+# Installs the libraries, headers, generated message types and a CMake
+# package so another project can find_package(mrsim).
+include(CMakePackageConfigHelpers)
+
+# Exported names drop the mrsim_ prefix: mrsim::sim_core, mrsim::gait, ...
+foreach(lib sim_core gait optimizer logger viewer lcmtypes runtime warnings)
+  if(TARGET mrsim_${lib})
+    set_target_properties(mrsim_${lib} PROPERTIES EXPORT_NAME ${lib})
+  endif()
+endforeach()
+
+set(MRSIM_EXTRA_DEPENDENCIES "")
+if(Pagmo_FOUND)
+  set(MRSIM_EXTRA_DEPENDENCIES "find_dependency(Pagmo)")
+endif()
+
+set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/mrsim)
+install(EXPORT mrsimTargets NAMESPACE mrsim:: DESTINATION ${config_dir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/mrsimConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/mrsimConfig.cmake INSTALL_DESTINATION ${config_dir})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/mrsimConfig.cmake
+  ${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake DESTINATION ${config_dir})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim/scenarios)
