@@ -15,13 +15,12 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
 
-#include "sim_core/base64.h"
+#include "sim_core/terrain.h"
 
 namespace mrsim {
 namespace {
@@ -755,43 +754,14 @@ Scene Reader::ReadScene(const XMLElement* e, const std::string& path) {
   return s;
 }
 
+// The physics decodes the image the same way (sim_core/terrain.h), so a
+// file that validates also loads.
 void Reader::CheckImage(const Scene& scene, const XMLElement* e,
                         const std::string& path) const {
-  const std::string& image = scene.height_image;
-  cv::Mat decoded;
-  std::string source;
-  const std::string kPrefix = "base64:";
-  std::error_code ec;
-  if (image.rfind(kPrefix, 0) != 0 && fs::is_regular_file(Resolve(image), ec)) {
-    source = "file '" + Resolve(image) + "'";
-    decoded = cv::imread(Resolve(image), cv::IMREAD_GRAYSCALE);
-  } else {
-    const std::string data =
-        image.rfind(kPrefix, 0) == 0 ? image.substr(kPrefix.size()) : image;
-    std::vector<unsigned char> bytes;
-    try {
-      bytes = Base64Decode(data);
-    } catch (const std::invalid_argument& err) {
-      Fail(e, path,
-           "cannot read image: '" +
-               (image.size() > 60 ? image.substr(0, 60) + "..." : image) +
-               "' is neither a file (relative to '" + base_dir_ +
-               "') nor base64 image data (" + err.what() + ")");
-    }
-    source = "base64 data";
-    if (!bytes.empty()) decoded = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE);
-  }
-  if (decoded.empty()) {
-    Fail(e, path,
-         "cannot read image from " + source +
-             ": OpenCV cannot decode it (expected a PNG or other "
-             "grey-scale image)");
-  }
-  if (decoded.rows < 2 || decoded.cols < 2) {
-    Fail(e, path,
-         fmt::format("image from {} is {}x{}; a height field needs at least "
-                     "2x2 pixels",
-                     source, decoded.cols, decoded.rows));
+  try {
+    LoadTerrainImage(scene, base_dir_);
+  } catch (const std::exception& err) {
+    Fail(e, path, std::string("cannot read the height image: ") + err.what());
   }
 }
 
