@@ -1,0 +1,247 @@
+// mrsim-view: subscribes to the robot states of a scenario (or replays an
+// .lcmlog), poses the model rebuilt from the same scenario and renders
+// frames at fixed simulation-time steps to MP4 / PNG, off-screen; with
+// --window and a display, live too. It only listens, so it never slows the
+// simulator.
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <lcm/lcm-cpp.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/stop_signal.h"
+#include "sim_core/scenario_xml.h"
+#include "viewer/frame_scheduler.h"
+#include "viewer/frame_writer.h"
+#include "viewer/gl_context.h"
+#include "viewer/live_window.h"
+#include "viewer/process/state_inbox.h"
+#include "viewer/process/view_options.h"
+#include "viewer/state_viewer.h"
+
+namespace mrsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Renders due frames and hands them to the writer and the window.
+class FramePump {
+ public:
+  FramePump(StateViewer* viewer, FrameScheduler* scheduler, FrameWriter* writer,
+            LiveWindow* window, int64_t max_frames)
+      : viewer_(viewer),
+        scheduler_(scheduler),
+        writer_(writer),
+        window_(window),
+        max_frames_(max_frames) {}
+
+  // Renders every frame that is due. Returns false once max_frames is
+  // reached.
+  bool Drain() {
+    FrameScheduler::Frame frame;
+    while (!Done() && scheduler_->NextFrame(&frame)) {
+      const bool camera_moved =
+          window_ != nullptr && window_->TakeCameraChanged();
+      // A repeated state (lost or late messages) gives the same picture.
+      if (!have_image_ || frame.key != last_key_ || camera_moved) {
+        viewer_->Render(frame.states, &image_);
+        last_states_.clear();
+        for (const RobotState* s : frame.states) {
+          last_states_.push_back(s ? *s : RobotState());
+        }
+        last_valid_.assign(frame.states.size(), false);
+        for (size_t r = 0; r < frame.states.size(); ++r) {
+          last_valid_[r] = frame.states[r] != nullptr;
+        }
+        last_key_ = frame.key;
+        have_image_ = true;
+        ++rendered_;
+        ShowInWindow();
+      }
+      if (first_index_ < 0) first_index_ = frame.index;
+      last_time_ = frame.utime * 1e-6;
+      if (writer_ != nullptr) writer_->Write(image_, frame.index);
+      ++frames_;
+    }
+    return !Done();
+  }
+
+  // Window only: redraw after camera moves while no new frame is due.
+  void Refresh() {
+    if (window_ == nullptr) return;
+    window_->PollEvents();
+    if (!window_->TakeCameraChanged() || !have_image_) return;
+    std::vector<const RobotState*> states;
+    for (size_t r = 0; r < last_states_.size(); ++r) {
+      states.push_back(last_valid_[r] ? &last_states_[r] : nullptr);
+    }
+    viewer_->Render(states, &image_);
+    ShowInWindow();
+  }
+
+  bool Done() const { return max_frames_ > 0 && frames_ >= max_frames_; }
+  int64_t frames() const { return frames_; }
+  int64_t rendered() const { return rendered_; }
+  int64_t first_index() const { return first_index_; }
+  double last_time() const { return last_time_; }
+
+ private:
+  void ShowInWindow() {
+    if (window_ == nullptr) return;
+    viewer_->RenderToWindow(window_->width(), window_->height());
+    window_->SwapBuffers();
+  }
+
+  StateViewer* viewer_;
+  FrameScheduler* scheduler_;
+  FrameWriter* writer_;
+  LiveWindow* window_;
+  int64_t max_frames_;
+  cv::Mat image_;
+  bool have_image_ = false;
+  std::vector<int64_t> last_key_;
+  std::vector<RobotState> last_states_;
+  std::vector<bool> last_valid_;
+  int64_t frames_ = 0;
+  int64_t rendered_ = 0;
+  int64_t first_index_ = -1;
+  double last_time_ = 0.0;
+};
+
+void Progress(const FramePump& pump, const StateInbox& inbox,
+              Clock::time_point* next) {
+  const Clock::time_point now = Clock::now();
+  if (now < *next) return;
+  *next = now + std::chrono::seconds(2);
+  std::fprintf(stderr,
+               "mrsim-view: %lld frames (sim time %.2f s), %lld states, %lld "
+               "malformed\n",
+               static_cast<long long>(pump.frames()), pump.last_time(),
+               static_cast<long long>(inbox.accepted()),
+               static_cast<long long>(inbox.malformed()));
+}
+
+int Run(const ViewOptions& opt) {
+  const Scenario scenario = ReadScenarioFile(opt.scenario);
+
+  // The window's context serves off-screen frames too; without a display
+  // an EGL context does.
+  std::unique_ptr<LiveWindow> window;
+  std::unique_ptr<GlContext> gl;
+  if (opt.window && !LiveWindow::DisplayAvailable()) {
+    std::fprintf(stderr,
+                 "mrsim-view: --window: no display (DISPLAY unset); "
+                 "rendering off-screen only\n");
+  }
+  if (opt.window && LiveWindow::DisplayAvailable()) {
+    window = std::make_unique<LiveWindow>("mrsim-view: " + opt.scenario,
+                                          opt.viewer.width, opt.viewer.height,
+                                          nullptr);
+  } else {
+    gl = std::make_unique<GlContext>();
+  }
+  StateViewer viewer(scenario, opt.viewer);
+  if (window) window->SetCamera(viewer.camera());
+
+  FrameScheduler scheduler(opt.fps, viewer.robot_count());
+  StateInbox inbox(viewer, opt.prefix, &scheduler);
+  std::unique_ptr<FrameWriter> writer;
+  if (!opt.out.empty()) {
+    writer = FrameWriter::Video(opt.out, opt.fps, opt.viewer.width,
+                                opt.viewer.height);
+  } else if (!opt.frames_dir.empty()) {
+    writer = FrameWriter::Pngs(opt.frames_dir);
+  }
+  FramePump pump(&viewer, &scheduler, writer.get(), window.get(),
+                 opt.max_frames);
+  std::fprintf(stderr, "mrsim-view: %s, %d robot(s), %dx%d at %g fps, %s\n",
+               gl ? gl->description().c_str() : "window context",
+               viewer.robot_count(), opt.viewer.width, opt.viewer.height,
+               opt.fps,
+               opt.from_log.empty() ? "listening" : opt.from_log.c_str());
+
+  Clock::time_point next_progress = Clock::now() + std::chrono::seconds(2);
+  if (!opt.from_log.empty()) {
+    lcm::LogFile log(opt.from_log, "r");
+    if (!log.good()) {
+      throw std::runtime_error(opt.from_log + ": cannot read the LCM log");
+    }
+    while (!StopRequested() && !pump.Done()) {
+      const lcm::LogEvent* event = log.readNextEvent();
+      if (event == nullptr) break;
+      inbox.Receive(event->channel, event->data, event->datalen);
+      pump.Drain();
+      if (window) {
+        window->PollEvents();
+        if (window->ShouldClose()) break;
+      }
+      Progress(pump, inbox, &next_progress);
+    }
+  } else {
+    lcm::LCM lcm(opt.lcm_url);
+    if (!lcm.good()) {
+      throw std::runtime_error("cannot open LCM at '" + opt.lcm_url + "'");
+    }
+    struct Handler {
+      StateInbox* inbox;
+      void On(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+        inbox->Receive(channel, buffer->data,
+                       static_cast<int>(buffer->data_size));
+      }
+    } handler{&inbox};
+    for (const auto& [channel, robot] : inbox.channels()) {
+      (void)robot;
+      lcm::Subscription* sub = lcm.subscribe(channel, &Handler::On, &handler);
+      // A slow viewer drops old states instead of falling behind.
+      sub->setQueueCapacity(opt.queue);
+    }
+    while (!StopRequested() && !pump.Done()) {
+      HandleFor(lcm, window ? 10 : 100);
+      pump.Drain();
+      if (window) {
+        pump.Refresh();
+        if (window->ShouldClose()) break;
+      }
+      Progress(pump, inbox, &next_progress);
+    }
+  }
+  if (writer) writer->Close();
+  std::fprintf(stderr,
+               "mrsim-view: done: %lld frames (%lld rendered, first index "
+               "%lld, last at %.3f s), %lld states, %lld malformed, %lld "
+               "stale%s%s\n",
+               static_cast<long long>(pump.frames()),
+               static_cast<long long>(pump.rendered()),
+               static_cast<long long>(pump.first_index()), pump.last_time(),
+               static_cast<long long>(inbox.accepted()),
+               static_cast<long long>(inbox.malformed()),
+               static_cast<long long>(inbox.stale()),
+               inbox.last_error().empty() ? "" : "; last problem: ",
+               inbox.last_error().c_str());
+  if (writer) {
+    std::fprintf(stderr, "mrsim-view: wrote %s\n", writer->path().c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace mrsim
+
+int main(int argc, char** argv) {
+  mrsim::ViewOptions options;
+  const int parsed = mrsim::ParseViewOptions(argc, argv, &options);
+  if (parsed >= 0) return parsed;
+  mrsim::InstallStopHandlers();
+  try {
+    return mrsim::Run(options);
+  } catch (const mrsim::ScenarioError& e) {
+    std::fprintf(stderr, "mrsim-view: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrsim-view: %s\n", e.what());
+    return 1;
+  }
+}

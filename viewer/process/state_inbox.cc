@@ -1,0 +1,65 @@
+#include "viewer/process/state_inbox.h"
+
+#include <exception>
+#include <utility>
+
+#include "lcmtypes/runtime/channels.h"
+#include "mrsim/robot_state_t.hpp"
+#include "sim_core/sim_process/state_message.h"
+
+namespace mrsim {
+
+StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
+                       FrameScheduler* scheduler)
+    : viewer_(viewer), scheduler_(scheduler) {
+  for (int r = 0; r < viewer.robot_count(); ++r) {
+    channels_[StateChannel(prefix, viewer.robot_name(r))] = r;
+  }
+}
+
+bool StateInbox::Receive(const std::string& channel, const void* data,
+                         int size) {
+  try {
+    const auto it = channels_.find(channel);
+    if (it == channels_.end()) return false;
+    const int robot = it->second;
+    robot_state_t msg;
+    if (msg.decode(data, 0, size) < 0) {
+      ++malformed_;
+      last_error_ = channel + ": cannot decode robot_state_t";
+      return false;
+    }
+    if (msg.robot != viewer_.robot_name(robot)) {
+      ++malformed_;
+      last_error_ = channel + ": state of robot '" + msg.robot + "'";
+      return false;
+    }
+    RobotState state = FromRobotStateMessage(msg);
+    const std::string problem = viewer_.Check(robot, state);
+    if (!problem.empty()) {
+      ++malformed_;
+      last_error_ = channel + ": " + problem;
+      return false;
+    }
+    if (msg.utime < 0) {
+      ++malformed_;
+      last_error_ = channel + ": negative utime";
+      return false;
+    }
+    if (!scheduler_->Push(robot, msg.utime, std::move(state))) {
+      ++stale_;
+      return false;
+    }
+    ++accepted_;
+    return true;
+  } catch (const std::exception& e) {
+    ++malformed_;
+    last_error_ = channel + ": " + e.what();
+  } catch (...) {
+    ++malformed_;
+    last_error_ = channel + ": unknown error";
+  }
+  return false;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,40 @@
+// Decodes robot_state_t messages (live or from a log) for the robots of the
+// scenario and feeds the frame scheduler. Malformed or foreign messages are
+// counted and dropped, never trusted; nothing here throws.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "viewer/frame_scheduler.h"
+#include "viewer/state_viewer.h"
+
+namespace mrsim {
+
+class StateInbox {
+ public:
+  // Channels are StateChannel(prefix, robot) for every robot of `viewer`.
+  StateInbox(const StateViewer& viewer, const std::string& prefix,
+             FrameScheduler* scheduler);
+
+  const std::map<std::string, int>& channels() const { return channels_; }
+  // One message; returns true when it reached the scheduler.
+  bool Receive(const std::string& channel, const void* data, int size);
+
+  int64_t accepted() const { return accepted_; }
+  int64_t malformed() const { return malformed_; }
+  int64_t stale() const { return stale_; }
+  const std::string& last_error() const { return last_error_; }
+
+ private:
+  const StateViewer& viewer_;
+  FrameScheduler* scheduler_;
+  std::map<std::string, int> channels_;
+  int64_t accepted_ = 0;
+  int64_t malformed_ = 0;
+  int64_t stale_ = 0;
+  std::string last_error_;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,324 @@
+#include "viewer/state_pose_mapper.h"
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace mrsim {
+namespace {
+
+struct DataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+
+Eigen::Quaterniond QuatFrom(const mjtNum* wxyz) {
+  return Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).normalized();
+}
+
+void QuatTo(const Eigen::Quaterniond& q, mjtNum* wxyz) {
+  wxyz[0] = q.w();
+  wxyz[1] = q.x();
+  wxyz[2] = q.y();
+  wxyz[3] = q.z();
+}
+
+bool Finite(const mrsim::Pose& pose) {
+  return pose.position.allFinite() && pose.orientation.coeffs().allFinite() &&
+         pose.orientation.coeffs().norm() > 1e-9;
+}
+
+// Body id of a part named `guid`: a body of that name, else the body of a
+// geom of that name (then *geom_local is the geom's pose in its body).
+int FindBody(const mjModel* m, const std::string& guid, bool* via_geom,
+             Eigen::Vector3d* geom_pos, Eigen::Quaterniond* geom_quat) {
+  *via_geom = false;
+  if (guid.empty()) return -1;
+  const int body = mj_name2id(m, mjOBJ_BODY, guid.c_str());
+  if (body > 0) return body;
+  const int geom = mj_name2id(m, mjOBJ_GEOM, guid.c_str());
+  if (geom >= 0 && m->geom_bodyid[geom] > 0) {
+    *via_geom = true;
+    *geom_pos = Eigen::Vector3d(m->geom_pos + 3 * geom);
+    *geom_quat = QuatFrom(m->geom_quat + 4 * geom);
+    return m->geom_bodyid[geom];
+  }
+  return -1;
+}
+
+// The rangefinder site of a distance sensor: a site or a sensor named
+// after it.
+int FindRaySite(const mjModel* m, const std::string& guid) {
+  if (guid.empty()) return -1;
+  const int site = mj_name2id(m, mjOBJ_SITE, guid.c_str());
+  if (site >= 0) return site;
+  const int sensor = mj_name2id(m, mjOBJ_SENSOR, guid.c_str());
+  if (sensor >= 0 && m->sensor_type[sensor] == mjSENS_RANGEFINDER &&
+      m->sensor_objtype[sensor] == mjOBJ_SITE) {
+    return m->sensor_objid[sensor];
+  }
+  return -1;
+}
+
+}  // namespace
+
+StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
+    : model_(model) {
+  if (model == nullptr) throw std::invalid_argument("StatePoseMapper: null");
+  const mjModel* m = model;
+  std::unique_ptr<mjData, DataDeleter> data(mj_makeData(m));
+  mj_resetData(m, data.get());
+  mj_kinematics(m, data.get());
+  built_.resize(m->nbody);
+  for (int b = 0; b < m->nbody; ++b) {
+    built_[b].p = Eigen::Vector3d(data->xpos + 3 * b);
+    built_[b].q = QuatFrom(data->xquat + 4 * b);
+  }
+  sources_.assign(m->nbody, BodySource());
+
+  auto inverse = [](const Pose& a) {
+    Pose r;
+    r.q = a.q.conjugate();
+    r.p = -(r.q * a.p);
+    return r;
+  };
+  auto compose = [](const Pose& a, const Pose& b) {
+    Pose r;
+    r.p = a.p + a.q * b.p;
+    r.q = a.q * b.q;
+    return r;
+  };
+
+  std::vector<std::pair<int, int>> attach_by_name;  // body, anchor body
+  for (size_t r = 0; r < scenario.robots.size(); ++r) {
+    const Robot& robot = scenario.robots[r];
+    RobotInfo info;
+    info.name = robot.name;
+    info.modules = static_cast<int>(robot.modules.size());
+    info.sensor_modules = static_cast<int>(robot.sensor_modules.size());
+    auto map_part = [&](const std::string& guid, int part,
+                        const std::string& what) {
+      bool via_geom = false;
+      Eigen::Vector3d gpos;
+      Eigen::Quaterniond gquat;
+      const int body = FindBody(m, guid, &via_geom, &gpos, &gquat);
+      if (body < 0) {
+        throw std::runtime_error("viewer: robot '" + robot.name + "' " + what +
+                                 " '" + guid +
+                                 "' has no body or geom of that name in the "
+                                 "model built from the scenario");
+      }
+      BodySource& src = sources_[body];
+      if (src.kind == BodySource::kState) return body;  // merged parts
+      src.kind = BodySource::kState;
+      src.robot = static_cast<int>(r);
+      src.part = part;
+      if (via_geom) {
+        Pose geom_local;
+        geom_local.p = gpos;
+        geom_local.q = gquat;
+        src.offset = inverse(geom_local);
+      }
+      return body;
+    };
+    for (int i = 0; i < info.modules; ++i) {
+      for (int f = 0; f < 2; ++f) {
+        map_part(robot.modules[i].frames[f].guid, 2 * i + f,
+                 "module " + std::to_string(i) + " frame " + std::to_string(f));
+      }
+    }
+    for (int s = 0; s < info.sensor_modules; ++s) {
+      const SensorModule& sm = robot.sensor_modules[s];
+      const int sm_body = map_part(sm.guid, 2 * info.modules + s,
+                                   "sensor module " + std::to_string(s));
+      // Plates and distance sensors ride on their sensor module.
+      auto attach = [&](const std::string& guid) {
+        bool via_geom = false;
+        Eigen::Vector3d gpos;
+        Eigen::Quaterniond gquat;
+        const int body = FindBody(m, guid, &via_geom, &gpos, &gquat);
+        if (body > 0) attach_by_name.emplace_back(body, sm_body);
+      };
+      if (sm.force_sensor) attach(sm.force_sensor->guid);
+      // Built pose of the sensor module's frame for the fallback rays.
+      Pose sm_pose;
+      sm_pose.p = sm.position;
+      sm_pose.q = sm.quat_rotation.normalized();
+      for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
+        const DistanceSensor& ds = sm.distance_sensors[k];
+        attach(ds.guid);
+        RaySource ray;
+        ray.sensor_module = s;
+        ray.index = static_cast<int>(k);
+        ray.site = FindRaySite(m, ds.guid);
+        ray.local_origin = sm_pose.q.conjugate() * (ds.position - sm.position);
+        ray.local_direction =
+            ds.ray_direction.norm() > 1e-12
+                ? Eigen::Vector3d(ds.ray_direction.normalized())
+                : Eigen::Vector3d::UnitX();
+        ray.max_distance = ds.max_ray_distance;
+        info.rays.push_back(ray);
+      }
+    }
+    robots_.push_back(info);
+  }
+
+  // Everything else that moves with a robot: bodies below a state body in
+  // the tree, then named plates and sensors welded to a sensor module.
+  for (int b = 1; b < m->nbody; ++b) {
+    if (sources_[b].kind == BodySource::kState) continue;
+    for (int a = m->body_parentid[b]; a > 0; a = m->body_parentid[a]) {
+      if (sources_[a].kind == BodySource::kState) {
+        sources_[b].kind = BodySource::kAttached;
+        sources_[b].anchor = a;
+        sources_[b].offset = compose(inverse(built_[a]), built_[b]);
+        break;
+      }
+    }
+  }
+  for (const auto& [body, anchor] : attach_by_name) {
+    if (sources_[body].kind != BodySource::kBuilt || anchor <= 0) continue;
+    sources_[body].kind = BodySource::kAttached;
+    sources_[body].anchor = anchor;
+    sources_[body].offset = compose(inverse(built_[anchor]), built_[body]);
+  }
+}
+
+const std::string& StatePoseMapper::robot_name(int robot) const {
+  return robots_.at(robot).name;
+}
+
+int StatePoseMapper::robot_index(const std::string& name) const {
+  for (size_t r = 0; r < robots_.size(); ++r) {
+    if (robots_[r].name == name) return static_cast<int>(r);
+  }
+  return -1;
+}
+
+std::string StatePoseMapper::Check(int robot, const RobotState& state) const {
+  if (robot < 0 || robot >= robot_count()) return "unknown robot";
+  const RobotInfo& info = robots_[robot];
+  if (static_cast<int>(state.frames.size()) != 2 * info.modules) {
+    return "robot '" + info.name + "': " + std::to_string(state.frames.size()) +
+           " frames, expected " + std::to_string(2 * info.modules);
+  }
+  if (static_cast<int>(state.sensor_modules.size()) != info.sensor_modules) {
+    return "robot '" + info.name +
+           "': " + std::to_string(state.sensor_modules.size()) +
+           " sensor modules, expected " + std::to_string(info.sensor_modules);
+  }
+  if (!std::isfinite(state.time)) return "non-finite time";
+  for (const auto& f : state.frames) {
+    if (!Finite(f)) return "non-finite or zero-quaternion frame pose";
+  }
+  for (const auto& sm : state.sensor_modules) {
+    if (!Finite(sm.pose)) return "non-finite sensor module pose";
+    for (double dist : sm.distances) {
+      if (!std::isfinite(dist)) return "non-finite distance";
+    }
+  }
+  if (!state.com.allFinite() || !state.com_velocity.allFinite()) {
+    return "non-finite centre of mass";
+  }
+  return "";
+}
+
+void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
+                            mjData* d) const {
+  const mjModel* m = model_;
+  std::vector<Pose> pose(built_);
+  auto part_pose = [&](int robot, int part) {
+    const RobotState& s = *states[robot];
+    const int frames = static_cast<int>(s.frames.size());
+    const mrsim::Pose& src =
+        part < frames ? s.frames[part] : s.sensor_modules[part - frames].pose;
+    Pose r;
+    r.p = src.position;
+    r.q = src.orientation.normalized();
+    return r;
+  };
+  auto compose = [](const Pose& a, const Pose& b) {
+    Pose r;
+    r.p = a.p + a.q * b.p;
+    r.q = a.q * b.q;
+    return r;
+  };
+  auto has_state = [&](int robot) {
+    return robot >= 0 && robot < static_cast<int>(states.size()) &&
+           states[robot] != nullptr;
+  };
+  for (int b = 1; b < m->nbody; ++b) {
+    const BodySource& src = sources_[b];
+    if (src.kind == BodySource::kState && has_state(src.robot)) {
+      pose[b] = compose(part_pose(src.robot, src.part), src.offset);
+    }
+  }
+  for (int b = 1; b < m->nbody; ++b) {
+    const BodySource& src = sources_[b];
+    if (src.kind == BodySource::kAttached &&
+        has_state(sources_[src.anchor].robot)) {
+      pose[b] = compose(pose[src.anchor], src.offset);
+    }
+  }
+  for (int b = 0; b < m->nbody; ++b) {
+    mju_copy3(d->xpos + 3 * b, pose[b].p.data());
+    QuatTo(pose[b].q, d->xquat + 4 * b);
+    mju_quat2Mat(d->xmat + 9 * b, d->xquat + 4 * b);
+  }
+  mjtNum quat[4];
+  mjtNum vec[3];
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int b = m->geom_bodyid[g];
+    mju_mulMatVec(vec, d->xmat + 9 * b, m->geom_pos + 3 * g, 3, 3);
+    mju_add3(d->geom_xpos + 3 * g, d->xpos + 3 * b, vec);
+    mju_mulQuat(quat, d->xquat + 4 * b, m->geom_quat + 4 * g);
+    mju_quat2Mat(d->geom_xmat + 9 * g, quat);
+  }
+  for (int s = 0; s < m->nsite; ++s) {
+    const int b = m->site_bodyid[s];
+    mju_mulMatVec(vec, d->xmat + 9 * b, m->site_pos + 3 * s, 3, 3);
+    mju_add3(d->site_xpos + 3 * s, d->xpos + 3 * b, vec);
+    mju_mulQuat(quat, d->xquat + 4 * b, m->site_quat + 4 * s);
+    mju_quat2Mat(d->site_xmat + 9 * s, quat);
+  }
+  for (int l = 0; l < m->nlight; ++l) {
+    const int b = m->light_bodyid[l];
+    if (b == 0) continue;
+    mju_mulMatVec(vec, d->xmat + 9 * b, m->light_pos + 3 * l, 3, 3);
+    mju_add3(d->light_xpos + 3 * l, d->xpos + 3 * b, vec);
+    mju_mulMatVec(d->light_xdir + 3 * l, d->xmat + 9 * b, m->light_dir + 3 * l,
+                  3, 3);
+  }
+}
+
+std::vector<Ray> StatePoseMapper::Rays(int robot, const RobotState& state,
+                                       const mjData* d) const {
+  std::vector<Ray> rays;
+  if (robot < 0 || robot >= robot_count()) return rays;
+  for (const RaySource& src : robots_[robot].rays) {
+    if (src.sensor_module >= static_cast<int>(state.sensor_modules.size())) {
+      continue;
+    }
+    const SensorModuleState& sm = state.sensor_modules[src.sensor_module];
+    if (src.index >= static_cast<int>(sm.distances.size())) continue;
+    double distance = sm.distances[src.index];
+    Ray ray;
+    ray.hit = distance >= 0.0 && distance < src.max_distance - 1e-9;
+    if (!ray.hit) distance = src.max_distance;
+    Eigen::Vector3d direction;
+    if (src.site >= 0) {
+      const mjtNum* xmat = d->site_xmat + 9 * src.site;
+      ray.from = Eigen::Vector3d(d->site_xpos + 3 * src.site);
+      direction = Eigen::Vector3d(xmat[2], xmat[5], xmat[8]);
+    } else {
+      const Eigen::Quaterniond q = sm.pose.orientation.normalized();
+      ray.from = sm.pose.position + q * src.local_origin;
+      direction = q * src.local_direction;
+    }
+    ray.to = ray.from + distance * direction;
+    rays.push_back(ray);
+  }
+  return rays;
+}
+
+}  // namespace mrsim

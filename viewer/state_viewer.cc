@@ -1,0 +1,98 @@
+#include "viewer/state_viewer.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "sim_core/mjcf_builder.h"
+
+namespace mrsim {
+
+MjModelPtr CompileMjcf(const std::string& mjcf, const std::string& name) {
+  // An in-memory file: the MJCF names meshes and height fields by absolute
+  // path, so nothing needs writing to disk.
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* file = "mrsim_view.xml";
+  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(mjcf.size())) != 0) {
+    throw std::runtime_error(name + ": cannot hold the MJCF in memory");
+  }
+  const int i = mj_findFileVFS(&vfs, file);
+  std::memcpy(vfs.filedata[i], mjcf.data(), mjcf.size());
+  char error[1024] = "";
+  mjModel* model = mj_loadXML(file, &vfs, error, sizeof(error));
+  mj_deleteVFS(&vfs);
+  if (model == nullptr) {
+    throw std::runtime_error(name +
+                             ": MuJoCo cannot compile the model: " + error);
+  }
+  return MjModelPtr(model);
+}
+
+StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
+    : options_(options), camera_(options.camera) {
+  if (scenario.robots.empty()) {
+    throw std::runtime_error("viewer: the scenario has no robot to show");
+  }
+  model_ = CompileMjcf(BuildMjcf(scenario), "scenario");
+  data_.reset(mj_makeData(model_.get()));
+  if (data_ == nullptr) throw std::runtime_error("viewer: mj_makeData failed");
+  mj_resetData(model_.get(), data_.get());
+  mj_kinematics(model_.get(), data_.get());
+  mapper_ = std::make_unique<StatePoseMapper>(model_.get(), scenario);
+  if (!options.follow_robot.empty()) {
+    follow_ = mapper_->robot_index(options.follow_robot);
+    if (follow_ < 0) {
+      throw std::runtime_error("viewer: --robot '" + options.follow_robot +
+                               "' is not a robot of the scenario");
+    }
+  }
+  renderer_ =
+      std::make_unique<Renderer>(model_.get(), options.width, options.height);
+}
+
+StateViewer::~StateViewer() = default;
+
+const std::string& StateViewer::robot_name(int robot) const {
+  return mapper_->robot_name(robot);
+}
+
+int StateViewer::robot_index(const std::string& name) const {
+  return mapper_->robot_index(name);
+}
+
+std::string StateViewer::Check(int robot, const RobotState& state) const {
+  return mapper_->Check(robot, state);
+}
+
+void StateViewer::Render(const std::vector<const RobotState*>& states,
+                         cv::Mat* bgr) {
+  mapper_->Apply(states, data_.get());
+  rays_.clear();
+  if (options_.rays) {
+    for (int r = 0; r < robot_count() && r < static_cast<int>(states.size());
+         ++r) {
+      if (states[r] == nullptr) continue;
+      std::vector<Ray> rays = mapper_->Rays(r, *states[r], data_.get());
+      rays_.insert(rays_.end(), rays.begin(), rays.end());
+    }
+  }
+  const RobotState* followed =
+      follow_ < static_cast<int>(states.size()) ? states[follow_] : nullptr;
+  if (followed != nullptr) camera_.Track(followed->com);
+  has_overlay_ = options_.overlay;
+  overlay_ = Overlay();
+  overlay_.gait = options_.gait;
+  if (followed != nullptr) {
+    overlay_.time = followed->time;
+    overlay_.speed = followed->com_velocity.norm();
+  }
+  renderer_->Render(data_.get(), camera_.camera(), rays_,
+                    has_overlay_ ? &overlay_ : nullptr, bgr);
+}
+
+void StateViewer::RenderToWindow(int width, int height) {
+  renderer_->RenderToWindow(data_.get(), camera_.camera(), rays_,
+                            has_overlay_ ? &overlay_ : nullptr, width, height);
+}
+
+}  // namespace mrsim

@@ -1,0 +1,76 @@
+// The viewer's scene: the model rebuilt from a scenario (BuildMjcf), posed
+// from robot states, seen by a follow or fixed camera, drawn with rays and
+// an overlay. What mrsim-view renders for every frame; needs a current
+// OpenGL context (GlContext or LiveWindow).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "sim_core/physics.h"
+#include "sim_core/robot_state.h"
+#include "sim_core/scenario.h"
+#include "viewer/camera_control.h"
+#include "viewer/renderer.h"
+#include "viewer/state_pose_mapper.h"
+
+namespace mrsim {
+
+struct ViewerOptions {
+  int width = 640;
+  int height = 480;
+  CameraSettings camera;
+  std::string follow_robot;  // camera and overlay robot; empty: the first
+  std::string gait;          // shown in the overlay when not empty
+  bool overlay = true;
+  bool rays = true;
+};
+
+class StateViewer {
+ public:
+  // Builds and compiles the model. Throws std::runtime_error naming what
+  // failed (MJCF compile error, unknown follow robot, unmatched parts).
+  StateViewer(const Scenario& scenario, const ViewerOptions& options);
+  ~StateViewer();
+  StateViewer(const StateViewer&) = delete;
+  StateViewer& operator=(const StateViewer&) = delete;
+
+  int robot_count() const { return mapper_->robot_count(); }
+  const std::string& robot_name(int robot) const;
+  int robot_index(const std::string& name) const;
+  int follow_robot() const { return follow_; }
+  // Empty when the state fits the robot; else what is wrong.
+  std::string Check(int robot, const RobotState& state) const;
+
+  // Poses the model from states[r] (null: as built), points a follow camera
+  // at the followed robot's centre of mass, renders off-screen into `bgr`.
+  void Render(const std::vector<const RobotState*>& states, cv::Mat* bgr);
+  // Draws the scene of the last Render into the current window.
+  void RenderToWindow(int width, int height);
+
+  CameraControl* camera() { return &camera_; }
+  const mjModel* model() const { return model_.get(); }
+  Renderer* renderer() { return renderer_.get(); }
+
+ private:
+  ViewerOptions options_;
+  MjModelPtr model_;
+  MjDataPtr data_;
+  std::unique_ptr<StatePoseMapper> mapper_;
+  std::unique_ptr<Renderer> renderer_;
+  CameraControl camera_;
+  int follow_ = 0;
+  std::vector<Ray> rays_;
+  Overlay overlay_;
+  bool has_overlay_ = false;
+};
+
+// Compiles MJCF text into a model. Throws std::runtime_error with MuJoCo's
+// message, prefixed by `name`.
+MjModelPtr CompileMjcf(const std::string& mjcf, const std::string& name);
+
+}  // namespace mrsim
