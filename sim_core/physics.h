@@ -2,12 +2,12 @@
 // hinges with the P-on-speed law and reads every part back as RobotState.
 #pragma once
 
+#include <mujoco/mujoco.h>
+
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <mujoco/mujoco.h>
 
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
@@ -57,12 +57,21 @@ class Physics {
   Axis joint_axis(int robot, int joint) const;
   double joint_lower_limit(int robot, int joint) const;
   double joint_upper_limit(int robot, int joint) const;
+  // Index of the module a hinge belongs to (modules with a Lock joint have
+  // no hinge, so joint and module indices may differ).
+  int joint_module(int robot, int joint) const;
+  int module_count(int robot) const;
+  int sensor_module_count(int robot) const;
 
   // Targets (rad) for every hinge of a robot; clamped to the joint limits.
   // Throws std::invalid_argument on a wrong count or a non-finite value.
   void SetJointTargets(int robot, const std::vector<double>& targets);
   const std::vector<double>& joint_targets(int robot) const;
 
+  // Everything about one robot at the current time. Poses and velocities
+  // are those of the current state (kinematics are kept up to date after
+  // every step); force sensors need a constraint solve and distance sensors
+  // ray casts, so they are computed here, never in Step().
   RobotState ReadRobotState(int robot) const;
   Eigen::Vector3d CenterOfMass(int robot) const;
 

@@ -1,0 +1,32 @@
+// Maps ContactFriction material pairs onto MuJoCo contact parameters
+// (docs/physics.md, "Contacts").
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "sim_core/scenario.h"
+
+namespace mrsim {
+
+// The entry for two materials in either order, or nullptr.
+const ContactFriction* FindContactFriction(const Scenario& scenario,
+                                           const std::string& material1,
+                                           const std::string& material2);
+
+// MuJoCo solref (time constant, damping ratio) for an entry:
+// restitution e -> damping ratio -ln(e)/sqrt(pi^2 + ln(e)^2) (1 for e <= 0),
+// Young's modulus E -> time constant sqrt(m_ref / (E * l_ref)) with
+// m_ref = 0.1 kg and l_ref = 0.01 m, never below 2 * timestep.
+Eigen::Vector2d ContactSolref(const ContactFriction& entry, double timestep);
+
+// " friction=... solref=..." for a geom of this material when the scenario
+// has an entry pairing the material with itself, else "" (MuJoCo defaults).
+std::string ContactGeomAttributes(const Scenario& scenario,
+                                  const std::string& material);
+
+// Attributes of a <pair> for an entry of two different materials.
+std::string ContactPairAttributes(const Scenario& scenario,
+                                  const ContactFriction& entry);
+
+}  // namespace mrsim

@@ -1,0 +1,551 @@
+#include "sim_core/physics.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "sim_core/fluid_forces.h"
+#include "sim_core/mjcf_builder.h"
+#include "sim_core/terrain.h"
+
+namespace mrsim {
+namespace {
+
+constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
+
+const char* WarningName(int w) {
+  switch (w) {
+    case mjWARN_INERTIA:
+      return "INERTIA (near singular inertia matrix)";
+    case mjWARN_CONTACTFULL:
+      return "CONTACTFULL (too many contacts)";
+    case mjWARN_CNSTRFULL:
+      return "CNSTRFULL (too many constraints)";
+    case mjWARN_VGEOMFULL:
+      return "VGEOMFULL";
+    case mjWARN_BADQPOS:
+      return "BADQPOS (NaN, Inf or huge value in qpos)";
+    case mjWARN_BADQVEL:
+      return "BADQVEL (NaN, Inf or huge value in qvel)";
+    case mjWARN_BADQACC:
+      return "BADQACC (NaN, Inf or huge value in qacc)";
+    case mjWARN_BADCTRL:
+      return "BADCTRL (NaN, Inf or huge value in ctrl)";
+    default:
+      return "unknown";
+  }
+}
+
+MjModelPtr CompileMjcf(const std::string& xml) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* kName = "mrsim_scenario.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) !=
+      0) {
+    throw std::runtime_error("cannot create the in-memory MJCF file");
+  }
+  const int index = mj_findFileVFS(vfs.get(), kName);
+  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  char error[1024] = {0};
+  MjModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof(error)));
+  mj_deleteVFS(vfs.get());
+  if (!model) {
+    throw std::runtime_error(
+        std::string("MuJoCo cannot compile the scenario: ") + error);
+  }
+  return model;
+}
+
+Pose BodyPose(const mjData* d, int body) {
+  Pose p;
+  p.position = Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1],
+                               d->xpos[3 * body + 2]);
+  const mjtNum* q = d->xquat + 4 * body;
+  p.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  return p;
+}
+
+template <typename T>
+void Put(std::vector<unsigned char>& out, const T* values, size_t n) {
+  const auto* bytes = reinterpret_cast<const unsigned char*>(values);
+  out.insert(out.end(), bytes, bytes + n * sizeof(T));
+}
+
+}  // namespace
+
+struct Physics::Impl {
+  struct Servo {
+    int joint = -1;
+    int qpos = 0;
+    int dof = 0;
+    int actuator = -1;
+    int module = 0;
+    Axis axis = Axis::kPitch;
+    double kp = 0, max_vel = 0, lower = 0, upper = 0;
+  };
+  struct SensorModuleIndex {
+    int body = -1;
+    int plate = -1;
+    int force_adr = -1;
+    std::vector<int> sites;
+    std::vector<int> faces;
+    std::vector<double> max_distance;
+  };
+  struct RobotIndex {
+    std::string name;
+    std::vector<int> frame_bodies;  // two per module
+    std::vector<Servo> servos;
+    std::vector<double> targets;
+    std::vector<SensorModuleIndex> sensor_modules;
+    std::vector<int> bodies;  // every body of the robot, for the CoM
+  };
+
+  Scenario scenario;
+  MjModelPtr model;
+  MjDataPtr data;
+  mutable MjDataPtr scratch;  // for force readings (needs a full forward)
+  std::vector<RobotIndex> robots;
+  std::unique_ptr<FluidForces> fluids;
+  std::array<int, mjNWARNING> warnings{};
+
+  int Id(mjtObj type, const std::string& name) const {
+    const int id = mj_name2id(model.get(), type, name.c_str());
+    if (id < 0) {
+      throw std::logic_error("MJCF has no " + std::string(mju_type2Str(type)) +
+                             " named '" + name + "'");
+    }
+    return id;
+  }
+  void Index();
+  void ComputeControls(mjData* d) const {
+    for (const RobotIndex& r : robots) {
+      const size_t n = r.servos.size();
+      for (size_t j = 0; j < n; ++j) {
+        const Servo& s = r.servos[j];
+        const double u = s.kp * (r.targets[j] - d->qpos[s.qpos]);
+        d->ctrl[s.actuator] = std::clamp(u, -s.max_vel, s.max_vel);
+      }
+    }
+  }
+  void AfterStateChange() {
+    mj_step1(model.get(), data.get());
+    for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
+  }
+  void CheckStability(double time_before);
+  [[noreturn]] void Fail(double time, const std::string& what);
+  const RobotIndex& robot(int r) const {
+    if (r < 0 || r >= static_cast<int>(robots.size())) {
+      throw std::out_of_range("robot index " + std::to_string(r) +
+                              " out of range (" +
+                              std::to_string(robots.size()) + " robots)");
+    }
+    return robots[r];
+  }
+  const Servo& servo(int r, int j) const {
+    const RobotIndex& ri = robot(r);
+    if (j < 0 || j >= static_cast<int>(ri.servos.size())) {
+      throw std::out_of_range("joint index " + std::to_string(j) +
+                              " out of range for robot '" + ri.name + "'");
+    }
+    return ri.servos[j];
+  }
+};
+
+void Physics::Impl::Index() {
+  const mjModel* m = model.get();
+  for (size_t r = 0; r < scenario.robots.size(); ++r) {
+    const Robot& robot = scenario.robots[r];
+    RobotIndex ri;
+    ri.name = mjcf_names::RobotName(scenario, r);
+    for (size_t i = 0; i < robot.modules.size(); ++i) {
+      for (int f = 0; f < 2; ++f) {
+        const int b = Id(mjOBJ_BODY, mjcf_names::FrameBody(ri.name, i, f));
+        ri.frame_bodies.push_back(b);
+        ri.bodies.push_back(b);
+      }
+      const Module& mod = robot.modules[i];
+      if (mod.joint.type != JointType::kHinge) continue;
+      Servo s;
+      s.joint = Id(mjOBJ_JOINT, mjcf_names::Hinge(ri.name, i));
+      s.qpos = m->jnt_qposadr[s.joint];
+      s.dof = m->jnt_dofadr[s.joint];
+      s.actuator = Id(mjOBJ_ACTUATOR, mjcf_names::Servo(ri.name, i));
+      s.module = static_cast<int>(i);
+      s.axis = mod.axis;
+      s.kp = mod.joint.kp;
+      s.max_vel = std::abs(mod.joint.max_vel);
+      s.lower = mod.joint.lower_range_limit;
+      s.upper = mod.joint.upper_range_limit;
+      ri.servos.push_back(s);
+      ri.targets.push_back(std::clamp(0.0, s.lower, s.upper));
+    }
+    for (size_t k = 0; k < robot.sensor_modules.size(); ++k) {
+      const SensorModule& sm = robot.sensor_modules[k];
+      SensorModuleIndex si;
+      si.body = Id(mjOBJ_BODY, mjcf_names::SensorModuleBody(ri.name, k));
+      ri.bodies.push_back(si.body);
+      if (sm.force_sensor) {
+        si.plate = Id(mjOBJ_BODY, mjcf_names::PlateBody(ri.name, k));
+        ri.bodies.push_back(si.plate);
+        const int sensor =
+            Id(mjOBJ_SENSOR, mjcf_names::ForceSensor(ri.name, k));
+        si.force_adr = m->sensor_adr[sensor];
+      }
+      for (size_t d = 0; d < sm.distance_sensors.size(); ++d) {
+        si.sites.push_back(
+            Id(mjOBJ_SITE, mjcf_names::DistanceSite(ri.name, k, d)));
+        si.faces.push_back(sm.distance_sensors[d].sensor_position);
+        si.max_distance.push_back(sm.distance_sensors[d].max_ray_distance);
+      }
+      ri.sensor_modules.push_back(si);
+    }
+    robots.push_back(std::move(ri));
+  }
+}
+
+void Physics::Impl::Fail(double time, const std::string& what) {
+  // Accept the current counters so a caller that resets can go on.
+  for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
+  throw PhysicsError(
+      fmt::format("physics unstable at t={:.4f} s: {}", time, what));
+}
+
+void Physics::Impl::CheckStability(double time_before) {
+  const mjModel* m = model.get();
+  const mjData* d = data.get();
+  for (int w = 0; w < mjNWARNING; ++w) {
+    if (w == mjWARN_VGEOMFULL || d->warning[w].number == warnings[w]) continue;
+    std::string where;
+    const int info = d->warning[w].lastinfo;
+    if ((w == mjWARN_BADQVEL || w == mjWARN_BADQACC) && info >= 0 &&
+        info < m->nv) {
+      const char* body = mj_id2name(m, mjOBJ_BODY, m->dof_bodyid[info]);
+      where = fmt::format(" at DOF {} of body '{}'", info, body ? body : "?");
+    } else if (w == mjWARN_BADQPOS && info >= 0 && info < m->nq) {
+      where = fmt::format(" at qpos[{}]", info);
+    } else if (w == mjWARN_BADCTRL && info >= 0 && info < m->nu) {
+      const char* act = mj_id2name(m, mjOBJ_ACTUATOR, info);
+      where = fmt::format(" for actuator '{}'", act ? act : "?");
+    }
+    Fail(time_before, fmt::format("MuJoCo warning {}{} (the state was reset "
+                                  "by MuJoCo; reduce the timestep or check "
+                                  "masses, gains and contacts)",
+                                  WarningName(w), where));
+  }
+  auto bad = [](const mjtNum* v, int n) {
+    for (int i = 0; i < n; ++i) {
+      if (!std::isfinite(v[i])) return i;
+    }
+    return -1;
+  };
+  int i = bad(d->qpos, m->nq);
+  if (i >= 0) Fail(time_before, fmt::format("qpos[{}] is not finite", i));
+  i = bad(d->qvel, m->nv);
+  if (i < 0) i = bad(d->qacc, m->nv);
+  if (i >= 0) {
+    const char* body = mj_id2name(m, mjOBJ_BODY, m->dof_bodyid[i]);
+    Fail(time_before, fmt::format("velocity or acceleration of DOF {} (body "
+                                  "'{}') is not finite",
+                                  i, body ? body : "?"));
+  }
+}
+
+Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
+  impl_->scenario = scenario;
+  MjcfOptions options;
+  options.hfield_data_after_compile = true;
+  impl_->model = CompileMjcf(BuildMjcf(scenario, options));
+  mjModel* m = impl_->model.get();
+  if (!scenario.scene.height_image.empty() && m->nhfield > 0) {
+    const std::vector<float> data =
+        HeightFieldData(LoadTerrainImage(scenario.scene, scenario.base_dir));
+    std::copy(data.begin(), data.end(), m->hfield_data + m->hfield_adr[0]);
+  }
+  impl_->Index();
+  impl_->data.reset(mj_makeData(m));
+  impl_->scratch.reset(mj_makeData(m));
+  impl_->fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
+  impl_->AfterStateChange();
+}
+
+Physics::~Physics() = default;
+
+// The hot path: servo law, optional fluids, one MuJoCo step split as
+// step2 (dynamics + integration of the current state) then step1 (the new
+// state's kinematics), so poses read between steps are current.
+void Physics::Step() {
+  mjModel* m = impl_->model.get();
+  mjData* d = impl_->data.get();
+  const double time_before = d->time;
+  impl_->ComputeControls(d);
+  if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d);
+  mj_step2(m, d);
+  mj_step1(m, d);
+  impl_->CheckStability(time_before);
+}
+
+void Physics::Step(int n) {
+  for (int i = 0; i < n; ++i) Step();
+}
+
+void Physics::Reset() {
+  mj_resetData(impl_->model.get(), impl_->data.get());
+  for (Impl::RobotIndex& r : impl_->robots) {
+    for (size_t j = 0; j < r.servos.size(); ++j) {
+      r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
+    }
+  }
+  impl_->AfterStateChange();
+}
+
+double Physics::time() const { return impl_->data->time; }
+double Physics::timestep() const { return impl_->model->opt.timestep; }
+
+int Physics::robot_count() const {
+  return static_cast<int>(impl_->robots.size());
+}
+const std::string& Physics::robot_name(int robot) const {
+  return impl_->robot(robot).name;
+}
+int Physics::robot_index(const std::string& name) const {
+  for (size_t r = 0; r < impl_->robots.size(); ++r) {
+    if (impl_->robots[r].name == name) return static_cast<int>(r);
+  }
+  return -1;
+}
+int Physics::joint_count(int robot) const {
+  return static_cast<int>(impl_->robot(robot).servos.size());
+}
+Axis Physics::joint_axis(int robot, int joint) const {
+  return impl_->servo(robot, joint).axis;
+}
+double Physics::joint_lower_limit(int robot, int joint) const {
+  return impl_->servo(robot, joint).lower;
+}
+double Physics::joint_upper_limit(int robot, int joint) const {
+  return impl_->servo(robot, joint).upper;
+}
+int Physics::joint_module(int robot, int joint) const {
+  return impl_->servo(robot, joint).module;
+}
+int Physics::module_count(int robot) const {
+  return static_cast<int>(impl_->robot(robot).frame_bodies.size() / 2);
+}
+int Physics::sensor_module_count(int robot) const {
+  return static_cast<int>(impl_->robot(robot).sensor_modules.size());
+}
+
+void Physics::SetJointTargets(int robot, const std::vector<double>& targets) {
+  impl_->robot(robot);  // range check
+  Impl::RobotIndex& r = impl_->robots[robot];
+  if (targets.size() != r.servos.size()) {
+    throw std::invalid_argument(
+        fmt::format("robot '{}' has {} hinge joints, got {} targets", r.name,
+                    r.servos.size(), targets.size()));
+  }
+  for (size_t j = 0; j < targets.size(); ++j) {
+    if (!std::isfinite(targets[j])) {
+      throw std::invalid_argument(
+          fmt::format("robot '{}' joint {}: target is not finite", r.name, j));
+    }
+  }
+  for (size_t j = 0; j < targets.size(); ++j) {
+    r.targets[j] = std::clamp(targets[j], r.servos[j].lower, r.servos[j].upper);
+  }
+}
+
+const std::vector<double>& Physics::joint_targets(int robot) const {
+  return impl_->robot(robot).targets;
+}
+
+RobotState Physics::ReadRobotState(int robot) const {
+  const Impl::RobotIndex& r = impl_->robot(robot);
+  const mjModel* m = impl_->model.get();
+  const mjData* d = impl_->data.get();
+  RobotState state;
+  state.time = d->time;
+  state.robot = r.name;
+  for (int b : r.frame_bodies) state.frames.push_back(BodyPose(d, b));
+  for (size_t i = 0; i + 1 < state.frames.size(); i += 2) {
+    Pose p;
+    p.position = (state.frames[i].position + state.frames[i + 1].position) / 2;
+    p.orientation =
+        state.frames[i].orientation.slerp(0.5, state.frames[i + 1].orientation);
+    state.modules.push_back(p);
+  }
+  for (const Impl::Servo& s : r.servos) {
+    JointState j;
+    j.angle = d->qpos[s.qpos];
+    j.speed = d->qvel[s.dof];
+    j.torque = d->actuator_force[s.actuator];
+    j.world = BodyPose(d, m->jnt_bodyid[s.joint]);
+    j.world.position =
+        Eigen::Vector3d(d->xanchor[3 * s.joint], d->xanchor[3 * s.joint + 1],
+                        d->xanchor[3 * s.joint + 2]);
+    state.joints.push_back(j);
+  }
+  bool need_forces = false;
+  for (const auto& si : r.sensor_modules) need_forces |= si.force_adr >= 0;
+  if (need_forces) {
+    // Contact forces of the current state: a full forward pass on a copy,
+    // with the controls the next step would apply.
+    mjData* s = impl_->scratch.get();
+    s->time = d->time;
+    mju_copy(s->qpos, d->qpos, m->nq);
+    mju_copy(s->qvel, d->qvel, m->nv);
+    mju_copy(s->act, d->act, m->na);
+    mju_copy(s->qacc_warmstart, d->qacc_warmstart, m->nv);
+    mju_copy(s->qfrc_applied, d->qfrc_applied, m->nv);
+    mju_copy(s->xfrc_applied, d->xfrc_applied, 6 * m->nbody);
+    mju_copy(s->ctrl, d->ctrl, m->nu);
+    impl_->ComputeControls(s);
+    mj_forward(m, s);
+  }
+  for (const auto& si : r.sensor_modules) {
+    SensorModuleState sm;
+    sm.pose = BodyPose(d, si.body);
+    if (si.force_adr >= 0) {
+      sm.has_force = true;
+      sm.force = mju_norm3(impl_->scratch->sensordata + si.force_adr);
+    }
+    for (size_t k = 0; k < si.sites.size(); ++k) {
+      const int site = si.sites[k];
+      const double range = si.max_distance[k];
+      mjtNum point[3], dir[3];
+      mju_copy3(point, d->site_xpos + 3 * site);
+      const mjtNum* x = d->site_xmat + 9 * site;
+      dir[0] = x[0];  // the site's x axis is the ray
+      dir[1] = x[3];
+      dir[2] = x[6];
+      double travelled = 0;
+      double reading = range;
+      // The ray skips its own module (bodyexclude) and its own plate.
+      for (int attempt = 0; attempt < 4; ++attempt) {
+        int geom = -1;
+        const mjtNum dist =
+            mj_ray(m, d, point, dir, nullptr, 1, si.body, &geom);
+        if (dist < 0 || geom < 0) break;
+        if (m->geom_bodyid[geom] != si.plate) {
+          reading = std::min(range, travelled + dist);
+          break;
+        }
+        const double step = dist + 1e-6;
+        travelled += step;
+        for (int i = 0; i < 3; ++i) point[i] += step * dir[i];
+        if (travelled >= range) break;
+      }
+      sm.distances.push_back(reading);
+      sm.distance_faces.push_back(si.faces[k]);
+    }
+    state.sensor_modules.push_back(std::move(sm));
+  }
+  double mass = 0;
+  for (int b : r.bodies) {
+    const double mb = m->body_mass[b];
+    mjtNum vel[6];
+    mj_objectVelocity(m, d, mjOBJ_BODY, b, vel, 0);
+    for (int i = 0; i < 3; ++i) {
+      state.com[i] += mb * d->xipos[3 * b + i];
+      state.com_velocity[i] += mb * vel[3 + i];
+    }
+    mass += mb;
+  }
+  if (mass > 0) {
+    state.com /= mass;
+    state.com_velocity /= mass;
+  }
+  return state;
+}
+
+Eigen::Vector3d Physics::CenterOfMass(int robot) const {
+  const Impl::RobotIndex& r = impl_->robot(robot);
+  const mjModel* m = impl_->model.get();
+  const mjData* d = impl_->data.get();
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  double mass = 0;
+  for (int b : r.bodies) {
+    const double mb = m->body_mass[b];
+    for (int i = 0; i < 3; ++i) com[i] += mb * d->xipos[3 * b + i];
+    mass += mb;
+  }
+  return mass > 0 ? Eigen::Vector3d(com / mass) : com;
+}
+
+std::vector<unsigned char> Physics::SaveState() const {
+  const mjModel* m = impl_->model.get();
+  const mjData* d = impl_->data.get();
+  std::vector<double> targets;
+  for (const auto& r : impl_->robots) {
+    targets.insert(targets.end(), r.targets.begin(), r.targets.end());
+  }
+  const int32_t sizes[6] = {m->nq,    m->nv,
+                            m->na,    m->nu,
+                            m->nbody, static_cast<int32_t>(targets.size())};
+  std::vector<unsigned char> out;
+  Put(out, kStateMagic, sizeof(kStateMagic));
+  Put(out, sizes, 6);
+  Put(out, &d->time, 1);
+  Put(out, d->qpos, m->nq);
+  Put(out, d->qvel, m->nv);
+  Put(out, d->act, m->na);
+  Put(out, d->ctrl, m->nu);
+  Put(out, d->qacc_warmstart, m->nv);
+  Put(out, d->qfrc_applied, m->nv);
+  Put(out, d->xfrc_applied, 6 * m->nbody);
+  Put(out, targets.data(), targets.size());
+  return out;
+}
+
+void Physics::LoadState(const std::vector<unsigned char>& bytes) {
+  const mjModel* m = impl_->model.get();
+  size_t ntargets = 0;
+  for (const auto& r : impl_->robots) ntargets += r.targets.size();
+  const int32_t expect[6] = {m->nq, m->nv,    m->na,
+                             m->nu, m->nbody, static_cast<int32_t>(ntargets)};
+  const size_t header = sizeof(kStateMagic) + sizeof(expect);
+  const size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
+                         6 * m->nbody + ntargets;
+  if (bytes.size() < header ||
+      std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) != 0) {
+    throw std::invalid_argument("physics state: not an mrsim state blob");
+  }
+  int32_t sizes[6];
+  std::memcpy(sizes, bytes.data() + sizeof(kStateMagic), sizeof(sizes));
+  if (std::memcmp(sizes, expect, sizeof(sizes)) != 0 ||
+      bytes.size() != header + doubles * sizeof(double)) {
+    throw std::invalid_argument(fmt::format(
+        "physics state: saved for a different model (nq {} nv {} na {} nu {} "
+        "nbody {} targets {}; this model has nq {} nv {} na {} nu {} nbody {} "
+        "targets {})",
+        sizes[0], sizes[1], sizes[2], sizes[3], sizes[4], sizes[5], expect[0],
+        expect[1], expect[2], expect[3], expect[4], expect[5]));
+  }
+  mjData* d = impl_->data.get();
+  mj_resetData(m, d);
+  const unsigned char* p = bytes.data() + header;
+  auto get = [&p](mjtNum* dst, size_t n) {
+    std::memcpy(dst, p, n * sizeof(double));
+    p += n * sizeof(double);
+  };
+  get(&d->time, 1);
+  get(d->qpos, m->nq);
+  get(d->qvel, m->nv);
+  get(d->act, m->na);
+  get(d->ctrl, m->nu);
+  get(d->qacc_warmstart, m->nv);
+  get(d->qfrc_applied, m->nv);
+  get(d->xfrc_applied, 6 * m->nbody);
+  for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
+  impl_->AfterStateChange();
+}
+
+const Scenario& Physics::scenario() const { return impl_->scenario; }
+const mjModel* Physics::model() const { return impl_->model.get(); }
+const mjData* Physics::data() const { return impl_->data.get(); }
+mjData* Physics::mutable_data() { return impl_->data.get(); }
+
+}  // namespace mrsim

@@ -1,0 +1,160 @@
+#include "sim_core/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "sim_core/base64.h"
+
+namespace mrsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kBase64Prefix[] = "base64:";
+
+bool HasBase64Prefix(const std::string& s) {
+  return s.rfind(kBase64Prefix, 0) == 0;
+}
+
+std::string Shorten(const std::string& s) {
+  return s.size() <= 60 ? s : s.substr(0, 57) + "...";
+}
+
+TerrainImage Decode(const std::vector<unsigned char>& bytes,
+                    const std::string& source) {
+  if (bytes.empty()) {
+    throw std::runtime_error("terrain image " + source + " is empty");
+  }
+  cv::Mat raw = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (raw.empty()) {
+    throw std::runtime_error("terrain image " + source +
+                             ": not an image OpenCV can decode");
+  }
+  if (raw.rows < 2 || raw.cols < 2) {
+    throw std::runtime_error(
+        "terrain image " + source + ": needs at least 2x2 pixels, got " +
+        std::to_string(raw.cols) + "x" + std::to_string(raw.rows));
+  }
+  double scale = 1.0;
+  switch (raw.depth()) {
+    case CV_8U:
+      scale = 1.0 / 255.0;
+      break;
+    case CV_16U:
+      scale = 1.0 / 65535.0;
+      break;
+    default:
+      break;  // float images are taken as they are
+  }
+  cv::Mat grey;
+  raw.convertTo(grey, CV_32F, scale);
+  TerrainImage image;
+  image.rows = grey.rows;
+  image.cols = grey.cols;
+  image.source = source;
+  image.grey.resize(static_cast<size_t>(grey.rows) * grey.cols);
+  for (int r = 0; r < grey.rows; ++r) {
+    const float* row = grey.ptr<float>(r);
+    std::copy(row, row + grey.cols, image.grey.begin() + r * grey.cols);
+  }
+  return image;
+}
+
+}  // namespace
+
+bool TerrainImageIsFile(const Scene& scene, const std::string& base_dir,
+                        std::string* path) {
+  const std::string& s = scene.height_image;
+  if (s.empty() || HasBase64Prefix(s) || s.size() > 4096) return false;
+  fs::path p(s);
+  if (p.is_relative() && !base_dir.empty()) p = fs::path(base_dir) / p;
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return false;
+  if (path) *path = fs::absolute(p, ec).lexically_normal().string();
+  return true;
+}
+
+TerrainImage LoadTerrainImage(const Scene& scene, const std::string& base_dir) {
+  const std::string& s = scene.height_image;
+  if (s.empty()) {
+    throw std::runtime_error("scene '" + scene.guid + "' has no height image");
+  }
+  std::string path;
+  if (TerrainImageIsFile(scene, base_dir, &path)) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      throw std::runtime_error("terrain image '" + path +
+                               "': cannot open the file");
+    }
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    return Decode(bytes, "'" + path + "'");
+  }
+  const bool prefixed = HasBase64Prefix(s);
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = Base64Decode(prefixed ? s.substr(sizeof(kBase64Prefix) - 1) : s);
+  } catch (const std::exception& e) {
+    if (prefixed) {
+      throw std::runtime_error("terrain image (embedded base64): " +
+                               std::string(e.what()));
+    }
+    throw std::runtime_error("terrain image '" + Shorten(s) +
+                             "': no such file (relative to '" + base_dir +
+                             "') and not base64 image bytes");
+  }
+  if (!prefixed) {
+    // Bare base64 that does not decode to an image is most likely a path
+    // that does not exist; say so.
+    cv::Mat probe = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    if (probe.empty()) {
+      throw std::runtime_error("terrain image '" + Shorten(s) +
+                               "': no such file (relative to '" + base_dir +
+                               "') and not base64 image bytes");
+    }
+  }
+  return Decode(bytes, "(embedded base64)");
+}
+
+std::vector<float> HeightFieldData(const TerrainImage& image) {
+  std::vector<float> data(image.grey.size(), 0.0f);
+  if (image.grey.empty()) return data;
+  const auto [lo, hi] =
+      std::minmax_element(image.grey.begin(), image.grey.end());
+  const float min = *lo;
+  const float range = *hi - *lo;
+  for (int r = 0; r < image.rows; ++r) {
+    const int src = (image.rows - 1 - r) * image.cols;
+    for (int c = 0; c < image.cols; ++c) {
+      data[r * image.cols + c] =
+          range > 0 ? (image.grey[src + c] - min) / range : 0.0f;
+    }
+  }
+  return data;
+}
+
+double TerrainHeightAt(const Scene& scene, const TerrainImage& image, double x,
+                       double y) {
+  if (image.rows < 2 || image.cols < 2) return 0.0;
+  const double width = image.cols * scene.meters_per_pixel;
+  const double depth = image.rows * scene.meters_per_pixel;
+  const double u = (x - scene.position.x()) / width * (image.cols - 1);
+  const double v = (y - scene.position.y()) / depth * (image.rows - 1);
+  if (u < 0 || v < 0 || u > image.cols - 1 || v > image.rows - 1) return 0.0;
+  const std::vector<float> data = HeightFieldData(image);
+  const int c0 = std::min(static_cast<int>(u), image.cols - 2);
+  const int r0 = std::min(static_cast<int>(v), image.rows - 2);
+  const double fu = u - c0, fv = v - r0;
+  auto at = [&](int r, int c) { return data[r * image.cols + c]; };
+  const double h = (1 - fv) * ((1 - fu) * at(r0, c0) + fu * at(r0, c0 + 1)) +
+                   fv * ((1 - fu) * at(r0 + 1, c0) + fu * at(r0 + 1, c0 + 1));
+  return h * scene.height;
+}
+
+}  // namespace mrsim
