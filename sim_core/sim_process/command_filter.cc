@@ -1,0 +1,108 @@
+#include "sim_core/sim_process/command_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mrsim {
+
+const char* ToString(CommandVerdict verdict) {
+  switch (verdict) {
+    case CommandVerdict::kAccepted:
+      return "accepted";
+    case CommandVerdict::kWrongJointCount:
+      return "wrong joint count";
+    case CommandVerdict::kBadValue:
+      return "non-finite or out-of-range target";
+    case CommandVerdict::kUnknownRobot:
+      return "unknown robot";
+    case CommandVerdict::kStaleSeq:
+      return "stale sequence number";
+    case CommandVerdict::kNotController:
+      return "sender is not a lockstep controller";
+  }
+  return "?";
+}
+
+CommandFilter::CommandFilter(std::vector<std::string> robots,
+                             std::vector<int> joint_counts)
+    : robots_(std::move(robots)),
+      joint_counts_(std::move(joint_counts)),
+      newest_state_seq_(robots_.size(), -1) {
+  if (robots_.size() != joint_counts_.size()) {
+    throw std::invalid_argument("CommandFilter: one joint count per robot");
+  }
+}
+
+int CommandFilter::robot_index(const std::string& name) const {
+  for (size_t i = 0; i < robots_.size(); ++i) {
+    if (robots_[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+CommandVerdict CommandFilter::Check(
+    const joint_command_t& cmd, const std::string& channel_robot,
+    int64_t latest_state_seq, bool lockstep,
+    const std::vector<std::string>& controllers) {
+  const int robot = robot_index(cmd.robot);
+  if (robot < 0 || cmd.robot != channel_robot) {
+    return CommandVerdict::kUnknownRobot;
+  }
+
+  // Gap accounting sees every decodable command of a known robot, valid or
+  // not: a rejected command was received, a missing seq was not.
+  SenderHistory& h = senders_[{robot, cmd.sender}];
+  if (h.seen && cmd.seq > h.last_seen_seq + 1) {
+    seq_gaps_ += cmd.seq - h.last_seen_seq - 1;
+  }
+  if (!h.seen || cmd.seq > h.last_seen_seq || cmd.seq < 0 ||
+      cmd.seq + 1000 < h.last_seen_seq) {
+    // Forward, or a restarted sender (seq far back): follow it.
+    h.last_seen_seq = cmd.seq;
+  }
+  h.seen = true;
+
+  if (lockstep && std::find(controllers.begin(), controllers.end(),
+                            cmd.sender) == controllers.end()) {
+    return CommandVerdict::kNotController;
+  }
+  const int expected = joint_counts_[robot];
+  if (cmd.num_joints != expected ||
+      static_cast<int>(cmd.target.size()) != expected) {
+    return CommandVerdict::kWrongJointCount;
+  }
+  for (double t : cmd.target) {
+    if (!std::isfinite(t) || std::abs(t) > kMaxCommandTarget) {
+      return CommandVerdict::kBadValue;
+    }
+  }
+
+  if (cmd.state_seq > latest_state_seq) return CommandVerdict::kStaleSeq;
+  if (cmd.state_seq < 0) {
+    if (lockstep) return CommandVerdict::kStaleSeq;
+    // Open loop: only the sender's own numbering orders its commands.
+    if (h.accepted && h.last_state_seq < 0 && cmd.seq <= h.last_seq) {
+      return CommandVerdict::kStaleSeq;
+    }
+  } else {
+    // Lockstep applies an answer only to the state being waited for.
+    if (lockstep && cmd.state_seq != latest_state_seq) {
+      return CommandVerdict::kStaleSeq;
+    }
+    if (cmd.state_seq < newest_state_seq_[robot]) {
+      return CommandVerdict::kStaleSeq;
+    }
+    if (h.accepted && cmd.state_seq == h.last_state_seq &&
+        cmd.seq <= h.last_seq) {
+      return CommandVerdict::kStaleSeq;  // duplicate or reordered answer
+    }
+    newest_state_seq_[robot] = cmd.state_seq;
+  }
+  h.accepted = true;
+  h.last_state_seq = cmd.state_seq;
+  h.last_seq = cmd.seq;
+  return CommandVerdict::kAccepted;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,60 @@
+#include "sim_core/sim_process/sim_options.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mrsim {
+
+const char* ToString(ClockMode mode) {
+  switch (mode) {
+    case ClockMode::kRealtime:
+      return "realtime";
+    case ClockMode::kFast:
+      return "fast";
+    case ClockMode::kLockstep:
+      return "lockstep";
+  }
+  return "?";
+}
+
+ClockMode ParseClockMode(const std::string& text) {
+  if (text == "realtime") return ClockMode::kRealtime;
+  if (text == "fast") return ClockMode::kFast;
+  if (text == "lockstep") return ClockMode::kLockstep;
+  throw std::invalid_argument(
+      "--clock: expected realtime, fast or lockstep, got '" + text + "'");
+}
+
+void SimOptions::Validate() const {
+  if (prefix.empty())
+    throw std::invalid_argument("--prefix: must not be empty");
+  if (!(std::isfinite(speed) && speed > 0)) {
+    throw std::invalid_argument("--speed: expected a number > 0");
+  }
+  if (!(std::isfinite(rate) && rate > 0)) {
+    throw std::invalid_argument("--rate: expected a rate in Hz > 0");
+  }
+  if (!(std::isfinite(lockstep_timeout) && lockstep_timeout > 0)) {
+    throw std::invalid_argument("--lockstep-timeout: expected seconds > 0");
+  }
+  if (!(std::isfinite(duration) && duration >= 0)) {
+    throw std::invalid_argument("--duration: expected seconds >= 0");
+  }
+  if (clock == ClockMode::kLockstep) {
+    if (controllers.empty()) {
+      throw std::invalid_argument(
+          "--clock lockstep needs --controllers NAME,... (the senders to "
+          "wait for)");
+    }
+    if (!publish_state) {
+      throw std::invalid_argument(
+          "--no-state cannot be used with --clock lockstep (controllers "
+          "answer the state)");
+    }
+  }
+  for (const std::string& c : controllers) {
+    if (c.empty()) throw std::invalid_argument("--controllers: empty name");
+  }
+}
+
+}  // namespace mrsim

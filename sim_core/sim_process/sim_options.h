@@ -1,0 +1,36 @@
+// How mrsim-sim runs: clock mode, rates, lockstep controllers, channel
+// prefix. Filled from the command line by main.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/channels.h"
+
+namespace mrsim {
+
+// realtime: paced to the wall clock times `speed`. fast: as fast as the CPU
+// allows. lockstep: each control period waits for an answer to the current
+// state from every controller, so runs are deterministic.
+enum class ClockMode { kRealtime, kFast, kLockstep };
+const char* ToString(ClockMode mode);
+// Throws std::invalid_argument naming the accepted values.
+ClockMode ParseClockMode(const std::string& text);
+
+struct SimOptions {
+  std::string prefix = kDefaultChannelPrefix;
+  ClockMode clock = ClockMode::kRealtime;
+  double speed = 1.0;   // real-time factor for the realtime clock
+  double rate = 100.0;  // Hz: state publication rate = control rate
+  std::vector<std::string> controllers;  // lockstep: senders to wait for
+  double lockstep_timeout = 2.0;         // s (wall) before warning
+  double duration = 0.0;                 // s of sim time; 0 = forever
+  bool paused = false;
+  bool publish_state = true;  // false: batch runs that nobody watches
+  std::string checkpoint_on_exit;
+
+  // Throws std::invalid_argument naming the bad option.
+  void Validate() const;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,113 @@
+#include "sim_core/sim_process/state_message.h"
+
+#include <cmath>
+
+namespace mrsim {
+namespace {
+
+pose_t ToPose(const Pose& pose) {
+  pose_t msg{};
+  for (int i = 0; i < 3; ++i) msg.position[i] = pose.position[i];
+  // MuJoCo order (w, x, y, z).
+  msg.orientation[0] = pose.orientation.w();
+  msg.orientation[1] = pose.orientation.x();
+  msg.orientation[2] = pose.orientation.y();
+  msg.orientation[3] = pose.orientation.z();
+  return msg;
+}
+
+Pose FromPose(const pose_t& msg) {
+  Pose pose;
+  pose.position =
+      Eigen::Vector3d(msg.position[0], msg.position[1], msg.position[2]);
+  pose.orientation = Eigen::Quaterniond(msg.orientation[0], msg.orientation[1],
+                                        msg.orientation[2], msg.orientation[3]);
+  return pose;
+}
+
+}  // namespace
+
+int64_t SimTimeToUtime(double seconds) {
+  return static_cast<int64_t>(std::llround(seconds * 1e6));
+}
+
+robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq) {
+  robot_state_t msg{};
+  msg.utime = SimTimeToUtime(state.time);
+  msg.seq = seq;
+  msg.robot = state.robot;
+  msg.sim_time = state.time;
+
+  msg.num_modules = static_cast<int32_t>(state.modules.size());
+  msg.modules.reserve(state.modules.size());
+  for (const Pose& p : state.modules) msg.modules.push_back(ToPose(p));
+
+  msg.num_frames = static_cast<int32_t>(state.frames.size());
+  msg.frames.reserve(state.frames.size());
+  for (const Pose& p : state.frames) msg.frames.push_back(ToPose(p));
+
+  msg.num_joints = static_cast<int32_t>(state.joints.size());
+  msg.joints.reserve(state.joints.size());
+  for (const JointState& j : state.joints) {
+    joint_state_t js{};
+    js.angle = j.angle;
+    js.speed = j.speed;
+    js.torque = j.torque;
+    js.world = ToPose(j.world);
+    msg.joints.push_back(js);
+  }
+
+  msg.num_sensor_modules = static_cast<int32_t>(state.sensor_modules.size());
+  msg.sensor_modules.reserve(state.sensor_modules.size());
+  for (const SensorModuleState& s : state.sensor_modules) {
+    sensor_module_state_t sm{};
+    sm.pose = ToPose(s.pose);
+    sm.has_force = s.has_force;
+    sm.force = s.force;
+    sm.num_distances = static_cast<int8_t>(s.distances.size());
+    sm.distance = s.distances;
+    sm.distance_face.reserve(s.distances.size());
+    for (size_t i = 0; i < s.distances.size(); ++i) {
+      const int face = i < s.distance_faces.size() ? s.distance_faces[i] : -1;
+      sm.distance_face.push_back(static_cast<int8_t>(face));
+    }
+    msg.sensor_modules.push_back(std::move(sm));
+  }
+
+  for (int i = 0; i < 3; ++i) {
+    msg.com[i] = state.com[i];
+    msg.com_velocity[i] = state.com_velocity[i];
+  }
+  return msg;
+}
+
+RobotState FromRobotStateMessage(const robot_state_t& msg) {
+  RobotState state;
+  state.time = msg.sim_time;
+  state.robot = msg.robot;
+  for (const pose_t& p : msg.modules) state.modules.push_back(FromPose(p));
+  for (const pose_t& p : msg.frames) state.frames.push_back(FromPose(p));
+  for (const joint_state_t& js : msg.joints) {
+    JointState j;
+    j.angle = js.angle;
+    j.speed = js.speed;
+    j.torque = js.torque;
+    j.world = FromPose(js.world);
+    state.joints.push_back(j);
+  }
+  for (const sensor_module_state_t& sm : msg.sensor_modules) {
+    SensorModuleState s;
+    s.pose = FromPose(sm.pose);
+    s.has_force = sm.has_force;
+    s.force = sm.force;
+    s.distances = sm.distance;
+    for (int8_t f : sm.distance_face) s.distance_faces.push_back(f);
+    state.sensor_modules.push_back(std::move(s));
+  }
+  state.com = Eigen::Vector3d(msg.com[0], msg.com[1], msg.com[2]);
+  state.com_velocity = Eigen::Vector3d(msg.com_velocity[0], msg.com_velocity[1],
+                                       msg.com_velocity[2]);
+  return state;
+}
+
+}  // namespace mrsim

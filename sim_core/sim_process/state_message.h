@@ -1,0 +1,23 @@
+// Pure conversions between the physics' RobotState and the LCM message
+// robot_state_t, so every process (sim, controllers, tests) encodes a state
+// the same way and nothing but main touches lcm::LCM.
+#pragma once
+
+#include <cstdint>
+
+#include "mrsim/robot_state_t.hpp"
+#include "sim_core/robot_state.h"
+
+namespace mrsim {
+
+// Simulation time (s) as message utime (us), rounded to the nearest us.
+int64_t SimTimeToUtime(double seconds);
+
+// The message for one robot's state; seq is the publication counter.
+robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq);
+
+// The inverse (time from sim_time); lossless for everything the message
+// holds.
+RobotState FromRobotStateMessage(const robot_state_t& msg);
+
+}  // namespace mrsim
