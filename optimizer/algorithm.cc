@@ -1,0 +1,82 @@
+#include "optimizer/algorithm.h"
+
+#include <fmt/format.h>
+
+#include "optimizer/genetic_algorithm.h"
+#include "optimizer/particle_swarm.h"
+#include "optimizer/random_search.h"
+#include "optimizer/simulated_annealing.h"
+
+namespace mrsim {
+
+void AlgorithmSettings::Validate() const {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument(what);
+  };
+  if (algorithm != "ga" && algorithm != "sa" && algorithm != "pso" &&
+      algorithm != "random") {
+    fail("algorithm: expected ga, sa, pso or random, got '" + algorithm + "'");
+  }
+  if (population < 1) fail("population must be at least 1");
+  if (selection != "tournament" && selection != "truncation") {
+    fail("selection: expected tournament or truncation, got '" + selection +
+         "'");
+  }
+  if (tournament_size < 1) fail("tournament size must be at least 1");
+  if (!(truncation_fraction > 0 && truncation_fraction <= 1)) {
+    fail("truncation fraction must be in (0, 1]");
+  }
+  if (!(crossover_rate >= 0 && crossover_rate <= 1)) {
+    fail("crossover rate must be in [0, 1]");
+  }
+  if (!(mutation_rate >= 0 && mutation_rate <= 1)) {
+    fail("mutation rate must be in [0, 1]");
+  }
+  if (!(mutation_scale >= 0)) fail("mutation scale must be >= 0");
+  if (elites < 0 || elites > population) {
+    fail("elites must be in [0, population]");
+  }
+  if (!(sa_cooling > 0 && sa_cooling <= 1)) {
+    fail("SA cooling must be in (0, 1]");
+  }
+  if (!(sa_rate >= 0 && sa_rate <= 1)) fail("SA rate must be in [0, 1]");
+  if (!(sa_step >= 0)) fail("SA step must be >= 0");
+  if (!(pso_vmax > 0)) fail("PSO vmax must be > 0");
+}
+
+std::string AlgorithmSettings::Describe() const {
+  std::string s =
+      fmt::format("algorithm={}\npopulation={}\nseed={}\ninclude_start={}\n",
+                  algorithm, population, seed, include_start);
+  if (algorithm == "ga") {
+    s += fmt::format(
+        "selection={}\ntournament_size={}\ntruncation_fraction={}\n"
+        "crossover_rate={}\nmutation_rate={}\nmutation_scale={}\nelites={}\n",
+        selection, tournament_size, truncation_fraction, crossover_rate,
+        mutation_rate, mutation_scale, elites);
+  } else if (algorithm == "sa") {
+    s += fmt::format("sa_t0={}\nsa_cooling={}\nsa_rate={}\nsa_step={}\n", sa_t0,
+                     sa_cooling, sa_rate, sa_step);
+  } else if (algorithm == "pso") {
+    s += fmt::format("pso_inertia={}\npso_c1={}\npso_c2={}\npso_vmax={}\n",
+                     pso_inertia, pso_c1, pso_c2, pso_vmax);
+  }
+  return s;
+}
+
+std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,
+                                         const AlgorithmSettings& settings) {
+  settings.Validate();
+  if (settings.algorithm == "ga") {
+    return std::make_unique<GeneticAlgorithm>(spec, settings);
+  }
+  if (settings.algorithm == "sa") {
+    return std::make_unique<SimulatedAnnealing>(spec, settings);
+  }
+  if (settings.algorithm == "pso") {
+    return std::make_unique<ParticleSwarm>(spec, settings);
+  }
+  return std::make_unique<RandomSearch>(spec, settings);
+}
+
+}  // namespace mrsim

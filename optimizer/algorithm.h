@@ -1,0 +1,63 @@
+// An optimisation algorithm in ask/tell form: Ask gives a generation to
+// evaluate as one batch, Tell gives back the results in the same order.
+// All randomness comes from one Random seeded with settings.seed, so the
+// same settings and the same results give the same generations.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimizer/eval_result.h"
+#include "optimizer/genome.h"
+
+namespace mrsim {
+
+struct AlgorithmSettings {
+  std::string algorithm = "ga";  // ga | sa | pso | random
+  int population = 16;
+  std::uint64_t seed = 1;
+  bool include_start = true;  // generation 0 holds the start genome
+
+  // Genetic algorithm.
+  std::string selection = "tournament";  // tournament | truncation
+  int tournament_size = 3;
+  double truncation_fraction = 0.5;  // best fraction that may breed
+  double crossover_rate = 0.9;       // else the child copies one parent
+  double mutation_rate = 0.2;        // per gene
+  double mutation_scale = 0.1;       // step std dev, fraction of the range
+  int elites = 1;                    // best individuals copied unchanged
+
+  // Simulated annealing (population = number of parallel chains).
+  double sa_t0 = 0.0;       // start temperature; <= 0: 0.1 x std dev of gen 0
+  double sa_cooling = 0.9;  // T *= cooling every generation
+  double sa_rate = 0.5;     // per-gene probability of a move
+  double sa_step = 0.1;     // move std dev, fraction of the range
+
+  // Particle swarm (Clerc constriction defaults).
+  double pso_inertia = 0.7298;
+  double pso_c1 = 1.49618;
+  double pso_c2 = 1.49618;
+  double pso_vmax = 0.5;  // velocity limit, fraction of the range
+
+  // Throws std::invalid_argument naming the setting.
+  void Validate() const;
+  // Every setting as "key=value" lines (checkpoint fingerprint, logs).
+  std::string Describe() const;
+};
+
+class Algorithm {
+ public:
+  virtual ~Algorithm() = default;
+  virtual std::vector<Genome> Ask() = 0;
+  // Throws std::invalid_argument when the count does not match Ask.
+  virtual void Tell(const std::vector<EvalResult>& results) = 0;
+};
+
+// The algorithm named by settings.algorithm.
+std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,
+                                         const AlgorithmSettings& settings);
+
+}  // namespace mrsim

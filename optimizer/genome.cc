@@ -1,0 +1,221 @@
+#include "optimizer/genome.h"
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace mrsim {
+
+bool IsIntegerGene(const std::string& name) {
+  return name == "module_count" || name == "sensor_after";
+}
+
+int GenomeSpec::Find(const std::string& name) const {
+  for (int i = 0; i < size(); ++i) {
+    if (genes[i].name == name) return i;
+  }
+  return -1;
+}
+
+Genome GenomeSpec::StartGenome() const {
+  Genome g(genes.size());
+  for (int i = 0; i < size(); ++i) g[i] = genes[i].start;
+  return g;
+}
+
+Genome GenomeSpec::RandomGenome(Random& random) const {
+  Genome g(genes.size());
+  for (int i = 0; i < size(); ++i) {
+    const GeneSpec& gene = genes[i];
+    if (!gene.enabled) {
+      g[i] = gene.start;
+    } else if (gene.integer) {
+      g[i] = static_cast<double>(
+          random.UniformInt(static_cast<long long>(std::ceil(gene.lower)),
+                            static_cast<long long>(std::floor(gene.upper))));
+    } else {
+      g[i] = random.Uniform(gene.lower, gene.upper);
+    }
+  }
+  return g;
+}
+
+double GenomeSpec::Legal(int i, double value) const {
+  const GeneSpec& gene = genes[i];
+  if (!gene.enabled) return gene.start;
+  if (!std::isfinite(value)) value = gene.start;
+  if (gene.integer) {
+    value = std::round(value);
+    return std::clamp(value, std::ceil(gene.lower), std::floor(gene.upper));
+  }
+  return std::clamp(value, gene.lower, gene.upper);
+}
+
+void GenomeSpec::Check(const Genome& genome) const {
+  if (genome.size() != genes.size()) {
+    throw GenomeError(fmt::format("genome has {} values, the spec {} genes",
+                                  genome.size(), genes.size()));
+  }
+  for (int i = 0; i < size(); ++i) {
+    if (!std::isfinite(genome[i]) || Legal(i, genome[i]) != genome[i]) {
+      throw GenomeError(fmt::format("gene '{}' = {} is outside [{}, {}]",
+                                    genes[i].name, genome[i], genes[i].lower,
+                                    genes[i].upper));
+    }
+  }
+}
+
+void GenomeSpec::Validate(const std::string& source) const {
+  if (genes.empty()) throw GenomeError(source + ": the genome has no genes");
+  std::set<std::string> seen;
+  for (const GeneSpec& g : genes) {
+    const std::string where = source + ": gene '" + g.name + "'";
+    if (g.name.empty()) throw GenomeError(source + ": a gene has no name");
+    if (!seen.insert(g.name).second) throw GenomeError(where + " is repeated");
+    if (!std::isfinite(g.lower) || !std::isfinite(g.upper) ||
+        !std::isfinite(g.start)) {
+      throw GenomeError(where + ": lower, upper and start must be finite");
+    }
+    if (g.lower > g.upper) {
+      throw GenomeError(where +
+                        fmt::format(": lower {} > upper {}", g.lower, g.upper));
+    }
+    if (g.enabled && (g.start < g.lower || g.start > g.upper)) {
+      throw GenomeError(where + fmt::format(": start {} is outside [{}, {}]",
+                                            g.start, g.lower, g.upper));
+    }
+    if (g.integer && (std::ceil(g.lower) > std::floor(g.upper) ||
+                      std::round(g.start) != g.start)) {
+      throw GenomeError(where +
+                        ": an integer gene needs whole start and a whole "
+                        "number within its limits");
+    }
+  }
+}
+
+namespace {
+
+double ReadNumber(const tinyxml2::XMLElement* e, const char* attribute,
+                  const std::string& where, bool required, double fallback) {
+  const char* text = e->Attribute(attribute);
+  if (!text) {
+    if (required) {
+      throw GenomeError(
+          fmt::format("{}: missing attribute '{}'", where, attribute));
+    }
+    return fallback;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(v)) {
+    throw GenomeError(
+        fmt::format("{}: attribute '{}': expected a number, got "
+                    "'{}'",
+                    where, attribute, text));
+  }
+  return v;
+}
+
+bool ReadBool(const tinyxml2::XMLElement* e, const char* attribute,
+              const std::string& where, bool fallback) {
+  const char* text = e->Attribute(attribute);
+  if (!text) return fallback;
+  const std::string s = text;
+  if (s == "true" || s == "1" || s == "on" || s == "yes") return true;
+  if (s == "false" || s == "0" || s == "off" || s == "no") return false;
+  throw GenomeError(
+      fmt::format("{}: attribute '{}': expected true or false, got '{}'", where,
+                  attribute, s));
+}
+
+}  // namespace
+
+GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
+                            bool allow_any_name) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw GenomeError(fmt::format("{}:{}: not well-formed XML: {}", name,
+                                  doc.ErrorLineNum(), doc.ErrorStr()));
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "genome") {
+    throw GenomeError(name + ": expected a root element <genome>");
+  }
+  GenomeSpec spec;
+  if (const char* robot = root->Attribute("robot")) spec.robot = robot;
+  for (const tinyxml2::XMLElement* e = root->FirstChildElement(); e;
+       e = e->NextSiblingElement()) {
+    const std::string where = fmt::format("{}:{}", name, e->GetLineNum());
+    if (std::string(e->Name()) != "gene") {
+      throw GenomeError(
+          fmt::format("{}: unexpected element <{}>, expected "
+                      "<gene>",
+                      where, e->Name()));
+    }
+    GeneSpec gene;
+    const char* gene_name = e->Attribute("name");
+    if (!gene_name || !*gene_name) {
+      throw GenomeError(where + ": <gene> needs a name attribute");
+    }
+    gene.name = gene_name;
+    const auto& gait = GaitGeneNames();
+    const auto& body = BodyGeneNames();
+    if (!allow_any_name &&
+        std::find(gait.begin(), gait.end(), gene.name) == gait.end() &&
+        std::find(body.begin(), body.end(), gene.name) == body.end()) {
+      std::string known;
+      for (const auto& n : gait) known += " " + n;
+      for (const auto& n : body) known += " " + n;
+      throw GenomeError(fmt::format("{}: unknown gene '{}'; known genes:{}",
+                                    where, gene.name, known));
+    }
+    gene.lower = ReadNumber(e, "lower", where, true, 0);
+    gene.upper = ReadNumber(e, "upper", where, true, 0);
+    gene.start = ReadNumber(e, "start", where, true, 0);
+    gene.enabled = ReadBool(e, "enabled", where, true);
+    gene.integer = ReadBool(e, "integer", where, IsIntegerGene(gene.name));
+    spec.genes.push_back(gene);
+    GenomeSpec one;  // so the message names this gene's line
+    one.genes = {gene};
+    one.Validate(where);
+  }
+  spec.Validate(name);
+  return spec;
+}
+
+GenomeSpec ReadGenomeFile(const std::string& path, bool allow_any_name) {
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw GenomeError(path + ": cannot open the genome file");
+  std::string text;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
+    text.append(buffer, n);
+  }
+  std::fclose(f);
+  return ReadGenomeString(text, path, allow_any_name);
+}
+
+std::string WriteGenomeString(const GenomeSpec& spec) {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<genome";
+  if (!spec.robot.empty()) out << " robot=\"" << spec.robot << "\"";
+  out << ">\n";
+  for (const GeneSpec& g : spec.genes) {
+    out << fmt::format(
+        "  <gene name=\"{}\" lower=\"{}\" upper=\"{}\" start=\"{}\" "
+        "enabled=\"{}\"{}/>\n",
+        g.name, g.lower, g.upper, g.start, g.enabled ? "true" : "false",
+        g.integer != IsIntegerGene(g.name)
+            ? (g.integer ? " integer=\"true\"" : " integer=\"false\"")
+            : "");
+  }
+  out << "</genome>\n";
+  return out.str();
+}
+
+}  // namespace mrsim

@@ -1,0 +1,309 @@
+#include "optimizer/optimization_run.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "optimizer/hash.h"
+
+namespace mrsim {
+namespace {
+
+constexpr const char* kCheckpointMagic = "mrsim-opt-checkpoint 1";
+
+struct FileCloser {
+  void operator()(FILE* f) const {
+    if (f) std::fclose(f);
+  }
+};
+using FilePtr = std::unique_ptr<FILE, FileCloser>;
+
+struct RecordedGeneration {
+  std::string genomes_hash;
+  std::vector<EvalResult> results;
+};
+
+std::string HashGenomes(const std::vector<Genome>& genomes) {
+  std::uint64_t h = Fnv1a64("", 0);
+  for (const Genome& g : genomes) {
+    h = Fnv1a64(g.data(), g.size() * sizeof(double), h);
+  }
+  return HashHex(h);
+}
+
+std::string Hex(double v) { return fmt::format("{:a}", v); }
+
+double ParseDouble(const std::string& token, const std::string& where) {
+  char* end = nullptr;
+  const double v = std::strtod(token.c_str(), &end);
+  if (end == token.c_str() || *end != '\0') {
+    throw CheckpointError(where + ": expected a number, got '" + token + "'");
+  }
+  return v;
+}
+
+std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
+                                               const std::string& fingerprint) {
+  std::ifstream in(path);
+  std::vector<RecordedGeneration> gens;
+  if (!in) return gens;
+  std::string line;
+  int line_no = 0;
+  auto where = [&]() { return fmt::format("{}:{}", path, line_no); };
+  if (!std::getline(in, line) || line != kCheckpointMagic) {
+    ++line_no;
+    throw CheckpointError(where() + ": not an mrsim-opt checkpoint");
+  }
+  ++line_no;
+  bool ended = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key == "fingerprint") {
+      std::string value;
+      words >> value;
+      if (value != fingerprint) {
+        throw CheckpointError(fmt::format(
+            "{}: the checkpoint was made with other settings, scenario or "
+            "genome (fingerprint {}, this run {}); use another --out "
+            "directory or remove it",
+            path, value, fingerprint));
+      }
+    } else if (key == "gen") {
+      int index = -1;
+      size_t count = 0;
+      RecordedGeneration g;
+      words >> index >> count >> g.genomes_hash;
+      if (index != static_cast<int>(gens.size()) || g.genomes_hash.empty()) {
+        throw CheckpointError(where() + ": generations out of order");
+      }
+      for (size_t i = 0; i < count; ++i) {
+        if (!std::getline(in, line)) {
+          throw CheckpointError(where() + ": truncated");
+        }
+        ++line_no;
+        std::istringstream r(line);
+        std::string tag, t[7];
+        r >> tag >> t[0] >> t[1] >> t[2] >> t[3] >> t[4] >> t[5] >> t[6];
+        if (tag != "r" || t[6].empty()) {
+          throw CheckpointError(where() + ": expected a result line");
+        }
+        EvalResult e;
+        e.fitness = ParseDouble(t[0], where());
+        e.distance = ParseDouble(t[1], where());
+        e.speed = ParseDouble(t[2], where());
+        e.energy = ParseDouble(t[3], where());
+        e.drift = ParseDouble(t[4], where());
+        e.fell = ParseDouble(t[5], where());
+        e.failed = t[6] == "1";
+        g.results.push_back(e);
+      }
+      gens.push_back(std::move(g));
+    } else if (key == "end") {
+      ended = true;
+    } else if (!key.empty()) {
+      throw CheckpointError(where() + ": unexpected '" + key + "'");
+    }
+  }
+  if (!ended) throw CheckpointError(path + ": truncated (no end line)");
+  return gens;
+}
+
+void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
+                     const std::vector<RecordedGeneration>& gens) {
+  const std::string tmp = path + ".tmp";
+  {
+    FilePtr f(std::fopen(tmp.c_str(), "w"));
+    if (!f) throw std::runtime_error(tmp + ": cannot write the checkpoint");
+    std::fprintf(f.get(), "%s\nfingerprint %s\n", kCheckpointMagic,
+                 fingerprint.c_str());
+    for (size_t k = 0; k < gens.size(); ++k) {
+      std::fprintf(f.get(), "gen %zu %zu %s\n", k, gens[k].results.size(),
+                   gens[k].genomes_hash.c_str());
+      for (const EvalResult& e : gens[k].results) {
+        std::fprintf(f.get(), "r %s %s %s %s %s %s %d\n",
+                     Hex(e.fitness).c_str(), Hex(e.distance).c_str(),
+                     Hex(e.speed).c_str(), Hex(e.energy).c_str(),
+                     Hex(e.drift).c_str(), Hex(e.fell).c_str(),
+                     e.failed ? 1 : 0);
+      }
+    }
+    std::fprintf(f.get(), "end\n");
+    if (std::fflush(f.get()) != 0) {
+      throw std::runtime_error(tmp + ": cannot write the checkpoint");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    throw std::runtime_error(path + ": cannot replace the checkpoint");
+  }
+}
+
+FilePtr OpenCsv(const std::string& path) {
+  FilePtr f(std::fopen(path.c_str(), "w"));
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  return f;
+}
+
+}  // namespace
+
+RunResult RunOptimization(const GenomeSpec& spec,
+                          const AlgorithmSettings& settings,
+                          BatchEvaluator& evaluator,
+                          const RunOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  std::unique_ptr<Algorithm> algorithm = MakeAlgorithm(spec, settings);
+  const int planned = options.stop_after >= 0
+                          ? std::min(options.stop_after, options.generations)
+                          : options.generations;
+  const std::string fingerprint =
+      HashHex(Fnv1a64(WriteGenomeString(spec) + "\n" + settings.Describe() +
+                      "\n" + options.fingerprint));
+
+  const bool use_files = !options.out_dir.empty();
+  const std::string checkpoint_path = options.out_dir + "/checkpoint.txt";
+  std::vector<RecordedGeneration> recorded;
+  if (use_files) recorded = ReadCheckpoint(checkpoint_path, fingerprint);
+
+  RunResult result;
+  result.wrote_files =
+      use_files && static_cast<int>(recorded.size()) <= planned;
+  FilePtr gens_csv, evals_csv;
+  if (result.wrote_files) {
+    gens_csv = OpenCsv(options.out_dir + "/generations.csv");
+    evals_csv = OpenCsv(options.out_dir + "/evaluations.csv");
+    std::string genes;
+    for (const GeneSpec& g : spec.genes) genes += "," + g.name;
+    std::fprintf(gens_csv.get(),
+                 "generation,best,mean,worst,best_so_far,failed%s\n",
+                 genes.c_str());
+    std::fprintf(evals_csv.get(),
+                 "generation,index,fitness,distance,speed,energy,drift,fell,"
+                 "failed%s\n",
+                 genes.c_str());
+  }
+
+  std::map<Genome, EvalResult> cache;  // results are a function of the genome
+  double evaluated_seconds = 0;
+  int evaluated_generations = 0;
+  long long evaluated_count = 0;
+  for (int gen = 0; gen < planned; ++gen) {
+    const std::vector<Genome> batch = algorithm->Ask();
+    std::vector<EvalResult> results;
+    const bool replay = gen < static_cast<int>(recorded.size());
+    const auto t0 = Clock::now();
+    if (replay) {
+      if (recorded[gen].genomes_hash != HashGenomes(batch) ||
+          recorded[gen].results.size() != batch.size()) {
+        throw CheckpointError(fmt::format(
+            "{}: generation {} does not match what this program generates; "
+            "use another --out directory",
+            checkpoint_path, gen));
+      }
+      results = recorded[gen].results;
+    } else {
+      std::vector<Genome> todo;
+      std::map<Genome, size_t> todo_index;
+      for (const Genome& g : batch) {
+        spec.Check(g);
+        if (!cache.count(g) && !todo_index.count(g)) {
+          todo_index[g] = todo.size();
+          todo.push_back(g);
+        }
+      }
+      std::vector<EvalResult> fresh =
+          todo.empty() ? std::vector<EvalResult>{} : evaluator.Evaluate(todo);
+      if (fresh.size() != todo.size()) {
+        throw std::runtime_error("evaluator returned the wrong count");
+      }
+      for (size_t i = 0; i < todo.size(); ++i) cache[todo[i]] = fresh[i];
+      evaluated_count += static_cast<long long>(todo.size());
+    }
+    if (!replay) {
+      for (const Genome& g : batch) results.push_back(cache.at(g));
+    } else {
+      for (size_t i = 0; i < batch.size(); ++i) cache[batch[i]] = results[i];
+    }
+    algorithm->Tell(results);
+
+    double best = -INFINITY, worst = INFINITY, sum = 0;
+    int best_i = 0, failed = 0;
+    for (size_t i = 0; i < results.size(); ++i) {
+      const double f = results[i].fitness;
+      sum += f;
+      failed += results[i].failed ? 1 : 0;
+      if (f > best) {
+        best = f;
+        best_i = static_cast<int>(i);
+      }
+      worst = std::min(worst, f);
+      if (result.best_generation < 0 || f > result.best_result.fitness) {
+        result.best = batch[i];
+        result.best_result = results[i];
+        result.best_generation = gen;
+        result.best_index = static_cast<int>(i);
+      }
+    }
+    result.evaluations += static_cast<long long>(batch.size());
+    result.generations_done = gen + 1;
+    if (replay) {
+      ++result.generations_replayed;
+    } else {
+      evaluated_seconds +=
+          std::chrono::duration<double>(Clock::now() - t0).count();
+      ++evaluated_generations;
+      recorded.push_back({HashGenomes(batch), results});
+    }
+    const double mean = sum / results.size();
+
+    if (result.wrote_files) {
+      std::string genes;
+      for (double v : batch[best_i]) genes += fmt::format(",{}", v);
+      std::fprintf(gens_csv.get(), "%s\n",
+                   fmt::format("{},{},{},{},{},{}{}", gen, best, mean, worst,
+                               result.best_result.fitness, failed, genes)
+                       .c_str());
+      for (size_t i = 0; i < results.size(); ++i) {
+        const EvalResult& e = results[i];
+        std::string line = fmt::format("{},{},{},{},{},{},{},{},{}", gen, i,
+                                       e.fitness, e.distance, e.speed, e.energy,
+                                       e.drift, e.fell, e.failed ? 1 : 0);
+        for (double v : batch[i]) line += fmt::format(",{}", v);
+        std::fprintf(evals_csv.get(), "%s\n", line.c_str());
+      }
+      std::fflush(gens_csv.get());
+      std::fflush(evals_csv.get());
+      if (!replay) WriteCheckpoint(checkpoint_path, fingerprint, recorded);
+    }
+
+    if (options.progress) {
+      GenerationReport report;
+      report.generation = gen + 1;
+      report.generations = planned;
+      report.best = best;
+      report.mean = mean;
+      report.best_so_far = result.best_result.fitness;
+      report.evaluations = result.evaluations;
+      report.evals_per_second =
+          evaluated_seconds > 0 ? evaluated_count / evaluated_seconds : 0.0;
+      report.workers = evaluator.workers_alive();
+      report.eta_seconds =
+          evaluated_generations > 0
+              ? evaluated_seconds / evaluated_generations * (planned - gen - 1)
+              : 0.0;
+      report.replayed = replay;
+      options.progress(report);
+    }
+  }
+  return result;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,68 @@
+// Drives an algorithm generation by generation over a batch evaluator,
+// writes the CSVs and a checkpoint after every generation, and resumes from
+// the checkpoint: the recorded results are told to a fresh algorithm with
+// the same seed, which re-creates its state exactly, so a killed and
+// restarted run ends with the same result as an uninterrupted one.
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimizer/algorithm.h"
+#include "optimizer/batch_evaluator.h"
+
+namespace mrsim {
+
+struct GenerationReport {
+  int generation = 0;   // completed generations (1-based)
+  int generations = 0;  // planned
+  double best = 0.0;    // of this generation
+  double mean = 0.0;
+  double best_so_far = 0.0;
+  long long evaluations = 0;  // total so far, cached ones included
+  double evals_per_second = 0.0;
+  int workers = 0;
+  double eta_seconds = 0.0;
+  bool replayed = false;  // taken from the checkpoint, not evaluated
+};
+
+struct RunOptions {
+  int generations = 10;
+  // Stop after this many generations (--jump-to); < 0: all. When the
+  // checkpoint already holds more, nothing in out_dir is rewritten.
+  int stop_after = -1;
+  // Output directory for checkpoint.txt, generations.csv, evaluations.csv;
+  // empty: no files and no resume.
+  std::string out_dir;
+  // Identifies the problem (scenario, episode settings); a checkpoint made
+  // for another problem or other settings is refused.
+  std::string fingerprint;
+  std::function<void(const GenerationReport&)> progress;
+};
+
+struct RunResult {
+  Genome best;
+  EvalResult best_result;
+  int best_generation = -1;
+  int best_index = -1;
+  int generations_done = 0;
+  int generations_replayed = 0;
+  long long evaluations = 0;
+  bool wrote_files = false;
+};
+
+// A checkpoint that cannot be used (other settings, corrupt).
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws CheckpointError, EvaluationInterrupted (stop requested; the
+// checkpoint holds every completed generation) or what the evaluator throws.
+RunResult RunOptimization(const GenomeSpec& spec,
+                          const AlgorithmSettings& settings,
+                          BatchEvaluator& evaluator, const RunOptions& options);
+
+}  // namespace mrsim

@@ -1,0 +1,54 @@
+#include "optimizer/genome.h"
+
+#include <gtest/gtest.h>
+
+namespace mrsim {
+namespace {
+
+TEST(OptimizerGenome, ReadsGenesWithLimitsToggleAndStart) {
+  const GenomeSpec spec = ReadGenomeString(R"(<genome robot="snake">
+  <gene name="A_pitch" lower="0" upper="1.57" start="1"/>
+  <gene name="T" lower="1" upper="8" start="4" enabled="false"/>
+  <gene name="module_count" lower="6" upper="14" start="11"/>
+</genome>)",
+                                           "g.xml");
+  EXPECT_EQ(spec.robot, "snake");
+  ASSERT_EQ(spec.size(), 3);
+  EXPECT_EQ(spec.genes[0].upper, 1.57);
+  EXPECT_FALSE(spec.genes[1].enabled);
+  EXPECT_TRUE(spec.genes[2].integer);
+  EXPECT_EQ(spec.StartGenome(), (Genome{1, 4, 11}));
+  EXPECT_EQ(ReadGenomeString(WriteGenomeString(spec), "again").genes.size(),
+            3u);
+  EXPECT_EQ(WriteGenomeString(ReadGenomeString(WriteGenomeString(spec), "x")),
+            WriteGenomeString(spec));
+}
+
+TEST(OptimizerGenome, BadFileNamesLineAndField) {
+  try {
+    ReadGenomeString(
+        "<genome>\n<gene name=\"T\" lower=\"1\" upper=\"x\" "
+        "start=\"2\"/>\n</genome>",
+        "bad.xml");
+    FAIL();
+  } catch (const GenomeError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.xml:2"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("upper"), std::string::npos);
+  }
+}
+
+TEST(OptimizerGenome, RejectsUnknownNamesAndStartOutsideLimits) {
+  EXPECT_THROW(ReadGenomeString("<genome><gene name=\"speed\" lower=\"0\" "
+                                "upper=\"1\" start=\"0\"/></genome>",
+                                "g.xml"),
+               GenomeError);
+  EXPECT_THROW(ReadGenomeString("<genome><gene name=\"T\" lower=\"1\" "
+                                "upper=\"2\" start=\"3\"/></genome>",
+                                "g.xml"),
+               GenomeError);
+  EXPECT_THROW(ReadGenomeFile("/nonexistent/genome.xml"), GenomeError);
+}
+
+}  // namespace
+}  // namespace mrsim

@@ -1,0 +1,103 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "optimizer/local_evaluator.h"
+#include "optimizer/optimization_run.h"
+#include "optimizer/test_functions.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct CountingEvaluator : BatchEvaluator {
+  int evaluated = 0;
+  int fail_after = -1;  // throw EvaluationInterrupted on this batch
+  int batches = 0;
+  std::vector<EvalResult> Evaluate(const std::vector<Genome>& batch) override {
+    if (batches++ == fail_after) throw EvaluationInterrupted("stop");
+    std::vector<EvalResult> r;
+    for (const Genome& g : batch) {
+      r.push_back(EvaluateTestFunction("rastrigin", g));
+      ++evaluated;
+    }
+    return r;
+  }
+};
+
+TEST(OptimizerRun, InterruptedRunResumesToTheSameResult) {
+  const GenomeSpec spec = TestFunctionSpec(4, -5.12, 5.12, 2.0);
+  AlgorithmSettings settings;
+  settings.population = 8;
+  settings.seed = 9;
+  RunOptions options;
+  options.generations = 10;
+
+  options.out_dir = testing::TempDir("optimizer_run_straight");
+  CountingEvaluator straight_eval;
+  const RunResult straight =
+      RunOptimization(spec, settings, straight_eval, options);
+
+  options.out_dir = testing::TempDir("optimizer_run_resumed");
+  CountingEvaluator first;
+  first.fail_after = 4;  // stops during the 5th generation
+  EXPECT_THROW(RunOptimization(spec, settings, first, options),
+               EvaluationInterrupted);
+  CountingEvaluator second;
+  const RunResult resumed = RunOptimization(spec, settings, second, options);
+  EXPECT_EQ(resumed.generations_replayed, 4);
+  EXPECT_EQ(resumed.best, straight.best);
+  EXPECT_EQ(resumed.best_result.fitness, straight.best_result.fitness);
+  // Nothing evaluated twice beyond the abandoned generation.
+  EXPECT_EQ(first.evaluated + second.evaluated, straight_eval.evaluated + 0);
+  for (const char* f :
+       {"/generations.csv", "/evaluations.csv", "/checkpoint.txt"}) {
+    EXPECT_EQ(ReadAll(options.out_dir + f),
+              ReadAll(testing::TempDir("") + "/optimizer_run_straight" + f))
+        << f;
+  }
+}
+
+TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
+  const GenomeSpec spec = TestFunctionSpec(3, -1, 1, 0);
+  AlgorithmSettings settings;
+  settings.population = 4;
+  RunOptions options;
+  options.generations = 2;
+  options.out_dir = testing::TempDir("optimizer_run_refused");
+  CountingEvaluator e;
+  RunOptimization(spec, settings, e, options);
+  settings.seed = 2;
+  EXPECT_THROW(RunOptimization(spec, settings, e, options), CheckpointError);
+}
+
+TEST(OptimizerRun, JumpToReplaysWithoutTouchingTheFiles) {
+  const GenomeSpec spec = TestFunctionSpec(3, -5, 5, 4);
+  AlgorithmSettings settings;
+  settings.population = 6;
+  RunOptions options;
+  options.generations = 8;
+  options.out_dir = testing::TempDir("optimizer_run_jump");
+  CountingEvaluator e;
+  RunOptimization(spec, settings, e, options);
+  const std::string before = ReadAll(options.out_dir + "/evaluations.csv");
+  options.stop_after = 3;
+  CountingEvaluator none;
+  const RunResult jump = RunOptimization(spec, settings, none, options);
+  EXPECT_EQ(none.evaluated, 0);
+  EXPECT_EQ(jump.generations_done, 3);
+  EXPECT_FALSE(jump.wrote_files);
+  EXPECT_LE(jump.best_generation, 2);
+  EXPECT_EQ(before, ReadAll(options.out_dir + "/evaluations.csv"));
+}
+
+}  // namespace
+}  // namespace mrsim
