@@ -148,6 +148,14 @@ int Run(int argc, char** argv) {
       ->capture_default_str();
   make->add_option("--ground-material", ground, "Material of the ground")
       ->capture_default_str();
+  std::vector<double> origin;
+  make->add_option("--origin", origin,
+                   "Ground point under module 0's hinge: X Y Z (default 0 0 0)")
+      ->expected(3);
+  double friction = -1;
+  make->add_option("--friction", friction,
+                   "Add a ContactFriction with this friction between the "
+                   "robot's and the ground's materials");
   make->add_option("-o,--output", out_path, "Output file (default: stdout)");
 
   try {
@@ -196,6 +204,9 @@ int Run(int argc, char** argv) {
                                          : mrsim::ChainPattern::kPitchYaw;
       chain.sensor_after = ParseSensors(sensors, chain.modules);
       chain.frame_size.setConstant(frame_size);
+      if (!origin.empty()) {
+        chain.origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+      }
       mrsim::Scenario s;
       try {
         s.robots.push_back(mrsim::MakeChain(chain));
@@ -204,6 +215,13 @@ int Run(int argc, char** argv) {
       }
       s.scene.guid = "scene";
       s.scene.material_name = ground;
+      if (friction >= 0) {
+        mrsim::ContactFriction pair;
+        pair.material1 = chain.material;
+        pair.material2 = ground;
+        pair.friction = friction;
+        s.contact_frictions.push_back(pair);
+      }
       // Check what we generate with the same reader users get.
       const std::string text = mrsim::WriteScenarioString(s);
       try {

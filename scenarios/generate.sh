@@ -1,0 +1,66 @@
+#!/bin/sh
+# Regenerates the example scenarios with `mrsim-scenario new` plus the few
+# additions `new` does not make (the ball, the terrain, the obstacles), then
+# rewrites each file in canonical form with `mrsim-scenario convert`.
+# Usage: scenarios/generate.sh [path/to/mrsim-scenario]
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+tool=${1:-$here/../build/sim_core/scenario_tool/mrsim-scenario}
+cd "$here"
+
+# Replaces the line `<sceneObjects xmlns="Assembly" />` of $1 with the
+# SceneObject elements read from stdin.
+add_objects() {
+  objects=$(mktemp)
+  { echo '  <sceneObjects xmlns="Assembly">'; cat; echo '  </sceneObjects>'; } >"$objects"
+  sed -i -e "/<sceneObjects xmlns=\"Assembly\" \/>/{r $objects" -e 'd}' "$1"
+  rm -f "$objects"
+}
+
+# Writes one SceneObject: guid shape sx sy sz x y z mass isStatic.
+object() {
+  cat <<OBJ
+    <SceneObject>
+      <guid>$1</guid>
+      <size><x>$3</x><y>$4</y><z>$5</z></size>
+      <position><x>$6</x><y>$7</y><z>$8</z></position>
+      <materialName>plastic</materialName>
+      <shape>$2</shape>
+      <mass>$9</mass>
+      <isStatic>${10}</isStatic>
+    </SceneObject>
+OBJ
+}
+
+# An 11-module pitch snake on flat ground.
+"$tool" new --modules 11 --pattern pitch --name snake --friction 0.5 \
+  -o snake11.xml
+
+# The original's case study: 5 pitch-yaw modules of 100 g, a sensor module
+# in front of, between and behind them (6), a force sensor under each, a
+# distance sensor at the front, plastic everywhere, a ball 0.6 m ahead.
+"$tool" new --modules 5 --pattern pitch-yaw --sensors all --force-sensors \
+  --front-distance-sensor --module-mass 0.1 --material plastic \
+  --ground-material plastic --friction 0.5 --name case_study \
+  -o case_study.xml
+object ball Sphere 0.1 0.1 0.1 0.6 0 0.05 0.05 false | add_objects case_study.xml
+"$tool" convert case_study.xml case_study.xml
+
+# An 8-module pitch-yaw snake on the flat middle of a 3.2 m height field
+# (terrain.png, made by make_terrain_png.py) with static box obstacles.
+"$tool" new --modules 8 --pattern pitch-yaw --name snake --friction 0.6 \
+  --origin 0.4 0 0 -o terrain.xml
+{
+  object rock1 Box 0.1 0.1 0.1 0.9 0.25 0.05 1 true
+  object rock2 Box 0.1 0.1 0.1 0.9 -0.3 0.05 1 true
+  object wall Box 0.2 0.05 0.08 0.2 0.45 0.04 1 true
+} | add_objects terrain.xml
+sed -i -e 's|<height_Image />|<height_Image>terrain.png</height_Image>|' \
+  -e 's|<height>0</height>|<height>0.3</height>|' terrain.xml
+# The scene's corner: the first <position> after <scene>.
+sed -i -e '/<scene>/,/<\/position>/{s|<x>0</x>|<x>-1.6</x>|;s|<y>0</y>|<y>-1.6</y>|}' \
+  terrain.xml
+"$tool" convert terrain.xml terrain.xml
+"$tool" validate snake11.xml
+"$tool" validate case_study.xml
+"$tool" validate terrain.xml
