@@ -1,0 +1,42 @@
+// Turns encoded LCM messages of one type into CSV rows with named columns.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mrsim {
+
+// One message as a CSV row.
+struct FlatRow {
+  std::string values;  // cells joined by ',', no line break
+  bool has_seq = false;
+  int64_t seq = 0;
+};
+
+class MessageFlattener {
+ public:
+  virtual ~MessageFlattener() = default;
+  // Decodes one whole message (fingerprint included). Returns false when
+  // the bytes are not a well-formed message of this type; never throws.
+  virtual bool Flatten(const uint8_t* data, size_t size, FlatRow* row) = 0;
+  virtual std::string type_name() const = 0;
+
+  // Column names of the last row flattened. They change only when the
+  // message's shape (its array lengths) changes, which bumps shape_version.
+  const std::vector<std::string>& columns() const { return columns_; }
+  uint64_t shape_version() const { return shape_version_; }
+
+ protected:
+  void SetColumns(std::vector<std::string> columns) {
+    columns_ = std::move(columns);
+    ++shape_version_;
+  }
+
+ private:
+  std::vector<std::string> columns_;
+  uint64_t shape_version_ = 0;
+};
+
+}  // namespace mrsim

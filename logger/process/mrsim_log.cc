@@ -1,0 +1,215 @@
+// mrsim-log: writes every mrsim channel (or the chosen ones) to one CSV per
+// channel, live from LCM or from an .lcmlog file, reports sequence gaps and
+// optionally draws plots when it stops.
+#include <chrono>
+#include <cstdio>
+#include <lcm/lcm-cpp.hpp>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "CLI/CLI.hpp"
+#include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/stop_signal.h"
+#include "logger/lcm_type_registry.h"
+#include "logger/recorder.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Messages queued per subscription before LCM drops them: 1 kHz of a large
+// state for several seconds of a slow disk.
+constexpr int kQueueCapacity = 20000;
+
+// A comma-separated list of channel names becomes an alternation of
+// literal names; anything else is used as a regular expression.
+std::string ChannelRegex(const std::string& channels) {
+  if (channels.find(',') == std::string::npos) return channels;
+  std::string out;
+  size_t start = 0;
+  while (start <= channels.size()) {
+    size_t end = channels.find(',', start);
+    if (end == std::string::npos) end = channels.size();
+    std::string name = channels.substr(start, end - start);
+    if (!name.empty()) {
+      if (!out.empty()) out += "|";
+      for (char c : name) {
+        if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) {
+          out += '\\';
+        }
+        out += c;
+      }
+    }
+    start = end + 1;
+  }
+  return out;
+}
+
+struct Options {
+  std::string lcm_url;
+  std::string prefix = mrsim::kDefaultChannelPrefix;
+  std::string channels;
+  std::string out_dir = ".";
+  std::string from_log;
+  std::vector<std::string> types;
+  bool quiet = false;
+};
+
+void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+           mrsim::Recorder* recorder) {
+  recorder->OnMessage(channel, rbuf->data, rbuf->data_size);
+}
+
+void Progress(const mrsim::Recorder& recorder, bool quiet) {
+  if (quiet) return;
+  int64_t missing = 0;
+  const auto stats = recorder.Stats();
+  for (const auto& s : stats) missing += s.missing;
+  std::fprintf(stderr,
+               "mrsim-log: %lld messages on %zu channels, %lld missing\n",
+               static_cast<long long>(recorder.messages()), stats.size(),
+               static_cast<long long>(missing));
+}
+
+int RunLive(const Options& opt, const std::string& regex,
+            mrsim::Recorder& recorder) {
+  lcm::LCM lcm(opt.lcm_url);
+  if (!lcm.good()) {
+    throw std::runtime_error("cannot open LCM at '" + opt.lcm_url + "'");
+  }
+  lcm::Subscription* sub = lcm.subscribeFunction(regex, &OnLcm, &recorder);
+  sub->setQueueCapacity(kQueueCapacity);
+  if (!opt.quiet) {
+    std::fprintf(stderr, "mrsim-log: recording channels matching '%s' to %s\n",
+                 regex.c_str(), recorder.out_dir().c_str());
+  }
+  auto last_flush = Clock::now();
+  auto last_progress = Clock::now();
+  while (!mrsim::StopRequested() && !recorder.failed()) {
+    mrsim::HandleFor(lcm, 100);
+    const auto now = Clock::now();
+    if (now - last_flush > std::chrono::milliseconds(500)) {
+      last_flush = now;
+      try {
+        recorder.Flush();
+      } catch (const std::exception&) {
+        break;  // recorder.error() holds it
+      }
+    }
+    if (now - last_progress > std::chrono::seconds(10)) {
+      last_progress = now;
+      Progress(recorder, opt.quiet);
+    }
+  }
+  // Take what already arrived before stopping, but do not wait on a
+  // publisher that never pauses.
+  const auto drain_end = Clock::now() + std::chrono::milliseconds(300);
+  while (!recorder.failed() && Clock::now() < drain_end &&
+         mrsim::HandleFor(lcm, 20) > 0) {
+  }
+  lcm.unsubscribe(sub);
+  return 0;
+}
+
+void RunFromLog(const Options& opt, const std::string& regex,
+                mrsim::Recorder& recorder) {
+  lcm::LogFile log(opt.from_log, "r");
+  if (!log.good()) {
+    throw std::runtime_error("cannot read LCM log " + opt.from_log);
+  }
+  const std::regex re(regex, std::regex::extended);
+  auto last_progress = Clock::now();
+  int64_t events = 0;
+  while (!mrsim::StopRequested() && !recorder.failed()) {
+    const lcm::LogEvent* ev = log.readNextEvent();
+    if (ev == nullptr) break;
+    ++events;
+    if (!std::regex_match(ev->channel, re)) continue;
+    recorder.OnMessage(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+    if ((events & 1023) == 0 &&
+        Clock::now() - last_progress > std::chrono::seconds(5)) {
+      last_progress = Clock::now();
+      Progress(recorder, opt.quiet);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Writes mrsim LCM channels to one CSV per channel (DIR/<channel>.csv), "
+      "live or from an .lcmlog file, and reports sequence gaps."};
+  Options opt;
+  app.add_option("--lcm-url", opt.lcm_url,
+                 "LCM URL (default: LCM's default or $LCM_DEFAULT_URL)");
+  app.add_option("--prefix", opt.prefix,
+                 "channel prefix; by default every channel starting with "
+                 "PREFIX_ is recorded")
+      ->capture_default_str();
+  app.add_option("--channels", opt.channels,
+                 "channels to record: a regular expression (whole name) or "
+                 "a comma-separated list of names");
+  app.add_option("--out", opt.out_dir, "output folder (created if needed)")
+      ->capture_default_str();
+  app.add_option("--from-log", opt.from_log,
+                 "read this .lcmlog (from lcm-logger) instead of the network");
+  app.add_option("--types", opt.types,
+                 "extra .lcm files or folders with message definitions");
+  app.add_flag("--quiet", opt.quiet, "no progress lines");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  const std::string regex =
+      opt.channels.empty() ? opt.prefix + "_.*" : ChannelRegex(opt.channels);
+  try {
+    std::regex check(regex, std::regex::extended);
+  } catch (const std::regex_error& e) {
+    std::fprintf(stderr,
+                 "mrsim-log: --channels '%s' is not a valid regular "
+                 "expression: %s\n",
+                 opt.channels.c_str(), e.what());
+    return 2;
+  }
+
+  mrsim::InstallStopHandlers();
+  try {
+    mrsim::LcmTypeRegistry registry =
+        mrsim::LcmTypeRegistry::WithBuiltinTypes();
+    for (const std::string& t : opt.types) {
+      try {
+        registry.AddPath(t);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "mrsim-log: %s\n", e.what());
+        return 2;
+      }
+    }
+    mrsim::Recorder recorder(registry, {opt.out_dir, nullptr});
+    if (opt.from_log.empty()) {
+      RunLive(opt, regex, recorder);
+    } else {
+      RunFromLog(opt, regex, recorder);
+    }
+    if (!recorder.failed()) {
+      try {
+        recorder.Flush();
+      } catch (const std::exception&) {
+      }
+    }
+    std::fprintf(stderr, "mrsim-log: summary\n%s\n",
+                 recorder.Summary().c_str());
+    if (recorder.failed()) {
+      std::fprintf(stderr, "mrsim-log: error: %s\n", recorder.error().c_str());
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrsim-log: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,96 @@
+// Writes every message it is given to one CSV per channel (DIR/<channel>.csv)
+// and keeps per-channel counts: messages, rows, malformed and unknown-type
+// messages, and sequence gaps. Live logging and .lcmlog replay both feed it,
+// so both give the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "logger/csv_writer.h"
+#include "logger/lcm_type_registry.h"
+#include "logger/message_flattener.h"
+#include "logger/seq_tracker.h"
+
+namespace mrsim {
+
+// What happened on one channel.
+struct ChannelStats {
+  std::string channel;
+  std::string type;  // full type name, or empty when unknown
+  int64_t messages = 0;
+  int64_t rows = 0;
+  int64_t malformed = 0;     // bytes that are not a valid message
+  int64_t unknown_type = 0;  // fingerprint not in the registry
+  int64_t other_type = 0;    // a second type on a channel
+  int64_t gaps = 0;
+  int64_t missing = 0;
+  int64_t back_jumps = 0;
+  bool has_seq = false;
+  int64_t first_seq = 0;
+  int64_t last_seq = 0;
+  std::vector<std::string> files;
+};
+
+struct RecorderOptions {
+  std::string out_dir = ".";
+  // Receives warnings (gaps, unknown types, new file parts); default stderr.
+  std::function<void(const std::string&)> report;
+};
+
+class Recorder {
+ public:
+  // Creates out_dir if needed and checks it is writable; throws
+  // std::runtime_error naming the folder otherwise. `registry` must outlive
+  // the recorder.
+  Recorder(const LcmTypeRegistry& registry, RecorderOptions options);
+  ~Recorder();
+
+  // Records one message. Never throws (LCM calls it from C): a write error
+  // is kept in error() and later messages are dropped.
+  void OnMessage(const std::string& channel, const void* data, size_t size);
+  // Writes what is buffered. Throws std::runtime_error naming the file.
+  void Flush();
+
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+  int64_t messages() const { return messages_; }
+  std::vector<ChannelStats> Stats() const;
+  // A human-readable table of Stats(), one line per channel.
+  std::string Summary() const;
+  // The first CSV file of a channel, or "" when none was written.
+  std::string CsvPath(const std::string& channel) const;
+  const std::string& out_dir() const { return options_.out_dir; }
+
+ private:
+  struct Channel {
+    ChannelStats stats;
+    int64_t hash = 0;
+    std::unique_ptr<MessageFlattener> flattener;
+    std::unique_ptr<CsvWriter> writer;
+    uint64_t shape_version = 0;
+    SeqTracker seq;
+    FlatRow row;
+    int reports = 0;
+  };
+
+  void Record(Channel& ch, const uint8_t* data, size_t size);
+  void OpenPart(Channel& ch);
+  void Report(Channel& ch, const std::string& text);
+
+  const LcmTypeRegistry& registry_;
+  RecorderOptions options_;
+  std::map<std::string, Channel> channels_;
+  std::string error_;
+  int64_t messages_ = 0;
+};
+
+// A channel name as a file name: characters other than letters, digits,
+// '_', '-' and '.' become '_'.
+std::string ChannelFileStem(const std::string& channel);
+
+}  // namespace mrsim

@@ -1,0 +1,189 @@
+#include "logger/robot_state_flattener.h"
+
+#include <stdexcept>
+
+#include "logger/csv_format.h"
+#include "logger/generic_flattener.h"
+
+namespace mrsim {
+namespace {
+
+const char* const kPoseNames[] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
+
+void AppendPose(const pose_t& p, std::string* out) {
+  for (double v : p.position) {
+    out->push_back(',');
+    AppendDouble(v, out);
+  }
+  for (double v : p.orientation) {
+    out->push_back(',');
+    AppendDouble(v, out);
+  }
+}
+
+void PoseNames(const std::string& prefix, std::vector<std::string>* names) {
+  for (const char* n : kPoseNames) names->push_back(prefix + "." + n);
+}
+
+}  // namespace
+
+RobotStateFlattener::RobotStateFlattener(const LcmTypeRegistry& registry)
+    : registry_(registry), type_(registry.FindByName("mrsim.robot_state_t")) {
+  if (type_ == nullptr ||
+      registry.Fingerprint(*type_) != robot_state_t::getHash()) {
+    throw std::runtime_error(
+        "robot_state_t.lcm does not match the compiled robot_state_t");
+  }
+}
+
+bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
+                                  FlatRow* row) {
+  // The generated decoder trusts array lengths (a forged length would make
+  // it allocate gigabytes), so the bytes are checked first.
+  if (size < 8 || size > static_cast<size_t>(INT32_MAX)) return false;
+  uint64_t hash = 0;
+  for (int k = 0; k < 8; ++k) hash = (hash << 8) | data[k];
+  if (static_cast<int64_t>(hash) != robot_state_t::getHash()) return false;
+  if (!GenericFlattener::IsWellFormedBody(registry_, *type_, data + 8,
+                                          size - 8)) {
+    return false;
+  }
+  try {
+    if (msg_.decode(data, 0, static_cast<int>(size)) < 0) return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  const robot_state_t& m = msg_;
+  shape_.clear();
+  shape_.push_back(m.num_modules);
+  shape_.push_back(m.num_frames);
+  shape_.push_back(m.num_joints);
+  shape_.push_back(m.num_sensor_modules);
+  for (const sensor_module_state_t& s : m.sensor_modules) {
+    shape_.push_back(s.has_force ? 1 : 0);
+    shape_.push_back(s.num_distances);
+    for (int8_t face : s.distance_face) shape_.push_back(face);
+  }
+  if (!have_shape_ || shape_ != last_shape_) {
+    last_shape_ = shape_;
+    have_shape_ = true;
+    SetColumns(ColumnNames());
+  }
+
+  std::string& out = row->values;
+  out.clear();
+  AppendDouble(SecondsFromUtime(m.utime), &out);
+  out.push_back(',');
+  AppendInt(m.seq, &out);
+  out.push_back(',');
+  AppendCsvText(m.robot, &out);
+  out.push_back(',');
+  AppendDouble(m.sim_time, &out);
+  const bool frames_per_module = m.num_frames == 2 * m.num_modules;
+  const bool joint_per_module = m.num_joints == m.num_modules;
+  for (int i = 0; i < m.num_modules; ++i) {
+    AppendPose(m.modules[i], &out);
+    if (frames_per_module) {
+      AppendPose(m.frames[2 * i], &out);
+      AppendPose(m.frames[2 * i + 1], &out);
+    }
+    if (joint_per_module) {
+      const joint_state_t& j = m.joints[i];
+      for (double v : {j.angle, j.speed, j.torque}) {
+        out.push_back(',');
+        AppendDouble(v, &out);
+      }
+      AppendPose(j.world, &out);
+    }
+  }
+  if (!frames_per_module) {
+    for (const pose_t& f : m.frames) AppendPose(f, &out);
+  }
+  if (!joint_per_module) {
+    for (const joint_state_t& j : m.joints) {
+      for (double v : {j.angle, j.speed, j.torque}) {
+        out.push_back(',');
+        AppendDouble(v, &out);
+      }
+      AppendPose(j.world, &out);
+    }
+  }
+  for (const sensor_module_state_t& s : m.sensor_modules) {
+    AppendPose(s.pose, &out);
+    if (s.has_force) {
+      out.push_back(',');
+      AppendDouble(s.force, &out);
+    }
+    for (double d : s.distance) {
+      out.push_back(',');
+      AppendDouble(d, &out);
+    }
+  }
+  for (double v : m.com) {
+    out.push_back(',');
+    AppendDouble(v, &out);
+  }
+  for (double v : m.com_velocity) {
+    out.push_back(',');
+    AppendDouble(v, &out);
+  }
+  row->has_seq = true;
+  row->seq = m.seq;
+  return true;
+}
+
+std::vector<std::string> RobotStateFlattener::ColumnNames() const {
+  const robot_state_t& m = msg_;
+  std::vector<std::string> names = {"time", "seq", "robot", "sim_time"};
+  const bool frames_per_module = m.num_frames == 2 * m.num_modules;
+  const bool joint_per_module = m.num_joints == m.num_modules;
+  auto joint_names = [&names](const std::string& prefix) {
+    for (const char* n : {"angle", "speed", "torque"}) {
+      names.push_back(prefix + "." + n);
+    }
+    PoseNames(prefix, &names);
+  };
+  for (int i = 0; i < m.num_modules; ++i) {
+    const std::string mod = "module" + std::to_string(i);
+    PoseNames(mod, &names);
+    if (frames_per_module) {
+      PoseNames(mod + ".frame0", &names);
+      PoseNames(mod + ".frame1", &names);
+    }
+    if (joint_per_module) joint_names(mod + ".joint");
+  }
+  if (!frames_per_module) {
+    for (int k = 0; k < m.num_frames; ++k) {
+      PoseNames("frame" + std::to_string(k), &names);
+    }
+  }
+  if (!joint_per_module) {
+    for (int k = 0; k < m.num_joints; ++k) {
+      joint_names("joint" + std::to_string(k));
+    }
+  }
+  for (int k = 0; k < m.num_sensor_modules; ++k) {
+    const std::string sm = "sensor_module" + std::to_string(k);
+    const sensor_module_state_t& s = m.sensor_modules[k];
+    PoseNames(sm, &names);
+    if (s.has_force) names.push_back(sm + ".force");
+    for (int j = 0; j < s.num_distances; ++j) {
+      std::string name = sm + ".distance" + std::to_string(s.distance_face[j]);
+      // Two sensors on one face keep distinct names.
+      for (int i = 0; i < j; ++i) {
+        if (s.distance_face[i] == s.distance_face[j]) {
+          name += "_" + std::to_string(j);
+          break;
+        }
+      }
+      names.push_back(name);
+    }
+  }
+  for (const char* n : {"com.x", "com.y", "com.z", "com_velocity.x",
+                        "com_velocity.y", "com_velocity.z"}) {
+    names.push_back(n);
+  }
+  return names;
+}
+
+}  // namespace mrsim

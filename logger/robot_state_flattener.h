@@ -1,0 +1,35 @@
+// Flattens mrsim::robot_state_t with the names users plot by: `time`, `seq`,
+// `robot`, `sim_time`, `module3.x .. module3.qz`, `module3.frame0.x ..`,
+// `module3.joint.angle/speed/torque/x..qz`, `sensor_module0.x ..`,
+// `sensor_module0.force`, `sensor_module0.distance4` (4 = face), `com.x`,
+// `com_velocity.x`. SI units throughout.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "logger/lcm_type_registry.h"
+#include "logger/message_flattener.h"
+#include "mrsim/robot_state_t.hpp"
+
+namespace mrsim {
+
+class RobotStateFlattener : public MessageFlattener {
+ public:
+  // `registry` (which must hold mrsim.robot_state_t) must outlive this.
+  explicit RobotStateFlattener(const LcmTypeRegistry& registry);
+  bool Flatten(const uint8_t* data, size_t size, FlatRow* row) override;
+  std::string type_name() const override { return "mrsim.robot_state_t"; }
+
+ private:
+  std::vector<std::string> ColumnNames() const;
+
+  const LcmTypeRegistry& registry_;
+  const LcmStruct* type_;
+  robot_state_t msg_;
+  std::vector<int> shape_;
+  std::vector<int> last_shape_;
+  bool have_shape_ = false;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,73 @@
+#include "logger/lcm_type_registry.h"
+
+#include <gtest/gtest.h>
+
+#include "mrsim/joint_command_t.hpp"
+#include "mrsim/joint_state_t.hpp"
+#include "mrsim/pose_t.hpp"
+#include "mrsim/robot_state_t.hpp"
+#include "mrsim/sensor_module_state_t.hpp"
+#include "mrsim/sim_control_t.hpp"
+#include "mrsim/sim_status_t.hpp"
+
+namespace mrsim {
+namespace {
+
+template <typename T>
+void ExpectSameFingerprint(const LcmTypeRegistry& registry,
+                           const std::string& name) {
+  const LcmStruct* s = registry.FindByName(name);
+  ASSERT_NE(s, nullptr) << name;
+  EXPECT_EQ(registry.Fingerprint(*s), T::getHash()) << name;
+  EXPECT_EQ(registry.FindByHash(T::getHash()), s) << name;
+}
+
+TEST(LoggerTypes, FingerprintsMatchTheGeneratedCode) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  ExpectSameFingerprint<robot_state_t>(registry, "mrsim.robot_state_t");
+  ExpectSameFingerprint<pose_t>(registry, "mrsim.pose_t");
+  ExpectSameFingerprint<joint_state_t>(registry, "mrsim.joint_state_t");
+  ExpectSameFingerprint<sensor_module_state_t>(registry,
+                                               "mrsim.sensor_module_state_t");
+  ExpectSameFingerprint<joint_command_t>(registry, "mrsim.joint_command_t");
+  ExpectSameFingerprint<sim_control_t>(registry, "mrsim.sim_control_t");
+  ExpectSameFingerprint<sim_status_t>(registry, "mrsim.sim_status_t");
+}
+
+TEST(LoggerTypes, EveryBuiltinTypeHasAFingerprint) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const auto structs = registry.structs();
+  EXPECT_GE(structs.size(), 7u);
+  for (const LcmStruct* s : structs) {
+    EXPECT_EQ(registry.FindByHash(registry.Fingerprint(*s)), s)
+        << s->full_name();
+  }
+}
+
+TEST(LoggerTypes, ParseErrorNamesFileLineAndExpectation) {
+  LcmTypeRegistry registry;
+  try {
+    registry.AddDefinitions("package p;\nstruct a_t {\n  double x[n];\n}\n",
+                            "bad.lcm");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.lcm:3"), std::string::npos) << what;
+    EXPECT_NE(what.find("'n'"), std::string::npos) << what;
+  }
+}
+
+TEST(LoggerTypes, ConstantsAndCommentsDoNotChangeTheFingerprint) {
+  LcmTypeRegistry a;
+  a.AddDefinitions("package q; struct t { int64_t utime; double v[3]; }", "a");
+  LcmTypeRegistry b;
+  b.AddDefinitions(
+      "package q;\n/* block */ struct t {\n // line\n int64_t utime;\n"
+      " const int8_t K = 1, L = 2;\n double v[3];\n}\n",
+      "b");
+  EXPECT_EQ(a.Fingerprint(*a.FindByName("q.t")),
+            b.Fingerprint(*b.FindByName("q.t")));
+}
+
+}  // namespace
+}  // namespace mrsim
