@@ -1,0 +1,243 @@
+#include "gait_controller/gait_file.h"
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gait_controller/gait_presets.h"
+
+namespace mrsim {
+
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLDocument;
+using tinyxml2::XMLElement;
+
+[[noreturn]] void Fail(const std::string& source, int line,
+                       const std::string& what) {
+  throw GaitFileError(fmt::format("{}:{}: {}", source, line, what));
+}
+
+double ParseNumber(const std::string& source, int line,
+                   const std::string& field, const char* text) {
+  const std::string s = text ? text : "";
+  const char* begin = s.c_str();
+  while (*begin == ' ' || *begin == '\t' || *begin == '\n') ++begin;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  while (end && (*end == ' ' || *end == '\t' || *end == '\n')) ++end;
+  if (end == begin || (end && *end != '\0') || errno == ERANGE ||
+      !std::isfinite(v)) {
+    Fail(source, line,
+         fmt::format("{}: expected a number, got '{}'", field, s));
+  }
+  return v;
+}
+
+std::optional<double> OptionalAttribute(const std::string& source,
+                                        const XMLElement* e, const char* name) {
+  const char* text = e->Attribute(name);
+  if (!text) return std::nullopt;
+  return ParseNumber(source, e->GetLineNum(),
+                     fmt::format("gait/joint/@{}", name), text);
+}
+
+}  // namespace
+
+Gait ReadGaitString(const std::string& xml, const std::string& source) {
+  XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    Fail(source, doc.ErrorLineNum(),
+         fmt::format("malformed XML: {}", doc.ErrorStr()));
+  }
+  const XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "gait") {
+    Fail(source, root ? root->GetLineNum() : 1,
+         fmt::format("expected the root element <gait>, got <{}>",
+                     root ? root->Name() : ""));
+  }
+  Gait gait;
+  gait.name = fs::path(source).stem().string();
+  if (const char* name = root->Attribute("name")) gait.name = name;
+  if (gait.name.empty()) Fail(source, root->GetLineNum(), "gait/@name: empty");
+  if (const char* kind = root->Attribute("kind")) {
+    const auto k = ParseGaitKind(kind);
+    if (!k) {
+      Fail(source, root->GetLineNum(),
+           fmt::format("gait/@kind: expected linear, sidewind or roll, got "
+                       "'{}'",
+                       kind));
+    }
+    gait.kind = *k;
+  }
+
+  const auto& names = GaitParameterNames();
+  std::array<std::optional<double>, GaitParameters::kVectorSize> seven;
+  std::array<int, GaitParameters::kVectorSize> lines{};
+  for (const XMLElement* e = root->FirstChildElement(); e;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    const int line = e->GetLineNum();
+    if (tag == "joint") {
+      JointOverride o;
+      const char* index = e->Attribute("index");
+      if (!index) Fail(source, line, "gait/joint: missing attribute index");
+      const double i = ParseNumber(source, line, "gait/joint/@index", index);
+      if (i != std::floor(i) || i < 0 || i > 1e6) {
+        Fail(source, line,
+             fmt::format("gait/joint/@index: expected a joint number >= 0, "
+                         "got '{}'",
+                         index));
+      }
+      o.joint = static_cast<int>(i);
+      o.amplitude = OptionalAttribute(source, e, "amplitude");
+      o.phase = OptionalAttribute(source, e, "phase");
+      o.offset = OptionalAttribute(source, e, "offset");
+      gait.parameters.overrides.push_back(o);
+      continue;
+    }
+    if (tag == "pitch_yaw_lag") {
+      gait.parameters.pitch_yaw_lag =
+          ParseNumber(source, line, "gait/" + tag, e->GetText());
+      continue;
+    }
+    bool known = false;
+    for (size_t n = 0; n < names.size(); ++n) {
+      if (tag == names[n]) {
+        if (seven[n]) Fail(source, line, fmt::format("gait/{}: repeated", tag));
+        seven[n] = ParseNumber(source, line, "gait/" + tag, e->GetText());
+        lines[n] = line;
+        known = true;
+      }
+    }
+    if (!known) {
+      Fail(source, line,
+           fmt::format("gait/{}: unknown element (expected A_pitch, A_yaw, "
+                       "phi_pitch, phi_yaw, T, offset_pitch, offset_yaw, "
+                       "pitch_yaw_lag or joint)",
+                       tag));
+    }
+  }
+  std::vector<double> values;
+  for (size_t n = 0; n < names.size(); ++n) {
+    if (!seven[n]) {
+      Fail(source, root->GetLineNum(),
+           fmt::format("gait/{}: missing (a gait file gives all seven "
+                       "parameters)",
+                       names[n]));
+    }
+    values.push_back(*seven[n]);
+  }
+  gait.parameters = gait.parameters.WithVector(values);
+  try {
+    ValidateGaitParameters(gait.parameters);
+  } catch (const std::invalid_argument& e) {
+    Fail(source, root->GetLineNum(), e.what());
+  }
+  return gait;
+}
+
+Gait ReadGaitFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw GaitFileError(fmt::format("{}: cannot open gait file", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ReadGaitString(ss.str(), path);
+}
+
+std::string WriteGaitString(const Gait& gait) {
+  const GaitParameters& p = gait.parameters;
+  const auto& names = GaitParameterNames();
+  const auto values = p.ToArray();
+  XMLDocument doc;
+  doc.InsertEndChild(doc.NewDeclaration());
+  XMLElement* root = doc.NewElement("gait");
+  doc.InsertEndChild(root);
+  root->SetAttribute("name", gait.name.c_str());
+  root->SetAttribute("kind", ToString(gait.kind));
+  auto add = [&](const char* tag, double v) {
+    XMLElement* e = doc.NewElement(tag);
+    e->SetText(fmt::format("{}", v).c_str());
+    root->InsertEndChild(e);
+  };
+  for (size_t n = 0; n < names.size(); ++n) add(names[n], values[n]);
+  add("pitch_yaw_lag", p.pitch_yaw_lag);
+  for (const JointOverride& o : p.overrides) {
+    XMLElement* e = doc.NewElement("joint");
+    e->SetAttribute("index", o.joint);
+    if (o.amplitude) {
+      e->SetAttribute("amplitude", fmt::format("{}", *o.amplitude).c_str());
+    }
+    if (o.phase) e->SetAttribute("phase", fmt::format("{}", *o.phase).c_str());
+    if (o.offset) {
+      e->SetAttribute("offset", fmt::format("{}", *o.offset).c_str());
+    }
+    root->InsertEndChild(e);
+  }
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
+void WriteGaitFile(const Gait& gait, const std::string& path) {
+  const std::string text = WriteGaitString(gait);
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw GaitFileError(fmt::format("{}: cannot write gait file", path));
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw GaitFileError(
+        fmt::format("{}: cannot write gait file: {}", path, ec.message()));
+  }
+}
+
+std::vector<std::string> GaitSearchPath() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("MRSIM_GAIT_PATH")) {
+    std::stringstream ss(env);
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+      if (!dir.empty()) dirs.push_back(dir);
+    }
+  }
+  dirs.push_back("gaits");
+  return dirs;
+}
+
+Gait ResolveGait(const std::string& spec) {
+  if (auto preset = FindGaitPreset(spec)) return *preset;
+  std::error_code ec;
+  if (fs::is_regular_file(spec, ec)) return ReadGaitFile(spec);
+  for (const std::string& dir : GaitSearchPath()) {
+    const fs::path candidate = fs::path(dir) / (spec + ".xml");
+    if (fs::is_regular_file(candidate, ec)) {
+      return ReadGaitFile(candidate.string());
+    }
+  }
+  std::string dirs;
+  for (const std::string& d : GaitSearchPath()) dirs += " " + d;
+  throw GaitFileError(fmt::format(
+      "unknown gait '{}': not a preset ({}), not a gait file, and no {}.xml "
+      "in the gait search path (MRSIM_GAIT_PATH, ./gaits):{}",
+      spec, GaitPresetNames(), spec, dirs));
+}
+
+}  // namespace mrsim
