@@ -1,0 +1,59 @@
+// One evaluation of a genome: a headless episode at full speed through the
+// sim_core and gait libraries (no LCM), scored by the fitness settings.
+// Deterministic: the same problem and genome give the same result bit for
+// bit, in any thread or process of the same build.
+#pragma once
+
+#include <string>
+
+#include "gait_controller/gait.h"
+#include "optimizer/eval_result.h"
+#include "optimizer/genome.h"
+#include "sim_core/scenario.h"
+
+namespace mrsim {
+
+// Fitness = distance * w_distance + speed * w_speed - energy * w_energy
+//           - drift * w_drift - fell * w_fall            (higher is better)
+struct FitnessSettings {
+  // "forward": CoM displacement along +x (the chain's head direction, see
+  // chain_builder.h); "net": horizontal CoM displacement in any direction.
+  std::string distance_mode = "forward";
+  double w_distance = 1.0;
+  double w_speed = 0.0;
+  double w_energy = 0.0;
+  double w_drift = 0.0;
+  double w_fall = 0.0;
+};
+
+// Fitness of an episode whose simulation became unstable.
+inline constexpr double kFailedFitness = -1e6;
+
+struct EpisodeSettings {
+  double duration = 20.0;        // s of simulated time
+  double control_period = 0.01;  // s, a whole number of physics steps
+  FitnessSettings fitness;
+  // The gait whose seven parameters the gait genes replace (genes not in
+  // the genome keep this gait's values); its kind selects the motion.
+  Gait base_gait;
+
+  // Throws std::invalid_argument naming the setting.
+  void Validate() const;
+};
+
+// Everything an evaluation needs; a worker receives exactly this.
+struct Problem {
+  Scenario scenario;  // assets embedded (see problem_codec.h)
+  GenomeSpec genome;
+  EpisodeSettings episode;
+};
+
+// The gait an individual runs: the base gait with the gait genes applied.
+Gait GaitOfGenome(const Problem& problem, const Genome& genome);
+
+// Runs the episode. An unstable simulation or gait values the controller
+// refuses give failed = true and kFailedFitness, never an exception; a
+// genome of the wrong size or a robot not in the scenario throws.
+EvalResult RunEpisode(const Problem& problem, const Genome& genome);
+
+}  // namespace mrsim

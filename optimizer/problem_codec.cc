@@ -1,0 +1,197 @@
+#include "optimizer/problem_codec.h"
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "gait_controller/gait_file.h"
+#include "optimizer/body_genes.h"
+#include "sim_core/base64.h"
+#include "sim_core/scenario_xml.h"
+
+namespace mrsim {
+namespace {
+
+constexpr const char* kMagic = "mrsim-opt-problem 1\n";
+
+bool IsEmbedded(const std::string& image) {
+  return image.empty() || image.rfind("base64:", 0) == 0;
+}
+
+std::string EncodeEpisode(const EpisodeSettings& e) {
+  const FitnessSettings& f = e.fitness;
+  return fmt::format(
+      "duration={}\ncontrol_period={}\ndistance_mode={}\nw_distance={}\n"
+      "w_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
+      e.duration, e.control_period, f.distance_mode, f.w_distance, f.w_speed,
+      f.w_energy, f.w_drift, f.w_fall);
+}
+
+EpisodeSettings DecodeEpisode(const std::string& text,
+                              const std::string& source) {
+  std::map<std::string, std::string> kv;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    kv[line.substr(0, eq)] = line.substr(eq + 1);
+  }
+  auto number = [&](const char* key) {
+    auto it = kv.find(key);
+    if (it == kv.end()) {
+      throw ProblemError(source + ": episode settings lack " + key);
+    }
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0') {
+      throw ProblemError(source + ": episode setting " + key +
+                         ": expected a number");
+    }
+    return v;
+  };
+  EpisodeSettings e;
+  e.duration = number("duration");
+  e.control_period = number("control_period");
+  e.fitness.distance_mode = kv["distance_mode"];
+  e.fitness.w_distance = number("w_distance");
+  e.fitness.w_speed = number("w_speed");
+  e.fitness.w_energy = number("w_energy");
+  e.fitness.w_drift = number("w_drift");
+  e.fitness.w_fall = number("w_fall");
+  try {
+    e.Validate();
+  } catch (const std::invalid_argument& err) {
+    throw ProblemError(source + ": " + err.what());
+  }
+  return e;
+}
+
+// Refuses a scenario text that names a file before it is parsed (parsing
+// would open the image to validate it).
+void CheckNamesNoFile(const std::string& xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw ProblemError(source + ": scenario is not well-formed XML");
+  }
+  std::vector<const tinyxml2::XMLElement*> stack = {doc.RootElement()};
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    if (!e) continue;
+    const std::string name = e->Name();
+    const char* text = e->GetText();
+    if (name == "height_Image" && text && !IsEmbedded(text)) {
+      throw ProblemError(source + ": the scenario names an image file");
+    }
+    if (name == "shape" && text && std::string(text) != "Box" &&
+        std::string(e->Parent()->ToElement()->Name()) == "Frame") {
+      throw ProblemError(source + ": the scenario names a mesh file");
+    }
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c;
+         c = c->NextSiblingElement()) {
+      stack.push_back(c);
+    }
+  }
+}
+
+}  // namespace
+
+void EmbedAssets(Scenario& scenario) {
+  for (const Robot& r : scenario.robots) {
+    for (const Module& m : r.modules) {
+      for (const Frame& f : m.frames) {
+        if (f.is_mesh()) {
+          throw ProblemError("frame '" + f.guid + "' uses the mesh file '" +
+                             f.shape +
+                             "'; the optimiser sends scenarios without files, "
+                             "so only Box frames are supported");
+        }
+      }
+    }
+  }
+  for (const Frame& f : scenario.loose_frames) {
+    if (f.is_mesh()) {
+      throw ProblemError("loose frame '" + f.guid + "' uses a mesh file");
+    }
+  }
+  std::string& image = scenario.scene.height_image;
+  if (IsEmbedded(image)) return;
+  std::string path = image;
+  if (!path.empty() && path[0] != '/' && !scenario.base_dir.empty()) {
+    path = scenario.base_dir + "/" + path;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // not a file: bare base64 bytes
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  image = "base64:" + Base64Encode(bytes);
+}
+
+std::string EncodeProblem(const Problem& problem) {
+  Scenario scenario = problem.scenario;
+  EmbedAssets(scenario);
+  const std::string sections[][2] = {
+      {"episode", EncodeEpisode(problem.episode)},
+      {"genome", WriteGenomeString(problem.genome)},
+      {"gait", WriteGaitString(problem.episode.base_gait)},
+      {"scenario", WriteScenarioString(scenario)},
+  };
+  std::string out = kMagic;
+  for (const auto& s : sections) {
+    out += fmt::format("{} {}\n", s[0], s[1].size());
+    out += s[1];
+    out += "\n";
+  }
+  return out;
+}
+
+Problem DecodeProblem(const std::string& payload, const std::string& source) {
+  if (payload.rfind(kMagic, 0) != 0) {
+    throw ProblemError(source + ": not an mrsim-opt problem");
+  }
+  std::map<std::string, std::string> sections;
+  size_t pos = std::string(kMagic).size();
+  while (pos < payload.size()) {
+    const size_t eol = payload.find('\n', pos);
+    if (eol == std::string::npos) throw ProblemError(source + ": truncated");
+    std::istringstream head(payload.substr(pos, eol - pos));
+    std::string name;
+    size_t size = 0;
+    if (!(head >> name >> size) || eol + 1 + size + 1 > payload.size()) {
+      throw ProblemError(source + ": bad section header");
+    }
+    sections[name] = payload.substr(eol + 1, size);
+    pos = eol + 1 + size + 1;
+  }
+  for (const char* need : {"episode", "genome", "gait", "scenario"}) {
+    if (!sections.count(need)) {
+      throw ProblemError(source + ": no " + need + " section");
+    }
+  }
+  Problem p;
+  p.episode = DecodeEpisode(sections["episode"], source);
+  try {
+    p.genome = ReadGenomeString(sections["genome"], source + " genome");
+    p.episode.base_gait = ReadGaitString(sections["gait"], source + " gait");
+    CheckNamesNoFile(sections["scenario"], source);
+    p.scenario = ReadScenarioString(sections["scenario"], source + " scenario",
+                                    "/nonexistent");
+  } catch (const ProblemError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ProblemError(e.what());
+  }
+  try {
+    GenomeRobotIndex(p.scenario, p.genome);
+  } catch (const GenomeError& e) {
+    throw ProblemError(source + ": " + e.what());
+  }
+  return p;
+}
+
+}  // namespace mrsim

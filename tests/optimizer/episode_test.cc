@@ -1,0 +1,108 @@
+#include "optimizer/episode.h"
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "gait_controller/gait_presets.h"
+#include "optimizer/body_genes.h"
+#include "optimizer/problem_codec.h"
+#include "sim_core/chain_builder.h"
+
+namespace mrsim {
+namespace {
+
+Problem SnakeProblem(double seconds) {
+  Problem p;
+  p.scenario.robots.push_back(MakeChain(ChainOptions{}));
+  p.genome = ReadGenomeString(R"(<genome>
+  <gene name="A_pitch" lower="0" upper="1.5" start="1"/>
+  <gene name="phi_pitch" lower="0" upper="3.14" start="2.5"/>
+  <gene name="T" lower="1" upper="6" start="4"/>
+</genome>)",
+                              "test genome");
+  p.episode.duration = seconds;
+  p.episode.base_gait = *FindGaitPreset("forward");
+  return p;
+}
+
+TEST(OptimizerEpisode, SameGenomeGivesTheSameFitnessBitForBit) {
+  const Problem problem = SnakeProblem(2.0);
+  const Genome g = problem.genome.StartGenome();
+  const EvalResult a = RunEpisode(problem, g);
+  EvalResult b;
+  std::thread t([&] { b = RunEpisode(problem, g); });
+  t.join();
+  EXPECT_FALSE(a.failed);
+  EXPECT_EQ(a.fitness, b.fitness);
+  EXPECT_EQ(a.energy, b.energy);
+  EXPECT_GT(a.energy, 0.0);
+  // A different gait gives a different fitness.
+  Genome other = g;
+  other[0] = 0.5;
+  EXPECT_NE(RunEpisode(problem, other).fitness, a.fitness);
+}
+
+TEST(OptimizerEpisode, ForwardPresetScoresPositiveForwardDistance) {
+  const Problem problem = SnakeProblem(6.0);
+  const EvalResult r = RunEpisode(problem, problem.genome.StartGenome());
+  EXPECT_GT(r.distance, 0.01);
+  EXPECT_EQ(r.fitness, r.distance);  // default weights: distance only
+  EXPECT_NEAR(r.speed, r.distance / 6.0, 1e-12);
+}
+
+TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
+  Problem problem = SnakeProblem(1.0);
+  problem.genome = ReadGenomeString(R"(<genome>
+  <gene name="module_count" lower="3" upper="14" start="11"/>
+  <gene name="module_scale" lower="0.5" upper="2" start="1"/>
+  <gene name="joint_kp" lower="1" upper="20" start="10"/>
+  <gene name="module_mass" lower="0.05" upper="0.5" start="0.1"/>
+  <gene name="sensor_after" lower="-1" upper="13" start="2"/>
+</genome>)",
+                                    "body genome");
+  // The start genome rebuilds the same chain plus the sensor module.
+  ChainOptions same;
+  same.sensor_after = {2};
+  const Robot expected = MakeChain(same);
+  const Scenario s0 = ApplyBodyGenes(problem.scenario, problem.genome,
+                                     problem.genome.StartGenome());
+  ASSERT_EQ(s0.robots[0].modules.size(), 11u);
+  EXPECT_EQ(s0.robots[0].modules[5].position, expected.modules[5].position);
+  ASSERT_EQ(s0.robots[0].sensor_modules.size(), 1u);
+  EXPECT_EQ(s0.robots[0].sensor_modules[0].left_mod_nr, 2);
+
+  const Scenario s = ApplyBodyGenes(problem.scenario, problem.genome,
+                                    Genome{5, 1.5, 4, 0.3, 9});
+  const Robot& r = s.robots[0];
+  ASSERT_EQ(r.modules.size(), 5u);
+  EXPECT_DOUBLE_EQ(r.modules[0].frames[0].scale.x(), 0.075);
+  EXPECT_EQ(r.modules[3].joint.kp, 4);
+  EXPECT_DOUBLE_EQ(r.modules[3].frames[0].mass + r.modules[3].frames[1].mass,
+                   0.3);
+  // The sensor module is clamped behind the last module; the chain still
+  // stands on the ground.
+  ASSERT_EQ(r.sensor_modules.size(), 1u);
+  EXPECT_EQ(r.sensor_modules[0].left_mod_nr, 4);
+  EXPECT_DOUBLE_EQ(r.modules[0].position.z(), 0.075 / 2);
+  EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
+}
+
+TEST(OptimizerProblem, PayloadRoundTripsAndNamesNoFile) {
+  Problem p = SnakeProblem(3.0);
+  p.episode.fitness.w_energy = 0.25;
+  const std::string payload = EncodeProblem(p);
+  const Problem back = DecodeProblem(payload, "test");
+  EXPECT_EQ(EncodeProblem(back), payload);
+  EXPECT_EQ(back.episode.fitness.w_energy, 0.25);
+
+  p.scenario.scene.height_image = "/etc/hostname_not_an_image";
+  std::string bad = EncodeProblem(p);  // not a file here: left as is
+  EXPECT_THROW(DecodeProblem(bad, "test"), ProblemError);
+  EXPECT_THROW(DecodeProblem("garbage", "test"), ProblemError);
+  EXPECT_THROW(DecodeProblem(payload.substr(0, payload.size() / 2), "test"),
+               ProblemError);
+}
+
+}  // namespace
+}  // namespace mrsim
