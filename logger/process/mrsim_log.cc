@@ -13,6 +13,7 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
+#include "logger/log_plot_spec.h"
 #include "logger/recorder.h"
 
 namespace {
@@ -54,6 +55,7 @@ struct Options {
   std::string out_dir = ".";
   std::string from_log;
   std::vector<std::string> types;
+  std::vector<std::string> plots;
   bool quiet = false;
 };
 
@@ -136,6 +138,38 @@ void RunFromLog(const Options& opt, const std::string& regex,
   }
 }
 
+// Draws the --plot charts from the CSVs just written. Returns the exit
+// status: 0, or 2 when a chart could not be drawn from its input.
+int WritePlots(const std::vector<mrsim::LogPlotSpec>& plots,
+               const mrsim::Recorder& recorder) {
+  int status = 0;
+  for (const mrsim::LogPlotSpec& spec : plots) {
+    const std::string csv = recorder.CsvPath(spec.channel);
+    if (csv.empty()) {
+      std::fprintf(stderr,
+                   "mrsim-log: plot of %s: nothing was recorded on "
+                   "that channel\n",
+                   spec.channel.c_str());
+      status = 2;
+      continue;
+    }
+    const std::string out = spec.out.front() == '/'
+                                ? spec.out
+                                : recorder.out_dir() + "/" + spec.out;
+    try {
+      mrsim::PlotCsvToPng(csv, spec.options, out);
+      std::fprintf(stderr, "mrsim-log: wrote plot %s\n", out.c_str());
+    } catch (const mrsim::PlotInputError& e) {
+      std::fprintf(stderr, "mrsim-log: plot: %s\n", e.what());
+      status = 2;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mrsim-log: plot: %s\n", e.what());
+      status = 1;
+    }
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -158,6 +192,11 @@ int main(int argc, char** argv) {
                  "read this .lcmlog (from lcm-logger) instead of the network");
   app.add_option("--types", opt.types,
                  "extra .lcm files or folders with message definitions");
+  app.add_option("--plot", opt.plots,
+                 "draw a PNG when logging stops (repeatable): "
+                 "CHANNEL:y=COL[,COL...][:x=COL][:title=TEXT]"
+                 "[:style=auto|lines|points][:size=WxH][:out=FILE.png]; "
+                 "x defaults to time, a relative FILE is in --out");
   app.add_flag("--quiet", opt.quiet, "no progress lines");
   try {
     app.parse(argc, argv);
@@ -175,6 +214,16 @@ int main(int argc, char** argv) {
                  "expression: %s\n",
                  opt.channels.c_str(), e.what());
     return 2;
+  }
+
+  std::vector<mrsim::LogPlotSpec> plots;
+  for (const std::string& p : opt.plots) {
+    try {
+      plots.push_back(mrsim::ParseLogPlotSpec(p));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mrsim-log: %s\n", e.what());
+      return 2;
+    }
   }
 
   mrsim::InstallStopHandlers();
@@ -207,7 +256,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mrsim-log: error: %s\n", recorder.error().c_str());
       return 1;
     }
-    return 0;
+    return WritePlots(plots, recorder);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrsim-log: error: %s\n", e.what());
     return 1;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <thread>
 
 #include "mrsim/sim_status_t.hpp"
@@ -259,6 +260,37 @@ TEST(LoggerProcess, OtherTypesDecodeByFingerprintAndUnknownOnesAreCounted) {
   EXPECT_NE(logger->Output().find("FOREIGN: 2 messages of unknown type"),
             std::string::npos)
       << logger->Output();
+}
+
+TEST(LoggerProcess, WritesTheCaseStudyPlotsWhenLoggingStops) {
+  const std::string url = TestLcmUrl(7757);
+  const std::string dir = TempDir("logger_plots");
+  auto logger = StartLogger(
+      url, dir,
+      {"--plot",
+       std::string(kStateChannel) +
+           ":y=sensor_module0.distance0:title=Front distance:distance.png",
+       "--plot",
+       std::string(kStateChannel) +
+           ":x=module0.z:y=sensor_module0.force:out=force.png"});
+  lcm::LCM lcm(url);
+  ASSERT_TRUE(lcm.good());
+  PublishStates(lcm, 100, 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(logger->Stop(20), 0) << logger->Output();
+  for (const std::string png : {"distance.png", "force.png"}) {
+    const cv::Mat img = cv::imread(dir + "/" + png);
+    EXPECT_FALSE(img.empty()) << png << "\n" << logger->Output();
+  }
+}
+
+TEST(LoggerProcess, BadPlotSpecIsRefusedBeforeLogging) {
+  ChildProcess logger({LogExe(), "--lcm-url", TestLcmUrl(7758), "--out",
+                       TempDir("logger_bad_plot"), "--plot", "CHAN:x=time"},
+                      TempDir("logger_bad_plot") + "/../bad_plot.txt");
+  EXPECT_EQ(logger.Wait(20), 2);
+  EXPECT_NE(logger.Output().find("no y=COLUMN"), std::string::npos)
+      << logger.Output();
 }
 
 }  // namespace

@@ -1,0 +1,326 @@
+#include "logger/plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "logger/column_units.h"
+
+namespace mrsim {
+namespace {
+
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+const cv::Scalar kBlack(0, 0, 0);
+const cv::Scalar kWhite(255, 255, 255);
+const cv::Scalar kGrid(225, 225, 225);
+
+// Distinct, print-friendly colours (BGR).
+const cv::Scalar kPalette[] = {{180, 119, 31},  {14, 127, 255},  {44, 160, 44},
+                               {40, 39, 214},   {189, 103, 148}, {75, 86, 140},
+                               {194, 119, 227}, {34, 189, 188}};
+
+double NiceStep(double raw) {
+  const double exp = std::floor(std::log10(raw));
+  const double base = std::pow(10.0, exp);
+  const double f = raw / base;
+  const double nice = f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10;
+  return nice * base;
+}
+
+std::string TickLabel(double v, double step) {
+  if (std::abs(v) < step * 1e-9) v = 0;
+  char buf[48];
+  const double mag = std::max(std::abs(v), step);
+  if (mag < 1e7 && step >= 1e-4) {
+    const int decimals =
+        std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
+    std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+  } else {
+    // Enough significant digits to tell neighbouring ticks apart.
+    const int digits = std::clamp(
+        static_cast<int>(std::ceil(std::log10(mag / step) + 1e-9)) + 1, 1, 15);
+    std::snprintf(buf, sizeof(buf), "%.*g", digits, v);
+  }
+  return buf;
+}
+
+cv::Size TextSize(const std::string& text, double scale, int thickness) {
+  int baseline = 0;
+  return cv::getTextSize(text, kFont, scale, thickness, &baseline);
+}
+
+}  // namespace
+
+PlotAxis NiceAxis(double lo, double hi, int max_ticks) {
+  PlotAxis axis;
+  axis.data_min = lo;
+  axis.data_max = hi;
+  if (!(hi > lo)) {
+    const double pad = lo == 0 ? 1.0 : std::abs(lo) * 0.1;
+    lo -= pad;
+    hi += pad;
+  }
+  double step = NiceStep((hi - lo) / std::max(2, max_ticks - 1));
+  axis.min = std::floor(lo / step) * step;
+  axis.max = std::ceil(hi / step) * step;
+  while ((axis.max - axis.min) / step > max_ticks) {
+    step = NiceStep(step * 1.5);
+    axis.min = std::floor(lo / step) * step;
+    axis.max = std::ceil(hi / step) * step;
+  }
+  const int n = static_cast<int>(std::lround((axis.max - axis.min) / step));
+  for (int i = 0; i <= n; ++i) {
+    const double t = axis.min + i * step;
+    axis.ticks.push_back(t);
+    axis.tick_labels.push_back(TickLabel(t, step));
+  }
+  return axis;
+}
+
+PlotOptions::Style ParsePlotStyle(const std::string& text) {
+  if (text == "auto") return PlotOptions::Style::kAuto;
+  if (text == "lines") return PlotOptions::Style::kLines;
+  if (text == "points") return PlotOptions::Style::kPoints;
+  throw PlotInputError("plot style '" + text +
+                       "': expected auto, lines or points");
+}
+
+PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
+                      cv::Mat* image) {
+  if (options.width < 200 || options.height < 150) {
+    throw PlotInputError("plot size " + std::to_string(options.width) + "x" +
+                         std::to_string(options.height) +
+                         " is too small (at least 200x150)");
+  }
+  if (options.y.empty()) throw PlotInputError("no y column to plot");
+  auto column = [&data](const std::string& name) -> const std::vector<double>& {
+    for (size_t i = 0; i < data.names.size(); ++i) {
+      if (data.names[i] == name) return data.values[i];
+    }
+    throw PlotInputError("no column '" + name + "' in the plot data");
+  };
+  const std::vector<double>& xs = column(options.x);
+
+  PlotResult r;
+  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  bool monotonic = true;
+  double prev_x = -INFINITY;
+  for (const std::string& name : options.y) {
+    const std::vector<double>& ys = column(name);
+    size_t finite = 0;
+    for (size_t i = 0; i < ys.size() && i < xs.size(); ++i) {
+      if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+      ++finite;
+      xlo = std::min(xlo, xs[i]);
+      xhi = std::max(xhi, xs[i]);
+      ylo = std::min(ylo, ys[i]);
+      yhi = std::max(yhi, ys[i]);
+    }
+    if (finite == 0) {
+      throw PlotInputError("column '" + name + "' against '" + options.x +
+                           "' has no finite values to plot");
+    }
+    r.points += finite;
+  }
+  for (double x : xs) {
+    if (!std::isfinite(x)) continue;
+    if (x < prev_x) monotonic = false;
+    prev_x = x;
+  }
+  r.lines = options.style == PlotOptions::Style::kLines ||
+            (options.style == PlotOptions::Style::kAuto && monotonic);
+
+  r.x = NiceAxis(xlo, xhi, 9);
+  r.y = NiceAxis(ylo, yhi, 8);
+  r.x.label =
+      options.x_label.empty() ? ColumnLabel(options.x) : options.x_label;
+  if (!options.y_label.empty()) {
+    r.y.label = options.y_label;
+  } else if (options.y.size() == 1) {
+    r.y.label = ColumnLabel(options.y[0]);
+  } else {
+    const std::string unit = ColumnUnit(options.y[0]);
+    const bool same = std::all_of(
+        options.y.begin(), options.y.end(),
+        [&unit](const std::string& c) { return ColumnUnit(c) == unit; });
+    r.y.label = same && !unit.empty() ? "value [" + unit + "]" : "value";
+  }
+  if (!options.title.empty()) {
+    r.title = options.title;
+  } else {
+    std::string ys;
+    for (const std::string& y : options.y) ys += (ys.empty() ? "" : ", ") + y;
+    r.title = ys + " against " + options.x;
+  }
+
+  // Layout: room for tick labels and the rotated y label on the left.
+  int widest_tick = 0;
+  for (const std::string& t : r.y.tick_labels) {
+    widest_tick = std::max(widest_tick, TextSize(t, 0.45, 1).width);
+  }
+  const int left = 30 + widest_tick + 16;
+  const int top = 48;
+  const int bottom = 64;
+  const int right = 24;
+  r.area = cv::Rect(left, top, options.width - left - right,
+                    options.height - top - bottom);
+  if (r.area.width < 50 || r.area.height < 50) {
+    throw PlotInputError("plot size too small for its labels");
+  }
+
+  cv::Mat img(options.height, options.width, CV_8UC3, kWhite);
+  const cv::Rect& a = r.area;
+  auto px = [&](double v) {
+    return a.x + static_cast<int>(std::lround((v - r.x.min) /
+                                              (r.x.max - r.x.min) * a.width));
+  };
+  auto py = [&](double v) {
+    return a.y + a.height -
+           static_cast<int>(
+               std::lround((v - r.y.min) / (r.y.max - r.y.min) * a.height));
+  };
+
+  // Grid, ticks and tick labels.
+  for (size_t i = 0; i < r.x.ticks.size(); ++i) {
+    const int x = px(r.x.ticks[i]);
+    cv::line(img, {x, a.y}, {x, a.y + a.height}, kGrid, 1);
+    cv::line(img, {x, a.y + a.height}, {x, a.y + a.height + 6}, kBlack, 1);
+    const cv::Size s = TextSize(r.x.tick_labels[i], 0.45, 1);
+    cv::putText(img, r.x.tick_labels[i], {x - s.width / 2, a.y + a.height + 22},
+                kFont, 0.45, kBlack, 1, cv::LINE_AA);
+  }
+  for (size_t i = 0; i < r.y.ticks.size(); ++i) {
+    const int y = py(r.y.ticks[i]);
+    cv::line(img, {a.x, y}, {a.x + a.width, y}, kGrid, 1);
+    cv::line(img, {a.x - 6, y}, {a.x, y}, kBlack, 1);
+    const cv::Size s = TextSize(r.y.tick_labels[i], 0.45, 1);
+    cv::putText(img, r.y.tick_labels[i], {a.x - 10 - s.width, y + s.height / 2},
+                kFont, 0.45, kBlack, 1, cv::LINE_AA);
+  }
+
+  // Data, clipped to the plot area.
+  cv::Mat plot_area = img(a);
+  const cv::Point offset(a.x, a.y);
+  for (size_t k = 0; k < options.y.size(); ++k) {
+    const cv::Scalar color =
+        kPalette[k % (sizeof(kPalette) / sizeof(kPalette[0]))];
+    r.colors.push_back(color);
+    r.legend.push_back(options.y[k]);
+    const std::vector<double>& ys = column(options.y[k]);
+    std::vector<cv::Point> run;
+    auto flush = [&] {
+      if (run.size() > 1) {
+        cv::polylines(plot_area, run, false, color, 2, cv::LINE_AA);
+      } else if (run.size() == 1) {
+        cv::circle(plot_area, run[0], 2, color, cv::FILLED, cv::LINE_AA);
+      }
+      run.clear();
+    };
+    for (size_t i = 0; i < ys.size() && i < xs.size(); ++i) {
+      if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) {
+        if (r.lines) flush();
+        continue;
+      }
+      const cv::Point p(px(xs[i]), py(ys[i]));
+      if (r.lines) {
+        if (run.empty() || run.back() != p - offset) run.push_back(p - offset);
+      } else {
+        cv::circle(plot_area, p - offset, 2, color, cv::FILLED, cv::LINE_AA);
+      }
+    }
+    if (r.lines) flush();
+  }
+
+  // Axes on top of the data.
+  cv::line(img, {a.x, a.y + a.height}, {a.x + a.width, a.y + a.height}, kBlack,
+           1);
+  cv::line(img, {a.x, a.y}, {a.x, a.y + a.height}, kBlack, 1);
+
+  // Axis labels; the y label is drawn sideways.
+  {
+    const cv::Size s = TextSize(r.x.label, 0.55, 1);
+    cv::putText(img, r.x.label,
+                {a.x + (a.width - s.width) / 2, options.height - 14}, kFont,
+                0.55, kBlack, 1, cv::LINE_AA);
+  }
+  {
+    const cv::Size s = TextSize(r.y.label, 0.55, 1);
+    const int w = std::min(s.width + 4, a.height);
+    cv::Mat label(s.height + 8, w, CV_8UC3, kWhite);
+    cv::putText(label, r.y.label, {2, s.height + 2}, kFont, 0.55, kBlack, 1,
+                cv::LINE_AA);
+    cv::Mat rotated;
+    cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+    const int y0 = a.y + (a.height - rotated.rows) / 2;
+    rotated.copyTo(img(cv::Rect(6, y0, rotated.cols, rotated.rows)));
+  }
+  {
+    const cv::Size s = TextSize(r.title, 0.7, 2);
+    cv::putText(img, r.title, {std::max(4, (options.width - s.width) / 2), 32},
+                kFont, 0.7, kBlack, 2, cv::LINE_AA);
+  }
+
+  // Legend in the top right corner of the plot area.
+  int legend_w = 0;
+  for (const std::string& name : r.legend) {
+    legend_w = std::max(legend_w, TextSize(name, 0.45, 1).width);
+  }
+  legend_w += 50;
+  const int row_h = 20;
+  const cv::Rect box(a.x + a.width - legend_w - 8, a.y + 8, legend_w,
+                     row_h * static_cast<int>(r.legend.size()) + 8);
+  if (box.x > a.x) {
+    cv::rectangle(img, box, kWhite, cv::FILLED);
+    cv::rectangle(img, box, kBlack, 1);
+    for (size_t k = 0; k < r.legend.size(); ++k) {
+      const int y = box.y + 14 + row_h * static_cast<int>(k);
+      if (r.lines) {
+        cv::line(img, {box.x + 8, y}, {box.x + 34, y}, r.colors[k], 2,
+                 cv::LINE_AA);
+      } else {
+        for (int x : {box.x + 12, box.x + 21, box.x + 30}) {
+          cv::circle(img, {x, y}, 2, r.colors[k], cv::FILLED, cv::LINE_AA);
+        }
+      }
+      cv::putText(img, r.legend[k], {box.x + 40, y + 5}, kFont, 0.45, kBlack, 1,
+                  cv::LINE_AA);
+    }
+  }
+  *image = img;
+  return r;
+}
+
+PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
+                        const std::string& png_path) {
+  std::vector<std::string> wanted = {options.x};
+  for (const std::string& y : options.y) {
+    if (std::find(wanted.begin(), wanted.end(), y) == wanted.end()) {
+      wanted.push_back(y);
+    }
+  }
+  const CsvColumns data = ReadCsvColumns(csv_path, wanted);
+  cv::Mat image;
+  PlotResult r;
+  try {
+    r = RenderPlot(data, options, &image);
+  } catch (const PlotInputError& e) {
+    throw PlotInputError(csv_path + ": " + e.what());
+  }
+  bool ok = false;
+  try {
+    ok = cv::imwrite(png_path, image);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("cannot write plot " + png_path + ": " + e.what());
+  }
+  if (!ok) {
+    throw std::runtime_error("cannot write plot " + png_path +
+                             " (is the folder there and writable, and the "
+                             "name ending in .png?)");
+  }
+  return r;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,69 @@
+// PNG charts from logger CSVs, drawn with OpenCV: chosen columns against
+// time or against another column, with axes, ticks, tick labels, axis
+// labels with units, a legend and a title.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "logger/csv_columns.h"
+
+namespace mrsim {
+
+struct PlotOptions {
+  std::string x = "time";
+  std::vector<std::string> y;
+  std::string title;    // empty: "<y> against <x>"
+  std::string x_label;  // empty: column name and unit
+  std::string y_label;
+  int width = 960;
+  int height = 600;
+  // kAuto draws lines when x never decreases (a time series) and points
+  // otherwise (one column against another).
+  enum class Style { kAuto, kLines, kPoints };
+  Style style = Style::kAuto;
+};
+
+// One axis as drawn: its range (the data's, rounded out to ticks), the
+// ticks and their labels.
+struct PlotAxis {
+  double min = 0;
+  double max = 1;
+  double data_min = 0;
+  double data_max = 0;
+  std::vector<double> ticks;
+  std::vector<std::string> tick_labels;
+  std::string label;
+};
+
+// What RenderPlot drew, so callers and tests can check it.
+struct PlotResult {
+  PlotAxis x;
+  PlotAxis y;
+  cv::Rect area;  // the plot area in pixels (inside the axes)
+  std::vector<std::string> legend;
+  std::vector<cv::Scalar> colors;  // BGR, one per y column
+  std::string title;
+  size_t points = 0;  // finite (x, y) pairs drawn
+  bool lines = true;
+};
+
+// Draws the y columns of `data` against its x column. Throws PlotInputError
+// when a column is missing or has no finite value, or the size is too small.
+PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
+                      cv::Mat* image);
+
+// Reads the needed columns of `csv_path`, draws them and writes `png_path`.
+// Throws PlotInputError for bad input, std::runtime_error naming the PNG
+// when it cannot be written.
+PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
+                        const std::string& png_path);
+
+// Tick positions 1, 2 or 5 times a power of ten covering [lo, hi].
+PlotAxis NiceAxis(double lo, double hi, int max_ticks = 8);
+
+// Parses "auto", "lines" or "points".
+PlotOptions::Style ParsePlotStyle(const std::string& text);
+
+}  // namespace mrsim

@@ -1,0 +1,259 @@
+#include "logger/plot.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "logger/log_plot_spec.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+bool IsColor(const cv::Vec3b& p, const cv::Scalar& c, int tol = 40) {
+  return std::abs(p[0] - c[0]) < tol && std::abs(p[1] - c[1]) < tol &&
+         std::abs(p[2] - c[2]) < tol;
+}
+
+bool IsDark(const cv::Vec3b& p) { return p[0] + p[1] + p[2] < 200; }
+
+// Bounding box of the pixels of colour `c` inside `area`.
+cv::Rect ColorExtent(const cv::Mat& img, const cv::Rect& area,
+                     const cv::Scalar& c) {
+  int x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
+  for (int y = area.y; y <= area.y + area.height && y < img.rows; ++y) {
+    for (int x = area.x; x <= area.x + area.width && x < img.cols; ++x) {
+      if (IsColor(img.at<cv::Vec3b>(y, x), c, 20)) {
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+      }
+    }
+  }
+  return x1 < 0 ? cv::Rect() : cv::Rect(x0, y0, x1 - x0, y1 - y0);
+}
+
+CsvColumns Sine() {
+  CsvColumns d;
+  d.names = {"time", "sensor_module0.distance0", "module0.z"};
+  d.values.resize(3);
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = 0.01 * i;  // 0..10 s
+    d.values[0].push_back(t);
+    d.values[1].push_back(2.0 + 1.5 * std::sin(t));  // 0.5 .. 3.5 m
+    d.values[2].push_back(0.1 * t);
+  }
+  d.rows = 1001;
+  return d;
+}
+
+TEST(Plot, NiceAxisCoversTheDataWithEvenRoundTicks) {
+  for (auto [lo, hi] : std::vector<std::pair<double, double>>{
+           {0.13, 9.7}, {-0.004, 0.0031}, {1e6, 1e6 + 3}, {5, 5}, {-7, -2}}) {
+    const PlotAxis a = NiceAxis(lo, hi, 8);
+    EXPECT_LE(a.min, lo);
+    EXPECT_GE(a.max, hi);
+    EXPECT_LT(a.min, a.max);
+    ASSERT_GE(a.ticks.size(), 2u);
+    ASSERT_EQ(a.ticks.size(), a.tick_labels.size());
+    const double step = a.ticks[1] - a.ticks[0];
+    for (size_t i = 1; i < a.ticks.size(); ++i) {
+      EXPECT_NEAR(a.ticks[i] - a.ticks[i - 1], step, step * 1e-9);
+      // The label says the tick's value.
+      EXPECT_NEAR(std::stod(a.tick_labels[i]), a.ticks[i], step * 1e-3)
+          << a.tick_labels[i];
+    }
+    EXPECT_LE(a.ticks.size(), 9u);
+  }
+  const PlotAxis a = NiceAxis(0.13, 9.7, 8);
+  EXPECT_EQ(a.min, 0);
+  EXPECT_EQ(a.max, 10);
+  EXPECT_EQ(a.tick_labels.front(), "0");
+  EXPECT_EQ(a.tick_labels.back(), "10");
+}
+
+TEST(Plot, ChartHasAxesLabelsAndTheCurveSpansTheDataRange) {
+  PlotOptions opt;
+  opt.x = "time";
+  opt.y = {"sensor_module0.distance0"};
+  opt.width = 800;
+  opt.height = 500;
+  cv::Mat img;
+  const PlotResult r = RenderPlot(Sine(), opt, &img);
+  ASSERT_EQ(img.cols, 800);
+  ASSERT_EQ(img.rows, 500);
+  EXPECT_EQ(r.x.min, 0);
+  EXPECT_EQ(r.x.max, 10);
+  EXPECT_LE(r.y.min, 0.5);
+  EXPECT_GE(r.y.max, 3.5);
+  EXPECT_GT(r.y.min, -0.1);
+  EXPECT_LT(r.y.max, 4.1);
+  EXPECT_EQ(r.x.label, "time [s]");
+  EXPECT_EQ(r.y.label, "sensor_module0.distance0 [m]");
+  EXPECT_TRUE(r.lines);
+  EXPECT_EQ(r.points, 1001u);
+
+  // Both axes are drawn: dark pixels along the bottom and left edges.
+  const cv::Rect& a = r.area;
+  int bottom = 0, left = 0;
+  for (int x = a.x; x < a.x + a.width; ++x) {
+    bottom += IsDark(img.at<cv::Vec3b>(a.y + a.height, x));
+  }
+  for (int y = a.y; y < a.y + a.height; ++y)
+    left += IsDark(img.at<cv::Vec3b>(y, a.x));
+  EXPECT_GT(bottom, a.width * 9 / 10);
+  EXPECT_GT(left, a.height * 9 / 10);
+
+  // The curve spans the whole time axis and the data's height.
+  const cv::Rect ext = ColorExtent(img, a, r.colors[0]);
+  auto px = [&](double v) {
+    return a.x + (v - r.x.min) / (r.x.max - r.x.min) * a.width;
+  };
+  auto py = [&](double v) {
+    return a.y + a.height - (v - r.y.min) / (r.y.max - r.y.min) * a.height;
+  };
+  EXPECT_NEAR(ext.x, px(0), 3);
+  EXPECT_NEAR(ext.x + ext.width, px(10), 3);
+  EXPECT_NEAR(ext.y, py(3.5), 3);
+  // The legend sample has the curve's colour too, so the bottom is checked
+  // on the curve only: its lowest point is at sin = -1.
+  EXPECT_GE(ext.y + ext.height, py(0.5) - 3);
+
+  // Text: title above the area, tick labels below it.
+  int title_ink = 0, tick_ink = 0;
+  for (int y = 0; y < a.y - 4; ++y) {
+    for (int x = 0; x < img.cols; ++x)
+      title_ink += IsDark(img.at<cv::Vec3b>(y, x));
+  }
+  for (int y = a.y + a.height + 8; y < a.y + a.height + 28; ++y) {
+    for (int x = a.x; x < a.x + a.width; ++x) {
+      tick_ink += IsDark(img.at<cv::Vec3b>(y, x));
+    }
+  }
+  EXPECT_GT(title_ink, 100);
+  EXPECT_GT(tick_ink, 100);
+}
+
+TEST(Plot, ColumnAgainstColumnUsesPointsAndItsOwnRange) {
+  CsvColumns d = Sine();
+  PlotOptions opt;
+  opt.x = "sensor_module0.distance0";
+  opt.y = {"module0.z"};
+  cv::Mat img;
+  const PlotResult r = RenderPlot(d, opt, &img);
+  EXPECT_FALSE(r.lines);
+  EXPECT_LE(r.x.min, 0.5);
+  EXPECT_GE(r.x.max, 3.5);
+  EXPECT_LE(r.y.min, 0.0);
+  EXPECT_GE(r.y.max, 1.0);
+  EXPECT_EQ(r.x.label, "sensor_module0.distance0 [m]");
+}
+
+TEST(Plot, CsvToPngWritesADecodableImage) {
+  const std::string dir = testing::TempDir("plot_png");
+  const std::string csv = dir + "/MRSIM_STATE_snake.csv";
+  {
+    std::ofstream out(csv);
+    out << "time,seq,robot,sensor_module0.force,module0.z\n";
+    for (int i = 0; i < 200; ++i) {
+      out << 0.001 * i << "," << i << ",snake," << 5 + std::cos(0.05 * i) << ","
+          << 0.02 + 0.0001 * i << "\n";
+    }
+  }
+  PlotOptions opt;
+  opt.x = "module0.z";
+  opt.y = {"sensor_module0.force"};
+  opt.title = "front force against height";
+  const PlotResult r = PlotCsvToPng(csv, opt, dir + "/force.png");
+  const cv::Mat img = cv::imread(dir + "/force.png");
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(img.cols, opt.width);
+  EXPECT_EQ(r.points, 200u);
+  EXPECT_LE(r.y.min, 4.0);
+  EXPECT_GE(r.y.max, 6.0);
+  EXPECT_GT(ColorExtent(img, r.area, r.colors[0]).area(), 1000);
+}
+
+TEST(Plot, MissingColumnIsNamedWithTheColumnsThatExist) {
+  const std::string dir = testing::TempDir("plot_missing");
+  const std::string csv = dir + "/a.csv";
+  { std::ofstream(csv) << "time,module0.z\n0,1\n"; }
+  PlotOptions opt;
+  opt.y = {"module0.zz"};
+  try {
+    PlotCsvToPng(csv, opt, dir + "/a.png");
+    FAIL() << "no error";
+  } catch (const PlotInputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(csv), std::string::npos) << what;
+    EXPECT_NE(what.find("'module0.zz'"), std::string::npos) << what;
+    EXPECT_NE(what.find("module0.z"), std::string::npos) << what;
+  }
+}
+
+TEST(Plot, LogPlotSpecReadsEveryField) {
+  const LogPlotSpec s = ParseLogPlotSpec(
+      "MRSIM_STATE_snake:x=module0.z:y=sensor_module0.force,"
+      "sensor_module1.force:title=Force:style=points:size=640x480:f.png");
+  EXPECT_EQ(s.channel, "MRSIM_STATE_snake");
+  EXPECT_EQ(s.options.x, "module0.z");
+  EXPECT_EQ(s.options.y, (std::vector<std::string>{"sensor_module0.force",
+                                                   "sensor_module1.force"}));
+  EXPECT_EQ(s.options.title, "Force");
+  EXPECT_EQ(s.options.style, PlotOptions::Style::kPoints);
+  EXPECT_EQ(s.options.width, 640);
+  EXPECT_EQ(s.options.height, 480);
+  EXPECT_EQ(s.out, "f.png");
+  const LogPlotSpec d = ParseLogPlotSpec("C:y=a");
+  EXPECT_EQ(d.options.x, "time");
+  EXPECT_EQ(d.out, "C.a.png");
+}
+
+TEST(Plot, LogPlotSpecErrorsSayWhatWasExpected) {
+  for (const std::string bad :
+       {"C", "C:x=time", "C:y=a:colour=red", "C:y=a:size=big", ":y=a",
+        "C:y=a:style=bars", "C:y=a,:x=time"}) {
+    try {
+      ParseLogPlotSpec(bad);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const PlotInputError& e) {
+      EXPECT_NE(std::string(e.what()).find("expected CHANNEL:y="),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(PlotProcess, MrsimPlotWritesThePngAndNamesABadColumn) {
+  const std::string dir = testing::TempDir("plot_process");
+  const std::string csv = dir + "/s.csv";
+  {
+    std::ofstream out(csv);
+    out << "time,sensor_module0.distance0\n";
+    for (int i = 0; i < 100; ++i)
+      out << 0.01 * i << "," << 3 - 0.02 * i << "\n";
+  }
+  const std::string exe = testing::BinaryPath("logger/process/mrsim-plot");
+  testing::ChildProcess ok(
+      {exe, csv, "--x", "time", "--y", "sensor_module0.distance0", "--title",
+       "closing on the ball", "-o", dir + "/d.png"},
+      dir + "/ok.txt");
+  ASSERT_EQ(ok.Wait(30), 0) << ok.Output();
+  const cv::Mat img = cv::imread(dir + "/d.png");
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(img.cols, 960);
+  EXPECT_EQ(img.rows, 600);
+
+  testing::ChildProcess bad(
+      {exe, csv, "--y", "sensor_module0.distance9", "-o", dir + "/e.png"},
+      dir + "/bad.txt");
+  EXPECT_EQ(bad.Wait(30), 2);
+  EXPECT_NE(bad.Output().find("sensor_module0.distance9"), std::string::npos)
+      << bad.Output();
+}
+
+}  // namespace
+}  // namespace mrsim
