@@ -467,12 +467,51 @@ void Builder::AddRobot(const std::string& robot_name,
 void Builder::ConnectTree(const std::string& robot_name,
                           std::vector<Node>& nodes,
                           const std::vector<Edge>& edges) {
-  std::vector<std::vector<int>> incident(nodes.size());
-  for (size_t e = 0; e < edges.size(); ++e) {
-    incident[edges[e].a].push_back(static_cast<int>(e));
-    if (edges[e].b != edges[e].a) incident[edges[e].b].push_back(e);
+  // Spanning forest: every hinge must be a tree edge (MuJoCo joints live in
+  // the tree), locks join what the hinges left apart; any other lock
+  // closes a loop and becomes a weld equality.
+  std::vector<int> uf(nodes.size());
+  for (size_t n = 0; n < nodes.size(); ++n) uf[n] = static_cast<int>(n);
+  std::function<int(int)> find = [&](int n) {
+    return uf[n] == n ? n : uf[n] = find(uf[n]);
+  };
+  std::vector<bool> in_tree(edges.size(), false);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t ei = 0; ei < edges.size(); ++ei) {
+      const Edge& e = edges[ei];
+      if (e.hinge != (pass == 0)) continue;
+      const int ra = find(e.a), rb = find(e.b);
+      if (ra == rb) {
+        if (e.hinge) {
+          throw std::runtime_error("robot '" + robot_name + "' joint '" +
+                                   e.guid +
+                                   "': hinges that form a closed loop are "
+                                   "not supported");
+        }
+        welds_.push_back({robot_name + "/weld/" + e.guid,
+                          bodies_[nodes[e.a].body].name,
+                          bodies_[nodes[e.b].body].name});
+        continue;
+      }
+      uf[ra] = rb;
+      in_tree[ei] = true;
+    }
   }
-  std::vector<bool> visited(nodes.size(), false), used(edges.size(), false);
+  // Connected parts never collide with each other (MuJoCo filters only
+  // parent and child, and not at all when the parent is the world).
+  for (const Edge& e : edges) {
+    if (e.a != e.b) {
+      excludes_.push_back(
+          {bodies_[nodes[e.a].body].name, bodies_[nodes[e.b].body].name});
+    }
+  }
+  std::vector<std::vector<int>> incident(nodes.size());
+  for (size_t ei = 0; ei < edges.size(); ++ei) {
+    if (!in_tree[ei]) continue;
+    incident[edges[ei].a].push_back(static_cast<int>(ei));
+    incident[edges[ei].b].push_back(static_cast<int>(ei));
+  }
+  std::vector<bool> visited(nodes.size(), false);
   // Static parts first so their component hangs from the world.
   std::vector<int> order;
   for (size_t n = 0; n < nodes.size(); ++n)
@@ -495,24 +534,9 @@ void Builder::ConnectTree(const std::string& robot_name,
       const int n = queue.front();
       queue.pop();
       for (int ei : incident[n]) {
-        if (used[ei]) continue;
-        used[ei] = true;
         const Edge& e = edges[ei];
         const int other = e.a == n ? e.b : e.a;
-        if (visited[other]) {
-          if (e.hinge) {
-            throw std::runtime_error("robot '" + robot_name + "' joint '" +
-                                     e.guid +
-                                     "': a hinge that closes a loop of parts "
-                                     "is not supported");
-          }
-          welds_.push_back({robot_name + "/weld/" + e.guid,
-                            bodies_[nodes[n].body].name,
-                            bodies_[nodes[other].body].name});
-          excludes_.push_back(
-              {bodies_[nodes[n].body].name, bodies_[nodes[other].body].name});
-          continue;
-        }
+        if (visited[other]) continue;
         visited[other] = true;
         const int pb = nodes[n].body, cb = nodes[other].body;
         bodies_[cb].parent = pb;
@@ -532,12 +556,16 @@ void Builder::ConnectTree(const std::string& robot_name,
           c.anchor = c.quat.conjugate() * (e.anchor_world - c.pos);
           c.lower = e.lower;
           c.upper = e.upper;
-          if (e.servo) {
-            actuators_.push_back({e.actuator_name, e.joint_name, e.max_vel});
-          }
         }
         queue.push(other);
       }
+    }
+  }
+  // Servos in chain order.
+  for (size_t ei = 0; ei < edges.size(); ++ei) {
+    const Edge& e = edges[ei];
+    if (in_tree[ei] && e.hinge && e.servo) {
+      actuators_.push_back({e.actuator_name, e.joint_name, e.max_vel});
     }
   }
 }
@@ -771,15 +799,17 @@ std::string Builder::Build() {
 
   // Explicit pairs for material pairs of two different materials.
   struct CollGeom {
-    std::string name, material;
+    std::string name, material, body;
     int group;
   };
   std::vector<CollGeom> coll;
   for (const GeomSpec& g : world_geoms_)
-    coll.push_back({g.name, g.material, -1});
+    coll.push_back({g.name, g.material, "", -1});
   for (size_t b = 0; b < bodies_.size(); ++b) {
     for (const GeomSpec& g : bodies_[b].geoms) {
-      if (g.collide) coll.push_back({g.name, g.material, weld[b]});
+      if (g.collide) {
+        coll.push_back({g.name, g.material, bodies_[b].name, weld[b]});
+      }
     }
   }
   auto parent_group = [&](int group) {
@@ -802,7 +832,7 @@ std::string Builder::Build() {
           FindContactFriction(s_, a.material, b.material);
       if (!cf) continue;
       // Same filters MuJoCo applies to contacts it finds on its own.
-      if (a.group == b.group) continue;
+      if (a.group == b.group || excluded.count({a.body, b.body})) continue;
       if (a.group >= 0 && b.group >= 0 &&
           (parent_group(a.group) == b.group ||
            parent_group(b.group) == a.group)) {
@@ -828,7 +858,8 @@ std::string Builder::Build() {
       out << "    <weld name=\"" << Esc(w.name) << "\" body1=\"" << Esc(w.body1)
           << "\"";
       if (!w.body2.empty()) out << " body2=\"" << Esc(w.body2) << "\"";
-      out << "/>\n";
+      // As stiff as the timestep allows: a lock is meant to be rigid.
+      out << " solref=\"" << Num(2 * s_.settings.timestep) << " 1\"/>\n";
     }
     out << "  </equality>\n";
   }

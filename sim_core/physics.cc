@@ -226,7 +226,12 @@ void Physics::Impl::CheckStability(double time_before) {
       const char* body = mj_id2name(m, mjOBJ_BODY, m->dof_bodyid[info]);
       where = fmt::format(" at DOF {} of body '{}'", info, body ? body : "?");
     } else if (w == mjWARN_BADQPOS && info >= 0 && info < m->nq) {
-      where = fmt::format(" at qpos[{}]", info);
+      int joint = 0;
+      while (joint + 1 < m->njnt && m->jnt_qposadr[joint + 1] <= info) ++joint;
+      const char* body = m->njnt > 0
+                             ? mj_id2name(m, mjOBJ_BODY, m->jnt_bodyid[joint])
+                             : nullptr;
+      where = fmt::format(" at qpos[{}] of body '{}'", info, body ? body : "?");
     } else if (w == mjWARN_BADCTRL && info >= 0 && info < m->nu) {
       const char* act = mj_id2name(m, mjOBJ_ACTUATOR, info);
       where = fmt::format(" for actuator '{}'", act ? act : "?");

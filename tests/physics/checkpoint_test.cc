@@ -1,0 +1,113 @@
+#include "sim_core/checkpoint.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "sim_core/chain_builder.h"
+#include "tests/common/child_process.h"
+#include "tests/physics/test_scenes.h"
+
+namespace mrsim {
+namespace {
+
+void Drive(Physics& physics, double seconds) {
+  std::vector<double> targets(physics.joint_count(0));
+  const int steps = static_cast<int>(std::lround(seconds / physics.timestep()));
+  for (int i = 0; i < steps; ++i) {
+    for (size_t j = 0; j < targets.size(); ++j) {
+      targets[j] = 1.2 * std::sin(2 * M_PI * physics.time() / 1.5 + 2.5 * j);
+    }
+    physics.SetJointTargets(0, targets);
+    physics.Step();
+  }
+}
+
+std::vector<unsigned char> Bytes(const double* v, int n) {
+  const auto* p = reinterpret_cast<const unsigned char*>(v);
+  return std::vector<unsigned char>(p, p + n * sizeof(double));
+}
+
+Scenario Snake(const std::string& dir) {
+  Scenario s = testing::FlatScenario();
+  s.base_dir = dir;
+  testing::WriteGreyPng(dir + "/bumps.png", 30, 30, [](int r, int c) {
+    return static_cast<int>(100 + 60 * std::sin(r * 0.7) * std::cos(c * 0.5));
+  });
+  s.scene.height_image = "bumps.png";
+  s.scene.height = 0.05;
+  s.scene.position = Eigen::Vector3d(-1.0, -0.75, -0.05);
+  ChainOptions options;
+  options.modules = 6;
+  options.pattern = ChainPattern::kPitchYaw;
+  options.sensor_after = {-1, 2};
+  options.force_sensors = true;
+  options.front_distance_sensor = true;
+  options.origin = Eigen::Vector3d(0, 0, 0.05);
+  s.robots.push_back(MakeChain(options));
+  FluidRegion water;
+  water.position = Eigen::Vector3d(0.5, 0, 0);
+  water.size = Eigen::Vector3d(0.6, 2, 0.2);
+  s.fluid_regions.push_back(water);
+  return s;
+}
+
+TEST(Checkpoint, ResumeIsBitIdentical) {
+  const std::string dir = testing::TempDir("checkpoint_resume");
+  Physics original(Snake(dir));
+  Drive(original, 2.0);
+  const std::string path = dir + "/run.ckpt";
+  SaveCheckpoint(path, original);
+  const double saved_time = original.time();
+  Drive(original, 2.0);
+
+  std::unique_ptr<Physics> resumed = LoadCheckpoint(path);
+  ASSERT_EQ(resumed->time(), saved_time);
+  Drive(*resumed, 2.0);
+  const mjModel* m = original.model();
+  ASSERT_EQ(resumed->model()->nq, m->nq);
+  EXPECT_EQ(resumed->time(), original.time());
+  EXPECT_EQ(Bytes(resumed->data()->qpos, m->nq),
+            Bytes(original.data()->qpos, m->nq));
+  EXPECT_EQ(Bytes(resumed->data()->qvel, m->nv),
+            Bytes(original.data()->qvel, m->nv));
+  EXPECT_EQ(resumed->SaveState(), original.SaveState());
+  // It really moved in between.
+  EXPECT_GT(
+      (original.CenterOfMass(0) - Physics(Snake(dir)).CenterOfMass(0)).norm(),
+      0.001);
+}
+
+TEST(Checkpoint, StringFormIsSelfContained) {
+  const std::string dir = testing::TempDir("checkpoint_string");
+  Physics original(Snake(dir));
+  Drive(original, 0.5);
+  const std::string text = SaveCheckpointString(original);
+  EXPECT_EQ(text.rfind("mrsim-checkpoint 1\n", 0), 0u);
+  // The terrain image travels inside: delete it, still loads.
+  std::remove((dir + "/bumps.png").c_str());
+  std::unique_ptr<Physics> copy = LoadCheckpointString(text, "sent");
+  EXPECT_EQ(copy->SaveState(), original.SaveState());
+  Drive(original, 0.2);
+  Drive(*copy, 0.2);
+  EXPECT_EQ(copy->SaveState(), original.SaveState());
+}
+
+TEST(Checkpoint, DamagedCheckpointIsRejectedWithItsName) {
+  const std::string dir = testing::TempDir("checkpoint_damaged");
+  Physics original(Snake(dir));
+  std::string text = SaveCheckpointString(original);
+  EXPECT_THROW(LoadCheckpointString("hello", "x.ckpt"), CheckpointError);
+  try {
+    LoadCheckpointString(text.substr(0, text.size() - 10), "cut.ckpt");
+    FAIL() << "expected CheckpointError";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.ckpt"), std::string::npos);
+  }
+  EXPECT_THROW(LoadCheckpoint(dir + "/missing.ckpt"), CheckpointError);
+}
+
+}  // namespace
+}  // namespace mrsim

@@ -1,0 +1,299 @@
+#include "sim_core/physics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim_core/chain_builder.h"
+#include "sim_core/terrain.h"
+#include "tests/common/child_process.h"
+#include "tests/physics/test_scenes.h"
+
+namespace mrsim {
+namespace {
+
+TEST(PhysicsServo, HingeReachesTargetWithoutExceedingMaxVel) {
+  Scenario s = testing::FlatScenario();
+  const double max_vel = 2.0;
+  s.robots.push_back(testing::CantileverModule(
+      "arm", Eigen::Vector3d(0, 0, 0.5), Axis::kYaw, 10.0, max_vel, 1.2));
+  Physics physics(s);
+  ASSERT_EQ(physics.joint_count(0), 1);
+  physics.SetJointTargets(0, {1.0});
+  double fastest = 0;
+  for (int i = 0; i < 1000; ++i) {  // 2 s
+    physics.Step();
+    const double speed = physics.ReadRobotState(0).joints[0].speed;
+    fastest = std::max(fastest, std::abs(speed));
+    ASSERT_LE(std::abs(speed), max_vel) << "step " << i;
+  }
+  // It moved at (nearly) full speed, then settled on the target.
+  EXPECT_GT(fastest, 0.9 * max_vel);
+  const JointState joint = physics.ReadRobotState(0).joints[0];
+  EXPECT_NEAR(joint.angle, 1.0, 0.01);
+  EXPECT_NEAR(joint.speed, 0.0, 0.01);
+}
+
+TEST(PhysicsServo, PitchHingeHoldsTargetUnderGravity) {
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(testing::CantileverModule(
+      "arm", Eigen::Vector3d(0, 0, 0.5), Axis::kPitch, 10.0, 3.0, 1.5));
+  Physics physics(s);
+  physics.SetJointTargets(0, {0.5});
+  physics.Step(1000);
+  const RobotState state = physics.ReadRobotState(0);
+  EXPECT_NEAR(state.joints[0].angle, 0.5, 0.01);
+  // The servo carries the arm's weight: torque about the hinge is m g r.
+  const double lever = 0.025 * std::cos(0.5);
+  EXPECT_NEAR(std::abs(state.joints[0].torque), 0.05 * 9.81 * lever, 0.002);
+  // A positive angle turns frame 1 (on the -x side) about +y: upwards.
+  EXPECT_GT(state.frames[1].position.z(), 0.5);
+}
+
+TEST(PhysicsServo, TargetsAreClampedToTheRange) {
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(testing::CantileverModule(
+      "arm", Eigen::Vector3d(0, 0, 0.5), Axis::kYaw, 10.0, 3.0, 0.8));
+  Physics physics(s);
+  physics.SetJointTargets(0, {2.0});
+  EXPECT_DOUBLE_EQ(physics.joint_targets(0)[0], 0.8);
+  physics.Step(1000);
+  EXPECT_NEAR(physics.ReadRobotState(0).joints[0].angle, 0.8, 0.01);
+  EXPECT_THROW(physics.SetJointTargets(0, {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(physics.SetJointTargets(0, {NAN}), std::invalid_argument);
+}
+
+TEST(PhysicsLocks, LockedPartsHoldUnderLoad) {
+  // A chain of 3 modules with a sensor module in the middle, hanging
+  // sideways from a static first frame: gravity loads every lock.
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 3;
+  options.pattern = ChainPattern::kYaw;
+  options.sensor_after = {0};
+  options.origin = Eigen::Vector3d(0, 0, 0.5);
+  Robot robot = MakeChain(options);
+  robot.modules[0].frames[0].is_static = true;
+  // A heavy load at the far end.
+  robot.modules[2].frames[1].mass = 0.5;
+  s.robots.push_back(robot);
+  Physics physics(s);
+  const RobotState before = physics.ReadRobotState(0);
+  physics.Step(1000);
+  const RobotState after = physics.ReadRobotState(0);
+  // Locked pairs keep their relative pose: m0/f1 - sm0 - m1/f0, m1/f1 - m2/f0.
+  auto relative = [](const Pose& a, const Pose& b) {
+    return Eigen::Vector3d(a.orientation.conjugate() *
+                           (b.position - a.position));
+  };
+  const Pose& sm_before = before.sensor_modules[0].pose;
+  const Pose& sm_after = after.sensor_modules[0].pose;
+  EXPECT_LT((relative(before.frames[1], sm_before) -
+             relative(after.frames[1], sm_after))
+                .norm(),
+            1e-9);
+  EXPECT_LT((relative(sm_before, before.frames[2]) -
+             relative(sm_after, after.frames[2]))
+                .norm(),
+            1e-9);
+  EXPECT_LT((relative(before.frames[3], before.frames[4]) -
+             relative(after.frames[3], after.frames[4]))
+                .norm(),
+            1e-9);
+  // The hinges hold the chain straight (yaw servos, gravity across them
+  // loads the locks and the joint constraints, not the servos).
+  for (const JointState& j : after.joints) EXPECT_NEAR(j.angle, 0.0, 0.01);
+}
+
+TEST(PhysicsLocks, LoopClosingLockHoldsUnderLoad) {
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 2;
+  options.origin = Eigen::Vector3d(0, 0, 0.5);
+  Robot robot = MakeChain(options);
+  robot.modules[0].frames[0].is_static = true;
+  robot.modules[1].frames[1].mass = 0.5;
+  Joint loop;
+  loop.guid = "loop";
+  loop.type = JointType::kLock;
+  loop.left_frame_guid = robot.modules[0].frames[1].guid;
+  loop.right_frame_guid = robot.modules[1].frames[1].guid;
+  robot.locks.push_back(loop);
+  s.robots.push_back(robot);
+  Physics physics(s);
+  const RobotState before = physics.ReadRobotState(0);
+  physics.Step(1000);
+  const RobotState after = physics.ReadRobotState(0);
+  // m1/f1 keeps its place relative to m0/f1 (the welded pair), so the
+  // hinge of module 1 inside the loop cannot bend.
+  auto relative = [](const Pose& a, const Pose& b) {
+    return Eigen::Vector3d(a.orientation.conjugate() *
+                           (b.position - a.position));
+  };
+  EXPECT_LT((relative(before.frames[1], before.frames[3]) -
+             relative(after.frames[1], after.frames[3]))
+                .norm(),
+            2e-4);
+  EXPECT_NEAR(after.joints[1].angle, 0.0, 0.005);
+}
+
+TEST(PhysicsTerrain, BoxRestsAtTheImageHeight) {
+  const std::string dir = testing::TempDir("physics_terrain");
+  // 20x20 px at 0.05 m: a plateau of grey 200 in the middle of a 50 slope.
+  testing::WriteGreyPng(dir + "/plateau.png", 20, 20, [](int r, int c) {
+    return (r >= 6 && r < 14 && c >= 6 && c < 14) ? 200 : 50 + 5 * (c % 3);
+  });
+  Scenario s = testing::FlatScenario();
+  s.base_dir = dir;
+  s.scene.height_image = "plateau.png";
+  s.scene.height = 0.4;
+  s.scene.meters_per_pixel = 0.05;
+  s.scene.position = Eigen::Vector3d(-0.5, -0.5, 0.1);
+  SceneObject box;
+  box.guid = "box";
+  box.size = Eigen::Vector3d(0.1, 0.1, 0.1);
+  box.position = Eigen::Vector3d(0, 0, 1.0);
+  box.mass = 0.2;
+  s.scene_objects.push_back(box);
+  Physics physics(s);
+  physics.Step(1000);
+  const mjModel* m = physics.model();
+  const int body = mj_name2id(m, mjOBJ_BODY, "scene/obj0");
+  const double z = physics.data()->xpos[3 * body + 2];
+  // Darkest pixel 50 -> 0, brightest 200 -> height.
+  const TerrainImage image = LoadTerrainImage(s.scene, dir);
+  const double plateau = s.scene.position.z() + s.scene.height;
+  EXPECT_NEAR(TerrainHeightAt(s.scene, image, 0, 0), s.scene.height, 1e-6);
+  EXPECT_NEAR(z, plateau + 0.05, 0.003);
+  EXPECT_NEAR(physics.data()->xpos[3 * body], 0.0, 0.01);
+}
+
+TEST(PhysicsState, ReadsPosesComAndIndices) {
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 4;
+  options.pattern = ChainPattern::kPitchYaw;
+  options.sensor_after = {1};
+  s.robots.push_back(MakeChain(options));
+  options.name = "second";
+  options.origin = Eigen::Vector3d(0, 1, 0);
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  ASSERT_EQ(physics.robot_count(), 2);
+  EXPECT_EQ(physics.robot_index("second"), 1);
+  EXPECT_EQ(physics.robot_index("nobody"), -1);
+  EXPECT_EQ(physics.joint_count(1), 4);
+  EXPECT_EQ(physics.joint_axis(0, 1), Axis::kYaw);
+  const RobotState state = physics.ReadRobotState(1);
+  EXPECT_EQ(state.robot, "second");
+  ASSERT_EQ(state.frames.size(), 8u);
+  ASSERT_EQ(state.modules.size(), 4u);
+  ASSERT_EQ(state.sensor_modules.size(), 1u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_LT(
+        (state.modules[i].position - s.robots[1].modules[i].position).norm(),
+        1e-9);
+    EXPECT_LT((state.joints[i].world.position - s.robots[1].modules[i].position)
+                  .norm(),
+              1e-9);
+  }
+  // CoM = mass-weighted mean of the parts (frames 0.05 kg, sensor module).
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0;
+  for (const Module& m : s.robots[1].modules) {
+    for (const Frame& f : m.frames) {
+      sum += f.mass * f.position;
+      mass += f.mass;
+    }
+  }
+  const SensorModule& sm = s.robots[1].sensor_modules[0];
+  sum += sm.mass * sm.position;
+  mass += sm.mass;
+  EXPECT_LT((state.com - sum / mass).norm(), 1e-9);
+  EXPECT_LT((physics.CenterOfMass(1) - sum / mass).norm(), 1e-9);
+  EXPECT_LT(state.com_velocity.norm(), 1e-9);
+  EXPECT_THROW(physics.ReadRobotState(2), std::out_of_range);
+}
+
+TEST(PhysicsState, SaveLoadStateContinuesBitForBit) {
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 5;
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  auto drive = [](Physics& p, int steps) {
+    std::vector<double> targets(p.joint_count(0));
+    for (int i = 0; i < steps; ++i) {
+      for (size_t j = 0; j < targets.size(); ++j) {
+        targets[j] = std::sin(2 * M_PI * p.time() / 2 + j);
+      }
+      p.SetJointTargets(0, targets);
+      p.Step();
+    }
+  };
+  drive(physics, 300);
+  const std::vector<unsigned char> saved = physics.SaveState();
+  drive(physics, 300);
+  const std::vector<unsigned char> a = physics.SaveState();
+  Physics other(s);
+  other.LoadState(saved);
+  drive(other, 300);
+  EXPECT_EQ(other.SaveState(), a);
+  physics.Reset();
+  EXPECT_EQ(physics.time(), 0.0);
+  EXPECT_EQ(physics.joint_targets(0), std::vector<double>(5, 0.0));
+  std::vector<unsigned char> broken = saved;
+  broken.resize(broken.size() - 8);
+  EXPECT_THROW(other.LoadState(broken), std::invalid_argument);
+}
+
+TEST(PhysicsInstability, NonFiniteStateRaisesPhysicsError) {
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 3;
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  physics.Step(10);
+  physics.mutable_data()->qvel[6] = NAN;  // module 0's hinge
+  try {
+    physics.Step();
+    FAIL() << "expected PhysicsError";
+  } catch (const PhysicsError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("t=0.0200"), std::string::npos) << what;
+    // NaN speed becomes NaN position when integrated; either is named.
+    EXPECT_TRUE(what.find("BADQVEL") != std::string::npos ||
+                what.find("BADQPOS") != std::string::npos)
+        << what;
+    EXPECT_NE(what.find("snake/m0/f1"), std::string::npos) << what;
+  }
+  // After a reset it runs again.
+  physics.Reset();
+  EXPECT_NO_THROW(physics.Step(10));
+}
+
+TEST(PhysicsInstability, ExplodingModelRaisesPhysicsError) {
+  // A far too large timestep for a stiff, light chain on the ground.
+  Scenario s = testing::FlatScenario();
+  s.settings.timestep = 0.2;
+  ChainOptions options;
+  options.modules = 4;
+  options.module_mass = 0.001;
+  options.kp = 1000;
+  options.max_vel = 100;
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  std::vector<double> targets(4);
+  EXPECT_THROW(
+      {
+        for (int i = 0; i < 2000; ++i) {
+          for (int j = 0; j < 4; ++j) targets[j] = (i + j) % 2 ? 1.5 : -1.5;
+          physics.SetJointTargets(0, targets);
+          physics.Step();
+        }
+      },
+      PhysicsError);
+}
+
+}  // namespace
+}  // namespace mrsim
