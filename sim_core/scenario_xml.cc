@@ -66,6 +66,44 @@ struct JointRef {
 
 class Reader;
 
+// What an omitted field means, in the file's own frame: the model's
+// defaults are Z-up, so a Unity file's defaults are those converted.
+struct Defaults {
+  Frame frame;
+  ForceSensor force;
+  DistanceSensor distance;
+  SensorModule sensor_module;
+  Scene scene;
+  SceneObject object;
+  FluidRegion fluid;
+  SimulationSettings settings;
+};
+
+Defaults MakeDefaults(FrameConvention convention) {
+  Defaults d;
+  if (convention == FrameConvention::kZUp) return d;
+  Scenario s;
+  s.loose_frames = {Frame()};
+  SensorModule sm;
+  sm.force_sensor = ForceSensor();
+  sm.distance_sensors = {DistanceSensor()};
+  s.loose_sensor_modules = {sm};
+  s.scene_objects = {SceneObject()};
+  s.fluid_regions = {FluidRegion()};
+  ConvertZUpToUnity(&s);
+  d.frame = s.loose_frames[0];
+  d.force = *s.loose_sensor_modules[0].force_sensor;
+  d.distance = s.loose_sensor_modules[0].distance_sensors[0];
+  d.sensor_module = s.loose_sensor_modules[0];
+  d.sensor_module.force_sensor.reset();
+  d.sensor_module.distance_sensors.clear();
+  d.scene = s.scene;
+  d.object = s.scene_objects[0];
+  d.fluid = s.fluid_regions[0];
+  d.settings = s.settings;
+  return d;
+}
+
 // The child elements of one element, checked against what it may hold:
 // unknown names and repeated singular fields are errors.
 class Children {
@@ -178,6 +216,7 @@ class Reader {
 
   std::string file_;
   std::string base_dir_;
+  Defaults defaults_;
   std::map<std::string, Location> guids_;
   // Bodies (frames, sensor modules, sensors, scene objects) per robot
   // index; kLoose collects loose ones and scene objects.
@@ -406,7 +445,7 @@ Frame Reader::ReadFrame(const XMLElement* e, const std::string& path,
   Children c(*this, e, path,
              {"guid", "shape", "scale", "position", "rotation", "quatRotation",
               "mass", "isStatic", "materialName"});
-  Frame f;
+  Frame f = defaults_.frame;
   c.Require("guid", &f.guid);
   AddGuid(c, f.guid, robot);
   c.Get("shape", &f.shape);
@@ -561,7 +600,7 @@ ForceSensor Reader::ReadForceSensor(const XMLElement* e,
   Children c(*this, e, path,
              {"guid", "forceValue", "sensorPosition", "position", "rotation",
               "materialName", "mass", "size"});
-  ForceSensor s;
+  ForceSensor s = defaults_.force;
   c.Require("guid", &s.guid);
   AddGuid(c, s.guid, robot);
   c.Get("forceValue", &s.force_value);
@@ -587,7 +626,7 @@ DistanceSensor Reader::ReadDistanceSensor(const XMLElement* e,
       *this, e, path,
       {"guid", "sensorPosition", "position", "rotation", "quatRotation", "mass",
        "size", "max_rayDistance", "ray_Direction", "ray_Resolution"});
-  DistanceSensor s;
+  DistanceSensor s = defaults_.distance;
   c.Require("guid", &s.guid);
   AddGuid(c, s.guid, robot);
   c.Get("sensorPosition", &s.sensor_position);
@@ -628,7 +667,7 @@ SensorModule Reader::ReadSensorModule(const XMLElement* e,
               "distanceSensorLocks", "position", "rotation", "size",
               "quatRotation", "mass", "materialName"},
              {"forceSensor"});
-  SensorModule s;
+  SensorModule s = defaults_.sensor_module;
   c.Require("guid", &s.guid);
   AddGuid(c, s.guid, robot);
   c.Get("leftMod_Nr", &s.left_mod_nr);
@@ -738,7 +777,7 @@ Scene Reader::ReadScene(const XMLElement* e, const std::string& path) {
   Children c(*this, e, path,
              {"guid", "height_Image", "position", "materialName", "height",
               "metersPerPixel"});
-  Scene s;
+  Scene s = defaults_.scene;
   c.Get("guid", &s.guid);
   if (!s.guid.empty()) AddGuid(c, s.guid, kNone);
   c.Get("height_Image", &s.height_image);
@@ -770,7 +809,7 @@ SceneObject Reader::ReadSceneObject(const XMLElement* e,
   Children c(*this, e, path,
              {"guid", "size", "position", "rotation", "quatRotation",
               "materialName", "shape", "mass", "isStatic"});
-  SceneObject o;
+  SceneObject o = defaults_.object;
   c.Require("guid", &o.guid);
   AddGuid(c, o.guid, kLoose);
   c.Get("size", &o.size);
@@ -830,7 +869,7 @@ FluidRegion Reader::ReadFluidRegion(const XMLElement* e,
   Children c(
       *this, e, path,
       {"guid", "kind", "position", "size", "density", "viscosity", "velocity"});
-  FluidRegion r;
+  FluidRegion r = defaults_.fluid;
   c.Get("guid", &r.guid);
   if (!r.guid.empty()) AddGuid(c, r.guid, kNone);
   std::string kind;
@@ -860,7 +899,7 @@ FluidRegion Reader::ReadFluidRegion(const XMLElement* e,
 SimulationSettings Reader::ReadSettings(const XMLElement* e,
                                         const std::string& path) {
   Children c(*this, e, path, {"timestep", "gravity"});
-  SimulationSettings s;
+  SimulationSettings s = defaults_.settings;
   c.Get("timestep", &s.timestep);
   c.Get("gravity", &s.gravity);
   c.CheckPositive("timestep", s.timestep);
@@ -895,7 +934,9 @@ void Reader::CheckJointRefs(const Scenario& scenario) const {
 }
 
 // Every part of a robot must hang together through its joints, or the
-// physics would get several loose pieces under one name.
+// physics would get several loose pieces under one name. As in the physics
+// (mjcf_builder.cc): sensors belong to their sensor module, and a sensor
+// module that no lock names is locked to its neighbouring modules.
 void Reader::CheckConnected(const Scenario& scenario) const {
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
     const Robot& robot = scenario.robots[r];
@@ -909,14 +950,27 @@ void Reader::CheckConnected(const Scenario& scenario) const {
       return p->second = root(p->second);
     };
     for (const std::string& b : it->second) parent[b] = b;
-    auto join = [&](const Joint& j) {
-      parent[root(j.left_frame_guid)] = root(j.right_frame_guid);
+    auto join = [&](const std::string& a, const std::string& b) {
+      parent[root(a)] = root(b);
     };
-    for (const Module& m : robot.modules) join(m.joint);
-    for (const Joint& j : robot.locks) join(j);
+    std::set<std::string> named;  // parts some hinge or lock names
+    auto join_joint = [&](const Joint& j) {
+      join(j.left_frame_guid, j.right_frame_guid);
+      named.insert(j.left_frame_guid);
+      named.insert(j.right_frame_guid);
+    };
+    for (const Module& m : robot.modules) join_joint(m.joint);
+    for (const Joint& j : robot.locks) join_joint(j);
     for (const SensorModule& sm : robot.sensor_modules) {
-      if (sm.force_sensor_lock) join(*sm.force_sensor_lock);
-      for (const Joint& j : sm.distance_sensor_locks) join(j);
+      if (sm.force_sensor) join(sm.force_sensor->guid, sm.guid);
+      for (const DistanceSensor& d : sm.distance_sensors) join(d.guid, sm.guid);
+      if (named.count(sm.guid)) continue;
+      for (const Module& m : robot.modules) {
+        if (m.mod_nr == sm.left_mod_nr || m.mod_nr == sm.right_mod_nr) {
+          join(m.frames[0].guid, sm.guid);
+          join(m.frames[1].guid, sm.guid);
+        }
+      }
     }
     const std::string first = root(robot.modules.front().frames[0].guid);
     for (const std::string& b : it->second) {
@@ -965,8 +1019,11 @@ Scenario Reader::Read(const std::string& xml) {
              {"scene", "sceneObjects", "contactFrictions", "fluidRegions",
               "settings", "frames", "joints", "sensorModules"},
              {"robot"});
+  defaults_ = MakeDefaults(frame);
   Scenario s;
   s.base_dir = base_dir_;
+  s.scene = defaults_.scene;
+  s.settings = defaults_.settings;
   const auto& robots = c.List("robot");
   std::map<std::string, Location> names;
   for (size_t i = 0; i < robots.size(); ++i) {
