@@ -222,7 +222,6 @@ class Reader {
   // index; kLoose collects loose ones and scene objects.
   std::map<int, std::set<std::string>> bodies_;
   std::vector<JointRef> joint_refs_;
-  std::map<std::string, Location> joint_locations_;  // joint guid -> where
 };
 
 Children::Children(const Reader& reader, const XMLElement* element,
@@ -535,8 +534,6 @@ Joint Reader::ReadJoint(const XMLElement* e, const std::string& path,
   c.Get("Kp", &j.kp);
   c.Get("max_vel", &j.max_vel);
   AddGuid(c, j.guid, kNone);
-  const XMLElement* guid_element = c.Find("guid");
-  joint_locations_[j.guid] = {guid_element->GetLineNum(), c.PathOf("guid")};
   if (j.lower_range_limit > j.upper_range_limit) {
     c.FailAt("lowerRangeLimit",
              fmt::format("lower limit {} is above the upper limit {}",
