@@ -528,6 +528,34 @@ TEST(ScenarioXml, PartNotJoinedToTheRobotIsRejected) {
                          "is not joined to the rest of robot 'r'"));
 }
 
+// Parts without a robot: a loose frame hinged to a static scene object.
+const char kLoose[] = R"(<?xml version="1.0" encoding="utf-8"?>
+<Scenario>
+  <sceneObjects><SceneObject><guid>post</guid><shape>Cylinder</shape><isStatic>true</isStatic></SceneObject></sceneObjects>
+  <frames><Frame><guid>door</guid></Frame></frames>
+  <sensorModules><SensorModule><guid>eye</guid></SensorModule></sensorModules>
+  <joints><Joint><guid>hinge</guid><leftFrameGuid>post</leftFrameGuid><rightFrameGuid>door</rightFrameGuid><type>Hinge</type></Joint></joints>
+</Scenario>
+)";
+
+TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
+  const Scenario s = ReadScenarioString(kLoose, "t.xml", ".");
+  EXPECT_TRUE(s.robots.empty());
+  ASSERT_EQ(s.loose_frames.size(), 1u);
+  ASSERT_EQ(s.loose_sensor_modules.size(), 1u);
+  ASSERT_EQ(s.loose_joints.size(), 1u);
+  EXPECT_EQ(s.loose_joints[0].left_frame_guid, "post");
+  const std::string written = WriteScenarioString(s);
+  EXPECT_TRUE(ReadScenarioString(written, "t.xml", ".") == s);
+  const std::string bad =
+      Replace(kLoose, "<rightFrameGuid>door", "<rightFrameGuid>window");
+  EXPECT_THAT(ErrorOf(bad),
+              StartsWith(At(bad, "<joints>") +
+                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame, "
+                         "sensor module, sensor or scene object with guid "
+                         "'window'"));
+}
+
 TEST(ScenarioXml, UnreadableImageIsRejected) {
   const std::string dir = TempDir("scenario_bad_image");
   std::ofstream(dir + "/noise.png") << "this is not a png";
