@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 #include "sim_core/fluid_forces.h"
@@ -41,6 +42,10 @@ const char* WarningName(int w) {
 }
 
 MjModelPtr CompileMjcf(const std::string& xml) {
+  // MuJoCo 2.2's XML parser and compiler keep global state: one at a time,
+  // so Physics objects can be built from several threads.
+  static std::mutex compile_mutex;
+  std::lock_guard<std::mutex> lock(compile_mutex);
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* kName = "mrsim_scenario.xml";

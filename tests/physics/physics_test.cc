@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "sim_core/chain_builder.h"
+#include "sim_core/scenario_xml.h"
 #include "sim_core/terrain.h"
 #include "tests/common/child_process.h"
 #include "tests/physics/test_scenes.h"
@@ -293,6 +295,60 @@ TEST(PhysicsInstability, ExplodingModelRaisesPhysicsError) {
         }
       },
       PhysicsError);
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+TEST(PhysicsLooseParts, LooseFramesAndJointsAreSimulated) {
+  Scenario s = testing::FlatScenario();
+  for (int f = 0; f < 2; ++f) {
+    Frame frame;
+    frame.guid = "loose" + std::to_string(f);
+    frame.position = Eigen::Vector3d(0.025 - 0.05 * f, 0, 0.3);
+    s.loose_frames.push_back(frame);
+  }
+  Joint hinge;
+  hinge.guid = "free hinge";
+  hinge.left_frame_guid = "loose0";
+  hinge.right_frame_guid = "loose1";
+  s.loose_joints.push_back(hinge);
+  Physics physics(s);
+  EXPECT_EQ(physics.robot_count(), 0);
+  const mjModel* m = physics.model();
+  const int body = mj_name2id(m, mjOBJ_BODY, "loose/f1");
+  ASSERT_GE(body, 0);
+  EXPECT_EQ(m->nu, 0);
+  physics.Step(500);
+  // They fell onto the ground.
+  EXPECT_NEAR(physics.data()->xpos[3 * body + 2], 0.025, 0.005);
+}
+
+TEST(PhysicsExamples, ExampleScenariosRun) {
+  for (const char* name : {"snake11.xml", "case_study.xml", "terrain.xml"}) {
+    SCOPED_TRACE(name);
+    const std::string path =
+        testing::SourcePath(std::string("scenarios/") + name);
+    ASSERT_TRUE(std::ifstream(path).good()) << path;
+    Physics physics(ReadScenarioFile(path));
+    ASSERT_GE(physics.robot_count(), 1);
+    std::vector<double> targets(physics.joint_count(0));
+    for (int i = 0; i < 500; ++i) {
+      for (size_t j = 0; j < targets.size(); ++j) {
+        targets[j] = std::sin(2 * M_PI * physics.time() / 2 + 2.5 * j);
+      }
+      physics.SetJointTargets(0, targets);
+      physics.Step();
+    }
+    const RobotState state = physics.ReadRobotState(0);
+    EXPECT_TRUE(state.com.allFinite());
+    for (const SensorModuleState& sm : state.sensor_modules) {
+      for (double d : sm.distances) EXPECT_GT(d, 0);
+    }
+  }
 }
 
 }  // namespace
