@@ -1,0 +1,24 @@
+// Channel names of the optimiser farm: <prefix>_RUN, _CHUNK,
+// _CHUNK_REQUEST, _HEARTBEAT, _JOB, _RESULT (default prefix MRSIM_OPT).
+#pragma once
+
+#include <string>
+
+namespace mrsim {
+
+inline constexpr const char* kDefaultFarmPrefix = "MRSIM_OPT";
+// Payload chunks stay well under LCM's 64 KB fragment.
+inline constexpr int kFarmChunkSize = 48000;
+
+struct FarmChannels {
+  explicit FarmChannels(const std::string& prefix)
+      : run(prefix + "_RUN"),
+        chunk(prefix + "_CHUNK"),
+        chunk_request(prefix + "_CHUNK_REQUEST"),
+        heartbeat(prefix + "_HEARTBEAT"),
+        job(prefix + "_JOB"),
+        result(prefix + "_RESULT") {}
+  std::string run, chunk, chunk_request, heartbeat, job, result;
+};
+
+}  // namespace mrsim
