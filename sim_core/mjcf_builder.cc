@@ -709,10 +709,13 @@ void Builder::WriteBody(std::ostringstream& out, int index, int depth) const {
   if (b.joint == JointKind::kFree) {
     out << pad << "  <freejoint name=\"" << Esc(b.joint_name) << "\"/>\n";
   } else if (b.joint == JointKind::kHinge) {
+    // MuJoCo needs lower < upper; equal limits still pin the joint.
+    const double lower = b.lower < b.upper ? b.lower : b.lower - 1e-9;
+    const double upper = b.lower < b.upper ? b.upper : b.upper + 1e-9;
     out << pad << "  <joint name=\"" << Esc(b.joint_name)
         << "\" type=\"hinge\" pos=\"" << Vec(b.anchor) << "\" axis=\""
-        << Vec(b.axis) << "\" limited=\"true\" range=\"" << Num(b.lower) << " "
-        << Num(b.upper) << "\" armature=\"" << Num(ServoModel::kArmature)
+        << Vec(b.axis) << "\" limited=\"true\" range=\"" << Num(lower) << " "
+        << Num(upper) << "\" armature=\"" << Num(ServoModel::kArmature)
         << "\"/>\n";
   }
   for (const GeomSpec& g : b.geoms) {
@@ -868,9 +871,13 @@ std::string Builder::Build() {
     for (const ActuatorSpec& a : actuators_) {
       const double v = std::abs(a.max_vel);
       out << "    <velocity name=\"" << Esc(a.name) << "\" joint=\""
-          << Esc(a.joint) << "\" kv=\"" << Num(ServoModel::kKv)
-          << "\" ctrllimited=\"true\" ctrlrange=\"" << Num(-v) << " " << Num(v)
-          << "\" forcelimited=\"true\" forcerange=\""
+          << Esc(a.joint) << "\" kv=\"" << Num(ServoModel::kKv) << "\"";
+      // Physics clamps the command itself; MuJoCo rejects an empty range.
+      if (v > 0) {
+        out << " ctrllimited=\"true\" ctrlrange=\"" << Num(-v) << " " << Num(v)
+            << "\"";
+      }
+      out << " forcelimited=\"true\" forcerange=\""
           << Num(-ServoModel::kForceLimit) << " "
           << Num(ServoModel::kForceLimit) << "\"/>\n";
     }
