@@ -1,117 +1,179 @@
 #include "logger/generic_flattener.h"
 
 #include <cstring>
+#include <map>
+#include <stdexcept>
 
 #include "logger/csv_format.h"
 
 namespace mrsim {
+
 namespace {
 
 constexpr int64_t kMaxElements = int64_t{1} << 26;
+
+enum class Kind : uint8_t {
+  kInt8,
+  kInt16,
+  kInt32,
+  kInt64,
+  kByte,
+  kBool,
+  kFloat,
+  kDouble,
+  kString,
+  kStruct
+};
+
+Kind KindOf(const std::string& type) {
+  if (type == "int8_t") return Kind::kInt8;
+  if (type == "int16_t") return Kind::kInt16;
+  if (type == "int32_t") return Kind::kInt32;
+  if (type == "int64_t") return Kind::kInt64;
+  if (type == "byte") return Kind::kByte;
+  if (type == "boolean") return Kind::kBool;
+  if (type == "float") return Kind::kFloat;
+  if (type == "double") return Kind::kDouble;
+  if (type == "string") return Kind::kString;
+  return Kind::kStruct;
+}
+
+// Bytes of one element; strings and structs take at least this many.
+size_t WireSize(Kind k) {
+  switch (k) {
+    case Kind::kInt8:
+    case Kind::kByte:
+    case Kind::kBool:
+      return 1;
+    case Kind::kInt16:
+      return 2;
+    case Kind::kInt32:
+    case Kind::kFloat:
+    case Kind::kString:
+      return 4;
+    case Kind::kInt64:
+    case Kind::kDouble:
+      return 8;
+    case Kind::kStruct:
+      return 1;
+  }
+  return 1;
+}
+
+bool IsInteger(Kind k) {
+  return k == Kind::kInt8 || k == Kind::kInt16 || k == Kind::kInt32 ||
+         k == Kind::kInt64 || k == Kind::kByte || k == Kind::kBool;
+}
 
 std::string Join(const std::string& prefix, const std::string& name) {
   return prefix.empty() ? name : prefix + "." + name;
 }
 
-bool IsPose(const LcmStruct& s) {
-  return s.name == "pose_t" && s.members.size() == 2 &&
-         s.members[0].name == "position" && s.members[1].name == "orientation";
+uint64_t BigEndian(const uint8_t* b, size_t n) {
+  uint64_t v = 0;
+  for (size_t k = 0; k < n; ++k) v = (v << 8) | b[k];
+  return v;
 }
 
-size_t MinSize(const std::string& type) {
-  if (type == "int8_t" || type == "byte" || type == "boolean") return 1;
-  if (type == "int16_t") return 2;
-  if (type == "int32_t" || type == "float" || type == "string") return 4;
-  if (type == "int64_t" || type == "double") return 8;
-  return 1;  // a struct: at least one byte unless it is empty
-}
+}  // namespace
 
-// Reads one encoded message member by member. `values`, `names` and `shape`
-// are optional outputs (a validation pass passes none).
+struct GenericFlattener::Layout {
+  struct Dim {
+    int64_t fixed = -1;  // constant size, or -1
+    int ref = -1;        // index of the member holding the size
+  };
+  struct Member {
+    std::string name;
+    Kind kind;
+    const Layout* child = nullptr;
+    std::vector<Dim> dims;
+    bool fixed_xyz = false;  // double/float[3]: .x .y .z
+  };
+  std::vector<Member> members;
+  bool pose = false;  // pose_t: .x .y .z .qw .qx .qy .qz
+};
+
+namespace {
+
+using Layout = GenericFlattener::Layout;
+
+// Walks one encoded message with a compiled layout. `values`, `names` and
+// `shape` are optional outputs (validation passes none).
 class Walker {
  public:
-  Walker(const LcmTypeRegistry& registry, const uint8_t* data, size_t size,
-         std::string* values, std::vector<std::string>* names,
-         std::vector<int64_t>* shape)
-      : registry_(registry),
-        p_(data),
-        left_(size),
-        values_(values),
-        names_(names),
-        shape_(shape) {}
+  Walker(const uint8_t* data, size_t size, std::string* values,
+         std::vector<std::string>* names, std::vector<int64_t>* shape)
+      : p_(data), left_(size), values_(values), names_(names), shape_(shape) {}
 
   size_t left() const { return left_; }
   bool has_seq() const { return has_seq_; }
   int64_t seq() const { return seq_; }
 
-  bool Struct(const LcmStruct& s, const std::string& prefix, bool top) {
-    std::vector<std::pair<const std::string*, int64_t>> ints;
-    const bool pose = IsPose(s);
-    for (const LcmMember& m : s.members) {
-      std::vector<int64_t> dims;
-      int64_t count = 1;
-      for (const LcmDimension& d : m.dims) {
-        int64_t n = -1;
-        if (d.variable) {
-          for (const auto& [name, v] : ints) {
-            if (*name == d.size) n = v;
-          }
-        } else {
-          n = std::strtoll(d.size.c_str(), nullptr, 10);
-        }
-        if (n < 0 || n > kMaxElements) return false;
-        dims.push_back(n);
-        count *= n;
-        if (count > kMaxElements) return false;
+  bool Struct(const Layout& s, const std::string& prefix, bool top) {
+    const size_t base = ints_.size();
+    ints_.resize(base + s.members.size(), 0);
+    bool ok = true;
+    for (size_t mi = 0; ok && mi < s.members.size(); ++mi) {
+      ok = Member(s, mi, prefix, top, base);
+    }
+    ints_.resize(base);
+    return ok;
+  }
+
+ private:
+  bool Member(const Layout& s, size_t mi, const std::string& prefix, bool top,
+              size_t base) {
+    const Layout::Member& m = s.members[mi];
+    if (m.dims.empty()) {
+      const bool utime = top && m.name == "utime" && m.kind == Kind::kInt64;
+      std::string name;
+      if (names_ != nullptr) name = utime ? "time" : Join(prefix, m.name);
+      if (m.kind == Kind::kStruct) return Struct(*m.child, name, false);
+      int64_t iv = 0;
+      if (!Scalar(m.kind, name, &iv, utime)) return false;
+      ints_[base + mi] = iv;
+      if (top && m.kind == Kind::kInt64 && m.name == "seq") {
+        has_seq_ = true;
+        seq_ = iv;
       }
-      if (!m.dims.empty()) {
-        if (shape_ != nullptr)
-          shape_->insert(shape_->end(), dims.begin(), dims.end());
-        if (static_cast<uint64_t>(count) * MinSize(m.type) > left_)
-          return false;
-      }
-      const LcmStruct* child = nullptr;
-      if (!IsLcmPrimitive(m.type)) {
-        child = registry_.FindByName(m.type);
-        if (child == nullptr) return false;
-      }
-      if (m.dims.empty()) {
-        const std::string name =
-            names_ == nullptr ? std::string()
-            : (top && m.name == "utime" && m.type == "int64_t")
-                ? std::string("time")
-                : Join(prefix, m.name);
-        if (child != nullptr) {
-          if (!Struct(*child, name, false)) return false;
-          continue;
-        }
-        int64_t iv = 0;
-        if (!Scalar(m.type, name, &iv, top && m.name == "utime")) return false;
-        if (m.type != "string" && m.type != "float" && m.type != "double") {
-          ints.emplace_back(&m.name, iv);
-        }
-        if (top && m.name == "seq" && m.type == "int64_t") {
-          has_seq_ = true;
-          seq_ = iv;
-        }
-        continue;
-      }
-      for (int64_t i = 0; i < count; ++i) {
-        std::string name;
-        if (names_ != nullptr) name = ElementName(prefix, m, dims, i, pose);
-        if (child != nullptr) {
-          if (!Struct(*child, name, false)) return false;
-        } else {
-          int64_t unused = 0;
-          if (!Scalar(m.type, name, &unused, false)) return false;
-        }
+      return true;
+    }
+    dims_.clear();
+    int64_t count = 1;
+    for (const Layout::Dim& d : m.dims) {
+      const int64_t n = d.ref >= 0 ? ints_[base + d.ref] : d.fixed;
+      if (n < 0 || n > kMaxElements) return false;
+      dims_.push_back(n);
+      count *= n;
+      if (count > kMaxElements) return false;
+    }
+    if (shape_ != nullptr)
+      shape_->insert(shape_->end(), dims_.begin(), dims_.end());
+    const size_t elem = WireSize(m.kind);
+    if (static_cast<uint64_t>(count) * elem > left_) return false;
+    // Validation skips fixed-size elements in one step.
+    if (values_ == nullptr && names_ == nullptr && m.kind != Kind::kString &&
+        m.kind != Kind::kStruct) {
+      p_ += count * elem;
+      left_ -= count * elem;
+      return true;
+    }
+    const std::vector<int64_t> dims = dims_;
+    for (int64_t i = 0; i < count; ++i) {
+      std::string name;
+      if (names_ != nullptr) name = ElementName(prefix, m, dims, i, s.pose);
+      if (m.kind == Kind::kStruct) {
+        if (!Struct(*m.child, name, false)) return false;
+      } else {
+        int64_t unused = 0;
+        if (!Scalar(m.kind, name, &unused, false)) return false;
       }
     }
     return true;
   }
 
- private:
-  static std::string ElementName(const std::string& prefix, const LcmMember& m,
+  static std::string ElementName(const std::string& prefix,
+                                 const Layout::Member& m,
                                  const std::vector<int64_t>& dims, int64_t i,
                                  bool pose) {
     static const char* const kXyz[] = {"x", "y", "z"};
@@ -120,10 +182,7 @@ class Walker {
     if (pose && m.name == "orientation" && i < 4) {
       return Join(prefix, kQuat[i]);
     }
-    if (dims.size() == 1 && !m.dims[0].variable && dims[0] == 3 &&
-        (m.type == "double" || m.type == "float")) {
-      return Join(prefix, m.name) + "." + kXyz[i];
-    }
+    if (m.fixed_xyz) return Join(prefix, m.name) + "." + kXyz[i];
     // Row-major index, one number per dimension: name3 or name2_1.
     std::vector<int64_t> idx(dims.size());
     int64_t rest = i;
@@ -147,62 +206,60 @@ class Walker {
     return true;
   }
 
-  static uint64_t BigEndian(const uint8_t* b, int n) {
-    uint64_t v = 0;
-    for (int k = 0; k < n; ++k) v = (v << 8) | b[k];
-    return v;
-  }
-
   void Cell(const std::string& name) {
     if (names_ != nullptr) names_->push_back(name);
     if (values_ != nullptr && !first_cell_) values_->push_back(',');
     first_cell_ = false;
   }
 
-  bool Scalar(const std::string& type, const std::string& name, int64_t* iv,
-              bool utime) {
+  bool Scalar(Kind kind, const std::string& name, int64_t* iv, bool utime) {
     const uint8_t* b = nullptr;
-    if (type == "string") {
+    if (kind == Kind::kString) {
       if (!Take(4, &b)) return false;
       const int64_t len = static_cast<int32_t>(BigEndian(b, 4));
       if (len < 1 || !Take(static_cast<size_t>(len), &b)) return false;
       if (b[len - 1] != 0) return false;
       Cell(name);
       if (values_ != nullptr) {
-        AppendCsvText(
-            std::string_view(reinterpret_cast<const char*>(b),
-                             std::strlen(reinterpret_cast<const char*>(b))),
-            values_);
+        const char* text = reinterpret_cast<const char*>(b);
+        AppendCsvText(std::string_view(text, std::strlen(text)), values_);
       }
       return true;
     }
-    const size_t n = MinSize(type);
+    const size_t n = WireSize(kind);
     if (!Take(n, &b)) return false;
-    const uint64_t raw = BigEndian(b, static_cast<int>(n));
+    const uint64_t raw = BigEndian(b, n);
     Cell(name);
-    if (type == "double") {
-      double d;
-      std::memcpy(&d, &raw, 8);
-      if (values_ != nullptr) AppendDouble(d, values_);
-      return true;
-    }
-    if (type == "float") {
-      const uint32_t r32 = static_cast<uint32_t>(raw);
-      float f;
-      std::memcpy(&f, &r32, 4);
-      if (values_ != nullptr) AppendFloat(f, values_);
-      return true;
-    }
-    if (type == "byte") {
-      *iv = static_cast<int64_t>(raw);
-    } else if (type == "int8_t" || type == "boolean") {
-      *iv = static_cast<int8_t>(raw);
-    } else if (type == "int16_t") {
-      *iv = static_cast<int16_t>(raw);
-    } else if (type == "int32_t") {
-      *iv = static_cast<int32_t>(raw);
-    } else {
-      *iv = static_cast<int64_t>(raw);
+    switch (kind) {
+      case Kind::kDouble: {
+        double d;
+        std::memcpy(&d, &raw, 8);
+        if (values_ != nullptr) AppendDouble(d, values_);
+        return true;
+      }
+      case Kind::kFloat: {
+        const uint32_t r32 = static_cast<uint32_t>(raw);
+        float f;
+        std::memcpy(&f, &r32, 4);
+        if (values_ != nullptr) AppendFloat(f, values_);
+        return true;
+      }
+      case Kind::kByte:
+        *iv = static_cast<int64_t>(raw);
+        break;
+      case Kind::kInt8:
+      case Kind::kBool:
+        *iv = static_cast<int8_t>(raw);
+        break;
+      case Kind::kInt16:
+        *iv = static_cast<int16_t>(raw);
+        break;
+      case Kind::kInt32:
+        *iv = static_cast<int32_t>(raw);
+        break;
+      default:
+        *iv = static_cast<int64_t>(raw);
+        break;
     }
     if (values_ != nullptr) {
       if (utime) {
@@ -214,52 +271,109 @@ class Walker {
     return true;
   }
 
-  const LcmTypeRegistry& registry_;
   const uint8_t* p_;
   size_t left_;
   std::string* values_;
   std::vector<std::string>* names_;
   std::vector<int64_t>* shape_;
+  std::vector<int64_t> ints_;  // integer members of the structs being read
+  std::vector<int64_t> dims_;
   bool first_cell_ = true;
   bool has_seq_ = false;
   int64_t seq_ = 0;
 };
 
+// Compiles `s` and the structs it uses into `out` ([0] is `s`).
+class Compiler {
+ public:
+  Compiler(const LcmTypeRegistry& registry,
+           std::vector<std::unique_ptr<Layout>>* out)
+      : registry_(registry), out_(out) {}
+
+  Layout* Compile(const LcmStruct& s) {
+    auto it = done_.find(s.full_name());
+    if (it != done_.end()) return it->second;
+    out_->push_back(std::make_unique<Layout>());
+    Layout* layout = out_->back().get();
+    done_[s.full_name()] = layout;
+    layout->pose = s.name == "pose_t" && s.members.size() == 2 &&
+                   s.members[0].name == "position" &&
+                   s.members[1].name == "orientation";
+    for (const LcmMember& m : s.members) {
+      Layout::Member cm;
+      cm.name = m.name;
+      cm.kind = KindOf(m.type);
+      if (cm.kind == Kind::kStruct) {
+        const LcmStruct* child = registry_.FindByName(m.type);
+        if (child == nullptr) {
+          throw std::runtime_error("LCM type " + s.full_name() + ": member '" +
+                                   m.name + "' has unknown type " + m.type);
+        }
+        cm.child = Compile(*child);
+      }
+      for (const LcmDimension& d : m.dims) {
+        Layout::Dim cd;
+        if (d.variable) {
+          for (size_t k = 0; k < s.members.size(); ++k) {
+            if (s.members[k].name == d.size) cd.ref = static_cast<int>(k);
+          }
+          if (cd.ref < 0 || !IsInteger(KindOf(s.members[cd.ref].type))) {
+            throw std::runtime_error("LCM type " + s.full_name() +
+                                     ": array size '" + d.size +
+                                     "' is not an integer member");
+          }
+        } else {
+          cd.fixed = std::strtoll(d.size.c_str(), nullptr, 10);
+        }
+        cm.dims.push_back(cd);
+      }
+      cm.fixed_xyz = cm.dims.size() == 1 && cm.dims[0].fixed == 3 &&
+                     (cm.kind == Kind::kDouble || cm.kind == Kind::kFloat);
+      layout->members.push_back(std::move(cm));
+    }
+    return layout;
+  }
+
+ private:
+  const LcmTypeRegistry& registry_;
+  std::vector<std::unique_ptr<Layout>>* out_;
+  std::map<std::string, Layout*> done_;
+};
+
 int64_t ReadFingerprint(const uint8_t* data) {
-  uint64_t v = 0;
-  for (int k = 0; k < 8; ++k) v = (v << 8) | data[k];
-  return static_cast<int64_t>(v);
+  return static_cast<int64_t>(BigEndian(data, 8));
 }
 
 }  // namespace
 
 GenericFlattener::GenericFlattener(const LcmTypeRegistry& registry,
                                    const LcmStruct& type)
-    : registry_(registry),
-      type_(type),
-      fingerprint_(registry.Fingerprint(type)) {}
+    : type_name_(type.full_name()), fingerprint_(registry.Fingerprint(type)) {
+  Compiler(registry, &layouts_).Compile(type);
+}
 
-bool GenericFlattener::IsWellFormedBody(const LcmTypeRegistry& registry,
-                                        const LcmStruct& type,
-                                        const uint8_t* body, size_t size) {
-  Walker w(registry, body, size, nullptr, nullptr, nullptr);
-  return w.Struct(type, "", true) && w.left() == 0;
+GenericFlattener::~GenericFlattener() = default;
+
+bool GenericFlattener::IsWellFormed(const uint8_t* data, size_t size) const {
+  if (size < 8 || ReadFingerprint(data) != fingerprint_) return false;
+  Walker w(data + 8, size - 8, nullptr, nullptr, nullptr);
+  return w.Struct(*layouts_[0], "", true) && w.left() == 0;
 }
 
 bool GenericFlattener::Flatten(const uint8_t* data, size_t size, FlatRow* row) {
   if (size < 8 || ReadFingerprint(data) != fingerprint_) return false;
   row->values.clear();
-  std::vector<int64_t> shape;
-  Walker w(registry_, data + 8, size - 8, &row->values, nullptr, &shape);
-  if (!w.Struct(type_, "", true) || w.left() != 0) return false;
+  shape_.clear();
+  Walker w(data + 8, size - 8, &row->values, nullptr, &shape_);
+  if (!w.Struct(*layouts_[0], "", true) || w.left() != 0) return false;
   row->has_seq = w.has_seq();
   row->seq = w.seq();
-  if (!have_shape_ || shape != last_shape_) {
+  if (!have_shape_ || shape_ != last_shape_) {
     std::vector<std::string> names;
-    Walker named(registry_, data + 8, size - 8, nullptr, &names, nullptr);
-    named.Struct(type_, "", true);
+    Walker named(data + 8, size - 8, nullptr, &names, nullptr);
+    named.Struct(*layouts_[0], "", true);
     SetColumns(std::move(names));
-    last_shape_ = std::move(shape);
+    last_shape_ = shape_;
     have_shape_ = true;
   }
   return true;

@@ -15,22 +15,24 @@ namespace mrsim {
 
 class GenericFlattener : public MessageFlattener {
  public:
-  // `registry` must outlive the flattener.
+  // Compiles the type's layout; the registry is not needed afterwards.
   GenericFlattener(const LcmTypeRegistry& registry, const LcmStruct& type);
+  ~GenericFlattener() override;
   bool Flatten(const uint8_t* data, size_t size, FlatRow* row) override;
-  std::string type_name() const override { return type_.full_name(); }
+  std::string type_name() const override { return type_name_; }
 
-  // True when `body` (a message after its 8-byte fingerprint) is exactly
-  // one well-formed encoding of `type`: non-negative array lengths that fit
-  // in the bytes, NUL-terminated strings, nothing left over.
-  static bool IsWellFormedBody(const LcmTypeRegistry& registry,
-                               const LcmStruct& type, const uint8_t* body,
-                               size_t size);
+  // True when `data` is exactly one well-formed message of this type: its
+  // fingerprint, non-negative array lengths that fit in the bytes,
+  // NUL-terminated strings, nothing left over.
+  bool IsWellFormed(const uint8_t* data, size_t size) const;
+
+  struct Layout;  // the compiled type, defined in the .cc
 
  private:
-  const LcmTypeRegistry& registry_;
-  const LcmStruct& type_;
+  std::string type_name_;
   int64_t fingerprint_;
+  std::vector<std::unique_ptr<Layout>> layouts_;  // [0] is the type itself
+  std::vector<int64_t> shape_;
   std::vector<int64_t> last_shape_;
   bool have_shape_ = false;
 };

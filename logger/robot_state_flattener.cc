@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "logger/csv_format.h"
-#include "logger/generic_flattener.h"
 
 namespace mrsim {
 namespace {
@@ -27,25 +26,29 @@ void PoseNames(const std::string& prefix, std::vector<std::string>* names) {
 
 }  // namespace
 
-RobotStateFlattener::RobotStateFlattener(const LcmTypeRegistry& registry)
-    : registry_(registry), type_(registry.FindByName("mrsim.robot_state_t")) {
-  if (type_ == nullptr ||
-      registry.Fingerprint(*type_) != robot_state_t::getHash()) {
+namespace {
+
+const LcmStruct& RobotStateType(const LcmTypeRegistry& registry) {
+  const LcmStruct* type = registry.FindByName("mrsim.robot_state_t");
+  if (type == nullptr ||
+      registry.Fingerprint(*type) != robot_state_t::getHash()) {
     throw std::runtime_error(
         "robot_state_t.lcm does not match the compiled robot_state_t");
   }
+  return *type;
 }
+
+}  // namespace
+
+RobotStateFlattener::RobotStateFlattener(const LcmTypeRegistry& registry)
+    : validator_(registry, RobotStateType(registry)) {}
 
 bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
                                   FlatRow* row) {
   // The generated decoder trusts array lengths (a forged length would make
   // it allocate gigabytes), so the bytes are checked first.
-  if (size < 8 || size > static_cast<size_t>(INT32_MAX)) return false;
-  uint64_t hash = 0;
-  for (int k = 0; k < 8; ++k) hash = (hash << 8) | data[k];
-  if (static_cast<int64_t>(hash) != robot_state_t::getHash()) return false;
-  if (!GenericFlattener::IsWellFormedBody(registry_, *type_, data + 8,
-                                          size - 8)) {
+  if (size > static_cast<size_t>(INT32_MAX) ||
+      !validator_.IsWellFormed(data, size)) {
     return false;
   }
   try {

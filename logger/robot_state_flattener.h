@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "logger/generic_flattener.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/message_flattener.h"
 #include "mrsim/robot_state_t.hpp"
@@ -16,7 +17,8 @@ namespace mrsim {
 
 class RobotStateFlattener : public MessageFlattener {
  public:
-  // `registry` (which must hold mrsim.robot_state_t) must outlive this.
+  // Throws when `registry` lacks mrsim.robot_state_t or it differs from
+  // the compiled type.
   explicit RobotStateFlattener(const LcmTypeRegistry& registry);
   bool Flatten(const uint8_t* data, size_t size, FlatRow* row) override;
   std::string type_name() const override { return "mrsim.robot_state_t"; }
@@ -24,8 +26,7 @@ class RobotStateFlattener : public MessageFlattener {
  private:
   std::vector<std::string> ColumnNames() const;
 
-  const LcmTypeRegistry& registry_;
-  const LcmStruct* type_;
+  GenericFlattener validator_;
   robot_state_t msg_;
   std::vector<int> shape_;
   std::vector<int> last_shape_;

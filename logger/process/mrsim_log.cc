@@ -1,11 +1,14 @@
 // mrsim-log: writes every mrsim channel (or the chosen ones) to one CSV per
 // channel, live from LCM or from an .lcmlog file, reports sequence gaps and
 // optionally draws plots when it stops.
+#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <lcm/lcm-cpp.hpp>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "CLI/CLI.hpp"
@@ -14,6 +17,7 @@
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/log_plot_spec.h"
+#include "logger/message_queue.h"
 #include "logger/recorder.h"
 
 namespace {
@@ -56,12 +60,14 @@ struct Options {
   std::string from_log;
   std::vector<std::string> types;
   std::vector<std::string> plots;
+  int64_t recv_buf_size = 8 << 20;
+  int64_t max_queue_mb = 1024;
   bool quiet = false;
 };
 
 void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
-           mrsim::Recorder* recorder) {
-  recorder->OnMessage(channel, rbuf->data, rbuf->data_size);
+           mrsim::MessageQueue* queue) {
+  queue->Push(channel, rbuf->data, rbuf->data_size);
 }
 
 void Progress(const mrsim::Recorder& recorder, bool quiet) {
@@ -75,43 +81,92 @@ void Progress(const mrsim::Recorder& recorder, bool quiet) {
                static_cast<long long>(missing));
 }
 
-int RunLive(const Options& opt, const std::string& regex,
-            mrsim::Recorder& recorder) {
-  lcm::LCM lcm(opt.lcm_url);
-  if (!lcm.good()) {
-    throw std::runtime_error("cannot open LCM at '" + opt.lcm_url + "'");
+// The URL with a large kernel receive buffer, unless it sets one: a 1 kHz
+// stream of 12 kB states fills the default buffer in a few milliseconds of
+// not being scheduled.
+std::string WithReceiveBuffer(const std::string& url, int64_t bytes) {
+  std::string u = url;
+  if (u.empty()) {
+    const char* env = std::getenv("LCM_DEFAULT_URL");
+    u = env != nullptr ? env : "udpm://239.255.76.67:7667?ttl=0";
   }
-  lcm::Subscription* sub = lcm.subscribeFunction(regex, &OnLcm, &recorder);
-  sub->setQueueCapacity(kQueueCapacity);
-  if (!opt.quiet) {
-    std::fprintf(stderr, "mrsim-log: recording channels matching '%s' to %s\n",
-                 regex.c_str(), recorder.out_dir().c_str());
+  if (u.rfind("udpm://", 0) != 0 || bytes <= 0 ||
+      u.find("recv_buf_size=") != std::string::npos) {
+    return u;
   }
+  return u + (u.find('?') == std::string::npos ? "?" : "&") +
+         "recv_buf_size=" + std::to_string(bytes);
+}
+
+// Formats and writes what the LCM thread queued, so receiving never waits
+// on the disk.
+void WriteQueued(mrsim::MessageQueue& queue, mrsim::Recorder& recorder,
+                 std::atomic<bool>& failed, bool quiet) {
+  std::vector<mrsim::QueuedMessage> batch;
   auto last_flush = Clock::now();
   auto last_progress = Clock::now();
-  while (!mrsim::StopRequested() && !recorder.failed()) {
-    mrsim::HandleFor(lcm, 100);
+  while (queue.PopAll(&batch, std::chrono::milliseconds(100))) {
+    for (const mrsim::QueuedMessage& m : batch) {
+      recorder.OnMessage(m.channel, m.data.data(), m.data.size());
+    }
+    batch.clear();
     const auto now = Clock::now();
     if (now - last_flush > std::chrono::milliseconds(500)) {
       last_flush = now;
       try {
         recorder.Flush();
       } catch (const std::exception&) {
-        break;  // recorder.error() holds it
+        // recorder.error() holds it.
       }
     }
+    if (recorder.failed()) failed = true;
     if (now - last_progress > std::chrono::seconds(10)) {
       last_progress = now;
-      Progress(recorder, opt.quiet);
+      Progress(recorder, quiet);
     }
   }
-  // Take what already arrived before stopping, but do not wait on a
-  // publisher that never pauses.
-  const auto drain_end = Clock::now() + std::chrono::milliseconds(300);
-  while (!recorder.failed() && Clock::now() < drain_end &&
-         mrsim::HandleFor(lcm, 20) > 0) {
+}
+
+int RunLive(const Options& opt, const std::string& regex,
+            mrsim::Recorder& recorder) {
+  const std::string url = WithReceiveBuffer(opt.lcm_url, opt.recv_buf_size);
+  lcm::LCM lcm(url);
+  if (!lcm.good()) {
+    throw std::runtime_error("cannot open LCM at '" + url + "'");
+  }
+  mrsim::MessageQueue queue(static_cast<size_t>(opt.max_queue_mb) << 20);
+  std::atomic<bool> failed{false};
+  std::thread writer(WriteQueued, std::ref(queue), std::ref(recorder),
+                     std::ref(failed), opt.quiet);
+  lcm::Subscription* sub = lcm.subscribeFunction(regex, &OnLcm, &queue);
+  sub->setQueueCapacity(kQueueCapacity);
+  if (!opt.quiet) {
+    std::fprintf(stderr, "mrsim-log: recording channels matching '%s' to %s\n",
+                 regex.c_str(), recorder.out_dir().c_str());
+  }
+  try {
+    while (!mrsim::StopRequested() && !failed) mrsim::HandleFor(lcm, 100);
+    // Take what already arrived before stopping, but do not wait on a
+    // publisher that never pauses.
+    const auto drain_end = Clock::now() + std::chrono::milliseconds(300);
+    while (!failed && Clock::now() < drain_end &&
+           mrsim::HandleFor(lcm, 20) > 0) {
+    }
+  } catch (...) {
+    queue.Close();
+    writer.join();
+    throw;
   }
   lcm.unsubscribe(sub);
+  queue.Close();
+  writer.join();
+  if (queue.dropped() > 0) {
+    std::fprintf(stderr,
+                 "mrsim-log: %lld messages dropped: the writer fell behind by "
+                 "more than --max-queue-mb (%lld MB)\n",
+                 static_cast<long long>(queue.dropped()),
+                 static_cast<long long>(opt.max_queue_mb));
+  }
   return 0;
 }
 
@@ -197,6 +252,15 @@ int main(int argc, char** argv) {
                  "CHANNEL:y=COL[,COL...][:x=COL][:title=TEXT]"
                  "[:style=auto|lines|points][:size=WxH][:out=FILE.png]; "
                  "x defaults to time, a relative FILE is in --out");
+  app.add_option("--recv-buf-size", opt.recv_buf_size,
+                 "kernel receive buffer (bytes) asked for on udpm URLs that "
+                 "do not set recv_buf_size (capped by net.core.rmem_max); 0 "
+                 "keeps the URL as given")
+      ->capture_default_str();
+  app.add_option("--max-queue-mb", opt.max_queue_mb,
+                 "messages received but not yet written, at most (MB)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_flag("--quiet", opt.quiet, "no progress lines");
   try {
     app.parse(argc, argv);

@@ -1,0 +1,48 @@
+// Hands received messages from the LCM thread to the writer thread, so the
+// LCM handler only copies bytes and never waits on formatting or the disk.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace mrsim {
+
+struct QueuedMessage {
+  std::string channel;
+  std::vector<uint8_t> data;
+};
+
+class MessageQueue {
+ public:
+  // Holds at most max_bytes of message data; more is dropped and counted.
+  explicit MessageQueue(size_t max_bytes) : max_bytes_(max_bytes) {}
+
+  // Copies the message in. False (and counted in dropped()) when full.
+  bool Push(const std::string& channel, const void* data, size_t size);
+  // Waits up to `timeout` for messages, then moves every queued one to
+  // `out` (appending). False once Close() was called and nothing is left.
+  bool PopAll(std::vector<QueuedMessage>* out,
+              std::chrono::milliseconds timeout);
+  // No more pushes; PopAll returns what is left, then false.
+  void Close();
+
+  int64_t dropped() const;
+  size_t peak_bytes() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<QueuedMessage> queue_;
+  size_t max_bytes_;
+  size_t bytes_ = 0;
+  size_t peak_bytes_ = 0;
+  int64_t dropped_ = 0;
+  bool closed_ = false;
+};
+
+}  // namespace mrsim
