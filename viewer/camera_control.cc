@@ -1,5 +1,6 @@
 #include "viewer/camera_control.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 

@@ -28,6 +28,9 @@ Renderer::Renderer(const mjModel* model, int width, int height)
   }
   mjv_defaultScene(&scene_);
   mjv_defaultOption(&option_);
+  // Rays come from the state (Ray); MuJoCo's own would read sensordata,
+  // which a posed-but-not-simulated mjData does not have.
+  option_.flags[mjVIS_RANGEFINDER] = 0;
   mjr_defaultContext(&context_);
   mjv_makeScene(model, &scene_, model->ngeom + kExtraGeoms);
   // mjr_makeContext sizes the off-screen buffer from the model's visual

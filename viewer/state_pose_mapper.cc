@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim_core/mjcf_builder.h"
+
 namespace mrsim {
 namespace {
 
@@ -28,11 +30,17 @@ bool Finite(const mrsim::Pose& pose) {
          pose.orientation.coeffs().norm() > 1e-9;
 }
 
-// Body id of a part named `guid`: a body of that name, else the body of a
-// geom of that name (then *geom_local is the geom's pose in its body).
-int FindBody(const mjModel* m, const std::string& guid, bool* via_geom,
-             Eigen::Vector3d* geom_pos, Eigen::Quaterniond* geom_quat) {
+// Body id of a part: the body BuildMjcf names `mjcf_name`, else a body
+// named `guid`, else the body of a geom named `guid` (then geom_pos/quat are
+// the geom's pose in its body).
+int FindBody(const mjModel* m, const std::string& mjcf_name,
+             const std::string& guid, bool* via_geom, Eigen::Vector3d* geom_pos,
+             Eigen::Quaterniond* geom_quat) {
   *via_geom = false;
+  if (!mjcf_name.empty()) {
+    const int body = mj_name2id(m, mjOBJ_BODY, mjcf_name.c_str());
+    if (body > 0) return body;
+  }
   if (guid.empty()) return -1;
   const int body = mj_name2id(m, mjOBJ_BODY, guid.c_str());
   if (body > 0) return body;
@@ -46,9 +54,14 @@ int FindBody(const mjModel* m, const std::string& guid, bool* via_geom,
   return -1;
 }
 
-// The rangefinder site of a distance sensor: a site or a sensor named
-// after it.
-int FindRaySite(const mjModel* m, const std::string& guid) {
+// The site a distance sensor's ray starts from (BuildMjcf: at the face
+// centre, x axis along the ray), else a site or rangefinder named after it.
+int FindRaySite(const mjModel* m, const std::string& mjcf_name,
+                const std::string& guid, int* axis) {
+  *axis = 0;
+  const int named = mj_name2id(m, mjOBJ_SITE, mjcf_name.c_str());
+  if (named >= 0) return named;
+  *axis = 2;  // MuJoCo's rangefinder looks along the site's z axis
   if (guid.empty()) return -1;
   const int site = mj_name2id(m, mjOBJ_SITE, guid.c_str());
   if (site >= 0) return site;
@@ -93,15 +106,15 @@ StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
     const Robot& robot = scenario.robots[r];
     RobotInfo info;
-    info.name = robot.name;
+    info.name = mjcf_names::RobotName(scenario, static_cast<int>(r));
     info.modules = static_cast<int>(robot.modules.size());
     info.sensor_modules = static_cast<int>(robot.sensor_modules.size());
-    auto map_part = [&](const std::string& guid, int part,
-                        const std::string& what) {
+    auto map_part = [&](const std::string& mjcf_name, const std::string& guid,
+                        int part, const std::string& what) {
       bool via_geom = false;
       Eigen::Vector3d gpos;
       Eigen::Quaterniond gquat;
-      const int body = FindBody(m, guid, &via_geom, &gpos, &gquat);
+      const int body = FindBody(m, mjcf_name, guid, &via_geom, &gpos, &gquat);
       if (body < 0) {
         throw std::runtime_error("viewer: robot '" + robot.name + "' " + what +
                                  " '" + guid +
@@ -123,34 +136,40 @@ StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
     };
     for (int i = 0; i < info.modules; ++i) {
       for (int f = 0; f < 2; ++f) {
-        map_part(robot.modules[i].frames[f].guid, 2 * i + f,
+        map_part(mjcf_names::FrameBody(info.name, i, f),
+                 robot.modules[i].frames[f].guid, 2 * i + f,
                  "module " + std::to_string(i) + " frame " + std::to_string(f));
       }
     }
     for (int s = 0; s < info.sensor_modules; ++s) {
       const SensorModule& sm = robot.sensor_modules[s];
-      const int sm_body = map_part(sm.guid, 2 * info.modules + s,
-                                   "sensor module " + std::to_string(s));
+      const int sm_body =
+          map_part(mjcf_names::SensorModuleBody(info.name, s), sm.guid,
+                   2 * info.modules + s, "sensor module " + std::to_string(s));
       // Plates and distance sensors ride on their sensor module.
-      auto attach = [&](const std::string& guid) {
+      auto attach = [&](const std::string& mjcf_name, const std::string& guid) {
         bool via_geom = false;
         Eigen::Vector3d gpos;
         Eigen::Quaterniond gquat;
-        const int body = FindBody(m, guid, &via_geom, &gpos, &gquat);
+        const int body = FindBody(m, mjcf_name, guid, &via_geom, &gpos, &gquat);
         if (body > 0) attach_by_name.emplace_back(body, sm_body);
       };
-      if (sm.force_sensor) attach(sm.force_sensor->guid);
+      if (sm.force_sensor) {
+        attach(mjcf_names::PlateBody(info.name, s), sm.force_sensor->guid);
+      }
       // Built pose of the sensor module's frame for the fallback rays.
       Pose sm_pose;
       sm_pose.p = sm.position;
       sm_pose.q = sm.quat_rotation.normalized();
       for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
         const DistanceSensor& ds = sm.distance_sensors[k];
-        attach(ds.guid);
+        attach("", ds.guid);
         RaySource ray;
         ray.sensor_module = s;
         ray.index = static_cast<int>(k);
-        ray.site = FindRaySite(m, ds.guid);
+        ray.site = FindRaySite(
+            m, mjcf_names::DistanceSite(info.name, s, static_cast<int>(k)),
+            ds.guid, &ray.site_axis);
         ray.local_origin = sm_pose.q.conjugate() * (ds.position - sm.position);
         ray.local_direction =
             ds.ray_direction.norm() > 1e-12
@@ -281,14 +300,14 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
     mju_mulQuat(quat, d->xquat + 4 * b, m->site_quat + 4 * s);
     mju_quat2Mat(d->site_xmat + 9 * s, quat);
   }
-  for (int l = 0; l < m->nlight; ++l) {
-    const int b = m->light_bodyid[l];
-    if (b == 0) continue;
-    mju_mulMatVec(vec, d->xmat + 9 * b, m->light_pos + 3 * l, 3, 3);
-    mju_add3(d->light_xpos + 3 * l, d->xpos + 3 * b, vec);
-    mju_mulMatVec(d->light_xdir + 3 * l, d->xmat + 9 * b, m->light_dir + 3 * l,
-                  3, 3);
+  for (int b = 0; b < m->nbody; ++b) {
+    mju_mulMatVec(vec, d->xmat + 9 * b, m->body_ipos + 3 * b, 3, 3);
+    mju_add3(d->xipos + 3 * b, d->xpos + 3 * b, vec);
+    mju_mulQuat(quat, d->xquat + 4 * b, m->body_iquat + 4 * b);
+    mju_quat2Mat(d->ximat + 9 * b, quat);
   }
+  // Lights and model cameras follow their bodies as in mj_forward.
+  mj_camlight(m, d);
 }
 
 std::vector<Ray> StatePoseMapper::Rays(int robot, const RobotState& state,
@@ -308,8 +327,9 @@ std::vector<Ray> StatePoseMapper::Rays(int robot, const RobotState& state,
     Eigen::Vector3d direction;
     if (src.site >= 0) {
       const mjtNum* xmat = d->site_xmat + 9 * src.site;
+      const int a = src.site_axis;
       ray.from = Eigen::Vector3d(d->site_xpos + 3 * src.site);
-      direction = Eigen::Vector3d(xmat[2], xmat[5], xmat[8]);
+      direction = Eigen::Vector3d(xmat[a], xmat[3 + a], xmat[6 + a]);
     } else {
       const Eigen::Quaterniond q = sm.pose.orientation.normalized();
       ray.from = sm.pose.position + q * src.local_origin;

@@ -20,8 +20,9 @@ namespace mrsim {
 class StatePoseMapper {
  public:
   // `model` is BuildMjcf(scenario) compiled; it must outlive the mapper.
-  // Bodies are matched to scenario parts by name (frame, sensor module,
-  // force plate and distance sensor guids, as body or geom names). Throws
+  // Bodies are matched to scenario parts by their mjcf_names (else by
+  // guid as a body or geom name); bodies below them in the tree move with
+  // them. Robot names are mjcf_names::RobotName. Throws
   // std::runtime_error when a robot's frame or sensor module has no body.
   StatePoseMapper(const mjModel* model, const Scenario& scenario);
 
@@ -35,7 +36,8 @@ class StatePoseMapper {
   std::string Check(int robot, const RobotState& state) const;
 
   // Poses every body: robot r from states[r] (null: as built), everything
-  // else as built. Fills xpos, xquat, xmat, geom_*, site_* and body lights.
+  // else as built. Fills xpos, xquat, xmat, xipos, geom_*, site_*, lights
+  // and cameras; `data` must have seen one mj_forward.
   // States must pass Check.
   void Apply(const std::vector<const RobotState*>& states, mjData* data) const;
 
@@ -59,8 +61,9 @@ class StatePoseMapper {
   };
   struct RaySource {
     int sensor_module = 0;
-    int index = 0;  // in the sensor module's distance list
-    int site = -1;  // rangefinder site (ray along its z), or -1
+    int index = 0;      // in the sensor module's distance list
+    int site = -1;      // site the ray starts from, or -1
+    int site_axis = 0;  // column of the site frame along the ray
     Eigen::Vector3d local_origin = Eigen::Vector3d::Zero();  // fallback
     Eigen::Vector3d local_direction = Eigen::Vector3d::UnitX();
     double max_distance = 0.0;

@@ -37,7 +37,7 @@ StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
   data_.reset(mj_makeData(model_.get()));
   if (data_ == nullptr) throw std::runtime_error("viewer: mj_makeData failed");
   mj_resetData(model_.get(), data_.get());
-  mj_kinematics(model_.get(), data_.get());
+  mj_forward(model_.get(), data_.get());  // lights, cameras, everything
   mapper_ = std::make_unique<StatePoseMapper>(model_.get(), scenario);
   if (!options.follow_robot.empty()) {
     follow_ = mapper_->robot_index(options.follow_robot);

@@ -157,11 +157,12 @@ int Run(const ViewOptions& opt) {
   }
   FramePump pump(&viewer, &scheduler, writer.get(), window.get(),
                  opt.max_frames);
-  std::fprintf(stderr, "mrsim-view: %s, %d robot(s), %dx%d at %g fps, %s\n",
-               gl ? gl->description().c_str() : "window context",
-               viewer.robot_count(), opt.viewer.width, opt.viewer.height,
-               opt.fps,
-               opt.from_log.empty() ? "listening" : opt.from_log.c_str());
+  auto announce = [&](const std::string& source) {
+    std::fprintf(stderr, "mrsim-view: %s, %d robot(s), %dx%d at %g fps, %s\n",
+                 gl ? gl->description().c_str() : "window context",
+                 viewer.robot_count(), opt.viewer.width, opt.viewer.height,
+                 opt.fps, source.c_str());
+  };
 
   Clock::time_point next_progress = Clock::now() + std::chrono::seconds(2);
   if (!opt.from_log.empty()) {
@@ -169,6 +170,7 @@ int Run(const ViewOptions& opt) {
     if (!log.good()) {
       throw std::runtime_error(opt.from_log + ": cannot read the LCM log");
     }
+    announce("replaying " + opt.from_log);
     while (!StopRequested() && !pump.Done()) {
       const lcm::LogEvent* event = log.readNextEvent();
       if (event == nullptr) break;
@@ -198,6 +200,8 @@ int Run(const ViewOptions& opt) {
       // A slow viewer drops old states instead of falling behind.
       sub->setQueueCapacity(opt.queue);
     }
+    announce("listening on " + std::to_string(inbox.channels().size()) +
+             " state channel(s)");
     while (!StopRequested() && !pump.Done()) {
       HandleFor(lcm, window ? 10 : 100);
       pump.Drain();

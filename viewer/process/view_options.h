@@ -18,7 +18,7 @@ struct ViewOptions {
   double fps = 30.0;
   bool window = false;
   int64_t max_frames = 0;  // 0: until stopped or the log ends
-  int queue = 4;           // LCM queue per robot channel (old states drop)
+  int queue = 8;           // LCM queue per robot channel (old states drop)
   ViewerOptions viewer;
 };
 

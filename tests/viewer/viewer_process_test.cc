@@ -1,0 +1,310 @@
+// mrsim-view as a real process: replaying an .lcmlog, listening to a live
+// LCM stream published by the test, joining late, stopping on SIGTERM.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lcmtypes/runtime/channels.h"
+#include "sim_core/physics.h"
+#include "sim_core/scenario_xml.h"
+#include "sim_core/sim_process/state_message.h"
+#include "tests/common/child_process.h"
+#include "tests/viewer/viewer_test_util.h"
+#include "viewer/camera_control.h"
+#include "viewer/frame_writer.h"
+#include "viewer/gl_context.h"
+#include "viewer/renderer.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::TempDir;
+using testing::TestLcmUrl;
+
+const std::string kViewer = "viewer/process/mrsim-view";
+
+std::vector<unsigned char> Encode(const RobotState& state, int64_t seq) {
+  robot_state_t msg = ToRobotStateMessage(state, seq);
+  std::vector<unsigned char> bytes(msg.getEncodedSize());
+  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Polls the child's output until it contains `text`.
+bool WaitForOutput(ChildProcess* child, const std::string& text,
+                   double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < end) {
+    if (child->Output().find(text) != std::string::npos) return true;
+    if (!child->running()) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// "done: N frames (R rendered, first index K, ..."
+bool ParseSummary(const std::string& output, int64_t* frames,
+                  int64_t* first_index, int64_t* malformed) {
+  std::smatch m;
+  const std::regex re(
+      "done: (\\d+) frames \\((\\d+) rendered, first index (-?\\d+).*, "
+      "(\\d+) states, (\\d+) malformed");
+  if (!std::regex_search(output, m, re)) return false;
+  *frames = std::stoll(m[1]);
+  *first_index = std::stoll(m[3]);
+  *malformed = std::stoll(m[5]);
+  return true;
+}
+
+TEST(ViewerProcess, LogReplayGivesOneFramePerStepAndFramesMove) {
+  const std::string dir = TempDir("viewer_log_replay");
+  const Scenario scenario = testing::ViewerTestScenario();
+  const std::string scenario_path = testing::WriteTestScenario(scenario, dir);
+  Physics physics(ReadScenarioFile(scenario_path));
+
+  // 2 s of a moving snake, a state every 10 ms, plus junk to be dropped.
+  const std::string log_path = dir + "/states.lcmlog";
+  const std::string channel = StateChannel("MRSIM", "snake");
+  int64_t first_utime = -1;
+  int64_t last_utime = -1;
+  {
+    lcm::LogFile log(log_path, "w");
+    ASSERT_TRUE(log.good());
+    int64_t event = 0;
+    auto write = [&](const std::string& ch, std::vector<unsigned char> data,
+                     int64_t utime) {
+      lcm::LogEvent ev;
+      ev.eventnum = event++;
+      ev.timestamp = utime;
+      ev.channel = ch;
+      ev.datalen = static_cast<int32_t>(data.size());
+      ev.data = data.data();
+      ASSERT_EQ(log.writeEvent(&ev), 0);
+    };
+    for (int k = 1; k <= 200; ++k) {
+      testing::DriveTo(&physics, k * 0.01);
+      const RobotState state = physics.ReadRobotState(0);
+      const int64_t utime = SimTimeToUtime(state.time);
+      if (first_utime < 0) first_utime = utime;
+      last_utime = utime;
+      write(channel, Encode(state, k), utime);
+      if (k == 50) write(channel, {1, 2, 3, 4, 5}, utime);  // malformed
+      if (k == 60) write("OTHER_CHANNEL", {9, 9}, utime);   // ignored
+    }
+  }
+  const double fps = 20.0;
+  int64_t expected = 0;
+  for (int64_t k = 0; k * 50000 <= last_utime; ++k) {
+    if (k * 50000 >= first_utime) ++expected;
+  }
+  ASSERT_GT(expected, 30);
+
+  const std::string video = dir + "/replay.mp4";
+  ChildProcess viewer({BinaryPath(kViewer), scenario_path, "--from-log",
+                       log_path, "--out", video, "--fps", "20", "--width",
+                       "320", "--height", "240", "--overlay", "wave"},
+                      dir + "/viewer.log");
+  ASSERT_EQ(viewer.Wait(90.0), 0) << viewer.Output();
+  int64_t frames = 0, first_index = 0, malformed = 0;
+  ASSERT_TRUE(ParseSummary(viewer.Output(), &frames, &first_index, &malformed))
+      << viewer.Output();
+  EXPECT_EQ(frames, expected);
+  EXPECT_EQ(malformed, 1);
+  (void)fps;
+
+  cv::VideoCapture capture(video);
+  ASSERT_TRUE(capture.isOpened());
+  std::vector<cv::Mat> images;
+  cv::Mat image;
+  while (capture.read(image)) images.push_back(image.clone());
+  ASSERT_EQ(static_cast<int64_t>(images.size()), expected);
+  EXPECT_EQ(images[0].cols, 320);
+  EXPECT_EQ(images[0].rows, 240);
+  int changed = 0;
+  for (size_t i = 0; i < images.size(); ++i) {
+    EXPECT_GT(testing::GreyStdDev(images[i]), 5.0) << "blank frame " << i;
+    if (i > 0 && testing::MeanAbsDiff(images[i], images[i - 1]) > 0.2) {
+      ++changed;
+    }
+  }
+  // The robot moves all the time, so nearly every frame differs.
+  EXPECT_GT(changed, static_cast<int>(images.size()) * 3 / 4);
+  EXPECT_GT(testing::MeanAbsDiff(images.front(), images.back()), 1.0);
+}
+
+TEST(ViewerProcess, LiveFrameMatchesFrameRenderedInProcess) {
+  const std::string dir = TempDir("viewer_live_match");
+  const std::string frames_dir = dir + "/frames";
+  const std::string url = TestLcmUrl(7801);
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  ChildProcess viewer({BinaryPath(kViewer),
+                       scenario_path,
+                       "--lcm-url",
+                       url,
+                       "--frames-dir",
+                       frames_dir,
+                       "--fps",
+                       "10",
+                       "--width",
+                       "320",
+                       "--height",
+                       "240",
+                       "--camera",
+                       "fixed",
+                       "--lookat",
+                       "0.1,0,0.05",
+                       "--distance",
+                       "0.9",
+                       "--azimuth",
+                       "120",
+                       "--elevation",
+                       "-30",
+                       "--overlay",
+                       "test wave",
+                       "--max-frames",
+                       "3"},
+                      dir + "/viewer.log");
+  ASSERT_TRUE(WaitForOutput(&viewer, "listening", 30.0)) << viewer.Output();
+
+  GlContext gl;
+  Physics physics(ReadScenarioFile(scenario_path));
+  Renderer renderer(physics.model(), 320, 240);
+  CameraSettings settings;
+  settings.mode = CameraMode::kFixed;
+  settings.lookat = Eigen::Vector3d(0.1, 0, 0.05);
+  settings.distance = 0.9;
+  settings.azimuth = 120;
+  settings.elevation = -30;
+  CameraControl camera(settings);
+
+  lcm::LCM lcm(url);
+  ASSERT_TRUE(lcm.good());
+  std::vector<cv::Mat> expected;
+  for (int k = 0; k < 3; ++k) {
+    testing::DriveTo(&physics, k * 0.1);
+    const RobotState state = physics.ReadRobotState(0);
+    Overlay overlay;
+    overlay.time = state.time;
+    overlay.speed = state.com_velocity.norm();
+    overlay.gait = "test wave";
+    cv::Mat image;
+    renderer.Render(physics.mutable_data(), camera.camera(),
+                    testing::PhysicsRays(physics, state), &overlay, &image);
+    expected.push_back(image);
+    const robot_state_t msg = ToRobotStateMessage(state, k);
+    lcm.publish(StateChannel("MRSIM", "snake"), &msg);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  // One more state past frame 2's time so it is due.
+  testing::DriveTo(&physics, 0.25);
+  const robot_state_t last = ToRobotStateMessage(physics.ReadRobotState(0), 3);
+  for (int i = 0; i < 20 && viewer.running(); ++i) {
+    lcm.publish(StateChannel("MRSIM", "snake"), &last);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(viewer.Wait(30.0), 0) << viewer.Output();
+  for (int k = 0; k < 3; ++k) {
+    const std::string file = FrameWriter::PngName(frames_dir, k);
+    const cv::Mat frame = cv::imread(file);
+    ASSERT_FALSE(frame.empty()) << file << "\n" << viewer.Output();
+    cv::imwrite(dir + "/expected_" + std::to_string(k) + ".png", expected[k]);
+    EXPECT_LT(testing::MeanAbsDiff(frame, expected[k]), 1.0)
+        << file << " vs " << dir << "/expected_" << k << ".png";
+  }
+  EXPECT_GT(testing::MeanAbsDiff(expected[0], expected[2]), 1.0);
+}
+
+TEST(ViewerProcess, LateJoinerShowsNewestStateAndSigtermLeavesPlayableVideo) {
+  const std::string dir = TempDir("viewer_late_join");
+  const std::string url = TestLcmUrl(7802);
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+
+  // The "simulator": about real time, a state every 20 ms of sim time.
+  std::atomic<bool> stop{false};
+  std::atomic<double> sim_time{0.0};
+  std::thread publisher([&] {
+    lcm::LCM lcm(url);
+    Physics physics(ReadScenarioFile(scenario_path));
+    int64_t seq = 0;
+    while (!stop) {
+      testing::DriveTo(&physics, physics.time() + 0.02);
+      const robot_state_t msg =
+          ToRobotStateMessage(physics.ReadRobotState(0), seq++);
+      lcm.publish(StateChannel("MRSIM", "snake"), &msg);
+      sim_time = physics.time();
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  while (sim_time < 1.0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const double joined_at = sim_time;
+  const std::string video = dir + "/late.mp4";
+  ChildProcess viewer(
+      {BinaryPath(kViewer), scenario_path, "--lcm-url", url, "--out", video,
+       "--fps", "10", "--width", "160", "--height", "120"},
+      dir + "/viewer.log");
+  const bool listening = WaitForOutput(&viewer, "listening", 30.0);
+  const double listening_at = sim_time;
+  while (listening && sim_time < listening_at + 1.0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  viewer.Signal(SIGTERM);
+  const int code = viewer.Wait(30.0);
+  stop = true;
+  publisher.join();
+  ASSERT_TRUE(listening) << viewer.Output();
+  ASSERT_EQ(code, 0) << viewer.Output();
+
+  int64_t frames = 0, first_index = 0, malformed = 0;
+  ASSERT_TRUE(ParseSummary(viewer.Output(), &frames, &first_index, &malformed))
+      << viewer.Output();
+  // It starts at what the simulator was doing when it joined, not at 0.
+  EXPECT_GE(first_index, static_cast<int64_t>(std::floor(joined_at * 10)));
+  EXPECT_GE(frames, 3);
+  EXPECT_EQ(malformed, 0);
+  cv::VideoCapture capture(video);
+  ASSERT_TRUE(capture.isOpened()) << "video not playable after SIGTERM";
+  int64_t read = 0;
+  cv::Mat image;
+  while (capture.read(image)) ++read;
+  EXPECT_EQ(read, frames);
+}
+
+TEST(ViewerProcess, BadScenarioExitsWithTwoAndNamesTheFile) {
+  const std::string dir = TempDir("viewer_bad_input");
+  const std::string bad = dir + "/broken.xml";
+  {
+    std::FILE* f = std::fopen(bad.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("<Scenario><robot><modules>", f);
+    std::fclose(f);
+  }
+  ChildProcess viewer({BinaryPath(kViewer), bad, "--frames-dir", dir + "/f"},
+                      dir + "/viewer.log");
+  EXPECT_EQ(viewer.Wait(30.0), 2);
+  EXPECT_NE(viewer.Output().find("broken.xml"), std::string::npos)
+      << viewer.Output();
+  ChildProcess no_output({BinaryPath(kViewer), bad}, dir + "/viewer2.log");
+  EXPECT_EQ(no_output.Wait(30.0), 2);
+}
+
+}  // namespace
+}  // namespace mrsim
