@@ -16,11 +16,11 @@ constexpr double kTwoPi = 6.28318530717958647692;
 
 // Sign conventions (docs/gait.md), measured on MakeChain robots: a positive
 // phase speed makes the pitch wave travel so the robot moves toward module
-// 0 (+x); a positive yaw offset bends the chain so it turns left
-// (counter-clockwise seen from above); a positive phase speed sidewinds to
-// the left of the robot's heading.
+// 0 (+x); a negative yaw offset bends the chain so it turns left
+// (counter-clockwise seen from above); a positive phase speed sidewinds
+// (sidewind preset) and rolls (rolling preset) to the left of the heading.
 constexpr double kForwardDrive = 1.0;
-constexpr double kLeftTurn = 1.0;
+constexpr double kLeftTurn = -1.0;
 constexpr double kSidewindLeftDrive = 1.0;
 constexpr double kRollDrive = 1.0;
 
@@ -68,7 +68,7 @@ GaitController::GaitController(std::vector<Axis> joint_axes,
     throw std::invalid_argument("gait controller: max_turn_offset not finite");
   }
   gaits_[KindIndex(GaitKind::kLinear)] = *FindGaitPreset("forward");
-  gaits_[KindIndex(GaitKind::kSidewind)] = *FindGaitPreset("sidewind-1");
+  gaits_[KindIndex(GaitKind::kSidewind)] = *FindGaitPreset("sidewind");
   gaits_[KindIndex(GaitKind::kRoll)] = *FindGaitPreset("rolling");
   drive_goal_ = kForwardDrive;
   Reset();

@@ -23,7 +23,8 @@ struct GaitControllerOptions {
   double shape_rate = 1.0;  // rad/s: amplitude and offset ramps
   double shift_rate = 3.14159265358979323846;  // rad/s: per-joint phase shift
   double drive_rate = 2.0;  // 1/s: ramp of the signed phase-speed factor
-  // Yaw offset (rad) added at turn strength 1 (turn-sharp's offset).
+  // Yaw offset (rad) at turn strength 1 (the size of turn-sharp's offset;
+  // turning left is a negative yaw offset on MakeChain robots).
   double max_turn_offset = 0.8;
   // |target| never exceeds this (mrsim-sim rejects targets beyond pi).
   double target_limit = 3.14159265358979323846;

@@ -1,6 +1,7 @@
 // The built-in gaits: the presets measured on an 11-module robot in the
 // original (domain.md section 4), with the pitch-to-yaw lag this project
-// adds for the sidewinding and rolling ones (docs/gait.md).
+// adds for the sidewinding ones, plus a sidewinding gait tuned for MuJoCo
+// (docs/gait.md).
 #pragma once
 
 #include <optional>
@@ -12,7 +13,7 @@
 namespace mrsim {
 
 // forward, forward-strong, turn-wide, turn-sharp, sidewind-1, sidewind-2,
-// rolling, in that order.
+// rolling (the domain's table, in that order), then sidewind (tuned here).
 const std::vector<Gait>& GaitPresets();
 // The preset with this name ('_' accepted for '-'), or nullopt.
 std::optional<Gait> FindGaitPreset(const std::string& name);

@@ -33,6 +33,19 @@ double BodyHeading(const RobotState& state) {
   return std::atan2(d.y(), d.x());
 }
 
+std::vector<double> ModuleRolls(const RobotState& state, double heading) {
+  const Eigen::Vector3d axis(std::cos(heading), std::sin(heading), 0.0);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d side = axis.cross(up);
+  std::vector<double> rolls;
+  for (const Pose& m : state.modules) {
+    Eigen::Vector3d u = m.orientation * Eigen::Vector3d::UnitZ();
+    u -= u.dot(axis) * axis;
+    rolls.push_back(std::atan2(u.dot(side), u.dot(up)));
+  }
+  return rolls;
+}
+
 GaitRunResult RunGait(Physics& physics, int robot, GaitController& controller,
                       double seconds, double control_period,
                       const GaitStepObserver& observer) {
@@ -60,6 +73,7 @@ GaitRunResult RunGait(Physics& physics, int robot, GaitController& controller,
   result.com_start = state.com;
   result.heading_start = BodyHeading(state);
   double heading = result.heading_start;
+  std::vector<double> rolls = ModuleRolls(state, heading);
   double last_time = physics.time();
   bool first = true;
   for (int k = 0; k < periods; ++k) {
@@ -78,6 +92,13 @@ GaitRunResult RunGait(Physics& physics, int robot, GaitController& controller,
     const double h = BodyHeading(state);
     result.heading_change += std::remainder(h - heading, 2 * M_PI);
     heading = h;
+    const std::vector<double> r = ModuleRolls(state, heading);
+    double roll_step = 0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      roll_step += std::remainder(r[i] - rolls[i], 2 * M_PI);
+    }
+    if (!r.empty()) result.roll_change += roll_step / r.size();
+    rolls = r;
     if (observer) observer(physics, targets);
   }
   result.periods = periods;

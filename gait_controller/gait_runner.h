@@ -24,6 +24,10 @@ std::vector<Axis> JointAxes(const Physics& physics, int robot);
 // compare headings a whole number of periods apart.
 double BodyHeading(const RobotState& state);
 
+// Each module's roll about the body axis given by `heading` (rad): the
+// angle of its local z axis from world up, right hand about the axis.
+std::vector<double> ModuleRolls(const RobotState& state, double heading);
+
 // Called after every control period, with the physics already stepped and
 // the targets that drove that period.
 using GaitStepObserver =
@@ -35,7 +39,10 @@ struct GaitRunResult {
   Eigen::Vector3d com_end = Eigen::Vector3d::Zero();
   double heading_start = 0.0;   // rad, BodyHeading
   double heading_change = 0.0;  // rad, unwrapped over every period
-  double energy = 0.0;          // J, sum of |torque * speed| dt over hinges
+  // rad: mean over the modules of each one's rotation about the body axis
+  // (right hand about the tail-to-head direction), unwrapped every period.
+  double roll_change = 0.0;
+  double energy = 0.0;  // J, sum of |torque * speed| dt over hinges
 };
 
 // Runs round(seconds / control_period) periods; control_period must be a

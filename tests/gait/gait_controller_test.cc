@@ -152,7 +152,8 @@ TEST(GaitController, TurnOffsetsOnlyTheYawJoints) {
   GaitController c(PitchYawChain(6));
   c.SetMotion(Motion::kTurnLeft, 0.5);
   const auto& g = c.goal_waves();
-  const double o = 0.5 * c.options().max_turn_offset;
+  // Left is a negative yaw offset (docs/gait.md).
+  const double o = -0.5 * c.options().max_turn_offset;
   for (int j = 0; j < 6; ++j) {
     EXPECT_DOUBLE_EQ(g[j].offset, j % 2 ? o : 0.0) << j;
     EXPECT_DOUBLE_EQ(g[j].amplitude, j % 2 ? 0.0 : 1.0) << j;
@@ -161,7 +162,7 @@ TEST(GaitController, TurnOffsetsOnlyTheYawJoints) {
   EXPECT_DOUBLE_EQ(c.goal_waves()[1].offset, -o);
   c.SetDirection(0.2, -1.0);
   EXPECT_EQ(c.motion(), Motion::kTurnRight);
-  EXPECT_DOUBLE_EQ(c.goal_waves()[3].offset, -c.options().max_turn_offset);
+  EXPECT_DOUBLE_EQ(c.goal_waves()[3].offset, c.options().max_turn_offset);
 }
 
 TEST(GaitController, PeriodChangeKeepsThePhaseContinuous) {
@@ -184,6 +185,7 @@ TEST(GaitController, GaitKindSelectsTheMotion) {
   EXPECT_EQ(c.active_kind(), GaitKind::kRoll);
   c.SetGait(*FindGaitPreset("sidewind-1"));
   EXPECT_EQ(c.motion(), Motion::kSidewindLeft);
+  EXPECT_EQ(c.active_gait().name, "sidewind-1");
   c.SetMotion(Motion::kForward);
   EXPECT_EQ(c.active_gait().name, "forward");
   c.SetMotion(Motion::kSidewindRight);
