@@ -236,11 +236,24 @@ void LcmTypeRegistry::AddPath(const std::string& path) {
 LcmTypeRegistry LcmTypeRegistry::WithBuiltinTypes() {
   LcmTypeRegistry registry;
   for (const EmbeddedLcmSource& src : EmbeddedLcmSources()) {
-    for (LcmStruct& s : ParseLcmDefinitions(src.text, src.name)) {
-      registry.by_name_[s.full_name()] = std::move(s);
+    try {
+      for (LcmStruct& s : ParseLcmDefinitions(src.text, src.name)) {
+        registry.by_name_[s.full_name()] = std::move(s);
+      }
+    } catch (const std::runtime_error& e) {
+      registry.warnings_.push_back(std::string(e.what()) +
+                                   " (its types are not decoded)");
     }
   }
   registry.Reindex();
+  for (const auto& [name, s] : registry.by_name_) {
+    if (std::none_of(registry.by_hash_.begin(), registry.by_hash_.end(),
+                     [&](const auto& h) { return h.second == name; })) {
+      registry.warnings_.push_back("LCM type " + name +
+                                   " uses a type that is not defined (its "
+                                   "messages are not decoded)");
+    }
+  }
   return registry;
 }
 

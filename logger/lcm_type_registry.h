@@ -50,8 +50,11 @@ class LcmTypeRegistry {
   void AddDefinitions(const std::string& text, const std::string& source_name);
   // Adds a .lcm file, or every .lcm file of a folder. Throws naming the path.
   void AddPath(const std::string& path);
-  // The types generated from lcmtypes/mrsim/*.lcm at build time.
+  // The types generated from lcmtypes/mrsim/*.lcm at build time. A file
+  // that does not parse is left out and named in warnings(), so one new
+  // definition cannot stop the logger.
   static LcmTypeRegistry WithBuiltinTypes();
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   // The struct whose fingerprint is `hash`, or nullptr.
   const LcmStruct* FindByHash(int64_t hash) const;
@@ -69,6 +72,7 @@ class LcmTypeRegistry {
 
   std::map<std::string, LcmStruct> by_name_;
   std::map<int64_t, std::string> by_hash_;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace mrsim

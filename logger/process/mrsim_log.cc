@@ -67,7 +67,12 @@ struct Options {
 
 void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
            mrsim::MessageQueue* queue) {
-  queue->Push(channel, rbuf->data, rbuf->data_size);
+  try {
+    queue->Push(channel, rbuf->data, rbuf->data_size);
+  } catch (const std::exception&) {
+    // Out of memory for one copy: the seq gap will show it; LCM's C code
+    // must not see an exception.
+  }
 }
 
 void Progress(const mrsim::Recorder& recorder, bool quiet) {
@@ -176,7 +181,7 @@ void RunFromLog(const Options& opt, const std::string& regex,
   if (!log.good()) {
     throw std::runtime_error("cannot read LCM log " + opt.from_log);
   }
-  const std::regex re(regex, std::regex::extended);
+  const std::regex re(regex, std::regex::ECMAScript);
   auto last_progress = Clock::now();
   int64_t events = 0;
   while (!mrsim::StopRequested() && !recorder.failed()) {
@@ -271,7 +276,7 @@ int main(int argc, char** argv) {
   const std::string regex =
       opt.channels.empty() ? opt.prefix + "_.*" : ChannelRegex(opt.channels);
   try {
-    std::regex check(regex, std::regex::extended);
+    std::regex check(regex, std::regex::ECMAScript);
   } catch (const std::regex_error& e) {
     std::fprintf(stderr,
                  "mrsim-log: --channels '%s' is not a valid regular "
@@ -294,6 +299,9 @@ int main(int argc, char** argv) {
   try {
     mrsim::LcmTypeRegistry registry =
         mrsim::LcmTypeRegistry::WithBuiltinTypes();
+    for (const std::string& w : registry.warnings()) {
+      std::fprintf(stderr, "mrsim-log: warning: %s\n", w.c_str());
+    }
     for (const std::string& t : opt.types) {
       try {
         registry.AddPath(t);
