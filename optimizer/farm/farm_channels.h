@@ -7,8 +7,6 @@
 namespace mrsim {
 
 inline constexpr const char* kDefaultFarmPrefix = "MRSIM_OPT";
-// Payload chunks stay well under LCM's 64 KB fragment.
-inline constexpr int kFarmChunkSize = 48000;
 
 struct FarmChannels {
   explicit FarmChannels(const std::string& prefix)

@@ -41,7 +41,8 @@ FarmEvaluator::FarmEvaluator(lcm::LCM& lcm, std::string payload,
       run_id_(std::move(run_id)),
       hash_(HashHex(Fnv1a64(payload_))),
       settings_(std::move(settings)),
-      chunks_(SplitPayload(payload_, kFarmChunkSize)) {
+      chunks_(SplitPayload(payload_, static_cast<size_t>(std::clamp(
+                                         settings_.chunk_size, 1, 60000)))) {
   const FarmChannels ch(settings_.prefix);
   subscriptions_.push_back(
       lcm_.subscribe(ch.heartbeat, &FarmEvaluator::OnHeartbeat, this));
@@ -71,7 +72,7 @@ void FarmEvaluator::Announce() {
   msg.scenario_hash = hash_;
   msg.payload_size = static_cast<std::int64_t>(payload_.size());
   msg.chunk_count = static_cast<int32_t>(chunks_.size());
-  msg.chunk_size = kFarmChunkSize;
+  msg.chunk_size = static_cast<int32_t>(chunks_.front().size());
   lcm_.publish(FarmChannels(settings_.prefix).run, &msg);
   last_announce_ = Clock::now();
 }

@@ -32,6 +32,7 @@ struct FarmSettings {
   double worker_timeout = 2.0;    // s without heartbeat: the worker is gone
   int extra_jobs_per_worker = 1;  // queued beyond its slots (hides latency)
   double announce_period = 0.5;   // s
+  int chunk_size = 48000;         // payload bytes per chunk (<= 60000)
   std::function<bool()> stop;     // polled; true abandons the batch
   std::function<void(const std::string&)> log;  // events (worker joined...)
 };

@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
   app.add_option("--worker-timeout", farm_settings.worker_timeout,
                  "Farm: s without heartbeat before a worker counts as gone")
       ->capture_default_str();
+  app.add_option("--chunk-size", farm_settings.chunk_size,
+                 "Farm: payload bytes per chunk (1..60000)")
+      ->capture_default_str();
   app.add_option("--jump-to", jump_to,
                  "Stop after generation N (replayed from the checkpoint "
                  "when it has them)");

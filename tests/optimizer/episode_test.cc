@@ -6,6 +6,8 @@
 
 #include "gait_controller/gait_presets.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/local_evaluator.h"
+#include "optimizer/optimization_run.h"
 #include "optimizer/problem_codec.h"
 #include "sim_core/chain_builder.h"
 
@@ -102,6 +104,25 @@ TEST(OptimizerProblem, PayloadRoundTripsAndNamesNoFile) {
   EXPECT_THROW(DecodeProblem("garbage", "test"), ProblemError);
   EXPECT_THROW(DecodeProblem(payload.substr(0, payload.size() / 2), "test"),
                ProblemError);
+}
+
+TEST(OptimizerEpisode, SeededLocalRunGivesTheSameResultTwice) {
+  const Problem problem = SnakeProblem(1.0);
+  AlgorithmSettings settings;
+  settings.population = 4;
+  settings.seed = 23;
+  RunOptions options;
+  options.generations = 3;
+  auto run = [&](int threads) {
+    LocalEvaluator evaluator(
+        [&](const Genome& g) { return RunEpisode(problem, g); }, threads);
+    return RunOptimization(problem.genome, settings, evaluator, options);
+  };
+  const RunResult a = run(1);
+  const RunResult b = run(2);
+  EXPECT_EQ(a.best, b.best);
+  EXPECT_EQ(a.best_result.fitness, b.best_result.fitness);
+  EXPECT_EQ(a.best_generation, b.best_generation);
 }
 
 }  // namespace

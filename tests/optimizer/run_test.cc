@@ -41,7 +41,8 @@ TEST(OptimizerRun, InterruptedRunResumesToTheSameResult) {
   RunOptions options;
   options.generations = 10;
 
-  options.out_dir = testing::TempDir("optimizer_run_straight");
+  const std::string straight_dir = testing::TempDir("optimizer_run_straight");
+  options.out_dir = straight_dir;
   CountingEvaluator straight_eval;
   const RunResult straight =
       RunOptimization(spec, settings, straight_eval, options);
@@ -60,9 +61,7 @@ TEST(OptimizerRun, InterruptedRunResumesToTheSameResult) {
   EXPECT_EQ(first.evaluated + second.evaluated, straight_eval.evaluated + 0);
   for (const char* f :
        {"/generations.csv", "/evaluations.csv", "/checkpoint.txt"}) {
-    EXPECT_EQ(ReadAll(options.out_dir + f),
-              ReadAll(testing::TempDir("") + "/optimizer_run_straight" + f))
-        << f;
+    EXPECT_EQ(ReadAll(options.out_dir + f), ReadAll(straight_dir + f)) << f;
   }
 }
 

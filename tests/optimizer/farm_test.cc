@@ -1,0 +1,149 @@
+// The farm and the master as real processes: mrsim-opt and mrsim-worker
+// over LCM on loopback (ports 7700-7749), short real snake episodes.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::SourcePath;
+using testing::TempDir;
+using testing::TestLcmUrl;
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> OptArgs(const std::string& out) {
+  return {BinaryPath("optimizer/process/mrsim-opt"),
+          SourcePath("scenarios/snake11.xml"),
+          "--genome",
+          SourcePath("scenarios/forward_gait.genome.xml"),
+          "--algorithm",
+          "ga",
+          "--generations",
+          "4",
+          "--population",
+          "6",
+          "--seed",
+          "17",
+          "--episode",
+          "2",
+          "--out",
+          out};
+}
+
+std::vector<std::string> With(std::vector<std::string> args,
+                              const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+bool WaitForText(ChildProcess& p, const std::string& text, double seconds) {
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::milliseconds(static_cast<int>(seconds * 1000));
+  while (std::chrono::steady_clock::now() < end) {
+    if (p.Output().find(text) != std::string::npos) return true;
+    if (!p.running()) return p.Output().find(text) != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// The files a run's result consists of must match byte for byte.
+void ExpectSameResult(const std::string& a, const std::string& b) {
+  for (const char* f :
+       {"/generations.csv", "/evaluations.csv", "/best_gait.xml",
+        "/best_scenario.xml", "/best_genome.xml"}) {
+    const std::string x = ReadAll(a + f);
+    EXPECT_FALSE(x.empty()) << a << f;
+    EXPECT_EQ(x, ReadAll(b + f)) << f;
+  }
+}
+
+std::string LocalReference(const std::string& name) {
+  const std::string dir = TempDir(name);
+  ChildProcess local(With(OptArgs(dir), {"--workers", "local:2"}),
+                     dir + "/log.txt");
+  EXPECT_EQ(local.Wait(90), 0) << local.Output();
+  return dir;
+}
+
+TEST(FarmProcess, KilledAndLateWorkersGiveTheLocalResult) {
+  const std::string local = LocalReference("farm_local_ref");
+  const std::string url = TestLcmUrl(7701);
+  const std::string dir = TempDir("farm_run");
+  auto worker = [&](const std::string& id) {
+    return std::make_unique<ChildProcess>(
+        std::vector<std::string>{BinaryPath("optimizer/process/mrsim-worker"),
+                                 "--lcm-url", url, "--id", id},
+        dir + "/" + id + ".log");
+  };
+  auto w1 = worker("w1");
+  auto w2 = worker("w2");
+  // Small chunks so the payload travels in several acknowledged pieces.
+  ChildProcess master(
+      With(OptArgs(dir), {"--farm", "--lcm-url", url, "--worker-timeout", "1",
+                          "--chunk-size", "4000"}),
+      dir + "/master.log");
+  ASSERT_TRUE(WaitForText(master, "generation 1 of 4", 60)) << master.Output();
+  w1->Signal(SIGKILL);  // mid-generation 2: its jobs go elsewhere
+  auto w3 = worker("w3");
+  ASSERT_EQ(master.Wait(90), 0) << master.Output();
+  const std::string log = master.Output();
+  EXPECT_NE(log.find("worker w1 is gone"), std::string::npos) << log;
+  EXPECT_NE(log.find("worker w3 ("), std::string::npos) << log;
+  EXPECT_NE(w3->Output().find("ready"), std::string::npos) << w3->Output();
+  ExpectSameResult(local, dir);
+}
+
+TEST(OptimizerProcess, MasterKilledAndRestartedEndsWithTheSameResult) {
+  const std::string local = LocalReference("opt_resume_ref");
+  const std::string dir = TempDir("opt_resume");
+  const auto args = With(OptArgs(dir), {"--workers", "local:2"});
+  {
+    ChildProcess first(args, dir + "/first.log");
+    ASSERT_TRUE(WaitForText(first, "generation 2 of 4", 60)) << first.Output();
+    first.Signal(SIGKILL);
+    EXPECT_EQ(first.Wait(10), 128 + SIGKILL);
+  }
+  ChildProcess second(args, dir + "/second.log");
+  ASSERT_EQ(second.Wait(90), 0) << second.Output();
+  EXPECT_NE(second.Output().find("from checkpoint"), std::string::npos)
+      << second.Output();
+  ExpectSameResult(local, dir);
+}
+
+TEST(OptimizerProcess, BadInputExitsWithTwoNamingTheProblem) {
+  const std::string dir = TempDir("opt_bad_input");
+  {
+    std::ofstream(dir + "/bad.genome.xml")
+        << "<genome>\n  <gene name=\"T\" lower=\"1\" upper=\"oops\" "
+           "start=\"2\"/>\n</genome>\n";
+  }
+  std::vector<std::string> args = OptArgs(dir + "/out");
+  args[3] = dir + "/bad.genome.xml";
+  ChildProcess p(args, dir + "/log.txt");
+  EXPECT_EQ(p.Wait(30), 2);
+  EXPECT_NE(p.Output().find("bad.genome.xml:2"), std::string::npos)
+      << p.Output();
+  ChildProcess q(With(OptArgs(dir + "/out2"), {"--algorithm", "cmaes"}),
+                 dir + "/log2.txt");
+  EXPECT_EQ(q.Wait(30), 2);
+  EXPECT_NE(q.Output().find("algorithm"), std::string::npos) << q.Output();
+}
+
+}  // namespace
+}  // namespace mrsim
