@@ -17,6 +17,11 @@ inline std::string CommandChannel(const std::string& prefix,
                                   const std::string& robot) {
   return prefix + "_COMMAND_" + robot;
 }
+// Run-time gait changes for one robot's mrsim-gait (gait_command_t).
+inline std::string GaitChannel(const std::string& prefix,
+                               const std::string& robot) {
+  return prefix + "_GAIT_" + robot;
+}
 inline std::string SimControlChannel(const std::string& prefix) {
   return prefix + "_SIM_CONTROL";
 }
