@@ -2,37 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include "mrsim/joint_command_t.hpp"
-#include "mrsim/joint_state_t.hpp"
-#include "mrsim/pose_t.hpp"
-#include "mrsim/robot_state_t.hpp"
-#include "mrsim/sensor_module_state_t.hpp"
-#include "mrsim/sim_control_t.hpp"
-#include "mrsim/sim_status_t.hpp"
-
 namespace mrsim {
 namespace {
 
-template <typename T>
-void ExpectSameFingerprint(const LcmTypeRegistry& registry,
-                           const std::string& name) {
-  const LcmStruct* s = registry.FindByName(name);
-  ASSERT_NE(s, nullptr) << name;
-  EXPECT_EQ(registry.Fingerprint(*s), T::getHash()) << name;
-  EXPECT_EQ(registry.FindByHash(T::getHash()), s) << name;
-}
-
-TEST(LoggerTypes, FingerprintsMatchTheGeneratedCode) {
-  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
-  ExpectSameFingerprint<robot_state_t>(registry, "mrsim.robot_state_t");
-  ExpectSameFingerprint<pose_t>(registry, "mrsim.pose_t");
-  ExpectSameFingerprint<joint_state_t>(registry, "mrsim.joint_state_t");
-  ExpectSameFingerprint<sensor_module_state_t>(registry,
-                                               "mrsim.sensor_module_state_t");
-  ExpectSameFingerprint<joint_command_t>(registry, "mrsim.joint_command_t");
-  ExpectSameFingerprint<sim_control_t>(registry, "mrsim.sim_control_t");
-  ExpectSameFingerprint<sim_status_t>(registry, "mrsim.sim_status_t");
-}
+// Fingerprints against the generated code: all_types_test.cc (generated).
 
 TEST(LoggerTypes, EveryBuiltinTypeHasAFingerprint) {
   const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
