@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,6 +11,7 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_control_t.hpp"
+#include "sim_core/checkpoint.h"
 #include "sim_core/sim_process/state_message.h"
 
 namespace mrsim {
@@ -69,21 +69,21 @@ const char* ToString(StopReason reason) {
   return "?";
 }
 
-SimServer::SimServer(lcm::LCM& lcm, Physics& physics, SimOptions options,
-                     std::ostream& log)
+SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
+                     SimOptions options, std::ostream& log)
     : lcm_(lcm),
-      physics_(physics),
+      physics_(std::move(physics)),
       options_(std::move(options)),
       log_(log),
-      filter_(RobotNames(physics), JointCounts(physics)) {
+      filter_(RobotNames(*physics_), JointCounts(*physics_)) {
   options_.Validate();
-  const double dt = physics_.timestep();
+  const double dt = physics_->timestep();
   steps_per_period_ =
       std::max(1, static_cast<int>(std::lround(1.0 / (options_.rate * dt))));
   period_ = steps_per_period_ * dt;
   paused_ = options_.paused;
-  pending_.resize(physics_.robot_count());
-  pending_controller_.assign(physics_.robot_count(), -1);
+  pending_.resize(physics_->robot_count());
+  pending_controller_.assign(physics_->robot_count(), -1);
 
   lcm::Subscription* commands =
       lcm_.subscribe(EscapeRegex(CommandChannel(options_.prefix, "")) + ".*",
@@ -97,7 +97,7 @@ SimServer::SimServer(lcm::LCM& lcm, Physics& physics, SimOptions options,
   control->setQueueCapacity(kControlQueueCapacity);
   subscriptions_ = {commands, control};
   last_status_ = Clock::now();
-  last_status_sim_time_ = physics_.time();
+  last_status_sim_time_ = physics_->time();
 }
 
 SimServer::~SimServer() {
@@ -120,7 +120,7 @@ StopReason SimServer::Run(const std::function<bool()>& stop_requested) {
       break;
     }
     if (options_.duration > 0 &&
-        physics_.time() >= options_.duration - 0.5 * physics_.timestep()) {
+        physics_->time() >= options_.duration - 0.5 * physics_->timestep()) {
       reason = StopReason::kDuration;
       break;
     }
@@ -214,7 +214,7 @@ void SimServer::CheckLockstepWait() {
   std::ostringstream line;
   line.precision(3);
   line << "mrsim-sim: lockstep: state seq " << state_seq_
-       << " (t=" << physics_.time() << " s) has waited " << waited
+       << " (t=" << physics_->time() << " s) has waited " << waited
        << " s for controller(s) " << names << "; still waiting";
   log_ << line.str() << std::endl;
   PublishStatus();
@@ -224,7 +224,7 @@ void SimServer::RunPeriod() {
   for (size_t r = 0; r < pending_.size(); ++r) {
     if (!pending_[r]) continue;
     try {
-      physics_.SetJointTargets(static_cast<int>(r), pending_[r]->target);
+      physics_->SetJointTargets(static_cast<int>(r), pending_[r]->target);
       ++commands_applied_;
     } catch (const std::invalid_argument&) {
       ++rejected_value_;  // the filter should have caught it; never apply
@@ -233,7 +233,7 @@ void SimServer::RunPeriod() {
     pending_controller_[r] = -1;
   }
   try {
-    physics_.Step(steps_per_period_);
+    physics_->Step(steps_per_period_);
   } catch (const PhysicsError& e) {
     Fail(std::string("physics: ") + e.what() +
          " (paused; send RESET or LOAD_CHECKPOINT)");
@@ -259,22 +259,27 @@ void SimServer::PublishStates() {
 
 void SimServer::SendStates() {
   if (!options_.publish_state) return;
-  for (int r = 0; r < physics_.robot_count(); ++r) {
+  for (int r = 0; r < physics_->robot_count(); ++r) {
     const robot_state_t msg =
-        ToRobotStateMessage(physics_.ReadRobotState(r), state_seq_);
-    lcm_.publish(StateChannel(options_.prefix, physics_.robot_name(r)), &msg);
+        ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);
+    lcm_.publish(StateChannel(options_.prefix, physics_->robot_name(r)), &msg);
   }
 }
 
 sim_status_t SimServer::status() const {
   sim_status_t s{};
-  s.utime = SimTimeToUtime(physics_.time());
+  s.utime = SimTimeToUtime(physics_->time());
   s.seq = status_seq_;
-  s.sim_time = physics_.time();
+  s.sim_time = physics_->time();
   s.real_time_factor = real_time_factor_;
-  s.mode = quit_ ? sim_status_t::STOPPING
-                 : (paused_ && steps_pending_ == 0 ? sim_status_t::PAUSED
-                                                   : sim_status_t::RUNNING);
+  // lcm-gen's constants are declared, not defined: copy, never bind.
+  if (quit_) {
+    s.mode = sim_status_t::STOPPING;
+  } else if (paused_ && steps_pending_ == 0) {
+    s.mode = sim_status_t::PAUSED;
+  } else {
+    s.mode = sim_status_t::RUNNING;
+  }
   s.clock = ToString(options_.clock);
   s.speed = options_.speed;
   s.control_rate = 1.0 / period_;
@@ -303,9 +308,9 @@ void SimServer::PublishStatus() {
   const double wall = Seconds(now - last_status_);
   if (wall > 0.05) {
     real_time_factor_ =
-        std::max(0.0, (physics_.time() - last_status_sim_time_) / wall);
+        std::max(0.0, (physics_->time() - last_status_sim_time_) / wall);
     last_status_ = now;
-    last_status_sim_time_ = physics_.time();
+    last_status_sim_time_ = physics_->time();
   }
   const sim_status_t s = status();
   lcm_.publish(SimStatusChannel(options_.prefix), &s);
@@ -453,9 +458,11 @@ void SimServer::HandleControl(const lcm::ReceiveBuffer* rbuf) {
       steps_pending_ += msg.steps;
       break;
     case sim_control_t::RESET:
-      physics_.Reset();
+      // A fresh build, not Physics::Reset: MuJoCo keeps solver scratch
+      // between steps that a reset in place does not clear.
+      physics_ = std::make_unique<Physics>(physics_->scenario());
       ClearPending();
-      last_status_sim_time_ = physics_.time();
+      last_status_sim_time_ = physics_->time();
       PublishStates();
       break;
     case sim_control_t::SAVE_CHECKPOINT:
@@ -469,7 +476,7 @@ void SimServer::HandleControl(const lcm::ReceiveBuffer* rbuf) {
       try {
         LoadCheckpoint(msg.path);
         ClearPending();
-        last_status_sim_time_ = physics_.time();
+        last_status_sim_time_ = physics_->time();
         PublishStates();
       } catch (const std::exception& e) {
         Fail(e.what());
@@ -493,34 +500,28 @@ void SimServer::HandleControl(const lcm::ReceiveBuffer* rbuf) {
   PublishStatus();
 }
 
-// Until sim_core/checkpoint.h lands: a tagged blob of Physics::SaveState.
 void SimServer::SaveCheckpoint(const std::string& path) const {
   if (path.empty()) throw std::runtime_error("checkpoint: empty path");
-  const std::vector<unsigned char> bytes = physics_.SaveState();
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << "MRSIMSTATE1\n";
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw std::runtime_error("checkpoint: cannot write " + path);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    throw std::runtime_error("checkpoint: cannot write " + path);
-  }
+  mrsim::SaveCheckpoint(path, *physics_);
 }
 
 void SimServer::LoadCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("checkpoint: cannot read " + path);
-  std::string tag;
-  std::getline(in, tag);
-  if (tag != "MRSIMSTATE1") {
-    throw std::runtime_error("checkpoint: " + path + " is not an mrsim state");
+  std::unique_ptr<Physics> loaded = mrsim::LoadCheckpoint(path);
+  // The running process keeps its robots and channels, so only a checkpoint
+  // of the same scenario can be loaded into it.
+  Scenario mine = physics_->scenario();
+  Scenario theirs = loaded->scenario();
+  mine.base_dir.clear();
+  theirs.base_dir.clear();
+  if (!(mine == theirs)) {
+    throw std::runtime_error("checkpoint: " + path +
+                             " holds a different scenario than the one "
+                             "running; start mrsim-sim with --load-checkpoint");
   }
-  const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in),
-                                         std::istreambuf_iterator<char>()};
-  physics_.LoadState(bytes);
+  // Swap in the fresh Physics rather than LoadState into the running one,
+  // whose leftover solver scratch would differ in the last bits from a
+  // process started with --load-checkpoint.
+  physics_ = std::move(loaded);
 }
 
 std::string SimServer::Summary(StopReason reason) const {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -36,7 +37,7 @@ class SimServer {
   // Subscribes to <prefix>_COMMAND_* and <prefix>_SIM_CONTROL. Throws
   // std::invalid_argument on bad options.
   // Warnings (lockstep timeouts, physics errors) go to `log`.
-  SimServer(lcm::LCM& lcm, Physics& physics, SimOptions options,
+  SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics, SimOptions options,
             std::ostream& log);
   ~SimServer();
   SimServer(const SimServer&) = delete;
@@ -46,8 +47,11 @@ class SimServer {
   // at least every 50 ms). Writes --checkpoint-on-exit before returning.
   StopReason Run(const std::function<bool()>& stop_requested);
 
-  // Checkpoint files: the physics state plus the scenario (throws
-  // std::runtime_error naming the path).
+  const Physics& physics() const { return *physics_; }
+
+  // Checkpoint files (sim_core/checkpoint.h): the scenario plus the exact
+  // state. Loading needs the same scenario as the running one. Throw
+  // std::runtime_error naming the path.
   void SaveCheckpoint(const std::string& path) const;
   void LoadCheckpoint(const std::string& path);
 
@@ -86,7 +90,7 @@ class SimServer {
   void Fail(const std::string& error);
 
   lcm::LCM& lcm_;
-  Physics& physics_;
+  std::unique_ptr<Physics> physics_;
   SimOptions options_;
   std::ostream& log_;
   int steps_per_period_ = 1;

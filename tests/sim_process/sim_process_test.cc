@@ -1,0 +1,414 @@
+// mrsim-sim as a real process on loopback multicast, driven by real
+// controller processes and by the test over LCM.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mrsim/joint_command_t.hpp"
+#include "sim_core/physics.h"
+#include "sim_core/scenario_xml.h"
+#include "sim_core/sim_process/state_message.h"
+#include "tests/common/child_process.h"
+#include "tests/sim_process/sim_client.h"
+#include "tests/sim_process/wave_law.h"
+
+namespace mrsim::testing {
+namespace {
+
+constexpr double kRate = 100.0;
+
+// Every number a state message carries about the robot's body, exactly.
+void ExpectSameBody(const robot_state_t& a, const robot_state_t& b) {
+  EXPECT_EQ(a.sim_time, b.sim_time);
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (size_t i = 0; i < a.frames.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(a.frames[i].position[k], b.frames[i].position[k])
+          << "frame " << i;
+    }
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(a.frames[i].orientation[k], b.frames[i].orientation[k])
+          << "frame " << i;
+    }
+  }
+  ASSERT_EQ(a.joints.size(), b.joints.size());
+  for (size_t i = 0; i < a.joints.size(); ++i) {
+    EXPECT_EQ(a.joints[i].angle, b.joints[i].angle) << "joint " << i;
+    EXPECT_EQ(a.joints[i].speed, b.joints[i].speed) << "joint " << i;
+  }
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.com[k], b.com[k]);
+    EXPECT_EQ(a.com_velocity[k], b.com_velocity[k]);
+  }
+}
+
+int StepsPerPeriod(const Physics& physics) {
+  return static_cast<int>(std::lround(1.0 / (kRate * physics.timestep())));
+}
+
+// The same closed loop as sim + test_controller in lockstep, in one process.
+robot_state_t InProcessWaveRun(const std::string& scenario_path, int periods) {
+  Physics physics(ReadScenarioFile(scenario_path));
+  const int steps = StepsPerPeriod(physics);
+  for (int k = 0; k < periods; ++k) {
+    const robot_state_t msg = ToRobotStateMessage(physics.ReadRobotState(0), k);
+    physics.SetJointTargets(0, WaveTargets(msg));
+    physics.Step(steps);
+  }
+  return ToRobotStateMessage(physics.ReadRobotState(0), periods);
+}
+
+std::vector<std::string> SimArgs(const std::string& scenario, int port,
+                                 std::vector<std::string> extra) {
+  std::vector<std::string> args = {SimBinary(),      scenario, "--lcm-url",
+                                   TestLcmUrl(port), "--rate", "100"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+TEST(SimProcess, LockstepWithExternalControllerMatchesInProcessRun) {
+  const std::string dir = TempDir("sim_lockstep");
+  const std::string scenario = TestScenarioPath(dir);
+  const int port = 7600;
+  SimClient client(TestLcmUrl(port));
+  ASSERT_TRUE(client.good());
+  const int periods = 150;  // 1.5 s of sim time
+  ChildProcess sim(SimArgs(scenario, port,
+                           {"--clock", "lockstep", "--controllers", "ctl",
+                            "--duration", "1.5"}),
+                   dir + "/sim.log");
+  ChildProcess controller(
+      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "ctl"},
+      dir + "/controller.log");
+  ASSERT_TRUE(client.WaitFor([&] { return !sim.running(); }, 60.0))
+      << sim.Output();
+  EXPECT_EQ(sim.Wait(1.0), 0) << sim.Output();
+  client.Spin(0.1);
+
+  ASSERT_EQ(client.states().size(), 1u);
+  const robot_state_t& external = client.states().begin()->second;
+  EXPECT_EQ(external.seq, periods);
+  ASSERT_TRUE(client.status().has_value());
+  EXPECT_EQ(client.status()->commands_applied, periods) << sim.Output();
+  const robot_state_t internal = InProcessWaveRun(scenario, periods);
+  ExpectSameBody(external, internal);
+  // The controller really moved the snake (the comparison is not trivial).
+  EXPECT_GT(std::abs(internal.joints[0].angle), 1e-3);
+  EXPECT_NE(sim.Output().find("mrsim-sim: stopped (duration reached)"),
+            std::string::npos)
+      << sim.Output();
+}
+
+TEST(SimProcess, LockstepWaitsForALateControllerAndNamesIt) {
+  const std::string dir = TempDir("sim_lockstep_late");
+  const std::string scenario = TestScenarioPath(dir);
+  const int port = 7605;
+  SimClient client(TestLcmUrl(port));
+  ChildProcess sim(SimArgs(scenario, port,
+                           {"--clock", "lockstep", "--controllers", "a,late",
+                            "--lockstep-timeout", "0.3"}),
+                   dir + "/sim.log");
+  ChildProcess a(
+      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "a"});
+  ASSERT_TRUE(client.WaitFor(
+      [&] { return client.status() && client.status()->waiting_for == "late"; },
+      10.0))
+      << sim.Output();
+  // Nothing advances while one controller is missing.
+  EXPECT_EQ(client.status()->state_seq, 0);
+  EXPECT_EQ(client.status()->sim_time, 0.0);
+  EXPECT_NE(sim.Output().find("controller(s) late"), std::string::npos)
+      << sim.Output();
+
+  ChildProcess late(
+      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "late"});
+  EXPECT_TRUE(client.WaitFor(
+      [&] { return client.status() && client.status()->state_seq > 20; },
+      20.0));
+  EXPECT_EQ(client.status()->waiting_for, "");
+  EXPECT_EQ(sim.Stop(5.0), 0);
+}
+
+TEST(SimProcess, PauseStepResume) {
+  const std::string dir = TempDir("sim_pause");
+  const std::string scenario = TestScenarioPath(dir);
+  const int port = 7601;
+  SimClient client(TestLcmUrl(port));
+  ChildProcess sim(SimArgs(scenario, port, {"--clock", "realtime", "--paused"}),
+                   dir + "/sim.log");
+  ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
+  client.Spin(0.3);
+  EXPECT_EQ(client.status()->mode, int8_t{sim_status_t::PAUSED});
+  EXPECT_EQ(client.status()->sim_time, 0.0);
+  EXPECT_EQ(client.status()->state_seq, 0);
+  const int steps_per_period = client.status()->steps_per_period;
+  ASSERT_GE(steps_per_period, 1);
+
+  // STEP 7 runs exactly seven control periods, then stays paused.
+  ASSERT_TRUE(client.StepAndWait(7)) << sim.Output();
+  client.Spin(0.3);
+  EXPECT_EQ(client.status()->state_seq, 7);
+  EXPECT_EQ(client.status()->steps, 7 * steps_per_period);
+  EXPECT_EQ(client.status()->mode, int8_t{sim_status_t::PAUSED});
+  EXPECT_EQ(client.last_state_seq(), 7);
+  const double t7 = client.status()->sim_time;
+  EXPECT_NEAR(t7, 0.07, 1e-9);
+
+  // A STEP of zero periods is refused and changes nothing.
+  auto refused = client.Control(sim_control_t::STEP, 0);
+  ASSERT_TRUE(refused);
+  EXPECT_FALSE(refused->control_ok);
+  EXPECT_EQ(refused->state_seq, 7);
+
+  // RESUME runs on the realtime clock; PAUSE freezes it again.
+  ASSERT_TRUE(client.Control(sim_control_t::RESUME));
+  ASSERT_TRUE(client.WaitFor(
+      [&] { return client.status()->sim_time > t7 + 0.2; }, 10.0));
+  auto paused = client.Control(sim_control_t::PAUSE);
+  ASSERT_TRUE(paused);
+  EXPECT_EQ(paused->mode, int8_t{sim_status_t::PAUSED});
+  const double frozen = paused->sim_time;
+  client.Spin(0.6);  // at least one heartbeat later
+  EXPECT_EQ(client.status()->sim_time, frozen);
+  EXPECT_GT(client.status()->seq, paused->seq);
+
+  auto quit = client.Control(sim_control_t::QUIT);
+  ASSERT_TRUE(quit);
+  EXPECT_EQ(sim.Wait(5.0), 0) << sim.Output();
+}
+
+TEST(SimProcess, CheckpointOverLcmContinuesIdentically) {
+  const std::string dir = TempDir("sim_checkpoint");
+  const std::string scenario = TestScenarioPath(dir);
+  const int port = 7602;
+  const std::string checkpoint = dir + "/mid.ckpt";
+  robot_state_t original, loaded_once, loaded_twice;
+  {
+    SimClient client(TestLcmUrl(port));
+    ChildProcess sim(
+        SimArgs(scenario, port,
+                {"--clock", "lockstep", "--controllers", "ctl", "--paused"}),
+        dir + "/sim.log");
+    ChildProcess controller(
+        {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "ctl"},
+        dir + "/controller.log");
+    ASSERT_TRUE(
+        client.WaitFor([&] { return client.status().has_value(); }, 10));
+    ASSERT_TRUE(client.StepAndWait(40)) << sim.Output();
+    auto saved =
+        client.Control(sim_control_t::SAVE_CHECKPOINT, 0, 0, checkpoint);
+    ASSERT_TRUE(saved);
+    ASSERT_TRUE(saved->control_ok) << saved->last_error;
+    ASSERT_TRUE(std::filesystem::exists(checkpoint));
+
+    ASSERT_TRUE(client.StepAndWait(60)) << sim.Output();
+    original = client.states().begin()->second;
+    EXPECT_NEAR(original.sim_time, 1.0, 1e-9);
+
+    for (robot_state_t* out : {&loaded_once, &loaded_twice}) {
+      auto loaded =
+          client.Control(sim_control_t::LOAD_CHECKPOINT, 0, 0, checkpoint);
+      ASSERT_TRUE(loaded);
+      ASSERT_TRUE(loaded->control_ok) << loaded->last_error;
+      EXPECT_NEAR(loaded->sim_time, 0.4, 1e-9);
+      ASSERT_TRUE(client.StepAndWait(60)) << sim.Output();
+      *out = client.states().begin()->second;
+      EXPECT_GT(out->seq, original.seq);
+    }
+
+    // A checkpoint that cannot be read is refused; the sim carries on.
+    auto bad = client.Control(sim_control_t::LOAD_CHECKPOINT, 0, 0,
+                              dir + "/missing.ckpt");
+    ASSERT_TRUE(bad);
+    EXPECT_FALSE(bad->control_ok);
+    EXPECT_NE(bad->last_error.find("missing.ckpt"), std::string::npos);
+    EXPECT_EQ(bad->sim_time, loaded_twice.sim_time);
+    EXPECT_EQ(sim.Stop(5.0), 0);
+  }
+  // Every continuation from the checkpoint is the same, bit for bit.
+  {
+    SCOPED_TRACE("second load vs first load");
+    ExpectSameBody(loaded_once, loaded_twice);
+  }
+  // The run before the save carried solver history the checkpoint restores
+  // only up to the last bit (docs/sim.md); it stays far below any physical
+  // difference.
+  for (size_t i = 0; i < original.frames.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(original.frames[i].position[k],
+                  loaded_once.frames[i].position[k], 1e-9);
+    }
+  }
+
+  // A new process started from the checkpoint continues the same way.
+  SimClient client(TestLcmUrl(port));
+  ChildProcess sim({SimBinary(), "--load-checkpoint", checkpoint, "--lcm-url",
+                    TestLcmUrl(port), "--rate", "100", "--clock", "lockstep",
+                    "--controllers", "ctl", "--paused"},
+                   dir + "/sim2.log");
+  ChildProcess controller(
+      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "ctl"});
+  ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
+  EXPECT_NEAR(client.status()->sim_time, 0.4, 1e-9);
+  ASSERT_TRUE(client.StepAndWait(60)) << sim.Output();
+  SCOPED_TRACE("--load-checkpoint vs LOAD_CHECKPOINT");
+  ExpectSameBody(client.states().begin()->second, loaded_once);
+  EXPECT_EQ(sim.Stop(5.0), 0);
+}
+
+TEST(SimProcess, BadAndForeignMessagesAreCountedAndIgnored) {
+  const std::string dir = TempDir("sim_bad");
+  const std::string scenario = TestScenarioPath(dir);
+  const Scenario model = ReadScenarioFile(scenario);
+  const std::string robot = model.robots.at(0).name;
+  const int joints = static_cast<int>(model.robots.at(0).modules.size());
+  const int port = 7603;
+  SimClient client(TestLcmUrl(port));
+  ChildProcess sim(SimArgs(scenario, port, {"--clock", "fast", "--paused"}),
+                   dir + "/sim.log");
+  ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
+  lcm::LCM& lcm = client.lcm();
+  const std::string channel = CommandChannel(kDefaultChannelPrefix, robot);
+
+  int64_t seq = 0;
+  auto command = [&](const std::string& name, std::vector<double> targets,
+                     int64_t state_seq) {
+    joint_command_t cmd{};
+    cmd.seq = ++seq;
+    cmd.robot = name;
+    cmd.sender = "intruder";
+    cmd.state_seq = state_seq;
+    cmd.target = std::move(targets);
+    cmd.num_joints = static_cast<int32_t>(cmd.target.size());
+    return cmd;
+  };
+  const std::vector<double> zeros(joints, 0.3);
+  const std::string garbage = "this is not an LCM message";
+  for (int i = 0; i < 3; ++i) {
+    lcm.publish(channel, garbage.data(), static_cast<unsigned>(garbage.size()));
+  }
+  lcm.publish(SimControlChannel(kDefaultChannelPrefix), garbage.data(),
+              static_cast<unsigned>(garbage.size()));
+  auto wrong_count = command(robot, std::vector<double>(joints - 1, 0.1), 0);
+  lcm.publish(channel, &wrong_count);
+  std::vector<double> nan = zeros, inf = zeros, huge = zeros;
+  nan[2] = std::nan("");
+  inf[4] = -HUGE_VAL;
+  huge[0] = 4.0;  // beyond |pi|: not an angle
+  for (auto* targets : {&nan, &inf, &huge}) {
+    auto cmd = command(robot, *targets, 0);
+    lcm.publish(channel, &cmd);
+  }
+  auto ghost = command("ghost", zeros, 0);
+  lcm.publish(CommandChannel(kDefaultChannelPrefix, "ghost"), &ghost);
+  auto mislabelled = command("ghost", zeros, 0);
+  lcm.publish(channel, &mislabelled);
+  auto future = command(robot, zeros, 999);  // answers a state never sent
+  lcm.publish(channel, &future);
+
+  auto counted = [&] {
+    const auto& s = client.status();
+    return s && s->messages_malformed == 4 && s->rejected_joint_count == 1 &&
+           s->rejected_value == 3 && s->rejected_robot == 2 &&
+           s->rejected_seq == 1;
+  };
+  ASSERT_TRUE(client.WaitFor(counted, 10.0))
+      << "malformed " << client.status()->messages_malformed << " count "
+      << client.status()->rejected_joint_count << " value "
+      << client.status()->rejected_value << " robot "
+      << client.status()->rejected_robot << " seq "
+      << client.status()->rejected_seq;
+  EXPECT_EQ(client.status()->commands_rejected, 7);
+  EXPECT_EQ(client.status()->commands_applied, 0);
+
+  // A flood of garbage and wrong commands: it survives and keeps counting.
+  const auto before = *client.status();
+  for (int i = 0; i < 3000; ++i) {
+    if (i % 2 == 0) {
+      lcm.publish(channel, garbage.data(),
+                  static_cast<unsigned>(garbage.size()));
+    } else {
+      auto cmd = command(robot, nan, 0);
+      lcm.publish(channel, &cmd);
+    }
+  }
+  client.Spin(0.5);
+  auto after = client.Control(sim_control_t::PAUSE);
+  ASSERT_TRUE(after) << "sim stopped answering after the flood";
+  EXPECT_TRUE(sim.running());
+  const int64_t flood_counted =
+      (after->messages_malformed - before.messages_malformed) +
+      (after->rejected_value - before.rejected_value);
+  EXPECT_GT(flood_counted, 0);
+  EXPECT_LE(flood_counted, 3000);
+  EXPECT_EQ(after->commands_applied, 0);
+
+  // None of that moved a joint: five periods match a run with no command.
+  ASSERT_TRUE(client.StepAndWait(5)) << sim.Output();
+  Physics reference(model);
+  reference.Step(5 * client.status()->steps_per_period);
+  const robot_state_t expected =
+      ToRobotStateMessage(reference.ReadRobotState(0), 5);
+  ExpectSameBody(client.states().at(robot), expected);
+
+  // A good command still gets through; repeating it is stale.
+  const int64_t now_seq = client.status()->state_seq;
+  auto good = command(robot, zeros, now_seq);
+  lcm.publish(channel, &good);
+  lcm.publish(channel, &good);
+  ASSERT_TRUE(
+      client.WaitFor([&] { return client.status()->rejected_seq == 2; }, 5.0));
+  ASSERT_TRUE(client.StepAndWait(1));
+  EXPECT_EQ(client.status()->commands_applied, 1);
+  EXPECT_EQ(sim.Stop(5.0), 0);
+}
+
+TEST(SimProcess, SigtermStopsPromptlyAndWritesTheFinalCheckpoint) {
+  const std::string dir = TempDir("sim_sigterm");
+  const std::string scenario = TestScenarioPath(dir);
+  const int port = 7604;
+  SimClient client(TestLcmUrl(port));
+  const std::string checkpoint = dir + "/final.ckpt";
+  // Lockstep with no controller: the sim sits waiting, the hardest case.
+  ChildProcess sim(SimArgs(scenario, port,
+                           {"--clock", "lockstep", "--controllers", "nobody",
+                            "--checkpoint-on-exit", checkpoint}),
+                   dir + "/sim.log");
+  ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
+  const auto start = std::chrono::steady_clock::now();
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Wait(1.0), 0) << sim.Output();
+  EXPECT_LT(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count(),
+      1.0);
+  EXPECT_TRUE(std::filesystem::exists(checkpoint));
+  EXPECT_NE(sim.Output().find("mrsim-sim: stopped (stop signal)"),
+            std::string::npos)
+      << sim.Output();
+}
+
+TEST(SimProcess, BadFlagsAndScenarioExitWithTwo) {
+  const std::string dir = TempDir("sim_flags");
+  const std::string scenario = TestScenarioPath(dir);
+  ChildProcess no_controllers({SimBinary(), scenario, "--clock", "lockstep",
+                               "--lcm-url", TestLcmUrl(7606)},
+                              dir + "/a.log");
+  EXPECT_EQ(no_controllers.Wait(10.0), 2);
+  EXPECT_NE(no_controllers.Output().find("--controllers"), std::string::npos);
+  ChildProcess bad_clock({SimBinary(), scenario, "--clock", "warp"},
+                         dir + "/b.log");
+  EXPECT_EQ(bad_clock.Wait(10.0), 2);
+  EXPECT_NE(bad_clock.Output().find("warp"), std::string::npos);
+  ChildProcess missing(
+      {SimBinary(), dir + "/nope.xml", "--lcm-url", TestLcmUrl(7606)},
+      dir + "/c.log");
+  EXPECT_EQ(missing.Wait(10.0), 2);
+  EXPECT_NE(missing.Output().find("nope.xml"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrsim::testing

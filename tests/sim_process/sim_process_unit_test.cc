@@ -1,0 +1,142 @@
+// The pure parts of the sim bridge: state messages and the command rules.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "sim_core/chain_builder.h"
+#include "sim_core/physics.h"
+#include "sim_core/sim_process/command_filter.h"
+#include "sim_core/sim_process/state_message.h"
+
+namespace mrsim {
+namespace {
+
+TEST(SimProcessStateMessage, ElevenModuleStateIsFarBelowOneFragment) {
+  Scenario scenario;
+  ChainOptions options;
+  options.modules = 11;
+  options.sensor_after = {-1, 5};
+  options.force_sensors = true;
+  options.front_distance_sensor = true;
+  scenario.robots.push_back(MakeChain(options));
+  Physics physics(scenario);
+  physics.Step(10);
+  const robot_state_t msg = ToRobotStateMessage(physics.ReadRobotState(0), 3);
+  EXPECT_EQ(msg.num_joints, 11);
+  EXPECT_EQ(msg.num_frames, 22);
+  EXPECT_EQ(msg.num_sensor_modules, 2);
+  // LCM fragments messages above ~64 KB and loses them whole when one
+  // fragment is lost; a state stays an order of magnitude below.
+  EXPECT_LT(msg.getEncodedSize(), 8 * 1024);
+}
+
+TEST(SimProcessStateMessage, RoundTripsThroughEncodeAndBack) {
+  RobotState state;
+  state.time = 1.234567891;
+  state.robot = "snake";
+  Pose pose;
+  pose.position = Eigen::Vector3d(0.1, -0.2, 0.3);
+  pose.orientation = Eigen::Quaterniond(0.5, 0.5, -0.5, 0.5);
+  state.modules = {pose};
+  state.frames = {pose, pose};
+  JointState joint;
+  joint.angle = 0.25;
+  joint.speed = -1.5;
+  joint.torque = 0.01;
+  joint.world = pose;
+  state.joints = {joint};
+  SensorModuleState sensor;
+  sensor.pose = pose;
+  sensor.has_force = true;
+  sensor.force = 2.5;
+  sensor.distances = {0.4, 2.0};
+  sensor.distance_faces = {4, 0};
+  state.sensor_modules = {sensor};
+  state.com = Eigen::Vector3d(1, 2, 3);
+  state.com_velocity = Eigen::Vector3d(-1, 0, 0.5);
+
+  const robot_state_t msg = ToRobotStateMessage(state, 42);
+  EXPECT_EQ(msg.seq, 42);
+  EXPECT_EQ(msg.utime, 1234568);
+  std::vector<uint8_t> bytes(msg.getEncodedSize());
+  ASSERT_EQ(msg.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
+            static_cast<int>(bytes.size()));
+  robot_state_t decoded;
+  ASSERT_GE(decoded.decode(bytes.data(), 0, static_cast<int>(bytes.size())), 0);
+  const RobotState back = FromRobotStateMessage(decoded);
+  EXPECT_EQ(back.time, state.time);
+  EXPECT_EQ(back.robot, "snake");
+  EXPECT_EQ(back.frames.size(), 2u);
+  EXPECT_EQ(back.joints[0].world.position, pose.position);
+  EXPECT_EQ(back.joints[0].world.orientation.coeffs(),
+            pose.orientation.coeffs());
+  EXPECT_EQ(back.joints[0].speed, -1.5);
+  EXPECT_EQ(back.sensor_modules[0].distances, sensor.distances);
+  EXPECT_EQ(back.sensor_modules[0].distance_faces, sensor.distance_faces);
+  EXPECT_EQ(back.sensor_modules[0].force, 2.5);
+  EXPECT_EQ(back.com, state.com);
+  EXPECT_EQ(back.com_velocity, state.com_velocity);
+}
+
+joint_command_t Command(int64_t seq, int64_t state_seq,
+                        std::vector<double> targets,
+                        const std::string& sender = "ctl") {
+  joint_command_t cmd{};
+  cmd.seq = seq;
+  cmd.robot = "snake";
+  cmd.sender = sender;
+  cmd.state_seq = state_seq;
+  cmd.target = std::move(targets);
+  cmd.num_joints = static_cast<int32_t>(cmd.target.size());
+  return cmd;
+}
+
+TEST(SimProcessCommandFilter, ChecksRobotCountValuesAndSequence) {
+  CommandFilter filter({"snake", "worm"}, {3, 5});
+  const std::vector<std::string> none;
+  const std::vector<double> ok = {0.1, -3.0, 3.14};
+  EXPECT_EQ(filter.Check(Command(1, 0, ok), "snake", 0, false, none),
+            CommandVerdict::kAccepted);
+  EXPECT_EQ(filter.Check(Command(2, 0, {0.1, 0.2}), "snake", 0, false, none),
+            CommandVerdict::kWrongJointCount);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(filter.Check(Command(3, 0, {0, nan, 0}), "snake", 0, false, none),
+            CommandVerdict::kBadValue);
+  EXPECT_EQ(filter.Check(Command(4, 0, {0, 0, 3.2}), "snake", 0, false, none),
+            CommandVerdict::kBadValue);
+  EXPECT_EQ(filter.Check(Command(5, 0, ok), "worm", 0, false, none),
+            CommandVerdict::kUnknownRobot);  // channel says another robot
+  // Same state, same seq again: a duplicate.
+  EXPECT_EQ(filter.Check(Command(1, 0, ok), "snake", 0, false, none),
+            CommandVerdict::kStaleSeq);
+  EXPECT_EQ(filter.Check(Command(6, 2, ok), "snake", 2, false, none),
+            CommandVerdict::kAccepted);
+  // An answer to an older state than one applied.
+  EXPECT_EQ(filter.Check(Command(7, 1, ok, "other"), "snake", 2, false, none),
+            CommandVerdict::kStaleSeq);
+  // A state that was never published.
+  EXPECT_EQ(filter.Check(Command(8, 9, ok), "snake", 2, false, none),
+            CommandVerdict::kStaleSeq);
+  // "ctl" numbered 1..8; 2..4 were seen (and rejected), 5 went to the wrong
+  // channel and 7 came from "other": two of its commands never arrived.
+  EXPECT_EQ(filter.seq_gaps(), 2);
+}
+
+TEST(SimProcessCommandFilter, LockstepTakesOnlyNamedAnswersToTheCurrentState) {
+  CommandFilter filter({"snake"}, {2});
+  const std::vector<std::string> controllers = {"ctl"};
+  EXPECT_EQ(filter.Check(Command(1, 4, {0, 0}, "rogue"), "snake", 4, true,
+                         controllers),
+            CommandVerdict::kNotController);
+  EXPECT_EQ(filter.Check(Command(1, 3, {0, 0}), "snake", 4, true, controllers),
+            CommandVerdict::kStaleSeq);
+  EXPECT_EQ(filter.Check(Command(2, -1, {0, 0}), "snake", 4, true, controllers),
+            CommandVerdict::kStaleSeq);
+  EXPECT_EQ(filter.Check(Command(3, 4, {0, 0}), "snake", 4, true, controllers),
+            CommandVerdict::kAccepted);
+}
+
+}  // namespace
+}  // namespace mrsim
