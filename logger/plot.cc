@@ -30,19 +30,20 @@ double NiceStep(double raw) {
   return nice * base;
 }
 
-std::string TickLabel(double v, double step) {
+// One format for a whole axis (`mag` is its largest |value|): fixed
+// decimals for ordinary magnitudes, else scientific; either way enough
+// digits to tell neighbouring ticks apart.
+std::string TickLabel(double v, double step, double mag) {
   if (std::abs(v) < step * 1e-9) v = 0;
   char buf[48];
-  const double mag = std::max(std::abs(v), step);
-  if (mag < 1e7 && step >= 1e-4) {
-    const int decimals =
-        std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
+  if (mag < 1e7 && mag >= 1e-3) {
+    const int decimals = std::clamp(
+        static_cast<int>(-std::floor(std::log10(step) + 1e-9)), 0, 15);
     std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   } else {
-    // Enough significant digits to tell neighbouring ticks apart.
     const int digits = std::clamp(
-        static_cast<int>(std::ceil(std::log10(mag / step) + 1e-9)) + 1, 1, 15);
-    std::snprintf(buf, sizeof(buf), "%.*g", digits, v);
+        static_cast<int>(std::ceil(std::log10(mag / step) - 1e-9)), 0, 15);
+    std::snprintf(buf, sizeof(buf), "%.*e", digits, v);
   }
   return buf;
 }
@@ -72,10 +73,11 @@ PlotAxis NiceAxis(double lo, double hi, int max_ticks) {
     axis.max = std::ceil(hi / step) * step;
   }
   const int n = static_cast<int>(std::lround((axis.max - axis.min) / step));
+  const double mag = std::max(std::abs(axis.min), std::abs(axis.max));
   for (int i = 0; i <= n; ++i) {
     const double t = axis.min + i * step;
     axis.ticks.push_back(t);
-    axis.tick_labels.push_back(TickLabel(t, step));
+    axis.tick_labels.push_back(TickLabel(t, step, mag));
   }
   return axis;
 }
@@ -133,10 +135,7 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
   r.lines = options.style == PlotOptions::Style::kLines ||
             (options.style == PlotOptions::Style::kAuto && monotonic);
 
-  r.x = NiceAxis(xlo, xhi, 9);
   r.y = NiceAxis(ylo, yhi, 8);
-  r.x.label =
-      options.x_label.empty() ? ColumnLabel(options.x) : options.x_label;
   if (!options.y_label.empty()) {
     r.y.label = options.y_label;
   } else if (options.y.size() == 1) {
@@ -156,7 +155,8 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
     r.title = ys + " against " + options.x;
   }
 
-  // Layout: room for tick labels and the rotated y label on the left.
+  // Layout: room for tick labels and the rotated y label on the left; as
+  // many x ticks as fit without their labels touching.
   int widest_tick = 0;
   for (const std::string& t : r.y.tick_labels) {
     widest_tick = std::max(widest_tick, TextSize(t, 0.45, 1).width);
@@ -164,7 +164,23 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
   const int left = 30 + widest_tick + 16;
   const int top = 48;
   const int bottom = 64;
-  const int right = 24;
+  int right = 24;
+  for (int max_ticks = 9; max_ticks >= 2; --max_ticks) {
+    r.x = NiceAxis(xlo, xhi, max_ticks);
+    int widest = 0;
+    for (const std::string& t : r.x.tick_labels) {
+      widest = std::max(widest, TextSize(t, 0.45, 1).width);
+    }
+    right =
+        std::max(24, TextSize(r.x.tick_labels.back(), 0.45, 1).width / 2 + 6);
+    const int width = options.width - left - right;
+    const int gap = r.x.ticks.size() > 1
+                        ? width / static_cast<int>(r.x.ticks.size() - 1)
+                        : width;
+    if (widest + 12 <= gap) break;
+  }
+  r.x.label =
+      options.x_label.empty() ? ColumnLabel(options.x) : options.x_label;
   r.area = cv::Rect(left, top, options.width - left - right,
                     options.height - top - bottom);
   if (r.area.width < 50 || r.area.height < 50) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "logger/log_plot_spec.h"
 #include "tests/common/child_process.h"
@@ -150,6 +151,34 @@ TEST(Plot, ColumnAgainstColumnUsesPointsAndItsOwnRange) {
   EXPECT_LE(r.y.min, 0.0);
   EXPECT_GE(r.y.max, 1.0);
   EXPECT_EQ(r.x.label, "sensor_module0.distance0 [m]");
+}
+
+TEST(Plot, XTickLabelsOfATinyRangeStayApart) {
+  CsvColumns d;
+  d.names = {"module0.z", "sensor_module0.force"};
+  d.values = {{0.0269873, 0.0269964, 0.027}, {0.70, 0.71, 0.0}};
+  d.rows = 3;
+  PlotOptions opt;
+  opt.x = "module0.z";
+  opt.y = {"sensor_module0.force"};
+  opt.width = 520;
+  cv::Mat img;
+  const PlotResult r = RenderPlot(d, opt, &img);
+  ASSERT_GE(r.x.ticks.size(), 2u);
+  int widest = 0;
+  for (const std::string& t : r.x.tick_labels) {
+    int baseline = 0;
+    widest = std::max(
+        widest,
+        cv::getTextSize(t, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &baseline).width);
+  }
+  const double gap = static_cast<double>(r.area.width) / (r.x.ticks.size() - 1);
+  EXPECT_LT(widest, gap) << r.x.tick_labels.front();
+  // Labels keep all the digits the ticks need, with a common format.
+  for (size_t i = 1; i < r.x.tick_labels.size(); ++i) {
+    EXPECT_NE(r.x.tick_labels[i], r.x.tick_labels[i - 1]);
+    EXPECT_EQ(r.x.tick_labels[i].size(), r.x.tick_labels[0].size());
+  }
 }
 
 TEST(Plot, CsvToPngWritesADecodableImage) {
