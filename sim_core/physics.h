@@ -48,6 +48,8 @@ class Physics {
   double time() const;
   double timestep() const;
 
+  // Robots, joints and sensor modules are indexed in scenario order; an
+  // index out of range throws std::out_of_range.
   int robot_count() const;
   const std::string& robot_name(int robot) const;
   // Index of the robot with this name, or -1.
@@ -71,18 +73,24 @@ class Physics {
   // Everything about one robot at the current time. Poses and velocities
   // are those of the current state (kinematics are kept up to date after
   // every step); force sensors need a constraint solve and distance sensors
-  // ray casts, so they are computed here, never in Step().
+  // ray casts, so they are computed here, never in Step(). Uses a private
+  // scratch mjData: do not call it on one Physics from two threads at once.
   RobotState ReadRobotState(int robot) const;
   Eigen::Vector3d CenterOfMass(int robot) const;
 
-  // The full physics state (time, qpos, qvel, act, warm start, targets) as
-  // bytes; LoadState restores it so stepping continues bit for bit.
+  // The full physics state (time, qpos, qvel, act, ctrl, warm start,
+  // applied forces, targets) as bytes; LoadState restores it so stepping
+  // continues bit for bit. LoadState throws std::invalid_argument for bytes
+  // saved from another model. Format: docs/physics.md.
   std::vector<unsigned char> SaveState() const;
   void LoadState(const std::vector<unsigned char>& bytes);
 
   const Scenario& scenario() const;
   const mjModel* model() const;
   const mjData* data() const;
+  // For tests and tools that poke the state (e.g. apply a push through
+  // xfrc_applied; note Physics overwrites xfrc_applied when the scenario
+  // has fluid regions).
   mjData* mutable_data();
 
  private:
