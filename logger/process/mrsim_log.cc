@@ -316,11 +316,11 @@ int main(int argc, char** argv) {
     } else {
       RunFromLog(opt, regex, recorder);
     }
-    if (!recorder.failed()) {
-      try {
-        recorder.Flush();
-      } catch (const std::exception&) {
-      }
+    // Files that did not fail keep everything, even after another failed.
+    try {
+      recorder.Flush();
+    } catch (const std::exception&) {
+      // recorder.error() holds it.
     }
     std::fprintf(stderr, "mrsim-log: summary\n%s\n",
                  recorder.Summary().c_str());
