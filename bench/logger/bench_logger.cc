@@ -202,8 +202,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() /
-                       ("mrsim_bench_logger_" + std::to_string(getpid()));
+  // In the build tree, not /tmp: a minute is about 2.5 GB, too much for a
+  // RAM-backed /tmp.
+  const fs::path dir =
+      fs::path(MRSIM_BENCH_DIR) / ("run_" + std::to_string(getpid()));
   fs::create_directories(dir);
   int status = 0;
   try {
