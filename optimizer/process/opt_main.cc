@@ -70,23 +70,27 @@ std::string FindLauncher() {
   return "mrsim";
 }
 
-void WriteReplayLaunch(const std::string& path, const std::string& scenario,
-                       const std::string& gait, const std::string& robot,
-                       double duration) {
+void WriteReplayLaunch(const std::string& path, const std::string& dir,
+                       const std::string& scenario, const std::string& gait,
+                       const std::string& robot, double duration) {
   std::ofstream out(path);
-  out << "<!-- Written by mrsim-opt: the best individual in the simulator "
-         "and viewer.\n     Run: mrsim launch "
+  out << "<!-- Written by mrsim-opt: the best individual in the simulator, "
+         "its gait\n     controller and the viewer (video in "
+         "${out}/replay.mp4; --set view=--window\n     for a window).\n"
+         "     Run: mrsim launch "
       << path << " [--without view] -->\n"
       << "<launch name=\"opt-replay\">\n"
+      << "  <arg name=\"out\" default=\"" << dir << "\"/>\n"
+      << "  <arg name=\"view\" default=\"--out ${out}/replay.mp4\"/>\n"
       << "  <arg name=\"lcm_url\" "
          "default=\"udpm://239.255.76.67:7667?ttl=0\"/>\n"
       << "  <arg name=\"duration\" default=\"" << duration << "\"/>\n"
       << "  <process name=\"view\" program=\"mrsim-view\" delay=\"0.3\"\n"
       << "           args=\"" << scenario
-      << " --lcm-url ${lcm_url} --camera follow\"/>\n"
+      << " --lcm-url ${lcm_url} --camera follow ${view}\"/>\n"
       << "  <process name=\"gait\" program=\"mrsim-gait\" delay=\"0.3\"\n"
-      << "           args=\"--robot " << robot << " --gait " << gait
-      << " --lcm-url ${lcm_url} --name gait\"/>\n"
+      << "           args=\"--robot " << robot << " --scenario " << scenario
+      << " --gait " << gait << " --lcm-url ${lcm_url} --name gait\"/>\n"
       << "  <process name=\"sim\" program=\"mrsim-sim\" required=\"true\" "
          "delay=\"1.0\"\n"
       << "           args=\"" << scenario
@@ -310,7 +314,8 @@ int main(int argc, char** argv) {
     const std::string robot =
         body.robots[mrsim::GenomeRobotIndex(body, problem.genome)].name;
     const std::string launch = best_dir + "/replay.launch";
-    WriteReplayLaunch(launch, fs::absolute(best_dir + "/best_scenario.xml"),
+    WriteReplayLaunch(launch, fs::absolute(best_dir).string(),
+                      fs::absolute(best_dir + "/best_scenario.xml"),
                       fs::absolute(best_dir + "/best_gait.xml"), robot,
                       e.duration);
     std::string genes;
