@@ -1,0 +1,174 @@
+// The recorder, writer and queue in-process (no network).
+#include "logger/recorder.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "logger/csv_writer.h"
+#include "logger/message_queue.h"
+#include "logger/seq_tracker.h"
+#include "tests/common/child_process.h"
+#include "tests/logger/csv_reader.h"
+#include "tests/logger/test_messages.h"
+
+namespace mrsim {
+namespace {
+
+std::vector<uint8_t> Encode(const robot_state_t& msg) {
+  std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
+  msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+struct Capture {
+  std::vector<std::string> lines;
+  RecorderOptions Options(const std::string& dir) {
+    RecorderOptions o;
+    o.out_dir = dir;
+    o.report = [this](const std::string& s) { lines.push_back(s); };
+    return o;
+  }
+  bool Has(const std::string& text) const {
+    for (const std::string& l : lines) {
+      if (l.find(text) != std::string::npos) return true;
+    }
+    return false;
+  }
+};
+
+TEST(LoggerRecorder, ShapeChangeContinuesInANewPartWithItsOwnHeader) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_parts");
+  Capture cap;
+  {
+    Recorder rec(registry, cap.Options(dir));
+    for (int64_t seq = 0; seq < 3; ++seq) {
+      const auto b = Encode(testing::KnownRobotState(seq, 3, 1));
+      rec.OnMessage("MRSIM_STATE_a", b.data(), b.size());
+    }
+    for (int64_t seq = 3; seq < 5; ++seq) {
+      const auto b = Encode(testing::KnownRobotState(seq, 4, 1));
+      rec.OnMessage("MRSIM_STATE_a", b.data(), b.size());
+    }
+    rec.Flush();
+    EXPECT_FALSE(rec.failed());
+    const auto stats = rec.Stats();
+    ASSERT_EQ(stats.size(), 1u);
+    EXPECT_EQ(stats[0].rows, 5);
+    EXPECT_EQ(stats[0].files.size(), 2u);
+  }
+  const auto one = testing::ReadCsvFile(dir + "/MRSIM_STATE_a.csv");
+  const auto two = testing::ReadCsvFile(dir + "/MRSIM_STATE_a.part2.csv");
+  EXPECT_EQ(one.rows.size(), 3u);
+  EXPECT_EQ(two.rows.size(), 2u);
+  EXPECT_EQ(one.Column("module3.z"), -1);
+  EXPECT_GE(two.Column("module3.z"), 0);
+  EXPECT_EQ(two.rows[0].size(), two.header.size());
+  EXPECT_TRUE(cap.Has("part2.csv"));
+}
+
+TEST(LoggerRecorder, MalformedAndForeignMessagesAreCountedNotWritten) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_malformed");
+  Capture cap;
+  Recorder rec(registry, cap.Options(dir));
+  auto good = Encode(testing::KnownRobotState(0, 2, 0));
+  rec.OnMessage("S", good.data(), good.size());
+  auto cut = good;
+  cut.resize(cut.size() - 3);
+  rec.OnMessage("S", cut.data(), cut.size());
+  const uint8_t tiny[3] = {1, 2, 3};
+  rec.OnMessage("S", tiny, sizeof(tiny));
+  const uint8_t foreign[12] = {9, 9, 9, 9, 9, 9, 9, 9, 0, 0, 0, 0};
+  rec.OnMessage("S", foreign, sizeof(foreign));
+  rec.OnMessage("U", foreign, sizeof(foreign));
+  rec.Flush();
+  const auto stats = rec.Stats();
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(stats[0].channel, "S");
+  EXPECT_EQ(stats[0].messages, 4);
+  EXPECT_EQ(stats[0].rows, 1);
+  EXPECT_EQ(stats[0].malformed, 2);
+  EXPECT_EQ(stats[0].other_type, 1);
+  EXPECT_EQ(stats[1].unknown_type, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/U.csv"));
+  EXPECT_TRUE(cap.Has("malformed"));
+  EXPECT_NE(rec.Summary().find("U: 1 messages of unknown type"),
+            std::string::npos)
+      << rec.Summary();
+}
+
+TEST(LoggerSeq, GapsAndJumpsBackAreTold) {
+  SeqTracker t;
+  EXPECT_EQ(t.Add(5).missing, 0);
+  EXPECT_EQ(t.Add(6).missing, 0);
+  const auto gap = t.Add(9);
+  EXPECT_EQ(gap.missing, 2);
+  EXPECT_EQ(gap.first_missing, 7);
+  const auto back = t.Add(0);
+  EXPECT_TRUE(back.went_back);
+  EXPECT_EQ(back.previous, 9);
+  EXPECT_EQ(t.Add(1).missing, 0);
+  EXPECT_EQ(t.count(), 5);
+  EXPECT_EQ(t.gaps(), 1);
+  EXPECT_EQ(t.missing(), 2);
+  EXPECT_EQ(t.back_jumps(), 1);
+}
+
+TEST(LoggerCsvWriter, FullDiskNamesTheFileAndLaterWritesFailToo) {
+  const std::string dir = testing::TempDir("csv_writer_full");
+  const std::string path = dir + "/full.csv";
+  std::filesystem::create_symlink("/dev/full", path);
+  CsvWriter w(path);
+  w.WriteLine("a,b");
+  try {
+    w.Flush();
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write " + path),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(w.failed());
+  EXPECT_THROW(w.WriteLine("c,d"), std::runtime_error);
+}
+
+TEST(LoggerCsvWriter, EveryLineEndsWhole) {
+  const std::string dir = testing::TempDir("csv_writer_lines");
+  const std::string path = dir + "/a.csv";
+  {
+    CsvWriter w(path);
+    // More than the write buffer, so some lines go out before Flush.
+    const std::string line(1000, 'x');
+    for (int i = 0; i < 3000; ++i) w.WriteLine(line);
+    EXPECT_EQ(w.lines(), 3000);
+  }
+  const std::string text = testing::ReadText(path);
+  EXPECT_EQ(text.size(), 3000u * 1001u);
+  EXPECT_EQ(text.back(), '\n');
+}
+
+TEST(LoggerQueue, DropsAndCountsWhenFullAndDrainsAfterClose) {
+  MessageQueue q(100);
+  const uint8_t data[40] = {};
+  EXPECT_TRUE(q.Push("A", data, 40));
+  EXPECT_TRUE(q.Push("A", data, 40));
+  EXPECT_FALSE(q.Push("A", data, 40));
+  EXPECT_EQ(q.dropped(), 1);
+  std::vector<QueuedMessage> out;
+  EXPECT_TRUE(q.PopAll(&out, std::chrono::milliseconds(10)));
+  EXPECT_EQ(out.size(), 2u);
+  EXPECT_TRUE(q.Push("B", data, 40));
+  q.Close();
+  EXPECT_FALSE(q.Push("B", data, 40));
+  out.clear();
+  EXPECT_TRUE(q.PopAll(&out, std::chrono::milliseconds(10)));
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].channel, "B");
+  EXPECT_FALSE(q.PopAll(&out, std::chrono::milliseconds(10)));
+}
+
+}  // namespace
+}  // namespace mrsim
