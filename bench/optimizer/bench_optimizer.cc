@@ -114,6 +114,19 @@ FarmMeasure MeasureFarm(int workers, int port, int jobs) {
   return m;
 }
 
+// The same batch on local threads: how far this machine lets two episodes
+// run in parallel at all (context for the farm's ratio).
+double LocalRate(int threads, int jobs) {
+  const mrsim::Problem problem = SnakeProblem(4.0);
+  mrsim::LocalEvaluator local(
+      [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
+      threads);
+  const auto batch = RandomBatch(problem.genome, jobs, 2);
+  const auto t0 = Clock::now();
+  local.Evaluate(batch);
+  return jobs / Since(t0);
+}
+
 double Speed(const mrsim::EvalResult& r) { return r.speed; }
 
 }  // namespace
@@ -129,6 +142,11 @@ int main() {
         "on 2 (%u cores)\n",
         jobs, one.evals_per_second, two.evals_per_second,
         std::thread::hardware_concurrency());
+    const double local1 = LocalRate(1, jobs), local2 = LocalRate(2, jobs);
+    std::printf(
+        "# same batch on local threads: %.2f evals/s on 1, %.2f on 2 "
+        "(%.2f x: what this machine allows right now)\n",
+        local1, local2, local2 / local1);
     std::printf("BENCH farm_speedup_2w %.3f x\n",
                 two.evals_per_second / one.evals_per_second);
     std::printf("BENCH farm_overhead %.3f %%\n", one.overhead_percent);
@@ -159,8 +177,16 @@ int main() {
       const auto t0 = Clock::now();
       const mrsim::RunResult r =
           mrsim::RunOptimization(problem.genome, a, evaluator, options);
-      std::printf("# %s: best %.4f m/s (generation %d) in %.0f s\n", algo,
-                  Speed(r.best_result), r.best_generation, Since(t0));
+      std::string genes;
+      for (int i = 0; i < problem.genome.size(); ++i) {
+        if (problem.genome.genes[i].enabled) {
+          genes += fmt::format(" {}={:.3f}", problem.genome.genes[i].name,
+                               r.best[i]);
+        }
+      }
+      std::printf("# %s: best %.4f m/s (generation %d, %s) in %.0f s\n", algo,
+                  Speed(r.best_result), r.best_generation, genes.c_str(),
+                  Since(t0));
       std::printf("BENCH opt_vs_preset_%s %.3f x\n", algo,
                   Speed(r.best_result) / Speed(preset));
       std::fflush(stdout);

@@ -126,6 +126,19 @@ TEST(OptimizerProcess, MasterKilledAndRestartedEndsWithTheSameResult) {
   ExpectSameResult(local, dir);
 }
 
+TEST(OptimizerProcess, SigintStopsCleanlyKeepingCompletedGenerations) {
+  const std::string dir = TempDir("opt_sigint");
+  ChildProcess p(With(OptArgs(dir), {"--workers", "local:1"}),
+                 dir + "/log.txt");
+  ASSERT_TRUE(WaitForText(p, "generation 1 of 4", 60)) << p.Output();
+  p.Signal(SIGINT);
+  EXPECT_EQ(p.Wait(30), 0) << p.Output();
+  EXPECT_NE(p.Output().find("run the same command to continue"),
+            std::string::npos)
+      << p.Output();
+  EXPECT_NE(ReadAll(dir + "/checkpoint.txt").find("gen 0 "), std::string::npos);
+}
+
 TEST(OptimizerProcess, BadInputExitsWithTwoNamingTheProblem) {
   const std::string dir = TempDir("opt_bad_input");
   {
