@@ -16,7 +16,8 @@ constexpr int kExtraGeoms = 2000;
 
 }  // namespace
 
-Renderer::Renderer(const mjModel* model, int width, int height)
+Renderer::Renderer(const mjModel* model, int width, int height,
+                   const RenderQuality& quality)
     : model_(model), width_(width), height_(height) {
   if (model == nullptr) throw std::invalid_argument("Renderer: null model");
   if (width < kMinSize || width > kMaxSize || height < kMinSize ||
@@ -38,6 +39,10 @@ Renderer::Renderer(const mjModel* model, int width, int height)
   mjModel sized = *model;
   sized.vis.global.offwidth = width;
   sized.vis.global.offheight = height;
+  if (quality.samples >= 0) sized.vis.quality.offsamples = quality.samples;
+  if (quality.shadow_size > 0) {
+    sized.vis.quality.shadowsize = quality.shadow_size;
+  }
   mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
   if (context_.offWidth < width || context_.offHeight < height) {
     mjr_freeContext(&context_);
@@ -48,6 +53,7 @@ Renderer::Renderer(const mjModel* model, int width, int height)
                              " off-screen buffer, " + std::to_string(width) +
                              "x" + std::to_string(height) + " needed");
   }
+  if (quality.shadow_size == 0) scene_.flags[mjRND_SHADOW] = 0;
   rgb_.resize(static_cast<size_t>(width) * height * 3);
 }
 

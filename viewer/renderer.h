@@ -26,11 +26,20 @@ struct Overlay {
   std::string gait;    // empty: line left out
 };
 
+// Costly render features. -1 keeps the model's own <visual><quality>
+// (MuJoCo's defaults: 4 samples, 4096 shadow map). On a software renderer
+// (llvmpipe) shadows and multisampling dominate the frame time.
+struct RenderQuality {
+  int samples = -1;      // multisample anti-aliasing samples, 0 = none
+  int shadow_size = -1;  // shadow map size in pixels, 0 = no shadows
+};
+
 class Renderer {
  public:
   // Off-screen frames are width x height pixels. Throws std::invalid_argument
   // for sizes outside [16, 8192].
-  Renderer(const mjModel* model, int width, int height);
+  Renderer(const mjModel* model, int width, int height,
+           const RenderQuality& quality = RenderQuality());
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

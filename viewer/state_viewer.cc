@@ -46,8 +46,8 @@ StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
                                "' is not a robot of the scenario");
     }
   }
-  renderer_ =
-      std::make_unique<Renderer>(model_.get(), options.width, options.height);
+  renderer_ = std::make_unique<Renderer>(model_.get(), options.width,
+                                         options.height, options.quality);
 }
 
 StateViewer::~StateViewer() = default;

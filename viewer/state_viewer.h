@@ -28,6 +28,7 @@ struct ViewerOptions {
   std::string gait;          // shown in the overlay when not empty
   bool overlay = true;
   bool rays = true;
+  RenderQuality quality;
 };
 
 class StateViewer {

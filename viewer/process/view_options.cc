@@ -87,6 +87,13 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
   bool no_rays = false;
   app.add_flag("--no-overlay", no_overlay, "No text overlay");
   app.add_flag("--no-rays", no_rays, "Do not draw distance-sensor rays");
+  app.add_option("--samples", o->viewer.quality.samples,
+                 "Anti-aliasing samples (0: off; default: the model's, 4)")
+      ->check(CLI::Range(0, 16));
+  app.add_option("--shadow-size", o->viewer.quality.shadow_size,
+                 "Shadow map size in pixels (0: no shadows; default: the "
+                 "model's, 4096). Smaller is much faster without a GPU")
+      ->check(CLI::Range(0, 16384));
   app.add_option("--max-frames", o->max_frames,
                  "Stop after this many frames (0: no limit)")
       ->check(CLI::NonNegativeNumber);
