@@ -10,6 +10,8 @@
 #include "optimizer/optimization_run.h"
 #include "optimizer/problem_codec.h"
 #include "sim_core/chain_builder.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
 
 namespace mrsim {
 namespace {
@@ -88,6 +90,35 @@ TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
   EXPECT_EQ(r.sensor_modules[0].left_mod_nr, 4);
   EXPECT_DOUBLE_EQ(r.modules[0].position.z(), 0.075 / 2);
   EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
+}
+
+TEST(OptimizerBodyGenes, RebuildAtStartValuesKeepsTheExampleRobots) {
+  for (const char* file :
+       {"scenarios/snake11.xml", "scenarios/case_study.xml"}) {
+    const Scenario original = ReadScenarioFile(testing::SourcePath(file));
+    const Robot& r = original.robots[0];
+    GenomeSpec spec;
+    spec.genes.push_back({"module_count", 1, 20,
+                          static_cast<double>(r.modules.size()), true, true});
+    const Scenario s = ApplyBodyGenes(original, spec, spec.StartGenome());
+    const Robot& b = s.robots[0];
+    ASSERT_EQ(b.modules.size(), r.modules.size()) << file;
+    for (size_t i = 0; i < r.modules.size(); ++i) {
+      EXPECT_TRUE(b.modules[i].position.isApprox(r.modules[i].position, 1e-12))
+          << file << " module " << i;
+      EXPECT_EQ(b.modules[i].axis, r.modules[i].axis);
+      EXPECT_EQ(b.modules[i].joint.kp, r.modules[i].joint.kp);
+    }
+    ASSERT_EQ(b.sensor_modules.size(), r.sensor_modules.size()) << file;
+    for (size_t k = 0; k < r.sensor_modules.size(); ++k) {
+      EXPECT_EQ(b.sensor_modules[k].left_mod_nr,
+                r.sensor_modules[k].left_mod_nr);
+      EXPECT_EQ(b.sensor_modules[k].force_sensor.has_value(),
+                r.sensor_modules[k].force_sensor.has_value());
+      EXPECT_EQ(b.sensor_modules[k].distance_sensors.size(),
+                r.sensor_modules[k].distance_sensors.size());
+    }
+  }
 }
 
 TEST(OptimizerProblem, PayloadRoundTripsAndNamesNoFile) {
