@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libtinyxml2-dev libopencv-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev
-  libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0
+  libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
   clang-format
 )
 
