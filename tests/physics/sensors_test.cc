@@ -150,3 +150,37 @@ TEST(PhysicsForceSensor, ChainPlatesShareTheRobotsWeight) {
 
 }  // namespace
 }  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+TEST(PhysicsTerrain, ImageTopRowIsThePlusYEdge) {
+  const std::string dir = testing::TempDir("physics_terrain_rows");
+  // Top half of the image bright: the +y half of the terrain is high.
+  testing::WriteGreyPng(dir + "/rows.png", 10, 10,
+                        [](int r, int) { return r < 5 ? 255 : 0; });
+  Scenario s = testing::FlatScenario();
+  s.settings.gravity.setZero();
+  s.base_dir = dir;
+  s.scene.height_image = "rows.png";
+  s.scene.height = 0.2;
+  s.scene.meters_per_pixel = 0.1;
+  for (double y : {0.8, 0.2}) {
+    Robot probe = testing::SensorModuleRobot(
+        "probe" + std::to_string(static_cast<int>(y * 10)),
+        Eigen::Vector3d(0.5, y, 0.5));
+    DistanceSensor down;
+    down.sensor_position = 0;
+    down.ray_direction = -Eigen::Vector3d::UnitZ();
+    probe.sensor_modules[0].distance_sensors.push_back(down);
+    s.robots.push_back(probe);
+  }
+  Physics physics(s);
+  EXPECT_NEAR(physics.ReadRobotState(0).sensor_modules[0].distances[0],
+              0.475 - 0.2, 1e-6);
+  EXPECT_NEAR(physics.ReadRobotState(1).sensor_modules[0].distances[0], 0.475,
+              1e-6);
+}
+
+}  // namespace
+}  // namespace mrsim
