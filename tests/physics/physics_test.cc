@@ -353,3 +353,22 @@ TEST(PhysicsExamples, ExampleScenariosRun) {
 
 }  // namespace
 }  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+TEST(PhysicsState, ComVelocityOfAFallingRobot) {
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(
+      testing::SensorModuleRobot("faller", Eigen::Vector3d(0, 0, 2.0)));
+  Physics physics(s);
+  physics.Step(100);  // 0.2 s of free fall
+  const RobotState state = physics.ReadRobotState(0);
+  // Semi-implicit Euler: v = -g n dt exactly, z = z0 - g dt^2 n (n+1) / 2.
+  EXPECT_NEAR(state.com_velocity.z(), -9.81 * 0.2, 1e-9);
+  EXPECT_NEAR(state.com.z(), 2.0 - 9.81 * 0.002 * 0.002 * 100 * 101 / 2, 1e-9);
+  EXPECT_NEAR(state.time, 0.2, 1e-12);
+}
+
+}  // namespace
+}  // namespace mrsim
