@@ -85,6 +85,7 @@ std::vector<mrsim::Genome> RandomBatch(const mrsim::GenomeSpec& spec, int n,
 struct FarmMeasure {
   double evals_per_second = 0;
   double overhead_percent = 0;
+  double episode_wall = 0;  // mean wall time of one episode on a worker
 };
 
 FarmMeasure MeasureFarm(int workers, int port, int jobs) {
@@ -111,6 +112,7 @@ FarmMeasure MeasureFarm(int workers, int port, int jobs) {
   m.evals_per_second = jobs / wall;
   // Wall time per worker beyond its own episodes, per evaluation.
   m.overhead_percent = 100.0 * (wall * workers - episodes) / episodes;
+  m.episode_wall = episodes / jobs;
   return m;
 }
 
@@ -131,7 +133,9 @@ double Speed(const mrsim::EvalResult& r) { return r.speed; }
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  // --farm-only: just the farm figures (quick look while tuning).
+  const bool farm_only = argc > 1 && std::string(argv[1]) == "--farm-only";
   try {
     // Farm: same batch of 4 s episodes on 1 and on 2 workers.
     const int jobs = 16;
@@ -139,9 +143,11 @@ int main() {
     const FarmMeasure two = MeasureFarm(2, 7921, jobs);
     std::printf(
         "# farm: %d episodes of 4 s: %.2f evals/s on 1 worker, %.2f "
-        "on 2 (%u cores)\n",
+        "on 2 (%u cores); one episode takes %.3f s on a lone worker, %.3f s "
+        "with two workers running\n",
         jobs, one.evals_per_second, two.evals_per_second,
-        std::thread::hardware_concurrency());
+        std::thread::hardware_concurrency(), one.episode_wall,
+        two.episode_wall);
     const double local1 = LocalRate(1, jobs), local2 = LocalRate(2, jobs);
     std::printf(
         "# same batch on local threads: %.2f evals/s on 1, %.2f on 2 "
@@ -151,6 +157,8 @@ int main() {
                 two.evals_per_second / one.evals_per_second);
     std::printf("BENCH farm_overhead %.3f %%\n", one.overhead_percent);
     std::fflush(stdout);
+
+    if (farm_only) return 0;
 
     // Optimised gait vs the preset: 20 s episodes, same budget each.
     const mrsim::Problem problem = SnakeProblem(20.0);
