@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <regex>
 #include <string>
@@ -293,6 +294,12 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mrsim-log: %s\n", e.what());
       return 2;
     }
+  }
+
+  if (!opt.from_log.empty() && !std::ifstream(opt.from_log)) {
+    std::fprintf(stderr, "mrsim-log: cannot read LCM log file %s\n",
+                 opt.from_log.c_str());
+    return 2;
   }
 
   mrsim::InstallStopHandlers();

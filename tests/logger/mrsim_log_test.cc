@@ -284,6 +284,16 @@ TEST(LoggerProcess, WritesTheCaseStudyPlotsWhenLoggingStops) {
   }
 }
 
+TEST(LoggerProcess, MissingLcmlogIsBadInput) {
+  const std::string dir = TempDir("logger_missing_log");
+  ChildProcess logger(
+      {LogExe(), "--from-log", dir + "/nothing.lcmlog", "--out", dir + "/csv"},
+      dir + "/out.txt");
+  EXPECT_EQ(logger.Wait(20), 2);
+  EXPECT_NE(logger.Output().find(dir + "/nothing.lcmlog"), std::string::npos)
+      << logger.Output();
+}
+
 TEST(LoggerProcess, BadPlotSpecIsRefusedBeforeLogging) {
   ChildProcess logger({LogExe(), "--lcm-url", TestLcmUrl(7758), "--out",
                        TempDir("logger_bad_plot"), "--plot", "CHAN:x=time"},
