@@ -795,6 +795,16 @@ std::string Builder::Build() {
     out << " pos=\"" << Vec(g.pos) << "\" rgba=\"0.55 0.6 0.5 1\""
         << ContactGeomAttributes(s_, g.material) << "/>\n";
   }
+  // Fluid regions as translucent boxes for viewers; sites, so rays and
+  // contacts ignore them (their forces are applied by Physics).
+  for (size_t i = 0; i < s_.fluid_regions.size(); ++i) {
+    const FluidRegion& f = s_.fluid_regions[i];
+    out << "    <site name=\"scene/fluid" << i << "\" type=\"box\" pos=\""
+        << Vec(f.position) << "\" size=\"" << Vec(f.size / 2) << "\" rgba=\""
+        << (f.kind == FluidKind::kWater ? "0.2 0.4 0.9 0.25"
+                                        : "0.9 0.9 0.9 0.08")
+        << "\"/>\n";
+  }
   for (size_t b = 0; b < bodies_.size(); ++b) {
     if (bodies_[b].parent < 0) WriteBody(out, b, 2);
   }
