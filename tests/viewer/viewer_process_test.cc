@@ -288,6 +288,73 @@ TEST(ViewerProcess, LateJoinerShowsNewestStateAndSigtermLeavesPlayableVideo) {
   EXPECT_EQ(read, frames);
 }
 
+// Writes a short .lcmlog of the moving test snake; returns its path.
+std::string WriteMovingLog(const std::string& dir,
+                           const std::string& scenario_path, int states) {
+  Physics physics(ReadScenarioFile(scenario_path));
+  const std::string path = dir + "/states.lcmlog";
+  lcm::LogFile log(path, "w");
+  for (int k = 1; k <= states; ++k) {
+    testing::DriveTo(&physics, k * 0.02);
+    const RobotState state = physics.ReadRobotState(0);
+    std::vector<unsigned char> data = Encode(state, k);
+    lcm::LogEvent ev;
+    ev.eventnum = k;
+    ev.timestamp = SimTimeToUtime(state.time);
+    ev.channel = StateChannel("MRSIM", "snake");
+    ev.datalen = static_cast<int32_t>(data.size());
+    ev.data = data.data();
+    log.writeEvent(&ev);
+  }
+  return path;
+}
+
+TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
+  if (!std::filesystem::exists("/usr/bin/Xvfb")) {
+    GTEST_SKIP() << "Xvfb not installed (scripts/install_deps.sh)";
+  }
+  const std::string dir = TempDir("viewer_window");
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  const std::string log = WriteMovingLog(dir, scenario_path, 25);
+  const std::string display = ":7803";
+  ChildProcess xvfb({"/usr/bin/Xvfb", display, "-screen", "0", "640x480x24",
+                     "-nolisten", "tcp"},
+                    dir + "/xvfb.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_TRUE(xvfb.running()) << xvfb.Output();
+  const std::vector<std::string> common = {
+      scenario_path, "--from-log", log,   "--fps",        "10", "--width",
+      "160",         "--height",   "120", "--max-frames", "4"};
+  std::vector<std::string> windowed = {"/usr/bin/env", "DISPLAY=" + display,
+                                       BinaryPath(kViewer)};
+  windowed.insert(windowed.end(), common.begin(), common.end());
+  windowed.insert(windowed.end(),
+                  {"--window", "--frames-dir", dir + "/window"});
+  std::vector<std::string> headless = {"/usr/bin/env", "-u", "DISPLAY",
+                                       BinaryPath(kViewer)};
+  headless.insert(headless.end(), common.begin(), common.end());
+  headless.insert(headless.end(), {"--frames-dir", dir + "/headless"});
+  {
+    ChildProcess viewer(windowed, dir + "/window.log");
+    ASSERT_EQ(viewer.Wait(60.0), 0) << viewer.Output();
+    EXPECT_NE(viewer.Output().find("window context"), std::string::npos)
+        << viewer.Output();
+  }
+  {
+    ChildProcess viewer(headless, dir + "/headless.log");
+    ASSERT_EQ(viewer.Wait(60.0), 0) << viewer.Output();
+  }
+  for (int k = 1; k <= 4; ++k) {
+    const cv::Mat a = cv::imread(FrameWriter::PngName(dir + "/window", k));
+    const cv::Mat b = cv::imread(FrameWriter::PngName(dir + "/headless", k));
+    ASSERT_FALSE(a.empty());
+    ASSERT_FALSE(b.empty());
+    EXPECT_GT(testing::GreyStdDev(a), 5.0);
+    EXPECT_LT(testing::MeanAbsDiff(a, b), 1.0) << "frame " << k;
+  }
+}
+
 TEST(ViewerProcess, BadScenarioExitsWithTwoAndNamesTheFile) {
   const std::string dir = TempDir("viewer_bad_input");
   const std::string bad = dir + "/broken.xml";
