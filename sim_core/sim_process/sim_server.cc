@@ -171,6 +171,7 @@ StopReason SimServer::Run(const std::function<bool()>& stop_requested) {
     }
   }
   quit_ = true;
+  run_end_wall_ = Clock::now();
   PublishStatus();
   return reason;
 }
@@ -221,6 +222,10 @@ void SimServer::CheckLockstepWait() {
 }
 
 void SimServer::RunPeriod() {
+  if (!ran_period_) {
+    ran_period_ = true;
+    first_period_wall_ = Clock::now();
+  }
   for (size_t r = 0; r < pending_.size(); ++r) {
     if (!pending_[r]) continue;
     try {
@@ -244,6 +249,7 @@ void SimServer::RunPeriod() {
     return;
   }
   steps_ += steps_per_period_;
+  advanced_ += period_;
   ++periods_since_anchor_;
   PublishStates();
 }
@@ -535,6 +541,14 @@ std::string SimServer::Summary(StopReason reason) const {
       << s.rejected_robot << ", seq " << s.rejected_seq << ", sender "
       << s.rejected_sender << "), malformed " << s.messages_malformed
       << ", dropped " << s.messages_dropped;
+  if (ran_period_) {
+    // Whole-run pace, from the first period on (startup and the wait for
+    // the first lockstep answer excluded).
+    const double wall = Seconds(run_end_wall_ - first_period_wall_);
+    if (wall > 0) {
+      out << "; real-time factor " << advanced_ / wall;
+    }
+  }
   return out.str();
 }
 

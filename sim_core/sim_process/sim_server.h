@@ -123,6 +123,12 @@ class SimServer {
   Clock::time_point anchor_;
   int64_t periods_since_anchor_ = 0;
 
+  // Whole-run pace for the summary.
+  bool ran_period_ = false;
+  Clock::time_point first_period_wall_;
+  Clock::time_point run_end_wall_;
+  double advanced_ = 0;  // s of sim time stepped (resets do not undo it)
+
   // Status.
   Clock::time_point last_status_;
   double last_status_sim_time_ = 0;

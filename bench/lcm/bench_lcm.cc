@@ -1,0 +1,441 @@
+// bench_lcm: what LCM costs the simulator, measured in one run.
+//  (a) closed-loop lockstep over LCM (mrsim-sim + a controller process,
+//      100 Hz control, 2 ms physics step) vs the same loop in one process;
+//  (b) mrsim-sim's server publishing state at 100 Hz vs not publishing
+//      (fast clock);
+//  (c) round trip of a state-sized robot_state_t through encode/decode and a
+//      typed handler vs a bare ping-pong of an 8-byte raw message.
+// LCM ports 7900-7909. Prints BENCH lines (bench/run).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/stop_signal.h"
+#include "mrsim/joint_command_t.hpp"
+#include "mrsim/robot_state_t.hpp"
+#include "sim_core/chain_builder.h"
+#include "sim_core/physics.h"
+#include "sim_core/scenario_xml.h"
+#include "sim_core/sim_process/sim_server.h"
+#include "sim_core/sim_process/state_message.h"
+
+extern char** environ;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kRate = 100.0;
+constexpr int kRepeats = 3;
+
+std::string Url(int port) {
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+}
+
+double Seconds(Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+// A child process, terminated and reaped on destruction.
+class Child {
+ public:
+  explicit Child(const std::vector<std::string>& args,
+                 const std::string& out = "/dev/null") {
+    std::vector<char*> argv;
+    for (const std::string& a : args)
+      argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) !=
+        0) {
+      pid_ = -1;
+    }
+    posix_spawn_file_actions_destroy(&actions);
+    if (pid_ < 0) throw std::runtime_error("cannot start " + args[0]);
+  }
+  ~Child() { Stop(); }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+  bool Exited() {
+    if (pid_ < 0) return true;
+    int status = 0;
+    if (wait4(pid_, &status, WNOHANG, &usage_) == pid_) pid_ = -1;
+    return pid_ < 0;
+  }
+  void Stop() {
+    if (pid_ < 0) return;
+    kill(pid_, SIGTERM);
+    int status = 0;
+    wait4(pid_, &status, 0, &usage_);
+    pid_ = -1;
+  }
+  // CPU seconds (user + system) the child used; valid once it is reaped.
+  double cpu_seconds() const {
+    auto sec = [](const timeval& t) {
+      return static_cast<double>(t.tv_sec) +
+             1e-6 * static_cast<double>(t.tv_usec);
+    };
+    return sec(usage_.ru_utime) + sec(usage_.ru_stime);
+  }
+
+ private:
+  pid_t pid_ = -1;
+  rusage usage_{};
+};
+
+// The controller law of both loops: a travelling wave with a little
+// feedback, a pure function of the state message.
+std::vector<double> WaveTargets(const mrsim::robot_state_t& s) {
+  std::vector<double> t(s.num_joints);
+  for (int i = 0; i < s.num_joints; ++i) {
+    t[i] = 0.8 * std::sin(2.0 * M_PI * s.sim_time / 1.5 + 0.7 * i) +
+           0.05 * s.joints[i].angle;
+  }
+  return t;
+}
+
+// --controller URL: answers every state with a command (lockstep peer).
+class Controller {
+ public:
+  explicit Controller(lcm::LCM& lcm) : lcm_(lcm) {}
+  void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    mrsim::robot_state_t s;
+    if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;
+    mrsim::joint_command_t cmd;
+    cmd.utime = s.utime;
+    cmd.seq = ++seq_;
+    cmd.robot = s.robot;
+    cmd.sender = "bench";
+    cmd.state_seq = s.seq;
+    cmd.target = WaveTargets(s);
+    cmd.num_joints = static_cast<int32_t>(cmd.target.size());
+    lcm_.publish(mrsim::CommandChannel(mrsim::kDefaultChannelPrefix, s.robot),
+                 &cmd);
+  }
+
+ private:
+  lcm::LCM& lcm_;
+  int64_t seq_ = 0;
+};
+
+int RunController(const std::string& url) {
+  mrsim::InstallStopHandlers();
+  lcm::LCM lcm(url);
+  if (!lcm.good()) return 1;
+  Controller c(lcm);
+  lcm.subscribe(std::string(mrsim::kDefaultChannelPrefix) + "_STATE_.*",
+                &Controller::OnState, &c)
+      ->setQueueCapacity(1000);
+  while (!mrsim::StopRequested()) mrsim::HandleFor(lcm, 100);
+  return 0;
+}
+
+// --echo URL: sends back what it gets: typed state messages decoded and
+// re-encoded, raw pings as bytes.
+class Echo {
+ public:
+  explicit Echo(lcm::LCM& lcm) : lcm_(lcm) {}
+  void OnState(const lcm::ReceiveBuffer*, const std::string&,
+               const mrsim::robot_state_t* msg) {
+    lcm_.publish("BENCH_STATE_PONG", msg);
+  }
+  void OnRaw(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    lcm_.publish("BENCH_RAW_PONG", rbuf->data, rbuf->data_size);
+  }
+
+ private:
+  lcm::LCM& lcm_;
+};
+
+int RunEcho(const std::string& url) {
+  mrsim::InstallStopHandlers();
+  lcm::LCM lcm(url);
+  if (!lcm.good()) return 1;
+  Echo e(lcm);
+  lcm.subscribe("BENCH_STATE_PING", &Echo::OnState, &e);
+  lcm.subscribe("BENCH_RAW_PING", &Echo::OnRaw, &e);
+  while (!mrsim::StopRequested()) mrsim::HandleFor(lcm, 100);
+  return 0;
+}
+
+double InProcessLoop(const std::string& scenario, double duration);
+
+// --inprocess SCENARIO DURATION: the baseline loop, run as its own process
+// like mrsim-sim so both get the same share of a busy machine.
+int RunInProcess(const std::string& scenario, const std::string& duration) {
+  std::cout << "real-time factor "
+            << InProcessLoop(scenario, std::stod(duration)) << std::endl;
+  return 0;
+}
+
+std::string SelfPath() {
+  return std::filesystem::read_symlink("/proc/self/exe").string();
+}
+
+double CpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Sim seconds per wall second of the closed loop in one process.
+double InProcessLoop(const std::string& scenario, double duration) {
+  mrsim::Physics physics(mrsim::ReadScenarioFile(scenario));
+  const int steps =
+      static_cast<int>(std::lround(1.0 / (kRate * physics.timestep())));
+  const int periods = static_cast<int>(std::lround(duration * kRate));
+  const auto start = Clock::now();
+  for (int k = 0; k < periods; ++k) {
+    const mrsim::robot_state_t msg =
+        mrsim::ToRobotStateMessage(physics.ReadRobotState(0), k);
+    physics.SetJointTargets(0, WaveTargets(msg));
+    physics.Step(steps);
+  }
+  return physics.time() / Seconds(Clock::now() - start);
+}
+
+// Sim seconds per wall second of mrsim-sim + controller in lockstep, as
+// mrsim-sim reports it (from its first period to its last). The bench
+// itself stays off the LCM network meanwhile: on udpm every member of the
+// group wakes for every message, and a third process would slow the loop.
+double ReadFactor(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string key = "real-time factor ";
+  const size_t at = text.str().rfind(key);
+  if (at == std::string::npos) {
+    throw std::runtime_error(path + ": no real-time factor in: " + text.str());
+  }
+  return std::stod(text.str().substr(at + key.size()));
+}
+
+void WaitExit(Child& child) {
+  const auto deadline = Clock::now() + std::chrono::seconds(120);
+  while (!child.Exited() && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+// Pace of a loop: sim s per wall s (as the process reports it) and sim s
+// per CPU s of all its processes.
+struct Pace {
+  double wall = 0;
+  double cpu = 0;
+};
+
+Pace LocalLoop(const std::string& scenario, double duration,
+               const std::string& dir) {
+  const std::string out = dir + "/local.out";
+  double cpu = 0;
+  {
+    Child local({SelfPath(), "--inprocess", scenario, std::to_string(duration)},
+                out);
+    WaitExit(local);
+    cpu = local.cpu_seconds();
+  }
+  return {ReadFactor(out), duration / cpu};
+}
+
+Pace LcmLoop(const std::string& scenario, double duration, int port,
+             const std::string& dir) {
+  std::ostringstream d;
+  d << duration;
+  const std::string out = dir + "/sim.out";
+  double cpu = 0;
+  {
+    Child sim({MRSIM_SIM_BINARY, scenario, "--lcm-url", Url(port), "--clock",
+               "lockstep", "--controllers", "bench", "--rate", "100",
+               "--duration", d.str(), "--lockstep-timeout", "30"},
+              out);
+    Child controller({SelfPath(), "--controller", Url(port)});
+    WaitExit(sim);
+    controller.Stop();
+    cpu = sim.cpu_seconds() + controller.cpu_seconds();
+  }
+  return {ReadFactor(out), duration / cpu};
+}
+
+// SimServer on the fast clock, in this process.
+Pace ServerRun(const std::string& scenario, double duration, bool publish,
+               int port) {
+  lcm::LCM lcm(Url(port));
+  mrsim::SimOptions options;
+  options.clock = mrsim::ClockMode::kFast;
+  options.rate = kRate;
+  options.duration = duration;
+  options.publish_state = publish;
+  std::ostringstream log;
+  mrsim::SimServer server(
+      lcm, std::make_unique<mrsim::Physics>(mrsim::ReadScenarioFile(scenario)),
+      options, log);
+  const auto start = Clock::now();
+  const double cpu_start = CpuSeconds();
+  server.Run([] { return false; });
+  const double t = server.physics().time();
+  return {t / Seconds(Clock::now() - start), t / (CpuSeconds() - cpu_start)};
+}
+
+struct Pong {
+  bool got = false;
+  void OnState(const lcm::ReceiveBuffer*, const std::string&,
+               const mrsim::robot_state_t*) {
+    got = true;
+  }
+  void OnRaw(const lcm::ReceiveBuffer*, const std::string&) { got = true; }
+};
+
+// Mean round trip (us) of n pings of either kind.
+double RoundTrip(lcm::LCM& lcm, Pong& pong, bool state,
+                 const mrsim::robot_state_t& msg, int n) {
+  const uint64_t raw = 0x6d7273696dULL;
+  double total = 0;
+  int done = 0;
+  for (int i = 0; i < n + 50; ++i) {
+    pong.got = false;
+    const auto start = Clock::now();
+    if (state) {
+      lcm.publish("BENCH_STATE_PING", &msg);
+    } else {
+      lcm.publish("BENCH_RAW_PING", &raw, sizeof(raw));
+    }
+    const auto deadline = start + std::chrono::seconds(1);
+    while (!pong.got && Clock::now() < deadline) mrsim::HandleFor(lcm, 10);
+    if (!pong.got) continue;  // lost: not a round trip
+    if (i >= 50) {            // warm-up excluded
+      total += Seconds(Clock::now() - start);
+      ++done;
+    }
+  }
+  if (done == 0) throw std::runtime_error("no round trip completed");
+  return total / done * 1e6;
+}
+
+double Best(const std::vector<double>& v) {
+  return *std::max_element(v.begin(), v.end());
+}
+
+int RunBench() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("mrsim_bench_lcm_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  mrsim::Scenario scenario;
+  mrsim::ChainOptions chain;
+  chain.modules = 11;
+  scenario.robots.push_back(mrsim::MakeChain(chain));
+  scenario.settings.timestep = 0.002;
+  const std::string path = (dir / "snake11.xml").string();
+  mrsim::WriteScenarioFile(scenario, path);
+
+  // (a) lockstep over LCM vs in one process; best of kRepeats each, so a
+  // neighbour's burst on a shared machine does not decide the ratio.
+  const double duration = 20.0;
+  std::vector<double> local, remote, local_cpu, remote_cpu;
+  for (int r = 0; r < kRepeats; ++r) {
+    const Pace l = LocalLoop(path, duration, dir.string());
+    const Pace x = LcmLoop(path, duration, 7900, dir.string());
+    local.push_back(l.wall);
+    remote.push_back(x.wall);
+    local_cpu.push_back(l.cpu);
+    remote_cpu.push_back(x.cpu);
+  }
+  std::cout << "lockstep: in-process " << Best(local) << " sim s/s, over LCM "
+            << Best(remote)
+            << " sim s/s (per CPU s of all processes: " << Best(local_cpu)
+            << " vs " << Best(remote_cpu) << ")\n";
+  std::cout << "BENCH lockstep_ratio " << Best(remote) / Best(local) << " x"
+            << std::endl;
+  std::cout << "BENCH lockstep_ratio_cpu " << Best(remote_cpu) / Best(local_cpu)
+            << " x" << std::endl;
+
+  // (b) fast clock with and without 100 Hz state publishing.
+  // The snake lies still (no controller), the heaviest contact load.
+  std::vector<double> quiet, loud, quiet_cpu, loud_cpu;
+  for (int r = 0; r < kRepeats; ++r) {
+    const Pace q = ServerRun(path, duration / 4, false, 7901);
+    const Pace l = ServerRun(path, duration / 4, true, 7901);
+    quiet.push_back(q.wall);
+    loud.push_back(l.wall);
+    quiet_cpu.push_back(q.cpu);
+    loud_cpu.push_back(l.cpu);
+  }
+  std::cout << "fast clock: no publishing " << Best(quiet)
+            << " sim s/s, publishing " << Best(loud)
+            << " sim s/s (per CPU s: " << Best(quiet_cpu) << " vs "
+            << Best(loud_cpu) << ")\n";
+  std::cout << "BENCH publish_ratio " << Best(loud) / Best(quiet) << " x"
+            << std::endl;
+  std::cout << "BENCH publish_ratio_cpu " << Best(loud_cpu) / Best(quiet_cpu)
+            << " x" << std::endl;
+
+  // (c) round trips.
+  {
+    lcm::LCM lcm(Url(7902));
+    Pong pong;
+    lcm.subscribe("BENCH_STATE_PONG", &Pong::OnState, &pong);
+    lcm.subscribe("BENCH_RAW_PONG", &Pong::OnRaw, &pong);
+    Child echo({SelfPath(), "--echo", Url(7902)});
+    mrsim::Physics physics(scenario);
+    physics.Step(50);
+    const mrsim::robot_state_t msg =
+        mrsim::ToRobotStateMessage(physics.ReadRobotState(0), 1);
+    // Wait until the echo answers at all.
+    const uint64_t hello = 1;
+    for (int i = 0; i < 100 && !pong.got; ++i) {
+      lcm.publish("BENCH_RAW_PING", &hello, sizeof(hello));
+      mrsim::HandleFor(lcm, 50);
+    }
+    const int n = 2000;
+    const double state_us = RoundTrip(lcm, pong, true, msg, n);
+    const double raw_us = RoundTrip(lcm, pong, false, msg, n);
+    std::cout << "state message " << msg.getEncodedSize() << " bytes\n";
+    std::cout << "BENCH lcm_rtt_us " << state_us << " us" << std::endl;
+    std::cout << "BENCH raw_rtt_us " << raw_us << " us" << std::endl;
+  }
+  std::filesystem::remove_all(dir);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    if (argc == 3 && std::strcmp(argv[1], "--controller") == 0) {
+      return RunController(argv[2]);
+    }
+    if (argc == 4 && std::strcmp(argv[1], "--inprocess") == 0) {
+      return RunInProcess(argv[2], argv[3]);
+    }
+    if (argc == 3 && std::strcmp(argv[1], "--echo") == 0) {
+      return RunEcho(argv[2]);
+    }
+    return RunBench();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_lcm: " << e.what() << "\n";
+    return 1;
+  }
+}
