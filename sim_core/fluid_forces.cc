@@ -68,8 +68,8 @@ FluidForces::FluidForces(const mjModel* m,
   }
 }
 
-void FluidForces::Apply(const mjModel* m, mjData* d) const {
-  std::memset(d->xfrc_applied, 0, sizeof(mjtNum) * 6 * m->nbody);
+void FluidForces::Apply(const mjModel* m, const mjData* d, mjtNum* xfrc) const {
+  std::memset(xfrc, 0, sizeof(mjtNum) * 6 * m->nbody);
   const mjtNum* gravity = m->opt.gravity;
   for (const FluidRegion& region : regions_) {
     const Eigen::Vector3d lo = region.position - region.size / 2;
@@ -107,7 +107,7 @@ void FluidForces::Apply(const mjModel* m, mjData* d) const {
       const double k_rot =
           fraction * (rho * kDragCoefficient * std::pow(r, 5) * spin +
                       8 * M_PI * region.viscosity * r * r * r);
-      mjtNum* out = d->xfrc_applied + 6 * geom.body;
+      mjtNum* out = xfrc + 6 * geom.body;
       const mjtNum* com = d->xipos + 3 * geom.body;
       const mjtNum arm[3] = {point[0] - com[0], point[1] - com[1],
                              point[2] - com[2]};

@@ -22,9 +22,9 @@ class FluidForces {
   FluidForces(const mjModel* m, const std::vector<FluidRegion>& regions);
 
   bool empty() const { return regions_.empty(); }
-  // Overwrites xfrc_applied of every body with the fluid forces of the
-  // current kinematics (d after mj_step1 / mj_forward).
-  void Apply(const mjModel* m, mjData* d) const;
+  // Overwrites `xfrc` (nbody x 6, usually d->xfrc_applied) with the fluid
+  // forces of the kinematics in d (after mj_step1 / mj_forward).
+  void Apply(const mjModel* m, const mjData* d, mjtNum* xfrc) const;
 
  private:
   struct Geom {

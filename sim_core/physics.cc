@@ -292,7 +292,7 @@ void Physics::Step() {
   mjData* d = impl_->data.get();
   const double time_before = d->time;
   impl_->ComputeControls(d);
-  if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d);
+  if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d, d->xfrc_applied);
   mj_step2(m, d);
   mj_step1(m, d);
   impl_->CheckStability(time_before);
@@ -410,7 +410,11 @@ RobotState Physics::ReadRobotState(int robot) const {
     mju_copy(s->act, d->act, m->na);
     mju_copy(s->qacc_warmstart, d->qacc_warmstart, m->nv);
     mju_copy(s->qfrc_applied, d->qfrc_applied, m->nv);
-    mju_copy(s->xfrc_applied, d->xfrc_applied, 6 * m->nbody);
+    if (impl_->fluids->empty()) {
+      mju_copy(s->xfrc_applied, d->xfrc_applied, 6 * m->nbody);
+    } else {
+      impl_->fluids->Apply(m, d, s->xfrc_applied);  // as the next step will
+    }
     mju_copy(s->ctrl, d->ctrl, m->nu);
     impl_->ComputeControls(s);
     mj_forward(m, s);
