@@ -1,0 +1,62 @@
+#include "launcher/run_summary.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "sim_core/mjcf_builder.h"
+
+namespace mrsim {
+namespace {
+
+Eigen::Vector3d BodyPosition(const Physics& physics, const std::string& name) {
+  const int id = mj_name2id(physics.model(), mjOBJ_BODY, name.c_str());
+  if (id < 0) throw std::runtime_error("no body named " + name);
+  const mjtNum* p = physics.data()->xpos + 3 * id;
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+}  // namespace
+
+RunSummary SummarizeRun(const Physics& start, const Physics& end) {
+  if (start.robot_count() != end.robot_count() ||
+      start.scenario().scene_objects.size() !=
+          end.scenario().scene_objects.size()) {
+    throw std::invalid_argument(
+        "start and end of the run come from different scenarios");
+  }
+  RunSummary summary;
+  summary.sim_time = end.time();
+  for (int r = 0; r < start.robot_count(); ++r) {
+    summary.robots.push_back(
+        {start.robot_name(r), start.CenterOfMass(r), end.CenterOfMass(r)});
+  }
+  const auto& objects = start.scenario().scene_objects;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (objects[i].is_static) continue;
+    const std::string body = mjcf_names::SceneObject(static_cast<int>(i));
+    summary.objects.push_back({"object" + std::to_string(i),
+                               BodyPosition(start, body),
+                               BodyPosition(end, body)});
+  }
+  return summary;
+}
+
+std::string FormatRunSummary(const RunSummary& summary) {
+  std::string line = fmt::format("{:.1f} s:", summary.sim_time);
+  const char* sep = " ";
+  for (const auto& r : summary.robots) {
+    const Eigen::Vector3d d = r.end - r.start;
+    line += fmt::format("{}{} moved {:.3f} m (dx {:+.3f}, dy {:+.3f})", sep,
+                        r.name, r.distance(), d.x(), d.y());
+    sep = "; ";
+  }
+  for (const auto& o : summary.objects) {
+    const Eigen::Vector3d d = o.end - o.start;
+    line += fmt::format("{}{} displaced {:.3f} m (dx {:+.3f}, dy {:+.3f})", sep,
+                        o.name, o.distance(), d.x(), d.y());
+  }
+  return line;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,33 @@
+// What a run did, from its start (the scenario) and its end (a checkpoint):
+// how far each robot's centre of mass and each movable scene object went.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sim_core/physics.h"
+
+namespace mrsim {
+
+struct Displacement {
+  std::string name;  // robot name, or "object<i>"
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  double distance() const { return (end - start).norm(); }
+};
+
+struct RunSummary {
+  double sim_time = 0.0;  // s, at the end
+  std::vector<Displacement> robots;
+  std::vector<Displacement> objects;  // movable scene objects only
+};
+
+// `start` and `end` must be built from the same scenario.
+RunSummary SummarizeRun(const Physics& start, const Physics& end);
+
+// One line: "20.0 s: case_study moved 0.412 m (+x 0.40 m); object0 (ball)
+// moved 0.153 m".
+std::string FormatRunSummary(const RunSummary& summary);
+
+}  // namespace mrsim
