@@ -43,6 +43,7 @@ FarmEvaluator::FarmEvaluator(lcm::LCM& lcm, std::string payload,
       settings_(std::move(settings)),
       chunks_(SplitPayload(payload_, static_cast<size_t>(std::clamp(
                                          settings_.chunk_size, 1, 60000)))) {
+  chunk_sent_.assign(chunks_.size(), Clock::time_point{});
   const FarmChannels ch(settings_.prefix);
   subscriptions_.push_back(
       lcm_.subscribe(ch.heartbeat, &FarmEvaluator::OnHeartbeat, this));
@@ -174,6 +175,9 @@ void FarmEvaluator::OnChunkRequest(const lcm::ReceiveBuffer* rbuf,
         ++counters_.messages_malformed;
         continue;
       }
+      const auto now = Clock::now();
+      if (now - chunk_sent_[index] < std::chrono::milliseconds(100)) continue;
+      chunk_sent_[index] = now;
       opt_chunk_t chunk;
       chunk.utime = NowMicros();
       chunk.run_id = run_id_;

@@ -103,6 +103,9 @@ class FarmEvaluator : public BatchEvaluator {
   std::string hash_;
   FarmSettings settings_;
   std::vector<std::string> chunks_;
+  // When each chunk last went out: workers asking together get one copy
+  // (it is multicast to all of them).
+  std::vector<Clock::time_point> chunk_sent_;
   std::vector<lcm::Subscription*> subscriptions_;
 
   std::map<std::string, Worker> workers_;
