@@ -395,7 +395,7 @@ TEST(SimProcess, BadFlagsAndScenarioExitWithTwo) {
   const std::string dir = TempDir("sim_flags");
   const std::string scenario = TestScenarioPath(dir);
   ChildProcess no_controllers({SimBinary(), scenario, "--clock", "lockstep",
-                               "--lcm-url", TestLcmUrl(7606)},
+                               "--lcm-url", TestLcmUrl(7609)},
                               dir + "/a.log");
   EXPECT_EQ(no_controllers.Wait(10.0), 2);
   EXPECT_NE(no_controllers.Output().find("--controllers"), std::string::npos);
@@ -404,7 +404,7 @@ TEST(SimProcess, BadFlagsAndScenarioExitWithTwo) {
   EXPECT_EQ(bad_clock.Wait(10.0), 2);
   EXPECT_NE(bad_clock.Output().find("warp"), std::string::npos);
   ChildProcess missing(
-      {SimBinary(), dir + "/nope.xml", "--lcm-url", TestLcmUrl(7606)},
+      {SimBinary(), dir + "/nope.xml", "--lcm-url", TestLcmUrl(7609)},
       dir + "/c.log");
   EXPECT_EQ(missing.Wait(10.0), 2);
   EXPECT_NE(missing.Output().find("nope.xml"), std::string::npos);
