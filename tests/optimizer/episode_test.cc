@@ -156,5 +156,17 @@ TEST(OptimizerEpisode, SeededLocalRunGivesTheSameResultTwice) {
   EXPECT_EQ(a.best_generation, b.best_generation);
 }
 
+TEST(OptimizerProblem, TerrainImageTravelsInsideThePayload) {
+  Problem p = SnakeProblem(1.0);
+  p.scenario = ReadScenarioFile(testing::SourcePath("scenarios/terrain.xml"));
+  ASSERT_EQ(p.scenario.scene.height_image.rfind("base64:", 0),
+            std::string::npos);
+  const Problem back = DecodeProblem(EncodeProblem(p), "terrain payload");
+  EXPECT_EQ(back.scenario.scene.height_image.rfind("base64:", 0), 0u);
+  // Evaluates with no file at hand, the same as the original.
+  EXPECT_EQ(RunEpisode(back, back.genome.StartGenome()).fitness,
+            RunEpisode(p, p.genome.StartGenome()).fitness);
+}
+
 }  // namespace
 }  // namespace mrsim
