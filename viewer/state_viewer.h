@@ -53,6 +53,8 @@ class StateViewer {
   // Draws the scene of the last Render into the current window.
   void RenderToWindow(int width, int height);
 
+  // The gait text of the overlay from now on.
+  void set_gait(const std::string& gait) { options_.gait = gait; }
   CameraControl* camera() { return &camera_; }
   const mjModel* model() const { return model_.get(); }
   Renderer* renderer() { return renderer_.get(); }

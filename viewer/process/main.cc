@@ -31,8 +31,10 @@ using Clock = std::chrono::steady_clock;
 class FramePump {
  public:
   FramePump(StateViewer* viewer, FrameScheduler* scheduler, FrameWriter* writer,
-            LiveWindow* window, int64_t max_frames)
+            LiveWindow* window, int64_t max_frames,
+            const StateInbox* gait_source)
       : viewer_(viewer),
+        gait_source_(gait_source),
         scheduler_(scheduler),
         writer_(writer),
         window_(window),
@@ -42,11 +44,19 @@ class FramePump {
   // reached.
   bool Drain() {
     FrameScheduler::Frame frame;
+    bool gait_changed = false;
+    if (gait_source_ != nullptr && gait_source_->gait_text() != gait_) {
+      gait_ = gait_source_->gait_text();
+      viewer_->set_gait(gait_);
+      gait_changed = true;
+    }
     while (!Done() && scheduler_->NextFrame(&frame)) {
       const bool camera_moved =
           window_ != nullptr && window_->TakeCameraChanged();
       // A repeated state (lost or late messages) gives the same picture.
-      if (!have_image_ || frame.key != last_key_ || camera_moved) {
+      if (!have_image_ || frame.key != last_key_ || camera_moved ||
+          gait_changed) {
+        gait_changed = false;
         viewer_->Render(frame.states, &image_);
         last_states_.clear();
         for (const RobotState* s : frame.states) {
@@ -96,6 +106,8 @@ class FramePump {
   }
 
   StateViewer* viewer_;
+  const StateInbox* gait_source_;  // null: the gait text is fixed
+  std::string gait_;
   FrameScheduler* scheduler_;
   FrameWriter* writer_;
   LiveWindow* window_;
@@ -155,8 +167,9 @@ int Run(const ViewOptions& opt) {
   } else if (!opt.frames_dir.empty()) {
     writer = FrameWriter::Pngs(opt.frames_dir);
   }
+  // Without --overlay the overlay follows the followed robot's gait commands.
   FramePump pump(&viewer, &scheduler, writer.get(), window.get(),
-                 opt.max_frames);
+                 opt.max_frames, opt.viewer.gait.empty() ? &inbox : nullptr);
   auto announce = [&](const std::string& source) {
     std::fprintf(stderr, "mrsim-view: %s, %d robot(s), %dx%d at %g fps, %s\n",
                  gl ? gl->description().c_str() : "window context",
@@ -200,6 +213,8 @@ int Run(const ViewOptions& opt) {
       // A slow viewer drops old states instead of falling behind.
       sub->setQueueCapacity(opt.queue);
     }
+    lcm.subscribe(inbox.gait_channel(), &Handler::On, &handler)
+        ->setQueueCapacity(opt.queue);
     announce("listening on " + std::to_string(inbox.channels().size()) +
              " state channel(s)");
     while (!StopRequested() && !pump.Done()) {

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "lcmtypes/runtime/channels.h"
+#include "mrsim/gait_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "sim_core/sim_process/state_message.h"
 
@@ -15,11 +16,35 @@ StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
   for (int r = 0; r < viewer.robot_count(); ++r) {
     channels_[StateChannel(prefix, viewer.robot_name(r))] = r;
   }
+  gait_channel_ = GaitChannel(prefix, viewer.robot_name(viewer.follow_robot()));
+}
+
+bool StateInbox::ReceiveGait(const void* data, int size) {
+  try {
+    gait_command_t msg;
+    if (msg.decode(data, 0, size) < 0) {
+      ++malformed_;
+      last_error_ = gait_channel_ + ": cannot decode gait_command_t";
+      return false;
+    }
+    if (!msg.gait.empty()) gait_ = msg.gait;
+    if (!msg.motion.empty()) motion_ = msg.motion;
+    gait_text_ = gait_;
+    if (!motion_.empty()) {
+      gait_text_ += gait_text_.empty() ? motion_ : " (" + motion_ + ")";
+    }
+    return true;
+  } catch (...) {
+    ++malformed_;
+    last_error_ = gait_channel_ + ": bad gait command";
+  }
+  return false;
 }
 
 bool StateInbox::Receive(const std::string& channel, const void* data,
                          int size) {
   try {
+    if (channel == gait_channel_) return ReceiveGait(data, size);
     const auto it = channels_.find(channel);
     if (it == channels_.end()) return false;
     const int robot = it->second;

@@ -1,5 +1,6 @@
 // Decodes robot_state_t messages (live or from a log) for the robots of the
-// scenario and feeds the frame scheduler. Malformed or foreign messages are
+// scenario and feeds the frame scheduler; also follows the gait commands of
+// the followed robot for the overlay. Malformed or foreign messages are
 // counted and dropped, never trusted; nothing here throws.
 #pragma once
 
@@ -14,13 +15,18 @@ namespace mrsim {
 
 class StateInbox {
  public:
-  // Channels are StateChannel(prefix, robot) for every robot of `viewer`.
+  // Channels are StateChannel(prefix, robot) for every robot of `viewer`,
+  // and GaitChannel(prefix, followed robot).
   StateInbox(const StateViewer& viewer, const std::string& prefix,
              FrameScheduler* scheduler);
 
   const std::map<std::string, int>& channels() const { return channels_; }
+  const std::string& gait_channel() const { return gait_channel_; }
+  // "gait (motion)" from the latest gait commands; empty before any.
+  const std::string& gait_text() const { return gait_text_; }
   // One message; returns true when it reached the scheduler.
   bool Receive(const std::string& channel, const void* data, int size);
+  bool ReceiveGait(const void* data, int size);
 
   int64_t accepted() const { return accepted_; }
   int64_t malformed() const { return malformed_; }
@@ -31,6 +37,10 @@ class StateInbox {
   const StateViewer& viewer_;
   FrameScheduler* scheduler_;
   std::map<std::string, int> channels_;
+  std::string gait_channel_;
+  std::string gait_;
+  std::string motion_;
+  std::string gait_text_;
   int64_t accepted_ = 0;
   int64_t malformed_ = 0;
   int64_t stale_ = 0;

@@ -1,0 +1,83 @@
+// The viewer's message intake: what it accepts, what it counts and drops,
+// and the gait text it takes from gait commands.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "lcmtypes/runtime/channels.h"
+#include "mrsim/gait_command_t.hpp"
+#include "sim_core/physics.h"
+#include "sim_core/sim_process/state_message.h"
+#include "tests/viewer/viewer_test_util.h"
+#include "viewer/frame_scheduler.h"
+#include "viewer/gl_context.h"
+#include "viewer/process/state_inbox.h"
+#include "viewer/state_viewer.h"
+
+namespace mrsim {
+namespace {
+
+template <typename Msg>
+std::vector<unsigned char> Bytes(const Msg& msg) {
+  std::vector<unsigned char> bytes(msg.getEncodedSize());
+  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+TEST(ViewerInbox, DropsAndCountsMalformedStatesAndFollowsGaitCommands) {
+  GlContext gl;
+  const Scenario scenario = testing::ViewerTestScenario();
+  ViewerOptions options;
+  options.width = 64;
+  options.height = 48;
+  StateViewer viewer(scenario, options);
+  FrameScheduler scheduler(10.0, viewer.robot_count());
+  StateInbox inbox(viewer, "MRSIM", &scheduler);
+  const std::string channel = StateChannel("MRSIM", "snake");
+  EXPECT_EQ(inbox.gait_channel(), GaitChannel("MRSIM", "snake"));
+
+  Physics physics(scenario);
+  physics.Step();
+  const RobotState good = physics.ReadRobotState(0);
+  auto send = [&](const RobotState& s, int64_t seq) {
+    const std::vector<unsigned char> b = Bytes(ToRobotStateMessage(s, seq));
+    return inbox.Receive(channel, b.data(), static_cast<int>(b.size()));
+  };
+
+  const unsigned char junk[] = {1, 2, 3};
+  EXPECT_FALSE(inbox.Receive(channel, junk, sizeof(junk)));
+  RobotState short_state = good;
+  short_state.frames.pop_back();
+  EXPECT_FALSE(send(short_state, 1));
+  RobotState nan_state = good;
+  nan_state.frames[0].position.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(send(nan_state, 2));
+  RobotState other = good;
+  other.robot = "someone_else";
+  EXPECT_FALSE(send(other, 3));
+  EXPECT_EQ(inbox.malformed(), 4);
+  EXPECT_EQ(inbox.accepted(), 0);
+
+  EXPECT_TRUE(send(good, 4));
+  EXPECT_EQ(inbox.accepted(), 1);
+  EXPECT_FALSE(inbox.Receive("MRSIM_STATE_nobody", junk, sizeof(junk)));
+  EXPECT_EQ(inbox.malformed(), 4);  // not ours: ignored, not counted
+
+  gait_command_t gait{};
+  gait.robot = "snake";
+  gait.gait = "forward-strong";
+  std::vector<unsigned char> b = Bytes(gait);
+  EXPECT_TRUE(inbox.Receive(inbox.gait_channel(), b.data(),
+                            static_cast<int>(b.size())));
+  EXPECT_EQ(inbox.gait_text(), "forward-strong");
+  gait.gait = "";
+  gait.motion = "turn-left";
+  b = Bytes(gait);
+  inbox.Receive(inbox.gait_channel(), b.data(), static_cast<int>(b.size()));
+  EXPECT_EQ(inbox.gait_text(), "forward-strong (turn-left)");
+}
+
+}  // namespace
+}  // namespace mrsim
