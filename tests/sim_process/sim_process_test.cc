@@ -163,6 +163,15 @@ TEST(SimProcess, PauseStepResume) {
   EXPECT_FALSE(refused->control_ok);
   EXPECT_EQ(refused->state_seq, 7);
 
+  // SET_SPEED takes a positive real-time factor only.
+  auto slow = client.Control(sim_control_t::SET_SPEED, 0, 0.0);
+  ASSERT_TRUE(slow);
+  EXPECT_FALSE(slow->control_ok);
+  auto fast = client.Control(sim_control_t::SET_SPEED, 0, 2.0);
+  ASSERT_TRUE(fast);
+  EXPECT_TRUE(fast->control_ok);
+  EXPECT_EQ(fast->speed, 2.0);
+
   // RESUME runs on the realtime clock; PAUSE freezes it again.
   ASSERT_TRUE(client.Control(sim_control_t::RESUME));
   ASSERT_TRUE(client.WaitFor(
@@ -335,7 +344,21 @@ TEST(SimProcess, BadAndForeignMessagesAreCountedAndIgnored) {
       lcm.publish(channel, &cmd);
     }
   }
-  client.Spin(0.5);
+  // Wait until the counters settle (the sim has drained its queues), so the
+  // next request is not lost behind the flood.
+  int64_t last_seq = client.status()->seq;
+  int64_t last_total = -1;
+  client.WaitFor(
+      [&] {
+        const auto& st = *client.status();
+        if (st.seq == last_seq) return false;
+        last_seq = st.seq;
+        const int64_t total = st.messages_malformed + st.rejected_value;
+        const bool settled = total == last_total;
+        last_total = total;
+        return settled;  // two heartbeats in a row with the same counts
+      },
+      20.0);
   auto after = client.Control(sim_control_t::PAUSE);
   ASSERT_TRUE(after) << "sim stopped answering after the flood";
   EXPECT_TRUE(sim.running());
