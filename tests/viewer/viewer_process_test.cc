@@ -184,7 +184,10 @@ TEST(ViewerProcess, LiveFrameMatchesFrameRenderedInProcess) {
 
   GlContext gl;
   Physics physics(ReadScenarioFile(scenario_path));
-  Renderer renderer(physics.model(), 320, 240);
+  // mrsim-view's default render settings (1024 shadow map).
+  RenderQuality quality;
+  quality.shadow_size = 1024;
+  Renderer renderer(physics.model(), 320, 240, quality);
   CameraSettings settings;
   settings.mode = CameraMode::kFixed;
   settings.lookat = Eigen::Vector3d(0.1, 0, 0.05);
@@ -285,6 +288,43 @@ TEST(ViewerProcess, LateJoinerShowsNewestStateAndSigtermLeavesPlayableVideo) {
   int64_t read = 0;
   cv::Mat image;
   while (capture.read(image)) ++read;
+  EXPECT_EQ(read, frames);
+}
+
+TEST(ViewerProcess, RendersTheStreamOfTheRealSimulator) {
+  const std::string dir = TempDir("viewer_with_sim");
+  const std::string url = TestLcmUrl(7804);
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  const std::string video = dir + "/sim.mp4";
+  ChildProcess viewer(
+      {BinaryPath(kViewer), scenario_path, "--lcm-url", url, "--out", video,
+       "--fps", "10", "--width", "160", "--height", "120"},
+      dir + "/viewer.log");
+  ASSERT_TRUE(WaitForOutput(&viewer, "listening", 30.0)) << viewer.Output();
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"), scenario_path,
+                    "--lcm-url", url, "--clock", "realtime", "--speed", "4",
+                    "--rate", "50", "--duration", "2"},
+                   dir + "/sim.log");
+  ASSERT_EQ(sim.Wait(60.0), 0) << sim.Output();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  viewer.Signal(SIGINT);
+  ASSERT_EQ(viewer.Wait(30.0), 0) << viewer.Output();
+  int64_t frames = 0, first_index = 0, malformed = 0;
+  ASSERT_TRUE(ParseSummary(viewer.Output(), &frames, &first_index, &malformed))
+      << viewer.Output();
+  EXPECT_EQ(malformed, 0) << viewer.Output();
+  // 2 s of simulation at 10 frames/s (the first state may come after 0).
+  EXPECT_GE(frames, 19) << viewer.Output();
+  EXPECT_LE(frames, 21) << viewer.Output();
+  cv::VideoCapture capture(video);
+  ASSERT_TRUE(capture.isOpened());
+  int64_t read = 0;
+  cv::Mat image;
+  while (capture.read(image)) {
+    EXPECT_GT(testing::GreyStdDev(image), 5.0);
+    ++read;
+  }
   EXPECT_EQ(read, frames);
 }
 

@@ -82,18 +82,22 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
                  "mass (follow), m");
   app.add_flag("--window", o->window,
                "Also show a live window when a display exists");
-  app.add_option("--overlay", o->viewer.gait, "Gait name shown in the overlay");
+  app.add_option("--overlay", o->viewer.gait,
+                 "Gait name shown in the overlay (default: from the gait "
+                 "commands on <prefix>_GAIT_<robot>)");
   bool no_overlay = false;
   bool no_rays = false;
   app.add_flag("--no-overlay", no_overlay, "No text overlay");
   app.add_flag("--no-rays", no_rays, "Do not draw distance-sensor rays");
   app.add_option("--samples", o->viewer.quality.samples,
-                 "Anti-aliasing samples (0: off; default: the model's, 4)")
-      ->check(CLI::Range(0, 16));
+                 "Anti-aliasing samples (0: off, -1: the model's, 4)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 16));
   app.add_option("--shadow-size", o->viewer.quality.shadow_size,
-                 "Shadow map size in pixels (0: no shadows; default: the "
-                 "model's, 4096). Smaller is much faster without a GPU")
-      ->check(CLI::Range(0, 16384));
+                 "Shadow map size in pixels (0: no shadows, -1: the model's, "
+                 "MuJoCo's default 4096). Larger is much slower without a GPU")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 16384));
   app.add_option("--max-frames", o->max_frames,
                  "Stop after this many frames (0: no limit)")
       ->check(CLI::NonNegativeNumber);

@@ -19,7 +19,12 @@ struct ViewOptions {
   bool window = false;
   int64_t max_frames = 0;  // 0: until stopped or the log ends
   int queue = 8;           // LCM queue per robot channel (old states drop)
-  ViewerOptions viewer;
+  ViewerOptions viewer;    // quality.shadow_size defaults to 1024 here
+
+  ViewOptions() { viewer.quality.shadow_size = kDefaultShadowSize; }
+  // MuJoCo's 4096 shadow map makes software rendering several times slower
+  // for little visible gain at video sizes.
+  static constexpr int kDefaultShadowSize = 1024;
 };
 
 // Parses argv. Returns -1 to go on, or an exit code: 0 after --help, 2 on
