@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "tests/common/child_process.h"
 #include "tests/viewer/viewer_test_util.h"
@@ -85,6 +86,41 @@ TEST(ViewerRender, FrameFromStateMatchesPhysicsRenderedDirectly) {
   cv::Mat built;
   viewer.Render({nullptr}, &built);
   EXPECT_GT(MeanAbsDiff(from_state, built), 0.5);
+}
+
+TEST(ViewerRender, EveryRobotTakesItsOwnState) {
+  GlContext gl;
+  Scenario scenario = ViewerTestScenario();
+  ChainOptions second;
+  second.name = "worm";
+  second.modules = 3;
+  second.origin = Eigen::Vector3d(-0.1, 0.3, 0.0);
+  scenario.robots.push_back(MakeChain(second));
+  Physics physics(scenario);
+  DriveTo(&physics, 0.5);
+  const RobotState a = physics.ReadRobotState(0);
+  const RobotState b = physics.ReadRobotState(1);
+
+  ViewerOptions options = FixedView();
+  options.overlay = false;
+  options.rays = false;
+  options.camera.lookat = Eigen::Vector3d(0.0, 0.15, 0.05);
+  StateViewer viewer(scenario, options);
+  ASSERT_EQ(viewer.robot_count(), 2);
+  EXPECT_EQ(viewer.robot_index("worm"), 1);
+  cv::Mat from_states;
+  viewer.Render({&a, &b}, &from_states);
+
+  Renderer renderer(physics.model(), kWidth, kHeight);
+  CameraControl camera(options.camera);
+  cv::Mat direct;
+  renderer.Render(physics.mutable_data(), camera.camera(), {}, nullptr,
+                  &direct);
+  EXPECT_LT(MeanAbsDiff(from_states, direct), 0.5);
+  // Robot "worm" without a state stays as built: a different picture.
+  cv::Mat one_missing;
+  viewer.Render({&a, nullptr}, &one_missing);
+  EXPECT_GT(MeanAbsDiff(one_missing, direct), 0.01);
 }
 
 TEST(ViewerRender, DistanceRaysAreDrawnWithTheMeasuredLength) {

@@ -149,12 +149,17 @@ int Run(const ViewOptions& opt) {
                  "rendering off-screen only\n");
   }
   if (opt.window && LiveWindow::DisplayAvailable()) {
-    window = std::make_unique<LiveWindow>("mrsim-view: " + opt.scenario,
-                                          opt.viewer.width, opt.viewer.height,
-                                          nullptr);
-  } else {
-    gl = std::make_unique<GlContext>();
+    try {
+      window = std::make_unique<LiveWindow>("mrsim-view: " + opt.scenario,
+                                            opt.viewer.width, opt.viewer.height,
+                                            nullptr);
+    } catch (const std::exception& e) {
+      // The video matters more than the window: carry on without it.
+      std::fprintf(stderr, "mrsim-view: %s; rendering off-screen only\n",
+                   e.what());
+    }
   }
+  if (!window) gl = std::make_unique<GlContext>();
   StateViewer viewer(scenario, opt.viewer);
   if (window) window->SetCamera(viewer.camera());
 
