@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <thread>
@@ -201,6 +202,42 @@ TEST(GaitProcess, GaitCommandsSteerAndBadOnesAreRejected) {
   EXPECT_NE(out.find("gait commands applied 1, rejected 6"), std::string::npos)
       << out;
   EXPECT_NE(out.find("malformed messages 2"), std::string::npos) << out;
+}
+
+TEST(GaitProcess, LuaControllerExampleDrivesTheSimulator) {
+  // examples/lua_controller: Lua (liblcm-lua) speaking the same messages,
+  // in lockstep with mrsim-sim, moves the pitch snake toward its head.
+  const std::string dir = TempDir("gait_process_lua");
+  ChainOptions options;
+  options.modules = 11;
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(options));
+  const std::string path = dir + "/snake.xml";
+  WriteScenarioFile(scenario, path);
+  const std::string url = TestLcmUrl(7653);
+  lcm::LCM lcm(url);
+  ASSERT_TRUE(lcm.good());
+  Recorder rec;
+  lcm.subscribe(StateChannel("MRSIM", "snake"), &Recorder::OnState, &rec)
+      ->setQueueCapacity(100000);
+  setenv("MRSIM_LUA_TYPES", (dir + "/lua_types").c_str(), 1);
+  ChildProcess lua({testing::SourcePath("examples/lua_controller/run.sh"),
+                    "--robot", "snake", "--lcm-url", url, "--duration", "4"},
+                   dir + "/lua.log");
+  unsetenv("MRSIM_LUA_TYPES");
+  ChildProcess sim(
+      {BinaryPath(kSim), path, "--lcm-url", url, "--clock", "lockstep",
+       "--controllers", "lua", "--duration", "4", "--lockstep-timeout", "20"},
+      dir + "/sim.log");
+  Pump(lcm, 60, [&] { return !sim.running(); });
+  ASSERT_EQ(sim.Wait(5), 0) << sim.Output() << lua.Output();
+  EXPECT_EQ(lua.Wait(10), 0) << lua.Output();
+  EXPECT_NE(lua.Output().find("answered 401 states"), std::string::npos)
+      << lua.Output();
+  ASSERT_TRUE(rec.states.count(0) && rec.states.count(400));
+  const double moved = rec.states[400].com[0] - rec.states[0].com[0];
+  EXPECT_GT(moved, 0.03) << lua.Output();
+  EXPECT_LT(std::abs(rec.states[400].com[1] - rec.states[0].com[1]), 0.01);
 }
 
 TEST(GaitProcess, BadArgumentsExitWithTwo) {
