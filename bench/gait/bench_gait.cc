@@ -173,6 +173,33 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_gait: %s ...\n", g.name.c_str());
     rows.push_back(Measure(g, seconds, 0.01));
   }
+  // The motion commands (no BENCH lines: the table is for comparison).
+  std::vector<Row> motions;
+  if (!own && only.empty()) {
+    struct M {
+      const char* label;
+      const char* preset;
+      mrsim::Motion motion;
+      double strength;
+    };
+    const M list[] = {
+        {"turn-left 0.375", "forward", mrsim::Motion::kTurnLeft, 0.375},
+        {"turn-left 1", "forward", mrsim::Motion::kTurnLeft, 1.0},
+        {"turn-right 1", "forward", mrsim::Motion::kTurnRight, 1.0},
+        {"backward", "forward", mrsim::Motion::kBackward, 1.0},
+        {"sidewind-right", "sidewind", mrsim::Motion::kSidewindRight, 1.0},
+    };
+    for (const M& m : list) {
+      std::fprintf(stderr, "bench_gait: %s ...\n", m.label);
+      Custom c;
+      c.motion = m.motion;
+      c.strength = m.strength;
+      if (m.motion == mrsim::Motion::kBackward) c.chain = "pitch";
+      Row r = Measure(*mrsim::FindGaitPreset(m.preset), seconds, 0.01, c);
+      r.preset = m.label;
+      motions.push_back(r);
+    }
+  }
   std::printf(
       "11-module snake, flat ground, %.0f s (speed from t = %.0f s; heading "
       "and roll over the whole run)\n",
@@ -184,6 +211,15 @@ int main(int argc, char** argv) {
         "%-15s %-10s %8.3f %8.3f %6.4f bl/s %8.1f deg %6.0f deg %5.2fs\n",
         r.preset.c_str(), r.chain.c_str(), r.displacement.x(),
         r.displacement.y(), r.speed_bl, r.heading_deg, r.roll_deg, r.wall_s);
+  }
+  if (!motions.empty()) {
+    std::printf("motion commands (on the forward or sidewind preset):\n");
+    for (const Row& r : motions) {
+      std::printf(
+          "%-15s %-10s %8.3f %8.3f %6.4f bl/s %8.1f deg %6.0f deg %5.2fs\n",
+          r.preset.c_str(), r.chain.c_str(), r.displacement.x(),
+          r.displacement.y(), r.speed_bl, r.heading_deg, r.roll_deg, r.wall_s);
+    }
   }
   for (const Row& r : rows) {
     std::string name = r.preset;
