@@ -249,6 +249,25 @@ TEST(ViewerFrameScheduler, LostStatesRepeatTheNewestAndOldOnesAreDropped) {
   EXPECT_FALSE(scheduler.Push(0, 340000, StateAt(0.34)));  // out of order
 }
 
+TEST(ViewerFrameScheduler, BusyViewerKeepsTheNewestStatesOnly) {
+  FrameScheduler scheduler(10.0, 1, 3);  // keeps 3 states per robot
+  FrameScheduler::Frame frame;
+  scheduler.Push(0, 0, StateAt(0));
+  ASSERT_TRUE(scheduler.NextFrame(&frame));
+  // While a frame renders, a whole second of states arrives.
+  for (int64_t u = 100000; u <= 1000000; u += 100000) {
+    scheduler.Push(0, u, StateAt(u * 1e-6));
+  }
+  std::vector<int64_t> shown;
+  while (scheduler.NextFrame(&frame)) shown.push_back(frame.key[0]);
+  // Frames 1..10 are all written; the dropped states' frames repeat the
+  // oldest kept one, then the newest are shown.
+  ASSERT_EQ(shown.size(), 10u);
+  EXPECT_EQ(shown.front(), 800000);
+  EXPECT_EQ(shown[8], 900000);
+  EXPECT_EQ(shown.back(), 1000000);
+}
+
 TEST(ViewerFrameScheduler, SimulatorResetRestartsTheSchedule) {
   FrameScheduler scheduler(10.0, 1);
   FrameScheduler::Frame frame;

@@ -3,12 +3,16 @@
 // frames at fixed simulation-time steps to MP4 / PNG, off-screen; with
 // --window and a display, live too. It only listens, so it never slows the
 // simulator.
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <exception>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "lcmtypes/runtime/lcm_loop.h"
@@ -27,69 +31,67 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Renders due frames and hands them to the writer and the window.
+// Renders due frames and hands them to the writer and the window. The
+// scheduler and inbox may be fed by another thread: they are only touched
+// under `mutex`, and rendering works on copies of the states.
 class FramePump {
  public:
   FramePump(StateViewer* viewer, FrameScheduler* scheduler, FrameWriter* writer,
             LiveWindow* window, int64_t max_frames,
-            const StateInbox* gait_source)
+            const StateInbox* gait_source, std::mutex* mutex)
       : viewer_(viewer),
         gait_source_(gait_source),
         scheduler_(scheduler),
         writer_(writer),
         window_(window),
-        max_frames_(max_frames) {}
+        max_frames_(max_frames),
+        mutex_(mutex) {}
 
   // Renders every frame that is due. Returns false once max_frames is
   // reached.
   bool Drain() {
-    FrameScheduler::Frame frame;
-    bool gait_changed = false;
-    if (gait_source_ != nullptr && gait_source_->gait_text() != gait_) {
-      gait_ = gait_source_->gait_text();
-      viewer_->set_gait(gait_);
-      gait_changed = true;
-    }
-    while (!Done() && scheduler_->NextFrame(&frame)) {
-      const bool camera_moved =
-          window_ != nullptr && window_->TakeCameraChanged();
-      // A repeated state (lost or late messages) gives the same picture.
-      if (!have_image_ || frame.key != last_key_ || camera_moved ||
-          gait_changed) {
-        gait_changed = false;
-        viewer_->Render(frame.states, &image_);
-        last_states_.clear();
-        for (const RobotState* s : frame.states) {
-          last_states_.push_back(s ? *s : RobotState());
+    while (!Done()) {
+      FrameScheduler::Frame frame;
+      bool changed = window_ != nullptr && window_->TakeCameraChanged();
+      {
+        std::lock_guard<std::mutex> lock(*mutex_);
+        if (gait_source_ != nullptr && gait_source_->gait_text() != gait_) {
+          gait_ = gait_source_->gait_text();
+          viewer_->set_gait(gait_);
+          changed = true;
         }
-        last_valid_.assign(frame.states.size(), false);
-        for (size_t r = 0; r < frame.states.size(); ++r) {
-          last_valid_[r] = frame.states[r] != nullptr;
+        if (!scheduler_->NextFrame(&frame)) return true;
+        // A repeated state (lost or late messages) gives the same picture.
+        changed = changed || !have_image_ || frame.key != last_key_;
+        if (changed) {
+          last_states_.clear();
+          last_valid_.clear();
+          for (const RobotState* s : frame.states) {
+            last_states_.push_back(s ? *s : RobotState());
+            last_valid_.push_back(s != nullptr);
+          }
         }
+      }
+      if (changed) {
+        RenderLast();
         last_key_ = frame.key;
-        have_image_ = true;
         ++rendered_;
-        ShowInWindow();
       }
       if (first_index_ < 0) first_index_ = frame.index;
       last_time_ = frame.utime * 1e-6;
       if (writer_ != nullptr) writer_->Write(image_, frame.index);
       ++frames_;
     }
-    return !Done();
+    return false;
   }
 
-  // Window only: redraw after camera moves while no new frame is due.
+  // Window only: handle input and redraw after camera moves while no new
+  // frame is due.
   void Refresh() {
     if (window_ == nullptr) return;
     window_->PollEvents();
-    if (!window_->TakeCameraChanged() || !have_image_) return;
-    std::vector<const RobotState*> states;
-    for (size_t r = 0; r < last_states_.size(); ++r) {
-      states.push_back(last_valid_[r] ? &last_states_[r] : nullptr);
-    }
-    viewer_->Render(states, &image_);
-    ShowInWindow();
+    if (!have_image_ || !window_->TakeCameraChanged()) return;
+    RenderLast();
   }
 
   bool Done() const { return max_frames_ > 0 && frames_ >= max_frames_; }
@@ -99,10 +101,17 @@ class FramePump {
   double last_time() const { return last_time_; }
 
  private:
-  void ShowInWindow() {
-    if (window_ == nullptr) return;
-    viewer_->RenderToWindow(window_->width(), window_->height());
-    window_->SwapBuffers();
+  void RenderLast() {
+    std::vector<const RobotState*> states;
+    for (size_t r = 0; r < last_states_.size(); ++r) {
+      states.push_back(last_valid_[r] ? &last_states_[r] : nullptr);
+    }
+    viewer_->Render(states, &image_);
+    have_image_ = true;
+    if (window_ != nullptr) {
+      viewer_->RenderToWindow(window_->width(), window_->height());
+      window_->SwapBuffers();
+    }
   }
 
   StateViewer* viewer_;
@@ -112,6 +121,7 @@ class FramePump {
   FrameWriter* writer_;
   LiveWindow* window_;
   int64_t max_frames_;
+  std::mutex* mutex_;
   cv::Mat image_;
   bool have_image_ = false;
   std::vector<int64_t> last_key_;
@@ -121,6 +131,74 @@ class FramePump {
   int64_t rendered_ = 0;
   int64_t first_index_ = -1;
   double last_time_ = 0.0;
+};
+
+// Listens on its own thread so the socket is always drained while frames
+// render: the scheduler keeps the newest --queue states per robot and drops
+// older ones, instead of LCM dropping the newest while we are busy.
+class Receiver {
+ public:
+  Receiver(lcm::LCM* lcm, StateInbox* inbox, std::mutex* mutex)
+      : lcm_(lcm), inbox_(inbox), mutex_(mutex) {
+    for (const auto& [channel, robot] : inbox->channels()) {
+      (void)robot;
+      lcm->subscribe(channel, &Receiver::On, this)->setQueueCapacity(kLcmQueue);
+    }
+    lcm->subscribe(inbox->gait_channel(), &Receiver::On, this)
+        ->setQueueCapacity(kLcmQueue);
+    thread_ = std::thread([this] { Loop(); });
+  }
+  ~Receiver() { Stop(); }
+  Receiver(const Receiver&) = delete;
+  Receiver& operator=(const Receiver&) = delete;
+
+  void Stop() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  // Waits up to timeout_ms for a message to arrive.
+  void Wait(int timeout_ms) {
+    std::unique_lock<std::mutex> lock(*mutex_);
+    arrived_.wait_for(lock, std::chrono::milliseconds(timeout_ms),
+                      [this] { return fresh_ || stop_ || failed_; });
+    fresh_ = false;
+  }
+  // The LCM error that stopped the thread, or empty.
+  std::string error() {
+    std::lock_guard<std::mutex> lock(*mutex_);
+    return error_;
+  }
+
+ private:
+  static constexpr int kLcmQueue = 1000;
+
+  void On(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+    std::lock_guard<std::mutex> lock(*mutex_);
+    inbox_->Receive(channel, buffer->data, static_cast<int>(buffer->data_size));
+    fresh_ = true;
+    arrived_.notify_one();
+  }
+
+  void Loop() {
+    try {
+      while (!stop_ && !StopRequested()) HandleFor(*lcm_, 50);
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(*mutex_);
+      error_ = e.what();
+      failed_ = true;
+      arrived_.notify_one();
+    }
+  }
+
+  lcm::LCM* lcm_;
+  StateInbox* inbox_;
+  std::mutex* mutex_;
+  std::condition_variable arrived_;
+  std::atomic<bool> stop_{false};
+  bool fresh_ = false;
+  bool failed_ = false;
+  std::string error_;
+  std::thread thread_;
 };
 
 void Progress(const FramePump& pump, const StateInbox& inbox,
@@ -163,7 +241,11 @@ int Run(const ViewOptions& opt) {
   StateViewer viewer(scenario, opt.viewer);
   if (window) window->SetCamera(viewer.camera());
 
-  FrameScheduler scheduler(opt.fps, viewer.robot_count());
+  // Only the newest --queue states per robot are kept: a slow viewer drops
+  // old ones and shows the newest.
+  FrameScheduler scheduler(opt.fps, viewer.robot_count(),
+                           static_cast<size_t>(opt.queue));
+  std::mutex mutex;
   StateInbox inbox(viewer, opt.prefix, &scheduler);
   std::unique_ptr<FrameWriter> writer;
   if (!opt.out.empty()) {
@@ -174,7 +256,8 @@ int Run(const ViewOptions& opt) {
   }
   // Without --overlay the overlay follows the followed robot's gait commands.
   FramePump pump(&viewer, &scheduler, writer.get(), window.get(),
-                 opt.max_frames, opt.viewer.gait.empty() ? &inbox : nullptr);
+                 opt.max_frames, opt.viewer.gait.empty() ? &inbox : nullptr,
+                 &mutex);
   auto announce = [&](const std::string& source) {
     std::fprintf(stderr, "mrsim-view: %s, %d robot(s), %dx%d at %g fps, %s\n",
                  gl ? gl->description().c_str() : "window context",
@@ -205,32 +288,23 @@ int Run(const ViewOptions& opt) {
     if (!lcm.good()) {
       throw std::runtime_error("cannot open LCM at '" + opt.lcm_url + "'");
     }
-    struct Handler {
-      StateInbox* inbox;
-      void On(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-        inbox->Receive(channel, buffer->data,
-                       static_cast<int>(buffer->data_size));
-      }
-    } handler{&inbox};
-    for (const auto& [channel, robot] : inbox.channels()) {
-      (void)robot;
-      lcm::Subscription* sub = lcm.subscribe(channel, &Handler::On, &handler);
-      // A slow viewer drops old states instead of falling behind.
-      sub->setQueueCapacity(opt.queue);
-    }
-    lcm.subscribe(inbox.gait_channel(), &Handler::On, &handler)
-        ->setQueueCapacity(opt.queue);
+    Receiver receiver(&lcm, &inbox, &mutex);
     announce("listening on " + std::to_string(inbox.channels().size()) +
              " state channel(s)");
     while (!StopRequested() && !pump.Done()) {
-      HandleFor(lcm, window ? 10 : 100);
+      receiver.Wait(window ? 10 : 100);
+      if (!receiver.error().empty()) {
+        throw std::runtime_error("LCM: " + receiver.error());
+      }
       pump.Drain();
       if (window) {
         pump.Refresh();
         if (window->ShouldClose()) break;
       }
+      std::lock_guard<std::mutex> lock(mutex);
       Progress(pump, inbox, &next_progress);
     }
+    receiver.Stop();
   }
   if (writer) writer->Close();
   std::fprintf(stderr,

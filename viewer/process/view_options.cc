@@ -102,9 +102,10 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
                  "Stop after this many frames (0: no limit)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--queue", o->queue,
-                 "States queued per robot channel before old ones drop")
+                 "Newest states kept per robot while frames render; older "
+                 "ones are dropped")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(2, 1000));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -18,7 +18,7 @@ struct ViewOptions {
   double fps = 30.0;
   bool window = false;
   int64_t max_frames = 0;  // 0: until stopped or the log ends
-  int queue = 8;           // LCM queue per robot channel (old states drop)
+  int queue = 8;           // newest states kept per robot (older ones drop)
   ViewerOptions viewer;    // quality.shadow_size defaults to 1024 here
 
   ViewOptions() { viewer.quality.shadow_size = kDefaultShadowSize; }
