@@ -2,6 +2,7 @@
 // pose mapping against the physics' own pose, rays, camera and scheduling.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -145,6 +146,32 @@ TEST(ViewerRender, DistanceRaysAreDrawnWithTheMeasuredLength) {
   state.sensor_modules[0].distances[0] *= 0.3;
   with_rays.Render({&state}, &shorter);
   EXPECT_GT(MeanAbsDiff(a, shorter), 0.005);
+}
+
+TEST(ViewerRender, TerrainHeightFieldIsDrawn) {
+  GlContext gl;
+  const std::string dir = testing::TempDir("viewer_terrain");
+  cv::Mat hills(32, 32, CV_8UC1);
+  for (int r = 0; r < hills.rows; ++r) {
+    for (int c = 0; c < hills.cols; ++c) {
+      hills.at<unsigned char>(r, c) = static_cast<unsigned char>(
+          127 + 120 * std::sin(r * 0.4) * std::cos(c * 0.4));
+    }
+  }
+  ASSERT_TRUE(cv::imwrite(dir + "/hills.png", hills));
+  Scenario flat = ViewerTestScenario();
+  Scenario hilly = flat;
+  hilly.scene.height_image = dir + "/hills.png";
+  hilly.scene.height = 0.3;
+  hilly.scene.meters_per_pixel = 0.1;
+  hilly.scene.position = Eigen::Vector3d(-1.6, -1.6, -0.3);
+  ViewerOptions options = FixedView();
+  options.overlay = false;
+  cv::Mat a, b;
+  StateViewer(flat, options).Render({nullptr}, &a);
+  StateViewer(hilly, options).Render({nullptr}, &b);
+  EXPECT_GT(MeanAbsDiff(a, b), 2.0);
+  cv::imwrite(dir + "/hilly.png", b);
 }
 
 TEST(ViewerRender, FollowCameraTracksTheCentreOfMass) {
