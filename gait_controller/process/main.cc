@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
                      "), gait file, or NAME.xml in MRSIM_GAIT_PATH/./gaits")
       ->capture_default_str();
   app.add_option("--scenario", scenario_path,
-                 "Scenario file mrsim-sim runs (gives the joint axes)");
+                 "Scenario file mrsim-sim runs (gives the joint axes; without "
+                 "it or --axes, pitch-yaw is assumed)");
   app.add_option("--axes", axes_text,
                  "Joint axes instead of --scenario: pitch, yaw, pitch-yaw, "
                  "yaw-pitch or P/Y per joint");
@@ -156,10 +157,13 @@ int main(int argc, char** argv) {
       const mrsim::JointAxesSpec spec(axes_text);
       axes_for = [spec](int n) { return spec.Expand(n); };
     } else {
-      throw std::invalid_argument(
-          "the joint axes are needed (robot states do not carry them): give "
-          "--scenario FILE (the file mrsim-sim runs) or --axes "
-          "pitch|yaw|pitch-yaw|PYPY...");
+      // Robot states do not say which joint is pitch or yaw. Alternating
+      // pitch-yaw is the common case (the case-study robot); say so loudly.
+      std::cerr << "mrsim-gait: warning: no --scenario or --axes: assuming "
+                   "alternating pitch-yaw joints, pitch first (give --scenario "
+                   "FILE, the file mrsim-sim runs, to be sure)\n";
+      const mrsim::JointAxesSpec spec("pitch-yaw");
+      axes_for = [spec](int n) { return spec.Expand(n); };
     }
     if (!(options.rate >= 0))
       throw std::invalid_argument("--rate must be >= 0");
