@@ -11,7 +11,7 @@ namespace mrsim {
 std::unique_ptr<FrameWriter> FrameWriter::Video(const std::string& path,
                                                 double fps, int width,
                                                 int height) {
-  std::unique_ptr<FrameWriter> w(new FrameWriter());
+  auto w = std::make_unique<FrameWriter>(Key());
   w->path_ = path;
   w->width_ = width;
   w->height_ = height;
@@ -33,7 +33,7 @@ std::unique_ptr<FrameWriter> FrameWriter::Video(const std::string& path,
 }
 
 std::unique_ptr<FrameWriter> FrameWriter::Pngs(const std::string& dir) {
-  std::unique_ptr<FrameWriter> w(new FrameWriter());
+  auto w = std::make_unique<FrameWriter>(Key());
   w->path_ = dir;
   w->png_ = true;
   std::error_code ec;

@@ -21,6 +21,13 @@ class FrameWriter {
   // naming the folder if it cannot be created or written.
   static std::unique_ptr<FrameWriter> Pngs(const std::string& dir);
 
+  // Use Video() or Pngs(); the key keeps the constructor theirs.
+  struct Key {
+   private:
+    Key() {}  // user-provided: no aggregate init from outside
+    friend class FrameWriter;
+  };
+  explicit FrameWriter(Key) {}
   ~FrameWriter();
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
@@ -37,8 +44,6 @@ class FrameWriter {
   static std::string PngName(const std::string& dir, int64_t index);
 
  private:
-  FrameWriter() = default;
-
   std::string path_;
   bool png_ = false;
   cv::VideoWriter video_;
