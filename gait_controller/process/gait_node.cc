@@ -35,6 +35,7 @@ GaitNode::GaitNode(lcm::LCM& lcm, GaitNodeOptions options,
   if (state == nullptr || gait == nullptr) {
     throw std::runtime_error("cannot subscribe to the LCM channels");
   }
+  rate_ = options_.rate;
   state->setQueueCapacity(kStateQueueCapacity);
   gait->setQueueCapacity(kGaitQueueCapacity);
   subscriptions_ = {state, gait};
@@ -177,9 +178,18 @@ void GaitNode::HandleState(const robot_state_t& state) {
     controller_->Reset();
     have_last_ = false;
   }
-  if (have_last_ && options_.rate > 0 &&
-      state.sim_time - last_time_ < 1.0 / options_.rate - 1e-9) {
+  if (rate_ > 0 && state.seq == last_skipped_seq_) {
+    Log(
+        fmt::format("the simulator sent state seq {} again after it was "
+                    "skipped (lockstep at more than --rate {} Hz): answering "
+                    "every state from now on",
+                    state.seq, rate_));
+    rate_ = 0;
+  }
+  if (have_last_ && rate_ > 0 &&
+      state.sim_time - last_time_ < 1.0 / rate_ - 1e-9) {
     ++counters_.states_skipped;
+    last_skipped_seq_ = state.seq;
     return;
   }
   const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;

@@ -26,7 +26,8 @@ struct GaitNodeOptions {
   std::string prefix = "MRSIM";
   std::string sender;  // joint_command_t.sender
   // Hz of sim time: states closer together than 1/rate are not answered
-  // (0: answer every state). In lockstep it must be >= mrsim-sim's rate.
+  // (0: answer every state). If the simulator sends a skipped state again
+  // (lockstep waiting for it), the node answers it and every state after.
   double rate = 100.0;
   GaitControllerOptions controller;
 };
@@ -81,6 +82,8 @@ class GaitNode {
   std::unique_ptr<GaitController> controller_;
   std::deque<std::pair<gait_command_t, std::string>> queued_;
 
+  double rate_ = 0;  // options_.rate until lockstep shows it must be 0
+  int64_t last_skipped_seq_ = -1;
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;

@@ -108,8 +108,23 @@ TEST_F(GaitNodeTest, RateSkipsStatesThatComeTooOften) {
   for (int k = 0; k < 100; ++k) Send(State(k, k * 0.01));
   EXPECT_EQ(node->counters().states_answered, 50);
   EXPECT_EQ(node->counters().states_skipped, 50);
-  auto every = Make(0.0);
-  (void)every;
+}
+
+TEST_F(GaitNodeTest, SkippedStateSentAgainSwitchesToEveryState) {
+  auto node = Make(50.0);
+  Send(State(0, 0.0));
+  Send(State(1, 0.01));  // skipped at 50 Hz
+  EXPECT_EQ(out_.got.size(), 1u);
+  Send(State(1, 0.01));  // lockstep: the simulator waits for an answer
+  ASSERT_EQ(out_.got.size(), 2u);
+  EXPECT_EQ(out_.got.back().state_seq, 1);
+  Send(State(2, 0.02));
+  EXPECT_EQ(out_.got.size(), 3u);
+  bool noted = false;
+  for (const auto& line : node->TakeLog()) {
+    noted = noted || line.find("answering every state") != std::string::npos;
+  }
+  EXPECT_TRUE(noted);
 }
 
 TEST_F(GaitNodeTest, ForeignAndMalformedStatesAreCountedNotAnswered) {
