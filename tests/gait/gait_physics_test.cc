@@ -49,6 +49,10 @@ TEST(GaitPhysics, ForwardAndBackwardMoveOppositeWaysAlongTheBody) {
       RunMotion(ChainPattern::kPitch, "forward", Motion::kBackward, 1, 8);
   const Eigen::Vector3d f = fwd.com_end - fwd.com_start;
   const Eigen::Vector3d b = back.com_end - back.com_start;
+  std::printf(
+      "8 s from rest: forward dx %.3f dy %.3f, backward dx %.3f dy "
+      "%.3f m\n",
+      f.x(), f.y(), b.x(), b.y());
   EXPECT_GT(f.x(), 0.08) << f.transpose();
   EXPECT_LT(b.x(), -0.08) << b.transpose();
   EXPECT_LT(std::abs(f.y()), 0.2 * f.x());
@@ -87,6 +91,8 @@ TEST(GaitPhysics, SidewindingMovesMostlySideways) {
     const Eigen::Vector3d d = r.com_end - r.com_start;
     // The body starts along x: sideways is y, left is +y.
     const double side = m == Motion::kSidewindLeft ? d.y() : -d.y();
+    std::printf("8 s from rest: %s dx %.3f dy %.3f m\n", ToString(m), d.x(),
+                d.y());
     EXPECT_GT(side, 0.2) << ToString(m) << " " << d.transpose();
     EXPECT_GT(side, 3 * std::abs(d.x())) << ToString(m) << " " << d.transpose();
   }
@@ -95,6 +101,8 @@ TEST(GaitPhysics, SidewindingMovesMostlySideways) {
 TEST(GaitPhysics, RollingTurnsTheBodyAboutItsLongAxis) {
   const auto r =
       RunMotion(ChainPattern::kPitchYaw, "rolling", std::nullopt, 1, 8);
+  std::printf("8 s from rest: rolling turns %.0f deg about the body axis\n",
+              r.roll_change * kDeg);
   // At least one whole turn about the body axis.
   EXPECT_GT(std::abs(r.roll_change) * kDeg, 360.0) << r.roll_change * kDeg;
   // For comparison, going forward does not roll.
