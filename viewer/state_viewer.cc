@@ -42,8 +42,8 @@ StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
   if (!options.follow_robot.empty()) {
     follow_ = mapper_->robot_index(options.follow_robot);
     if (follow_ < 0) {
-      throw std::runtime_error("viewer: --robot '" + options.follow_robot +
-                               "' is not a robot of the scenario");
+      throw std::invalid_argument("viewer: --robot '" + options.follow_robot +
+                                  "' is not a robot of the scenario");
     }
   }
   renderer_ = std::make_unique<Renderer>(model_.get(), options.width,

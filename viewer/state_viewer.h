@@ -33,8 +33,9 @@ struct ViewerOptions {
 
 class StateViewer {
  public:
-  // Builds and compiles the model. Throws std::runtime_error naming what
-  // failed (MJCF compile error, unknown follow robot, unmatched parts).
+  // Builds and compiles the model. Throws std::invalid_argument for an
+  // unknown follow robot, std::runtime_error naming what failed otherwise
+  // (MJCF compile error, unmatched parts).
   StateViewer(const Scenario& scenario, const ViewerOptions& options);
   ~StateViewer();
   StateViewer(const StateViewer&) = delete;

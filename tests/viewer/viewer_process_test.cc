@@ -411,6 +411,20 @@ TEST(ViewerProcess, BadScenarioExitsWithTwoAndNamesTheFile) {
       << viewer.Output();
   ChildProcess no_output({BinaryPath(kViewer), bad}, dir + "/viewer2.log");
   EXPECT_EQ(no_output.Wait(30.0), 2);
+  const std::string good =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  ChildProcess bad_lookat({BinaryPath(kViewer), good, "--frames-dir",
+                           dir + "/f", "--lookat", "1,2"},
+                          dir + "/viewer3.log");
+  EXPECT_EQ(bad_lookat.Wait(30.0), 2);
+  EXPECT_NE(bad_lookat.Output().find("--lookat"), std::string::npos)
+      << bad_lookat.Output();
+  ChildProcess bad_robot({BinaryPath(kViewer), good, "--frames-dir", dir + "/f",
+                          "--robot", "nobody"},
+                         dir + "/viewer4.log");
+  EXPECT_EQ(bad_robot.Wait(30.0), 2);
+  EXPECT_NE(bad_robot.Output().find("nobody"), std::string::npos)
+      << bad_robot.Output();
 }
 
 }  // namespace

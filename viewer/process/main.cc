@@ -338,6 +338,9 @@ int main(int argc, char** argv) {
   } catch (const mrsim::ScenarioError& e) {
     std::fprintf(stderr, "mrsim-view: %s\n", e.what());
     return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "mrsim-view: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrsim-view: %s\n", e.what());
     return 1;
