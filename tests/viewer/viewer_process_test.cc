@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <regex>
@@ -357,12 +358,20 @@ TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
   const std::string scenario_path =
       testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
   const std::string log = WriteMovingLog(dir, scenario_path, 25);
-  const std::string display = ":7803";
-  ChildProcess xvfb({"/usr/bin/Xvfb", display, "-screen", "0", "640x480x24",
-                     "-nolisten", "tcp"},
-                    dir + "/xvfb.log");
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ASSERT_TRUE(xvfb.running()) << xvfb.Output();
+  // A display number of our own; the next one if a stale server or lock
+  // holds it.
+  std::unique_ptr<ChildProcess> xvfb;
+  std::string display;
+  for (int n = 7803; n < 7808 && !xvfb; ++n) {
+    display = ":" + std::to_string(n);
+    xvfb = std::make_unique<ChildProcess>(
+        std::vector<std::string>{"/usr/bin/Xvfb", display, "-screen", "0",
+                                 "640x480x24", "-nolisten", "tcp"},
+        dir + "/xvfb" + std::to_string(n) + ".log");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (!xvfb->running()) xvfb.reset();
+  }
+  ASSERT_TRUE(xvfb) << "no Xvfb display could start";
   const std::vector<std::string> common = {
       scenario_path, "--from-log", log,   "--fps",        "10", "--width",
       "160",         "--height",   "120", "--max-frames", "4"};
