@@ -2,11 +2,10 @@
 // processes turn into LCM messages and the optimiser scores.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
+#include <vector>
 
 namespace mrsim {
 
@@ -34,8 +33,8 @@ struct SensorModuleState {
 struct RobotState {
   double time = 0.0;  // s, simulation time
   std::string robot;
-  std::vector<Pose> modules;  // module centres
-  std::vector<Pose> frames;   // two per module: left, right
+  std::vector<Pose> modules;       // module centres
+  std::vector<Pose> frames;        // two per module: left, right
   std::vector<JointState> joints;  // hinge joints in chain order
   std::vector<SensorModuleState> sensor_modules;
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
