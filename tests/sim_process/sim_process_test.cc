@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mrsim/joint_command_t.hpp"
+#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sim_process/state_message.h"
@@ -385,6 +386,53 @@ TEST(SimProcess, BadAndForeignMessagesAreCountedAndIgnored) {
   ASSERT_TRUE(
       client.WaitFor([&] { return client.status()->rejected_seq == 2; }, 5.0));
   ASSERT_TRUE(client.StepAndWait(1));
+  EXPECT_EQ(client.status()->commands_applied, 1);
+  EXPECT_EQ(sim.Stop(5.0), 0);
+}
+
+TEST(SimProcess, EveryRobotHasItsOwnChannels) {
+  const std::string dir = TempDir("sim_two_robots");
+  Scenario two;
+  ChainOptions left;
+  left.name = "left";
+  left.modules = 5;
+  ChainOptions right;
+  right.name = "right";
+  right.modules = 3;
+  right.origin = Eigen::Vector3d(0, 1.0, 0);
+  two.robots = {MakeChain(left), MakeChain(right)};
+  const std::string scenario = dir + "/two.xml";
+  WriteScenarioFile(two, scenario);
+  const int port = 7610;
+  SimClient client(TestLcmUrl(port));
+  ChildProcess sim(SimArgs(scenario, port, {"--clock", "fast", "--paused"}),
+                   dir + "/sim.log");
+  ASSERT_TRUE(client.WaitFor([&] { return client.states().size() == 2; }, 10))
+      << sim.Output();
+
+  joint_command_t cmd{};
+  cmd.seq = 1;
+  cmd.robot = "right";
+  cmd.sender = "test";
+  cmd.state_seq = 0;
+  cmd.target = {0.5, 0.5, 0.5};
+  cmd.num_joints = 3;
+  client.lcm().publish(CommandChannel(kDefaultChannelPrefix, "right"), &cmd);
+  cmd.robot = "left";  // three targets for a five-joint robot
+  client.lcm().publish(CommandChannel(kDefaultChannelPrefix, "left"), &cmd);
+  ASSERT_TRUE(client.WaitFor(
+      [&] { return client.status()->rejected_joint_count == 1; }, 5.0));
+
+  ASSERT_TRUE(client.StepAndWait(20)) << sim.Output();
+  client.Spin(0.1);
+  const robot_state_t& l = client.states().at("left");
+  const robot_state_t& r = client.states().at("right");
+  EXPECT_EQ(l.seq, 20);
+  EXPECT_EQ(r.seq, 20);
+  EXPECT_EQ(l.num_joints, 5);
+  EXPECT_EQ(r.num_joints, 3);
+  for (const auto& j : r.joints) EXPECT_GT(j.angle, 0.2);
+  for (const auto& j : l.joints) EXPECT_LT(std::abs(j.angle), 0.05);
   EXPECT_EQ(client.status()->commands_applied, 1);
   EXPECT_EQ(sim.Stop(5.0), 0);
 }
