@@ -22,6 +22,10 @@ inline std::string GaitChannel(const std::string& prefix,
                                const std::string& robot) {
   return prefix + "_GAIT_" + robot;
 }
+// Poses of the movable scene objects (scene_state_t).
+inline std::string SceneChannel(const std::string& prefix) {
+  return prefix + "_SCENE";
+}
 inline std::string SimControlChannel(const std::string& prefix) {
   return prefix + "_SIM_CONTROL";
 }

@@ -265,6 +265,14 @@ void SimServer::PublishStates() {
 
 void SimServer::SendStates() {
   if (!options_.publish_state) return;
+  // Scene first: a viewer draws a frame once a robot state reaches its time,
+  // so the scene of that period must already be there.
+  const std::vector<SceneObjectState> scene = ReadSceneObjects(*physics_);
+  if (!scene.empty()) {
+    const scene_state_t msg =
+        ToSceneStateMessage(scene, physics_->time(), state_seq_);
+    lcm_.publish(SceneChannel(options_.prefix), &msg);
+  }
   for (int r = 0; r < physics_->robot_count(); ++r) {
     const robot_state_t msg =
         ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);

@@ -1,6 +1,7 @@
 #include "sim_core/sim_process/state_message.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace mrsim {
 namespace {
@@ -108,6 +109,37 @@ RobotState FromRobotStateMessage(const robot_state_t& msg) {
   state.com_velocity = Eigen::Vector3d(msg.com_velocity[0], msg.com_velocity[1],
                                        msg.com_velocity[2]);
   return state;
+}
+
+scene_state_t ToSceneStateMessage(const std::vector<SceneObjectState>& objects,
+                                  double time, int64_t seq) {
+  scene_state_t msg{};
+  msg.utime = SimTimeToUtime(time);
+  msg.seq = seq;
+  msg.sim_time = time;
+  msg.num_objects = static_cast<int32_t>(objects.size());
+  msg.object_index.reserve(objects.size());
+  msg.poses.reserve(objects.size());
+  for (const SceneObjectState& o : objects) {
+    msg.object_index.push_back(o.index);
+    msg.poses.push_back(ToPose(o.pose));
+  }
+  return msg;
+}
+
+std::vector<SceneObjectState> FromSceneStateMessage(const scene_state_t& msg) {
+  if (msg.num_objects < 0 ||
+      msg.object_index.size() != static_cast<size_t>(msg.num_objects) ||
+      msg.poses.size() != static_cast<size_t>(msg.num_objects)) {
+    throw std::invalid_argument(
+        "scene_state_t: num_objects disagrees with its arrays");
+  }
+  std::vector<SceneObjectState> objects(msg.poses.size());
+  for (size_t i = 0; i < objects.size(); ++i) {
+    objects[i].index = msg.object_index[i];
+    objects[i].pose = FromPose(msg.poses[i]);
+  }
+  return objects;
 }
 
 }  // namespace mrsim

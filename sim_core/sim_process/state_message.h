@@ -4,9 +4,12 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "mrsim/robot_state_t.hpp"
+#include "mrsim/scene_state_t.hpp"
 #include "sim_core/robot_state.h"
+#include "sim_core/scene_object_state.h"
 
 namespace mrsim {
 
@@ -19,5 +22,14 @@ robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq);
 // The inverse (time from sim_time); lossless for everything the message
 // holds.
 RobotState FromRobotStateMessage(const robot_state_t& msg);
+
+// The message for the movable scene objects at simulation time `time` (s);
+// seq is that of the robot states of the same control period.
+scene_state_t ToSceneStateMessage(const std::vector<SceneObjectState>& objects,
+                                  double time, int64_t seq);
+
+// The inverse. Throws std::invalid_argument when num_objects disagrees with
+// the arrays (a message built by hand; decode() enforces it otherwise).
+std::vector<SceneObjectState> FromSceneStateMessage(const scene_state_t& msg);
 
 }  // namespace mrsim
