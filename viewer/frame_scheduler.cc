@@ -37,6 +37,8 @@ bool FrameScheduler::Push(int robot, int64_t utime, RobotState state) {
   if (started_ && utime < clock_ - FrameUtime(1)) {
     // The simulation went back (reset or checkpoint load): start over.
     for (auto& r : robots_) r.clear();
+    // Scene states of the new run (sent before this state) stay.
+    while (!scene_.empty() && scene_.back().utime > utime) scene_.pop_back();
     started_ = false;
     ++restarts_;
   }
@@ -53,6 +55,21 @@ bool FrameScheduler::Push(int robot, int64_t utime, RobotState state) {
     next_index_ = FirstIndexAtOrAfter(utime);
   }
   if (utime > clock_) clock_ = utime;
+  return true;
+}
+
+bool FrameScheduler::PushScene(int64_t utime,
+                               std::vector<SceneObjectState> objects) {
+  if (!scene_.empty() && utime < scene_.back().utime) {
+    if (utime >= scene_.back().utime - FrameUtime(1)) return false;
+    scene_.clear();  // the simulation went back
+  }
+  if (!scene_.empty() && utime == scene_.back().utime) {
+    scene_.back().objects = std::move(objects);  // a resend replaces
+  } else {
+    scene_.push_back(SceneEntry{utime, std::move(objects)});
+  }
+  while (scene_.size() > history_) scene_.pop_front();
   return true;
 }
 
@@ -74,6 +91,13 @@ bool FrameScheduler::NextFrame(Frame* frame) {
       frame->states[r] = &h.front().state;
       frame->key[r] = h.front().utime;
     }
+  }
+  while (scene_.size() > 1 && scene_[1].utime <= t) scene_.pop_front();
+  frame->scene = nullptr;
+  frame->scene_key = -1;
+  if (!scene_.empty()) {
+    frame->scene = &scene_.front().objects;
+    frame->scene_key = scene_.front().utime;
   }
   ++next_index_;
   return true;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim_core/robot_state.h"
+#include "sim_core/scene_object_state.h"
 
 namespace mrsim {
 
@@ -23,6 +24,11 @@ class FrameScheduler {
     // Per robot: utime of that state (-1 when null); equal keys mean an
     // identical picture for an unchanged camera.
     std::vector<int64_t> key;
+    // The scene objects shown (newest scene state at or before the frame
+    // time, same rule as robots), or null when none has arrived: then they
+    // stay as built. scene_key is its utime, -1 when null.
+    const std::vector<SceneObjectState>* scene = nullptr;
+    int64_t scene_key = -1;
   };
 
   // Throws std::invalid_argument for fps outside (0, 1000] or no robots.
@@ -32,6 +38,12 @@ class FrameScheduler {
   // the robot's newest is dropped (returns false); a stream that jumps back
   // more than one frame (a simulator reset) restarts the schedule.
   bool Push(int robot, int64_t utime, RobotState state);
+
+  // Adds the scene objects' poses at `utime`. They never make a frame due
+  // (robot states do), so the simulator sends them first. An older one than
+  // the newest is dropped (false) unless it jumps back more than a frame (a
+  // reset), which starts the scene history over.
+  bool PushScene(int64_t utime, std::vector<SceneObjectState> objects);
 
   // The next frame whose time the streams have reached, or false. Pointers
   // in `frame` stay valid until the next Push.
@@ -45,11 +57,16 @@ class FrameScheduler {
     int64_t utime;
     RobotState state;
   };
+  struct SceneEntry {
+    int64_t utime;
+    std::vector<SceneObjectState> objects;
+  };
   int64_t FirstIndexAtOrAfter(int64_t utime) const;
 
   double fps_;
   size_t history_;
   std::vector<std::deque<Entry>> robots_;
+  std::deque<SceneEntry> scene_;
   bool started_ = false;
   int64_t next_index_ = 0;
   int64_t clock_ = 0;  // newest utime of any robot

@@ -182,12 +182,29 @@ StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
     robots_.push_back(info);
   }
 
+  // Movable scene objects, posed by scene states; what hangs below them in
+  // the tree rides along (kAttached below).
+  scene_bodies_.assign(scenario.scene_objects.size(), -1);
+  for (size_t i = 0; i < scenario.scene_objects.size(); ++i) {
+    if (scenario.scene_objects[i].is_static) continue;
+    const int body = mj_name2id(
+        m, mjOBJ_BODY, mjcf_names::SceneObject(static_cast<int>(i)).c_str());
+    if (body <= 0 || sources_[body].kind != BodySource::kBuilt) continue;
+    sources_[body].kind = BodySource::kScene;
+    sources_[body].part = static_cast<int>(i);
+    scene_bodies_[i] = body;
+  }
+
   // Everything else that moves with a robot: bodies below a state body in
   // the tree, then named plates and sensors welded to a sensor module.
   for (int b = 1; b < m->nbody; ++b) {
-    if (sources_[b].kind == BodySource::kState) continue;
+    if (sources_[b].kind == BodySource::kState ||
+        sources_[b].kind == BodySource::kScene) {
+      continue;
+    }
     for (int a = m->body_parentid[b]; a > 0; a = m->body_parentid[a]) {
-      if (sources_[a].kind == BodySource::kState) {
+      if (sources_[a].kind == BodySource::kState ||
+          sources_[a].kind == BodySource::kScene) {
         sources_[b].kind = BodySource::kAttached;
         sources_[b].anchor = a;
         sources_[b].offset = compose(inverse(built_[a]), built_[b]);
@@ -242,8 +259,33 @@ std::string StatePoseMapper::Check(int robot, const RobotState& state) const {
   return "";
 }
 
+std::string StatePoseMapper::CheckScene(
+    const std::vector<SceneObjectState>& scene) const {
+  std::vector<bool> seen(scene_bodies_.size(), false);
+  for (const SceneObjectState& o : scene) {
+    if (o.index < 0 || o.index >= static_cast<int>(scene_bodies_.size())) {
+      return "scene object " + std::to_string(o.index) +
+             " is not in the scenario (" +
+             std::to_string(scene_bodies_.size()) + " scene objects)";
+    }
+    if (scene_bodies_[o.index] < 0) {
+      return "scene object " + std::to_string(o.index) + " is static";
+    }
+    if (seen[o.index]) {
+      return "scene object " + std::to_string(o.index) + " listed twice";
+    }
+    seen[o.index] = true;
+    if (!Finite(o.pose)) {
+      return "scene object " + std::to_string(o.index) +
+             ": non-finite or zero-quaternion pose";
+    }
+  }
+  return "";
+}
+
 void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
-                            mjData* d) const {
+                            mjData* d,
+                            const std::vector<SceneObjectState>* scene) const {
   const mjModel* m = model_;
   std::vector<Pose> pose(built_);
   auto part_pose = [&](int robot, int part) {
@@ -272,10 +314,25 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
       pose[b] = compose(part_pose(src.robot, src.part), src.offset);
     }
   }
+  std::vector<bool> scene_posed(m->nbody, false);
+  if (scene != nullptr) {
+    for (const SceneObjectState& o : *scene) {
+      if (o.index < 0 || o.index >= static_cast<int>(scene_bodies_.size())) {
+        continue;
+      }
+      const int b = scene_bodies_[o.index];
+      if (b <= 0) continue;
+      pose[b].p = o.pose.position;
+      pose[b].q = o.pose.orientation.normalized();
+      scene_posed[b] = true;
+    }
+  }
   for (int b = 1; b < m->nbody; ++b) {
     const BodySource& src = sources_[b];
-    if (src.kind == BodySource::kAttached &&
-        has_state(sources_[src.anchor].robot)) {
+    if (src.kind != BodySource::kAttached) continue;
+    const BodySource& anchor = sources_[src.anchor];
+    if ((anchor.kind == BodySource::kState && has_state(anchor.robot)) ||
+        (anchor.kind == BodySource::kScene && scene_posed[src.anchor])) {
       pose[b] = compose(pose[src.anchor], src.offset);
     }
   }

@@ -13,6 +13,7 @@
 
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
+#include "sim_core/scene_object_state.h"
 #include "viewer/renderer.h"
 
 namespace mrsim {
@@ -35,11 +36,17 @@ class StatePoseMapper {
   // otherwise what is wrong, for a malformed-message count.
   std::string Check(int robot, const RobotState& state) const;
 
-  // Poses every body: robot r from states[r] (null: as built), everything
-  // else as built. Fills xpos, xquat, xmat, xipos, geom_*, site_*, lights
-  // and cameras; `data` must have seen one mj_forward.
-  // States must pass Check.
-  void Apply(const std::vector<const RobotState*>& states, mjData* data) const;
+  // Empty when every object of a scene state is a movable scene object of
+  // the scenario (each at most once) with a finite pose; else what is wrong.
+  std::string CheckScene(const std::vector<SceneObjectState>& scene) const;
+
+  // Poses every body: robot r from states[r] (null: as built), the scene
+  // objects listed in `scene` from it (null or unlisted: as built),
+  // everything else as built. Fills xpos, xquat, xmat, xipos, geom_*,
+  // site_*, lights and cameras; `data` must have seen one mj_forward.
+  // States must pass Check, the scene CheckScene.
+  void Apply(const std::vector<const RobotState*>& states, mjData* data,
+             const std::vector<SceneObjectState>* scene = nullptr) const;
 
   // The distance-sensor rays of a robot in the pose of the last Apply, each
   // as long as the distance the state reports.
@@ -53,9 +60,9 @@ class StatePoseMapper {
   };
   // Where a body's pose comes from on each Apply.
   struct BodySource {
-    enum Kind { kBuilt, kState, kAttached } kind = kBuilt;
+    enum Kind { kBuilt, kState, kAttached, kScene } kind = kBuilt;
     int robot = -1;
-    int part = -1;    // kState: frames then sensor modules, flat
+    int part = -1;  // kState: frames then sensor modules, flat; kScene: object
     int anchor = -1;  // kAttached: body id of a kState body
     Pose offset;      // kState: body in part frame; kAttached: in anchor frame
   };
@@ -79,6 +86,8 @@ class StatePoseMapper {
   std::vector<RobotInfo> robots_;
   std::vector<BodySource> sources_;  // per body
   std::vector<Pose> built_;          // per body, at qpos0
+  // Per scenario scene object: its body when movable, else -1.
+  std::vector<int> scene_bodies_;
 };
 
 }  // namespace mrsim

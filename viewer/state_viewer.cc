@@ -64,9 +64,15 @@ std::string StateViewer::Check(int robot, const RobotState& state) const {
   return mapper_->Check(robot, state);
 }
 
+std::string StateViewer::CheckScene(
+    const std::vector<SceneObjectState>& scene) const {
+  return mapper_->CheckScene(scene);
+}
+
 void StateViewer::Render(const std::vector<const RobotState*>& states,
-                         cv::Mat* bgr) {
-  mapper_->Apply(states, data_.get());
+                         cv::Mat* bgr,
+                         const std::vector<SceneObjectState>* scene) {
+  mapper_->Apply(states, data_.get(), scene);
   rays_.clear();
   if (options_.rays) {
     for (int r = 0; r < robot_count() && r < static_cast<int>(states.size());

@@ -48,9 +48,14 @@ class StateViewer {
   // Empty when the state fits the robot; else what is wrong.
   std::string Check(int robot, const RobotState& state) const;
 
-  // Poses the model from states[r] (null: as built), points a follow camera
-  // at the followed robot's centre of mass, renders off-screen into `bgr`.
-  void Render(const std::vector<const RobotState*>& states, cv::Mat* bgr);
+  // Empty when a scene state fits the scenario's movable scene objects.
+  std::string CheckScene(const std::vector<SceneObjectState>& scene) const;
+
+  // Poses the model from states[r] (null: as built) and the scene objects
+  // from `scene` (null: as built), points a follow camera at the followed
+  // robot's centre of mass, renders off-screen into `bgr`.
+  void Render(const std::vector<const RobotState*>& states, cv::Mat* bgr,
+              const std::vector<SceneObjectState>* scene = nullptr);
   // Draws the scene of the last Render into the current window.
   void RenderToWindow(int width, int height);
 
@@ -58,6 +63,8 @@ class StateViewer {
   void set_gait(const std::string& gait) { options_.gait = gait; }
   CameraControl* camera() { return &camera_; }
   const mjModel* model() const { return model_.get(); }
+  // The poses of the last Render.
+  const mjData* data() const { return data_.get(); }
   Renderer* renderer() { return renderer_.get(); }
 
  private:

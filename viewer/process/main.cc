@@ -62,8 +62,12 @@ class FramePump {
         }
         if (!scheduler_->NextFrame(&frame)) return true;
         // A repeated state (lost or late messages) gives the same picture.
-        changed = changed || !have_image_ || frame.key != last_key_;
+        changed = changed || !have_image_ || frame.key != last_key_ ||
+                  frame.scene_key != last_scene_key_;
         if (changed) {
+          last_scene_valid_ = frame.scene != nullptr;
+          last_scene_ =
+              frame.scene ? *frame.scene : std::vector<SceneObjectState>();
           last_states_.clear();
           last_valid_.clear();
           for (const RobotState* s : frame.states) {
@@ -75,6 +79,7 @@ class FramePump {
       if (changed) {
         RenderLast();
         last_key_ = frame.key;
+        last_scene_key_ = frame.scene_key;
         ++rendered_;
       }
       if (first_index_ < 0) first_index_ = frame.index;
@@ -106,7 +111,8 @@ class FramePump {
     for (size_t r = 0; r < last_states_.size(); ++r) {
       states.push_back(last_valid_[r] ? &last_states_[r] : nullptr);
     }
-    viewer_->Render(states, &image_);
+    viewer_->Render(states, &image_,
+                    last_scene_valid_ ? &last_scene_ : nullptr);
     have_image_ = true;
     if (window_ != nullptr) {
       viewer_->RenderToWindow(window_->width(), window_->height());
@@ -127,6 +133,9 @@ class FramePump {
   std::vector<int64_t> last_key_;
   std::vector<RobotState> last_states_;
   std::vector<bool> last_valid_;
+  int64_t last_scene_key_ = -1;
+  std::vector<SceneObjectState> last_scene_;
+  bool last_scene_valid_ = false;
   int64_t frames_ = 0;
   int64_t rendered_ = 0;
   int64_t first_index_ = -1;
@@ -145,6 +154,8 @@ class Receiver {
       lcm->subscribe(channel, &Receiver::On, this)->setQueueCapacity(kLcmQueue);
     }
     lcm->subscribe(inbox->gait_channel(), &Receiver::On, this)
+        ->setQueueCapacity(kLcmQueue);
+    lcm->subscribe(inbox->scene_channel(), &Receiver::On, this)
         ->setQueueCapacity(kLcmQueue);
     thread_ = std::thread([this] { Loop(); });
   }
@@ -310,13 +321,14 @@ int Run(const ViewOptions& opt) {
   std::fprintf(stderr,
                "mrsim-view: done: %lld frames (%lld rendered, first index "
                "%lld, last at %.3f s), %lld states, %lld malformed, %lld "
-               "stale%s%s\n",
+               "stale, %lld scene states%s%s\n",
                static_cast<long long>(pump.frames()),
                static_cast<long long>(pump.rendered()),
                static_cast<long long>(pump.first_index()), pump.last_time(),
                static_cast<long long>(inbox.accepted()),
                static_cast<long long>(inbox.malformed()),
                static_cast<long long>(inbox.stale()),
+               static_cast<long long>(inbox.scenes()),
                inbox.last_error().empty() ? "" : "; last problem: ",
                inbox.last_error().c_str());
   if (writer) {

@@ -1,11 +1,14 @@
 #include "viewer/process/state_inbox.h"
 
+#include <cmath>
 #include <exception>
 #include <utility>
+#include <vector>
 
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
+#include "mrsim/scene_state_t.hpp"
 #include "sim_core/sim_process/state_message.h"
 
 namespace mrsim {
@@ -17,6 +20,43 @@ StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
     channels_[StateChannel(prefix, viewer.robot_name(r))] = r;
   }
   gait_channel_ = GaitChannel(prefix, viewer.robot_name(viewer.follow_robot()));
+  scene_channel_ = SceneChannel(prefix);
+}
+
+bool StateInbox::ReceiveScene(const void* data, int size) {
+  try {
+    scene_state_t msg;
+    if (msg.decode(data, 0, size) < 0) {
+      ++malformed_;
+      last_error_ = scene_channel_ + ": cannot decode scene_state_t";
+      return false;
+    }
+    if (msg.utime < 0 || !std::isfinite(msg.sim_time)) {
+      ++malformed_;
+      last_error_ = scene_channel_ + ": negative utime or non-finite time";
+      return false;
+    }
+    std::vector<SceneObjectState> objects = FromSceneStateMessage(msg);
+    const std::string problem = viewer_.CheckScene(objects);
+    if (!problem.empty()) {
+      ++malformed_;
+      last_error_ = scene_channel_ + ": " + problem;
+      return false;
+    }
+    if (!scheduler_->PushScene(msg.utime, std::move(objects))) {
+      ++stale_;
+      return false;
+    }
+    ++scenes_;
+    return true;
+  } catch (const std::exception& e) {
+    ++malformed_;
+    last_error_ = scene_channel_ + ": " + e.what();
+  } catch (...) {
+    ++malformed_;
+    last_error_ = scene_channel_ + ": bad scene state";
+  }
+  return false;
 }
 
 bool StateInbox::ReceiveGait(const void* data, int size) {
@@ -45,6 +85,7 @@ bool StateInbox::Receive(const std::string& channel, const void* data,
                          int size) {
   try {
     if (channel == gait_channel_) return ReceiveGait(data, size);
+    if (channel == scene_channel_) return ReceiveScene(data, size);
     const auto it = channels_.find(channel);
     if (it == channels_.end()) return false;
     const int robot = it->second;

@@ -1,5 +1,6 @@
 // Decodes robot_state_t messages (live or from a log) for the robots of the
-// scenario and feeds the frame scheduler; also follows the gait commands of
+// scenario, and scene_state_t for its movable scene objects, and feeds the
+// frame scheduler; also follows the gait commands of
 // the followed robot for the overlay. Malformed or foreign messages are
 // counted and dropped, never trusted; nothing here throws.
 #pragma once
@@ -22,13 +23,17 @@ class StateInbox {
 
   const std::map<std::string, int>& channels() const { return channels_; }
   const std::string& gait_channel() const { return gait_channel_; }
+  // SceneChannel(prefix): scene_state_t.
+  const std::string& scene_channel() const { return scene_channel_; }
   // "gait (motion)" from the latest gait commands; empty before any.
   const std::string& gait_text() const { return gait_text_; }
   // One message; returns true when it reached the scheduler.
   bool Receive(const std::string& channel, const void* data, int size);
   bool ReceiveGait(const void* data, int size);
+  bool ReceiveScene(const void* data, int size);
 
   int64_t accepted() const { return accepted_; }
+  int64_t scenes() const { return scenes_; }  // scene states accepted
   int64_t malformed() const { return malformed_; }
   int64_t stale() const { return stale_; }
   const std::string& last_error() const { return last_error_; }
@@ -38,10 +43,12 @@ class StateInbox {
   FrameScheduler* scheduler_;
   std::map<std::string, int> channels_;
   std::string gait_channel_;
+  std::string scene_channel_;
   std::string gait_;
   std::string motion_;
   std::string gait_text_;
   int64_t accepted_ = 0;
+  int64_t scenes_ = 0;
   int64_t malformed_ = 0;
   int64_t stale_ = 0;
   std::string last_error_;
