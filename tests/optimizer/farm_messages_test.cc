@@ -38,6 +38,9 @@ TEST(FarmEvaluator, IgnoresOtherRunsOtherPayloadsAndGarbage) {
   lcm::LCM lcm(url);
   ASSERT_TRUE(lcm.good());
   FarmSettings settings;
+  // The honest worker must not be dropped because a loaded machine left it
+  // unscheduled for a while; this test is about foreign messages.
+  settings.worker_timeout = 10.0;
   FarmEvaluator farm(lcm, payload, "run-under-test", settings);
 
   std::atomic<bool> done{false};
