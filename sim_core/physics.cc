@@ -16,7 +16,10 @@
 namespace mrsim {
 namespace {
 
-constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
+// Version 2 adds the integrated qpos, actuator_force and sensordata;
+// version 1 blobs still load (resuming them may differ in the last bits).
+constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
+constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
 
 const char* WarningName(int w) {
   switch (w) {
@@ -116,6 +119,11 @@ struct Physics::Impl {
   std::vector<RobotIndex> robots;
   std::unique_ptr<FluidForces> fluids;
   std::array<int, mjNWARNING> warnings{};
+  // qpos as mj_step2 left it, before mj_step1's kinematics renormalised the
+  // free and ball joint quaternions in place. Renormalising is not
+  // idempotent in the last bit, so a loaded state must run mj_step1 from
+  // this, not from the current qpos, to get the very same qpos and poses.
+  std::vector<mjtNum> qpos_integrated;
 
   int Id(mjtObj type, const std::string& name) const {
     const int id = mj_name2id(model.get(), type, name.c_str());
@@ -137,6 +145,7 @@ struct Physics::Impl {
     }
   }
   void AfterStateChange() {
+    mju_copy(qpos_integrated.data(), data->qpos, model->nq);
     mj_step1(model.get(), data.get());
     for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
   }
@@ -278,6 +287,7 @@ Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
   impl_->Index();
   impl_->data.reset(mj_makeData(m));
   impl_->scratch.reset(mj_makeData(m));
+  impl_->qpos_integrated.resize(m->nq);
   impl_->fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
   impl_->AfterStateChange();
 }
@@ -294,6 +304,7 @@ void Physics::Step() {
   impl_->ComputeControls(d);
   if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d, d->xfrc_applied);
   mj_step2(m, d);
+  mju_copy(impl_->qpos_integrated.data(), d->qpos, m->nq);
   mj_step1(m, d);
   impl_->CheckStability(time_before);
 }
@@ -496,20 +507,29 @@ std::vector<unsigned char> Physics::SaveState() const {
   for (const auto& r : impl_->robots) {
     targets.insert(targets.end(), r.targets.begin(), r.targets.end());
   }
-  const int32_t sizes[6] = {m->nq,    m->nv,
-                            m->na,    m->nu,
-                            m->nbody, static_cast<int32_t>(targets.size())};
+  const int32_t sizes[7] = {m->nq,
+                            m->nv,
+                            m->na,
+                            m->nu,
+                            m->nbody,
+                            m->nsensordata,
+                            static_cast<int32_t>(targets.size())};
   std::vector<unsigned char> out;
   Put(out, kStateMagic, sizeof(kStateMagic));
-  Put(out, sizes, 6);
+  Put(out, sizes, 7);
   Put(out, &d->time, 1);
   Put(out, d->qpos, m->nq);
+  Put(out, impl_->qpos_integrated.data(), m->nq);
   Put(out, d->qvel, m->nv);
   Put(out, d->act, m->na);
   Put(out, d->ctrl, m->nu);
   Put(out, d->qacc_warmstart, m->nv);
   Put(out, d->qfrc_applied, m->nv);
   Put(out, d->xfrc_applied, 6 * m->nbody);
+  // Results of the last step's dynamics (mj_step2) that mj_step1 does not
+  // recompute and ReadRobotState reports (torques) or data() exposes.
+  Put(out, d->actuator_force, m->nu);
+  Put(out, d->sensordata, m->nsensordata);
   Put(out, targets.data(), targets.size());
   return out;
 }
@@ -518,25 +538,40 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   const mjModel* m = impl_->model.get();
   size_t ntargets = 0;
   for (const auto& r : impl_->robots) ntargets += r.targets.size();
-  const int32_t expect[6] = {m->nq, m->nv,    m->na,
-                             m->nu, m->nbody, static_cast<int32_t>(ntargets)};
-  const size_t header = sizeof(kStateMagic) + sizeof(expect);
-  const size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
-                         6 * m->nbody + ntargets;
-  if (bytes.size() < header ||
-      std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) != 0) {
+  if (bytes.size() < sizeof(kStateMagic)) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
   }
-  int32_t sizes[6];
-  std::memcpy(sizes, bytes.data() + sizeof(kStateMagic), sizeof(sizes));
-  if (std::memcmp(sizes, expect, sizeof(sizes)) != 0 ||
-      bytes.size() != header + doubles * sizeof(double)) {
+  const bool v1 =
+      std::memcmp(bytes.data(), kStateMagicV1, sizeof(kStateMagicV1)) == 0;
+  if (!v1 && std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) != 0) {
+    throw std::invalid_argument("physics state: not an mrsim state blob");
+  }
+  // Version 1 has no nsensordata entry.
+  std::vector<int32_t> expect = {m->nq, m->nv, m->na, m->nu, m->nbody};
+  if (!v1) expect.push_back(m->nsensordata);
+  expect.push_back(static_cast<int32_t>(ntargets));
+  const size_t header = sizeof(kStateMagic) + expect.size() * sizeof(int32_t);
+  size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
+                   6 * m->nbody + ntargets;
+  if (!v1) doubles += m->nq + m->nu + m->nsensordata;
+  std::vector<int32_t> sizes(expect.size(), -1);
+  if (bytes.size() >= header) {
+    std::memcpy(sizes.data(), bytes.data() + sizeof(kStateMagic),
+                sizes.size() * sizeof(int32_t));
+  }
+  if (sizes != expect || bytes.size() != header + doubles * sizeof(double)) {
+    auto list = [](const std::vector<int32_t>& v) {
+      return fmt::format(
+          "nq {} nv {} na {} nu {} nbody {}{} targets {}", v[0], v[1], v[2],
+          v[3], v[4],
+          v.size() == 7 ? fmt::format(" nsensordata {}", v[5]) : std::string(),
+          v.back());
+    };
     throw std::invalid_argument(fmt::format(
-        "physics state: saved for a different model (nq {} nv {} na {} nu {} "
-        "nbody {} targets {}; this model has nq {} nv {} na {} nu {} nbody {} "
-        "targets {})",
-        sizes[0], sizes[1], sizes[2], sizes[3], sizes[4], sizes[5], expect[0],
-        expect[1], expect[2], expect[3], expect[4], expect[5]));
+        "physics state: saved for a different model ({}, {} bytes; this "
+        "model has {}, {} bytes)",
+        list(sizes), bytes.size(), list(expect),
+        header + doubles * sizeof(double)));
   }
   mjData* d = impl_->data.get();
   mj_resetData(m, d);
@@ -545,16 +580,38 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     std::memcpy(dst, p, n * sizeof(double));
     p += n * sizeof(double);
   };
+  std::vector<mjtNum> qpos(m->nq);
   get(&d->time, 1);
-  get(d->qpos, m->nq);
+  get(qpos.data(), m->nq);
+  if (v1) {
+    mju_copy(d->qpos, qpos.data(), m->nq);
+  } else {
+    get(d->qpos, m->nq);  // the integrated qpos (see qpos_integrated)
+  }
   get(d->qvel, m->nv);
   get(d->act, m->na);
   get(d->ctrl, m->nu);
   get(d->qacc_warmstart, m->nv);
   get(d->qfrc_applied, m->nv);
   get(d->xfrc_applied, 6 * m->nbody);
+  std::vector<mjtNum> actuator_force, sensordata;
+  if (!v1) {
+    actuator_force.resize(m->nu);
+    sensordata.resize(m->nsensordata);
+    get(actuator_force.data(), m->nu);
+    get(sensordata.data(), m->nsensordata);
+  }
   for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
   impl_->AfterStateChange();
+  // The kinematics pass reproduces the saved qpos exactly unless the state
+  // was poked between the step and the save; keep the saved qpos then.
+  if (std::memcmp(d->qpos, qpos.data(), m->nq * sizeof(mjtNum)) != 0) {
+    mju_copy(d->qpos, qpos.data(), m->nq);
+  }
+  if (!v1) {
+    mju_copy(d->actuator_force, actuator_force.data(), m->nu);
+    mju_copy(d->sensordata, sensordata.data(), m->nsensordata);
+  }
 }
 
 const Scenario& Physics::scenario() const { return impl_->scenario; }

@@ -80,6 +80,89 @@ TEST(Checkpoint, ResumeIsBitIdentical) {
       0.001);
 }
 
+// A controller whose targets depend on everything ReadRobotState returns
+// (angles, speeds, torques, CoM, forces, distances), read once per control
+// period of 5 steps, as a real controller process does.
+// `reads` > 1 reads the state that many times per period (the last one is
+// used), which must not change the run.
+void DriveFromState(Physics& physics, double seconds, int reads = 1) {
+  const int steps = static_cast<int>(std::lround(seconds / physics.timestep()));
+  std::vector<double> targets(physics.joint_count(0));
+  for (int i = 0; i < steps; i += 5) {
+    RobotState s = physics.ReadRobotState(0);
+    for (int r = 1; r < reads; ++r) s = physics.ReadRobotState(0);
+    double sensed = 0;
+    for (const SensorModuleState& sm : s.sensor_modules) {
+      sensed += 0.01 * sm.force;
+      for (double d : sm.distances) sensed += 0.1 * d;
+    }
+    for (size_t j = 0; j < targets.size(); ++j) {
+      const JointState& next = s.joints[(j + 1) % s.joints.size()];
+      targets[j] = 0.5 * std::sin(2 * s.time + 2.5 * j + next.angle) +
+                   0.1 * s.com.x() + 0.05 * s.com_velocity.y() +
+                   0.02 * next.speed + 0.05 * s.joints[j].torque + sensed;
+    }
+    physics.SetJointTargets(0, targets);
+    physics.Step(5);
+  }
+}
+
+TEST(Checkpoint, ResumeWithStateDependentControllerIsBitIdentical) {
+  const std::string dir = testing::TempDir("checkpoint_feedback");
+  Physics original(Snake(dir));
+  DriveFromState(original, 2.0);
+  const std::string text = SaveCheckpointString(original);
+  DriveFromState(original, 2.0);
+
+  std::unique_ptr<Physics> resumed = LoadCheckpointString(text, "feedback");
+  DriveFromState(*resumed, 2.0);
+  const mjModel* m = original.model();
+  ASSERT_EQ(resumed->model()->nq, m->nq);
+  EXPECT_EQ(resumed->time(), original.time());
+  EXPECT_EQ(std::memcmp(resumed->data()->qpos, original.data()->qpos,
+                        m->nq * sizeof(double)),
+            0);
+  EXPECT_EQ(std::memcmp(resumed->data()->qvel, original.data()->qvel,
+                        m->nv * sizeof(double)),
+            0);
+  EXPECT_EQ(resumed->SaveState(), original.SaveState());
+  // The torque read right after a load is the one the original reports.
+  EXPECT_NE(original.ReadRobotState(0).joints[0].torque, 0.0);
+}
+
+TEST(Checkpoint, ReadingTheStateDoesNotChangeTheRun) {
+  const std::string dir = testing::TempDir("checkpoint_reads");
+  Physics once(Snake(dir));
+  Physics thrice(Snake(dir));
+  DriveFromState(once, 1.0, 1);
+  DriveFromState(thrice, 1.0, 3);
+  EXPECT_EQ(thrice.SaveState(), once.SaveState());
+}
+
+TEST(Checkpoint, LoadedStateReadsBackAsTheOriginal) {
+  const std::string dir = testing::TempDir("checkpoint_readback");
+  Physics original(Snake(dir));
+  DriveFromState(original, 1.0);
+  std::unique_ptr<Physics> copy =
+      LoadCheckpointString(SaveCheckpointString(original), "readback");
+  const RobotState a = original.ReadRobotState(0);
+  const RobotState b = copy->ReadRobotState(0);
+  ASSERT_EQ(a.joints.size(), b.joints.size());
+  for (size_t j = 0; j < a.joints.size(); ++j) {
+    EXPECT_EQ(b.joints[j].angle, a.joints[j].angle) << "joint " << j;
+    EXPECT_EQ(b.joints[j].speed, a.joints[j].speed) << "joint " << j;
+    EXPECT_EQ(b.joints[j].torque, a.joints[j].torque) << "joint " << j;
+  }
+  EXPECT_EQ(b.com, a.com);
+  EXPECT_EQ(b.com_velocity, a.com_velocity);
+  ASSERT_EQ(a.sensor_modules.size(), b.sensor_modules.size());
+  for (size_t k = 0; k < a.sensor_modules.size(); ++k) {
+    EXPECT_EQ(b.sensor_modules[k].force, a.sensor_modules[k].force);
+    EXPECT_EQ(b.sensor_modules[k].distances, a.sensor_modules[k].distances);
+  }
+  EXPECT_NE(a.joints[0].torque, 0.0);
+}
+
 TEST(Checkpoint, StringFormIsSelfContained) {
   const std::string dir = testing::TempDir("checkpoint_string");
   Physics original(Snake(dir));
