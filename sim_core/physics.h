@@ -78,10 +78,12 @@ class Physics {
   RobotState ReadRobotState(int robot) const;
   Eigen::Vector3d CenterOfMass(int robot) const;
 
-  // The full physics state (time, qpos, qvel, act, ctrl, warm start,
-  // applied forces, targets) as bytes; LoadState restores it so stepping
-  // continues bit for bit. LoadState throws std::invalid_argument for bytes
-  // saved from another model. Format: docs/physics.md.
+  // The full physics state (time, qpos and qpos before the kinematics
+  // renormalised it, qvel, act, ctrl, warm start, applied forces, actuator
+  // forces, sensordata, targets) as bytes; LoadState restores it so
+  // stepping and ReadRobotState continue bit for bit. LoadState throws
+  // std::invalid_argument for bytes saved from another model. Format:
+  // docs/physics.md.
   std::vector<unsigned char> SaveState() const;
   void LoadState(const std::vector<unsigned char>& bytes);
 

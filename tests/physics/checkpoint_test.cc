@@ -163,6 +163,42 @@ TEST(Checkpoint, LoadedStateReadsBackAsTheOriginal) {
   EXPECT_NE(a.joints[0].torque, 0.0);
 }
 
+TEST(Checkpoint, VersionOneStateStillLoads) {
+  const std::string dir = testing::TempDir("checkpoint_v1");
+  Physics original(Snake(dir));
+  Drive(original, 0.3);
+  const mjModel* m = original.model();
+  const mjData* d = original.data();
+  // The first format: no nsensordata, integrated qpos, torques, sensordata.
+  std::vector<unsigned char> v1 = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
+  const int32_t sizes[6] = {m->nq, m->nv,    m->na,
+                            m->nu, m->nbody, original.joint_count(0)};
+  const auto* size_bytes = reinterpret_cast<const unsigned char*>(sizes);
+  v1.insert(v1.end(), size_bytes, size_bytes + sizeof(sizes));
+  auto put = [&v1](const double* v, int n) {
+    const std::vector<unsigned char> b = Bytes(v, n);
+    v1.insert(v1.end(), b.begin(), b.end());
+  };
+  put(&d->time, 1);
+  put(d->qpos, m->nq);
+  put(d->qvel, m->nv);
+  put(d->act, m->na);
+  put(d->ctrl, m->nu);
+  put(d->qacc_warmstart, m->nv);
+  put(d->qfrc_applied, m->nv);
+  put(d->xfrc_applied, 6 * m->nbody);
+  put(original.joint_targets(0).data(), original.joint_count(0));
+
+  Physics loaded(Snake(dir));
+  loaded.LoadState(v1);
+  EXPECT_EQ(loaded.time(), original.time());
+  EXPECT_EQ(Bytes(loaded.data()->qpos, m->nq), Bytes(d->qpos, m->nq));
+  EXPECT_EQ(Bytes(loaded.data()->qvel, m->nv), Bytes(d->qvel, m->nv));
+  EXPECT_EQ(loaded.joint_targets(0), original.joint_targets(0));
+  v1.pop_back();
+  EXPECT_THROW(loaded.LoadState(v1), std::invalid_argument);
+}
+
 TEST(Checkpoint, StringFormIsSelfContained) {
   const std::string dir = testing::TempDir("checkpoint_string");
   Physics original(Snake(dir));
