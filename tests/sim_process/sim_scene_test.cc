@@ -108,7 +108,8 @@ TEST(SimProcessScene, SimPublishesSceneStatesWithTheRobotStatesSeq) {
   ChildProcess sim({SimBinary(), scenario, "--lcm-url", TestLcmUrl(port),
                     "--rate", "100", "--clock", "fast", "--paused"},
                    dir + "/sim.log");
-  ASSERT_TRUE(client.WaitFor([&] { return client.states_received() > 0; }, 10))
+  ASSERT_TRUE(client.WaitFor(
+      [&] { return client.states_received() > 0 && client.status(); }, 10))
       << sim.Output();
   ASSERT_TRUE(client.StepAndWait(20)) << sim.Output();
   client.Spin(0.1);

@@ -30,6 +30,11 @@
 namespace mrsim {
 namespace {
 
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::TempDir;
+using testing::TestLcmUrl;
+
 constexpr int kBall = 1;  // index in scene_objects (0 is the static box)
 
 // The viewer test snake and box, plus a movable ball beside the snake.
