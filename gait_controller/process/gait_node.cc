@@ -7,6 +7,7 @@
 
 #include "gait_controller/process/gait_command_apply.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 
 namespace mrsim {
 
@@ -90,7 +91,7 @@ void GaitNode::Apply(const gait_command_t& command, const std::string& source) {
 
 void GaitNode::OnGait(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   gait_command_t command;
-  if (command.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+  if (!DecodeMessage(rbuf, &command)) {
     ++counters_.messages_malformed;
     ++counters_.commands_rejected;
     Log("rejected a gait command that does not decode as gait_command_t");
@@ -107,7 +108,7 @@ void GaitNode::OnGait(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 
 void GaitNode::OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   robot_state_t state;
-  if (state.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+  if (!DecodeMessage(rbuf, &state)) {
     ++counters_.messages_malformed;
     return;
   }

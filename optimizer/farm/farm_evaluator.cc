@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/opt_chunk_request_t.hpp"
 #include "mrsim/opt_chunk_t.hpp"
@@ -25,11 +26,6 @@ std::int64_t NowMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::system_clock::now().time_since_epoch())
       .count();
-}
-
-template <typename T>
-bool Decode(const lcm::ReceiveBuffer* rbuf, T* msg) {
-  return msg->decode(rbuf->data, 0, rbuf->data_size) >= 0;
 }
 
 }  // namespace
@@ -82,7 +78,7 @@ void FarmEvaluator::OnHeartbeat(const lcm::ReceiveBuffer* rbuf,
                                 const std::string&) {
   try {
     opt_heartbeat_t msg;
-    if (!Decode(rbuf, &msg) || msg.worker_id.empty() || msg.slots < 1 ||
+    if (!DecodeMessage(rbuf, &msg) || msg.worker_id.empty() || msg.slots < 1 ||
         msg.job_count < 0) {
       ++counters_.messages_malformed;
       return;
@@ -112,7 +108,7 @@ void FarmEvaluator::OnResult(const lcm::ReceiveBuffer* rbuf,
                              const std::string&) {
   try {
     opt_result_t msg;
-    if (!Decode(rbuf, &msg)) {
+    if (!DecodeMessage(rbuf, &msg)) {
       ++counters_.messages_malformed;
       return;
     }
@@ -164,7 +160,7 @@ void FarmEvaluator::OnChunkRequest(const lcm::ReceiveBuffer* rbuf,
                                    const std::string&) {
   try {
     opt_chunk_request_t msg;
-    if (!Decode(rbuf, &msg)) {
+    if (!DecodeMessage(rbuf, &msg)) {
       ++counters_.messages_malformed;
       return;
     }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "lcmtypes/runtime/decode.h"
 #include "mrsim/opt_chunk_request_t.hpp"
 #include "mrsim/opt_chunk_t.hpp"
 #include "mrsim/opt_heartbeat_t.hpp"
@@ -23,11 +24,6 @@ std::int64_t NowMicros() {
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
-}
-
-template <typename T>
-bool Decode(const lcm::ReceiveBuffer* rbuf, T* msg) {
-  return msg->decode(rbuf->data, 0, rbuf->data_size) >= 0;
 }
 
 }  // namespace
@@ -70,8 +66,8 @@ WorkerCounters FarmWorker::counters() const {
 void FarmWorker::OnRun(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   try {
     opt_run_t msg;
-    if (!Decode(rbuf, &msg) || msg.chunk_count < 1 || msg.payload_size < 0 ||
-        msg.run_id.empty()) {
+    if (!DecodeMessage(rbuf, &msg) || msg.chunk_count < 1 ||
+        msg.payload_size < 0 || msg.run_id.empty()) {
       std::lock_guard<std::mutex> lock(mutex_);
       ++counters_.messages_malformed;
       return;
@@ -114,7 +110,7 @@ void FarmWorker::OnRun(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 void FarmWorker::OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   try {
     opt_chunk_t msg;
-    if (!Decode(rbuf, &msg)) {
+    if (!DecodeMessage(rbuf, &msg)) {
       std::lock_guard<std::mutex> lock(mutex_);
       ++counters_.messages_malformed;
       return;
@@ -158,7 +154,7 @@ void FarmWorker::OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 void FarmWorker::OnJob(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   try {
     opt_job_t msg;
-    if (!Decode(rbuf, &msg)) {
+    if (!DecodeMessage(rbuf, &msg)) {
       std::lock_guard<std::mutex> lock(mutex_);
       ++counters_.messages_malformed;
       return;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_control_t.hpp"
@@ -360,7 +361,7 @@ void SimServer::OnCommand(const lcm::ReceiveBuffer* rbuf,
                           const std::string& channel) {
   try {
     joint_command_t cmd;
-    if (cmd.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
+    if (!DecodeMessage(rbuf, &cmd)) {
       ++malformed_;
       return;
     }
@@ -441,7 +442,7 @@ void SimServer::OnControl(const lcm::ReceiveBuffer* rbuf,
 
 void SimServer::HandleControl(const lcm::ReceiveBuffer* rbuf) {
   sim_control_t msg;
-  if (msg.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
+  if (!DecodeMessage(rbuf, &msg)) {
     ++malformed_;
     return;
   }

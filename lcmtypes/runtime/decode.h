@@ -1,0 +1,16 @@
+// Decoding a raw LCM buffer. Our handlers subscribe raw rather than typed,
+// because lcm-cpp's typed subscriptions drop undecodable messages silently
+// and we must count what we drop.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+namespace mrsim {
+
+// True when `rbuf` decodes as Message (right fingerprint, whole, consistent).
+template <class Message>
+bool DecodeMessage(const lcm::ReceiveBuffer* rbuf, Message* msg) {
+  return msg->decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0;
+}
+
+}  // namespace mrsim
