@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -70,9 +71,18 @@ std::string FindLauncher() {
   return "mrsim";
 }
 
+// The replay talks where the user asked: --lcm-url, else LCM_DEFAULT_URL,
+// else the launch file's default.
+std::string ReplayLcmUrl(const std::string& lcm_url) {
+  if (!lcm_url.empty()) return lcm_url;
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  return env != nullptr ? env : "";
+}
+
 void WriteReplayLaunch(const std::string& path, const std::string& dir,
                        const std::string& scenario, const std::string& gait,
-                       const std::string& robot, double duration) {
+                       const std::string& robot, double duration,
+                       const std::string& lcm_url) {
   std::ofstream out(path);
   out << "<!-- Written by mrsim-opt: the best individual in the simulator, "
          "its gait\n     controller and the viewer (video in "
@@ -82,8 +92,9 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
       << "<launch name=\"opt-replay\">\n"
       << "  <arg name=\"out\" default=\"" << dir << "\"/>\n"
       << "  <arg name=\"view\" default=\"--out ${out}/replay.mp4\"/>\n"
-      << "  <arg name=\"lcm_url\" "
-         "default=\"udpm://239.255.76.67:7667?ttl=0\"/>\n"
+      << "  <arg name=\"lcm_url\" default=\""
+      << (lcm_url.empty() ? "udpm://239.255.76.67:7667?ttl=0" : lcm_url)
+      << "\"/>\n"
       << "  <arg name=\"duration\" default=\"" << duration << "\"/>\n"
       << "  <process name=\"view\" program=\"mrsim-view\" delay=\"0.3\"\n"
       << "           args=\"" << scenario
@@ -317,7 +328,7 @@ int main(int argc, char** argv) {
     WriteReplayLaunch(launch, fs::absolute(best_dir).string(),
                       fs::absolute(best_dir + "/best_scenario.xml"),
                       fs::absolute(best_dir + "/best_gait.xml"), robot,
-                      e.duration);
+                      e.duration, ReplayLcmUrl(lcm_url));
     std::string genes;
     for (int i = 0; i < best_spec.size(); ++i) {
       genes += fmt::format(" {}={}", best_spec.genes[i].name, result.best[i]);
