@@ -68,8 +68,7 @@ void FarmWorker::OnRun(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     opt_run_t msg;
     if (!DecodeMessage(rbuf, &msg) || msg.chunk_count < 1 ||
         msg.payload_size < 0 || msg.run_id.empty()) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.messages_malformed;
+      CountMalformed();
       return;
     }
     const auto now = Clock::now();
@@ -102,17 +101,20 @@ void FarmWorker::OnRun(const lcm::ReceiveBuffer* rbuf, const std::string&) {
                     run_id_, hash_, msg.payload_size, msg.chunk_count));
     RequestMissing();
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.messages_malformed;
+    CountMalformed();
   }
+}
+
+void FarmWorker::CountMalformed() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++counters_.messages_malformed;
 }
 
 void FarmWorker::OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   try {
     opt_chunk_t msg;
     if (!DecodeMessage(rbuf, &msg)) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.messages_malformed;
+      CountMalformed();
       return;
     }
     if (!fetching_ || msg.run_id != run_id_ || msg.scenario_hash != hash_ ||
@@ -121,8 +123,7 @@ void FarmWorker::OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     }
     if (!assembler_.Add(msg.index,
                         std::string(msg.data.begin(), msg.data.end()))) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.messages_malformed;
+      CountMalformed();
       return;
     }
     if (!assembler_.complete()) return;
@@ -146,8 +147,7 @@ void FarmWorker::OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string&) {
       hash_.clear();
     }
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.messages_malformed;
+    CountMalformed();
   }
 }
 
@@ -155,8 +155,7 @@ void FarmWorker::OnJob(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   try {
     opt_job_t msg;
     if (!DecodeMessage(rbuf, &msg)) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.messages_malformed;
+      CountMalformed();
       return;
     }
     if (msg.worker_id != settings_.id) return;  // someone else's job
@@ -182,8 +181,7 @@ void FarmWorker::OnJob(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     queue_.push_back(std::move(task));
     wake_.notify_one();
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.messages_malformed;
+    CountMalformed();
   }
 }
 

@@ -54,6 +54,8 @@ class FarmWorker {
   WorkerCounters counters() const;
 
  private:
+  // Handlers run on LCM's thread while episodes run on the pool: lock.
+  void CountMalformed();
   using Clock = std::chrono::steady_clock;
   struct Task {
     std::shared_ptr<const Problem> problem;
