@@ -58,7 +58,8 @@ bool operator==(const Joint& a, const Joint& b) {
          a.right_frame_guid == b.right_frame_guid && a.type == b.type &&
          a.lower_range_limit == b.lower_range_limit &&
          a.upper_range_limit == b.upper_range_limit && a.kp == b.kp &&
-         a.max_vel == b.max_vel;
+         a.max_vel == b.max_vel && a.velocity_gain == b.velocity_gain &&
+         a.max_torque == b.max_torque && a.break_force == b.break_force;
 }
 
 bool operator==(const Module& a, const Module& b) {

@@ -39,7 +39,10 @@ struct Frame {
 };
 
 // A connection between two frames: a motorised hinge (position servo as a P
-// law on speed) or a rigid lock. Limits in rad, max_vel in rad/s.
+// law on speed) or a rigid lock. Limits in rad, max_vel in rad/s. The servo
+// commands speed = clamp(kp * (target - angle), +-max_vel) and a velocity
+// loop of gain velocity_gain drives the hinge towards it with at most
+// max_torque, as a hobby servo's stall torque limits it.
 struct Joint {
   std::string guid;
   std::string left_frame_guid;
@@ -49,6 +52,9 @@ struct Joint {
   double upper_range_limit = 1.5708;
   double kp = 10.0;
   double max_vel = 3.0;
+  double velocity_gain = 5.0;  // N m s/rad, hinge only
+  double max_torque = 2.0;     // N m, hinge only (stall torque)
+  double break_force = 0.0;    // N, lock only; 0: never breaks
 };
 
 // Two frames joined by a hinge whose axis is given by `axis`.
