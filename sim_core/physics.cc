@@ -11,6 +11,7 @@
 
 #include "sim_core/fluid_forces.h"
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/mujoco_handlers.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -45,6 +46,7 @@ const char* WarningName(int w) {
 }
 
 MjModelPtr CompileMjcf(const std::string& xml) {
+  InstallMujocoHandlers();  // before any MuJoCo call: never print or exit
   // MuJoCo 2.2's XML parser and compiler keep global state: one at a time,
   // so Physics objects can be built from several threads.
   static std::mutex compile_mutex;

@@ -4,10 +4,12 @@
 #include <stdexcept>
 
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/mujoco_handlers.h"
 
 namespace mrsim {
 
 MjModelPtr CompileMjcf(const std::string& mjcf, const std::string& name) {
+  InstallMujocoHandlers();  // MuJoCo never prints, logs to a file or exits
   // An in-memory file: the MJCF names meshes and height fields by absolute
   // path, so nothing needs writing to disk.
   mjVFS vfs;

@@ -9,6 +9,7 @@
 #include "sim_core/scenario_xml.h"
 #include "sim_core/terrain.h"
 #include "tests/common/child_process.h"
+#include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {
@@ -257,6 +258,7 @@ TEST(PhysicsInstability, NonFiniteStateRaisesPhysicsError) {
   Physics physics(s);
   physics.Step(10);
   physics.mutable_data()->qvel[6] = NAN;  // module 0's hinge
+  testing::ExpectMujocoWarnings expected;
   try {
     physics.Step();
     FAIL() << "expected PhysicsError";
@@ -286,6 +288,7 @@ TEST(PhysicsInstability, ExplodingModelRaisesPhysicsError) {
   s.robots.push_back(MakeChain(options));
   Physics physics(s);
   std::vector<double> targets(4);
+  testing::ExpectMujocoWarnings expected;
   EXPECT_THROW(
       {
         for (int i = 0; i < 2000; ++i) {

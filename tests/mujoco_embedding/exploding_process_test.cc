@@ -1,0 +1,115 @@
+// The programs with an exploding scenario: a clear error, nothing from
+// MuJoCo on stdout, no MUJOCO_LOG.TXT, and the process decides what
+// happens next (MuJoCo does not end it).
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+#include "tests/mujoco_embedding/exploding_scenario.h"
+
+namespace mrsim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::TestLcmUrl;
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Polls a file for a text until the deadline (no sleep decides anything:
+// the loop ends as soon as the text is there).
+bool WaitForFileText(const std::string& path, const std::string& text,
+                     double seconds) {
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::milliseconds(static_cast<int>(seconds * 1e3));
+  while (std::chrono::steady_clock::now() < end) {
+    if (ReadAll(path).find(text) != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// Runs in a fresh directory, the processes' working directory.
+class ExplodingProcess : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::TempDir(
+        std::string("exploding_") +
+        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    old_ = fs::current_path();
+    fs::current_path(dir_);
+    WriteScenarioFile(testing::ExplodingScenario(), dir_ + "/ex.xml");
+  }
+  void TearDown() override {
+    EXPECT_FALSE(fs::exists(fs::path(dir_) / "MUJOCO_LOG.TXT"));
+    fs::current_path(old_);
+  }
+  std::string dir_;
+  fs::path old_;
+};
+
+// MuJoCo's default warning text, which must never reach stdout.
+constexpr char kMujocoText[] = "Nan, Inf or huge value";
+
+TEST_F(ExplodingProcess, SimulatorNamesTheErrorAndKeepsStdoutClean) {
+  // stdout and stderr apart: stdout is for the run's summary only.
+  ChildProcess sim(
+      {"/bin/sh", "-c",
+       "exec \"$0\" ex.xml --clock fast --duration 60 "
+       "--no-state --lcm-url \"$1\" 2>err.txt",
+       BinaryPath("sim_core/sim_process/mrsim-sim"), TestLcmUrl(7900)},
+      dir_ + "/out.txt");
+  ASSERT_TRUE(WaitForFileText(dir_ + "/err.txt", "physics unstable", 60))
+      << ReadAll(dir_ + "/err.txt");
+  const std::string err = ReadAll(dir_ + "/err.txt");
+  EXPECT_NE(err.find("BADQACC"), std::string::npos) << err;
+  // Paused on the error (a user may RESET); a stop request still ends it.
+  sim.Signal(SIGINT);
+  EXPECT_EQ(sim.Wait(30), 0);
+  const std::string out = ReadAll(dir_ + "/out.txt");
+  EXPECT_EQ(out.find(kMujocoText), std::string::npos) << out;
+  EXPECT_EQ(out.find("WARNING"), std::string::npos) << out;
+}
+
+TEST_F(ExplodingProcess, WorkerReportsFailedEpisodesAndLivesOn) {
+  {
+    std::ofstream genome(dir_ + "/g.xml");
+    genome << "<genome robot=\"snake\"><gene name=\"A_pitch\" lower=\"0\" "
+              "upper=\"1.5\" start=\"1\"/></genome>\n";
+  }
+  const std::string url = TestLcmUrl(7901);
+  ChildProcess worker({BinaryPath("optimizer/process/mrsim-worker"),
+                       "--lcm-url", url, "--id", "w1"},
+                      dir_ + "/worker.log");
+  ChildProcess master(
+      {BinaryPath("optimizer/process/mrsim-opt"), "ex.xml", "--genome", "g.xml",
+       "--generations", "1", "--population", "4", "--seed", "3", "--episode",
+       "20", "--out", dir_ + "/run", "--farm", "--lcm-url", url},
+      dir_ + "/master.log");
+  ASSERT_EQ(master.Wait(120), 0) << master.Output();
+  EXPECT_TRUE(worker.running()) << worker.Output();
+  const std::string evaluations = ReadAll(dir_ + "/run/evaluations.csv");
+  EXPECT_NE(evaluations.find("-1000000"), std::string::npos) << evaluations;
+  EXPECT_EQ(worker.Output().find(kMujocoText), std::string::npos)
+      << worker.Output();
+  EXPECT_EQ(master.Output().find(kMujocoText), std::string::npos)
+      << master.Output();
+  EXPECT_EQ(worker.Stop(), 0) << worker.Output();
+}
+
+}  // namespace
+}  // namespace mrsim
