@@ -1,9 +1,7 @@
 #include "launcher/process_group.h"
 
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,22 +12,12 @@
 #include <stdexcept>
 #include <thread>
 
-extern char** environ;
-
 namespace mrsim {
 namespace {
 
 constexpr int kColours[] = {36, 33, 32, 35, 34, 31};
 
-std::string DescribeStatus(int status) {
-  if (WIFEXITED(status)) {
-    return "exited with code " + std::to_string(WEXITSTATUS(status));
-  }
-  if (WIFSIGNALED(status)) {
-    return std::string("killed by signal ") + strsignal(WTERMSIG(status));
-  }
-  return "ended";
-}
+std::string DescribeStatus(int status) { return DescribeExitStatus(status); }
 
 }  // namespace
 
@@ -40,39 +28,22 @@ ProcessGroup::~ProcessGroup() { StopAll(2.0); }
 
 void ProcessGroup::Start(const ProcessSpec& spec,
                          const std::string& program_path) {
-  int fds[2];
-  if (pipe2(fds, O_CLOEXEC) != 0) {
-    throw std::runtime_error("cannot create a pipe for " + spec.name);
-  }
-  std::vector<std::string> argv_strings{program_path};
-  argv_strings.insert(argv_strings.end(), spec.args.begin(), spec.args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_strings) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null",
-                                   O_RDONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, program_path.c_str(), &actions, nullptr,
-                             argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(fds[1]);
-  if (rc != 0) {
-    close(fds[0]);
-    throw std::runtime_error("cannot start " + spec.name + " (" + program_path +
-                             "): " + std::strerror(rc));
-  }
+  std::vector<std::string> argv{program_path};
+  argv.insert(argv.end(), spec.args.begin(), spec.args.end());
+  SpawnOptions options;
+  options.output = SpawnOptions::Output::kPipe;
   Child child;
+  try {
+    child.process = std::make_unique<Subprocess>(argv, options);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot start " + spec.name + " (" + program_path +
+                             "): " + e.what());
+  }
   child.spec = spec;
-  child.pid = pid;
-  child.out_fd = fds[0];
   child.running = true;
   child.colour = kColours[children_.size() % std::size(kColours)];
   name_width_ = std::max(name_width_, spec.name.size());
+  const pid_t pid = child.process->pid();
   children_.push_back(std::move(child));
   Say("started " + spec.name + " (pid " + std::to_string(pid) +
       "): " + program_path);
@@ -97,10 +68,13 @@ void ProcessGroup::Say(const std::string& line) {
 }
 
 void ProcessGroup::Forward(Child& child, bool flush_partial) {
-  if (child.out_fd < 0) return;
+  const int fd = child.process ? child.process->output_fd() : -1;
+  if (fd < 0) return;
+  // The pipe is non-blocking: read what is there and go back to polling, so
+  // one quiet child never delays noticing that another one exited.
   char buffer[4096];
   for (;;) {
-    const ssize_t n = read(child.out_fd, buffer, sizeof(buffer));
+    const ssize_t n = read(fd, buffer, sizeof(buffer));
     if (n > 0) {
       child.pending.append(buffer, static_cast<size_t>(n));
       size_t start = 0;
@@ -110,15 +84,14 @@ void ProcessGroup::Forward(Child& child, bool flush_partial) {
         PrintLine(child, child.pending.substr(start, nl - start));
       }
       child.pending.erase(0, start);
-      if (n < static_cast<ssize_t>(sizeof(buffer))) break;
       continue;
     }
-    if (n == 0 || (errno != EINTR && errno != EAGAIN)) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0 || errno != EAGAIN) {
       // End of output: the process closed its side.
       if (!child.pending.empty()) PrintLine(child, child.pending);
       child.pending.clear();
-      close(child.out_fd);
-      child.out_fd = -1;
+      child.process->CloseOutput();
     }
     break;
   }
@@ -139,8 +112,8 @@ std::string ProcessGroup::Poll(int timeout_ms) {
   std::vector<pollfd> fds;
   std::vector<Child*> owners;
   for (auto& c : children_) {
-    if (c.out_fd >= 0) {
-      fds.push_back({c.out_fd, POLLIN, 0});
+    if (c.process->output_fd() >= 0) {
+      fds.push_back({c.process->output_fd(), POLLIN, 0});
       owners.push_back(&c);
     }
   }
@@ -154,9 +127,8 @@ std::string ProcessGroup::Poll(int timeout_ms) {
   std::string ended_required;
   for (auto& c : children_) {
     if (!c.running) continue;
-    int status = 0;
-    if (waitpid(c.pid, &status, WNOHANG) == c.pid) {
-      Reap(c, status);
+    if (!c.process->running()) {
+      Reap(c, c.process->status());
       if (c.spec.required && ended_required.empty()) {
         ended_required = c.spec.name;
       }
@@ -174,7 +146,7 @@ void ProcessGroup::StopAll(double grace_s) {
     for (auto it = children_.rbegin(); it != children_.rend(); ++it) {
       if (it->running) {
         it->stopped_by_us = true;
-        kill(it->pid, sig);
+        it->process->Signal(sig);
         any = true;
       }
     }
@@ -187,7 +159,7 @@ void ProcessGroup::StopAll(double grace_s) {
         ", escalating");
   }
   for (auto& c : children_) {
-    if (c.out_fd >= 0) Forward(c, true);
+    Forward(c, true);
   }
 }
 

@@ -5,9 +5,11 @@
 #include <sys/types.h>
 
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "common/subprocess.h"
 #include "launcher/launch_file.h"
 
 namespace mrsim {
@@ -43,9 +45,8 @@ class ProcessGroup {
  private:
   struct Child {
     ProcessSpec spec;
-    pid_t pid = -1;
-    int out_fd = -1;
-    std::string pending;  // partial line not yet printed
+    std::unique_ptr<Subprocess> process;  // output on a non-blocking pipe
+    std::string pending;                  // partial line not yet printed
     bool running = false;
     int status = 0;
     bool stopped_by_us = false;

@@ -1,12 +1,14 @@
-// A real child process for multi-process tests: started with posix_spawn,
-// its output captured to a file, stopped with a signal, reaped on
-// destruction so no test leaves a process behind.
+// A real child process for multi-process tests (a common/subprocess.h
+// Subprocess): its output captured to a file, stopped with a signal, reaped
+// on destruction so no test leaves a process behind.
 #pragma once
 
 #include <sys/types.h>
 
 #include <string>
 #include <vector>
+
+#include "common/subprocess.h"
 
 namespace mrsim::testing {
 
@@ -16,26 +18,28 @@ class ChildProcess {
   // to `log_path` (or /dev/null when empty).
   ChildProcess(const std::vector<std::string>& argv,
                const std::string& log_path = "");
+  // Stops it with SIGTERM (SIGKILL after 2 s) so it can flush.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
-  pid_t pid() const { return pid_; }
-  bool running();
-  void Signal(int sig);
+  pid_t pid() const { return process_.pid(); }
+  bool running() { return process_.running(); }
+  void Signal(int sig) { process_.Signal(sig); }
   // Waits up to timeout_s for exit; returns the exit code, 128+signal when
   // killed by a signal, or -1 on timeout.
-  int Wait(double timeout_s);
+  int Wait(double timeout_s) { return process_.Wait(timeout_s); }
   // SIGTERM, then SIGKILL after grace_s. Returns as Wait.
-  int Stop(double grace_s = 5.0);
+  int Stop(double grace_s = 5.0) { return process_.Stop(grace_s); }
   // What it printed so far (empty without a log file).
   std::string Output() const;
+  // Waits until the output holds `text` (true), the process ended without
+  // printing it, or timeout_s passed (false).
+  bool WaitForOutput(const std::string& text, double timeout_s);
 
  private:
-  pid_t pid_ = -1;
-  int status_ = -1;
-  bool reaped_ = false;
   std::string log_path_;
+  Subprocess process_;
 };
 
 // A multicast URL on loopback with its own port and ttl=0, so concurrent

@@ -41,19 +41,47 @@ TEST(Launcher, RequiredProcessEndingStopsTheOthersAndPrefixesOutput) {
   EXPECT_NE(out.find("flushed"), std::string::npos) << out;
 }
 
+TEST(Launcher, RequiredExitIsNoticedWhileAQuietSiblingHoldsItsPipe) {
+  // 8 KB (two full reads), then silence: a blocking read of the quiet
+  // child's output would keep the launcher from noticing the exit.
+  const std::string dir = TempDir("launcher_quiet_sibling");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="chatty" program="/bin/sh"
+           args="-c 'yes 0123456789abcdef | head -c 8192; exec sleep 600'"/>
+  <process name="short" program="/bin/sh" required="true" delay="0.2"
+           args="-c 'echo bye'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(30), 0) << mrsim.Output();
+  const std::string out = mrsim.Output();
+  EXPECT_NE(out.find("short ended, stopping the others"), std::string::npos)
+      << out;
+  // Every full line of the 8 KB was forwarded (512 lines of 16 + newline
+  // minus the cut one).
+  size_t lines = 0;
+  for (size_t i = out.find("] 0123456789abcdef\n"); i != std::string::npos;
+       i = out.find("] 0123456789abcdef\n", i + 1)) {
+    ++lines;
+  }
+  EXPECT_EQ(lines, 8192u / 17) << out;
+}
+
 TEST(Launcher, InterruptStopsEveryProcessCleanly) {
   const std::string dir = TempDir("launcher_interrupt");
   const std::string marker = dir + "/stopped";
   const std::string launch = WriteLaunch(dir, R"(<launch>
   <arg name="marker" default=")" + marker + R"("/>
   <process name="a" program="/bin/sh"
-           args="-c 'trap &quot;touch ${marker}.a; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+           args="-c 'trap &quot;touch ${marker}.a; exit 0&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
   <process name="b" program="/bin/sh"
-           args="-c 'trap &quot;touch ${marker}.b; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+           args="-c 'trap &quot;touch ${marker}.b; exit 0&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
 </launch>)");
   ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
                      dir + "/out.txt");
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // Both have set their traps.
+  ASSERT_TRUE(mrsim.WaitForOutput("[a     ] armed", 30)) << mrsim.Output();
+  ASSERT_TRUE(mrsim.WaitForOutput("[b     ] armed", 30)) << mrsim.Output();
   mrsim.Signal(SIGINT);
   EXPECT_EQ(mrsim.Wait(30), 0) << mrsim.Output();
   EXPECT_TRUE(std::ifstream(marker + ".a").good()) << mrsim.Output();
