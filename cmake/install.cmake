@@ -2,11 +2,11 @@
 # package so another project can find_package(mrsim).
 include(CMakePackageConfigHelpers)
 
-# Exported names drop the mrsim_ prefix: mrsim::sim_core, mrsim::gait, ...
-foreach(lib sim_core gait optimizer logger viewer lcmtypes runtime warnings)
-  if(TARGET mrsim_${lib})
-    set_target_properties(mrsim_${lib} PROPERTIES EXPORT_NAME ${lib})
-  endif()
+# Exported names drop the mrsim_ prefix, as the build tree's aliases do:
+# mrsim::sim_core, mrsim::sim_bridge, mrsim::gait_lcm, mrsim::optimizer_farm...
+foreach(lib common sim_core sim_bridge gait gait_lcm optimizer optimizer_farm
+            logger viewer lcmtypes runtime warnings)
+  set_target_properties(mrsim_${lib} PROPERTIES EXPORT_NAME ${lib})
 endforeach()
 
 set(MRSIM_EXTRA_DEPENDENCIES "")

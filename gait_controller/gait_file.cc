@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "gait_controller/gait_presets.h"
 
 namespace mrsim {
@@ -188,24 +189,10 @@ std::string WriteGaitString(const Gait& gait) {
 }
 
 void WriteGaitFile(const Gait& gait, const std::string& path) {
-  const std::string text = WriteGaitString(gait);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw GaitFileError(fmt::format("{}: cannot write gait file", path));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw GaitFileError(
-        fmt::format("{}: cannot write gait file: {}", path, ec.message()));
+  try {
+    WriteFileAtomically(path, WriteGaitString(gait));
+  } catch (const std::runtime_error& e) {
+    throw GaitFileError(fmt::format("gait file: {}", e.what()));
   }
 }
 

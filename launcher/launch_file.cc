@@ -3,11 +3,14 @@
 #include <tinyxml2.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 
 namespace mrsim {
 namespace {
+
+constexpr char kLcmJar[] = "/usr/share/java/lcm.jar";  // Debian liblcm-java
 
 std::string Where(const std::string& path, int line) {
   return path + ":" + std::to_string(line) + ": ";
@@ -48,6 +51,37 @@ bool ParseBool(const char* text, bool fallback, const std::string& where,
   if (s == "false" || s == "0") return false;
   throw LaunchError(where + "attribute " + attribute +
                     ": expected true or false, got '" + s + "'");
+}
+
+// <hub port="7667"/>: LCM's TCP hub, for networks without multicast;
+// clients then use tcpq://HOST:PORT as their LCM URL.
+ProcessSpec HubProcess(const tinyxml2::XMLElement* e,
+                       const std::map<std::string, std::string>& vars,
+                       const std::string& where) {
+  ProcessSpec spec;
+  spec.line = e->GetLineNum();
+  spec.name = e->Attribute("name") ? e->Attribute("name") : "hub";
+  const char* port_text = e->Attribute("port");
+  if (port_text == nullptr) {
+    throw LaunchError(where + "<hub> needs a port attribute");
+  }
+  const std::string port = Substitute(port_text, vars, where);
+  char* end = nullptr;
+  const long value = std::strtol(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || value < 1 || value > 65535) {
+    throw LaunchError(where + "<hub> attribute port: expected 1..65535, got '" +
+                      port + "'");
+  }
+  const char* jar = e->Attribute("jar");
+  spec.program = "java";
+  spec.args = {"-cp", jar ? Substitute(jar, vars, where) : kLcmJar,
+               "lcm.lcm.TCPService", port};
+  spec.enabled =
+      ParseBool(e->Attribute("enabled")
+                    ? Substitute(e->Attribute("enabled"), vars, where).c_str()
+                    : nullptr,
+                true, where, "enabled");
+  return spec;
 }
 
 }  // namespace
@@ -113,9 +147,15 @@ LaunchFile ReadLaunchFile(const std::string& path,
       throw LaunchError(where + "<arg> needs a name attribute");
     }
     const auto it = overrides.find(name);
+    const char* env = e->Attribute("env");
+    const char* env_value = env != nullptr ? std::getenv(env) : nullptr;
     if (it != overrides.end()) {
       file.variables[name] = it->second;
       used_overrides.insert(name);
+    } else if (env_value != nullptr && *env_value != '\0') {
+      // The user's environment (e.g. LCM_DEFAULT_URL) beats the file's
+      // default; --set beats both.
+      file.variables[name] = env_value;
     } else if (const char* def = e->Attribute("default")) {
       file.variables[name] = Substitute(def, file.variables, where);
     } else {
@@ -138,9 +178,17 @@ LaunchFile ReadLaunchFile(const std::string& path,
     const std::string tag = e->Name();
     const std::string where = Where(path, e->GetLineNum());
     if (tag == "arg") continue;
+    if (tag == "hub") {
+      file.processes.push_back(HubProcess(e, file.variables, where));
+      if (!names.insert(file.processes.back().name).second) {
+        throw LaunchError(where + "a process named '" +
+                          file.processes.back().name + "' is declared twice");
+      }
+      continue;
+    }
     if (tag != "process") {
       throw LaunchError(where + "unexpected <" + tag +
-                        ">: expected <arg> or <process>");
+                        ">: expected <arg>, <hub> or <process>");
     }
     ProcessSpec spec;
     spec.line = e->GetLineNum();

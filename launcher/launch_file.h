@@ -3,6 +3,8 @@
 //
 //   <launch name="demo">
 //     <arg name="out" default="out/demo"/>
+//     <arg name="lcm_url" env="LCM_DEFAULT_URL" default="udpm://..."/>
+//     <hub port="7667"/>   (LCM's TCP hub; optional, put it first)
 //     <process name="sim" program="mrsim-sim" required="true"
 //              args="${launch_dir}/../scenarios/case_study.xml --duration 20"/>
 //     <process name="viewer" program="mrsim-view" delay="0.5"
@@ -40,8 +42,11 @@ struct LaunchFile {
   std::vector<ProcessSpec> processes;            // in start order
 };
 
-// Reads and checks a launch file. `overrides` replace <arg> defaults (an
-// override for an undeclared arg is an error). Built-in variables:
+// Reads and checks a launch file. An <arg>'s value is its override (an
+// override for an undeclared arg is an error), else the environment
+// variable its env attribute names when set, else its default. A <hub>
+// becomes a process running LCM's TCPService from the lcm jar. Built-in
+// variables:
 // ${launch_dir} (the file's directory) and ${cwd}.
 LaunchFile ReadLaunchFile(const std::string& path,
                           const std::map<std::string, std::string>& overrides);

@@ -8,6 +8,7 @@
 #include <map>
 #include <thread>
 
+#include "common/version.h"
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
 #include "launcher/program_locator.h"
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
         "  mrsim launch FILE    start the processes of a launch file\n"
         "  mrsim TOOL ARGS...   run mrsim-TOOL (scenario, sim, gait, "
         "opt, worker, log, plot, view)"};
+    app.set_version_flag("--version", std::string("mrsim ") + mrsim::kVersion);
     app.require_subcommand(1);
     auto* launch =
         app.add_subcommand("launch", "Start the processes of a launch file");

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/version.h"
 #include "launcher/run_summary.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/scenario_xml.h"
@@ -12,6 +13,8 @@ int main(int argc, char** argv) {
   try {
     CLI::App app{
         "Prints how far each robot and movable scene object went in a run."};
+    app.set_version_flag("--version",
+                         std::string("mrsim-summary ") + mrsim::kVersion);
     std::string scenario_path;
     std::string checkpoint_path;
     app.add_option("scenario", scenario_path, "Scenario the run started from")

@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "optimizer/hash.h"
 
 namespace mrsim {
@@ -120,31 +121,19 @@ std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
 
 void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
                      const std::vector<RecordedGeneration>& gens) {
-  const std::string tmp = path + ".tmp";
-  {
-    FilePtr f(std::fopen(tmp.c_str(), "w"));
-    if (!f) throw std::runtime_error(tmp + ": cannot write the checkpoint");
-    std::fprintf(f.get(), "%s\nfingerprint %s\n", kCheckpointMagic,
-                 fingerprint.c_str());
-    for (size_t k = 0; k < gens.size(); ++k) {
-      std::fprintf(f.get(), "gen %zu %zu %s\n", k, gens[k].results.size(),
-                   gens[k].genomes_hash.c_str());
-      for (const EvalResult& e : gens[k].results) {
-        std::fprintf(f.get(), "r %s %s %s %s %s %s %d\n",
-                     Hex(e.fitness).c_str(), Hex(e.distance).c_str(),
-                     Hex(e.speed).c_str(), Hex(e.energy).c_str(),
-                     Hex(e.drift).c_str(), Hex(e.fell).c_str(),
-                     e.failed ? 1 : 0);
-      }
-    }
-    std::fprintf(f.get(), "end\n");
-    if (std::fflush(f.get()) != 0) {
-      throw std::runtime_error(tmp + ": cannot write the checkpoint");
+  std::string text =
+      fmt::format("{}\nfingerprint {}\n", kCheckpointMagic, fingerprint);
+  for (size_t k = 0; k < gens.size(); ++k) {
+    text += fmt::format("gen {} {} {}\n", k, gens[k].results.size(),
+                        gens[k].genomes_hash);
+    for (const EvalResult& e : gens[k].results) {
+      text += fmt::format("r {} {} {} {} {} {} {}\n", Hex(e.fitness),
+                          Hex(e.distance), Hex(e.speed), Hex(e.energy),
+                          Hex(e.drift), Hex(e.fell), e.failed ? 1 : 0);
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    throw std::runtime_error(path + ": cannot replace the checkpoint");
-  }
+  text += "end\n";
+  WriteFileAtomically(path, text);
 }
 
 FilePtr OpenCsv(const std::string& path) {

@@ -12,6 +12,7 @@
 
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
+#include "sim_core/checkpoint.h"
 
 namespace mrsim {
 
@@ -53,11 +54,9 @@ struct RunResult {
   bool wrote_files = false;
 };
 
-// A checkpoint that cannot be used (other settings, corrupt).
-class CheckpointError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// A run checkpoint that cannot be used (other settings, corrupt) throws
+// mrsim::CheckpointError (sim_core/checkpoint.h), the one error type for
+// every checkpoint file mrsim reads.
 
 // Throws CheckpointError, EvaluationInterrupted (stop requested; the
 // checkpoint holds every completed generation) or what the evaluator throws.

@@ -1,13 +1,34 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds everything with warnings as errors and
 # runs the whole test suite. ctest's summary line is the last thing printed.
+#
+#   scripts/test.sh                      everything (what CI runs)
+#   scripts/test.sh --sanitize address   ASan+UBSan build in build-asan/,
+#   scripts/test.sh --sanitize thread    TSan build in build-tsan/: the unit
+#                                        tests (ctest label "unit") only
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${MRSIM_BUILD_DIR:-$root/build}"
+sanitize=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sanitize) sanitize="${2:-}"; shift 2 ;;
+    --sanitize=*) sanitize="${1#*=}"; shift ;;
+    *) echo "usage: scripts/test.sh [--sanitize address|thread]" >&2; exit 2 ;;
+  esac
+done
+case "$sanitize" in
+  "") build="${MRSIM_BUILD_DIR:-$root/build}" ;;
+  address) build="${MRSIM_BUILD_DIR:-$root/build-asan}" ;;
+  thread) build="${MRSIM_BUILD_DIR:-$root/build-tsan}" ;;
+  *) echo "scripts/test.sh: --sanitize: expected address or thread" >&2; exit 2 ;;
+esac
 jobs="$(nproc)"
 
 bash "$root/scripts/install_deps.sh"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMRSIM_WERROR=ON >/dev/null
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMRSIM_WERROR=ON \
+  -DMRSIM_SANITIZE="$sanitize" -DMRSIM_BUILD_BENCH="$([ -z "$sanitize" ] && echo ON || echo OFF)" \
+  >/dev/null
 if ! cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1; then
   grep -E -A5 'error|Error' "$build/build.log" | head -80
   echo "build failed (full log: $build/build.log)"
@@ -15,9 +36,18 @@ if ! cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1; then
 fi
 
 cd "$build"
+ctest_args=(-j"$jobs" --output-on-failure --timeout 600)
+if [ -n "$sanitize" ]; then
+  # Multi-process tests are left out: their programs are the same code the
+  # unit tests cover, and sanitizer slow-down would only test the clock.
+  ctest_args+=(-L unit)
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+fi
 summary_re='tests passed, [0-9]+ tests? failed out of'
 set +e
-ctest -j"$jobs" --output-on-failure --timeout 600 2>&1 | tee ctest.log | grep --line-buffered -vE "$summary_re"
+ctest "${ctest_args[@]}" 2>&1 | tee ctest.log | grep --line-buffered -vE "$summary_re"
 rc=${PIPESTATUS[0]}
 set -e
 grep -E "$summary_re" ctest.log || echo "0 passed, 1 failed: ctest printed no summary"

@@ -1,98 +1,67 @@
 #include "sim_core/base64.h"
 
+#include <glib.h>
+
+#include <memory>
 #include <stdexcept>
 
 namespace mrsim {
 namespace {
 
-constexpr char kAlphabet[] =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-int Value(char c) {
-  if (c >= 'A' && c <= 'Z') return c - 'A';
-  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-  if (c >= '0' && c <= '9') return c - '0' + 52;
-  if (c == '+') return 62;
-  if (c == '/') return 63;
-  return -1;
+bool IsSymbol(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+         (c >= '0' && c <= '9') || c == '+' || c == '/';
 }
 
 bool IsSpace(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
 
+struct GFreeDeleter {
+  void operator()(void* p) const { g_free(p); }
+};
+
 }  // namespace
 
 std::string Base64Encode(const std::vector<unsigned char>& bytes) {
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += kAlphabet[v & 63];
-  }
-  const size_t rest = bytes.size() - i;
-  if (rest == 1) {
-    const unsigned v = bytes[i] << 16;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += "==";
-  } else if (rest == 2) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8);
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += '=';
-  }
-  return out;
+  std::unique_ptr<gchar, GFreeDeleter> text(
+      g_base64_encode(bytes.data(), bytes.size()));
+  return text.get();
 }
 
+// glib decodes leniently (it skips what is not in the alphabet), so the
+// input is checked here first: a damaged file must be an error naming the
+// position, never silently different bytes.
 std::vector<unsigned char> Base64Decode(const std::string& text) {
-  std::vector<unsigned char> out;
-  out.reserve(text.size() / 4 * 3);
-  unsigned acc = 0;
-  int bits = 0;
-  int symbols = 0;  // non-padding symbols seen
+  std::string clean;
+  clean.reserve(text.size());
   int padding = 0;
   for (size_t pos = 0; pos < text.size(); ++pos) {
     const char c = text[pos];
     if (IsSpace(c)) continue;
     if (c == '=') {
-      ++padding;
-      if (padding > 2) {
+      if (++padding > 2) {
         throw std::invalid_argument("base64: too much padding at position " +
                                     std::to_string(pos));
       }
-      continue;
-    }
-    const int v = Value(c);
-    if (v < 0 || padding > 0) {
+    } else if (!IsSymbol(c) || padding > 0) {
       throw std::invalid_argument(
           std::string("base64: unexpected character '") + c + "' at position " +
           std::to_string(pos));
     }
-    ++symbols;
-    acc = (acc << 6) | static_cast<unsigned>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<unsigned char>((acc >> bits) & 0xFF));
-    }
+    clean += c;
   }
-  const int tail = symbols % 4;
-  if (tail == 1) {
+  const size_t symbols = clean.size() - padding;
+  if (symbols % 4 == 1) {
     throw std::invalid_argument("base64: truncated input (" +
                                 std::to_string(symbols) + " symbols)");
   }
-  if (padding > 0 && (symbols + padding) % 4 != 0) {
+  if (padding > 0 && clean.size() % 4 != 0) {
     throw std::invalid_argument("base64: wrong padding");
   }
-  // Leftover bits must be zero for canonical input.
-  if (bits > 0 && (acc & ((1u << bits) - 1)) != 0) {
-    throw std::invalid_argument("base64: non-zero trailing bits");
-  }
-  return out;
+  while (clean.size() % 4 != 0) clean += '=';  // unpadded input is accepted
+  gsize length = 0;
+  std::unique_ptr<guchar, GFreeDeleter> bytes(
+      g_base64_decode(clean.c_str(), &length));
+  return std::vector<unsigned char>(bytes.get(), bytes.get() + length);
 }
 
 }  // namespace mrsim

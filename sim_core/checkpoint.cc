@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "sim_core/base64.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/terrain.h"
@@ -69,23 +70,10 @@ std::string SaveCheckpointString(const Physics& physics) {
 }
 
 void SaveCheckpoint(const std::string& path, const Physics& physics) {
-  const std::string text = SaveCheckpointString(physics);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(text.data(), text.size());
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write checkpoint '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write checkpoint '" + path +
-                             "': " + ec.message());
+  try {
+    WriteFileAtomically(path, SaveCheckpointString(physics));
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("checkpoint: ") + e.what());
   }
 }
 

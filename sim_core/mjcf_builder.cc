@@ -1,6 +1,7 @@
 #include "sim_core/mjcf_builder.h"
 
 #include <fmt/format.h>
+#include <stb/stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +9,6 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <queue>
 #include <set>
 #include <sstream>
@@ -653,12 +652,20 @@ void Builder::AddTerrain() {
                           fs::path(path).extension() == ".png";
     if (!png_file) {
       // Write the decoded image as an 8-bit grey PNG MuJoCo can read.
-      cv::Mat grey(image.rows, image.cols, CV_32F,
-                   const_cast<float*>(image.grey.data()));
-      cv::Mat bytes;
-      grey.convertTo(bytes, CV_8U, 255.0);
+      std::vector<unsigned char> grey(image.grey.size());
+      for (size_t i = 0; i < grey.size(); ++i) {
+        grey[i] = static_cast<unsigned char>(
+            std::lround(std::clamp(image.grey[i], 0.0f, 1.0f) * 255.0f));
+      }
       std::vector<unsigned char> png;
-      cv::imencode(".png", bytes, png);
+      stbi_write_png_to_func(
+          [](void* out, void* data, int size) {
+            auto* bytes = static_cast<unsigned char*>(data);
+            static_cast<std::vector<unsigned char>*>(out)->insert(
+                static_cast<std::vector<unsigned char>*>(out)->end(), bytes,
+                bytes + size);
+          },
+          &png, image.cols, image.rows, 1, grey.data(), image.cols);
       size_t h = 1469598103934665603ull;
       for (unsigned char c : png) h = (h ^ c) * 1099511628211ull;
       const fs::path dir = options_.asset_dir.empty()

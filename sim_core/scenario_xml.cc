@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -1391,30 +1392,7 @@ std::string WriteScenarioString(const Scenario& scenario,
 
 void WriteScenarioFile(const Scenario& scenario, const std::string& path,
                        FrameConvention frame) {
-  const std::string text = WriteScenarioString(scenario, frame);
-  // Write next to the target and rename, so a failed write never leaves a
-  // half-written file where a good one was.
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw std::runtime_error("cannot write '" + path +
-                               "': " + std::strerror(errno));
-    }
-    out << text;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write '" + path +
-                               "': " + std::strerror(errno));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-  }
+  WriteFileAtomically(path, WriteScenarioString(scenario, frame));
 }
 
 }  // namespace mrsim

@@ -1,12 +1,13 @@
 #include "sim_core/terrain.h"
 
+#include <stb/stb_image.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <memory>
 #include <stdexcept>
 
 #include "sim_core/base64.h"
@@ -31,37 +32,37 @@ TerrainImage Decode(const std::vector<unsigned char>& bytes,
   if (bytes.empty()) {
     throw std::runtime_error("terrain image " + source + " is empty");
   }
-  cv::Mat raw = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-  if (raw.empty()) {
-    throw std::runtime_error("terrain image " + source +
-                             ": not an image OpenCV can decode");
-  }
-  if (raw.rows < 2 || raw.cols < 2) {
+  // stb_image (PNG 8/16 bit, JPEG, BMP, TGA...), converted to one grey
+  // channel: no video stack in the core library.
+  const int size = static_cast<int>(bytes.size());
+  const bool wide = stbi_is_16_bit_from_memory(bytes.data(), size) != 0;
+  int cols = 0, rows = 0, channels = 0;
+  std::unique_ptr<void, decltype(&stbi_image_free)> pixels(
+      wide ? static_cast<void*>(stbi_load_16_from_memory(
+                 bytes.data(), size, &cols, &rows, &channels, 1))
+           : static_cast<void*>(stbi_load_from_memory(bytes.data(), size, &cols,
+                                                      &rows, &channels, 1)),
+      &stbi_image_free);
+  if (!pixels) {
     throw std::runtime_error(
-        "terrain image " + source + ": needs at least 2x2 pixels, got " +
-        std::to_string(raw.cols) + "x" + std::to_string(raw.rows));
+        "terrain image " + source +
+        ": not an image (PNG, JPEG, BMP, TGA...): " + stbi_failure_reason());
   }
-  double scale = 1.0;
-  switch (raw.depth()) {
-    case CV_8U:
-      scale = 1.0 / 255.0;
-      break;
-    case CV_16U:
-      scale = 1.0 / 65535.0;
-      break;
-    default:
-      break;  // float images are taken as they are
+  if (rows < 2 || cols < 2) {
+    throw std::runtime_error("terrain image " + source +
+                             ": needs at least 2x2 pixels, got " +
+                             std::to_string(cols) + "x" + std::to_string(rows));
   }
-  cv::Mat grey;
-  raw.convertTo(grey, CV_32F, scale);
   TerrainImage image;
-  image.rows = grey.rows;
-  image.cols = grey.cols;
+  image.rows = rows;
+  image.cols = cols;
   image.source = source;
-  image.grey.resize(static_cast<size_t>(grey.rows) * grey.cols);
-  for (int r = 0; r < grey.rows; ++r) {
-    const float* row = grey.ptr<float>(r);
-    std::copy(row, row + grey.cols, image.grey.begin() + r * grey.cols);
+  const size_t n = static_cast<size_t>(rows) * cols;
+  image.grey.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    image.grey[i] =
+        wide ? static_cast<const unsigned short*>(pixels.get())[i] / 65535.0f
+             : static_cast<const unsigned char*>(pixels.get())[i] / 255.0f;
   }
   return image;
 }
@@ -112,8 +113,9 @@ TerrainImage LoadTerrainImage(const Scene& scene, const std::string& base_dir) {
   if (!prefixed) {
     // Bare base64 that does not decode to an image is most likely a path
     // that does not exist; say so.
-    cv::Mat probe = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-    if (probe.empty()) {
+    int cols = 0, rows = 0, channels = 0;
+    if (stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()),
+                              &cols, &rows, &channels) == 0) {
       throw std::runtime_error("terrain image '" + Shorten(s) +
                                "': no such file (relative to '" + base_dir +
                                "') and not base64 image bytes");

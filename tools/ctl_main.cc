@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
@@ -22,12 +23,6 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 // Keeps the newest status; counts what does not decode.
 class StatusListener {
@@ -146,7 +141,7 @@ int main(int argc, char** argv) {
 
     if (words[0] == "gait") {
       mrsim::gait_command_t c = ParseGait(words);
-      c.utime = NowMicros();
+      c.utime = mrsim::WallMicros();
       c.seq = c.utime;
       c.sender = "mrsim-ctl";
       lcm.publish(mrsim::GaitChannel(prefix, c.robot), &c);
@@ -176,7 +171,7 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (!sent) {
-        request.utime = NowMicros();
+        request.utime = mrsim::WallMicros();
         request.seq = request.utime;  // unique enough to match the answer
         request.sender = "mrsim-ctl";
         lcm.publish(mrsim::SimControlChannel(prefix), &request);

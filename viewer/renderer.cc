@@ -45,13 +45,15 @@ Renderer::Renderer(const mjModel* model, int width, int height,
   }
   mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
   if (context_.offWidth < width || context_.offHeight < height) {
+    // Read the size before freeing: mjr_freeContext zeroes the context.
+    const int got_width = context_.offWidth;
+    const int got_height = context_.offHeight;
     mjr_freeContext(&context_);
     mjv_freeScene(&scene_);
-    throw std::runtime_error("Renderer: the OpenGL context gave a " +
-                             std::to_string(context_.offWidth) + "x" +
-                             std::to_string(context_.offHeight) +
-                             " off-screen buffer, " + std::to_string(width) +
-                             "x" + std::to_string(height) + " needed");
+    throw std::runtime_error(
+        "Renderer: the OpenGL context gave a " + std::to_string(got_width) +
+        "x" + std::to_string(got_height) + " off-screen buffer, " +
+        std::to_string(width) + "x" + std::to_string(height) + " needed");
   }
   if (quality.shadow_size == 0) scene_.flags[mjRND_SHADOW] = 0;
   rgb_.resize(static_cast<size_t>(width) * height * 3);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "common/version.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -237,6 +238,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Writes mrsim LCM channels to one CSV per channel (DIR/<channel>.csv), "
       "live or from an .lcmlog file, and reports sequence gaps."};
+  app.set_version_flag("--version",
+                       std::string("mrsim-log ") + mrsim::kVersion);
   Options opt;
   app.add_option("--lcm-url", opt.lcm_url,
                  "LCM URL (default: LCM's default or $LCM_DEFAULT_URL)");

@@ -4,12 +4,15 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "common/version.h"
 #include "logger/plot.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "Draws columns of a mrsim-log CSV against time or against another "
       "column, as a PNG with axes, ticks, units, legend and title."};
+  app.set_version_flag("--version",
+                       std::string("mrsim-plot ") + mrsim::kVersion);
   std::string csv;
   std::string out;
   std::string style = "auto";

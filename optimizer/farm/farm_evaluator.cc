@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/opt_chunk_request_t.hpp"
@@ -21,12 +22,6 @@ namespace mrsim {
 namespace {
 
 constexpr int kJobIdShift = 24;  // job id = batch << 24 | index
-
-std::int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 }  // namespace
 
@@ -64,7 +59,7 @@ int FarmEvaluator::workers_alive() const {
 
 void FarmEvaluator::Announce() {
   opt_run_t msg;
-  msg.utime = NowMicros();
+  msg.utime = WallMicros();
   msg.run_id = run_id_;
   msg.scenario_hash = hash_;
   msg.payload_size = static_cast<std::int64_t>(payload_.size());
@@ -175,7 +170,7 @@ void FarmEvaluator::OnChunkRequest(const lcm::ReceiveBuffer* rbuf,
       if (now - chunk_sent_[index] < std::chrono::milliseconds(100)) continue;
       chunk_sent_[index] = now;
       opt_chunk_t chunk;
-      chunk.utime = NowMicros();
+      chunk.utime = WallMicros();
       chunk.run_id = run_id_;
       chunk.scenario_hash = hash_;
       chunk.index = index;
@@ -207,7 +202,7 @@ int FarmEvaluator::Outstanding(const std::string& worker) const {
 void FarmEvaluator::Send(std::int64_t job_id, Job& job,
                          const std::string& worker, Clock::time_point now) {
   opt_job_t msg;
-  msg.utime = NowMicros();
+  msg.utime = WallMicros();
   msg.run_id = run_id_;
   msg.scenario_hash = hash_;
   msg.worker_id = worker;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/decode.h"
 #include "mrsim/opt_chunk_request_t.hpp"
 #include "mrsim/opt_chunk_t.hpp"
@@ -14,20 +15,6 @@
 #include "optimizer/problem_codec.h"
 
 namespace mrsim {
-namespace {
-
-std::int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-double Seconds(std::chrono::steady_clock::duration d) {
-  return std::chrono::duration<double>(d).count();
-}
-
-}  // namespace
-
 FarmWorker::FarmWorker(lcm::LCM& lcm, WorkerSettings settings)
     : lcm_(lcm), settings_(std::move(settings)) {
   char host[256] = {0};
@@ -229,7 +216,7 @@ void FarmWorker::Work() {
 void FarmWorker::RequestMissing() {
   if (!fetching_) return;
   opt_chunk_request_t req;
-  req.utime = NowMicros();
+  req.utime = WallMicros();
   req.run_id = run_id_;
   req.scenario_hash = hash_;
   req.worker_id = settings_.id;
@@ -252,7 +239,7 @@ std::vector<std::string> FarmWorker::Poll() {
     hb.messages_malformed = counters_.messages_malformed;
   }
   for (opt_result_t& r : done) {
-    r.utime = NowMicros();
+    r.utime = WallMicros();
     lcm_.publish(ch.result, &r);
   }
   const auto now = Clock::now();
@@ -261,7 +248,7 @@ std::vector<std::string> FarmWorker::Poll() {
   }
   if (!done.empty() ||
       Seconds(now - last_heartbeat_) >= settings_.heartbeat_period) {
-    hb.utime = NowMicros();
+    hb.utime = WallMicros();
     hb.worker_id = settings_.id;
     hb.host = host_;
     hb.pid = static_cast<int32_t>(getpid());

@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/version.h"
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "optimizer/body_genes.h"
@@ -114,6 +115,8 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-opt: optimise a gait and body for a scenario"};
+  app.set_version_flag("--version",
+                       std::string("mrsim-opt ") + mrsim::kVersion);
   std::string scenario_path, genome_path, out_dir, workers = "local:0";
   std::string lcm_url, prefix = mrsim::kDefaultFarmPrefix,
                        gait_spec = "forward";

@@ -7,6 +7,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
+#include "common/version.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "optimizer/farm/farm_channels.h"
@@ -14,6 +15,8 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-worker: run optimiser episodes for mrsim-opt --farm"};
+  app.set_version_flag("--version",
+                       std::string("mrsim-worker ") + mrsim::kVersion);
   std::string lcm_url;
   mrsim::WorkerSettings settings;
   settings.prefix = mrsim::kDefaultFarmPrefix;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.h"
+#include "common/version.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario.h"
@@ -36,20 +38,7 @@ void WriteOutput(const std::string& text, const std::string& path) {
     std::cout << text << std::flush;
     return;
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
+  mrsim::WriteFileAtomically(path, text);
 }
 
 // "none", "all" (in front of module 0 and after every module), "between"
@@ -86,6 +75,8 @@ int Run(int argc, char** argv) {
   CLI::App app{
       "Validate, inspect, convert, export and generate mrsim "
       "scenario files (docs/scenario.md)."};
+  app.set_version_flag("--version",
+                       std::string("mrsim-scenario ") + mrsim::kVersion);
   app.require_subcommand(1);
 
   std::string file, out_path, in_path;
@@ -163,6 +154,8 @@ int Run(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

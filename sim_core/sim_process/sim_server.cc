@@ -1,5 +1,7 @@
 #include "sim_core/sim_process/sim_server.h"
 
+#include <glib.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
@@ -26,18 +29,10 @@ constexpr double kStatusInterval = 0.5;      // s, wall (about 2 Hz)
 constexpr double kMaxLag = 0.25;  // s, wall
 
 std::string EscapeRegex(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) {
-      out += '\\';
-    }
-    out += c;
-  }
-  return out;
-}
-
-double Seconds(std::chrono::steady_clock::duration d) {
-  return std::chrono::duration<double>(d).count();
+  std::unique_ptr<gchar, decltype(&g_free)> escaped(
+      g_regex_escape_string(text.c_str(), static_cast<gint>(text.size())),
+      &g_free);
+  return escaped.get();
 }
 
 std::vector<std::string> RobotNames(const Physics& physics) {

@@ -1,7 +1,9 @@
 #include "launcher/launch_file.h"
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "tests/common/child_process.h"
@@ -34,6 +36,91 @@ TEST(LaunchFile, SubstitutesArgsAndOverrides) {
   EXPECT_EQ(sim.args[4], "outdir/a b");
   EXPECT_FALSE(f.processes[1].enabled);
   EXPECT_DOUBLE_EQ(f.processes[1].delay_s, 0.5);
+}
+
+// Sets an environment variable for one scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = getenv(name)) old_ = old, had_ = true;
+    if (value) {
+      setenv(name, value, 1);
+    } else {
+      unsetenv(name);
+    }
+  }
+  ~ScopedEnv() {
+    if (had_) {
+      setenv(name_.c_str(), old_.c_str(), 1);
+    } else {
+      unsetenv(name_.c_str());
+    }
+  }
+
+ private:
+  std::string name_, old_;
+  bool had_ = false;
+};
+
+TEST(LaunchFile, LcmDefaultUrlBeatsTheBundledDefaultAndSetBeatsBoth) {
+  const std::string demo = testing::SourcePath("launch/demo.launch");
+  const std::string mine = "udpm://239.255.76.67:7999?ttl=0";
+  {
+    ScopedEnv env("LCM_DEFAULT_URL", nullptr);
+    EXPECT_EQ(ReadLaunchFile(demo, {}).variables.at("lcm_url"),
+              "udpm://239.255.76.67:7667?ttl=0");
+  }
+  ScopedEnv env("LCM_DEFAULT_URL", mine.c_str());
+  const LaunchFile f = ReadLaunchFile(demo, {});
+  EXPECT_EQ(f.variables.at("lcm_url"), mine);
+  for (const ProcessSpec& p : f.processes) {
+    const auto it = std::find(p.args.begin(), p.args.end(), "--lcm-url");
+    ASSERT_NE(it, p.args.end()) << p.name;
+    EXPECT_EQ(*(it + 1), mine) << p.name;
+  }
+  EXPECT_EQ(ReadLaunchFile(demo, {{"lcm_url", "udpm://239.255.76.67:7001"}})
+                .variables.at("lcm_url"),
+            "udpm://239.255.76.67:7001");
+  EXPECT_EQ(
+      ReadLaunchFile(testing::SourcePath("launch/optimize_local.launch"), {})
+          .variables.at("lcm_url"),
+      mine);
+  // A value the launch file gives explicitly is not the environment's.
+  const std::string fixed = WriteFile("fixed.launch", R"(<launch>
+  <arg name="lcm_url" default="udpm://239.255.76.67:7123?ttl=0"/>
+  <process name="p" program="/bin/true" args="--lcm-url ${lcm_url}"/>
+</launch>)");
+  EXPECT_EQ(ReadLaunchFile(fixed, {}).processes[0].args[1],
+            "udpm://239.255.76.67:7123?ttl=0");
+}
+
+TEST(LaunchFile, HubRunsLcmTcpService) {
+  const std::string path = WriteFile("hub.launch", R"(<launch>
+  <arg name="port" default="7903"/>
+  <hub port="${port}"/>
+  <process name="p" program="/bin/true"/>
+</launch>)");
+  const LaunchFile f = ReadLaunchFile(path, {});
+  ASSERT_EQ(f.processes.size(), 2u);
+  const ProcessSpec& hub = f.processes[0];
+  EXPECT_EQ(hub.name, "hub");
+  EXPECT_EQ(hub.program, "java");
+  EXPECT_EQ(hub.args,
+            (std::vector<std::string>{"-cp", "/usr/share/java/lcm.jar",
+                                      "lcm.lcm.TCPService", "7903"}));
+  EXPECT_FALSE(hub.required);
+  const std::string bad = WriteFile("bad_hub.launch", R"(<launch>
+  <hub port="seventy"/>
+  <process name="p" program="/bin/true"/>
+</launch>)");
+  try {
+    ReadLaunchFile(bad, {});
+    FAIL() << "expected LaunchError";
+  } catch (const LaunchError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad + ":2: <hub> attribute port"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(LaunchFile, ErrorsNameFileLineAndProblem) {

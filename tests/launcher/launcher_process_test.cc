@@ -6,6 +6,7 @@
 #include <fstream>
 #include <thread>
 
+#include "common/version.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -90,10 +91,14 @@ TEST(Launcher, InterruptStopsEveryProcessCleanly) {
 
 TEST(Launcher, ReportsAProcessThatDies) {
   const std::string dir = TempDir("launcher_dies");
+  // main ends only once the launcher has reaped crasher (kill -0 succeeds
+  // on a zombie), so the report cannot race the end of the run.
   const std::string launch = WriteLaunch(dir, R"(<launch>
-  <process name="crasher" program="/bin/sh" args="-c 'exit 3'"/>
-  <process name="main" program="/bin/sh" required="true" delay="0.5"
-           args="-c 'sleep 0.5'"/>
+  <arg name="pid" default=")" + dir + R"(/crasher.pid"/>
+  <process name="crasher" program="/bin/sh"
+           args="-c 'echo $$ > ${pid}.tmp; mv ${pid}.tmp ${pid}; exit 3'"/>
+  <process name="main" program="/bin/sh" required="true"
+           args="-c 'while [ ! -s ${pid} ] || kill -0 $(cat ${pid}) 2>/dev/null; do sleep 0.05; done'"/>
 </launch>)");
   ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
                      dir + "/out.txt");
@@ -130,6 +135,18 @@ TEST(Launcher, WithoutLeavesAProcessOut) {
   EXPECT_EQ(mrsim.Wait(30), 0);
   EXPECT_NE(mrsim.Output().find("A-ran"), std::string::npos);
   EXPECT_EQ(mrsim.Output().find("B-ran"), std::string::npos);
+}
+
+TEST(Programs, EveryProgramAnswersVersion) {
+  const std::string dir = TempDir("programs_version");
+  for (const char* name :
+       {"mrsim", "mrsim-summary", "mrsim-scenario", "mrsim-lcm-spy",
+        "mrsim-plot", "mrsim-log", "mrsim-view", "mrsim-opt", "mrsim-worker"}) {
+    ChildProcess p({BinaryPath(std::string("bin/") + name), "--version"},
+                   dir + "/" + name + ".txt");
+    EXPECT_EQ(p.Wait(30), 0) << name << ": " << p.Output();
+    EXPECT_EQ(p.Output(), std::string(name) + " " + kVersion + "\n") << name;
+  }
 }
 
 }  // namespace

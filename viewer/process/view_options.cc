@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "common/version.h"
+
 namespace mrsim {
 namespace {
 
@@ -34,6 +36,8 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
       "mrsim-view: renders the robots of a scenario from their state stream "
       "(live LCM or an .lcmlog) to MP4 or PNG frames, off-screen; with "
       "--window and a display, live as well."};
+  app.set_version_flag("--version",
+                       std::string("mrsim-view ") + mrsim::kVersion);
   app.add_option("scenario", o->scenario, "Scenario XML file")
       ->required()
       ->check(CLI::ExistingFile);
