@@ -832,16 +832,24 @@ std::string Builder::Build() {
   AddTerrain();
 
   const std::vector<int> weld = WeldGroups();
-  int ngeom = static_cast<int>(world_geoms_.size());
-  for (const BodySpec& b : bodies_) ngeom += b.geoms.size();
+  int ncollide = 0, nhinge = 0;
+  for (const BodySpec& b : bodies_) {
+    for (const GeomSpec& g : b.geoms) ncollide += g.collide;
+    nhinge += b.joint == JointKind::kHinge;
+  }
 
   std::ostringstream out;
   out << "<mujoco model=\"mrsim\">\n";
   out << "  <compiler angle=\"radian\" inertiafromgeom=\"true\"/>\n";
   out << "  <option timestep=\"" << Num(s_.settings.timestep) << "\" gravity=\""
       << Vec(s_.settings.gravity) << "\" integrator=\"Euler\"/>\n";
-  const int ncon = std::max(200, 16 * ngeom);
-  out << "  <size nconmax=\"" << ncon << "\" njmax=\"" << 4 * ncon << "\"/>\n";
+  // MuJoCo 2.2 allocates njmax^2 doubles (efc_AR) per mjData, so long
+  // chains get what they need, not a generous multiple: a box resting on
+  // a plane makes 4 contacts of 4 rows (pyramidal friction, condim 3);
+  // small models keep room for piles and self-contact.
+  const int ncon = std::max(200, std::min(16 * ncollide, 4 * ncollide + 200));
+  const int njmax = 4 * ncon + 6 * static_cast<int>(welds_.size()) + nhinge;
+  out << "  <size nconmax=\"" << ncon << "\" njmax=\"" << njmax << "\"/>\n";
   out << "  <visual><headlight ambient=\"0.4 0.4 0.4\"/></visual>\n";
   if (!assets_.empty()) {
     out << "  <asset>\n";
@@ -918,7 +926,7 @@ std::string Builder::Build() {
         continue;
       }
       pairs << "    <pair geom1=\"" << Esc(a.name) << "\" geom2=\""
-            << Esc(b.name) << "\"" << ContactPairAttributes(s_, *cf) << "/>\n";
+            << Esc(b.name) << "\"" << ContactPairAttributes(*cf) << "/>\n";
     }
   }
   const std::string pair_text = pairs.str();

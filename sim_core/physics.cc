@@ -130,7 +130,9 @@ struct Physics::Impl {
   std::set<std::string> runtime_welds;
   MjModelPtr model;
   MjDataPtr data;
-  mutable MjDataPtr scratch;  // for force readings (needs a full forward)
+  // For force readings (needs a full forward); made on first use, since
+  // an mjData of a long chain is large (njmax^2).
+  mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
   std::unique_ptr<FluidForces> fluids;
   std::array<int, mjNWARNING> warnings{};
@@ -221,7 +223,12 @@ void Physics::Impl::Build() {
   }
   eq_active0.assign(m->eq_active, m->eq_active + m->neq);
   data.reset(mj_makeData(m));
-  scratch.reset(mj_makeData(m));
+  if (!data) {
+    throw std::runtime_error(fmt::format(
+        "MuJoCo cannot allocate the simulation data ({} constraint rows)",
+        m->njmax));
+  }
+  scratch.reset();
   qpos_integrated.assign(m->nq, 0);
   fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
   AfterStateChange();
@@ -589,6 +596,9 @@ RobotState Physics::ReadRobotState(int robot) const {
   if (need_forces) {
     // Contact forces of the current state: a full forward pass on a copy,
     // with the controls the next step would apply.
+    if (!impl_->scratch) impl_->scratch.reset(mj_makeData(m));
+    if (!impl_->scratch)
+      throw std::runtime_error("MuJoCo cannot allocate data");
     mjData* s = impl_->scratch.get();
     s->time = d->time;
     mju_copy(s->qpos, d->qpos, m->nq);

@@ -132,13 +132,31 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
   // 22 frames, 2 sensor modules, 2 plates.
   EXPECT_EQ(with_terrain, 26);
   // Restitution 0 is critically damped; stiff plastic is as stiff as safe.
-  const Eigen::Vector2d solref = ContactSolref(s.contact_frictions[0], 0.002);
+  const Eigen::Vector2d solref = ContactSolref(s.contact_frictions[0]);
   EXPECT_DOUBLE_EQ(solref.y(), 1.0);
   EXPECT_DOUBLE_EQ(solref.x(), 0.004);
   ContactFriction bouncy{"a", "b", 0.5, 0.5, 1e4};
-  const Eigen::Vector2d soft = ContactSolref(bouncy, 0.002);
+  const Eigen::Vector2d soft = ContactSolref(bouncy);
   EXPECT_LT(soft.y(), 1.0);
   EXPECT_GT(soft.x(), 0.004);
+}
+
+TEST(MjcfBuilder, ContactTimeConstantsDoNotDependOnTheStep) {
+  Scenario coarse = SnakeScenario();
+  Scenario fine = coarse;
+  fine.settings.timestep = 0.0005;
+  const std::string dir = TempDir("mjcf_contact_step");
+  MjModelPtr a = Load(WriteFile(dir + "/coarse.xml", BuildMjcf(coarse)));
+  MjModelPtr b = Load(WriteFile(dir + "/fine.xml", BuildMjcf(fine)));
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->npair, b->npair);
+  ASSERT_GT(a->npair, 0);
+  for (int p = 0; p < a->npair; ++p) {
+    EXPECT_EQ(a->pair_solref[2 * p], b->pair_solref[2 * p]);
+  }
+  for (int g = 0; g < a->ngeom; ++g) {
+    EXPECT_EQ(a->geom_solref[2 * g], b->geom_solref[2 * g]);
+  }
 }
 
 TEST(MjcfBuilder, LockThatClosesALoopBecomesAWeld) {
