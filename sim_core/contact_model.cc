@@ -49,22 +49,22 @@ Eigen::Vector2d ContactSolref(const ContactFriction& entry) {
   return Eigen::Vector2d(timeconst, damping);
 }
 
-std::string ContactGeomAttributes(const Scenario& scenario,
-                                  const std::string& material) {
+MjcfAttributes ContactGeomAttributes(const Scenario& scenario,
+                                     const std::string& material) {
   const ContactFriction* c = FindContactFriction(scenario, material, material);
-  if (!c) return "";
+  if (!c) return {};
   const Eigen::Vector2d solref = ContactSolref(*c);
-  return " friction=\"" + Num(std::max(c->friction, 0.0)) + " " +
-         Num(kTorsional) + " " + Num(kRolling) + "\" solref=\"" +
-         Num(solref.x()) + " " + Num(solref.y()) + "\"";
+  return {{"friction", Num(std::max(c->friction, 0.0)) + " " + Num(kTorsional) +
+                           " " + Num(kRolling)},
+          {"solref", Num(solref.x()) + " " + Num(solref.y())}};
 }
 
-std::string ContactPairAttributes(const ContactFriction& entry) {
+MjcfAttributes ContactPairAttributes(const ContactFriction& entry) {
   const Eigen::Vector2d solref = ContactSolref(entry);
   const double f = std::max(entry.friction, 0.0);
-  return " friction=\"" + Num(f) + " " + Num(f) + " " + Num(kTorsional) + " " +
-         Num(kRolling) + " " + Num(kRolling) + "\" solref=\"" +
-         Num(solref.x()) + " " + Num(solref.y()) + "\"";
+  return {{"friction", Num(f) + " " + Num(f) + " " + Num(kTorsional) + " " +
+                           Num(kRolling) + " " + Num(kRolling)},
+          {"solref", Num(solref.x()) + " " + Num(solref.y())}};
 }
 
 }  // namespace mrsim

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sim_core/scenario.h"
 
@@ -22,12 +24,14 @@ const ContactFriction* FindContactFriction(const Scenario& scenario,
 // constants below 2 steps to 2 steps, i.e. for steps above 2 ms).
 Eigen::Vector2d ContactSolref(const ContactFriction& entry);
 
-// " friction=... solref=..." for a geom of this material when the scenario
-// has an entry pairing the material with itself, else "" (MuJoCo defaults).
-std::string ContactGeomAttributes(const Scenario& scenario,
-                                  const std::string& material);
+using MjcfAttributes = std::vector<std::pair<std::string, std::string>>;
 
-// Attributes of a <pair> for an entry of two different materials.
-std::string ContactPairAttributes(const ContactFriction& entry);
+// friction and solref of a geom of this material when the scenario has an
+// entry pairing the material with itself, else none (MuJoCo defaults).
+MjcfAttributes ContactGeomAttributes(const Scenario& scenario,
+                                     const std::string& material);
+
+// friction and solref of a <pair> for an entry of two different materials.
+MjcfAttributes ContactPairAttributes(const ContactFriction& entry);
 
 }  // namespace mrsim

@@ -34,6 +34,15 @@ struct MjcfOptions {
   // the caller fills mjModel::hfield_data with HeightFieldData().
   bool hfield_data_after_compile = false;
   std::string asset_dir;
+  // Directory of the exported MJCF file. When set, mesh and terrain files
+  // are named relative to it (MuJoCo resolves them against the model
+  // file), and a decoded terrain image is written there unless asset_dir
+  // says otherwise.
+  std::string file_dir;
+  // MuJoCo rangefinder sensors for the distance sensors (export: viewers
+  // and mujoco-simulate show them). Physics leaves them out: it casts its
+  // own rays, which also skip the sensor's own force plate.
+  bool rangefinders = true;
   // Locks ("<robot>/<lock name>", see MjcfLock) to model as weld equality
   // constraints even where they could be rigid tree links, so they can be
   // released at run time (Physics::SetLockAttached).

@@ -205,6 +205,7 @@ void Physics::Impl::Build() {
   for (const RobotIndex& r : robots) old_targets.push_back(r.targets);
   MjcfOptions options;
   options.hfield_data_after_compile = true;
+  options.rangefinders = false;
   options.weld_locks = runtime_welds;
   MjcfInfo info;
   model = CompileMjcf(BuildMjcf(scenario, options, &info));
