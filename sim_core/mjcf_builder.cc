@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "sim_core/contact_model.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -245,6 +246,42 @@ class Builder {
 
 std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
                                const std::string& what) {
+  if (IsEmbeddedMesh(path)) {
+    EmbeddedMesh mesh;
+    try {
+      mesh = DecodeEmbeddedMesh(path);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(what + ": " + e.what());
+    }
+    size_t h = 1469598103934665603ull;
+    for (unsigned char c : mesh.bytes) h = (h ^ c) * 1099511628211ull;
+    std::string file = fmt::format("mrsim-mesh-{:016x}-{}", h, mesh.file_name);
+    const std::string key = file + "|" + Vec(scale);
+    auto it = mesh_names_.find(key);
+    if (it != mesh_names_.end()) return it->second;
+    if (options_.assets_in_memory) {
+      if (info_) info_->memory_files.push_back({file, mesh.bytes});
+    } else {
+      const fs::path dir =
+          !options_.asset_dir.empty()  ? fs::path(options_.asset_dir)
+          : !options_.file_dir.empty() ? fs::path(options_.file_dir)
+                                       : fs::temp_directory_path();
+      const std::string out_path = fs::absolute(dir / file).string();
+      std::ofstream out(out_path, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(mesh.bytes.data()),
+                mesh.bytes.size());
+      if (!out) {
+        throw std::runtime_error(what + ": cannot write the mesh to '" +
+                                 out_path + "'");
+      }
+      file = WrittenPath(out_path);
+    }
+    const std::string name = "mesh" + std::to_string(mesh_names_.size());
+    mesh_names_[key] = name;
+    assets_.push_back(
+        {"mesh", {{"name", name}, {"file", file}, {"scale", Vec(scale)}}});
+    return name;
+  }
   fs::path p(path);
   if (p.is_relative() && !s_.base_dir.empty()) p = fs::path(s_.base_dir) / p;
   std::error_code ec;
@@ -1174,7 +1211,10 @@ std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options) {
 
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
                       MjcfInfo* info) {
-  if (info) info->robot_locks.clear();
+  if (info) {
+    info->robot_locks.clear();
+    info->memory_files.clear();
+  }
   return Builder(scenario, options, info).Build();
 }
 

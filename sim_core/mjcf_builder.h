@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/scenario.h"
@@ -43,6 +44,10 @@ struct MjcfOptions {
   // and mujoco-simulate show them). Physics leaves them out: it casts its
   // own rays, which also skip the sensor's own force plate.
   bool rangefinders = true;
+  // true (what Physics uses): embedded meshes (embedded_mesh.h) are named
+  // by file name only and handed back in MjcfInfo::memory_files for
+  // MuJoCo's virtual file system; false: written as files like terrain.
+  bool assets_in_memory = false;
   // Locks ("<robot>/<lock name>", see MjcfLock) to model as weld equality
   // constraints even where they could be rigid tree links, so they can be
   // released at run time (Physics::SetLockAttached).
@@ -64,6 +69,8 @@ struct MjcfLock {
 // What the builder made of the scenario, for Physics.
 struct MjcfInfo {
   std::vector<std::vector<MjcfLock>> robot_locks;  // per scenario robot
+  // Files the MJCF names that exist only in memory (assets_in_memory).
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> memory_files;
 };
 
 // Export form: equal to BuildMjcf(scenario, MjcfOptions{}).

@@ -50,7 +50,10 @@ const char* WarningName(int w) {
   }
 }
 
-MjModelPtr CompileMjcf(const std::string& xml) {
+MjModelPtr CompileMjcf(
+    const std::string& xml,
+    const std::vector<std::pair<std::string, std::vector<unsigned char>>>&
+        files) {
   // MuJoCo 2.2's XML parser and compiler keep global state: one at a time,
   // so Physics objects can be built from several threads.
   static std::mutex compile_mutex;
@@ -64,6 +67,16 @@ MjModelPtr CompileMjcf(const std::string& xml) {
   }
   const int index = mj_findFileVFS(vfs.get(), kName);
   std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  for (const auto& [name, bytes] : files) {
+    if (mj_findFileVFS(vfs.get(), name.c_str()) >= 0) continue;
+    if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(),
+                            static_cast<int>(bytes.size())) != 0) {
+      mj_deleteVFS(vfs.get());
+      throw std::runtime_error("cannot hold the mesh '" + name + "' in memory");
+    }
+    const int f = mj_findFileVFS(vfs.get(), name.c_str());
+    std::memcpy(vfs->filedata[f], bytes.data(), bytes.size());
+  }
   char error[1024] = {0};
   MjModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof(error)));
   mj_deleteVFS(vfs.get());
@@ -206,9 +219,11 @@ void Physics::Impl::Build() {
   MjcfOptions options;
   options.hfield_data_after_compile = true;
   options.rangefinders = false;
+  options.assets_in_memory = true;
   options.weld_locks = runtime_welds;
   MjcfInfo info;
-  model = CompileMjcf(BuildMjcf(scenario, options, &info));
+  const std::string xml = BuildMjcf(scenario, options, &info);
+  model = CompileMjcf(xml, info.memory_files);
   mjModel* m = model.get();
   if (!scenario.scene.height_image.empty() && m->nhfield > 0) {
     const std::vector<float> heights =
