@@ -53,6 +53,38 @@ ChainOptions ChainOptionsOf(const Robot& robot) {
   return o;
 }
 
+namespace {
+
+// Scales every length of `robot` by `factor` about the point at ground
+// height (Scene::position.z) under module 0's hinge, so it still stands
+// there whatever its frames' shapes.
+void ScaleRobot(Robot* robot, double ground_z, double factor) {
+  if (robot->modules.empty()) {
+    throw GenomeError("robot '" + robot->name + "' has no modules to scale");
+  }
+  const Eigen::Vector3d origin(robot->modules[0].position.x(),
+                               robot->modules[0].position.y(), ground_z);
+  Scenario one;
+  one.robots.push_back(*robot);
+  ScaleLengths(&one, factor);
+  Robot& r = one.robots.front();
+  const Eigen::Vector3d shift = origin - factor * origin;
+  for (Module& m : r.modules) {
+    m.position += shift;
+    for (Frame& f : m.frames) f.position += shift;
+  }
+  for (SensorModule& sm : r.sensor_modules) {
+    sm.position += shift;
+    sm.force_lock_position += shift;
+    sm.distance_lock_position += shift;
+    if (sm.force_sensor) sm.force_sensor->position += shift;
+    for (DistanceSensor& d : sm.distance_sensors) d.position += shift;
+  }
+  *robot = r;
+}
+
+}  // namespace
+
 Scenario ApplyBodyGenes(const Scenario& scenario, const GenomeSpec& spec,
                         const Genome& genome) {
   Scenario s = scenario;
@@ -68,7 +100,11 @@ Scenario ApplyBodyGenes(const Scenario& scenario, const GenomeSpec& spec,
   const bool rebuild_count = gene("module_count", &count);
   const bool rebuild_scale = gene("module_scale", &scale);
   const bool rebuild_sensor = gene("sensor_after", &sensor);
-  if (rebuild_count || rebuild_scale || rebuild_sensor) {
+  if (rebuild_scale && !rebuild_count && !rebuild_sensor) {
+    // Scaling needs no rebuild: every part (mesh frames and hand-placed
+    // sensors too) grows about the ground point under module 0's hinge.
+    ScaleRobot(&robot, s.scene.position.z(), scale);
+  } else if (rebuild_count || rebuild_scale || rebuild_sensor) {
     ChainOptions o = ChainOptionsOf(robot);
     if (rebuild_count) o.modules = static_cast<int>(std::lround(count));
     if (rebuild_scale) {

@@ -1,12 +1,15 @@
 // Applies a genome's body genes to a copy of a scenario before an episode.
 //
 // joint_kp, joint_max_vel and module_mass change the robot in place (every
-// hinge; each module's two frames get half the mass). module_count,
-// module_scale and sensor_after rebuild the robot with MakeChain from
-// options read off the robot (axis pattern, frame size, mass, Kp, max_vel,
-// joint limit, material, sensor modules and their sensors, the ground point
-// under module 0's hinge), so they suit MakeChain-style chains; see
-// docs/optimizer.md.
+// hinge; each module's two frames get half the mass), and so does
+// module_scale on its own (every length of every part scaled about the
+// point at ground height, Scene::position.z, under module 0's hinge), so a
+// hand-built robot (mesh frames, placed sensors) keeps its parts. module_count
+// and sensor_after (and module_scale with either) rebuild the robot with
+// MakeChain from options read off the robot (axis pattern, frame size, mass,
+// Kp, max_vel, joint limit, material, sensor modules and their sensors, the
+// ground point under module 0's hinge), so they suit MakeChain-style chains;
+// see docs/optimizer.md.
 #pragma once
 
 #include "optimizer/genome.h"

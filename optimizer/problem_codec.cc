@@ -11,6 +11,7 @@
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
 #include "sim_core/base64.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/scenario_xml.h"
 
 namespace mrsim {
@@ -89,6 +90,7 @@ void CheckNamesNoFile(const std::string& xml, const std::string& source) {
       throw ProblemError(source + ": the scenario names an image file");
     }
     if (name == "shape" && text && std::string(text) != "Box" &&
+        !IsEmbeddedMesh(text) &&
         std::string(e->Parent()->ToElement()->Name()) == "Frame") {
       throw ProblemError(source + ": the scenario names a mesh file");
     }
@@ -102,23 +104,25 @@ void CheckNamesNoFile(const std::string& xml, const std::string& source) {
 }  // namespace
 
 void EmbedAssets(Scenario& scenario) {
-  for (const Robot& r : scenario.robots) {
-    for (const Module& m : r.modules) {
-      for (const Frame& f : m.frames) {
-        if (f.is_mesh()) {
-          throw ProblemError("frame '" + f.guid + "' uses the mesh file '" +
-                             f.shape +
-                             "'; the optimiser sends scenarios without files, "
-                             "so only Box frames are supported");
-        }
-      }
+  // Mesh files travel inside the scenario (embedded_mesh.h).
+  auto embed = [&scenario](Frame& f, const std::string& what) {
+    if (!f.is_mesh() || IsEmbeddedMesh(f.shape)) return;
+    std::string path = f.shape;
+    if (!path.empty() && path[0] != '/' && !scenario.base_dir.empty()) {
+      path = scenario.base_dir + "/" + path;
+    }
+    try {
+      f.shape = EmbedMeshFile(path);
+    } catch (const std::exception& e) {
+      throw ProblemError(what + " '" + f.guid + "': " + e.what());
+    }
+  };
+  for (Robot& r : scenario.robots) {
+    for (Module& m : r.modules) {
+      for (Frame& f : m.frames) embed(f, "frame");
     }
   }
-  for (const Frame& f : scenario.loose_frames) {
-    if (f.is_mesh()) {
-      throw ProblemError("loose frame '" + f.guid + "' uses a mesh file");
-    }
-  }
+  for (Frame& f : scenario.loose_frames) embed(f, "loose frame");
   std::string& image = scenario.scene.height_image;
   if (IsEmbedded(image)) return;
   std::string path = image;

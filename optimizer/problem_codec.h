@@ -15,16 +15,17 @@ class ProblemError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Replaces a terrain image path by its bytes ("base64:..."), so the
-// scenario names no file. Throws ProblemError for mesh frames (a payload
-// carries no mesh files) or an unreadable image.
+// Replaces a terrain image path by its bytes ("base64:...") and every mesh
+// frame's file by its bytes (sim_core/embedded_mesh.h), so the scenario
+// names no file. Throws ProblemError naming the frame for an unreadable
+// mesh.
 void EmbedAssets(Scenario& scenario);
 
 // The payload (assets must be embedded).
 std::string EncodeProblem(const Problem& problem);
 
 // Throws ProblemError naming `source` on a malformed payload, a scenario
-// that names a file (image path or mesh), or invalid contents. Reads no
+// that names a file (image path or mesh path), or invalid contents. Reads no
 // file.
 Problem DecodeProblem(const std::string& payload, const std::string& source);
 

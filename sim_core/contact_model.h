@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sim_core/scenario.h"
 
@@ -17,16 +19,19 @@ const ContactFriction* FindContactFriction(const Scenario& scenario,
 // MuJoCo solref (time constant, damping ratio) for an entry:
 // restitution e -> damping ratio -ln(e)/sqrt(pi^2 + ln(e)^2) (1 for e <= 0),
 // Young's modulus E -> time constant sqrt(m_ref / (E * l_ref)) with
-// m_ref = 0.1 kg and l_ref = 0.01 m, never below 2 * timestep.
-Eigen::Vector2d ContactSolref(const ContactFriction& entry, double timestep);
+// m_ref = 0.1 kg and l_ref = 0.01 m, never below 4 ms. Independent of the
+// timestep, so results converge as the step shrinks (MuJoCo raises time
+// constants below 2 steps to 2 steps, i.e. for steps above 2 ms).
+Eigen::Vector2d ContactSolref(const ContactFriction& entry);
 
-// " friction=... solref=..." for a geom of this material when the scenario
-// has an entry pairing the material with itself, else "" (MuJoCo defaults).
-std::string ContactGeomAttributes(const Scenario& scenario,
-                                  const std::string& material);
+using MjcfAttributes = std::vector<std::pair<std::string, std::string>>;
 
-// Attributes of a <pair> for an entry of two different materials.
-std::string ContactPairAttributes(const Scenario& scenario,
-                                  const ContactFriction& entry);
+// friction and solref of a geom of this material when the scenario has an
+// entry pairing the material with itself, else none (MuJoCo defaults).
+MjcfAttributes ContactGeomAttributes(const Scenario& scenario,
+                                     const std::string& material);
+
+// friction and solref of a <pair> for an entry of two different materials.
+MjcfAttributes ContactPairAttributes(const ContactFriction& entry);
 
 }  // namespace mrsim

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <stb/stb_image_write.h>
+#include <tinyxml2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 
 #include "sim_core/contact_model.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -36,44 +38,78 @@ std::string Vec(const Vector3d& v) {
 std::string Quat(const Quaterniond& q) {
   return Num(q.w()) + " " + Num(q.x()) + " " + Num(q.y()) + " " + Num(q.z());
 }
-std::string Esc(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-// A stable colour per material so parts look apart in the viewer.
-std::string Rgba(const std::string& material) {
-  static const char* kPalette[] = {"0.85 0.45 0.2 1", "0.3 0.55 0.85 1",
-                                   "0.4 0.75 0.35 1", "0.8 0.75 0.3 1",
-                                   "0.65 0.4 0.75 1", "0.5 0.5 0.5 1"};
-  size_t h = 0;
-  for (char c : material) h = h * 31 + static_cast<unsigned char>(c);
-  return kPalette[h % (sizeof(kPalette) / sizeof(kPalette[0]))];
-}
-
 Quaterniond Normalized(const Quaterniond& q) {
   const double n = q.norm();
   if (!(n > 0) || !std::isfinite(n)) return Quaterniond::Identity();
   return Quaterniond(q.coeffs() / n);
+}
+
+// ---------------------------------------------------------------- look
+
+// What a geom is, for its colour: one hue per kind, shaded per material.
+enum class PartKind {
+  kPitchModule,
+  kYawModule,
+  kLooseFrame,
+  kSensorModule,
+  kForcePlate,
+  kDistanceSensor,
+  kSceneObject,
+};
+
+const char* KindName(PartKind kind) {
+  switch (kind) {
+    case PartKind::kPitchModule:
+      return "pitch_module";
+    case PartKind::kYawModule:
+      return "yaw_module";
+    case PartKind::kLooseFrame:
+      return "frame";
+    case PartKind::kSensorModule:
+      return "sensor_module";
+    case PartKind::kForcePlate:
+      return "force_plate";
+    case PartKind::kDistanceSensor:
+      return "distance_sensor";
+    case PartKind::kSceneObject:
+      return "scene_object";
+  }
+  return "part";
+}
+
+// Hues far apart on the wheel so neighbours in a chain stand out: warm
+// orange pitch, blue yaw, green sensor modules, magenta plates, yellow
+// distance sensors, red scene objects, grey loose frames.
+Eigen::Vector3d KindRgb(PartKind kind) {
+  switch (kind) {
+    case PartKind::kPitchModule:
+      return {0.95, 0.55, 0.15};
+    case PartKind::kYawModule:
+      return {0.2, 0.45, 0.9};
+    case PartKind::kLooseFrame:
+      return {0.6, 0.6, 0.6};
+    case PartKind::kSensorModule:
+      return {0.25, 0.75, 0.3};
+    case PartKind::kForcePlate:
+      return {0.8, 0.25, 0.8};
+    case PartKind::kDistanceSensor:
+      return {1.0, 0.9, 0.2};
+    case PartKind::kSceneObject:
+      return {0.85, 0.2, 0.2};
+  }
+  return {0.5, 0.5, 0.5};
+}
+
+// The MuJoCo material of a kind and scenario material: "<kind>/<material>";
+// the material name picks a shade of the kind's colour (0.7x to 1.15x).
+std::string LookName(PartKind kind, const std::string& material) {
+  return std::string(KindName(kind)) + "/" + material;
+}
+Eigen::Vector3d LookRgb(PartKind kind, const std::string& material) {
+  uint32_t h = 2166136261u;
+  for (char c : material) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  const double shade = 0.7 + 0.45 * ((h >> 8) % 1000) / 999.0;
+  return (KindRgb(kind) * shade).cwiseMin(1.0);
 }
 
 // ---------------------------------------------------------------- model
@@ -88,12 +124,20 @@ struct GeomSpec {
   std::string material;
   std::string mesh;  // mesh asset name
   bool collide = true;
+  PartKind kind = PartKind::kSceneObject;
 };
 
 struct SiteSpec {
   std::string name;
   Vector3d pos = Vector3d::Zero();
   Quaterniond quat = Quaterniond::Identity();
+  bool rangefinder = false;  // a ray along its z axis, export only
+};
+
+// An element with attributes, e.g. an asset.
+struct ElementSpec {
+  std::string tag;
+  MjcfAttributes attrs;
 };
 
 enum class JointKind { kNone, kFree, kHinge };
@@ -115,7 +159,7 @@ struct BodySpec {
 
 struct ActuatorSpec {
   std::string name, joint;
-  double max_vel = 0;
+  double max_vel = 0, kv = 0, max_torque = 0;
 };
 
 struct WeldSpec {
@@ -136,14 +180,16 @@ struct Edge {
   Vector3d axis_world = Vector3d::UnitY();
   Vector3d anchor_world = Vector3d::Zero();
   std::string joint_name, actuator_name, guid;
-  double lower = 0, upper = 0, max_vel = 0;
+  double lower = 0, upper = 0, max_vel = 0, kv = 0, max_torque = 0;
   bool servo = false;
+  std::string lock;   // lock name (MjcfLock::name); empty for hinges
+  bool weld = false;  // a weld equality even where a tree link would do
 };
 
 class Builder {
  public:
-  Builder(const Scenario& scenario, const MjcfOptions& options)
-      : s_(scenario), options_(options) {}
+  Builder(const Scenario& scenario, const MjcfOptions& options, MjcfInfo* info)
+      : s_(scenario), options_(options), info_(info) {}
 
   std::string Build();
 
@@ -159,23 +205,31 @@ class Builder {
   }
   std::string MeshAsset(const std::string& path, const Vector3d& scale,
                         const std::string& what);
-  GeomSpec FrameGeom(const Frame& frame, const std::string& name);
+  GeomSpec FrameGeom(const Frame& frame, const std::string& name,
+                     PartKind kind);
   void AddRobot(const std::string& robot_name,
                 const std::vector<Module>& modules,
                 const std::vector<SensorModule>& sensor_modules,
                 const std::vector<Frame>& loose_frames,
-                const std::vector<Joint>& locks, bool servos);
+                const std::vector<Joint>& locks, bool servos,
+                std::vector<MjcfLock>* lock_info);
   void AddSensorModuleParts(const std::string& robot_name, int index,
                             const SensorModule& sm, int body);
   void ConnectTree(const std::string& robot_name, std::vector<Node>& nodes,
-                   const std::vector<Edge>& edges);
+                   const std::vector<Edge>& edges,
+                   std::vector<MjcfLock>* lock_info);
   void AddSceneObjects();
   void AddTerrain();
   std::vector<int> WeldGroups() const;
-  void WriteBody(std::ostringstream& out, int index, int depth) const;
+  void WriteBody(tinyxml2::XMLPrinter& out, int index) const;
+  void WriteGeom(tinyxml2::XMLPrinter& out, const GeomSpec& g) const;
+  // A file path as the MJCF names it: relative to MjcfOptions::file_dir
+  // when given, else absolute.
+  std::string WrittenPath(const std::string& absolute) const;
 
   const Scenario& s_;
   const MjcfOptions& options_;
+  MjcfInfo* info_;
   std::vector<BodySpec> bodies_;
   std::vector<GeomSpec> world_geoms_;
   std::vector<ActuatorSpec> actuators_;
@@ -183,13 +237,50 @@ class Builder {
   std::vector<std::pair<std::string, std::string>> excludes_;
   std::vector<std::pair<std::string, std::string>>
       force_sensors_;  // name, site
-  std::vector<std::string> assets_;
+  std::vector<ElementSpec> assets_;
+  std::vector<std::pair<std::string, std::string>> rangefinders_;  // name, site
   std::map<std::string, std::string> mesh_names_;  // key path|scale -> name
   std::string terrain_geom_type_;
 };
 
 std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
                                const std::string& what) {
+  if (IsEmbeddedMesh(path)) {
+    EmbeddedMesh mesh;
+    try {
+      mesh = DecodeEmbeddedMesh(path);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(what + ": " + e.what());
+    }
+    size_t h = 1469598103934665603ull;
+    for (unsigned char c : mesh.bytes) h = (h ^ c) * 1099511628211ull;
+    std::string file = fmt::format("mrsim-mesh-{:016x}-{}", h, mesh.file_name);
+    const std::string key = file + "|" + Vec(scale);
+    auto it = mesh_names_.find(key);
+    if (it != mesh_names_.end()) return it->second;
+    if (options_.assets_in_memory) {
+      if (info_) info_->memory_files.push_back({file, mesh.bytes});
+    } else {
+      const fs::path dir =
+          !options_.asset_dir.empty()  ? fs::path(options_.asset_dir)
+          : !options_.file_dir.empty() ? fs::path(options_.file_dir)
+                                       : fs::temp_directory_path();
+      const std::string out_path = fs::absolute(dir / file).string();
+      std::ofstream out(out_path, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(mesh.bytes.data()),
+                mesh.bytes.size());
+      if (!out) {
+        throw std::runtime_error(what + ": cannot write the mesh to '" +
+                                 out_path + "'");
+      }
+      file = WrittenPath(out_path);
+    }
+    const std::string name = "mesh" + std::to_string(mesh_names_.size());
+    mesh_names_[key] = name;
+    assets_.push_back(
+        {"mesh", {{"name", name}, {"file", file}, {"scale", Vec(scale)}}});
+    return name;
+  }
   fs::path p(path);
   if (p.is_relative() && !s_.base_dir.empty()) p = fs::path(s_.base_dir) / p;
   std::error_code ec;
@@ -202,12 +293,14 @@ std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
   if (it != mesh_names_.end()) return it->second;
   const std::string name = "mesh" + std::to_string(mesh_names_.size());
   mesh_names_[key] = name;
-  assets_.push_back("    <mesh name=\"" + name + "\" file=\"" + Esc(abs) +
-                    "\" scale=\"" + Vec(scale) + "\"/>\n");
+  assets_.push_back(
+      {"mesh",
+       {{"name", name}, {"file", WrittenPath(abs)}, {"scale", Vec(scale)}}});
   return name;
 }
 
-GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name) {
+GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name,
+                            PartKind kind) {
   if (!(frame.mass > 0)) {
     throw std::runtime_error("frame '" + frame.guid +
                              "': mass must be positive, got " +
@@ -217,6 +310,7 @@ GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name) {
   g.name = name;
   g.mass = frame.mass;
   g.material = frame.material_name;
+  g.kind = kind;
   if (frame.is_mesh()) {
     g.type = "mesh";
     g.mesh = MeshAsset(frame.shape, frame.scale, "frame '" + frame.guid + "'");
@@ -265,6 +359,7 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
     g.size = fsr.size / 2;
     g.mass = fsr.mass;
     g.material = fsr.material_name;
+    g.kind = PartKind::kForcePlate;
     bodies_[plate].geoms.push_back(g);
     bodies_[plate].sites.push_back({mjcf_names::ForceSite(robot_name, index),
                                     Vector3d::Zero(), Quaterniond::Identity()});
@@ -287,6 +382,15 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
     // Site x axis = ray direction, at the face centre.
     bodies_[body].sites.push_back(
         {site, n * h, Quaterniond::FromTwoVectors(Vector3d::UnitX(), dir)});
+    if (options_.rangefinders) {
+      // MuJoCo's own sensor for viewers and other tools: it looks along
+      // its site's z axis and skips the sensor module's body, not its
+      // plate, so Physics keeps its own ray casts.
+      bodies_[body].sites.push_back(
+          {site + "/range", n * h,
+           Quaterniond::FromTwoVectors(Vector3d::UnitZ(), dir), true});
+      rangefinders_.push_back({site, site + "/range"});
+    }
     if (ds.mass > 0 && ds.size.minCoeff() > 0) {
       // The sensor's own mass and look; it never collides (the module does).
       GeomSpec g;
@@ -297,6 +401,7 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
       g.mass = ds.mass;
       g.material = sm.material_name;
       g.collide = false;
+      g.kind = PartKind::kDistanceSensor;
       bodies_[body].geoms.push_back(g);
     }
   }
@@ -306,7 +411,8 @@ void Builder::AddRobot(const std::string& robot_name,
                        const std::vector<Module>& modules,
                        const std::vector<SensorModule>& sensor_modules,
                        const std::vector<Frame>& loose_frames,
-                       const std::vector<Joint>& locks, bool servos) {
+                       const std::vector<Joint>& locks, bool servos,
+                       std::vector<MjcfLock>* lock_info) {
   std::vector<Node> nodes;
   std::vector<Edge> edges;
   std::map<std::string, int> by_guid;
@@ -332,7 +438,10 @@ void Builder::AddRobot(const std::string& robot_name,
       const Frame& frame = m.frames[f];
       const std::string name = mjcf_names::FrameBody(robot_name, i, f);
       const int body = AddBody(name, frame.position, frame.quat_rotation);
-      bodies_[body].geoms.push_back(FrameGeom(frame, name));
+      bodies_[body].geoms.push_back(FrameGeom(frame, name,
+                                              m.axis == Axis::kPitch
+                                                  ? PartKind::kPitchModule
+                                                  : PartKind::kYawModule));
       ids[f] = add_node(frame.guid,
                         "robot '" + robot_name + "' module " +
                             std::to_string(i) + " frame " + std::to_string(f),
@@ -344,7 +453,8 @@ void Builder::AddRobot(const std::string& robot_name,
     const Frame& frame = loose_frames[i];
     const std::string name = robot_name + "/f" + std::to_string(i);
     const int body = AddBody(name, frame.position, frame.quat_rotation);
-    bodies_[body].geoms.push_back(FrameGeom(frame, name));
+    bodies_[body].geoms.push_back(
+        FrameGeom(frame, name, PartKind::kLooseFrame));
     add_node(frame.guid, "loose frame " + std::to_string(i), body,
              frame.is_static);
   }
@@ -363,6 +473,7 @@ void Builder::AddRobot(const std::string& robot_name,
     g.size = sm.size / 2;
     g.mass = sm.mass;
     g.material = sm.material_name;
+    g.kind = PartKind::kSensorModule;
     bodies_[body].geoms.push_back(g);
     AddSensorModuleParts(robot_name, static_cast<int>(k), sm, body);
     sm_nodes.push_back(add_node(
@@ -403,10 +514,22 @@ void Builder::AddRobot(const std::string& robot_name,
                                Num(e.upper));
     }
     e.max_vel = m.joint.max_vel;
+    e.kv = m.joint.velocity_gain;
+    e.max_torque = m.joint.max_torque;
+    if (e.hinge && servos &&
+        (!(e.kv > 0) || !(e.max_torque > 0) || !std::isfinite(e.kv) ||
+         !std::isfinite(e.max_torque))) {
+      throw std::runtime_error(
+          "robot '" + robot_name + "' module " + std::to_string(i) +
+          ": velocity_gain and max_torque must be positive, got " + Num(e.kv) +
+          " and " + Num(e.max_torque));
+    }
     e.servo = servos;
     edges.push_back(e);
   }
   // Locks between parts; a loose hinge joint becomes a passive hinge.
+  std::map<std::string, int> guid_uses;
+  for (const Joint& j : locks) ++guid_uses[j.guid];
   for (size_t k = 0; k < locks.size(); ++k) {
     const Joint& j = locks[k];
     auto left = by_guid.find(j.left_frame_guid);
@@ -422,6 +545,21 @@ void Builder::AddRobot(const std::string& robot_name,
     e.b = right->second;
     e.guid = j.guid;
     e.hinge = j.type == JointType::kHinge;
+    if (!e.hinge) {
+      // Placeholder guids (empty, or the all-zero guid on every lock) do
+      // not name a lock; the lock's place does.
+      e.lock = !j.guid.empty() && guid_uses[j.guid] == 1
+                   ? j.guid
+                   : "lock" + std::to_string(k);
+      if (!(j.break_force >= 0) || !std::isfinite(j.break_force)) {
+        throw std::runtime_error("robot '" + robot_name + "' lock '" + e.lock +
+                                 "': break_force must be 0 (never) or "
+                                 "positive, got " +
+                                 Num(j.break_force));
+      }
+      e.weld = j.break_force > 0;
+      lock_info->push_back({e.lock, "", j.break_force});
+    }
     if (e.hinge) {
       const BodySpec& lb = bodies_[nodes[e.a].body];
       const BodySpec& rb = bodies_[nodes[e.b].body];
@@ -440,8 +578,9 @@ void Builder::AddRobot(const std::string& robot_name,
     bool connected = false;
     for (const Edge& e : edges) connected |= e.a == node || e.b == node;
     if (connected) continue;
-    for (int nr :
-         {sensor_modules[k].left_mod_nr, sensor_modules[k].right_mod_nr}) {
+    for (int side = 0; side < 2; ++side) {
+      const int nr = side == 0 ? sensor_modules[k].left_mod_nr
+                               : sensor_modules[k].right_mod_nr;
       if (nr < 0) continue;
       for (size_t i = 0; i < modules.size(); ++i) {
         if (modules[i].mod_nr != nr) continue;
@@ -455,20 +594,36 @@ void Builder::AddRobot(const std::string& robot_name,
         e.a = best;
         e.b = node;
         e.guid = sensor_modules[k].guid + " (implicit lock)";
+        e.lock = "sm" + std::to_string(k) + "/lock" + std::to_string(side);
+        lock_info->push_back({e.lock, "", 0.0});
         edges.push_back(e);
         break;
       }
     }
   }
-  ConnectTree(robot_name, nodes, edges);
+  for (Edge& e : edges) {
+    if (!e.lock.empty() && options_.weld_locks.count(robot_name + "/" + e.lock))
+      e.weld = true;
+  }
+  ConnectTree(robot_name, nodes, edges, lock_info);
 }
 
 void Builder::ConnectTree(const std::string& robot_name,
                           std::vector<Node>& nodes,
-                          const std::vector<Edge>& edges) {
+                          const std::vector<Edge>& edges,
+                          std::vector<MjcfLock>* lock_info) {
   // Spanning forest: every hinge must be a tree edge (MuJoCo joints live in
   // the tree), locks join what the hinges left apart; any other lock
-  // closes a loop and becomes a weld equality.
+  // closes a loop and becomes a weld equality, as do locks that may be
+  // released (weld) and locks that would nest bodies too deep.
+  auto add_weld = [&](const Edge& e) {
+    const std::string name = mjcf_names::Weld(robot_name, e.lock);
+    welds_.push_back(
+        {name, bodies_[nodes[e.a].body].name, bodies_[nodes[e.b].body].name});
+    for (MjcfLock& l : *lock_info) {
+      if (l.name == e.lock) l.weld = name;
+    }
+  };
   std::vector<int> uf(nodes.size());
   for (size_t n = 0; n < nodes.size(); ++n) uf[n] = static_cast<int>(n);
   std::function<int(int)> find = [&](int n) {
@@ -480,16 +635,14 @@ void Builder::ConnectTree(const std::string& robot_name,
       const Edge& e = edges[ei];
       if (e.hinge != (pass == 0)) continue;
       const int ra = find(e.a), rb = find(e.b);
-      if (ra == rb) {
+      if (ra == rb || e.weld) {
         if (e.hinge) {
           throw std::runtime_error("robot '" + robot_name + "' joint '" +
                                    e.guid +
                                    "': hinges that form a closed loop are "
                                    "not supported");
         }
-        welds_.push_back({robot_name + "/weld/" + e.guid,
-                          bodies_[nodes[e.a].body].name,
-                          bodies_[nodes[e.b].body].name});
+        add_weld(e);
         continue;
       }
       uf[ra] = rb;
@@ -511,6 +664,7 @@ void Builder::ConnectTree(const std::string& robot_name,
     incident[edges[ei].b].push_back(static_cast<int>(ei));
   }
   std::vector<bool> visited(nodes.size(), false);
+  std::vector<int> depth(nodes.size(), 0);
   // Static parts first so their component hangs from the world.
   std::vector<int> order;
   for (size_t n = 0; n < nodes.size(); ++n)
@@ -520,12 +674,15 @@ void Builder::ConnectTree(const std::string& robot_name,
   int component = 0;
   for (int root : order) {
     if (visited[root]) continue;
-    BodySpec& rb = bodies_[nodes[root].body];
-    if (!nodes[root].is_static) {
-      rb.joint = JointKind::kFree;
-      rb.joint_name = mjcf_names::RootJoint(robot_name, component);
-    }
-    ++component;
+    auto make_root = [&](int node) {
+      BodySpec& rb = bodies_[nodes[node].body];
+      if (!nodes[node].is_static) {
+        rb.joint = JointKind::kFree;
+        rb.joint_name = mjcf_names::RootJoint(robot_name, component);
+      }
+      ++component;
+    };
+    make_root(root);
     visited[root] = true;
     std::queue<int> queue;
     queue.push(root);
@@ -537,6 +694,15 @@ void Builder::ConnectTree(const std::string& robot_name,
         const int other = e.a == n ? e.b : e.a;
         if (visited[other]) continue;
         visited[other] = true;
+        depth[other] = depth[n] + 1;
+        if (depth[other] > kMaxBodyDepth && !e.hinge) {
+          // Too deep for XML: a new sub-tree, welded where the lock is.
+          depth[other] = 0;
+          add_weld(e);
+          make_root(other);
+          queue.push(other);
+          continue;
+        }
         const int pb = nodes[n].body, cb = nodes[other].body;
         bodies_[cb].parent = pb;
         bodies_[pb].children.push_back(cb);
@@ -564,7 +730,8 @@ void Builder::ConnectTree(const std::string& robot_name,
   for (size_t ei = 0; ei < edges.size(); ++ei) {
     const Edge& e = edges[ei];
     if (in_tree[ei] && e.hinge && e.servo) {
-      actuators_.push_back({e.actuator_name, e.joint_name, e.max_vel});
+      actuators_.push_back(
+          {e.actuator_name, e.joint_name, e.max_vel, e.kv, e.max_torque});
     }
   }
 }
@@ -641,11 +808,13 @@ void Builder::AddTerrain() {
   // MuJoCo needs a positive elevation range; a flat image still gets one.
   const double top = std::max(scene.height, 1e-6);
   const double bottom = std::max(0.05, 0.1 * top);
-  std::string hfield = "    <hfield name=\"terrain\" size=\"" + Num(rx) + " " +
-                       Num(ry) + " " + Num(top) + " " + Num(bottom) + "\"";
+  ElementSpec hfield{
+      "hfield",
+      {{"name", "terrain"},
+       {"size", Num(rx) + " " + Num(ry) + " " + Num(top) + " " + Num(bottom)}}};
   if (options_.hfield_data_after_compile) {
-    hfield += " nrow=\"" + std::to_string(image.rows) + "\" ncol=\"" +
-              std::to_string(image.cols) + "\"";
+    hfield.attrs.push_back({"nrow", std::to_string(image.rows)});
+    hfield.attrs.push_back({"ncol", std::to_string(image.cols)});
   } else {
     std::string path;
     const bool png_file = TerrainImageIsFile(scene, s_.base_dir, &path) &&
@@ -668,9 +837,10 @@ void Builder::AddTerrain() {
           &png, image.cols, image.rows, 1, grey.data(), image.cols);
       size_t h = 1469598103934665603ull;
       for (unsigned char c : png) h = (h ^ c) * 1099511628211ull;
-      const fs::path dir = options_.asset_dir.empty()
-                               ? fs::temp_directory_path()
-                               : fs::path(options_.asset_dir);
+      const fs::path dir =
+          !options_.asset_dir.empty()  ? fs::path(options_.asset_dir)
+          : !options_.file_dir.empty() ? fs::path(options_.file_dir)
+                                       : fs::temp_directory_path();
       path = fs::absolute(dir / fmt::format("mrsim-terrain-{:016x}.png", h))
                  .string();
       std::ofstream out(path, std::ios::binary);
@@ -680,9 +850,9 @@ void Builder::AddTerrain() {
                                  "'");
       }
     }
-    hfield += " file=\"" + Esc(path) + "\"";
+    hfield.attrs.push_back({"file", WrittenPath(path)});
   }
-  assets_.push_back(hfield + "/>\n");
+  assets_.push_back(hfield);
   g.type = "hfield";
   g.pos = scene.position + Vector3d(rx, ry, 0);
   world_geoms_.push_back(g);
@@ -701,9 +871,45 @@ std::vector<int> Builder::WeldGroups() const {
   return group;
 }
 
-void Builder::WriteBody(std::ostringstream& out, int index, int depth) const {
+std::string Builder::WrittenPath(const std::string& absolute) const {
+  if (options_.file_dir.empty()) return absolute;
+  const fs::path dir = fs::absolute(options_.file_dir).lexically_normal();
+  return fs::path(absolute).lexically_relative(dir).string();
+}
+
+void Builder::WriteGeom(tinyxml2::XMLPrinter& out, const GeomSpec& g) const {
+  out.OpenElement("geom");
+  out.PushAttribute("name", g.name.c_str());
+  out.PushAttribute("type", g.type.c_str());
+  if (g.type == "mesh") {
+    out.PushAttribute("mesh", g.mesh.c_str());
+  } else if (g.type == "hfield") {
+    out.PushAttribute("hfield", "terrain");
+  } else {
+    out.PushAttribute("size", Vec(g.size).c_str());
+  }
+  if (!g.pos.isZero()) out.PushAttribute("pos", Vec(g.pos).c_str());
+  if (!g.quat.isApprox(Quaterniond::Identity(), 0)) {
+    out.PushAttribute("quat", Quat(g.quat).c_str());
+  }
+  if (g.mass > 0) out.PushAttribute("mass", Num(g.mass).c_str());
+  const bool ground = g.type == "plane" || g.type == "hfield";
+  out.PushAttribute("material", ground ? "scene/ground"
+                                       : LookName(g.kind, g.material).c_str());
+  if (!g.collide) {
+    out.PushAttribute("contype", "0");
+    out.PushAttribute("conaffinity", "0");
+    out.PushAttribute("group", "1");
+  } else {
+    for (const auto& [k, v] : ContactGeomAttributes(s_, g.material)) {
+      out.PushAttribute(k.c_str(), v.c_str());
+    }
+  }
+  out.CloseElement();
+}
+
+void Builder::WriteBody(tinyxml2::XMLPrinter& out, int index) const {
   const BodySpec& b = bodies_[index];
-  const std::string pad(2 * depth, ' ');
   Vector3d pos = b.pos;
   Quaterniond quat = b.quat;
   if (b.parent >= 0) {
@@ -711,48 +917,40 @@ void Builder::WriteBody(std::ostringstream& out, int index, int depth) const {
     pos = p.quat.conjugate() * (b.pos - p.pos);
     quat = Normalized(p.quat.conjugate() * b.quat);
   }
-  out << pad << "<body name=\"" << Esc(b.name) << "\" pos=\"" << Vec(pos)
-      << "\" quat=\"" << Quat(quat) << "\">\n";
+  out.OpenElement("body");
+  out.PushAttribute("name", b.name.c_str());
+  out.PushAttribute("pos", Vec(pos).c_str());
+  out.PushAttribute("quat", Quat(quat).c_str());
   if (b.joint == JointKind::kFree) {
-    out << pad << "  <freejoint name=\"" << Esc(b.joint_name) << "\"/>\n";
+    out.OpenElement("freejoint");
+    out.PushAttribute("name", b.joint_name.c_str());
+    out.CloseElement();
   } else if (b.joint == JointKind::kHinge) {
     // MuJoCo needs lower < upper; equal limits still pin the joint.
     const double lower = b.lower < b.upper ? b.lower : b.lower - 1e-9;
     const double upper = b.lower < b.upper ? b.upper : b.upper + 1e-9;
-    out << pad << "  <joint name=\"" << Esc(b.joint_name)
-        << "\" type=\"hinge\" pos=\"" << Vec(b.anchor) << "\" axis=\""
-        << Vec(b.axis) << "\" limited=\"true\" range=\"" << Num(lower) << " "
-        << Num(upper) << "\" armature=\"" << Num(ServoModel::kArmature)
-        << "\"/>\n";
+    out.OpenElement("joint");
+    out.PushAttribute("name", b.joint_name.c_str());
+    out.PushAttribute("type", "hinge");
+    out.PushAttribute("pos", Vec(b.anchor).c_str());
+    out.PushAttribute("axis", Vec(b.axis).c_str());
+    out.PushAttribute("limited", "true");
+    out.PushAttribute("range", (Num(lower) + " " + Num(upper)).c_str());
+    out.PushAttribute("armature", Num(ServoModel::kArmature).c_str());
+    out.CloseElement();
   }
-  for (const GeomSpec& g : b.geoms) {
-    out << pad << "  <geom name=\"" << Esc(g.name) << "\" type=\"" << g.type
-        << "\"";
-    if (g.type == "mesh") {
-      out << " mesh=\"" << g.mesh << "\"";
-    } else {
-      out << " size=\"" << Vec(g.size) << "\"";
-    }
-    if (!g.pos.isZero()) out << " pos=\"" << Vec(g.pos) << "\"";
-    if (!g.quat.isApprox(Quaterniond::Identity(), 0)) {
-      out << " quat=\"" << Quat(g.quat) << "\"";
-    }
-    out << " mass=\"" << Num(g.mass) << "\" rgba=\"" << Rgba(g.material)
-        << "\"";
-    if (!g.collide) {
-      out << " contype=\"0\" conaffinity=\"0\" group=\"1\"";
-    } else {
-      out << ContactGeomAttributes(s_, g.material);
-    }
-    out << "/>\n";
-  }
+  for (const GeomSpec& g : b.geoms) WriteGeom(out, g);
   for (const SiteSpec& site : b.sites) {
-    out << pad << "  <site name=\"" << Esc(site.name) << "\" pos=\""
-        << Vec(site.pos) << "\" quat=\"" << Quat(site.quat)
-        << "\" size=\"0.004\"/>\n";
+    out.OpenElement("site");
+    out.PushAttribute("name", site.name.c_str());
+    out.PushAttribute("pos", Vec(site.pos).c_str());
+    out.PushAttribute("quat", Quat(site.quat).c_str());
+    out.PushAttribute("size", "0.004");
+    if (site.rangefinder) out.PushAttribute("group", "4");
+    out.CloseElement();
   }
-  for (int c : b.children) WriteBody(out, c, depth + 1);
-  out << pad << "</body>\n";
+  for (int c : b.children) WriteBody(out, c);
+  out.CloseElement();
 }
 
 std::string Builder::Build() {
@@ -763,68 +961,36 @@ std::string Builder::Build() {
     if (!names.insert(name).second) {
       throw std::runtime_error("two robots are named '" + name + "'");
     }
-    AddRobot(name, robot.modules, robot.sensor_modules, {}, robot.locks, true);
+    std::vector<MjcfLock> locks;
+    AddRobot(name, robot.modules, robot.sensor_modules, {}, robot.locks, true,
+             &locks);
+    if (info_) info_->robot_locks.push_back(std::move(locks));
   }
   if (!s_.loose_frames.empty() || !s_.loose_sensor_modules.empty()) {
+    std::vector<MjcfLock> locks;
     AddRobot("loose", {}, s_.loose_sensor_modules, s_.loose_frames,
-             s_.loose_joints, false);
+             s_.loose_joints, false, &locks);
   }
   AddSceneObjects();
   AddTerrain();
 
   const std::vector<int> weld = WeldGroups();
-  int ngeom = static_cast<int>(world_geoms_.size());
-  for (const BodySpec& b : bodies_) ngeom += b.geoms.size();
+  int ncollide = 0, nhinge = 0;
+  for (const BodySpec& b : bodies_) {
+    for (const GeomSpec& g : b.geoms) ncollide += g.collide;
+    nhinge += b.joint == JointKind::kHinge;
+  }
 
-  std::ostringstream out;
-  out << "<mujoco model=\"mrsim\">\n";
-  out << "  <compiler angle=\"radian\" inertiafromgeom=\"true\"/>\n";
-  out << "  <option timestep=\"" << Num(s_.settings.timestep) << "\" gravity=\""
-      << Vec(s_.settings.gravity) << "\" integrator=\"Euler\"/>\n";
-  const int ncon = std::max(200, 16 * ngeom);
-  out << "  <size nconmax=\"" << ncon << "\" njmax=\"" << 4 * ncon << "\"/>\n";
-  out << "  <visual><headlight ambient=\"0.4 0.4 0.4\"/></visual>\n";
-  if (!assets_.empty()) {
-    out << "  <asset>\n";
-    for (const std::string& a : assets_) out << a;
-    out << "  </asset>\n";
-  }
-  out << "  <worldbody>\n";
-  out << "    <light name=\"sun\" directional=\"true\" pos=\"0 0 5\" "
-         "dir=\"0 0 -1\"/>\n";
-  for (const GeomSpec& g : world_geoms_) {
-    out << "    <geom name=\"" << Esc(g.name) << "\" type=\"" << g.type << "\"";
-    if (g.type == "hfield") {
-      out << " hfield=\"terrain\"";
-    } else {
-      out << " size=\"" << Vec(g.size) << "\"";
-    }
-    out << " pos=\"" << Vec(g.pos) << "\" rgba=\"0.55 0.6 0.5 1\""
-        << ContactGeomAttributes(s_, g.material) << "/>\n";
-  }
-  // Fluid regions as translucent boxes for viewers; sites, so rays and
-  // contacts ignore them (their forces are applied by Physics).
-  for (size_t i = 0; i < s_.fluid_regions.size(); ++i) {
-    const FluidRegion& f = s_.fluid_regions[i];
-    out << "    <site name=\"scene/fluid" << i << "\" type=\"box\" pos=\""
-        << Vec(f.position) << "\" size=\"" << Vec(f.size / 2) << "\" rgba=\""
-        << (f.kind == FluidKind::kWater ? "0.2 0.4 0.9 0.25"
-                                        : "0.9 0.9 0.9 0.08")
-        << "\"/>\n";
-  }
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    if (bodies_[b].parent < 0) WriteBody(out, b, 2);
-  }
-  out << "  </worldbody>\n";
-
-  // Explicit pairs for material pairs of two different materials.
+  // Pairs for material pairs of two different materials, with the same
+  // filters MuJoCo applies to contacts it finds on its own.
   struct CollGeom {
     std::string name, material, body;
     int group;
   };
   std::vector<CollGeom> coll;
-  for (const GeomSpec& g : world_geoms_)
+  for (const GeomSpec& g : world_geoms_) {
     coll.push_back({g.name, g.material, "", -1});
+  }
   for (size_t b = 0; b < bodies_.size(); ++b) {
     for (const GeomSpec& g : bodies_[b].geoms) {
       if (g.collide) {
@@ -842,74 +1008,202 @@ std::string Builder::Build() {
     excluded.insert(e);
     excluded.insert({e.second, e.first});
   }
-  std::ostringstream pairs;
+  struct PairSpec {
+    std::string geom1, geom2;
+    const ContactFriction* entry;
+  };
+  std::vector<PairSpec> pairs;
   for (size_t i = 0; i < coll.size(); ++i) {
     for (size_t j = i + 1; j < coll.size(); ++j) {
       const CollGeom& a = coll[i];
       const CollGeom& b = coll[j];
       if (a.material == b.material) continue;
-      const ContactFriction* cf =
-          FindContactFriction(s_, a.material, b.material);
-      if (!cf) continue;
-      // Same filters MuJoCo applies to contacts it finds on its own.
       if (a.group == b.group || excluded.count({a.body, b.body})) continue;
       if (a.group >= 0 && b.group >= 0 &&
           (parent_group(a.group) == b.group ||
            parent_group(b.group) == a.group)) {
         continue;
       }
-      pairs << "    <pair geom1=\"" << Esc(a.name) << "\" geom2=\""
-            << Esc(b.name) << "\"" << ContactPairAttributes(s_, *cf) << "/>\n";
+      const ContactFriction* cf =
+          FindContactFriction(s_, a.material, b.material);
+      if (cf) pairs.push_back({a.name, b.name, cf});
     }
   }
-  const std::string pair_text = pairs.str();
-  if (!pair_text.empty() || !excludes_.empty()) {
-    out << "  <contact>\n";
-    for (const auto& e : excludes_) {
-      out << "    <exclude body1=\"" << Esc(e.first) << "\" body2=\""
-          << Esc(e.second) << "\"/>\n";
+
+  tinyxml2::XMLPrinter out;
+  auto attr = [&out](const char* name, const std::string& value) {
+    out.PushAttribute(name, value.c_str());
+  };
+  auto element = [&](const ElementSpec& e) {
+    out.OpenElement(e.tag.c_str());
+    for (const auto& [k, v] : e.attrs) attr(k.c_str(), v);
+    out.CloseElement();
+  };
+  out.OpenElement("mujoco");
+  attr("model", "mrsim");
+  element({"compiler", {{"angle", "radian"}, {"inertiafromgeom", "true"}}});
+  element({"option",
+           {{"timestep", Num(s_.settings.timestep)},
+            {"gravity", Vec(s_.settings.gravity)},
+            {"integrator", "Euler"}}});
+  // MuJoCo 2.2 allocates njmax^2 doubles (efc_AR) per mjData, so long
+  // chains get what they need, not a generous multiple: a box resting on
+  // a plane makes 4 contacts of 4 rows (pyramidal friction, condim 3);
+  // small models keep room for piles and self-contact.
+  const int ncon = std::max(200, std::min(16 * ncollide, 4 * ncollide + 200));
+  const int njmax = 4 * ncon + 6 * static_cast<int>(welds_.size()) + nhinge;
+  element(
+      {"size",
+       {{"nconmax", std::to_string(ncon)}, {"njmax", std::to_string(njmax)}}});
+  // MuJoCo's usual look (its model gallery): headlight, haze, a gradient
+  // sky and a checker floor.
+  out.OpenElement("visual");
+  element({"headlight",
+           {{"ambient", "0.4 0.4 0.4"},
+            {"diffuse", "0.6 0.6 0.6"},
+            {"specular", "0.1 0.1 0.1"}}});
+  element({"rgba", {{"haze", "0.15 0.25 0.35 1"}}});
+  element({"global", {{"azimuth", "120"}, {"elevation", "-20"}}});
+  out.CloseElement();
+
+  out.OpenElement("asset");
+  element({"texture",
+           {{"name", "scene/sky"},
+            {"type", "skybox"},
+            {"builtin", "gradient"},
+            {"rgb1", "0.3 0.5 0.7"},
+            {"rgb2", "0 0 0"},
+            {"width", "512"},
+            {"height", "3072"}}});
+  element({"texture",
+           {{"name", "scene/checker"},
+            {"type", "2d"},
+            {"builtin", "checker"},
+            {"rgb1", "0.1 0.2 0.3"},
+            {"rgb2", "0.2 0.3 0.4"},
+            {"mark", "edge"},
+            {"markrgb", "0.8 0.8 0.8"},
+            {"width", "300"},
+            {"height", "300"}}});
+  element({"material",
+           {{"name", "scene/ground"},
+            {"texture", "scene/checker"},
+            {"texuniform", "true"},
+            {"texrepeat", "4 4"},
+            {"reflectance", "0.2"}}});
+  std::set<std::string> looks;
+  auto add_look = [&](const GeomSpec& g) {
+    const std::string name = LookName(g.kind, g.material);
+    if (!looks.insert(name).second) return;
+    const Vector3d rgb = LookRgb(g.kind, g.material);
+    element({"material",
+             {{"name", name},
+              {"rgba", fmt::format("{:.3f} {:.3f} {:.3f} 1", rgb.x(), rgb.y(),
+                                   rgb.z())},
+              {"specular", "0.3"},
+              {"shininess", "0.3"}}});
+  };
+  for (const BodySpec& b : bodies_) {
+    for (const GeomSpec& g : b.geoms) add_look(g);
+  }
+  for (const ElementSpec& a : assets_) element(a);
+  out.CloseElement();
+
+  out.OpenElement("worldbody");
+  element({"light",
+           {{"name", "sun"},
+            {"directional", "true"},
+            {"pos", "0 0 5"},
+            {"dir", "0 0 -1"},
+            {"diffuse", "0.5 0.5 0.5"}}});
+  for (const GeomSpec& g : world_geoms_) {
+    out.OpenElement("geom");
+    attr("name", g.name);
+    attr("type", g.type);
+    if (g.type == "hfield") {
+      attr("hfield", "terrain");
+    } else {
+      attr("size", Vec(g.size));
     }
-    out << pair_text;
-    out << "  </contact>\n";
+    attr("pos", Vec(g.pos));
+    attr("material", "scene/ground");
+    for (const auto& [k, v] : ContactGeomAttributes(s_, g.material)) {
+      attr(k.c_str(), v);
+    }
+    out.CloseElement();
+  }
+  // Fluid regions as translucent boxes for viewers; sites, so rays and
+  // contacts ignore them (their forces are applied by Physics).
+  for (size_t i = 0; i < s_.fluid_regions.size(); ++i) {
+    const FluidRegion& f = s_.fluid_regions[i];
+    element({"site",
+             {{"name", "scene/fluid" + std::to_string(i)},
+              {"type", "box"},
+              {"pos", Vec(f.position)},
+              {"size", Vec(f.size / 2)},
+              {"rgba", f.kind == FluidKind::kWater ? "0.2 0.4 0.9 0.25"
+                                                   : "0.9 0.9 0.9 0.08"}}});
+  }
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (bodies_[b].parent < 0) WriteBody(out, b);
+  }
+  out.CloseElement();
+
+  if (!pairs.empty() || !excludes_.empty()) {
+    out.OpenElement("contact");
+    for (const auto& e : excludes_) {
+      element({"exclude", {{"body1", e.first}, {"body2", e.second}}});
+    }
+    for (const PairSpec& p : pairs) {
+      ElementSpec e{"pair", {{"geom1", p.geom1}, {"geom2", p.geom2}}};
+      for (const auto& kv : ContactPairAttributes(*p.entry)) {
+        e.attrs.push_back(kv);
+      }
+      element(e);
+    }
+    out.CloseElement();
   }
   if (!welds_.empty()) {
-    out << "  <equality>\n";
+    out.OpenElement("equality");
     for (const WeldSpec& w : welds_) {
-      out << "    <weld name=\"" << Esc(w.name) << "\" body1=\"" << Esc(w.body1)
-          << "\"";
-      if (!w.body2.empty()) out << " body2=\"" << Esc(w.body2) << "\"";
+      ElementSpec e{"weld", {{"name", w.name}, {"body1", w.body1}}};
+      if (!w.body2.empty()) e.attrs.push_back({"body2", w.body2});
       // As stiff as the timestep allows: a lock is meant to be rigid.
-      out << " solref=\"" << Num(2 * s_.settings.timestep) << " 1\"/>\n";
+      e.attrs.push_back({"solref", Num(2 * s_.settings.timestep) + " 1"});
+      element(e);
     }
-    out << "  </equality>\n";
+    out.CloseElement();
   }
   if (!actuators_.empty()) {
-    out << "  <actuator>\n";
+    out.OpenElement("actuator");
     for (const ActuatorSpec& a : actuators_) {
       const double v = std::abs(a.max_vel);
-      out << "    <velocity name=\"" << Esc(a.name) << "\" joint=\""
-          << Esc(a.joint) << "\" kv=\"" << Num(ServoModel::kKv) << "\"";
+      ElementSpec e{"velocity",
+                    {{"name", a.name}, {"joint", a.joint}, {"kv", Num(a.kv)}}};
       // Physics clamps the command itself; MuJoCo rejects an empty range.
       if (v > 0) {
-        out << " ctrllimited=\"true\" ctrlrange=\"" << Num(-v) << " " << Num(v)
-            << "\"";
+        e.attrs.push_back({"ctrllimited", "true"});
+        e.attrs.push_back({"ctrlrange", Num(-v) + " " + Num(v)});
       }
-      out << " forcelimited=\"true\" forcerange=\""
-          << Num(-ServoModel::kForceLimit) << " "
-          << Num(ServoModel::kForceLimit) << "\"/>\n";
+      e.attrs.push_back({"forcelimited", "true"});
+      e.attrs.push_back(
+          {"forcerange", Num(-a.max_torque) + " " + Num(a.max_torque)});
+      element(e);
     }
-    out << "  </actuator>\n";
+    out.CloseElement();
   }
-  if (!force_sensors_.empty()) {
-    out << "  <sensor>\n";
+  if (!force_sensors_.empty() || !rangefinders_.empty()) {
+    out.OpenElement("sensor");
     for (const auto& f : force_sensors_) {
-      out << "    <force name=\"" << Esc(f.first) << "\" site=\""
-          << Esc(f.second) << "\"/>\n";
+      element({"force", {{"name", f.first}, {"site", f.second}}});
     }
-    out << "  </sensor>\n";
+    for (const auto& r : rangefinders_) {
+      element({"rangefinder", {{"name", r.first}, {"site", r.second}}});
+    }
+    out.CloseElement();
   }
-  out << "</mujoco>\n";
-  return out.str();
+  out.CloseElement();
+  return out.CStr();
 }
 
 }  // namespace
@@ -919,7 +1213,16 @@ std::string BuildMjcf(const Scenario& scenario) {
 }
 
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options) {
-  return Builder(scenario, options).Build();
+  return Builder(scenario, options, nullptr).Build();
+}
+
+std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
+                      MjcfInfo* info) {
+  if (info) {
+    info->robot_locks.clear();
+    info->memory_files.clear();
+  }
+  return Builder(scenario, options, info).Build();
 }
 
 Eigen::Vector3d SensorFaceNormal(int sensor_position) {
@@ -973,6 +1276,9 @@ std::string ForceSensor(const std::string& robot, int sm) {
 }
 std::string DistanceSite(const std::string& robot, int sm, int k) {
   return SensorModuleBody(robot, sm) + "/d" + std::to_string(k);
+}
+std::string Weld(const std::string& robot, const std::string& lock) {
+  return robot + "/weld/" + lock;
 }
 std::string SceneObject(int index) {
   return "scene/obj" + std::to_string(index);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -475,6 +476,9 @@ void Reader::CheckMesh(const Frame& frame, const Children& c) const {
              "got '" +
                  frame.shape + "'");
   }
+  // A mesh carried inside the scenario (the optimiser's payload) names no
+  // file; MuJoCo checks its bytes when the model is built.
+  if (IsEmbeddedMesh(frame.shape)) return;
   const std::string resolved = Resolve(frame.shape);
   std::ifstream in(resolved, std::ios::binary);
   std::error_code ec;

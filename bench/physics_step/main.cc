@@ -3,20 +3,27 @@
 // MJCF doing the same servo arithmetic, in the same run. Rates are per
 // second of this thread's CPU time (other processes on a busy machine do
 // not count against either side); rounds alternate and the best round of
-// each counts.
+// each counts. Then the step time per module of pitch-yaw chains of 10 to
+// 200 modules (a sensor module after each), and how far the timestep moves
+// the result of a gait (scenarios/snake11.xml, 2 ms over 0.5 ms).
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <vector>
 
+#include "gait_controller/gait_presets.h"
+#include "gait_controller/gait_runner.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/physics.h"
+#include "sim_core/scenario_xml.h"
 
 namespace {
 
@@ -80,9 +87,88 @@ double RunBare(const mjModel* m, const std::vector<double>& kp,
   return rate;
 }
 
+// Microseconds of CPU per module per step of a pitch-yaw chain of `n`
+// modules with a sensor module after each, running a travelling wave.
+double UsPerModuleStep(int n) {
+  mrsim::Scenario s = Snake();
+  mrsim::ChainOptions options;
+  options.modules = n;
+  options.pattern = mrsim::ChainPattern::kPitchYaw;
+  for (int i = 0; i < n; ++i) options.sensor_after.push_back(i);
+  s.robots[0] = mrsim::MakeChain(options);
+  mrsim::Physics physics(s);
+  std::vector<double> targets(physics.joint_count(0));
+  const double omega = 2 * M_PI / kPeriod;
+  auto run = [&](int steps) {
+    for (int i = 0; i < steps; ++i) {
+      const double t = physics.time();
+      for (size_t j = 0; j < targets.size(); ++j) {
+        targets[j] =
+            j % 2 ? 0.0 : kAmplitude * std::sin(omega * t + kPhase * j);
+      }
+      physics.SetJointTargets(0, targets);
+      physics.Step();
+    }
+  };
+  run(500);  // the wave lifts the chain off its resting contacts
+  double best = 1e300;
+  const int steps = std::max(200, 20000 / n);
+  for (int round = 0; round < 3; ++round) {
+    const double start = CpuNow();
+    run(steps);
+    best = std::min(best, (CpuNow() - start) / steps);
+  }
+  return 1e6 * best / n;
+}
+
+// Horizontal CoM displacement of snake11 after `seconds` of `forward`.
+double ForwardDisplacement(double timestep, double seconds) {
+  mrsim::Scenario s = mrsim::ReadScenarioFile("scenarios/snake11.xml");
+  s.settings.timestep = timestep;
+  mrsim::Physics physics(s);
+  mrsim::GaitController controller(mrsim::JointAxes(physics, 0));
+  controller.SetGait(*mrsim::FindGaitPreset("forward"));
+  controller.SetMotion(mrsim::Motion::kForward, 1.0);
+  const mrsim::GaitRunResult r =
+      mrsim::RunGait(physics, 0, controller, seconds, 0.01);
+  const Eigen::Vector3d d = r.com_end - r.com_start;
+  return std::hypot(d.x(), d.y());
+}
+
 }  // namespace
 
-int main() {
+void RunRatio();
+
+// Optional argument: run one part only (ratio, modules, convergence).
+int main(int argc, char** argv) {
+  const std::string only = argc > 1 ? argv[1] : "";
+  if (!only.empty() && only != "ratio" && only != "modules" &&
+      only != "convergence") {
+    std::fprintf(stderr,
+                 "bench_physics_step: unknown part '%s' (expected ratio, "
+                 "modules or convergence)\n",
+                 only.c_str());
+    return 2;
+  }
+  if (only.empty() || only == "ratio") RunRatio();
+  if (only.empty() || only == "modules") {
+    for (int n : {10, 50, 100, 200}) {
+      std::printf("BENCH physics_us_per_module_step_%d %.2f us\n", n,
+                  UsPerModuleStep(n));
+      std::fflush(stdout);
+    }
+  }
+  if (only.empty() || only == "convergence") {
+    const double coarse = ForwardDisplacement(0.002, 10.0);
+    const double fine = ForwardDisplacement(0.0005, 10.0);
+    std::printf("snake11 forward 10 s: %.4f m at 2 ms, %.4f m at 0.5 ms\n",
+                coarse, fine);
+    std::printf("BENCH contact_step_convergence %.3f x\n", coarse / fine);
+  }
+  return 0;
+}
+
+void RunRatio() {
   const mrsim::Scenario scenario = Snake();
   const std::string path =
       (std::filesystem::temp_directory_path() / "bench_physics_step.xml")
@@ -92,7 +178,7 @@ int main() {
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
   if (!m) {
     std::fprintf(stderr, "bench_physics_step: %s: %s\n", path.c_str(), error);
-    return 1;
+    std::exit(1);
   }
   std::vector<double> kp, max_vel;
   for (const mrsim::Module& module : scenario.robots[0].modules) {
@@ -113,5 +199,5 @@ int main() {
       best_physics);
   std::printf("bare mj_step rate %.0f steps/s (same MJCF)\n", best_bare);
   std::printf("BENCH physics_step_ratio %.3f x\n", best_physics / best_bare);
-  return 0;
+  std::fflush(stdout);
 }

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -174,7 +175,14 @@ int Run(int argc, char** argv) {
       const mrsim::Scenario s = mrsim::ReadScenarioFile(file);
       std::string mjcf;
       try {
-        mjcf = mrsim::BuildMjcf(s);
+        // Files named relative to the exported file, so the model and its
+        // assets move together.
+        mrsim::MjcfOptions options;
+        if (!out_path.empty() && out_path != "-") {
+          options.file_dir =
+              std::filesystem::absolute(out_path).parent_path().string();
+        }
+        mjcf = mrsim::BuildMjcf(s, options);
       } catch (const std::exception& e) {
         throw BadInput(file + ": cannot build the MuJoCo model: " + e.what());
       }

@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 
@@ -132,13 +133,31 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
   // 22 frames, 2 sensor modules, 2 plates.
   EXPECT_EQ(with_terrain, 26);
   // Restitution 0 is critically damped; stiff plastic is as stiff as safe.
-  const Eigen::Vector2d solref = ContactSolref(s.contact_frictions[0], 0.002);
+  const Eigen::Vector2d solref = ContactSolref(s.contact_frictions[0]);
   EXPECT_DOUBLE_EQ(solref.y(), 1.0);
   EXPECT_DOUBLE_EQ(solref.x(), 0.004);
   ContactFriction bouncy{"a", "b", 0.5, 0.5, 1e4};
-  const Eigen::Vector2d soft = ContactSolref(bouncy, 0.002);
+  const Eigen::Vector2d soft = ContactSolref(bouncy);
   EXPECT_LT(soft.y(), 1.0);
   EXPECT_GT(soft.x(), 0.004);
+}
+
+TEST(MjcfBuilder, ContactTimeConstantsDoNotDependOnTheStep) {
+  Scenario coarse = SnakeScenario();
+  Scenario fine = coarse;
+  fine.settings.timestep = 0.0005;
+  const std::string dir = TempDir("mjcf_contact_step");
+  MjModelPtr a = Load(WriteFile(dir + "/coarse.xml", BuildMjcf(coarse)));
+  MjModelPtr b = Load(WriteFile(dir + "/fine.xml", BuildMjcf(fine)));
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->npair, b->npair);
+  ASSERT_GT(a->npair, 0);
+  for (int p = 0; p < a->npair; ++p) {
+    EXPECT_EQ(a->pair_solref[2 * p], b->pair_solref[2 * p]);
+  }
+  for (int g = 0; g < a->ngeom; ++g) {
+    EXPECT_EQ(a->geom_solref[2 * g], b->geom_solref[2 * g]);
+  }
 }
 
 TEST(MjcfBuilder, LockThatClosesALoopBecomesAWeld) {
@@ -287,6 +306,111 @@ TEST(MjcfBuilder, DuplicateRobotNamesAreRejected) {
   s.robots.push_back(MakeChain(options));
   s.robots.push_back(MakeChain(options));
   EXPECT_THROW(BuildMjcf(s), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+TEST(MjcfBuilder, ExportedTerrainIsNamedRelativeToTheFile) {
+  // An embedded image and a PNG beside the scenario, exported into another
+  // folder: the model and its terrain move together.
+  const std::string dir = TempDir("mjcf_relative");
+  const std::string out = dir + "/export";
+  std::filesystem::create_directories(out);
+  Scenario s = testing::FlatScenario();
+  s.base_dir = dir;
+  testing::WriteGreyPng(dir + "/hills.png", 6, 8,
+                        [](int r, int c) { return 20 + 10 * r + 3 * c; });
+  std::ifstream in(dir + "/hills.png", std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  s.scene.height = 0.3;
+  MjcfOptions options;
+  options.file_dir = out;
+  for (const std::string& image :
+       {std::string("hills.png"), "base64:" + Base64Encode(bytes)}) {
+    s.scene.height_image = image;
+    const std::string xml = BuildMjcf(s, options);
+    EXPECT_EQ(xml.find(dir), std::string::npos) << "an absolute path";
+    const size_t at = xml.find("file=\"");
+    ASSERT_NE(at, std::string::npos);
+    const std::string file =
+        xml.substr(at + 6, xml.find('"', at + 6) - (at + 6));
+    EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + file)) << file;
+    MjModelPtr m = Load(WriteFile(out + "/scene.xml", xml));
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->hfield_nrow[0], 6);
+  }
+}
+
+TEST(MjcfBuilder, EveryKindOfPartHasItsOwnColourAndTheSceneMujocosLook) {
+  Scenario s = SnakeScenario();
+  s.robots[0].modules[1].axis = Axis::kYaw;
+  SceneObject ball;
+  ball.shape = PrimitiveShape::kSphere;
+  ball.position = Eigen::Vector3d(1, 0, 0.1);
+  s.scene_objects.push_back(ball);
+  const std::string dir = TempDir("mjcf_look");
+  MjModelPtr m = Load(WriteFile(dir + "/look.xml", BuildMjcf(s)));
+  ASSERT_TRUE(m);
+  auto rgba = [&](const std::string& geom) {
+    const int g = mj_name2id(m.get(), mjOBJ_GEOM, geom.c_str());
+    EXPECT_GE(g, 0) << geom;
+    const int mat = m->geom_matid[g];
+    EXPECT_GE(mat, 0) << geom;
+    return Eigen::Vector3d(m->mat_rgba[4 * mat], m->mat_rgba[4 * mat + 1],
+                           m->mat_rgba[4 * mat + 2]);
+  };
+  const std::vector<Eigen::Vector3d> kinds = {
+      rgba("snake/m0/f0"),      // pitch module
+      rgba("snake/m1/f0"),      // yaw module
+      rgba("snake/sm0"),        // sensor module
+      rgba("snake/sm0/plate"),  // force plate
+      rgba("snake/sm0/d0"),     // distance sensor
+      rgba("scene/obj0"),       // scene object
+  };
+  for (size_t a = 0; a < kinds.size(); ++a) {
+    for (size_t b = a + 1; b < kinds.size(); ++b) {
+      EXPECT_GT((kinds[a] - kinds[b]).norm(), 0.2) << a << " vs " << b;
+    }
+  }
+  // Gradient sky, checker floor.
+  bool sky = false, checker = false;
+  for (int t = 0; t < m->ntex; ++t) {
+    sky |= m->tex_type[t] == mjTEXTURE_SKYBOX;
+    checker |= m->tex_type[t] == mjTEXTURE_2D;
+  }
+  EXPECT_TRUE(sky);
+  EXPECT_TRUE(checker);
+  const int floor = mj_name2id(m.get(), mjOBJ_GEOM, "scene/terrain");
+  ASSERT_GE(floor, 0);
+  ASSERT_GE(m->geom_matid[floor], 0);
+  EXPECT_GE(m->mat_texid[m->geom_matid[floor]], 0);
+  // Distance sensors are MuJoCo rangefinders too.
+  const int range = mj_name2id(m.get(), mjOBJ_SENSOR, "snake/sm0/d0");
+  ASSERT_GE(range, 0);
+  EXPECT_EQ(m->sensor_type[range], mjSENS_RANGEFINDER);
+}
+
+TEST(MjcfBuilder, MaterialNamesShadeTheirKindsColour) {
+  Scenario s = SnakeScenario();
+  s.robots[0].modules[0].frames[0].material_name = "rubber";
+  const std::string dir = TempDir("mjcf_shade");
+  MjModelPtr m = Load(WriteFile(dir + "/shade.xml", BuildMjcf(s)));
+  ASSERT_TRUE(m);
+  auto rgb = [&](const char* geom) {
+    const int mat = m->geom_matid[mj_name2id(m.get(), mjOBJ_GEOM, geom)];
+    return Eigen::Vector3d(m->mat_rgba[4 * mat], m->mat_rgba[4 * mat + 1],
+                           m->mat_rgba[4 * mat + 2]);
+  };
+  const Eigen::Vector3d plastic = rgb("snake/m0/f1");
+  const Eigen::Vector3d rubber = rgb("snake/m0/f0");
+  EXPECT_NE(plastic, rubber);
+  // A shade: the same hue, so the ratios of the channels stay.
+  EXPECT_NEAR(plastic.x() / plastic.z(), rubber.x() / rubber.z(), 0.05);
 }
 
 }  // namespace

@@ -37,6 +37,62 @@ TEST(PhysicsServo, HingeReachesTargetWithoutExceedingMaxVel) {
   EXPECT_NEAR(joint.speed, 0.0, 0.01);
 }
 
+TEST(PhysicsServo, VelocityGainAndMaxTorqueComeFromTheJoint) {
+  // First step from rest towards a far target: commanded speed = max_vel
+  // (2 rad/s), so the torque is velocity_gain * 2 unless max_torque caps it.
+  auto first_torque = [](double gain, double max_torque) {
+    Scenario s = testing::FlatScenario();
+    Robot arm = testing::CantileverModule("arm", Eigen::Vector3d(0, 0, 0.5),
+                                          Axis::kYaw, 10.0, 2.0, 1.2);
+    arm.modules[0].joint.velocity_gain = gain;
+    arm.modules[0].joint.max_torque = max_torque;
+    s.robots.push_back(arm);
+    Physics physics(s);
+    physics.SetJointTargets(0, {1.0});
+    physics.Step();
+    return physics.ReadRobotState(0).joints[0].torque;
+  };
+  EXPECT_DOUBLE_EQ(first_torque(0.5, 5.0), 1.0);
+  EXPECT_DOUBLE_EQ(first_torque(3.0, 5.0), 5.0);
+  EXPECT_DOUBLE_EQ(first_torque(3.0, 0.25), 0.25);
+}
+
+TEST(PhysicsServo, HingeNeverExceedsItsTorqueLimit) {
+  // A pitch snake lifting its body against gravity with weak servos, each
+  // hinge its own limit: every step, every torque within its limit, and
+  // every servo saturates at some point (so the limit is what held it).
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 6;
+  Robot robot = MakeChain(options);
+  std::vector<double> limits;
+  for (size_t i = 0; i < robot.modules.size(); ++i) {
+    robot.modules[i].joint.max_torque = 0.05 + 0.03 * i;
+    robot.modules[i].joint.velocity_gain = 20.0;
+    limits.push_back(robot.modules[i].joint.max_torque);
+  }
+  s.robots.push_back(robot);
+  Physics physics(s);
+  std::vector<double> peak(limits.size(), 0.0);
+  std::vector<double> targets(limits.size());
+  for (int i = 0; i < 2000; ++i) {
+    for (size_t j = 0; j < targets.size(); ++j) {
+      targets[j] = 1.5 * std::sin(2 * M_PI * physics.time() / 2.0 + 2.5 * j);
+    }
+    physics.SetJointTargets(0, targets);
+    physics.Step();
+    const RobotState st = physics.ReadRobotState(0);
+    for (size_t j = 0; j < limits.size(); ++j) {
+      ASSERT_LE(std::abs(st.joints[j].torque), limits[j])
+          << "hinge " << j << " at step " << i;
+      peak[j] = std::max(peak[j], std::abs(st.joints[j].torque));
+    }
+  }
+  for (size_t j = 0; j < limits.size(); ++j) {
+    EXPECT_DOUBLE_EQ(peak[j], limits[j]) << "hinge " << j;
+  }
+}
+
 TEST(PhysicsServo, PitchHingeHoldsTargetUnderGravity) {
   Scenario s = testing::FlatScenario();
   s.robots.push_back(testing::CantileverModule(
