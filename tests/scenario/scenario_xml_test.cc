@@ -163,10 +163,13 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   r.modules[2].frames[1].material_name = "rubber & <steel>";
   r.modules[0].joint.kp = 12.345678901234567;
   r.modules[0].joint.max_vel = 1e-7;
+  r.modules[0].joint.velocity_gain = 7.5;
+  r.modules[1].joint.max_torque = 0.35;
+  r.locks[0].break_force = 12.5;
   SensorModule& sm = r.sensor_modules[0];
   sm.force_sensor->force_value = 3.25;
   sm.force_sensor->rotation = Eigen::Quaterniond(0.5, 0.5, -0.5, 0.5);
-  sm.distance_sensors[0].ray_resolution = 7;
+  sm.distance_sensors[0].ray_resolution = 0.05;
   sm.distance_sensors[0].max_ray_distance = 1.75;
   sm.distance_sensors[0].rotation = Eigen::Vector3d(1, 2, 3);
   sm.quat_rotation = Eigen::Quaterniond(0, 1, 0, 0);
@@ -223,13 +226,16 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   loose.guid = "loose_frame";
   loose.position = Eigen::Vector3d(3, 3, 0.1);
   s.loose_frames.push_back(loose);
+  loose.guid = "loose_door";
+  loose.position = Eigen::Vector3d(3, 3.05, 0.1);
+  s.loose_frames.push_back(loose);
   SensorModule loose_sensor;
   loose_sensor.guid = "loose_sensor";
   s.loose_sensor_modules.push_back(loose_sensor);
   Joint hinge;
   hinge.guid = "loose_hinge";
   hinge.left_frame_guid = "loose_frame";
-  hinge.right_frame_guid = "ramp";
+  hinge.right_frame_guid = "loose_door";
   hinge.lower_range_limit = -0.25;
   hinge.upper_range_limit = 0.5;
   s.loose_joints.push_back(hinge);
@@ -255,6 +261,9 @@ TEST(ScenarioXml, RoundTripKeepsEveryField) {
   // Equality really looks at fields: change one and it differs.
   Scenario changed = back;
   changed.robots[0].sensor_modules[0].distance_sensors[0].ray_resolution = 8;
+  EXPECT_TRUE(changed != s);
+  changed = back;
+  changed.robots[0].locks[0].break_force = 0;
   EXPECT_TRUE(changed != s);
   changed = back;
   changed.robots[0].modules[1].frames[0].quat_rotation.coeffs()[3] += 1e-16;
@@ -392,8 +401,8 @@ TEST(ScenarioXml, JointNamingAMissingFrameIsRejected) {
               "<rightFrameGuid>nope</rightFrameGuid><type>Hinge");
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<joint>") + kModulePath +
-                         "/joint/rightFrameGuid: no frame, sensor module or "
-                         "sensor with guid 'nope' in robot 'r'"));
+                         "/joint/rightFrameGuid: no frame or sensor module "
+                         "with guid 'nope' in robot 'r'"));
 }
 
 TEST(ScenarioXml, LockNamingAMissingPartIsRejected) {
@@ -448,8 +457,8 @@ TEST(ScenarioXml, SecondForceSensorIsRejected) {
               "        <forceSensor><guid>fs1</guid></forceSensor>\n"
               "        <forceSensorLock>");
   EXPECT_THAT(ErrorOf(xml), StartsWith(At(xml, "<guid>fs1") + kSensorPath +
-                                       "/forceSensor: more than one force "
-                                       "sensor"));
+                                       "/forceSensor: given twice (first at "
+                                       "line"));
 }
 
 TEST(ScenarioXml, SeventhDistanceSensorIsRejected) {
@@ -463,7 +472,7 @@ TEST(ScenarioXml, SeventhDistanceSensorIsRejected) {
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<guid>d6<") + kSensorPath +
                          "/distanceSensors/DistanceSensor[7]: more than 6 "
-                         "distance sensors"));
+                         "<DistanceSensor> in <distanceSensors>"));
   // Six are fine.
   const std::string six = Replace(
       xml, "          <DistanceSensor><guid>d6</guid></DistanceSensor>\n", "");
@@ -480,7 +489,24 @@ TEST(ScenarioXml, NonPositiveMassIsRejected) {
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<mass>-1") +
                          "Scenario/sceneObjects/SceneObject[1]/mass: "
-                         "expected a positive value"));
+                         "expected a value >= 0, got -1"));
+  // Only a static object may weigh nothing.
+  xml = Replace(kTemplate, "<mass>0.2</mass>", "<mass>0</mass>");
+  EXPECT_THAT(ErrorOf(xml), StartsWith(At(xml, "<mass>0</mass>") +
+                                       "Scenario/sceneObjects/SceneObject[1]/"
+                                       "mass: expected a positive value, got "
+                                       "0 (only a static object"));
+  xml =
+      Replace(xml, "<mass>0</mass>", "<mass>0</mass><isStatic>true</isStatic>");
+  EXPECT_NO_THROW(ReadScenarioString(xml, "t.xml", "."));
+  // A static frame still needs a mass: the simulator gives it a body.
+  xml = Replace(kTemplate, "<Frame><guid>f0</guid><mass>0.05</mass>",
+                "<Frame><guid>f0</guid><mass>0</mass><isStatic>true"
+                "</isStatic>");
+  EXPECT_THAT(ErrorOf(xml),
+              StartsWith(At(xml, "<mass>0</mass>") + kModulePath +
+                         "/frames/Frame[1]/mass: expected a positive value, "
+                         "got 0"));
 }
 
 TEST(ScenarioXml, NonPositiveSizeIsRejected) {
@@ -519,20 +545,20 @@ TEST(ScenarioXml, PartNotJoinedToTheRobotIsRejected) {
   xml.erase(from, xml.find("</Joint>\n", from) + 9 - from);
   // Without any lock a sensor module is locked to its neighbour modules...
   EXPECT_NO_THROW(ReadScenarioString(xml, "t.xml", "."));
-  // ...but with none it floats: its sensors are the first parts reported.
+  // ...but with none it floats (its sensors with it).
   xml =
       Replace(xml, "<leftMod_Nr>0</leftMod_Nr>", "<leftMod_Nr>-1</leftMod_Nr>");
   EXPECT_THAT(ErrorOf(xml),
-              StartsWith(At(xml, "<guid>d0") + kSensorPath +
-                         "/distanceSensors/DistanceSensor[1]/guid: part 'd0' "
-                         "is not joined to the rest of robot 'r'"));
+              StartsWith(At(xml, "<guid>s0") + kSensorPath +
+                         "/guid: part 's0' is not joined to the rest of robot "
+                         "'r'"));
 }
 
-// Parts without a robot: a loose frame hinged to a static scene object.
+// Parts without a robot: a loose frame hinged to a static one.
 const char kLoose[] = R"(<?xml version="1.0" encoding="utf-8"?>
 <Scenario>
-  <sceneObjects><SceneObject><guid>post</guid><shape>Cylinder</shape><isStatic>true</isStatic></SceneObject></sceneObjects>
-  <frames><Frame><guid>door</guid></Frame></frames>
+  <sceneObjects><SceneObject><guid>ball</guid><shape>Sphere</shape></SceneObject></sceneObjects>
+  <frames><Frame><guid>post</guid><isStatic>true</isStatic></Frame><Frame><guid>door</guid></Frame></frames>
   <sensorModules><SensorModule><guid>eye</guid></SensorModule></sensorModules>
   <joints><Joint><guid>hinge</guid><leftFrameGuid>post</leftFrameGuid><rightFrameGuid>door</rightFrameGuid><type>Hinge</type></Joint></joints>
 </Scenario>
@@ -541,7 +567,7 @@ const char kLoose[] = R"(<?xml version="1.0" encoding="utf-8"?>
 TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
   const Scenario s = ReadScenarioString(kLoose, "t.xml", ".");
   EXPECT_TRUE(s.robots.empty());
-  ASSERT_EQ(s.loose_frames.size(), 1u);
+  ASSERT_EQ(s.loose_frames.size(), 2u);
   ASSERT_EQ(s.loose_sensor_modules.size(), 1u);
   ASSERT_EQ(s.loose_joints.size(), 1u);
   EXPECT_EQ(s.loose_joints[0].left_frame_guid, "post");
@@ -551,9 +577,17 @@ TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
       Replace(kLoose, "<rightFrameGuid>door", "<rightFrameGuid>window");
   EXPECT_THAT(ErrorOf(bad),
               StartsWith(At(bad, "<joints>") +
-                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame, "
-                         "sensor module, sensor or scene object with guid "
-                         "'window'"));
+                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame "
+                         "or sensor module with guid 'window' among the loose "
+                         "parts"));
+  // The simulator cannot hinge a loose part to a scene object.
+  const std::string object =
+      Replace(kLoose, "<rightFrameGuid>door", "<rightFrameGuid>ball");
+  EXPECT_THAT(ErrorOf(object),
+              StartsWith(At(object, "<joints>") +
+                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame "
+                         "or sensor module with guid 'ball' among the loose "
+                         "parts (it is not a part this joint can join"));
 }
 
 TEST(ScenarioXml, UnreadableImageIsRejected) {
