@@ -644,7 +644,8 @@ struct GeometryMap {
           if (swap_yz) std::swap(v[1], v[2]);
           break;
         case Geometry::kEuler:
-          if (swap_yz) v = Eigen::Vector3d(-v[0], -v[2], -v[1]);
+          // + 0.0 turns -0 into 0, so converted zeros print as "0".
+          if (swap_yz) v = Eigen::Vector3d(-v[0], -v[2], -v[1]) + Zero();
           break;
         default:
           break;
@@ -652,9 +653,9 @@ struct GeometryMap {
     } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
       if (swap_yz && info.geometry == Geometry::kQuaternion) {
         const double x = value.x(), y = value.y(), z = value.z();
-        value.x() = -x;
-        value.y() = -z;
-        value.z() = -y;
+        value.x() = -x + 0.0;
+        value.y() = -z + 0.0;
+        value.z() = -y + 0.0;
       }
     } else if constexpr (std::is_same_v<T, double>) {
       if (info.geometry == Geometry::kLength) value *= scale;
@@ -664,6 +665,7 @@ struct GeometryMap {
   void Child(const ChildInfo&, P& part) {
     Describe(*this, part);
   }
+  static Eigen::Vector3d Zero() { return Eigen::Vector3d::Zero(); }
   template <typename P>
   void Optional(const ChildInfo&, std::optional<P>& part) {
     if (part) Describe(*this, *part);

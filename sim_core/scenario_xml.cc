@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -199,16 +200,11 @@ class Reader {
     source_.lines.emplace(path, e->GetLineNum());
   }
 
-  // A part as an omitted element means it, in the file's own frame (the
-  // model's defaults are Z-up, so a Unity file's are those converted).
+  // What an omitted part or field means: the model's defaults, which are
+  // Z-up and in metres whatever the file's frame and units.
   template <typename P>
   P Default(bool lock) const {
     P part{};
-    if (frame_ == FrameConvention::kUnityYUp) {
-      schema::GeometryMap m;
-      m.swap_yz = true;
-      schema::Describe(m, part);
-    }
     if constexpr (std::is_same_v<P, Joint>) {
       if (lock) part.type = JointType::kLock;
     }
@@ -221,6 +217,11 @@ class Reader {
   template <typename T>
   void Parse(const XMLElement* e, const std::string& path,
              const FieldInfo& info, T* out) const;
+  // Brings a value as the file gives it into the model's frame and units.
+  template <typename T>
+  void Convert(const FieldInfo& info, T* value) {
+    to_model_.Field(info, *value);
+  }
   Items ListItems(const XMLElement* wrapper, const std::string& path,
                   const char* item);
 
@@ -235,6 +236,7 @@ class Reader {
   std::string base_dir_;
   ScenarioReadOptions options_;
   FrameConvention frame_ = FrameConvention::kZUp;
+  schema::GeometryMap to_model_;
   ScenarioSource source_;
 };
 
@@ -262,6 +264,7 @@ class ReadVisitor {
     }
     r_.Note(path, x);
     r_.Parse(x, path, info, &value);
+    r_.Convert(info, &value);
   }
 
   template <typename P>
@@ -577,13 +580,16 @@ Scenario Reader::Read(const std::string& xml) {
                      ToString(*said), ToString(*options_.frame)));
   }
   frame_ = said ? *said : options_.frame.value_or(FrameConvention::kZUp);
+  if (!(options_.length_scale > 0) || !std::isfinite(options_.length_scale)) {
+    throw std::invalid_argument(fmt::format(
+        "length scale must be positive, got {}", options_.length_scale));
+  }
+  to_model_.swap_yz = frame_ == FrameConvention::kUnityYUp;
+  to_model_.scale = options_.length_scale;
   Scenario s = Default<Scenario>(false);
   ReadPart(root, kRoot, &s, false);
   s.base_dir = base_dir_;
-  // The rules are the same in either frame; checking before converting
-  // shows the values as the file has them.
   ValidateScenario(s, &source_);
-  if (frame_ == FrameConvention::kUnityYUp) ConvertUnityToZUp(&s);
   return s;
 }
 

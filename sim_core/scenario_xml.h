@@ -18,6 +18,11 @@ struct ScenarioReadOptions {
   // file the original wrote. Unset: such a file is Z-up. A file whose
   // attribute says otherwise is an error.
   std::optional<FrameConvention> frame;
+  // Multiplies every length the file gives (positions, sizes, ray lengths,
+  // terrain extent and height; never gravity or masses), e.g. 0.01 for a
+  // file in centimetres. Fields the file leaves out take the model's
+  // defaults, which are already in metres.
+  double length_scale = 1.0;
 };
 
 // Reads and validates a file; relative mesh/image paths resolve against the

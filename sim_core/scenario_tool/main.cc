@@ -204,8 +204,8 @@ int Run(int argc, char** argv) {
         read.frame = from_frame == "z-up" ? mrsim::FrameConvention::kZUp
                                           : mrsim::FrameConvention::kUnityYUp;
       }
-      mrsim::Scenario s = mrsim::ReadScenarioFile(in_path, read);
-      if (scale != 1.0) mrsim::ScaleLengths(&s, scale);
+      read.length_scale = scale;
+      const mrsim::Scenario s = mrsim::ReadScenarioFile(in_path, read);
       const auto frame = to_frame == "z-up" ? mrsim::FrameConvention::kZUp
                                             : mrsim::FrameConvention::kUnityYUp;
       WriteOutput(mrsim::WriteScenarioString(s, frame), out_path);
