@@ -181,7 +181,8 @@ void Describe(V& v, Module& m) {
 template <typename V>
 void Describe(V& v, ForceSensor& s) {
   static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor plate", true};
+      "guid", "guid", "", L::Any(),
+      "Id the plate's lock may name (optional; nothing else refers to it)"};
   static const FieldInfo kForce{
       "forceValue", "force_value", "N", L::Any(),
       "Last reading the original saved; not an input"};
@@ -222,7 +223,8 @@ void Describe(V& v, ForceSensor& s) {
 template <typename V>
 void Describe(V& v, DistanceSensor& s) {
   static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor", true};
+      "guid", "guid", "", L::Any(),
+      "Id the sensor's lock may name (optional; nothing else refers to it)"};
   static const FieldInfo kFace{
       "sensorPosition", "sensor_position", "",
       L::Range(0, 5, "bottom, left, top, right, front, back"),

@@ -249,15 +249,12 @@ class Validator {
   }
 
   void Before(const ForceSensor&) {}
-  void After(const ForceSensor& f, bool) {
-    AddGuid(f.guid, false);
-    sensors_[robot_].insert(f.guid);
-  }
+  // Sensors are part of their sensor module's body; only their own locks
+  // (which the builder does not need) may name them, so their guids are
+  // optional and need not be unique.
+  void After(const ForceSensor& f, bool) { sensors_[robot_].insert(f.guid); }
   void Before(const DistanceSensor&) {}
-  void After(const DistanceSensor& d, bool) {
-    AddGuid(d.guid, false);
-    sensors_[robot_].insert(d.guid);
-  }
+  void After(const DistanceSensor& d, bool) { sensors_[robot_].insert(d.guid); }
 
   void Before(const Scene&) {}
   void After(const Scene& scene, bool) {

@@ -340,16 +340,21 @@ class ReadVisitor {
       }
     }
     for (size_t i = 0; i < items.size(); ++i) {
-      const auto& [x, path] = items[i];
+      const XMLElement* x = items[i].first;
       if constexpr (std::is_same_v<P, Joint>) {
         if (info.locks && IsPlaceholderJoint(x)) {
-          r_.Note(path, x);
           // Only a robot's <locks> stand for locks between modules; the
           // sensors' placeholder locks mean what leaving them out means.
           if (std::strcmp(info.xml, "locks") == 0) ++r_.lock_placeholders_;
           continue;
         }
       }
+      // Paths count the items kept, as the model (and so the validator)
+      // does; the line still points at the element.
+      const std::string path =
+          *info.item ? fmt::format("{}/{}/{}[{}]", path_, info.xml, info.item,
+                                   parts.size() + 1)
+                     : items[i].second;
       P value = r_.Default<P>(info.locks);
       if constexpr (std::is_same_v<P, Robot>) r_.lock_placeholders_ = 0;
       r_.ReadPart(x, path, &value, info.locks);

@@ -16,6 +16,7 @@
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario.h"
 #include "sim_core/scenario_tool/scenario_summary.h"
+#include "sim_core/scenario_tool/schema_table.h"
 #include "sim_core/scenario_xml.h"
 
 namespace {
@@ -95,6 +96,9 @@ int Run(int argc, char** argv) {
   auto* info = app.add_subcommand(
       "info", "Summarise robots, sensors, mass, objects and terrain");
   info->add_option("FILE", file, "Scenario file")->required();
+
+  auto* schema = app.add_subcommand(
+      "schema", "Print every part's fields: units, limits, defaults, help");
 
   auto* export_mjcf =
       app.add_subcommand("export-mjcf", "Write the MuJoCo model (MJCF)");
@@ -183,6 +187,8 @@ int Run(int argc, char** argv) {
     } else if (*info) {
       const mrsim::Scenario s = mrsim::ReadScenarioFile(file);
       std::cout << "file: " << file << "\n" << mrsim::SummarizeScenario(s);
+    } else if (*schema) {
+      std::cout << mrsim::SchemaMarkdown();
     } else if (*export_mjcf) {
       const mrsim::Scenario s = mrsim::ReadScenarioFile(file);
       std::string mjcf;

@@ -423,11 +423,11 @@ TEST(ScenarioXml, DuplicateGuidIsRejected) {
                          "/frames/Frame[2]/guid: duplicate guid 'f0' (first "
                          "used at line " +
                          first.substr(6, first.size() - 8)));
-  // Across kinds of part too: a scene object reusing a sensor's guid.
+  // Across kinds of part too: a scene object reusing a sensor module's.
   const std::string xml2 =
-      Replace(kTemplate, "<guid>ball</guid>", "<guid>d0</guid>");
+      Replace(kTemplate, "<guid>ball</guid>", "<guid>s0</guid>");
   EXPECT_THAT(ErrorOf(xml2), HasSubstr("Scenario/sceneObjects/SceneObject[1]/"
-                                       "guid: duplicate guid 'd0'"));
+                                       "guid: duplicate guid 's0'"));
 }
 
 TEST(ScenarioXml, ForceSensorPositionOutOfRangeIsRejected) {
