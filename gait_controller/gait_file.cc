@@ -12,6 +12,7 @@
 
 #include "common/atomic_file.h"
 #include "gait_controller/gait_presets.h"
+#include "sim_core/xml_writer.h"
 
 namespace mrsim {
 
@@ -158,34 +159,22 @@ std::string WriteGaitString(const Gait& gait) {
   const GaitParameters& p = gait.parameters;
   const auto& names = GaitParameterNames();
   const auto values = p.ToArray();
-  XMLDocument doc;
-  doc.InsertEndChild(doc.NewDeclaration());
-  XMLElement* root = doc.NewElement("gait");
-  doc.InsertEndChild(root);
-  root->SetAttribute("name", gait.name.c_str());
-  root->SetAttribute("kind", ToString(gait.kind));
-  auto add = [&](const char* tag, double v) {
-    XMLElement* e = doc.NewElement(tag);
-    e->SetText(fmt::format("{}", v).c_str());
-    root->InsertEndChild(e);
-  };
-  for (size_t n = 0; n < names.size(); ++n) add(names[n], values[n]);
-  add("pitch_yaw_lag", p.pitch_yaw_lag);
+  XmlWriter w;
+  w.Open("gait");
+  w.Attribute("name", gait.name);
+  w.Attribute("kind", ToString(gait.kind));
+  for (size_t n = 0; n < names.size(); ++n) w.Number(names[n], values[n]);
+  w.Number("pitch_yaw_lag", p.pitch_yaw_lag);
   for (const JointOverride& o : p.overrides) {
-    XMLElement* e = doc.NewElement("joint");
-    e->SetAttribute("index", o.joint);
-    if (o.amplitude) {
-      e->SetAttribute("amplitude", fmt::format("{}", *o.amplitude).c_str());
-    }
-    if (o.phase) e->SetAttribute("phase", fmt::format("{}", *o.phase).c_str());
-    if (o.offset) {
-      e->SetAttribute("offset", fmt::format("{}", *o.offset).c_str());
-    }
-    root->InsertEndChild(e);
+    w.Open("joint");
+    w.Attribute("index", std::to_string(o.joint));
+    if (o.amplitude) w.Attribute("amplitude", *o.amplitude);
+    if (o.phase) w.Attribute("phase", *o.phase);
+    if (o.offset) w.Attribute("offset", *o.offset);
+    w.Close();
   }
-  tinyxml2::XMLPrinter printer;
-  doc.Print(&printer);
-  return printer.CStr();
+  w.Close();
+  return w.str();
 }
 
 void WriteGaitFile(const Gait& gait, const std::string& path) {

@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "sim_core/xml_writer.h"
+
 namespace mrsim {
 
 bool IsIntegerGene(const std::string& name) {
@@ -201,21 +203,23 @@ GenomeSpec ReadGenomeFile(const std::string& path, bool allow_any_name) {
 }
 
 std::string WriteGenomeString(const GenomeSpec& spec) {
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<genome";
-  if (!spec.robot.empty()) out << " robot=\"" << spec.robot << "\"";
-  out << ">\n";
+  XmlWriter w;
+  w.Open("genome");
+  if (!spec.robot.empty()) w.Attribute("robot", spec.robot);
   for (const GeneSpec& g : spec.genes) {
-    out << fmt::format(
-        "  <gene name=\"{}\" lower=\"{}\" upper=\"{}\" start=\"{}\" "
-        "enabled=\"{}\"{}/>\n",
-        g.name, g.lower, g.upper, g.start, g.enabled ? "true" : "false",
-        g.integer != IsIntegerGene(g.name)
-            ? (g.integer ? " integer=\"true\"" : " integer=\"false\"")
-            : "");
+    w.Open("gene");
+    w.Attribute("name", g.name);
+    w.Attribute("lower", g.lower);
+    w.Attribute("upper", g.upper);
+    w.Attribute("start", g.start);
+    w.Attribute("enabled", g.enabled ? "true" : "false");
+    if (g.integer != IsIntegerGene(g.name)) {
+      w.Attribute("integer", g.integer ? "true" : "false");
+    }
+    w.Close();
   }
-  out << "</genome>\n";
-  return out.str();
+  w.Close();
+  return w.str();
 }
 
 }  // namespace mrsim
