@@ -116,7 +116,7 @@ struct BodySpec {
 
 struct ActuatorSpec {
   std::string name, joint;
-  double max_vel = 0;
+  double max_vel = 0, kv = 0, max_torque = 0;
 };
 
 struct WeldSpec {
@@ -137,14 +137,16 @@ struct Edge {
   Vector3d axis_world = Vector3d::UnitY();
   Vector3d anchor_world = Vector3d::Zero();
   std::string joint_name, actuator_name, guid;
-  double lower = 0, upper = 0, max_vel = 0;
+  double lower = 0, upper = 0, max_vel = 0, kv = 0, max_torque = 0;
   bool servo = false;
+  std::string lock;   // lock name (MjcfLock::name); empty for hinges
+  bool weld = false;  // a weld equality even where a tree link would do
 };
 
 class Builder {
  public:
-  Builder(const Scenario& scenario, const MjcfOptions& options)
-      : s_(scenario), options_(options) {}
+  Builder(const Scenario& scenario, const MjcfOptions& options, MjcfInfo* info)
+      : s_(scenario), options_(options), info_(info) {}
 
   std::string Build();
 
@@ -165,11 +167,13 @@ class Builder {
                 const std::vector<Module>& modules,
                 const std::vector<SensorModule>& sensor_modules,
                 const std::vector<Frame>& loose_frames,
-                const std::vector<Joint>& locks, bool servos);
+                const std::vector<Joint>& locks, bool servos,
+                std::vector<MjcfLock>* lock_info);
   void AddSensorModuleParts(const std::string& robot_name, int index,
                             const SensorModule& sm, int body);
   void ConnectTree(const std::string& robot_name, std::vector<Node>& nodes,
-                   const std::vector<Edge>& edges);
+                   const std::vector<Edge>& edges,
+                   std::vector<MjcfLock>* lock_info);
   void AddSceneObjects();
   void AddTerrain();
   std::vector<int> WeldGroups() const;
@@ -177,6 +181,7 @@ class Builder {
 
   const Scenario& s_;
   const MjcfOptions& options_;
+  MjcfInfo* info_;
   std::vector<BodySpec> bodies_;
   std::vector<GeomSpec> world_geoms_;
   std::vector<ActuatorSpec> actuators_;
@@ -307,7 +312,8 @@ void Builder::AddRobot(const std::string& robot_name,
                        const std::vector<Module>& modules,
                        const std::vector<SensorModule>& sensor_modules,
                        const std::vector<Frame>& loose_frames,
-                       const std::vector<Joint>& locks, bool servos) {
+                       const std::vector<Joint>& locks, bool servos,
+                       std::vector<MjcfLock>* lock_info) {
   std::vector<Node> nodes;
   std::vector<Edge> edges;
   std::map<std::string, int> by_guid;
@@ -404,10 +410,22 @@ void Builder::AddRobot(const std::string& robot_name,
                                Num(e.upper));
     }
     e.max_vel = m.joint.max_vel;
+    e.kv = m.joint.velocity_gain;
+    e.max_torque = m.joint.max_torque;
+    if (e.hinge && servos &&
+        (!(e.kv > 0) || !(e.max_torque > 0) || !std::isfinite(e.kv) ||
+         !std::isfinite(e.max_torque))) {
+      throw std::runtime_error(
+          "robot '" + robot_name + "' module " + std::to_string(i) +
+          ": velocity_gain and max_torque must be positive, got " + Num(e.kv) +
+          " and " + Num(e.max_torque));
+    }
     e.servo = servos;
     edges.push_back(e);
   }
   // Locks between parts; a loose hinge joint becomes a passive hinge.
+  std::map<std::string, int> guid_uses;
+  for (const Joint& j : locks) ++guid_uses[j.guid];
   for (size_t k = 0; k < locks.size(); ++k) {
     const Joint& j = locks[k];
     auto left = by_guid.find(j.left_frame_guid);
@@ -423,6 +441,21 @@ void Builder::AddRobot(const std::string& robot_name,
     e.b = right->second;
     e.guid = j.guid;
     e.hinge = j.type == JointType::kHinge;
+    if (!e.hinge) {
+      // Placeholder guids (empty, or the all-zero guid on every lock) do
+      // not name a lock; the lock's place does.
+      e.lock = !j.guid.empty() && guid_uses[j.guid] == 1
+                   ? j.guid
+                   : "lock" + std::to_string(k);
+      if (!(j.break_force >= 0) || !std::isfinite(j.break_force)) {
+        throw std::runtime_error("robot '" + robot_name + "' lock '" + e.lock +
+                                 "': break_force must be 0 (never) or "
+                                 "positive, got " +
+                                 Num(j.break_force));
+      }
+      e.weld = j.break_force > 0;
+      lock_info->push_back({e.lock, "", j.break_force});
+    }
     if (e.hinge) {
       const BodySpec& lb = bodies_[nodes[e.a].body];
       const BodySpec& rb = bodies_[nodes[e.b].body];
@@ -441,8 +474,9 @@ void Builder::AddRobot(const std::string& robot_name,
     bool connected = false;
     for (const Edge& e : edges) connected |= e.a == node || e.b == node;
     if (connected) continue;
-    for (int nr :
-         {sensor_modules[k].left_mod_nr, sensor_modules[k].right_mod_nr}) {
+    for (int side = 0; side < 2; ++side) {
+      const int nr = side == 0 ? sensor_modules[k].left_mod_nr
+                               : sensor_modules[k].right_mod_nr;
       if (nr < 0) continue;
       for (size_t i = 0; i < modules.size(); ++i) {
         if (modules[i].mod_nr != nr) continue;
@@ -456,20 +490,36 @@ void Builder::AddRobot(const std::string& robot_name,
         e.a = best;
         e.b = node;
         e.guid = sensor_modules[k].guid + " (implicit lock)";
+        e.lock = "sm" + std::to_string(k) + "/lock" + std::to_string(side);
+        lock_info->push_back({e.lock, "", 0.0});
         edges.push_back(e);
         break;
       }
     }
   }
-  ConnectTree(robot_name, nodes, edges);
+  for (Edge& e : edges) {
+    if (!e.lock.empty() && options_.weld_locks.count(robot_name + "/" + e.lock))
+      e.weld = true;
+  }
+  ConnectTree(robot_name, nodes, edges, lock_info);
 }
 
 void Builder::ConnectTree(const std::string& robot_name,
                           std::vector<Node>& nodes,
-                          const std::vector<Edge>& edges) {
+                          const std::vector<Edge>& edges,
+                          std::vector<MjcfLock>* lock_info) {
   // Spanning forest: every hinge must be a tree edge (MuJoCo joints live in
   // the tree), locks join what the hinges left apart; any other lock
-  // closes a loop and becomes a weld equality.
+  // closes a loop and becomes a weld equality, as do locks that may be
+  // released (weld) and locks that would nest bodies too deep.
+  auto add_weld = [&](const Edge& e) {
+    const std::string name = mjcf_names::Weld(robot_name, e.lock);
+    welds_.push_back(
+        {name, bodies_[nodes[e.a].body].name, bodies_[nodes[e.b].body].name});
+    for (MjcfLock& l : *lock_info) {
+      if (l.name == e.lock) l.weld = name;
+    }
+  };
   std::vector<int> uf(nodes.size());
   for (size_t n = 0; n < nodes.size(); ++n) uf[n] = static_cast<int>(n);
   std::function<int(int)> find = [&](int n) {
@@ -481,16 +531,14 @@ void Builder::ConnectTree(const std::string& robot_name,
       const Edge& e = edges[ei];
       if (e.hinge != (pass == 0)) continue;
       const int ra = find(e.a), rb = find(e.b);
-      if (ra == rb) {
+      if (ra == rb || e.weld) {
         if (e.hinge) {
           throw std::runtime_error("robot '" + robot_name + "' joint '" +
                                    e.guid +
                                    "': hinges that form a closed loop are "
                                    "not supported");
         }
-        welds_.push_back({robot_name + "/weld/" + e.guid,
-                          bodies_[nodes[e.a].body].name,
-                          bodies_[nodes[e.b].body].name});
+        add_weld(e);
         continue;
       }
       uf[ra] = rb;
@@ -512,6 +560,7 @@ void Builder::ConnectTree(const std::string& robot_name,
     incident[edges[ei].b].push_back(static_cast<int>(ei));
   }
   std::vector<bool> visited(nodes.size(), false);
+  std::vector<int> depth(nodes.size(), 0);
   // Static parts first so their component hangs from the world.
   std::vector<int> order;
   for (size_t n = 0; n < nodes.size(); ++n)
@@ -521,12 +570,15 @@ void Builder::ConnectTree(const std::string& robot_name,
   int component = 0;
   for (int root : order) {
     if (visited[root]) continue;
-    BodySpec& rb = bodies_[nodes[root].body];
-    if (!nodes[root].is_static) {
-      rb.joint = JointKind::kFree;
-      rb.joint_name = mjcf_names::RootJoint(robot_name, component);
-    }
-    ++component;
+    auto make_root = [&](int node) {
+      BodySpec& rb = bodies_[nodes[node].body];
+      if (!nodes[node].is_static) {
+        rb.joint = JointKind::kFree;
+        rb.joint_name = mjcf_names::RootJoint(robot_name, component);
+      }
+      ++component;
+    };
+    make_root(root);
     visited[root] = true;
     std::queue<int> queue;
     queue.push(root);
@@ -538,6 +590,15 @@ void Builder::ConnectTree(const std::string& robot_name,
         const int other = e.a == n ? e.b : e.a;
         if (visited[other]) continue;
         visited[other] = true;
+        depth[other] = depth[n] + 1;
+        if (depth[other] > kMaxBodyDepth && !e.hinge) {
+          // Too deep for XML: a new sub-tree, welded where the lock is.
+          depth[other] = 0;
+          add_weld(e);
+          make_root(other);
+          queue.push(other);
+          continue;
+        }
         const int pb = nodes[n].body, cb = nodes[other].body;
         bodies_[cb].parent = pb;
         bodies_[pb].children.push_back(cb);
@@ -565,7 +626,8 @@ void Builder::ConnectTree(const std::string& robot_name,
   for (size_t ei = 0; ei < edges.size(); ++ei) {
     const Edge& e = edges[ei];
     if (in_tree[ei] && e.hinge && e.servo) {
-      actuators_.push_back({e.actuator_name, e.joint_name, e.max_vel});
+      actuators_.push_back(
+          {e.actuator_name, e.joint_name, e.max_vel, e.kv, e.max_torque});
     }
   }
 }
@@ -756,11 +818,15 @@ std::string Builder::Build() {
     if (!names.insert(name).second) {
       throw std::runtime_error("two robots are named '" + name + "'");
     }
-    AddRobot(name, robot.modules, robot.sensor_modules, {}, robot.locks, true);
+    std::vector<MjcfLock> locks;
+    AddRobot(name, robot.modules, robot.sensor_modules, {}, robot.locks, true,
+             &locks);
+    if (info_) info_->robot_locks.push_back(std::move(locks));
   }
   if (!s_.loose_frames.empty() || !s_.loose_sensor_modules.empty()) {
+    std::vector<MjcfLock> locks;
     AddRobot("loose", {}, s_.loose_sensor_modules, s_.loose_frames,
-             s_.loose_joints, false);
+             s_.loose_joints, false, &locks);
   }
   AddSceneObjects();
   AddTerrain();
@@ -881,15 +947,14 @@ std::string Builder::Build() {
     for (const ActuatorSpec& a : actuators_) {
       const double v = std::abs(a.max_vel);
       out << "    <velocity name=\"" << Esc(a.name) << "\" joint=\""
-          << Esc(a.joint) << "\" kv=\"" << Num(ServoModel::kKv) << "\"";
+          << Esc(a.joint) << "\" kv=\"" << Num(a.kv) << "\"";
       // Physics clamps the command itself; MuJoCo rejects an empty range.
       if (v > 0) {
         out << " ctrllimited=\"true\" ctrlrange=\"" << Num(-v) << " " << Num(v)
             << "\"";
       }
-      out << " forcelimited=\"true\" forcerange=\""
-          << Num(-ServoModel::kForceLimit) << " "
-          << Num(ServoModel::kForceLimit) << "\"/>\n";
+      out << " forcelimited=\"true\" forcerange=\"" << Num(-a.max_torque) << " "
+          << Num(a.max_torque) << "\"/>\n";
     }
     out << "  </actuator>\n";
   }
@@ -912,7 +977,13 @@ std::string BuildMjcf(const Scenario& scenario) {
 }
 
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options) {
-  return Builder(scenario, options).Build();
+  return Builder(scenario, options, nullptr).Build();
+}
+
+std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
+                      MjcfInfo* info) {
+  if (info) info->robot_locks.clear();
+  return Builder(scenario, options, info).Build();
 }
 
 Eigen::Vector3d SensorFaceNormal(int sensor_position) {
@@ -966,6 +1037,9 @@ std::string ForceSensor(const std::string& robot, int sm) {
 }
 std::string DistanceSite(const std::string& robot, int sm, int k) {
   return SensorModuleBody(robot, sm) + "/d" + std::to_string(k);
+}
+std::string Weld(const std::string& robot, const std::string& lock) {
+  return robot + "/weld/" + lock;
 }
 std::string SceneObject(int index) {
   return "scene/obj" + std::to_string(index);

@@ -5,20 +5,26 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "sim_core/scenario.h"
 
 namespace mrsim {
 
 // Servo model shared by the builder and the physics: a MuJoCo velocity
-// actuator (force = kv * (ctrl - qvel), clamped to +-force_limit) on a hinge
-// with the reflected rotor inertia of a geared servo (armature).
+// actuator (force = Joint::velocity_gain * (ctrl - qvel), clamped to
+// +-Joint::max_torque) on a hinge with the reflected rotor inertia of a
+// geared servo (armature).
 struct ServoModel {
-  static constexpr double kKv = 5.0;          // N m s / rad
-  static constexpr double kForceLimit = 2.0;  // N m (stall torque)
-  static constexpr double kArmature = 0.01;   // kg m^2
+  static constexpr double kArmature = 0.01;  // kg m^2
 };
+
+// Bodies nest at most this deep below a tree's root. Deeper chains are cut
+// at a lock into sub-trees joined by a weld, so a chain of any length stays
+// below XML parsers' nesting limits (tinyxml2: 100 elements).
+constexpr int kMaxBodyDepth = 64;
 
 struct MjcfOptions {
   // false (export): the height field names a grey PNG by absolute path (the
@@ -28,6 +34,27 @@ struct MjcfOptions {
   // the caller fills mjModel::hfield_data with HeightFieldData().
   bool hfield_data_after_compile = false;
   std::string asset_dir;
+  // Locks ("<robot>/<lock name>", see MjcfLock) to model as weld equality
+  // constraints even where they could be rigid tree links, so they can be
+  // released at run time (Physics::SetLockAttached).
+  std::set<std::string> weld_locks;
+};
+
+// One lock of a robot as the model holds it.
+struct MjcfLock {
+  // Its guid, or a generated name when the guid is empty or shared:
+  // "lock<k>" (k = index in Robot::locks) or "sm<k>/lock<j>" for the
+  // implicit lock of sensor module k to its left (j = 0) or right (1)
+  // neighbour.
+  std::string name;
+  // Name of its weld equality; empty when it is a rigid tree link.
+  std::string weld;
+  double break_force = 0;  // N; 0 never breaks
+};
+
+// What the builder made of the scenario, for Physics.
+struct MjcfInfo {
+  std::vector<std::vector<MjcfLock>> robot_locks;  // per scenario robot
 };
 
 // Export form: equal to BuildMjcf(scenario, MjcfOptions{}).
@@ -36,6 +63,8 @@ std::string BuildMjcf(const Scenario& scenario);
 // anything that cannot be modelled: duplicate robot names, unreadable mesh
 // or terrain image, a hinge that closes a loop, an unknown lock end.
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options);
+std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
+                      MjcfInfo* info);
 
 // Outward normal of a sensor module face in the module's own frame (the
 // chain runs along +x, z up): 0 bottom -z, 1 left +y, 2 top +z, 3 right -y,
@@ -56,9 +85,11 @@ std::string PlateBody(const std::string& robot, int sm);    // "r/sm2/plate"
 std::string ForceSite(const std::string& robot, int sm);    // ".../plate_site"
 std::string ForceSensor(const std::string& robot, int sm);  // "r/sm2/force"
 std::string DistanceSite(const std::string& robot, int sm,
-                         int k);     // "r/sm2/d0"
-std::string SceneObject(int index);  // "scene/obj<i>"
-std::string Terrain();               // "scene/terrain" (hfield or plane)
+                         int k);  // "r/sm2/d0"
+std::string Weld(const std::string& robot,
+                 const std::string& lock);  // "r/weld/<lock name>"
+std::string SceneObject(int index);         // "scene/obj<i>"
+std::string Terrain();                      // "scene/terrain" (hfield or plane)
 }  // namespace mjcf_names
 
 }  // namespace mrsim

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 
 #include "sim_core/fluid_forces.h"
@@ -16,10 +17,15 @@
 namespace mrsim {
 namespace {
 
-// Version 2 adds the integrated qpos, actuator_force and sensordata;
-// version 1 blobs still load (resuming them may differ in the last bits).
-constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
+// Version 3 adds the lock states; version 2 added the integrated qpos,
+// actuator_force and sensordata. Older blobs still load (all locks
+// attached; resuming a version-1 blob may differ in the last bits).
+constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
+constexpr char kStateMagicV2[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
 constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
+// Lock flags in a version-3 blob.
+constexpr unsigned char kLockAttached = 1;
+constexpr unsigned char kLockRuntimeWeld = 2;
 
 const char* WarningName(int w) {
   switch (w) {
@@ -103,8 +109,13 @@ struct Physics::Impl {
     std::vector<int> faces;
     std::vector<double> max_distance;
   };
+  struct LockIndex {
+    std::string name;
+    int eq = -1;  // weld equality; -1: a rigid tree link (always attached)
+  };
   struct RobotIndex {
     std::string name;
+    std::vector<LockIndex> locks;
     std::vector<int> frame_bodies;  // two per module
     std::vector<Servo> servos;
     std::vector<double> targets;
@@ -113,12 +124,19 @@ struct Physics::Impl {
   };
 
   Scenario scenario;
+  // Locks ("<robot>/<lock>") released at run time that the scenario's
+  // model held as rigid tree links; the model is rebuilt with them as
+  // welds (MjcfOptions::weld_locks).
+  std::set<std::string> runtime_welds;
   MjModelPtr model;
   MjDataPtr data;
   mutable MjDataPtr scratch;  // for force readings (needs a full forward)
   std::vector<RobotIndex> robots;
   std::unique_ptr<FluidForces> fluids;
   std::array<int, mjNWARNING> warnings{};
+  std::vector<mjtByte> eq_active0;  // the model's initial eq_active
+  std::vector<double> eq_break;     // per equality: break force, 0 never
+  bool any_breakable = false;
   // qpos as mj_step2 left it, before mj_step1's kinematics renormalised the
   // free and ball joint quaternions in place. Renormalising is not
   // idempotent in the last bit, so a loaded state must run mj_step1 from
@@ -133,7 +151,18 @@ struct Physics::Impl {
     }
     return id;
   }
-  void Index();
+  void Build();
+  void Index(const MjcfInfo& info);
+  void TransferState(const mjModel* om, const mjData* od);
+  void BreakOverloadedLocks();
+  // Recomputes the current state's kinematics and constraints after the
+  // model changed (eq_active), from the integrated qpos as a step does.
+  void Refresh() {
+    mju_copy(data->qpos, qpos_integrated.data(), model->nq);
+    mj_step1(model.get(), data.get());
+    for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
+  }
+  LockIndex& FindLock(const std::string& robot, const std::string& lock);
   void ComputeControls(mjData* d) const {
     for (const RobotIndex& r : robots) {
       const size_t n = r.servos.size();
@@ -169,12 +198,139 @@ struct Physics::Impl {
   }
 };
 
-void Physics::Impl::Index() {
+void Physics::Impl::Build() {
+  std::vector<std::vector<double>> old_targets;
+  for (const RobotIndex& r : robots) old_targets.push_back(r.targets);
+  MjcfOptions options;
+  options.hfield_data_after_compile = true;
+  options.weld_locks = runtime_welds;
+  MjcfInfo info;
+  model = CompileMjcf(BuildMjcf(scenario, options, &info));
+  mjModel* m = model.get();
+  if (!scenario.scene.height_image.empty() && m->nhfield > 0) {
+    const std::vector<float> heights =
+        HeightFieldData(LoadTerrainImage(scenario.scene, scenario.base_dir));
+    std::copy(heights.begin(), heights.end(),
+              m->hfield_data + m->hfield_adr[0]);
+  }
+  robots.clear();
+  Index(info);
+  if (old_targets.size() == robots.size()) {
+    for (size_t r = 0; r < robots.size(); ++r)
+      robots[r].targets = old_targets[r];
+  }
+  eq_active0.assign(m->eq_active, m->eq_active + m->neq);
+  data.reset(mj_makeData(m));
+  scratch.reset(mj_makeData(m));
+  qpos_integrated.assign(m->nq, 0);
+  fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
+  AfterStateChange();
+}
+
+void Physics::Impl::TransferState(const mjModel* om, const mjData* od) {
+  // Same bodies, joints and actuators by name; a body that gained a free
+  // joint (its lock became a weld) starts from its current pose and
+  // velocity. Deterministic, so a resumed run does the same.
   const mjModel* m = model.get();
+  mjData* d = data.get();
+  d->time = od->time;
+  for (int j = 0; j < m->njnt; ++j) {
+    const char* jname = mj_id2name(m, mjOBJ_JOINT, j);
+    const int ob =
+        mj_name2id(om, mjOBJ_BODY, mj_id2name(m, mjOBJ_BODY, m->jnt_bodyid[j]));
+    const int oj = jname ? mj_name2id(om, mjOBJ_JOINT, jname) : -1;
+    const int qa = m->jnt_qposadr[j], va = m->jnt_dofadr[j];
+    const int type = m->jnt_type[j];
+    const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+    const int nv = type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
+    if (oj >= 0 && om->jnt_type[oj] == type && om->jnt_bodyid[oj] == ob) {
+      const int oqa = om->jnt_qposadr[oj], ova = om->jnt_dofadr[oj];
+      mju_copy(d->qpos + qa, od->qpos + oqa, nq);
+      mju_copy(d->qvel + va, od->qvel + ova, nv);
+      mju_copy(d->qacc_warmstart + va, od->qacc_warmstart + ova, nv);
+      mju_copy(d->qfrc_applied + va, od->qfrc_applied + ova, nv);
+    } else if (type == mjJNT_FREE && ob >= 0) {
+      mju_copy3(d->qpos + qa, od->xpos + 3 * ob);
+      mju_copy4(d->qpos + qa + 3, od->xquat + 4 * ob);
+      mjtNum vel[6];  // rotation then translation, world axes
+      mj_objectVelocity(om, od, mjOBJ_XBODY, ob, vel, 0);
+      mju_copy3(d->qvel + va, vel + 3);
+      mju_rotVecMatT(d->qvel + va + 3, vel, od->xmat + 9 * ob);
+    }
+  }
+  for (int a = 0; a < m->nu; ++a) {
+    const int oa =
+        mj_name2id(om, mjOBJ_ACTUATOR, mj_id2name(m, mjOBJ_ACTUATOR, a));
+    if (oa >= 0) d->ctrl[a] = od->ctrl[oa];
+  }
+  for (int b = 0; b < m->nbody; ++b) {
+    const char* name = mj_id2name(m, mjOBJ_BODY, b);
+    const int ob = name ? mj_name2id(om, mjOBJ_BODY, name) : (b == 0 ? 0 : -1);
+    if (ob >= 0)
+      mju_copy(d->xfrc_applied + 6 * b, od->xfrc_applied + 6 * ob, 6);
+  }
+  for (int e = 0; e < m->neq; ++e) {
+    const char* name = mj_id2name(m, mjOBJ_EQUALITY, e);
+    const int oe = name ? mj_name2id(om, mjOBJ_EQUALITY, name) : -1;
+    if (oe >= 0) model->eq_active[e] = om->eq_active[oe];
+  }
+  AfterStateChange();
+}
+
+void Physics::Impl::BreakOverloadedLocks() {
+  // After the step's constraint solve: a weld's first three rows carry the
+  // force between its bodies (N, world axes).
+  const mjData* d = data.get();
+  for (int i = 0; i < d->nefc; ++i) {
+    if (d->efc_type[i] != mjCNSTR_EQUALITY) continue;
+    const int eq = d->efc_id[i];
+    if (i > 0 && d->efc_type[i - 1] == mjCNSTR_EQUALITY &&
+        d->efc_id[i - 1] == eq) {
+      continue;  // not the first row of this equality
+    }
+    if (eq_break[eq] > 0 && model->eq_active[eq] &&
+        mju_norm3(d->efc_force + i) > eq_break[eq]) {
+      model->eq_active[eq] = 0;
+    }
+  }
+}
+
+Physics::Impl::LockIndex& Physics::Impl::FindLock(const std::string& robot,
+                                                  const std::string& lock) {
+  for (RobotIndex& r : robots) {
+    if (r.name != robot) continue;
+    for (LockIndex& l : r.locks) {
+      if (l.name == lock) return l;
+    }
+    std::string names;
+    for (const LockIndex& l : r.locks)
+      names += (names.empty() ? "" : ", ") + l.name;
+    throw PhysicsError(
+        fmt::format("robot '{}' has no lock named '{}' (its locks: {})", robot,
+                    lock, names.empty() ? "none" : names));
+  }
+  throw PhysicsError(
+      fmt::format("no robot named '{}' (lock '{}')", robot, lock));
+}
+
+void Physics::Impl::Index(const MjcfInfo& info) {
+  const mjModel* m = model.get();
+  eq_break.assign(m->neq, 0.0);
+  any_breakable = false;
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
     const Robot& robot = scenario.robots[r];
     RobotIndex ri;
     ri.name = mjcf_names::RobotName(scenario, r);
+    for (const MjcfLock& l : info.robot_locks.at(r)) {
+      LockIndex li;
+      li.name = l.name;
+      if (!l.weld.empty()) {
+        li.eq = Id(mjOBJ_EQUALITY, l.weld);
+        eq_break[li.eq] = l.break_force;
+        any_breakable |= l.break_force > 0;
+      }
+      ri.locks.push_back(li);
+    }
     for (size_t i = 0; i < robot.modules.size(); ++i) {
       for (int f = 0; f < 2; ++f) {
         const int b = Id(mjOBJ_BODY, mjcf_names::FrameBody(ri.name, i, f));
@@ -275,21 +431,7 @@ void Physics::Impl::CheckStability(double time_before) {
 
 Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
   impl_->scenario = scenario;
-  MjcfOptions options;
-  options.hfield_data_after_compile = true;
-  impl_->model = CompileMjcf(BuildMjcf(scenario, options));
-  mjModel* m = impl_->model.get();
-  if (!scenario.scene.height_image.empty() && m->nhfield > 0) {
-    const std::vector<float> data =
-        HeightFieldData(LoadTerrainImage(scenario.scene, scenario.base_dir));
-    std::copy(data.begin(), data.end(), m->hfield_data + m->hfield_adr[0]);
-  }
-  impl_->Index();
-  impl_->data.reset(mj_makeData(m));
-  impl_->scratch.reset(mj_makeData(m));
-  impl_->qpos_integrated.resize(m->nq);
-  impl_->fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
-  impl_->AfterStateChange();
+  impl_->Build();
 }
 
 Physics::~Physics() = default;
@@ -304,6 +446,7 @@ void Physics::Step() {
   impl_->ComputeControls(d);
   if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d, d->xfrc_applied);
   mj_step2(m, d);
+  if (impl_->any_breakable) impl_->BreakOverloadedLocks();
   mju_copy(impl_->qpos_integrated.data(), d->qpos, m->nq);
   mj_step1(m, d);
   impl_->CheckStability(time_before);
@@ -314,6 +457,8 @@ void Physics::Step(int n) {
 }
 
 void Physics::Reset() {
+  std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
+            impl_->model->eq_active);
   mj_resetData(impl_->model.get(), impl_->data.get());
   for (Impl::RobotIndex& r : impl_->robots) {
     for (size_t j = 0; j < r.servos.size(); ++j) {
@@ -358,6 +503,36 @@ int Physics::module_count(int robot) const {
 }
 int Physics::sensor_module_count(int robot) const {
   return static_cast<int>(impl_->robot(robot).sensor_modules.size());
+}
+
+void Physics::SetLockAttached(const std::string& robot, const std::string& lock,
+                              bool attached) {
+  Impl::LockIndex* l = &impl_->FindLock(robot, lock);
+  if (l->eq < 0) {
+    if (attached) return;  // a rigid link is attached
+    // Rebuild with this lock as a weld, carrying the state over.
+    impl_->runtime_welds.insert(robot + "/" + lock);
+    MjModelPtr old_model = std::move(impl_->model);
+    MjDataPtr old_data = std::move(impl_->data);
+    impl_->Build();
+    impl_->TransferState(old_model.get(), old_data.get());
+    l = &impl_->FindLock(robot, lock);
+  }
+  const mjtByte active = attached ? 1 : 0;
+  if (impl_->model->eq_active[l->eq] == active) return;
+  impl_->model->eq_active[l->eq] = active;
+  impl_->Refresh();
+}
+
+std::vector<std::pair<std::string, bool>> Physics::LockStates(
+    const std::string& robot) const {
+  const int r = robot_index(robot);
+  if (r < 0) throw PhysicsError(fmt::format("no robot named '{}'", robot));
+  std::vector<std::pair<std::string, bool>> out;
+  for (const Impl::LockIndex& l : impl_->robots[r].locks) {
+    out.emplace_back(l.name, l.eq < 0 || impl_->model->eq_active[l.eq] != 0);
+  }
+  return out;
 }
 
 void Physics::SetJointTargets(int robot, const std::vector<double>& targets) {
@@ -514,8 +689,22 @@ std::vector<unsigned char> Physics::SaveState() const {
                             m->nbody,
                             m->nsensordata,
                             static_cast<int32_t>(targets.size())};
+  std::vector<unsigned char> locks;
+  for (const auto& r : impl_->robots) {
+    for (const Impl::LockIndex& l : r.locks) {
+      unsigned char flags = 0;
+      if (l.eq < 0 || m->eq_active[l.eq]) flags |= kLockAttached;
+      if (impl_->runtime_welds.count(r.name + "/" + l.name)) {
+        flags |= kLockRuntimeWeld;
+      }
+      locks.push_back(flags);
+    }
+  }
+  const int32_t nlocks = static_cast<int32_t>(locks.size());
   std::vector<unsigned char> out;
   Put(out, kStateMagic, sizeof(kStateMagic));
+  Put(out, &nlocks, 1);
+  Put(out, locks.data(), locks.size());
   Put(out, sizes, 7);
   Put(out, &d->time, 1);
   Put(out, d->qpos, m->nq);
@@ -535,28 +724,69 @@ std::vector<unsigned char> Physics::SaveState() const {
 }
 
 void Physics::LoadState(const std::vector<unsigned char>& bytes) {
-  const mjModel* m = impl_->model.get();
   size_t ntargets = 0;
-  for (const auto& r : impl_->robots) ntargets += r.targets.size();
+  size_t nlocks = 0;
+  for (const auto& r : impl_->robots) {
+    ntargets += r.targets.size();
+    nlocks += r.locks.size();
+  }
   if (bytes.size() < sizeof(kStateMagic)) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
   }
   const bool v1 =
       std::memcmp(bytes.data(), kStateMagicV1, sizeof(kStateMagicV1)) == 0;
-  if (!v1 && std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) != 0) {
+  const bool v3 =
+      std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) == 0;
+  if (!v1 && !v3 &&
+      std::memcmp(bytes.data(), kStateMagicV2, sizeof(kStateMagicV2)) != 0) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
   }
+  // Version 3: lock states first, since a lock released at run time
+  // changes the model the rest was saved from.
+  std::vector<unsigned char> lock_flags(nlocks, kLockAttached);
+  size_t lock_bytes = 0;
+  if (v3) {
+    int32_t saved_locks = -1;
+    if (bytes.size() >= sizeof(kStateMagic) + sizeof(int32_t)) {
+      std::memcpy(&saved_locks, bytes.data() + sizeof(kStateMagic),
+                  sizeof(int32_t));
+    }
+    if (saved_locks != static_cast<int32_t>(nlocks) ||
+        bytes.size() < sizeof(kStateMagic) + sizeof(int32_t) + nlocks) {
+      throw std::invalid_argument(fmt::format(
+          "physics state: saved for a different model ({} locks; this model "
+          "has {})",
+          saved_locks, nlocks));
+    }
+    lock_bytes = sizeof(int32_t) + nlocks;
+    std::memcpy(lock_flags.data(),
+                bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+    std::set<std::string> welds;
+    size_t i = 0;
+    for (const auto& r : impl_->robots) {
+      for (const Impl::LockIndex& l : r.locks) {
+        if (lock_flags[i++] & kLockRuntimeWeld)
+          welds.insert(r.name + "/" + l.name);
+      }
+    }
+    if (welds != impl_->runtime_welds) {
+      impl_->runtime_welds = welds;
+      impl_->Build();
+    }
+  }
+  const mjModel* m = impl_->model.get();
   // Version 1 has no nsensordata entry.
   std::vector<int32_t> expect = {m->nq, m->nv, m->na, m->nu, m->nbody};
   if (!v1) expect.push_back(m->nsensordata);
   expect.push_back(static_cast<int32_t>(ntargets));
-  const size_t header = sizeof(kStateMagic) + expect.size() * sizeof(int32_t);
+  const size_t header =
+      sizeof(kStateMagic) + lock_bytes + expect.size() * sizeof(int32_t);
   size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
                    6 * m->nbody + ntargets;
   if (!v1) doubles += m->nq + m->nu + m->nsensordata;
   std::vector<int32_t> sizes(expect.size(), -1);
   if (bytes.size() >= header) {
-    std::memcpy(sizes.data(), bytes.data() + sizeof(kStateMagic),
+    std::memcpy(sizes.data(), bytes.data() + sizeof(kStateMagic) + lock_bytes,
                 sizes.size() * sizeof(int32_t));
   }
   if (sizes != expect || bytes.size() != header + doubles * sizeof(double)) {
@@ -602,6 +832,21 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     get(sensordata.data(), m->nsensordata);
   }
   for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
+  std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
+            impl_->model->eq_active);
+  size_t li = 0;
+  for (const auto& r : impl_->robots) {
+    for (const Impl::LockIndex& l : r.locks) {
+      const bool attached = lock_flags[li++] & kLockAttached;
+      if (l.eq >= 0) {
+        impl_->model->eq_active[l.eq] = attached ? 1 : 0;
+      } else if (!attached) {
+        throw std::invalid_argument(
+            "physics state: lock '" + l.name + "' of robot '" + r.name +
+            "' is released in the state but rigid in this model");
+      }
+    }
+  }
   impl_->AfterStateChange();
   // The kinematics pass reproduces the saved qpos exactly unless the state
   // was poked between the step and the save; keep the saved qpos then.

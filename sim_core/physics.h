@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/robot_state.h"
@@ -65,6 +66,17 @@ class Physics {
   int module_count(int robot) const;
   int sensor_module_count(int robot) const;
 
+  // Releases (attached=false) or re-makes (true) the lock named `lock` (its
+  // guid, or its generated name) of robot `robot`. Throws PhysicsError
+  // naming the robot/lock when there is no such lock. A re-made lock pulls
+  // its parts back to their relative pose in the scenario.
+  void SetLockAttached(const std::string& robot, const std::string& lock,
+                       bool attached);
+  // Names and attached state of every lock of `robot`, in scenario order.
+  // Throws PhysicsError naming the robot when there is no such robot.
+  std::vector<std::pair<std::string, bool>> LockStates(
+      const std::string& robot) const;
+
   // Targets (rad) for every hinge of a robot; clamped to the joint limits.
   // Throws std::invalid_argument on a wrong count or a non-finite value.
   void SetJointTargets(int robot, const std::vector<double>& targets);
@@ -78,12 +90,13 @@ class Physics {
   RobotState ReadRobotState(int robot) const;
   Eigen::Vector3d CenterOfMass(int robot) const;
 
-  // The full physics state (time, qpos and qpos before the kinematics
-  // renormalised it, qvel, act, ctrl, warm start, applied forces, actuator
-  // forces, sensordata, targets) as bytes; LoadState restores it so
-  // stepping and ReadRobotState continue bit for bit. LoadState throws
-  // std::invalid_argument for bytes saved from another model. Format:
-  // docs/physics.md.
+  // The full physics state (lock states, time, qpos and qpos before the
+  // kinematics renormalised it, qvel, act, ctrl, warm start, applied
+  // forces, actuator forces, sensordata, targets) as bytes; LoadState
+  // restores it so stepping and ReadRobotState continue bit for bit
+  // (rebuilding the model first if the saved run released a lock the
+  // model held rigidly). LoadState throws std::invalid_argument for bytes
+  // saved from another scenario. Format: docs/physics.md.
   std::vector<unsigned char> SaveState() const;
   void LoadState(const std::vector<unsigned char>& bytes);
 
