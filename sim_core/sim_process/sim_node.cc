@@ -234,9 +234,12 @@ void SimNode::PublishStates(WallTime now, SimOutbox* out) {
           ToSceneStateMessage(scene, physics_->time(), state_seq_));
     }
     for (int r = 0; r < physics_->robot_count(); ++r) {
-      published.messages.emplace_back(
-          StateChannel(options_.prefix, physics_->robot_name(r)),
-          ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_));
+      const std::string& name = physics_->robot_name(r);
+      robot_state_t msg =
+          ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);
+      SetLockStates(physics_->LockStates(name), &msg);
+      published.messages.emplace_back(StateChannel(options_.prefix, name),
+                                      std::move(msg));
     }
     ++states_published_;
   }
@@ -473,6 +476,18 @@ void SimNode::OnControl(const sim_control_t& msg, WallTime now,
         break;
       case sim_control_t::QUIT:
         quit_ = true;
+        break;
+      case sim_control_t::DETACH:
+      case sim_control_t::ATTACH:
+        try {
+          // Acts from the next period; its state shows the lock's flag.
+          physics_->SetLockAttached(msg.robot, msg.lock,
+                                    msg.command == sim_control_t::ATTACH);
+        } catch (const PhysicsError& e) {
+          Fail(std::string(msg.command == sim_control_t::ATTACH ? "ATTACH"
+                                                                : "DETACH") +
+               ": " + e.what());
+        }
         break;
       default:
         Fail("unknown sim_control_t command " + std::to_string(msg.command));

@@ -462,6 +462,48 @@ TEST(SimNode, ResetAndCheckpointLoadRestartTheLockstepEpoch) {
   }
 }
 
+TEST(SimNode, LocksDetachAndAttachOnRequestAndStatesSayWhich) {
+  Driver d(Lockstep());
+  const robot_state_t& first = d.states_.back();
+  ASSERT_EQ(first.num_locks, 5);  // six modules, five locks
+  EXPECT_EQ(first.lock_names[2], "snake/lock2");
+  for (bool attached : first.lock_attached) EXPECT_TRUE(attached);
+
+  sim_control_t detach{};
+  detach.seq = 1;
+  detach.sender = "test";
+  detach.command = sim_control_t::DETACH;
+  detach.robot = "snake";
+  detach.lock = "snake/lock2";
+  SimOutbox out;
+  d.node().OnControl(detach, d.now(), &out);
+  EXPECT_TRUE(d.node().status().control_ok) << d.node().status().last_error;
+  const robot_state_t cut = DriveLockstep(d, 100);
+  ASSERT_EQ(cut.num_locks, 5);
+  EXPECT_FALSE(cut.lock_attached[2]);
+  EXPECT_TRUE(cut.lock_attached[1]);
+  // The body really came apart: not the trajectory of the whole snake.
+  const robot_state_t whole =
+      ToRobotStateMessage(InProcessRun(Snake(), 100, 0), cut.seq);
+  EXPECT_NE(whole.com[0], cut.com[0]);
+
+  sim_control_t bad = detach;
+  bad.seq = 2;
+  bad.lock = "snake/lock9";
+  d.node().OnControl(bad, d.now(), &out);
+  EXPECT_FALSE(d.node().status().control_ok);
+  EXPECT_NE(d.node().status().last_error.find("snake/lock9"), std::string::npos)
+      << d.node().status().last_error;
+
+  sim_control_t attach = detach;
+  attach.seq = 3;
+  attach.command = sim_control_t::ATTACH;
+  d.node().OnControl(attach, d.now(), &out);
+  EXPECT_TRUE(d.node().status().control_ok);
+  const robot_state_t joined = DriveLockstep(d, 101);
+  EXPECT_TRUE(joined.lock_attached[2]);
+}
+
 TEST(SimNode, DurationStopsAndWritesTheExitCheckpoint) {
   const std::string dir = TempDir("sim_node_exit");
   SimOptions o = Lockstep();

@@ -32,6 +32,14 @@ TEST(SimControlRequest, ParsesEveryCommandAndNamesWhatIsWrong) {
   EXPECT_EQ(int{ParseSimControl({"load", "a.ckpt"}).command},
             int{sim_control_t::LOAD_CHECKPOINT});
   EXPECT_DOUBLE_EQ(ParseSimControl({"speed", "0.5"}).speed, 0.5);
+  const sim_control_t detach =
+      ParseSimControl({"detach", "snake", "snake/lock3"});
+  EXPECT_EQ(int{detach.command}, int{sim_control_t::DETACH});
+  EXPECT_EQ(detach.robot, "snake");
+  EXPECT_EQ(detach.lock, "snake/lock3");
+  EXPECT_EQ(int{ParseSimControl({"attach", "a", "b"}).command},
+            int{sim_control_t::ATTACH});
+  EXPECT_THROW(ParseSimControl({"detach", "snake"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"step", "0"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"step", "1.5"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"speed", "-1"}), std::invalid_argument);
@@ -110,6 +118,20 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
   const auto [save_code, save_out] = ctl({"save", checkpoint}, "save");
   EXPECT_EQ(save_code, 0) << save_out;
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
+
+  // Locks: detached and attached again on request; an unknown one refused.
+  const auto [detach_code, detach_out] =
+      ctl({"detach", "snake", "snake/lock3"}, "detach");
+  EXPECT_EQ(detach_code, 0) << detach_out;
+  EXPECT_NE(detach_out.find("detach: done"), std::string::npos) << detach_out;
+  const auto [attach_code, attach_out] =
+      ctl({"attach", "snake", "snake/lock3"}, "attach");
+  EXPECT_EQ(attach_code, 0) << attach_out;
+  const auto [nolock_code, nolock_out] =
+      ctl({"detach", "snake", "snake/lock99"}, "nolock");
+  EXPECT_EQ(nolock_code, 1) << nolock_out;
+  EXPECT_NE(nolock_out.find("refused"), std::string::npos) << nolock_out;
+  EXPECT_NE(nolock_out.find("snake/lock99"), std::string::npos) << nolock_out;
 
   const auto [bad_code, bad_out] = ctl({"warp", "9"}, "bad");
   EXPECT_EQ(bad_code, 2);
