@@ -31,6 +31,10 @@ void GaitCommandLine::AddFlags(CLI::App& app) {
   app.add_option("--name", name,
                  "Sender name (what mrsim-sim --controllers lists); default "
                  "gait-<robot>");
+  app.add_option("--resume", resume,
+                 "Continue the gait saved beside this simulator checkpoint "
+                 "(CHECKPOINT.gait-ROBOT; use with mrsim-sim "
+                 "--load-checkpoint CHECKPOINT)");
   app.add_flag("--keyboard", keyboard,
                "Steer from the keyboard (stdin must be a terminal)");
 }

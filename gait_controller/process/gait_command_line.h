@@ -23,6 +23,7 @@ struct GaitCommandLine {
   std::string axes_text;
   std::string name;
   bool keyboard = false;
+  std::string resume;  // a checkpoint whose saved gait state to continue
   GaitNodeOptions options;
 
   // Filled by Finish().

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "gait_controller/process/gait_command_apply.h"
@@ -15,9 +18,19 @@ namespace mrsim {
 namespace {
 
 constexpr size_t kMaxQueued = 100;
+constexpr size_t kMaxSnapshots = 256;
+constexpr size_t kMaxRequests = 64;
+constexpr const char* kCheckpointTag = "mrsim-gait-checkpoint-1";
+
+std::string Hex(double v) { return fmt::format("{:a}", v); }
 constexpr size_t kMaxLogLines = 1000;
 
 }  // namespace
+
+std::string GaitCheckpointPath(const std::string& checkpoint,
+                               const std::string& robot) {
+  return checkpoint + ".gait-" + robot;
+}
 
 GaitNode::GaitNode(GaitNodeOptions options,
                    std::function<std::vector<Axis>(int)> axes_for, Gait initial,
@@ -217,6 +230,11 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
     }
     Log(fmt::format("robot {}: {} joints; {}", options_.robot, state.num_joints,
                     Describe()));
+    if (!resume_path_.empty()) {
+      const std::string path = resume_path_;
+      resume_path_.clear();
+      Restore(path);
+    }
     CheckFit();
   }
   if (state.num_joints != controller_->joint_count()) {
@@ -258,6 +276,12 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
     last_skipped_seq_ = state.seq;
     return;
   }
+  snapshots_.insert_or_assign(state.sim_time,
+                              Snapshot{*controller_, have_last_, last_time_});
+  while (snapshots_.size() > kMaxSnapshots) {
+    // Drop the oldest in sim time; after a reset that is the stale future.
+    snapshots_.erase(snapshots_.begin());
+  }
   const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;
   const std::vector<double>& targets = controller_->Update(dt);
 
@@ -277,6 +301,116 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
   last_time_ = state.sim_time;
   have_last_ = true;
   ++counters_.states_answered;
+}
+
+void GaitNode::OnSimControl(const sim_control_t& request) {
+  if (request.command != sim_control_t::SAVE_CHECKPOINT &&
+      request.command != sim_control_t::LOAD_CHECKPOINT) {
+    return;
+  }
+  if (requests_.size() >= kMaxRequests) requests_.erase(requests_.begin());
+  requests_[{request.sender, request.seq}] = request;
+}
+
+void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
+                           GaitOutbox* out) {
+  const auto it = requests_.find({status.control_sender, status.control_seq});
+  if (it == requests_.end()) return;
+  const sim_control_t request = it->second;
+  requests_.erase(it);
+  if (!status.control_ok) return;
+  const std::string path = GaitCheckpointPath(request.path, options_.robot);
+  try {
+    if (request.command == sim_control_t::SAVE_CHECKPOINT) {
+      WriteCheckpoint(path, status.sim_time);
+      Log(fmt::format("saved the gait at sim time {} s to {}", status.sim_time,
+                      path));
+    } else if (controller_) {
+      Restore(request.path);
+      PublishStatus(now, out);
+    } else {
+      resume_path_ = request.path;
+    }
+  } catch (const std::exception& e) {
+    Log(fmt::format("checkpoint: {}", e.what()));
+  }
+}
+
+void GaitNode::Resume(const std::string& checkpoint) {
+  const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
+  std::ifstream in(path);
+  if (!in) {
+    throw std::runtime_error("--resume: cannot read " + path +
+                             " (mrsim-gait writes it when the simulator "
+                             "saves that checkpoint)");
+  }
+  resume_path_ = checkpoint;
+}
+
+void GaitNode::WriteCheckpoint(const std::string& path, double sim_time) const {
+  const Snapshot* snap = nullptr;
+  Snapshot current{controller_ ? *controller_ : GaitController({Axis::kPitch}),
+                   have_last_, last_time_};
+  const auto found = snapshots_.find(sim_time);
+  if (found != snapshots_.end()) {
+    snap = &found->second;
+  } else if (controller_ && (!have_last_ || last_time_ < sim_time)) {
+    snap = &current;  // the saved state is not answered yet: now is right
+  }
+  if (snap == nullptr) {
+    throw std::runtime_error(fmt::format(
+        "no gait state at sim time {} s (states skipped or too old); {} not "
+        "written",
+        sim_time, path));
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::trunc);
+    file << kCheckpointTag << "\n"
+         << "robot " << options_.robot << "\n"
+         << "sim_time " << Hex(sim_time) << "\n"
+         << "have_last " << (snap->have_last ? 1 : 0) << "\n"
+         << "last_time " << Hex(snap->last_time) << "\n"
+         << snap->controller.SaveState() << "\n";
+    if (!file.flush()) throw std::runtime_error("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    throw std::runtime_error("cannot rename " + tmp + " to " + path);
+  }
+}
+
+void GaitNode::Restore(const std::string& checkpoint) {
+  const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
+  std::ifstream in(path);
+  std::string tag, key, robot, state;
+  std::string time_text, last_text;
+  int have_last = 0;
+  if (!(in >> tag) || tag != kCheckpointTag) {
+    throw std::runtime_error(path + ": not a mrsim-gait checkpoint");
+  }
+  if (!(in >> key >> robot) || key != "robot" || robot != options_.robot) {
+    throw std::runtime_error(path + ": not robot " + options_.robot + "'s");
+  }
+  if (!(in >> key >> time_text) || key != "sim_time" ||
+      !(in >> key >> have_last) || key != "have_last" ||
+      !(in >> key >> last_text) || key != "last_time") {
+    throw std::runtime_error(path + ": bad header");
+  }
+  in >> std::ws;
+  std::getline(in, state);
+  GaitController restored = *controller_;
+  try {
+    restored.LoadState(state);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  *controller_ = std::move(restored);
+  have_last_ = have_last != 0;
+  last_time_ = std::strtod(last_text.c_str(), nullptr);
+  recent_.clear();
+  snapshots_.clear();
+  Log(fmt::format("restored the gait saved at sim time {} s from {}",
+                  std::strtod(time_text.c_str(), nullptr), path));
 }
 
 std::string GaitNode::Summary() const {

@@ -22,10 +22,17 @@
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
+#include "mrsim/sim_control_t.hpp"
+#include "mrsim/sim_status_t.hpp"
 
 namespace mrsim {
 
 using GaitOutbox = Outbox<joint_command_t, gait_status_t>;
+
+// Where mrsim-gait keeps its state beside a simulator checkpoint:
+// "<checkpoint>.gait-<robot>".
+std::string GaitCheckpointPath(const std::string& checkpoint,
+                               const std::string& robot);
 
 struct GaitNodeOptions {
   std::string robot;
@@ -79,6 +86,19 @@ class GaitNode {
   // Something on our channels that does not decode.
   void OnMalformedState();
   void OnMalformedGait(WallTime now, GaitOutbox* out);
+  // Checkpoints: a SAVE_CHECKPOINT request the simulator acknowledges as
+  // done makes the node write, to GaitCheckpointPath(path), its state from
+  // just before it answered the saved state; an acknowledged
+  // LOAD_CHECKPOINT restores that file, so the gait continues as it did
+  // after the save (bit for bit in lockstep). Requests and statuses from
+  // <prefix>_SIM_CONTROL and <prefix>_SIM_STATUS.
+  void OnSimControl(const sim_control_t& request);
+  void OnSimStatus(const sim_status_t& status, WallTime now, GaitOutbox* out);
+  // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
+  // checkpoint when the first state comes. Throws std::runtime_error
+  // naming the file when it cannot be read.
+  void Resume(const std::string& checkpoint);
+
   // The heartbeat; returns when it wants to be called again.
   WallTime Tick(WallTime now, GaitOutbox* out);
 
@@ -95,7 +115,14 @@ class GaitNode {
   std::string Summary() const;
 
  private:
+  struct Snapshot {
+    GaitController controller;
+    bool have_last = false;
+    double last_time = 0;
+  };
   void HandleState(const robot_state_t& state, GaitOutbox* out);
+  void WriteCheckpoint(const std::string& path, double sim_time) const;
+  void Restore(const std::string& path);
   void Acknowledge(const gait_command_t& command, int8_t result,
                    const std::string& error);
   void PublishStatus(WallTime now, GaitOutbox* out);
@@ -114,6 +141,10 @@ class GaitNode {
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;
   std::map<int64_t, joint_command_t> recent_;  // answers by state seq
+  // The controller just before answering the state of each sim time.
+  std::map<double, Snapshot> snapshots_;
+  std::map<std::pair<std::string, int64_t>, sim_control_t> requests_;
+  std::string resume_path_;  // restore when the controller is built
   int64_t command_seq_ = 0;
 
   WallTime last_status_;

@@ -30,9 +30,18 @@ GaitServer::GaitServer(lcm::LCM& lcm, GaitNodeOptions options,
   if (state == nullptr || gait == nullptr) {
     throw std::runtime_error("cannot subscribe to the LCM channels");
   }
+  lcm::Subscription* control = lcm_.subscribe(SimControlChannel(options.prefix),
+                                              &GaitServer::OnSimControl, this);
+  lcm::Subscription* status = lcm_.subscribe(SimStatusChannel(options.prefix),
+                                             &GaitServer::OnSimStatus, this);
+  if (control == nullptr || status == nullptr) {
+    throw std::runtime_error("cannot subscribe to the LCM channels");
+  }
   state->setQueueCapacity(kStateQueueCapacity);
   gait->setQueueCapacity(kGaitQueueCapacity);
-  subscriptions_ = {state, gait};
+  control->setQueueCapacity(kGaitQueueCapacity);
+  status->setQueueCapacity(kGaitQueueCapacity);
+  subscriptions_ = {state, gait, control, status};
 }
 
 GaitServer::~GaitServer() {
@@ -65,6 +74,27 @@ void GaitServer::OnGait(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     Flush();
   } catch (...) {
     node_.OnMalformedState();
+  }
+}
+
+// Foreign or broken traffic on the simulator's channels is not ours to
+// count: the simulator counts it.
+void GaitServer::OnSimControl(const lcm::ReceiveBuffer* rbuf,
+                              const std::string&) {
+  try {
+    if (DecodeMessage(rbuf, &control_)) node_.OnSimControl(control_);
+  } catch (...) {
+  }
+}
+
+void GaitServer::OnSimStatus(const lcm::ReceiveBuffer* rbuf,
+                             const std::string&) {
+  try {
+    if (DecodeMessage(rbuf, &status_)) {
+      node_.OnSimStatus(status_, WallClock::now(), &outbox_);
+      Flush();
+    }
+  } catch (...) {
   }
 }
 

@@ -20,7 +20,8 @@ namespace mrsim {
 
 class GaitServer {
  public:
-  // Subscribes STATE_<robot> and GAIT_<robot>. Throws std::runtime_error if
+  // Subscribes STATE_<robot>, GAIT_<robot>, SIM_CONTROL and SIM_STATUS
+  // (checkpoints). Throws std::runtime_error if
   // LCM cannot subscribe, std::invalid_argument on bad options.
   GaitServer(lcm::LCM& lcm, GaitNodeOptions options,
              std::function<std::vector<Axis>(int)> axes_for, Gait initial);
@@ -35,10 +36,13 @@ class GaitServer {
            std::ostream& log);
 
   const GaitNode& node() const { return node_; }
+  GaitNode& node() { return node_; }
 
  private:
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void OnGait(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void OnSimControl(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void OnSimStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void Flush();
 
   lcm::LCM& lcm_;
@@ -47,6 +51,8 @@ class GaitServer {
   std::vector<lcm::Subscription*> subscriptions_;
   robot_state_t state_;  // reused: no allocation per state
   gait_command_t gait_;
+  sim_control_t control_;
+  sim_status_t status_;
   std::vector<uint8_t> buffer_;
 };
 

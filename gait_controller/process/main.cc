@@ -1,7 +1,7 @@
 // mrsim-gait: drives one robot of a running mrsim-sim with a sinusoid gait
-// (docs/gait.md). Answers every state with joint targets, takes run-time
-// changes from <prefix>_GAIT_<robot> and, with --keyboard, from the keys,
-// and publishes what it runs on <prefix>_GAIT_STATUS_<robot>.
+// (docs/gait.md): answers every state with joint targets, takes run-time
+// changes from <prefix>_GAIT_<robot> and the keyboard, publishes the gait
+// it runs on <prefix>_GAIT_STATUS_<robot>.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     mrsim::GaitServer server(lcm, flags.options, flags.axes_for, flags.initial);
+    if (!flags.resume.empty()) server.node().Resume(flags.resume);
     const mrsim::GaitNodeOptions& o = flags.options;
     std::cerr << "mrsim-gait: robot " << o.robot << ", sender " << o.sender
               << ", gait " << flags.initial.name << ", listening on "

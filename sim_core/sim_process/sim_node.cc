@@ -413,6 +413,10 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
 
 void SimNode::OnControl(const sim_control_t& msg, WallTime now,
                         SimOutbox* out) {
+  // The acknowledgement goes before anything the request publishes (the
+  // new state after RESET or LOAD_CHECKPOINT), so a controller knows of
+  // the load before it sees the state it has to answer.
+  const size_t first = out->messages.size();
   try {
     auto last = control_last_seq_.find(msg.sender);
     if (last != control_last_seq_.end() && msg.seq > last->second + 1) {
@@ -497,6 +501,8 @@ void SimNode::OnControl(const sim_control_t& msg, WallTime now,
     Fail(std::string("control: ") + e.what());
   }
   PublishStatus(now, out);
+  std::rotate(out->messages.begin() + static_cast<std::ptrdiff_t>(first),
+              out->messages.end() - 1, out->messages.end());
 }
 
 void SimNode::Stop(StopReason reason, WallTime now, SimOutbox* out) {

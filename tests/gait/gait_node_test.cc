@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/process/gait_command_apply.h"
@@ -321,6 +322,96 @@ TEST(GaitJointAxes, PatternsAndLetters) {
             (std::vector<Axis>{Axis::kYaw, Axis::kYaw, Axis::kPitch}));
   EXPECT_THROW(JointAxesSpec("PYX"), std::invalid_argument);
   EXPECT_THROW(JointAxesSpec("PY").Expand(3), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+// The simulator's request and its acknowledgement, as the node sees them.
+void SaveOrLoad(GaitNode& node, int8_t command, const std::string& path,
+                double sim_time, int64_t seq, WallTime now, GaitOutbox* out) {
+  sim_control_t request{};
+  request.seq = seq;
+  request.sender = "ctl";
+  request.command = command;
+  request.path = path;
+  node.OnSimControl(request);
+  sim_status_t ack{};
+  ack.control_seq = seq;
+  ack.control_sender = "ctl";
+  ack.control_ok = true;
+  ack.sim_time = sim_time;
+  node.OnSimStatus(ack, now, out);
+}
+
+std::vector<std::vector<double>> Answers(GaitOutbox* out) {
+  std::vector<std::vector<double>> targets;
+  for (auto& [channel, msg] : out->messages) {
+    if (auto* c = std::get_if<joint_command_t>(&msg)) {
+      targets.push_back(c->target);
+    }
+  }
+  out->clear();
+  return targets;
+}
+
+TEST(GaitNodeCheckpoint, AFreshNodeResumesTheSavedGaitBitForBit) {
+  const std::string dir = ::testing::TempDir();
+  const std::string checkpoint = dir + "/gait_node_resume.ckpt";
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.sender = "g";
+  auto axes = [](int n) { return JointAxesSpec("pitch-yaw").Expand(n); };
+  const WallTime now{};
+  GaitOutbox out;
+  GaitNode a(o, axes, *FindGaitPreset("forward"), now);
+  for (int k = 0; k <= 100; ++k) {
+    a.OnState(State(k, k * 0.01, 6), now, &out);
+    if (k == 60) {  // a turn still ramping in when the checkpoint is taken
+      gait_command_t turn{};
+      turn.motion = "turn-left";
+      turn.strength = 0.8;
+      a.OnGaitCommand(turn, now, &out);
+    }
+  }
+  out.clear();
+  // The simulator saved at the state of t = 1.00 (answered already).
+  SaveOrLoad(a, sim_control_t::SAVE_CHECKPOINT, checkpoint, 1.0, 1, now, &out);
+  ASSERT_TRUE(std::ifstream(GaitCheckpointPath(checkpoint, "snake")).good());
+  for (int k = 101; k <= 300; ++k) a.OnState(State(k, k * 0.01, 6), now, &out);
+  const auto original = Answers(&out);
+
+  // A fresh process, started with --resume, gets the sim's states from the
+  // checkpoint on (a new simulator numbers them from 0 again).
+  GaitNode b(o, axes, *FindGaitPreset("forward"), now);
+  b.Resume(checkpoint);
+  b.OnState(State(0, 1.0, 6), now, &out);
+  for (int k = 101; k <= 300; ++k) {
+    b.OnState(State(k - 100, k * 0.01, 6), now, &out);
+  }
+  const auto resumed = Answers(&out);
+  ASSERT_EQ(resumed.size(), original.size() + 1);
+  for (size_t i = 0; i < original.size(); ++i) {
+    ASSERT_EQ(resumed[i + 1], original[i]) << i;
+  }
+  EXPECT_EQ(b.controller()->motion(), Motion::kTurnLeft);
+
+  // LOAD_CHECKPOINT over LCM in the same process does the same.
+  SaveOrLoad(a, sim_control_t::LOAD_CHECKPOINT, checkpoint, 1.0, 2, now, &out);
+  out.clear();
+  a.OnState(State(301, 1.0, 6), now, &out);
+  for (int k = 101; k <= 300; ++k) {
+    a.OnState(State(k + 201, k * 0.01, 6), now, &out);
+  }
+  const auto reloaded = Answers(&out);
+  ASSERT_EQ(reloaded.size(), resumed.size());
+  EXPECT_EQ(reloaded, resumed);
+
+  GaitNode c(o, axes, *FindGaitPreset("forward"), now);
+  EXPECT_THROW(c.Resume(dir + "/none.ckpt"), std::runtime_error);
 }
 
 }  // namespace
