@@ -1,7 +1,5 @@
 // mrsim-gait: drives one robot of a running mrsim-sim with a sinusoid gait
-// (docs/gait.md): answers every state with joint targets, takes run-time
-// changes from <prefix>_GAIT_<robot> and the keyboard, publishes the gait
-// it runs on <prefix>_GAIT_STATUS_<robot>.
+// (docs/gait.md; the logic is GaitNode, wired to LCM by GaitServer).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
