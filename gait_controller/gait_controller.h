@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "gait_controller/gait.h"
@@ -63,6 +64,15 @@ class GaitController {
   const std::vector<double>& Update(double dt);
   // Back to rest (targets 0, phase 0, time 0); gaits and motion are kept.
   void Reset();
+
+  // Everything that evolves (gaits, motion, ramps, phase, time) as text,
+  // doubles exact (hex floats), so a controller restored with LoadState
+  // continues bit for bit (mrsim-gait saves it beside a checkpoint).
+  std::string SaveState() const;
+  // Restores what SaveState wrote. Throws std::invalid_argument on text
+  // that is not such a state or is for another joint count (nothing
+  // changes then).
+  void LoadState(const std::string& text);
 
   Motion motion() const { return motion_; }
   double strength() const { return strength_; }

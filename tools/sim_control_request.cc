@@ -28,7 +28,7 @@ double Number(const std::string& text, const std::string& command) {
 
 const char* SimControlUsage() {
   return "pause | resume | step N | reset | save PATH | load PATH | speed S "
-         "| quit";
+         "| detach ROBOT LOCK | attach ROBOT LOCK | quit";
 }
 
 sim_control_t ParseSimControl(const std::vector<std::string>& words) {
@@ -66,6 +66,15 @@ sim_control_t ParseSimControl(const std::vector<std::string>& words) {
                                   words[1] + "'");
     }
     msg.command = sim_control_t::SET_SPEED;
+  } else if (c == "detach" || c == "attach") {
+    if (words.size() != 3) {
+      throw std::invalid_argument("'" + c +
+                                  "' takes a robot and a lock name (as the "
+                                  "robot's state lists them)");
+    }
+    msg.command = c == "detach" ? sim_control_t::DETACH : sim_control_t::ATTACH;
+    msg.robot = words[1];
+    msg.lock = words[2];
   } else if (c == "quit") {
     Expect(words, 0, "no argument");
     msg.command = sim_control_t::QUIT;

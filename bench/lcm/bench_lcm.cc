@@ -1,6 +1,7 @@
 // bench_lcm: what LCM costs the simulator, measured in one run.
 //  (a) closed-loop lockstep over LCM (mrsim-sim + a controller process,
-//      100 Hz control, 2 ms physics step) vs the same loop in one process;
+//      100 Hz control, 2 ms physics step), strict and pipelined
+//      (--actuation-delay 1), vs the same loop in one process;
 //  (b) mrsim-sim's server publishing state at 100 Hz vs not publishing
 //      (fast clock);
 //  (c) round trip of a state-sized robot_state_t through encode/decode and a
@@ -261,7 +262,7 @@ Pace LocalLoop(const std::string& scenario, double duration,
 }
 
 Pace LcmLoop(const std::string& scenario, double duration, int port,
-             const std::string& dir) {
+             const std::string& dir, int delay) {
   std::ostringstream d;
   d << duration;
   const std::string out = dir + "/sim.out";
@@ -269,7 +270,8 @@ Pace LcmLoop(const std::string& scenario, double duration, int port,
   {
     Child sim({MRSIM_SIM_BINARY, scenario, "--lcm-url", Url(port), "--clock",
                "lockstep", "--controllers", "bench", "--rate", "100",
-               "--duration", d.str(), "--lockstep-timeout", "30"},
+               "--duration", d.str(), "--lockstep-timeout", "30",
+               "--actuation-delay", std::to_string(delay)},
               out);
     Child controller({SelfPath(), "--controller", Url(port)});
     WaitExit(sim);
@@ -354,23 +356,33 @@ int RunBench() {
   // (a) lockstep over LCM vs in one process; best of kRepeats each, so a
   // neighbour's burst on a shared machine does not decide the ratio.
   const double duration = 20.0;
-  std::vector<double> local, remote, local_cpu, remote_cpu;
+  // Strict lockstep and pipelined lockstep (--actuation-delay 1, the
+  // answer to state k acts from period k+1) against the same baseline.
+  std::vector<double> local, remote, piped, local_cpu, remote_cpu, piped_cpu;
   for (int r = 0; r < kRepeats; ++r) {
     const Pace l = LocalLoop(path, duration, dir.string());
-    const Pace x = LcmLoop(path, duration, 7900, dir.string());
+    const Pace x = LcmLoop(path, duration, 7900, dir.string(), 0);
+    const Pace p = LcmLoop(path, duration, 7900, dir.string(), 1);
     local.push_back(l.wall);
     remote.push_back(x.wall);
+    piped.push_back(p.wall);
     local_cpu.push_back(l.cpu);
     remote_cpu.push_back(x.cpu);
+    piped_cpu.push_back(p.cpu);
   }
   std::cout << "lockstep: in-process " << Best(local) << " sim s/s, over LCM "
-            << Best(remote)
-            << " sim s/s (per CPU s of all processes: " << Best(local_cpu)
-            << " vs " << Best(remote_cpu) << ")\n";
+            << Best(remote) << " sim s/s strict, " << Best(piped)
+            << " sim s/s pipelined (per CPU s of all processes: "
+            << Best(local_cpu) << " vs " << Best(remote_cpu) << " and "
+            << Best(piped_cpu) << ")\n";
   std::cout << "BENCH lockstep_ratio " << Best(remote) / Best(local) << " x"
             << std::endl;
   std::cout << "BENCH lockstep_ratio_cpu " << Best(remote_cpu) / Best(local_cpu)
             << " x" << std::endl;
+  std::cout << "BENCH lockstep_pipelined_ratio " << Best(piped) / Best(local)
+            << " x" << std::endl;
+  std::cout << "BENCH lockstep_pipelined_ratio_cpu "
+            << Best(piped_cpu) / Best(local_cpu) << " x" << std::endl;
 
   // (b) fast clock with and without 100 Hz state publishing.
   // The snake lies still (no controller), the heaviest contact load.

@@ -2,48 +2,47 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "gait_controller/process/gait_command_apply.h"
+#include "gait_controller/process/motion_fit.h"
 #include "lcmtypes/runtime/channels.h"
-#include "lcmtypes/runtime/decode.h"
 
 namespace mrsim {
 
 namespace {
 
 constexpr size_t kMaxQueued = 100;
+constexpr size_t kMaxSnapshots = 256;
+constexpr size_t kMaxRequests = 64;
+constexpr const char* kCheckpointTag = "mrsim-gait-checkpoint-1";
+
+std::string Hex(double v) { return fmt::format("{:a}", v); }
 constexpr size_t kMaxLogLines = 1000;
-constexpr int kStateQueueCapacity = 100;
-constexpr int kGaitQueueCapacity = 100;
 
 }  // namespace
 
-GaitNode::GaitNode(lcm::LCM& lcm, GaitNodeOptions options,
-                   std::function<std::vector<Axis>(int)> axes_for, Gait initial)
-    : lcm_(lcm),
-      options_(std::move(options)),
+std::string GaitCheckpointPath(const std::string& checkpoint,
+                               const std::string& robot) {
+  return checkpoint + ".gait-" + robot;
+}
+
+GaitNode::GaitNode(GaitNodeOptions options,
+                   std::function<std::vector<Axis>(int)> axes_for, Gait initial,
+                   WallTime now)
+    : options_(std::move(options)),
       axes_for_(std::move(axes_for)),
-      initial_(std::move(initial)) {
+      initial_(std::move(initial)),
+      last_status_(now) {
   if (!(options_.rate >= 0) || !std::isfinite(options_.rate)) {
     throw std::invalid_argument("--rate must be >= 0");
   }
-  lcm::Subscription* state = lcm_.subscribe(
-      StateChannel(options_.prefix, options_.robot), &GaitNode::OnState, this);
-  lcm::Subscription* gait = lcm_.subscribe(
-      GaitChannel(options_.prefix, options_.robot), &GaitNode::OnGait, this);
-  if (state == nullptr || gait == nullptr) {
-    throw std::runtime_error("cannot subscribe to the LCM channels");
-  }
   rate_ = options_.rate;
-  state->setQueueCapacity(kStateQueueCapacity);
-  gait->setQueueCapacity(kGaitQueueCapacity);
-  subscriptions_ = {state, gait};
-}
-
-GaitNode::~GaitNode() {
-  for (lcm::Subscription* s : subscriptions_) lcm_.unsubscribe(s);
 }
 
 void GaitNode::Log(std::string line) {
@@ -65,62 +64,145 @@ std::string GaitNode::Describe() const {
                      ToString(c.active_kind()));
 }
 
-void GaitNode::Apply(const gait_command_t& command, const std::string& source) {
+gait_status_t GaitNode::status() const {
+  gait_status_t s{};
+  s.utime = static_cast<int64_t>(std::llround(last_time_ * 1e6));
+  s.seq = status_seq_;
+  s.robot = options_.robot;
+  s.sender = options_.sender;
+  s.sim_time = have_last_ ? last_time_ : 0.0;
+  s.running = controller_ != nullptr;
+  const Gait& gait = controller_ ? controller_->active_gait() : initial_;
+  s.gait = gait.name;
+  s.kind = ToString(gait.kind);
+  const auto values = gait.parameters.ToArray();
+  std::copy(values.begin(), values.end(), s.parameters);
+  s.motion = ToString(controller_ ? controller_->motion() : Motion::kForward);
+  s.strength = controller_ ? controller_->strength() : 1.0;
+  s.stopped = controller_ && controller_->stopped();
+  s.states_answered = counters_.states_answered;
+  s.commands_applied = counters_.commands_applied;
+  s.commands_rejected = counters_.commands_rejected;
+  s.messages_malformed = counters_.messages_malformed;
+  s.command_seq = ack_seq_;
+  s.command_sender = ack_sender_;
+  s.command_result = ack_result_;
+  s.command_error = ack_error_;
+  s.warning = warning_;
+  return s;
+}
+
+void GaitNode::PublishStatus(WallTime now, GaitOutbox* out) {
+  out->Add(GaitStatusChannel(options_.prefix, options_.robot), status());
+  ++status_seq_;
+  last_status_ = now;
+}
+
+void GaitNode::Start(WallTime now, GaitOutbox* out) { PublishStatus(now, out); }
+
+WallTime GaitNode::Tick(WallTime now, GaitOutbox* out) {
+  WallTime due = AfterSeconds(last_status_, kHeartbeatInterval);
+  if (now >= due) {
+    PublishStatus(now, out);
+    due = AfterSeconds(now, kHeartbeatInterval);
+  }
+  return due;
+}
+
+void GaitNode::Acknowledge(const gait_command_t& command, int8_t result,
+                           const std::string& error) {
+  ack_seq_ = command.seq;
+  ack_sender_ = command.sender;
+  ack_result_ = result;
+  ack_error_ = error;
+}
+
+void GaitNode::CheckFit() {
+  const std::string warning =
+      MotionFitWarning(controller_->motion(), controller_->joint_axes());
+  if (warning != warning_ && !warning.empty()) {
+    Log("warning: robot " + options_.robot + ": " + warning);
+  }
+  warning_ = warning;
+}
+
+void GaitNode::Apply(const gait_command_t& command, const std::string& source,
+                     WallTime now, GaitOutbox* out) {
   try {
     if (!controller_) {
       if (queued_.size() >= kMaxQueued) {
         ++counters_.commands_rejected;
-        Log(
-            fmt::format("rejected gait command from {}: too many before the "
-                        "first state",
-                        source));
-        return;
+        Acknowledge(command, gait_status_t::REJECTED,
+                    "too many commands before the first state");
+        Log(fmt::format(
+            "rejected gait command from {}: too many before the first state",
+            source));
+      } else {
+        queued_.emplace_back(command, source);
+        Acknowledge(command, gait_status_t::QUEUED, "");
       }
-      queued_.emplace_back(command, source);
+      PublishStatus(now, out);
       return;
     }
     const std::string what = ApplyGaitCommand(command, controller_.get());
     ++counters_.commands_applied;
+    Acknowledge(command, gait_status_t::APPLIED, "");
     Log(fmt::format("{}: {} -> {}", source, what, Describe()));
+    CheckFit();
   } catch (const std::exception& e) {
     ++counters_.commands_rejected;
+    Acknowledge(command, gait_status_t::REJECTED, e.what());
     Log(fmt::format("rejected gait command from {}: {} (keeping {})", source,
                     e.what(), Describe()));
   }
+  PublishStatus(now, out);
 }
 
-void GaitNode::OnGait(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  gait_command_t command;
-  if (!DecodeMessage(rbuf, &command)) {
-    ++counters_.messages_malformed;
-    ++counters_.commands_rejected;
-    Log("rejected a gait command that does not decode as gait_command_t");
-    return;
-  }
+void GaitNode::OnGaitCommand(const gait_command_t& command, WallTime now,
+                             GaitOutbox* out) {
   if (!command.robot.empty() && command.robot != options_.robot) {
     ++counters_.commands_rejected;
-    Log(fmt::format("rejected gait command for robot '{}' (this is {})",
-                    command.robot, options_.robot));
+    const std::string error =
+        fmt::format("gait command for robot '{}' (this is {})", command.robot,
+                    options_.robot);
+    Acknowledge(command, gait_status_t::REJECTED, error);
+    Log("rejected " + error);
+    PublishStatus(now, out);
     return;
   }
-  Apply(command, command.sender.empty() ? "lcm" : command.sender);
+  Apply(command, command.sender.empty() ? "lcm" : command.sender, now, out);
 }
 
-void GaitNode::OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  robot_state_t state;
-  if (!DecodeMessage(rbuf, &state)) {
-    ++counters_.messages_malformed;
-    return;
-  }
+void GaitNode::OnMalformedState() { ++counters_.messages_malformed; }
+
+void GaitNode::OnMalformedGait(WallTime now, GaitOutbox* out) {
+  ++counters_.messages_malformed;
+  ++counters_.commands_rejected;
+  Log("rejected a gait command that does not decode as gait_command_t");
+  PublishStatus(now, out);
+}
+
+void GaitNode::OnState(const robot_state_t& state, WallTime now,
+                       GaitOutbox* out) {
+  const bool had_controller = controller_ != nullptr;
   try {
-    HandleState(state);
+    HandleState(state, out);
   } catch (const std::exception& e) {
     ++counters_.messages_malformed;
     Log(fmt::format("state seq {} not answered: {}", state.seq, e.what()));
   }
+  if (!had_controller && controller_) {
+    // The controller exists now: apply what waited for it, report once.
+    while (!queued_.empty()) {
+      auto [command, source] = queued_.front();
+      queued_.pop_front();
+      Apply(command, source, now, out);
+    }
+    PublishStatus(now, out);
+  }
 }
 
-void GaitNode::HandleState(const robot_state_t& state) {
+void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
   if (!error_.empty()) return;
   if (state.robot != options_.robot) {
     ++counters_.states_foreign;
@@ -148,11 +230,12 @@ void GaitNode::HandleState(const robot_state_t& state) {
     }
     Log(fmt::format("robot {}: {} joints; {}", options_.robot, state.num_joints,
                     Describe()));
-    while (!queued_.empty()) {
-      auto [command, source] = queued_.front();
-      queued_.pop_front();
-      Apply(command, source);
+    if (!resume_path_.empty()) {
+      const std::string path = resume_path_;
+      resume_path_.clear();
+      Restore(path);
     }
+    CheckFit();
   }
   if (state.num_joints != controller_->joint_count()) {
     ++counters_.messages_malformed;
@@ -160,11 +243,11 @@ void GaitNode::HandleState(const robot_state_t& state) {
                     state.num_joints, controller_->joint_count()));
     return;
   }
-  if (have_last_ && state.seq == last_state_seq_) {
+  const auto recent = recent_.find(state.seq);
+  if (recent != recent_.end()) {
     // The simulator sent the state again (our answer may have been lost).
     ++counters_.states_repeated;
-    lcm_.publish(CommandChannel(options_.prefix, options_.robot),
-                 &last_command_);
+    out->Add(CommandChannel(options_.prefix, options_.robot), recent->second);
     return;
   }
   if (have_last_ && state.seq < last_state_seq_) {
@@ -193,6 +276,12 @@ void GaitNode::HandleState(const robot_state_t& state) {
     last_skipped_seq_ = state.seq;
     return;
   }
+  snapshots_.insert_or_assign(state.sim_time,
+                              Snapshot{*controller_, have_last_, last_time_});
+  while (snapshots_.size() > kMaxSnapshots) {
+    // Drop the oldest in sim time; after a reset that is the stale future.
+    snapshots_.erase(snapshots_.begin());
+  }
   const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;
   const std::vector<double>& targets = controller_->Update(dt);
 
@@ -204,13 +293,133 @@ void GaitNode::HandleState(const robot_state_t& state) {
   command.state_seq = state.seq;
   command.num_joints = static_cast<int32_t>(targets.size());
   command.target = targets;
-  lcm_.publish(CommandChannel(options_.prefix, options_.robot), &command);
+  out->Add(CommandChannel(options_.prefix, options_.robot), command);
 
-  last_command_ = std::move(command);
+  recent_[state.seq] = std::move(command);
+  while (recent_.size() > kRecentAnswers) recent_.erase(recent_.begin());
   last_state_seq_ = state.seq;
   last_time_ = state.sim_time;
   have_last_ = true;
   ++counters_.states_answered;
+}
+
+void GaitNode::OnSimControl(const sim_control_t& request) {
+  if (request.command != sim_control_t::SAVE_CHECKPOINT &&
+      request.command != sim_control_t::LOAD_CHECKPOINT) {
+    return;
+  }
+  if (requests_.size() >= kMaxRequests) requests_.erase(requests_.begin());
+  requests_[{request.sender, request.seq}] = request;
+}
+
+void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
+                           GaitOutbox* out) {
+  const auto it = requests_.find({status.control_sender, status.control_seq});
+  if (it == requests_.end()) return;
+  const sim_control_t request = it->second;
+  requests_.erase(it);
+  if (!status.control_ok) return;
+  const std::string path = GaitCheckpointPath(request.path, options_.robot);
+  try {
+    if (request.command == sim_control_t::SAVE_CHECKPOINT) {
+      WriteCheckpoint(path, status.sim_time);
+      Log(fmt::format("saved the gait at sim time {} s to {}", status.sim_time,
+                      path));
+    } else if (controller_) {
+      Restore(request.path);
+      PublishStatus(now, out);
+    } else {
+      resume_path_ = request.path;
+    }
+  } catch (const std::exception& e) {
+    Log(fmt::format("checkpoint: {}", e.what()));
+  }
+}
+
+void GaitNode::Resume(const std::string& checkpoint) {
+  const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
+  std::ifstream in(path);
+  if (!in) {
+    throw std::runtime_error("--resume: cannot read " + path +
+                             " (mrsim-gait writes it when the simulator "
+                             "saves that checkpoint)");
+  }
+  resume_path_ = checkpoint;
+}
+
+void GaitNode::WriteCheckpoint(const std::string& path, double sim_time) const {
+  const Snapshot* snap = nullptr;
+  Snapshot current{controller_ ? *controller_ : GaitController({Axis::kPitch}),
+                   have_last_, last_time_};
+  const auto found = snapshots_.find(sim_time);
+  if (found != snapshots_.end()) {
+    snap = &found->second;
+  } else if (controller_ && (!have_last_ || last_time_ < sim_time)) {
+    snap = &current;  // the saved state is not answered yet: now is right
+  }
+  if (snap == nullptr) {
+    throw std::runtime_error(fmt::format(
+        "no gait state at sim time {} s (states skipped or too old); {} not "
+        "written",
+        sim_time, path));
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::trunc);
+    file << kCheckpointTag << "\n"
+         << "robot " << options_.robot << "\n"
+         << "sim_time " << Hex(sim_time) << "\n"
+         << "have_last " << (snap->have_last ? 1 : 0) << "\n"
+         << "last_time " << Hex(snap->last_time) << "\n"
+         << snap->controller.SaveState() << "\n";
+    if (!file.flush()) throw std::runtime_error("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    throw std::runtime_error("cannot rename " + tmp + " to " + path);
+  }
+}
+
+void GaitNode::Restore(const std::string& checkpoint) {
+  const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
+  std::ifstream in(path);
+  std::string tag, key, robot, state;
+  std::string time_text, last_text;
+  int have_last = 0;
+  if (!(in >> tag) || tag != kCheckpointTag) {
+    throw std::runtime_error(path + ": not a mrsim-gait checkpoint");
+  }
+  if (!(in >> key >> robot) || key != "robot" || robot != options_.robot) {
+    throw std::runtime_error(path + ": not robot " + options_.robot + "'s");
+  }
+  if (!(in >> key >> time_text) || key != "sim_time" ||
+      !(in >> key >> have_last) || key != "have_last" ||
+      !(in >> key >> last_text) || key != "last_time") {
+    throw std::runtime_error(path + ": bad header");
+  }
+  in >> std::ws;
+  std::getline(in, state);
+  GaitController restored = *controller_;
+  try {
+    restored.LoadState(state);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  *controller_ = std::move(restored);
+  have_last_ = have_last != 0;
+  last_time_ = std::strtod(last_text.c_str(), nullptr);
+  recent_.clear();
+  snapshots_.clear();
+  Log(fmt::format("restored the gait saved at sim time {} s from {}",
+                  std::strtod(time_text.c_str(), nullptr), path));
+}
+
+std::string GaitNode::Summary() const {
+  const GaitNodeCounters& n = counters_;
+  return fmt::format(
+      "{}: answered {} states ({} repeated, {} skipped), gait commands "
+      "applied {}, rejected {}, malformed messages {}",
+      options_.robot, n.states_answered, n.states_repeated, n.states_skipped,
+      n.commands_applied, n.commands_rejected, n.messages_malformed);
 }
 
 }  // namespace mrsim

@@ -1,13 +1,15 @@
-// The LCM side of mrsim-gait: answers each state of one robot with joint
-// targets from a GaitController, using the state's sim time as the clock so
-// a lockstep run equals RunGait in process, and takes gait_command_t
-// changes. Holds the lcm::LCM by reference; main owns it.
+// mrsim-gait's logic as a plain state machine: answers each state of one
+// robot with joint targets from a GaitController (the state's sim time is
+// the clock, so a lockstep run equals RunGait in process), takes gait
+// commands from LCM or the keyboard, and reports what it runs in a
+// gait_status_t (on change and about once a second). Decoded messages and
+// the wall time in, messages to publish out; GaitServer is the LCM adapter.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <functional>
-#include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,11 +17,22 @@
 
 #include "gait_controller/gait.h"
 #include "gait_controller/gait_controller.h"
+#include "lcmtypes/runtime/outbox.h"
 #include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
+#include "mrsim/sim_control_t.hpp"
+#include "mrsim/sim_status_t.hpp"
 
 namespace mrsim {
+
+using GaitOutbox = Outbox<joint_command_t, gait_status_t>;
+
+// Where mrsim-gait keeps its state beside a simulator checkpoint:
+// "<checkpoint>.gait-<robot>".
+std::string GaitCheckpointPath(const std::string& checkpoint,
+                               const std::string& robot);
 
 struct GaitNodeOptions {
   std::string robot;
@@ -34,7 +47,7 @@ struct GaitNodeOptions {
 
 struct GaitNodeCounters {
   int64_t states_answered = 0;
-  int64_t states_repeated = 0;  // same seq again: the last answer re-sent
+  int64_t states_repeated = 0;  // a recent seq again: its answer re-sent
   int64_t states_skipped = 0;   // closer than 1/rate, or older than the last
   int64_t states_foreign = 0;   // another robot's
   int64_t messages_malformed = 0;
@@ -44,22 +57,52 @@ struct GaitNodeCounters {
 
 class GaitNode {
  public:
+  static constexpr double kHeartbeatInterval = 1.0;  // wall s
+  // Answers kept for states the simulator may send again (pipelined
+  // lockstep re-sends the two states it waits for).
+  static constexpr size_t kRecentAnswers = 8;
+
   // axes_for(joint_count) gives the hinge axes once the first state says
   // how many joints there are; it may throw std::invalid_argument, which
-  // makes the node fail (see error()). Subscribes STATE_<robot> and
-  // GAIT_<robot>. Throws std::runtime_error if LCM cannot subscribe.
-  GaitNode(lcm::LCM& lcm, GaitNodeOptions options,
-           std::function<std::vector<Axis>(int)> axes_for, Gait initial);
-  ~GaitNode();
-  GaitNode(const GaitNode&) = delete;
-  GaitNode& operator=(const GaitNode&) = delete;
+  // makes the node fail (see error()). Throws std::invalid_argument on a
+  // bad rate.
+  GaitNode(GaitNodeOptions options,
+           std::function<std::vector<Axis>(int)> axes_for, Gait initial,
+           WallTime now);
 
+  // The first gait status: mrsim-ctl waits for it before sending.
+  void Start(WallTime now, GaitOutbox* out);
+  // A decoded state on STATE_<robot>.
+  void OnState(const robot_state_t& state, WallTime now, GaitOutbox* out);
+  // A decoded gait command on GAIT_<robot>; commands for another robot are
+  // rejected.
+  void OnGaitCommand(const gait_command_t& command, WallTime now,
+                     GaitOutbox* out);
   // Applies a gait command from any source (LCM, keyboard) all or nothing;
   // before the first state it is queued. Never throws: a bad command is
-  // counted and logged.
-  void Apply(const gait_command_t& command, const std::string& source);
+  // counted, logged and acknowledged as rejected.
+  void Apply(const gait_command_t& command, const std::string& source,
+             WallTime now, GaitOutbox* out);
+  // Something on our channels that does not decode.
+  void OnMalformedState();
+  void OnMalformedGait(WallTime now, GaitOutbox* out);
+  // Checkpoints: a SAVE_CHECKPOINT request the simulator acknowledges as
+  // done makes the node write, to GaitCheckpointPath(path), its state from
+  // just before it answered the saved state; an acknowledged
+  // LOAD_CHECKPOINT restores that file, so the gait continues as it did
+  // after the save (bit for bit in lockstep). Requests and statuses from
+  // <prefix>_SIM_CONTROL and <prefix>_SIM_STATUS.
+  void OnSimControl(const sim_control_t& request);
+  void OnSimStatus(const sim_status_t& status, WallTime now, GaitOutbox* out);
+  // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
+  // checkpoint when the first state comes. Throws std::runtime_error
+  // naming the file when it cannot be read.
+  void Resume(const std::string& checkpoint);
 
-  // Lines to print (changes, rejections) since the last call.
+  // The heartbeat; returns when it wants to be called again.
+  WallTime Tick(WallTime now, GaitOutbox* out);
+
+  // Lines to print (changes, rejections, warnings) since the last call.
   std::vector<std::string> TakeLog();
   // Set when the node cannot go on (the joint axes do not fit the robot).
   const std::string& error() const { return error_; }
@@ -67,18 +110,28 @@ class GaitNode {
   // Null until the first state arrived.
   const GaitController* controller() const { return controller_.get(); }
   std::string Describe() const;
+  gait_status_t status() const;
+  // One line for the end of a run.
+  std::string Summary() const;
 
  private:
-  void OnState(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void OnGait(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void HandleState(const robot_state_t& state);
+  struct Snapshot {
+    GaitController controller;
+    bool have_last = false;
+    double last_time = 0;
+  };
+  void HandleState(const robot_state_t& state, GaitOutbox* out);
+  void WriteCheckpoint(const std::string& path, double sim_time) const;
+  void Restore(const std::string& path);
+  void Acknowledge(const gait_command_t& command, int8_t result,
+                   const std::string& error);
+  void PublishStatus(WallTime now, GaitOutbox* out);
+  void CheckFit();
   void Log(std::string line);
 
-  lcm::LCM& lcm_;
   GaitNodeOptions options_;
   std::function<std::vector<Axis>(int)> axes_for_;
   Gait initial_;
-  std::vector<lcm::Subscription*> subscriptions_;
   std::unique_ptr<GaitController> controller_;
   std::deque<std::pair<gait_command_t, std::string>> queued_;
 
@@ -87,8 +140,20 @@ class GaitNode {
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;
-  joint_command_t last_command_;
+  std::map<int64_t, joint_command_t> recent_;  // answers by state seq
+  // The controller just before answering the state of each sim time.
+  std::map<double, Snapshot> snapshots_;
+  std::map<std::pair<std::string, int64_t>, sim_control_t> requests_;
+  std::string resume_path_;  // restore when the controller is built
   int64_t command_seq_ = 0;
+
+  WallTime last_status_;
+  int64_t status_seq_ = 0;
+  int64_t ack_seq_ = -1;
+  std::string ack_sender_;
+  int8_t ack_result_ = gait_status_t::NONE;
+  std::string ack_error_;
+  std::string warning_;
 
   GaitNodeCounters counters_;
   std::vector<std::string> log_;

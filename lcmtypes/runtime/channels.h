@@ -22,6 +22,11 @@ inline std::string GaitChannel(const std::string& prefix,
                                const std::string& robot) {
   return prefix + "_GAIT_" + robot;
 }
+// What one robot's mrsim-gait runs (gait_status_t).
+inline std::string GaitStatusChannel(const std::string& prefix,
+                                     const std::string& robot) {
+  return prefix + "_GAIT_STATUS_" + robot;
+}
 // Poses of the movable scene objects (scene_state_t).
 inline std::string SceneChannel(const std::string& prefix) {
   return prefix + "_SCENE";

@@ -41,10 +41,11 @@ int CommandFilter::robot_index(const std::string& name) const {
   return -1;
 }
 
-CommandVerdict CommandFilter::Check(
-    const joint_command_t& cmd, const std::string& channel_robot,
-    int64_t latest_state_seq, bool lockstep,
-    const std::vector<std::string>& controllers) {
+CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
+                                    const std::string& channel_robot,
+                                    int64_t latest_state_seq, bool lockstep,
+                                    const std::vector<std::string>& controllers,
+                                    int64_t oldest_state_seq) {
   const int robot = robot_index(cmd.robot);
   if (robot < 0 || cmd.robot != channel_robot) {
     return CommandVerdict::kUnknownRobot;
@@ -86,18 +87,25 @@ CommandVerdict CommandFilter::Check(
       return CommandVerdict::kStaleSeq;
     }
   } else {
-    // Lockstep applies an answer only to the state being waited for.
-    if (lockstep && cmd.state_seq != latest_state_seq) {
-      return CommandVerdict::kStaleSeq;
-    }
-    if (cmd.state_seq < newest_state_seq_[robot]) {
+    if (lockstep) {
+      // Lockstep applies an answer only to a state being waited for; each
+      // state has its own answers, so several controllers of one robot
+      // may answer in any order.
+      const int64_t oldest =
+          oldest_state_seq < 0 ? latest_state_seq : oldest_state_seq;
+      if (cmd.state_seq < oldest) return CommandVerdict::kStaleSeq;
+      if (h.accepted && cmd.state_seq < h.last_state_seq) {
+        return CommandVerdict::kStaleSeq;
+      }
+    } else if (cmd.state_seq < newest_state_seq_[robot]) {
       return CommandVerdict::kStaleSeq;
     }
     if (h.accepted && cmd.state_seq == h.last_state_seq &&
         cmd.seq <= h.last_seq) {
       return CommandVerdict::kStaleSeq;  // duplicate or reordered answer
     }
-    newest_state_seq_[robot] = cmd.state_seq;
+    newest_state_seq_[robot] =
+        std::max(newest_state_seq_[robot], cmd.state_seq);
   }
   h.accepted = true;
   h.last_state_seq = cmd.state_seq;

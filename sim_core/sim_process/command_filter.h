@@ -39,11 +39,14 @@ class CommandFilter {
   // Judges `cmd` received on the command channel of `channel_robot`.
   // latest_state_seq: the seq of the newest state published. lockstep:
   // commands must answer a state (state_seq >= 0) and come from one of
-  // `controllers`. Accepted commands update the sequence history.
+  // `controllers`, answering a state in [oldest_state_seq, latest] (-1:
+  // the latest only; pipelined lockstep also takes the state still
+  // awaited). Accepted commands update the sequence history.
   CommandVerdict Check(const joint_command_t& cmd,
                        const std::string& channel_robot,
                        int64_t latest_state_seq, bool lockstep,
-                       const std::vector<std::string>& controllers);
+                       const std::vector<std::string>& controllers,
+                       int64_t oldest_state_seq = -1);
 
   // Commands a sender numbered but we never saw (gaps in its seq).
   int64_t seq_gaps() const { return seq_gaps_; }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace mrsim {
 
@@ -39,6 +40,16 @@ void SimOptions::Validate() const {
   }
   if (!(std::isfinite(duration) && duration >= 0)) {
     throw std::invalid_argument("--duration: expected seconds >= 0");
+  }
+  if (actuation_delay < 0 || actuation_delay > kMaxActuationDelay) {
+    throw std::invalid_argument("--actuation-delay: expected 0.." +
+                                std::to_string(kMaxActuationDelay) + ", got " +
+                                std::to_string(actuation_delay));
+  }
+  if (actuation_delay > 0 && clock != ClockMode::kLockstep) {
+    throw std::invalid_argument(
+        "--actuation-delay needs --clock lockstep (the other clocks apply "
+        "the newest command whenever it arrives)");
   }
   if (clock == ClockMode::kLockstep) {
     if (controllers.empty()) {

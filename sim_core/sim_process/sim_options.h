@@ -17,6 +17,8 @@ const char* ToString(ClockMode mode);
 // Throws std::invalid_argument naming the accepted values.
 ClockMode ParseClockMode(const std::string& text);
 
+inline constexpr int kMaxActuationDelay = 8;
+
 struct SimOptions {
   std::string prefix = kDefaultChannelPrefix;
   ClockMode clock = ClockMode::kRealtime;
@@ -24,7 +26,11 @@ struct SimOptions {
   double rate = 100.0;  // Hz: state publication rate = control rate
   std::vector<std::string> controllers;  // lockstep: senders to wait for
   double lockstep_timeout = 2.0;         // s (wall) before warning
-  double duration = 0.0;                 // s of sim time; 0 = forever
+  // Lockstep: the answer to state k acts from period k + actuation_delay
+  // (0: strict; 1: pipelined, the next period's physics overlaps the round
+  // trip). At most kMaxActuationDelay.
+  int actuation_delay = 0;
+  double duration = 0.0;  // s of sim time; 0 = forever
   bool paused = false;
   bool publish_state = true;  // false: batch runs that nobody watches
   std::string checkpoint_on_exit;

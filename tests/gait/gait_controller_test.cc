@@ -230,3 +230,29 @@ TEST(GaitController, TargetsStayWithinTheLimit) {
 
 }  // namespace
 }  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+TEST(GaitControllerState, SavedAndLoadedContinuesBitForBit) {
+  const std::vector<Axis> axes = {Axis::kPitch, Axis::kYaw, Axis::kPitch,
+                                  Axis::kYaw, Axis::kPitch};
+  GaitController a(axes);
+  a.SetGait(*FindGaitPreset("sidewind-2"));
+  for (int k = 0; k < 137; ++k) a.Update(0.01);
+  a.SetMotion(Motion::kTurnLeft, 0.6);  // mid-transition when saved
+  for (int k = 0; k < 23; ++k) a.Update(0.01);
+  GaitController b(axes);
+  b.LoadState(a.SaveState());
+  EXPECT_EQ(b.SaveState(), a.SaveState());
+  for (int k = 0; k < 300; ++k) {
+    ASSERT_EQ(a.Update(0.01), b.Update(0.01)) << k;
+  }
+  EXPECT_EQ(b.motion(), Motion::kTurnLeft);
+  GaitController other(std::vector<Axis>(3, Axis::kPitch));
+  EXPECT_THROW(other.LoadState(a.SaveState()), std::invalid_argument);
+  EXPECT_THROW(other.LoadState("garbage"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mrsim

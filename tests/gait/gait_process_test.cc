@@ -14,6 +14,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "sim_core/chain_builder.h"
@@ -21,6 +22,7 @@
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/sim_process/sim_client.h"
 
 namespace mrsim {
 namespace {
@@ -243,6 +245,88 @@ TEST(GaitProcess, LuaControllerExampleDrivesTheSimulator) {
   const double moved = rec.states[400].com[0] - rec.states[0].com[0];
   EXPECT_GT(moved, 0.03) << lua.Output();
   EXPECT_LT(std::abs(rec.states[400].com[1] - rec.states[0].com[1]), 0.01);
+}
+
+// A checkpoint taken while mrsim-gait drives the robot (mid-way through a
+// turn it was told to make) resumes, with a fresh mrsim-sim and a fresh
+// mrsim-gait --resume, to exactly the trajectory of the uninterrupted run.
+TEST(GaitProcess, CheckpointWithTheGaitResumesTheSameTrajectory) {
+  const std::string dir = TempDir("gait_process_checkpoint");
+  const std::string scenario = WriteSnake(dir);
+  const std::string checkpoint = dir + "/mid.ckpt";
+  const std::string url = TestLcmUrl(7654);
+  auto sim_args = [&](std::vector<std::string> first) {
+    first.insert(first.begin(), BinaryPath(kSim));
+    for (const char* a : {"--lcm-url", url.c_str(), "--clock", "lockstep",
+                          "--controllers", "g", "--paused"}) {
+      first.push_back(a);
+    }
+    return first;
+  };
+  auto gait_args = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = {
+        BinaryPath(kGait), "--robot", "snake",  "--scenario", scenario,
+        "--lcm-url",       url,       "--name", "g"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  robot_state_t uninterrupted, resumed;
+  {
+    testing::SimClient client(url);
+    std::optional<gait_status_t> gait_status;
+    struct Listener {
+      std::optional<gait_status_t>* out;
+      void On(const lcm::ReceiveBuffer*, const std::string&,
+              const gait_status_t* msg) {
+        *out = *msg;
+      }
+    } listener{&gait_status};
+    client.lcm().subscribe(GaitStatusChannel("MRSIM", "snake"), &Listener::On,
+                           &listener);
+    ChildProcess sim(sim_args({scenario}), dir + "/sim1.log");
+    ChildProcess gait(gait_args({}), dir + "/gait1.log");
+    ASSERT_TRUE(
+        client.WaitFor([&] { return client.status().has_value(); }, 20));
+    ASSERT_TRUE(client.StepAndWait(100)) << sim.Output() << gait.Output();
+    gait_command_t turn{};
+    turn.seq = 1;
+    turn.sender = "test";
+    turn.motion = "turn-left";
+    turn.strength = 0.7;
+    client.lcm().publish(GaitChannel("MRSIM", "snake"), &turn);
+    ASSERT_TRUE(client.WaitFor(
+        [&] { return gait_status && gait_status->motion == "turn-left"; }, 20));
+    ASSERT_TRUE(client.StepAndWait(50));
+    auto saved =
+        client.Control(sim_control_t::SAVE_CHECKPOINT, 0, 0, checkpoint);
+    ASSERT_TRUE(saved && saved->control_ok);
+    ASSERT_TRUE(client.StepAndWait(100));
+    uninterrupted = client.states().at("snake");
+    EXPECT_EQ(sim.Stop(5), 0);
+    EXPECT_EQ(gait.Stop(5), 0);
+    EXPECT_NE(gait.Output().find("saved the gait at sim time 1.5"),
+              std::string::npos)
+        << gait.Output();
+  }
+  {
+    testing::SimClient client(url);
+    ChildProcess sim(sim_args({"--load-checkpoint", checkpoint}),
+                     dir + "/sim2.log");
+    ChildProcess gait(gait_args({"--resume", checkpoint}), dir + "/gait2.log");
+    ASSERT_TRUE(
+        client.WaitFor([&] { return client.status().has_value(); }, 20));
+    ASSERT_TRUE(client.StepAndWait(100)) << sim.Output() << gait.Output();
+    resumed = client.states().at("snake");
+    EXPECT_EQ(sim.Stop(5), 0);
+    EXPECT_EQ(gait.Stop(5), 0);
+  }
+  EXPECT_NEAR(uninterrupted.sim_time, 2.5, 1e-9);
+  EXPECT_EQ(resumed.sim_time, uninterrupted.sim_time);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(resumed.com[k], uninterrupted.com[k]);
+  ASSERT_EQ(resumed.num_joints, uninterrupted.num_joints);
+  for (int j = 0; j < resumed.num_joints; ++j) {
+    EXPECT_EQ(resumed.joints[j].angle, uninterrupted.joints[j].angle) << j;
+  }
 }
 
 TEST(GaitProcess, BadArgumentsExitWithTwo) {

@@ -47,9 +47,6 @@ class SimClient {
     }
     return true;
   }
-  void Spin(double seconds) {
-    WaitFor([] { return false; }, seconds);
-  }
 
   // Sends a request and waits for the status that acknowledges it.
   std::optional<sim_status_t> Control(int8_t command, int32_t steps = 0,

@@ -50,13 +50,17 @@ int StepsPerPeriod(const Physics& physics) {
   return static_cast<int>(std::lround(1.0 / (kRate * physics.timestep())));
 }
 
-// The same closed loop as sim + test_controller in lockstep, in one process.
-robot_state_t InProcessWaveRun(const std::string& scenario_path, int periods) {
+// The same closed loop as sim + test_controller in lockstep, in one process:
+// the answer to state k acts from period k + delay.
+robot_state_t InProcessWaveRun(const std::string& scenario_path, int periods,
+                               int delay = 0) {
   Physics physics(ReadScenarioFile(scenario_path));
   const int steps = StepsPerPeriod(physics);
+  std::vector<std::vector<double>> answers;
   for (int k = 0; k < periods; ++k) {
     const robot_state_t msg = ToRobotStateMessage(physics.ReadRobotState(0), k);
-    physics.SetJointTargets(0, WaveTargets(msg));
+    answers.push_back(WaveTargets(msg));
+    if (k >= delay) physics.SetJointTargets(0, answers[k - delay]);
     physics.Step(steps);
   }
   return ToRobotStateMessage(physics.ReadRobotState(0), periods);
@@ -70,125 +74,55 @@ std::vector<std::string> SimArgs(const std::string& scenario, int port,
   return args;
 }
 
-TEST(SimProcess, LockstepWithExternalControllerMatchesInProcessRun) {
-  const std::string dir = TempDir("sim_lockstep");
+// Strict (delay 0) and pipelined (delay 1) lockstep with a controller in
+// another process give exactly the in-process loop with the same delay.
+class SimProcessLockstep : public ::testing::TestWithParam<int> {};
+
+TEST_P(SimProcessLockstep, ExternalControllerMatchesInProcessRun) {
+  const int delay = GetParam();
+  const std::string dir = TempDir("sim_lockstep_" + std::to_string(delay));
   const std::string scenario = TestScenarioPath(dir);
-  const int port = 7600;
+  const int port = 7600 + delay * 6;  // 7600, 7606
   SimClient client(TestLcmUrl(port));
   ASSERT_TRUE(client.good());
   const int periods = 150;  // 1.5 s of sim time
-  ChildProcess sim(SimArgs(scenario, port,
-                           {"--clock", "lockstep", "--controllers", "ctl",
-                            "--duration", "1.5"}),
-                   dir + "/sim.log");
+  ChildProcess sim(
+      SimArgs(scenario, port,
+              {"--clock", "lockstep", "--controllers", "ctl", "--duration",
+               "1.5", "--actuation-delay", std::to_string(delay)}),
+      dir + "/sim.log");
   ChildProcess controller(
       {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "ctl"},
       dir + "/controller.log");
-  ASSERT_TRUE(client.WaitFor([&] { return !sim.running(); }, 60.0))
+  // The last state and the final status are sent before the sim exits.
+  ASSERT_TRUE(client.WaitFor(
+      [&] {
+        return client.status() &&
+               client.status()->mode == sim_status_t::STOPPING &&
+               client.last_state_seq() == periods;
+      },
+      60.0))
       << sim.Output();
-  EXPECT_EQ(sim.Wait(1.0), 0) << sim.Output();
-  client.Spin(0.1);
+  EXPECT_EQ(sim.Wait(5.0), 0) << sim.Output();
 
   ASSERT_EQ(client.states().size(), 1u);
   const robot_state_t& external = client.states().begin()->second;
   EXPECT_EQ(external.seq, periods);
-  ASSERT_TRUE(client.status().has_value());
-  EXPECT_EQ(client.status()->commands_applied, periods) << sim.Output();
-  const robot_state_t internal = InProcessWaveRun(scenario, periods);
+  EXPECT_EQ(client.status()->commands_applied, periods - delay) << sim.Output();
+  EXPECT_EQ(client.status()->actuation_delay, delay);
+  const robot_state_t internal = InProcessWaveRun(scenario, periods, delay);
   ExpectSameBody(external, internal);
   // The controller really moved the snake (the comparison is not trivial).
   EXPECT_GT(std::abs(internal.joints[0].angle), 1e-3);
   EXPECT_NE(sim.Output().find("mrsim-sim: stopped (duration reached)"),
             std::string::npos)
       << sim.Output();
-}
-
-TEST(SimProcess, LockstepWaitsForALateControllerAndNamesIt) {
-  const std::string dir = TempDir("sim_lockstep_late");
-  const std::string scenario = TestScenarioPath(dir);
-  const int port = 7605;
-  SimClient client(TestLcmUrl(port));
-  ChildProcess sim(SimArgs(scenario, port,
-                           {"--clock", "lockstep", "--controllers", "a,late",
-                            "--lockstep-timeout", "0.3"}),
-                   dir + "/sim.log");
-  ChildProcess a(
-      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "a"});
-  ASSERT_TRUE(client.WaitFor(
-      [&] { return client.status() && client.status()->waiting_for == "late"; },
-      10.0))
+  EXPECT_NE(sim.Output().find("states published 151"), std::string::npos)
       << sim.Output();
-  // Nothing advances while one controller is missing.
-  EXPECT_EQ(client.status()->state_seq, 0);
-  EXPECT_EQ(client.status()->sim_time, 0.0);
-  EXPECT_NE(sim.Output().find("controller(s) late"), std::string::npos)
-      << sim.Output();
-
-  ChildProcess late(
-      {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "late"});
-  EXPECT_TRUE(client.WaitFor(
-      [&] { return client.status() && client.status()->state_seq > 20; },
-      20.0));
-  EXPECT_EQ(client.status()->waiting_for, "");
-  EXPECT_EQ(sim.Stop(5.0), 0);
 }
 
-TEST(SimProcess, PauseStepResume) {
-  const std::string dir = TempDir("sim_pause");
-  const std::string scenario = TestScenarioPath(dir);
-  const int port = 7601;
-  SimClient client(TestLcmUrl(port));
-  ChildProcess sim(SimArgs(scenario, port, {"--clock", "realtime", "--paused"}),
-                   dir + "/sim.log");
-  ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
-  client.Spin(0.3);
-  EXPECT_EQ(client.status()->mode, int8_t{sim_status_t::PAUSED});
-  EXPECT_EQ(client.status()->sim_time, 0.0);
-  EXPECT_EQ(client.status()->state_seq, 0);
-  const int steps_per_period = client.status()->steps_per_period;
-  ASSERT_GE(steps_per_period, 1);
-
-  // STEP 7 runs exactly seven control periods, then stays paused.
-  ASSERT_TRUE(client.StepAndWait(7)) << sim.Output();
-  client.Spin(0.3);
-  EXPECT_EQ(client.status()->state_seq, 7);
-  EXPECT_EQ(client.status()->steps, 7 * steps_per_period);
-  EXPECT_EQ(client.status()->mode, int8_t{sim_status_t::PAUSED});
-  EXPECT_EQ(client.last_state_seq(), 7);
-  const double t7 = client.status()->sim_time;
-  EXPECT_NEAR(t7, 0.07, 1e-9);
-
-  // A STEP of zero periods is refused and changes nothing.
-  auto refused = client.Control(sim_control_t::STEP, 0);
-  ASSERT_TRUE(refused);
-  EXPECT_FALSE(refused->control_ok);
-  EXPECT_EQ(refused->state_seq, 7);
-
-  // SET_SPEED takes a positive real-time factor only.
-  auto slow = client.Control(sim_control_t::SET_SPEED, 0, 0.0);
-  ASSERT_TRUE(slow);
-  EXPECT_FALSE(slow->control_ok);
-  auto fast = client.Control(sim_control_t::SET_SPEED, 0, 2.0);
-  ASSERT_TRUE(fast);
-  EXPECT_TRUE(fast->control_ok);
-  EXPECT_EQ(fast->speed, 2.0);
-
-  // RESUME runs on the realtime clock; PAUSE freezes it again.
-  ASSERT_TRUE(client.Control(sim_control_t::RESUME));
-  ASSERT_TRUE(client.WaitFor(
-      [&] { return client.status()->sim_time > t7 + 0.2; }, 10.0));
-  auto paused = client.Control(sim_control_t::PAUSE);
-  ASSERT_TRUE(paused);
-  EXPECT_EQ(paused->mode, int8_t{sim_status_t::PAUSED});
-  const double frozen = paused->sim_time;
-  client.Spin(0.6);  // at least one heartbeat later
-  EXPECT_EQ(client.status()->sim_time, frozen);
-  EXPECT_GT(client.status()->seq, paused->seq);
-
-  auto quit = client.Control(sim_control_t::QUIT);
-  ASSERT_TRUE(quit);
-  EXPECT_EQ(sim.Wait(5.0), 0) << sim.Output();
-}
+INSTANTIATE_TEST_SUITE_P(StrictAndPipelined, SimProcessLockstep,
+                         ::testing::Values(0, 1));
 
 TEST(SimProcess, CheckpointOverLcmContinuesIdentically) {
   const std::string dir = TempDir("sim_checkpoint");
@@ -420,7 +354,6 @@ TEST(SimProcess, EveryRobotHasItsOwnChannels) {
       [&] { return client.status()->rejected_joint_count == 1; }, 5.0));
 
   ASSERT_TRUE(client.StepAndWait(20)) << sim.Output();
-  client.Spin(0.1);
   const robot_state_t& l = client.states().at("left");
   const robot_state_t& r = client.states().at("right");
   EXPECT_EQ(l.seq, 20);
@@ -475,6 +408,16 @@ TEST(SimProcess, BadFlagsAndScenarioExitWithTwo) {
       dir + "/c.log");
   EXPECT_EQ(missing.Wait(10.0), 2);
   EXPECT_NE(missing.Output().find("nope.xml"), std::string::npos);
+  ChildProcess version({SimBinary(), "--version"}, dir + "/d.log");
+  EXPECT_EQ(version.Wait(10.0), 0);
+  EXPECT_NE(version.Output().find("mrsim-sim " MRSIM_TEST_PROJECT_VERSION),
+            std::string::npos)
+      << version.Output();
+  ChildProcess delay_without_lockstep(
+      {SimBinary(), scenario, "--actuation-delay", "1"}, dir + "/e.log");
+  EXPECT_EQ(delay_without_lockstep.Wait(10.0), 2);
+  EXPECT_NE(delay_without_lockstep.Output().find("--actuation-delay"),
+            std::string::npos);
 }
 
 }  // namespace

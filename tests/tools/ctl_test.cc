@@ -1,10 +1,17 @@
 // mrsim-ctl against a real mrsim-sim over loopback multicast.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <regex>
 
+#include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "mrsim/gait_status_t.hpp"
 #include "tests/common/child_process.h"
+#include "tools/gait_command_request.h"
 #include "tools/sim_control_request.h"
 
 namespace mrsim {
@@ -25,6 +32,14 @@ TEST(SimControlRequest, ParsesEveryCommandAndNamesWhatIsWrong) {
   EXPECT_EQ(int{ParseSimControl({"load", "a.ckpt"}).command},
             int{sim_control_t::LOAD_CHECKPOINT});
   EXPECT_DOUBLE_EQ(ParseSimControl({"speed", "0.5"}).speed, 0.5);
+  const sim_control_t detach =
+      ParseSimControl({"detach", "snake", "snake/lock3"});
+  EXPECT_EQ(int{detach.command}, int{sim_control_t::DETACH});
+  EXPECT_EQ(detach.robot, "snake");
+  EXPECT_EQ(detach.lock, "snake/lock3");
+  EXPECT_EQ(int{ParseSimControl({"attach", "a", "b"}).command},
+            int{sim_control_t::ATTACH});
+  EXPECT_THROW(ParseSimControl({"detach", "snake"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"step", "0"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"step", "1.5"}), std::invalid_argument);
   EXPECT_THROW(ParseSimControl({"speed", "-1"}), std::invalid_argument);
@@ -35,6 +50,29 @@ TEST(SimControlRequest, ParsesEveryCommandAndNamesWhatIsWrong) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'jump'"), std::string::npos);
   }
+}
+
+TEST(GaitRequest, ChecksMotionAndRangesBeforeSending) {
+  const gait_command_t c = ParseGaitRequest(
+      {"gait", "snake", "motion", "turn-left", "strength", "0.5"});
+  EXPECT_EQ(c.robot, "snake");
+  EXPECT_EQ(c.motion, "turn-left");
+  EXPECT_EQ(c.strength, 0.5);
+  EXPECT_EQ(ParseGaitRequest({"gait", "snake", "gait", "sidewind"}).gait,
+            "sidewind");
+  try {
+    ParseGaitRequest({"gait", "snake", "motion", "trun-left"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown 'trun-left'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(ParseGaitRequest({"gait", "snake", "strength", "2"}),
+               std::invalid_argument);
+  EXPECT_THROW(ParseGaitRequest({"gait", "snake", "direction", "1"}),
+               std::invalid_argument);
+  EXPECT_THROW(ParseGaitRequest({"gait", "snake"}), std::invalid_argument);
 }
 
 double SimTime(const std::string& output) {
@@ -72,12 +110,28 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
     if (status_out.find("paused") != std::string::npos) break;
   }
   EXPECT_NEAR(SimTime(status_out), 0.1, 1e-9) << status_out;
+  // Every mrsim-ctl run is its own sender: nothing counts as lost.
+  EXPECT_NE(status_out.find("dropped 0"), std::string::npos) << status_out;
   EXPECT_NE(status_out.find("paused"), std::string::npos) << status_out;
 
   const std::string checkpoint = dir + "/mid.checkpoint";
   const auto [save_code, save_out] = ctl({"save", checkpoint}, "save");
   EXPECT_EQ(save_code, 0) << save_out;
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
+
+  // Locks: detached and attached again on request; an unknown one refused.
+  const auto [detach_code, detach_out] =
+      ctl({"detach", "snake", "snake/lock3"}, "detach");
+  EXPECT_EQ(detach_code, 0) << detach_out;
+  EXPECT_NE(detach_out.find("detach: done"), std::string::npos) << detach_out;
+  const auto [attach_code, attach_out] =
+      ctl({"attach", "snake", "snake/lock3"}, "attach");
+  EXPECT_EQ(attach_code, 0) << attach_out;
+  const auto [nolock_code, nolock_out] =
+      ctl({"detach", "snake", "snake/lock99"}, "nolock");
+  EXPECT_EQ(nolock_code, 1) << nolock_out;
+  EXPECT_NE(nolock_out.find("refused"), std::string::npos) << nolock_out;
+  EXPECT_NE(nolock_out.find("snake/lock99"), std::string::npos) << nolock_out;
 
   const auto [bad_code, bad_out] = ctl({"warp", "9"}, "bad");
   EXPECT_EQ(bad_code, 2);
@@ -95,6 +149,76 @@ TEST(MrsimCtl, NoSimulatorIsReportedNotAwaitedForever) {
                  dir + "/ctl.log");
   EXPECT_EQ(p.Wait(30), 1);
   EXPECT_NE(p.Output().find("no answer"), std::string::npos) << p.Output();
+}
+
+// mrsim-ctl gait waits for mrsim-gait's heartbeat, sends once and reports
+// what mrsim-gait made of it; typos fail with a message and a non-zero exit.
+TEST(MrsimCtl, GaitCommandsAreAcknowledgedAndTyposFail) {
+  const std::string dir = TempDir("mrsim_ctl_gait");
+  const std::string url = TestLcmUrl(7882);
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"),
+                    SourcePath("scenarios/snake11.xml"), "--lcm-url", url,
+                    "--clock", "lockstep", "--controllers", "gait-snake"},
+                   dir + "/sim.log");
+  // What mrsim-gait says it runs.
+  lcm::LCM lcm(url);
+  std::optional<gait_status_t> status;
+  struct Listener {
+    std::optional<gait_status_t>* out;
+    void On(const lcm::ReceiveBuffer*, const std::string&,
+            const gait_status_t* msg) {
+      *out = *msg;
+    }
+  } listener{&status};
+  lcm.subscribe(GaitStatusChannel("MRSIM", "snake"), &Listener::On, &listener);
+  ChildProcess gait(
+      {BinaryPath("gait_controller/process/mrsim-gait"), "--robot", "snake",
+       "--scenario", SourcePath("scenarios/snake11.xml"), "--lcm-url", url},
+      dir + "/gait.log");
+  auto ctl = [&](std::vector<std::string> words, const std::string& name) {
+    std::vector<std::string> argv{BinaryPath("tools/mrsim-ctl"), "--lcm-url",
+                                  url, "--timeout", "20"};
+    argv.insert(argv.end(), words.begin(), words.end());
+    ChildProcess p(argv, dir + "/" + name + ".log");
+    const int code = p.Wait(60);
+    return std::make_pair(code, p.Output());
+  };
+  // Sent at once after mrsim-gait starts: not lost; applied, or queued
+  // until the first state and applied then.
+  auto [code, out] = ctl({"gait", "snake", "gait", "forward-strong"}, "strong");
+  EXPECT_EQ(code, 0) << out << gait.Output();
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!(status && status->running && status->gait == "forward-strong") &&
+         std::chrono::steady_clock::now() < end) {
+    HandleFor(lcm, 20);
+  }
+  ASSERT_TRUE(status && status->gait == "forward-strong")
+      << out << gait.Output();
+  EXPECT_EQ(status->commands_applied, 1);
+
+  std::tie(code, out) = ctl({"gait", "snake", "motion", "trun-left"}, "typo");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("unknown 'trun-left'"), std::string::npos) << out;
+
+  std::tie(code, out) = ctl({"gait", "snake", "gait", "moonwalk"}, "moon");
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(out.find("refused by mrsim-gait"), std::string::npos) << out;
+  EXPECT_NE(out.find("moonwalk"), std::string::npos) << out;
+
+  ChildProcess nobody({BinaryPath("tools/mrsim-ctl"), "--lcm-url", url,
+                       "--timeout", "1.5", "gait", "snaek", "motion", "stop"},
+                      dir + "/nobody.log");
+  EXPECT_EQ(nobody.Wait(30), 1);
+  EXPECT_NE(nobody.Output().find("no mrsim-gait for robot 'snaek'"),
+            std::string::npos)
+      << nobody.Output();
+
+  ChildProcess version({BinaryPath("tools/mrsim-ctl"), "--version"},
+                       dir + "/version.log");
+  EXPECT_EQ(version.Wait(30), 0);
+  EXPECT_NE(version.Output().find("mrsim-ctl "), std::string::npos);
+  EXPECT_EQ(gait.Stop(5), 0);
+  EXPECT_EQ(sim.Stop(5), 0);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
 #include "sim_core/physics.h"
 #include "sim_core/sim_process/state_message.h"
 #include "tests/viewer/viewer_test_util.h"
@@ -77,6 +78,20 @@ TEST(ViewerInbox, DropsAndCountsMalformedStatesAndFollowsGaitCommands) {
   b = Bytes(gait);
   inbox.Receive(inbox.gait_channel(), b.data(), static_cast<int>(b.size()));
   EXPECT_EQ(inbox.gait_text(), "forward-strong (turn-left)");
+
+  // mrsim-gait's status says what really runs (keyboard steering too) and
+  // wins over the commands from then on.
+  gait_status_t status{};
+  status.robot = "snake";
+  status.gait = "sidewind";
+  status.motion = "sidewind-left";
+  b = Bytes(status);
+  EXPECT_TRUE(inbox.Receive(inbox.gait_status_channel(), b.data(),
+                            static_cast<int>(b.size())));
+  EXPECT_EQ(inbox.gait_text(), "sidewind (sidewind-left)");
+  b = Bytes(gait);
+  inbox.Receive(inbox.gait_channel(), b.data(), static_cast<int>(b.size()));
+  EXPECT_EQ(inbox.gait_text(), "sidewind (sidewind-left)");
 }
 
 }  // namespace

@@ -155,6 +155,8 @@ class Receiver {
     }
     lcm->subscribe(inbox->gait_channel(), &Receiver::On, this)
         ->setQueueCapacity(kLcmQueue);
+    lcm->subscribe(inbox->gait_status_channel(), &Receiver::On, this)
+        ->setQueueCapacity(kLcmQueue);
     lcm->subscribe(inbox->scene_channel(), &Receiver::On, this)
         ->setQueueCapacity(kLcmQueue);
     thread_ = std::thread([this] { Loop(); });

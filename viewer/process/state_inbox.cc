@@ -7,6 +7,7 @@
 
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/scene_state_t.hpp"
 #include "sim_core/sim_process/state_message.h"
@@ -20,6 +21,8 @@ StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
     channels_[StateChannel(prefix, viewer.robot_name(r))] = r;
   }
   gait_channel_ = GaitChannel(prefix, viewer.robot_name(viewer.follow_robot()));
+  gait_status_channel_ =
+      GaitStatusChannel(prefix, viewer.robot_name(viewer.follow_robot()));
   scene_channel_ = SceneChannel(prefix);
 }
 
@@ -67,6 +70,7 @@ bool StateInbox::ReceiveGait(const void* data, int size) {
       last_error_ = gait_channel_ + ": cannot decode gait_command_t";
       return false;
     }
+    if (have_gait_status_) return true;  // the status says what really runs
     if (!msg.gait.empty()) gait_ = msg.gait;
     if (!msg.motion.empty()) motion_ = msg.motion;
     gait_text_ = gait_;
@@ -81,9 +85,30 @@ bool StateInbox::ReceiveGait(const void* data, int size) {
   return false;
 }
 
+bool StateInbox::ReceiveGaitStatus(const void* data, int size) {
+  try {
+    gait_status_t msg;
+    if (msg.decode(data, 0, size) < 0) {
+      ++malformed_;
+      last_error_ = gait_status_channel_ + ": cannot decode gait_status_t";
+      return false;
+    }
+    have_gait_status_ = true;
+    gait_ = msg.gait;
+    motion_ = msg.motion;
+    gait_text_ = gait_ + " (" + motion_ + ")";
+    return true;
+  } catch (...) {
+    ++malformed_;
+    last_error_ = gait_status_channel_ + ": bad gait status";
+  }
+  return false;
+}
+
 bool StateInbox::Receive(const std::string& channel, const void* data,
                          int size) {
   try {
+    if (channel == gait_status_channel_) return ReceiveGaitStatus(data, size);
     if (channel == gait_channel_) return ReceiveGait(data, size);
     if (channel == scene_channel_) return ReceiveScene(data, size);
     const auto it = channels_.find(channel);

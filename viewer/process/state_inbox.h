@@ -23,13 +23,20 @@ class StateInbox {
 
   const std::map<std::string, int>& channels() const { return channels_; }
   const std::string& gait_channel() const { return gait_channel_; }
+  // GaitStatusChannel(prefix, followed robot): what mrsim-gait really runs
+  // (keyboard steering included); preferred to the gait commands.
+  const std::string& gait_status_channel() const {
+    return gait_status_channel_;
+  }
   // SceneChannel(prefix): scene_state_t.
   const std::string& scene_channel() const { return scene_channel_; }
-  // "gait (motion)" from the latest gait commands; empty before any.
+  // "gait (motion)" from the latest gait status (or, until one came, the
+  // latest gait commands); empty before any.
   const std::string& gait_text() const { return gait_text_; }
   // One message; returns true when it reached the scheduler.
   bool Receive(const std::string& channel, const void* data, int size);
   bool ReceiveGait(const void* data, int size);
+  bool ReceiveGaitStatus(const void* data, int size);
   bool ReceiveScene(const void* data, int size);
 
   int64_t accepted() const { return accepted_; }
@@ -43,6 +50,8 @@ class StateInbox {
   FrameScheduler* scheduler_;
   std::map<std::string, int> channels_;
   std::string gait_channel_;
+  std::string gait_status_channel_;
+  bool have_gait_status_ = false;
   std::string scene_channel_;
   std::string gait_;
   std::string motion_;

@@ -1,0 +1,83 @@
+#include "sim_core/sim_process/sim_command_line.h"
+
+#include "lcmtypes/runtime/version.h"
+#include "sim_core/checkpoint.h"
+#include "sim_core/scenario_xml.h"
+
+namespace mrsim {
+
+void SimCommandLine::AddFlags(CLI::App& app) {
+  app.set_version_flag("--version", VersionLine("mrsim-sim"));
+  app.add_option("scenario", scenario_path,
+                 "Scenario XML file (optional with --load-checkpoint)");
+  app.add_option("--lcm-url", lcm_url, "LCM URL (default: LCM's default)");
+  app.add_option("--prefix", options.prefix, "Channel prefix")
+      ->capture_default_str();
+  app.add_option("--clock", clock, "realtime | fast | lockstep")
+      ->capture_default_str();
+  app.add_option("--speed", options.speed,
+                 "Real-time factor for the realtime clock")
+      ->capture_default_str();
+  app.add_option("--rate", options.rate,
+                 "State publication rate = control rate (Hz)")
+      ->capture_default_str();
+  app.add_option("--controllers", options.controllers,
+                 "Lockstep: sender names to wait for")
+      ->delimiter(',');
+  app.add_option("--lockstep-timeout", options.lockstep_timeout,
+                 "Lockstep: seconds before warning about a late controller")
+      ->capture_default_str();
+  app.add_option("--actuation-delay", options.actuation_delay,
+                 "Lockstep: the answer to state k acts from period k+DELAY "
+                 "(0 strict, 1 pipelined; docs/sim.md)")
+      ->capture_default_str();
+  app.add_option("--duration", options.duration,
+                 "Stop after this many sim seconds (0 = run until stopped)")
+      ->capture_default_str();
+  app.add_flag("--paused", options.paused, "Start paused");
+  app.add_flag("--no-state", no_state,
+               "Do not publish robot states (batch runs; not with lockstep)");
+  app.add_option("--checkpoint-on-exit", options.checkpoint_on_exit,
+                 "Write a checkpoint here when stopping");
+  app.add_option("--load-checkpoint", load_checkpoint,
+                 "Start from this checkpoint (its scenario and state)");
+}
+
+void SimCommandLine::Finish() {
+  try {
+    options.clock = ParseClockMode(clock);
+    options.publish_state = !no_state;
+    options.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (scenario_path.empty() && load_checkpoint.empty()) {
+    throw UsageError("expected a SCENARIO file or --load-checkpoint PATH");
+  }
+}
+
+std::unique_ptr<Physics> SimCommandLine::LoadPhysics() const {
+  std::unique_ptr<Physics> physics;
+  try {
+    if (!load_checkpoint.empty()) physics = LoadCheckpoint(load_checkpoint);
+  } catch (const CheckpointError& e) {
+    throw UsageError(std::string("--load-checkpoint: ") + e.what());
+  }
+  if (scenario_path.empty()) return physics;
+  try {
+    Scenario scenario = ReadScenarioFile(scenario_path);
+    if (!physics) return std::make_unique<Physics>(scenario);
+    Scenario saved = physics->scenario();
+    saved.base_dir = scenario.base_dir;
+    if (!(saved == scenario)) {
+      throw UsageError("--load-checkpoint " + load_checkpoint +
+                       " holds a different scenario than " + scenario_path +
+                       " (leave SCENARIO out to use the checkpoint's)");
+    }
+    return physics;
+  } catch (const ScenarioError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace mrsim

@@ -1,0 +1,524 @@
+// SimNode in process with a fake clock: lockstep waiting, re-sends, late
+// controllers, pipelining, pause/step, pacing, every counter. No sockets,
+// no sleeps: the test decides what time it is.
+#include "sim_core/sim_process/sim_node.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/channels.h"
+#include "sim_core/chain_builder.h"
+#include "sim_core/checkpoint.h"
+#include "sim_core/sim_process/state_message.h"
+#include "tests/common/child_process.h"
+#include "tests/sim_process/wave_law.h"
+
+namespace mrsim::testing {
+namespace {
+
+Scenario Snake(int modules = 6) {
+  Scenario scenario;
+  ChainOptions chain;
+  chain.name = "snake";
+  chain.modules = modules;
+  scenario.robots.push_back(MakeChain(chain));
+  return scenario;
+}
+
+// A node, its clock and what it published.
+class Driver {
+ public:
+  explicit Driver(SimOptions options, const Scenario& scenario = Snake())
+      : node_(std::make_unique<Physics>(scenario), std::move(options), log_,
+              now_) {
+    node_.Start(now_, &out_);
+    Collect();
+  }
+
+  SimNode& node() { return node_; }
+  WallTime now() const { return now_; }
+  void Advance(double seconds) { now_ = AfterSeconds(now_, seconds); }
+  std::string log() const { return log_.str(); }
+
+  // One Tick at the current time; returns its deadline.
+  WallTime Tick() {
+    const WallTime due = node_.Tick(now_, &out_);
+    Collect();
+    return due;
+  }
+  // Ticks, jumping the clock to each deadline, until pred() or `seconds`
+  // of fake time have passed.
+  bool RunUntil(const std::function<bool()>& pred, double seconds) {
+    const WallTime end = AfterSeconds(now_, seconds);
+    while (!pred()) {
+      const WallTime due = Tick();
+      if (pred()) return true;
+      if (due > now_) now_ = std::min(due, end);
+      if (now_ >= end) return pred();
+    }
+    return true;
+  }
+  void Command(const joint_command_t& cmd) {
+    node_.OnCommand(cmd, CommandChannel(kDefaultChannelPrefix, cmd.robot),
+                    now_);
+  }
+  sim_status_t Control(int8_t command, int32_t steps = 0,
+                       const std::string& path = "",
+                       const std::string& sender = "test") {
+    sim_control_t msg{};
+    msg.seq = ++control_seq_[sender];
+    msg.sender = sender;
+    msg.command = command;
+    msg.steps = steps;
+    msg.path = path;
+    node_.OnControl(msg, now_, &out_);
+    Collect();
+    EXPECT_FALSE(statuses_.empty());
+    EXPECT_EQ(statuses_.back().control_seq, msg.seq);
+    EXPECT_EQ(statuses_.back().control_sender, sender);
+    return statuses_.back();
+  }
+
+  // Every robot state published (re-sends included), in order.
+  std::vector<robot_state_t> states_;
+  std::vector<sim_status_t> statuses_;
+
+ private:
+  void Collect() {
+    for (auto& [channel, msg] : out_.messages) {
+      if (auto* s = std::get_if<robot_state_t>(&msg)) {
+        EXPECT_EQ(channel, StateChannel(kDefaultChannelPrefix, s->robot));
+        states_.push_back(*s);
+      } else if (auto* st = std::get_if<sim_status_t>(&msg)) {
+        statuses_.push_back(*st);
+      }
+    }
+    out_.clear();
+  }
+
+  std::ostringstream log_;
+  WallTime now_{};
+  SimOutbox out_;
+  SimNode node_;
+  std::map<std::string, int64_t> control_seq_;
+};
+
+joint_command_t Answer(const robot_state_t& state, const std::string& sender,
+                       int64_t seq) {
+  joint_command_t cmd{};
+  cmd.utime = state.utime;
+  cmd.seq = seq;
+  cmd.robot = state.robot;
+  cmd.sender = sender;
+  cmd.state_seq = state.seq;
+  cmd.target = WaveTargets(state);
+  cmd.num_joints = static_cast<int32_t>(cmd.target.size());
+  return cmd;
+}
+
+SimOptions Lockstep(int delay = 0) {
+  SimOptions o;
+  o.clock = ClockMode::kLockstep;
+  o.controllers = {"ctl"};
+  o.actuation_delay = delay;
+  return o;
+}
+
+// The closed loop in one process: the answer to state k acts from period
+// k + delay.
+RobotState InProcessRun(const Scenario& scenario, int periods, int delay) {
+  Physics physics(scenario);
+  const int steps =
+      static_cast<int>(std::lround(1.0 / (100.0 * physics.timestep())));
+  std::vector<std::vector<double>> answers;
+  for (int k = 0; k < periods; ++k) {
+    answers.push_back(
+        WaveTargets(ToRobotStateMessage(physics.ReadRobotState(0), k)));
+    if (k >= delay) physics.SetJointTargets(0, answers[k - delay]);
+    physics.Step(steps);
+  }
+  return physics.ReadRobotState(0);
+}
+
+void ExpectSameState(const RobotState& a, const robot_state_t& b) {
+  const robot_state_t am = ToRobotStateMessage(a, b.seq);
+  EXPECT_EQ(am.sim_time, b.sim_time);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(am.com[k], b.com[k]);
+  ASSERT_EQ(am.joints.size(), b.joints.size());
+  for (size_t j = 0; j < am.joints.size(); ++j) {
+    EXPECT_EQ(am.joints[j].angle, b.joints[j].angle) << j;
+    EXPECT_EQ(am.joints[j].speed, b.joints[j].speed) << j;
+  }
+}
+
+// Answers every new state at once, as a controller in another process
+// would; returns the final state after `periods` periods.
+robot_state_t DriveLockstep(Driver& d, int periods) {
+  int64_t answered = -1;
+  int64_t seq = 0;
+  while (d.node().status().state_seq < periods) {
+    const robot_state_t& s = d.states_.back();
+    if (s.seq > answered) {
+      d.Command(Answer(s, "ctl", ++seq));
+      answered = s.seq;
+    }
+    d.Tick();
+  }
+  return d.states_.back();
+}
+
+TEST(SimNode, StrictLockstepIsTheInProcessLoopBitForBit) {
+  Driver d(Lockstep(0));
+  const robot_state_t last = DriveLockstep(d, 150);
+  EXPECT_EQ(last.seq, 150);
+  EXPECT_EQ(d.node().status().commands_applied, 150);
+  EXPECT_EQ(d.node().states_resent(), 0);
+  ExpectSameState(InProcessRun(Snake(), 150, 0), last);
+  EXPECT_GT(std::abs(last.joints[0].angle), 1e-3);  // it really moved
+}
+
+TEST(SimNode, PipelinedLockstepIsTheDelayedInProcessLoopBitForBit) {
+  Driver d(Lockstep(1));
+  const robot_state_t last = DriveLockstep(d, 150);
+  // Period 0 runs without an answer; each later one applies the answer to
+  // the state before.
+  EXPECT_EQ(d.node().status().commands_applied, 149);
+  EXPECT_EQ(d.node().status().actuation_delay, 1);
+  ExpectSameState(InProcessRun(Snake(), 150, 1), last);
+  // And it is a different trajectory than strict lockstep.
+  const robot_state_t strict =
+      ToRobotStateMessage(InProcessRun(Snake(), 150, 0), last.seq);
+  EXPECT_NE(strict.joints[0].angle, last.joints[0].angle);
+}
+
+TEST(SimNode, PipelinedStepsOnePeriodAheadThenWaitsForTheOlderAnswer) {
+  Driver d(Lockstep(1));
+  ASSERT_EQ(d.states_.size(), 1u);  // state 0
+  d.Tick();                         // period 0 needs no answer
+  ASSERT_EQ(d.states_.back().seq, 1);
+  d.Tick();  // period 1 needs the answer to state 0
+  EXPECT_EQ(d.states_.back().seq, 1);
+  // The answer to state 1 alone does not release period 1...
+  d.Command(Answer(d.states_.back(), "ctl", 1));
+  d.Tick();
+  EXPECT_EQ(d.states_.back().seq, 1);
+  EXPECT_EQ(d.node().status().rejected_seq, 0);  // ...but is kept
+  // ...the answer to state 0 does, and then state 1's releases period 2.
+  d.Command(Answer(d.states_.front(), "ctl", 2));
+  EXPECT_EQ(d.node().status().rejected_seq, 1);  // older than its last
+  d.Command(Answer(d.states_.front(), "ctl", 0));
+  EXPECT_EQ(d.node().status().rejected_seq, 2);
+}
+
+TEST(SimNode, LateControllerIsWaitedForResentAndNamedForAnHour) {
+  SimOptions o = Lockstep();
+  o.controllers = {"a", "late"};
+  Driver d(o);
+  d.Command(Answer(d.states_.back(), "a", 1));
+  // An hour of fake wall time passes in a blink: nothing advances.
+  d.RunUntil([] { return false; }, 3600.1);
+  EXPECT_EQ(d.node().status().state_seq, 0);
+  EXPECT_EQ(d.node().physics().time(), 0.0);
+  EXPECT_EQ(d.node().status().waiting_for, "late");
+  // Sent again every 0.25 s, a warning every --lockstep-timeout (2 s).
+  EXPECT_EQ(d.node().states_resent(), 3600 * 4);
+  EXPECT_EQ(d.states_.size(), 1u + 3600 * 4);
+  size_t warnings = 0;
+  const std::string log = d.log();
+  for (size_t at = log.find("controller(s) late"); at != std::string::npos;
+       at = log.find("controller(s) late", at + 1)) {
+    ++warnings;
+  }
+  EXPECT_EQ(warnings, 1800u);
+  // The late one answers the re-sent state: the run goes on.
+  d.Command(Answer(d.states_.back(), "late", 1));
+  d.Tick();
+  EXPECT_EQ(d.node().status().state_seq, 1);
+  EXPECT_EQ(d.node().status().waiting_for, "");
+  EXPECT_EQ(d.node().status().commands_applied, 1);  // one robot, last wins
+  EXPECT_EQ(d.node().status().messages_dropped, 1);  // "a" was replaced
+}
+
+TEST(SimNode, LastListedControllerWinsWhateverTheOrder) {
+  SimOptions o = Lockstep();
+  o.controllers = {"first", "second"};
+  Driver d(o);
+  joint_command_t a = Answer(d.states_.back(), "first", 1);
+  joint_command_t b = Answer(d.states_.back(), "second", 1);
+  a.target.assign(a.target.size(), 0.5);
+  b.target.assign(b.target.size(), -0.5);
+  d.Command(b);
+  d.Command(a);
+  d.Tick();
+  ASSERT_EQ(d.node().status().state_seq, 1);
+  EXPECT_EQ(d.node().physics().joint_targets(0), b.target);
+  EXPECT_EQ(d.node().status().commands_applied, 1);
+}
+
+TEST(SimNode, PauseStepResumeAndRefusals) {
+  SimOptions o;
+  o.clock = ClockMode::kRealtime;
+  o.paused = true;
+  Driver d(o);
+  d.RunUntil([] { return false; }, 10.0);
+  EXPECT_EQ(d.node().status().mode, int8_t{sim_status_t::PAUSED});
+  EXPECT_EQ(d.node().status().state_seq, 0);
+  // Heartbeat at about 2 Hz of wall time while paused.
+  EXPECT_GE(d.statuses_.size(), 20u);
+  EXPECT_LE(d.statuses_.size(), 22u);
+
+  EXPECT_TRUE(d.Control(sim_control_t::STEP, 7).control_ok);
+  d.RunUntil([&] { return d.node().status().mode == sim_status_t::PAUSED; },
+             10.0);
+  EXPECT_EQ(d.node().status().state_seq, 7);
+  EXPECT_EQ(d.node().status().steps, 7 * d.node().steps_per_period());
+  d.RunUntil([] { return false; }, 5.0);
+  EXPECT_EQ(d.node().status().state_seq, 7);
+
+  const sim_status_t refused = d.Control(sim_control_t::STEP, 0);
+  EXPECT_FALSE(refused.control_ok);
+  EXPECT_NE(refused.last_error.find("STEP"), std::string::npos);
+  EXPECT_FALSE(d.Control(sim_control_t::SET_SPEED).control_ok);
+  EXPECT_FALSE(d.Control(99).control_ok);
+
+  EXPECT_TRUE(d.Control(sim_control_t::RESUME).control_ok);
+  const double t7 = d.node().physics().time();
+  d.RunUntil([] { return false; }, 1.0);
+  // Realtime: one second of wall time is one second of sim time.
+  EXPECT_NEAR(d.node().physics().time() - t7, 1.0, 0.011);
+  EXPECT_EQ(d.Control(sim_control_t::PAUSE).mode, int8_t{sim_status_t::PAUSED});
+  const double frozen = d.node().physics().time();
+  d.RunUntil([] { return false; }, 3.0);
+  EXPECT_EQ(d.node().physics().time(), frozen);
+  EXPECT_TRUE(d.Control(sim_control_t::QUIT).control_ok);
+  d.Tick();
+  ASSERT_TRUE(d.node().stopped());
+  EXPECT_EQ(*d.node().stopped(), StopReason::kQuit);
+  EXPECT_EQ(d.statuses_.back().mode, int8_t{sim_status_t::STOPPING});
+}
+
+TEST(SimNode, RealtimePacesPeriodsAndDoesNotBurstAfterALag) {
+  SimOptions o;
+  o.clock = ClockMode::kRealtime;
+  o.speed = 2.0;
+  Driver d(o);
+  // Period k is due at k * period / speed.
+  while (d.node().status().state_seq < 10) {
+    const WallTime due = d.Tick();
+    if (due > d.now()) d.Advance(SecondsBetween(d.now(), due));
+  }
+  EXPECT_NEAR(SecondsBetween(WallTime{}, d.now()), 9 * 0.01 / 2, 1e-6);
+  // A stall of 3 s: the node re-anchors instead of running 600 periods
+  // back to back.
+  const int64_t before = d.node().status().state_seq;
+  d.Advance(3.0);
+  d.Tick();
+  d.Tick();
+  EXPECT_EQ(d.node().status().state_seq, before + 1);
+}
+
+TEST(SimNode, EveryRejectIsCountedExactlyAndMovesNothing) {
+  SimOptions o;
+  o.clock = ClockMode::kFast;
+  o.paused = true;
+  Driver d(o);
+  const int joints = d.node().physics().joint_count(0);
+  int64_t seq = 0;
+  auto cmd = [&](std::string robot, std::vector<double> t, int64_t state) {
+    joint_command_t c{};
+    c.seq = ++seq;
+    c.robot = std::move(robot);
+    c.sender = "x";
+    c.state_seq = state;
+    c.target = std::move(t);
+    c.num_joints = static_cast<int32_t>(c.target.size());
+    return c;
+  };
+  const std::vector<double> ok(joints, 0.3);
+  d.Command(cmd("snake", std::vector<double>(joints - 1, 0.1), 0));
+  std::vector<double> nan = ok, huge = ok;
+  nan[1] = std::nan("");
+  huge[0] = 4.0;
+  d.Command(cmd("snake", nan, 0));
+  d.Command(cmd("snake", huge, 0));
+  joint_command_t ghost = cmd("ghost", ok, 0);
+  joint_command_t mislabelled = cmd("ghost", ok, 0);
+  seq -= 2;  // another sender's numbering
+  ghost.sender = mislabelled.sender = "y";
+  d.Command(ghost);
+  d.node().OnCommand(mislabelled, CommandChannel("MRSIM", "snake"), d.now());
+  d.Command(cmd("snake", ok, 999));  // a state never published
+  d.node().OnMalformed("");
+  const sim_status_t s = d.node().status();
+  EXPECT_EQ(s.rejected_joint_count, 1);
+  EXPECT_EQ(s.rejected_value, 2);
+  EXPECT_EQ(s.rejected_robot, 2);
+  EXPECT_EQ(s.rejected_seq, 1);
+  EXPECT_EQ(s.rejected_sender, 0);
+  EXPECT_EQ(s.commands_rejected, 6);
+  EXPECT_EQ(s.messages_malformed, 1);
+  EXPECT_EQ(s.messages_dropped, 0);
+  // A good one, repeated: the repeat is stale, the first applies.
+  const joint_command_t good = cmd("snake", ok, 0);
+  d.Command(good);
+  d.Command(good);
+  EXPECT_EQ(d.node().status().rejected_seq, 2);
+  // Two more valid ones before the period: the first is replaced (dropped).
+  d.Command(cmd("snake", ok, -1));
+  seq += 5;  // five commands this sender numbered but never sent
+  d.Command(cmd("snake", ok, -1));
+  EXPECT_EQ(d.Control(sim_control_t::STEP, 1).control_ok, true);
+  d.Tick();
+  const sim_status_t after = d.node().status();
+  EXPECT_EQ(after.commands_applied, 1);
+  EXPECT_EQ(after.messages_dropped, 2 + 5);
+
+  // Lockstep: a sender not listed, and an answer to an older state.
+  Driver l(Lockstep());
+  joint_command_t stranger = Answer(l.states_.back(), "stranger", 1);
+  l.Command(stranger);
+  l.Command(Answer(l.states_.back(), "ctl", 1));
+  l.Tick();
+  l.Command(Answer(l.states_.front(), "ctl", 2));  // answers state 0 again
+  EXPECT_EQ(l.node().status().rejected_sender, 1);
+  EXPECT_EQ(l.node().status().rejected_seq, 1);
+}
+
+TEST(SimNode, ControlRequestsFromManyShellRunsAreNoDrops) {
+  SimOptions o;
+  o.paused = true;
+  Driver d(o);
+  // Every mrsim-ctl run is its own sender starting at seq 1.
+  for (int i = 0; i < 50; ++i) {
+    d.Control(sim_control_t::PAUSE, 0, "", "mrsim-ctl-" + std::to_string(i));
+  }
+  EXPECT_EQ(d.node().status().messages_dropped, 0);
+  // A sender that skips a number lost exactly that request.
+  d.Control(sim_control_t::PAUSE, 0, "", "script");  // seq 1
+  sim_control_t msg{};
+  msg.sender = "script";
+  msg.command = sim_control_t::PAUSE;
+  msg.seq = 3;
+  SimOutbox out;
+  d.node().OnControl(msg, d.now(), &out);
+  EXPECT_EQ(d.node().status().messages_dropped, 1);
+}
+
+TEST(SimNode, NoStateCountsNoStatePublished) {
+  SimOptions o;
+  o.clock = ClockMode::kFast;
+  o.publish_state = false;
+  o.duration = 1.0;
+  Driver d(o);
+  d.RunUntil([&] { return d.node().stopped().has_value(); }, 100.0);
+  ASSERT_TRUE(d.node().stopped());
+  EXPECT_EQ(*d.node().stopped(), StopReason::kDuration);
+  EXPECT_TRUE(d.states_.empty());
+  EXPECT_EQ(d.node().states_published(), 0);
+  EXPECT_EQ(d.node().status().state_seq, 100);
+  EXPECT_NE(d.node().Summary().find("states published 0;"), std::string::npos)
+      << d.node().Summary();
+  // With states: one per period plus the initial one.
+  o.publish_state = true;
+  Driver p(o);
+  p.RunUntil([&] { return p.node().stopped().has_value(); }, 100.0);
+  EXPECT_EQ(p.node().states_published(), 101);
+  EXPECT_EQ(p.states_.size(), 101u);
+}
+
+TEST(SimNode, ResetAndCheckpointLoadRestartTheLockstepEpoch) {
+  const std::string dir = TempDir("sim_node_checkpoint");
+  const std::string path = dir + "/mid.ckpt";
+  for (int delay : {0, 1}) {
+    SCOPED_TRACE(delay);
+    Driver d(Lockstep(delay));
+    DriveLockstep(d, 40);
+    EXPECT_TRUE(d.Control(sim_control_t::SAVE_CHECKPOINT, 0, path).control_ok);
+    const robot_state_t original = DriveLockstep(d, 100);
+    const sim_status_t loaded =
+        d.Control(sim_control_t::LOAD_CHECKPOINT, 0, path);
+    ASSERT_TRUE(loaded.control_ok) << loaded.last_error;
+    EXPECT_NEAR(loaded.sim_time, 0.4, 1e-9);
+    // seq goes on; the continuation is the same run (strict lockstep).
+    const robot_state_t again = DriveLockstep(d, 161);
+    EXPECT_EQ(again.sim_time, original.sim_time);
+    if (delay == 0) {
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(again.com[k], original.com[k]);
+    }
+    const sim_status_t bad =
+        d.Control(sim_control_t::LOAD_CHECKPOINT, 0, dir + "/missing.ckpt");
+    EXPECT_FALSE(bad.control_ok);
+    EXPECT_NE(bad.last_error.find("missing.ckpt"), std::string::npos);
+    const sim_status_t reset = d.Control(sim_control_t::RESET);
+    EXPECT_TRUE(reset.control_ok);
+    EXPECT_EQ(reset.sim_time, 0.0);
+    const robot_state_t fresh = DriveLockstep(d, 161 + 1 + 150);
+    ExpectSameState(InProcessRun(Snake(), 150, delay), fresh);
+  }
+}
+
+TEST(SimNode, LocksDetachAndAttachOnRequest) {
+  Driver d(Lockstep());
+  auto locks = [&] { return d.node().physics().LockStates("snake"); };
+  ASSERT_EQ(locks().size(), 5u);  // six modules, five locks
+  EXPECT_EQ(locks()[2].first, "snake/lock2");
+
+  sim_control_t detach{};
+  detach.seq = 1;
+  detach.sender = "test";
+  detach.command = sim_control_t::DETACH;
+  detach.robot = "snake";
+  detach.lock = "snake/lock2";
+  SimOutbox out;
+  d.node().OnControl(detach, d.now(), &out);
+  EXPECT_TRUE(d.node().status().control_ok) << d.node().status().last_error;
+  const robot_state_t cut = DriveLockstep(d, 100);
+  EXPECT_FALSE(locks()[2].second);
+  EXPECT_TRUE(locks()[1].second);
+  // The body really came apart: not the trajectory of the whole snake.
+  const robot_state_t whole =
+      ToRobotStateMessage(InProcessRun(Snake(), 100, 0), cut.seq);
+  EXPECT_NE(whole.com[0], cut.com[0]);
+
+  sim_control_t bad = detach;
+  bad.seq = 2;
+  bad.lock = "snake/lock9";
+  d.node().OnControl(bad, d.now(), &out);
+  EXPECT_FALSE(d.node().status().control_ok);
+  EXPECT_NE(d.node().status().last_error.find("snake/lock9"), std::string::npos)
+      << d.node().status().last_error;
+
+  sim_control_t attach = detach;
+  attach.seq = 3;
+  attach.command = sim_control_t::ATTACH;
+  d.node().OnControl(attach, d.now(), &out);
+  EXPECT_TRUE(d.node().status().control_ok);
+  DriveLockstep(d, 101);
+  EXPECT_TRUE(locks()[2].second);
+}
+
+TEST(SimNode, DurationStopsAndWritesTheExitCheckpoint) {
+  const std::string dir = TempDir("sim_node_exit");
+  SimOptions o = Lockstep();
+  o.duration = 0.5;
+  o.checkpoint_on_exit = dir + "/end.ckpt";
+  Driver d(o);
+  DriveLockstep(d, 50);
+  d.Tick();
+  ASSERT_TRUE(d.node().stopped());
+  EXPECT_EQ(*d.node().stopped(), StopReason::kDuration);
+  const auto saved = LoadCheckpoint(dir + "/end.ckpt");
+  EXPECT_EQ(saved->time(), d.node().physics().time());
+  // Stop after the end changes nothing.
+  SimOutbox out;
+  d.node().Stop(StopReason::kSignal, d.now(), &out);
+  EXPECT_EQ(*d.node().stopped(), StopReason::kDuration);
+}
+
+}  // namespace
+}  // namespace mrsim::testing

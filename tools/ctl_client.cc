@@ -1,0 +1,194 @@
+#include "tools/ctl_client.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <functional>
+#include <optional>
+
+#include "gait_controller/motion.h"
+#include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
+#include "mrsim/sim_control_t.hpp"
+#include "mrsim/sim_status_t.hpp"
+#include "tools/gait_command_request.h"
+#include "tools/sim_control_request.h"
+
+namespace mrsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Keeps the newest decodable message of one type on one channel.
+template <class Message>
+class Listener {
+ public:
+  Listener(lcm::LCM& lcm, const std::string& channel) : lcm_(lcm) {
+    sub_ = lcm_.subscribe(channel, &Listener::On, this);
+    sub_->setQueueCapacity(100);
+  }
+  ~Listener() { lcm_.unsubscribe(sub_); }
+  Listener(const Listener&) = delete;
+  Listener& operator=(const Listener&) = delete;
+
+  // Handles LCM until a new message satisfies pred or the timeout passes.
+  std::optional<Message> Next(const std::function<bool(const Message&)>& pred,
+                              double timeout_s) {
+    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+    while (Clock::now() < end) {
+      HandleFor(lcm_, 20);
+      for (const Message& m : fresh_) {
+        if (pred(m)) {
+          fresh_.clear();
+          return m;
+        }
+      }
+      fresh_.clear();
+    }
+    return std::nullopt;
+  }
+
+ private:
+  void On(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    Message m;
+    if (DecodeMessage(rbuf, &m)) fresh_.push_back(std::move(m));
+  }
+  lcm::LCM& lcm_;
+  lcm::Subscription* sub_ = nullptr;
+  std::vector<Message> fresh_;
+};
+
+std::string Describe(const sim_status_t& s) {
+  const char* mode = s.mode == sim_status_t::PAUSED     ? "paused"
+                     : s.mode == sim_status_t::STOPPING ? "stopping"
+                                                        : "running";
+  std::string text = fmt::format(
+      "sim time {:.3f} s, {} ({} clock, speed {}), real-time factor {:.2f}, "
+      "{} steps; commands applied {}, rejected {}, malformed {}, dropped {}",
+      s.sim_time, mode, s.clock, s.speed, s.real_time_factor, s.steps,
+      s.commands_applied, s.commands_rejected, s.messages_malformed,
+      s.messages_dropped);
+  if (!s.waiting_for.empty()) text += "; waiting for " + s.waiting_for;
+  if (!s.last_error.empty()) text += "; last error: " + s.last_error;
+  return text;
+}
+
+std::string Describe(const gait_status_t& s) {
+  std::string text =
+      fmt::format("robot {}: motion {} {:.2f}, gait {} ({}){}", s.robot,
+                  s.motion, s.strength, s.gait, s.kind,
+                  s.running ? "" : ", waiting for the first state");
+  if (!s.warning.empty()) text += "; warning: " + s.warning;
+  return text;
+}
+
+int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
+                  const CtlOptions& o, std::ostream& out, std::ostream& err) {
+  const bool status_only = words.size() == 1 && words[0] == "status";
+  sim_control_t request{};
+  if (!status_only) request = ParseSimControl(words);
+  Listener<sim_status_t> status(lcm, SimStatusChannel(o.prefix));
+  const auto alive =
+      status.Next([](const sim_status_t&) { return true; }, o.timeout);
+  if (!alive) {
+    err << fmt::format(
+        "mrsim-ctl: no answer from a simulator on {} within {:.1f} s (is "
+        "mrsim-sim running with the same --lcm-url and --prefix?)\n",
+        SimStatusChannel(o.prefix), o.timeout);
+    return 1;
+  }
+  if (status_only) {
+    out << Describe(*alive) << "\n";
+    return 0;
+  }
+  request.utime = NowMicros();
+  request.seq = 1;
+  request.sender = o.sender;
+  lcm.publish(SimControlChannel(o.prefix), &request);
+  const auto ack = status.Next(
+      [&](const sim_status_t& s) {
+        return s.control_seq == request.seq && s.control_sender == o.sender;
+      },
+      o.timeout);
+  if (!ack) {
+    err << fmt::format(
+        "mrsim-ctl: {}: sent, but no acknowledgement within "
+        "{:.1f} s\n",
+        words[0], o.timeout);
+    return 1;
+  }
+  out << words[0] << ": " << (ack->control_ok ? "done" : "refused") << "\n"
+      << Describe(*ack) << "\n";
+  return ack->control_ok ? 0 : 1;
+}
+
+int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,
+            const CtlOptions& o, std::ostream& out, std::ostream& err) {
+  gait_command_t c = ParseGaitRequest(words);
+  const std::string channel = GaitStatusChannel(o.prefix, c.robot);
+  Listener<gait_status_t> status(lcm, channel);
+  // mrsim-gait says it is there once a second; a command sent before it
+  // subscribed would be lost.
+  const auto alive =
+      status.Next([](const gait_status_t&) { return true; }, o.timeout);
+  if (!alive) {
+    err << fmt::format(
+        "mrsim-ctl: no mrsim-gait for robot '{}' answers on {} within {:.1f} "
+        "s (robot name misspelled, or mrsim-gait not running with the same "
+        "--lcm-url and --prefix?)\n",
+        c.robot, channel, o.timeout);
+    return 1;
+  }
+  c.utime = NowMicros();
+  c.seq = 1;
+  c.sender = o.sender;
+  lcm.publish(GaitChannel(o.prefix, c.robot), &c);
+  const auto ack = status.Next(
+      [&](const gait_status_t& s) {
+        return s.command_seq == c.seq && s.command_sender == o.sender;
+      },
+      o.timeout);
+  if (!ack) {
+    err << fmt::format(
+        "mrsim-ctl: gait: sent, but mrsim-gait did not acknowledge it within "
+        "{:.1f} s\n",
+        o.timeout);
+    return 1;
+  }
+  switch (ack->command_result) {
+    case gait_status_t::APPLIED:
+      out << "gait: done\n" << Describe(*ack) << "\n";
+      return 0;
+    case gait_status_t::QUEUED:
+      out << "gait: queued (mrsim-gait has no state from the simulator yet; "
+             "it applies the command with the first)\n"
+          << Describe(*ack) << "\n";
+      return 0;
+    default:
+      err << "mrsim-ctl: gait: refused by mrsim-gait: " << ack->command_error
+          << "\n"
+          << Describe(*ack) << "\n";
+      return 1;
+  }
+}
+
+}  // namespace
+
+int RunCtl(lcm::LCM& lcm, const std::vector<std::string>& words,
+           const CtlOptions& options, std::ostream& out, std::ostream& err) {
+  if (!words.empty() && words[0] == "gait") {
+    return RunGait(lcm, words, options, out, err);
+  }
+  return RunSimControl(lcm, words, options, out, err);
+}
+
+}  // namespace mrsim
