@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--out", out_dir, "Output directory (checkpoint, CSVs, best)")
       ->required();
-  app.add_option("--algorithm", a.algorithm, "ga | sa | pso | random")
+  app.add_option("--algorithm", a.algorithm, "ga | sa | pso | cmaes | random")
       ->capture_default_str();
   app.add_option("--generations", generations, "Generations to run")
       ->capture_default_str();
@@ -179,6 +179,9 @@ int main(int argc, char** argv) {
   app.add_option("--pso-c1", a.pso_c1)->capture_default_str();
   app.add_option("--pso-c2", a.pso_c2)->capture_default_str();
   app.add_option("--pso-vmax", a.pso_vmax)->capture_default_str();
+  app.add_option("--cmaes-sigma", a.cmaes_sigma,
+                 "CMA-ES start step, fraction of each gene's range")
+      ->capture_default_str();
   app.add_option("--workers", workers, "local:K (K threads; 0 = one per core)")
       ->capture_default_str();
   app.add_flag("--farm", farm, "Evaluate on mrsim-worker processes over LCM");
