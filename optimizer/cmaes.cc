@@ -61,8 +61,11 @@ Eigen::VectorXd Cmaes::ToUnit(const Genome& g) const {
 std::vector<Genome> Cmaes::Ask() {
   if (!population_.empty() && !told_) return population_;  // asked twice
   if (population_.empty()) {
-    mean_ = ToUnit(settings_.include_start ? spec_.StartGenome()
-                                           : spec_.RandomGenome(random_));
+    // Without a start genome, the centre of the limits: sigma 0.3 then
+    // covers the whole box.
+    mean_ = settings_.include_start ? ToUnit(spec_.StartGenome())
+                                    : Eigen::VectorXd::Constant(
+                                          static_cast<int>(dims_.size()), 0.5);
   } else {
     Update();
   }
