@@ -11,29 +11,34 @@ namespace mrsim {
 
 namespace {
 
-// Writes the decimal digits of v (v > 0) ending just before `end`; returns
-// the first digit.
-char* WriteDigits(std::uint64_t v, char* end) {
-  static constexpr char kPairs[] =
-      "0001020304050607080910111213141516171819"
-      "2021222324252627282930313233343536373839"
-      "4041424344454647484950515253545556575859"
-      "6061626364656667686970717273747576777879"
-      "8081828384858687888990919293949596979899";
-  while (v >= 100) {
-    const unsigned pair = static_cast<unsigned>(v % 100) * 2;
-    v /= 100;
-    *--end = kPairs[pair + 1];
-    *--end = kPairs[pair];
-  }
-  if (v >= 10) {
-    const unsigned pair = static_cast<unsigned>(v) * 2;
-    *--end = kPairs[pair + 1];
-    *--end = kPairs[pair];
-  } else {
-    *--end = static_cast<char>('0' + v);
-  }
-  return end;
+constexpr char kPairs[] =
+    "0001020304050607080910111213141516171819"
+    "2021222324252627282930313233343536373839"
+    "4041424344454647484950515253545556575859"
+    "6061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+// Exactly four / eight digits, zero-padded: 32-bit arithmetic, and the
+// halves do not wait on each other.
+inline void Write4(std::uint32_t v, char* p) {
+  std::memcpy(p, kPairs + (v / 100) * 2, 2);
+  std::memcpy(p + 2, kPairs + (v % 100) * 2, 2);
+}
+inline void Write8(std::uint32_t v, char* p) {
+  Write4(v / 10000, p);
+  Write4(v % 10000, p + 4);
+}
+
+// The decimal digits of v (0 < v < 10^17, as for every shortest double) at
+// buf[0..17) zero-padded; returns the first significant digit.
+inline const char* WriteDigits(std::uint64_t v, char* buf) {
+  const std::uint64_t high = v / 100000000;
+  buf[0] = static_cast<char>('0' + high / 100000000);
+  Write8(static_cast<std::uint32_t>(high % 100000000), buf + 1);
+  Write8(static_cast<std::uint32_t>(v % 100000000), buf + 9);
+  const char* first = buf;
+  while (*first == '0') ++first;
+  return first;
 }
 
 }  // namespace
@@ -46,17 +51,18 @@ char* WriteDigits(std::uint64_t v, char* end) {
 // trailing zeros go to std::to_chars. Tested
 // against std::to_chars on millions of values.
 void AppendDouble(double v, std::string* out) {
+  char buf[kMaxDoubleChars];
+  out->append(buf, WriteDouble(v, buf));
+}
+
+char* WriteDouble(double v, char* p) {
   if (v == 0 || !std::isfinite(v)) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-    out->append(buf, r.ptr);
-    return;
+    return std::to_chars(p, p + kMaxDoubleChars, v).ptr;
   }
   const auto dec = fmt::detail::dragonbox::to_decimal(std::fabs(v));
-  char digits_buf[24];
-  char* const digits_end = digits_buf + sizeof(digits_buf);
-  const char* digits = WriteDigits(dec.significand, digits_end);
-  const int n = static_cast<int>(digits_end - digits);
+  char digits_buf[17];
+  const char* digits = WriteDigits(dec.significand, digits_buf);
+  const int n = static_cast<int>(digits_buf + sizeof(digits_buf) - digits);
   const int k = dec.exponent;  // value = digits x 10^k
   const int sci_exp = n - 1 + k;
   const int abs_exp = sci_exp < 0 ? -sci_exp : sci_exp;
@@ -65,13 +71,9 @@ void AppendDouble(double v, std::string* out) {
   if (fixed_len <= sci_len && k > 0) {
     // An integer with trailing zeros: to_chars writes its exact digits
     // (218424378994422976, not ...980), which Dragonbox does not give.
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-    out->append(buf, r.ptr);
-    return;
+    return std::to_chars(p, p + kMaxDoubleChars, v).ptr;
   }
-  char buf[64];  // the chosen form is at most 25 characters
-  char* p = buf;
+  // The chosen form is at most 25 characters.
   if (v < 0) *p++ = '-';
   if (fixed_len <= sci_len) {
     if (k == 0) {
@@ -104,7 +106,7 @@ void AppendDouble(double v, std::string* out) {
     *p++ = static_cast<char>('0' + abs_exp / 10 % 10);
     *p++ = static_cast<char>('0' + abs_exp % 10);
   }
-  out->append(buf, p);
+  return p;
 }
 
 void AppendFloat(float v, std::string* out) {
