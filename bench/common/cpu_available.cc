@@ -1,7 +1,6 @@
 #include "bench/common/cpu_available.h"
 
-#include <pthread.h>
-#include <sched.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -53,6 +52,51 @@ double StepsPerSecond(std::uint64_t& sink) {
   return rates.empty() ? 0 : rates[std::min<size_t>(3, rates.size() - 1)];
 }
 
+// Spins in `n` child processes at once for `seconds` of wall time; returns
+// the chunks per second each managed. Processes, not threads: the
+// scheduler shares CPU between process groups, so on a busy machine more
+// threads of one process gain little while more processes (like farm
+// workers) each get their own share.
+std::vector<double> SpinInProcesses(int n, double seconds) {
+  std::vector<double> rates;
+  std::vector<std::pair<pid_t, int>> children;
+  for (int c = 0; c < n; ++c) {
+    int fds[2];
+    if (pipe(fds) != 0) continue;
+    const pid_t pid = fork();
+    if (pid == 0) {
+      close(fds[0]);
+      std::uint64_t x = static_cast<std::uint64_t>(c) + 1;
+      long chunks = 0;
+      const auto t0 = Clock::now();
+      double elapsed = 0;
+      while (elapsed < seconds) {
+        x = Spin(x, kChunk);
+        ++chunks;
+        elapsed = Since(t0);
+      }
+      const double rate = chunks / elapsed;
+      if (x == 42) std::fputs("", stderr);  // keep the work
+      if (write(fds[1], &rate, sizeof rate) != sizeof rate) _exit(1);
+      _exit(0);
+    }
+    close(fds[1]);
+    if (pid < 0) {
+      close(fds[0]);
+      continue;
+    }
+    children.emplace_back(pid, fds[0]);
+  }
+  for (const auto& [pid, fd] : children) {
+    double rate = 0;
+    if (read(fd, &rate, sizeof rate) == sizeof rate) rates.push_back(rate);
+    close(fd);
+    int status = 0;
+    waitpid(pid, &status, 0);
+  }
+  return rates;
+}
+
 }  // namespace
 
 CpuAvailability MeasureCpuAvailable(double seconds) {
@@ -61,38 +105,20 @@ CpuAvailability MeasureCpuAvailable(double seconds) {
       static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   std::uint64_t sink = 1;
   const double rate = StepsPerSecond(sink) / kChunk;  // chunks per second
-  std::vector<long> chunks(cpu.cores_online, 0);
-  std::vector<double> wall(cpu.cores_online, 0);
-  std::atomic<std::uint64_t> total_sink{0};
-  std::vector<std::thread> threads;
-  for (int c = 0; c < cpu.cores_online; ++c) {
-    threads.emplace_back([&, c] {
-      cpu_set_t set;
-      CPU_ZERO(&set);
-      CPU_SET(c, &set);
-      pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
-      std::uint64_t x = c + 1;
-      const auto t0 = std::chrono::steady_clock::now();
-      double elapsed = 0;
-      while (elapsed < seconds) {
-        x = Spin(x, kChunk);
-        ++chunks[c];
-        elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-                .count();
-      }
-      wall[c] = elapsed;
-      total_sink += x;
-    });
-  }
-  for (std::thread& t : threads) t.join();
-  for (int c = 0; c < cpu.cores_online; ++c) {
-    const double share = std::min(1.0, chunks[c] / (rate * wall[c]));
+  for (double r : SpinInProcesses(cpu.cores_online, seconds)) {
+    const double share = std::min(1.0, r / rate);
     cpu.per_core.push_back(share);
     cpu.cores += share;
   }
-  if (total_sink == 42 && sink == 42) std::fputs("", stderr);  // keep the work
+  const std::vector<double> alone = SpinInProcesses(1, seconds);
+  if (!alone.empty()) cpu.one_thread = std::min(1.0, alone[0] / rate);
+  if (sink == 42) std::fputs("", stderr);  // keep the work
   return cpu;
+}
+
+double CpuAvailability::TwoOverOne() const {
+  if (one_thread <= 0) return 2.0;
+  return std::min(2.0, cores / one_thread);
 }
 
 std::string FormatCpuAvailable(const CpuAvailability& cpu) {
@@ -105,8 +131,9 @@ std::string FormatCpuAvailable(const CpuAvailability& cpu) {
   char out[256];
   std::snprintf(out, sizeof out,
                 "# cpu: %d cores online, share of each we got over a "
-                "calibrated 1 s spin:%s\nBENCH cpu_available %.2f cores\n",
-                cpu.cores_online, per_core.c_str(), cpu.cores);
+                "calibrated 1 s spin:%s; one thread alone got %.2f\n"
+                "BENCH cpu_available %.2f cores\n",
+                cpu.cores_online, per_core.c_str(), cpu.one_thread, cpu.cores);
   return out;
 }
 
