@@ -9,6 +9,9 @@
 
 namespace mrsim {
 
+// Writes v at p (at most kMaxDoubleChars characters); returns the end.
+inline constexpr int kMaxDoubleChars = 32;
+char* WriteDouble(double v, char* p);
 void AppendDouble(double v, std::string* out);
 void AppendFloat(float v, std::string* out);
 void AppendInt(int64_t v, std::string* out);
@@ -18,5 +21,39 @@ void AppendCsvText(std::string_view text, std::string* out);
 inline double SecondsFromUtime(int64_t utime) {
   return static_cast<double>(utime) / 1e6;
 }
+
+// Appends cells to a string through a local buffer: one string append per
+// few kilobytes instead of one per number (the appends cost about as much
+// as the formatting). The text is complete after Flush() or destruction.
+class CsvCells {
+ public:
+  explicit CsvCells(std::string* out) : out_(out) {}
+  ~CsvCells() { Flush(); }
+  CsvCells(const CsvCells&) = delete;
+  CsvCells& operator=(const CsvCells&) = delete;
+
+  // ",<v>"
+  void CommaDouble(double v) {
+    Make(kMaxDoubleChars + 1);
+    *p_++ = ',';
+    p_ = WriteDouble(v, p_);
+  }
+  void Double(double v) {
+    Make(kMaxDoubleChars);
+    p_ = WriteDouble(v, p_);
+  }
+  void Flush() {
+    out_->append(buf_, p_);
+    p_ = buf_;
+  }
+
+ private:
+  void Make(int n) {
+    if (p_ + n > buf_ + sizeof(buf_)) Flush();
+  }
+  std::string* out_;
+  char buf_[4096];
+  char* p_ = buf_;
+};
 
 }  // namespace mrsim

@@ -9,15 +9,9 @@ namespace {
 
 const char* const kPoseNames[] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
 
-void AppendPose(const pose_t& p, std::string* out) {
-  for (double v : p.position) {
-    out->push_back(',');
-    AppendDouble(v, out);
-  }
-  for (double v : p.orientation) {
-    out->push_back(',');
-    AppendDouble(v, out);
-  }
+void AppendPose(const pose_t& p, CsvCells& out) {
+  for (double v : p.position) out.CommaDouble(v);
+  for (double v : p.orientation) out.CommaDouble(v);
 }
 
 void PoseNames(const std::string& prefix, std::vector<std::string>* names) {
@@ -81,55 +75,51 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
   out.push_back(',');
   AppendCsvText(m.robot, &out);
   out.push_back(',');
-  AppendDouble(m.sim_time, &out);
+  CsvCells cells(&out);
+  cells.Double(m.sim_time);
   const bool frames_per_module = m.num_frames == 2 * m.num_modules;
   const bool joint_per_module = m.num_joints == m.num_modules;
   for (int i = 0; i < m.num_modules; ++i) {
-    AppendPose(m.modules[i], &out);
+    AppendPose(m.modules[i], cells);
     if (frames_per_module) {
-      AppendPose(m.frames[2 * i], &out);
-      AppendPose(m.frames[2 * i + 1], &out);
+      AppendPose(m.frames[2 * i], cells);
+      AppendPose(m.frames[2 * i + 1], cells);
     }
     if (joint_per_module) {
       const joint_state_t& j = m.joints[i];
       for (double v : {j.angle, j.speed, j.torque}) {
-        out.push_back(',');
-        AppendDouble(v, &out);
+        cells.CommaDouble(v);
       }
-      AppendPose(j.world, &out);
+      AppendPose(j.world, cells);
     }
   }
   if (!frames_per_module) {
-    for (const pose_t& f : m.frames) AppendPose(f, &out);
+    for (const pose_t& f : m.frames) AppendPose(f, cells);
   }
   if (!joint_per_module) {
     for (const joint_state_t& j : m.joints) {
       for (double v : {j.angle, j.speed, j.torque}) {
-        out.push_back(',');
-        AppendDouble(v, &out);
+        cells.CommaDouble(v);
       }
-      AppendPose(j.world, &out);
+      AppendPose(j.world, cells);
     }
   }
   for (const sensor_module_state_t& s : m.sensor_modules) {
-    AppendPose(s.pose, &out);
+    AppendPose(s.pose, cells);
     if (s.has_force) {
-      out.push_back(',');
-      AppendDouble(s.force, &out);
+      cells.CommaDouble(s.force);
     }
     for (double d : s.distance) {
-      out.push_back(',');
-      AppendDouble(d, &out);
+      cells.CommaDouble(d);
     }
   }
   for (double v : m.com) {
-    out.push_back(',');
-    AppendDouble(v, &out);
+    cells.CommaDouble(v);
   }
   for (double v : m.com_velocity) {
-    out.push_back(',');
-    AppendDouble(v, &out);
+    cells.CommaDouble(v);
   }
+  cells.Flush();
   row->has_seq = true;
   row->seq = m.seq;
   return true;

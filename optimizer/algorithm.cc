@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "optimizer/cmaes.h"
 #include "optimizer/genetic_algorithm.h"
 #include "optimizer/particle_swarm.h"
 #include "optimizer/random_search.h"
@@ -14,8 +15,9 @@ void AlgorithmSettings::Validate() const {
     throw std::invalid_argument(what);
   };
   if (algorithm != "ga" && algorithm != "sa" && algorithm != "pso" &&
-      algorithm != "random") {
-    fail("algorithm: expected ga, sa, pso or random, got '" + algorithm + "'");
+      algorithm != "cmaes" && algorithm != "random") {
+    fail("algorithm: expected ga, sa, pso, cmaes or random, got '" + algorithm +
+         "'");
   }
   if (population < 1) fail("population must be at least 1");
   if (selection != "tournament" && selection != "truncation") {
@@ -42,6 +44,12 @@ void AlgorithmSettings::Validate() const {
   if (!(sa_rate >= 0 && sa_rate <= 1)) fail("SA rate must be in [0, 1]");
   if (!(sa_step >= 0)) fail("SA step must be >= 0");
   if (!(pso_vmax > 0)) fail("PSO vmax must be > 0");
+  if (!(cmaes_sigma > 0 && cmaes_sigma <= 1)) {
+    fail("CMA-ES sigma must be in (0, 1]");
+  }
+  if (algorithm == "cmaes" && population < 2) {
+    fail("CMA-ES needs a population of at least 2");
+  }
 }
 
 std::string AlgorithmSettings::Describe() const {
@@ -60,6 +68,8 @@ std::string AlgorithmSettings::Describe() const {
   } else if (algorithm == "pso") {
     s += fmt::format("pso_inertia={}\npso_c1={}\npso_c2={}\npso_vmax={}\n",
                      pso_inertia, pso_c1, pso_c2, pso_vmax);
+  } else if (algorithm == "cmaes") {
+    s += fmt::format("cmaes_sigma={}\n", cmaes_sigma);
   }
   return s;
 }
@@ -75,6 +85,9 @@ std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,
   }
   if (settings.algorithm == "pso") {
     return std::make_unique<ParticleSwarm>(spec, settings);
+  }
+  if (settings.algorithm == "cmaes") {
+    return std::make_unique<Cmaes>(spec, settings);
   }
   return std::make_unique<RandomSearch>(spec, settings);
 }

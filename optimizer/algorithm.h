@@ -16,7 +16,7 @@
 namespace mrsim {
 
 struct AlgorithmSettings {
-  std::string algorithm = "ga";  // ga | sa | pso | random
+  std::string algorithm = "ga";  // ga | sa | pso | cmaes | random
   int population = 16;
   std::uint64_t seed = 1;
   bool include_start = true;  // generation 0 holds the start genome
@@ -41,6 +41,9 @@ struct AlgorithmSettings {
   double pso_c1 = 1.49618;
   double pso_c2 = 1.49618;
   double pso_vmax = 0.5;  // velocity limit, fraction of the range
+
+  // CMA-ES (population = lambda; the best half is recombined).
+  double cmaes_sigma = 0.3;  // start step size, fraction of the range
 
   // Throws std::invalid_argument naming the setting.
   void Validate() const;

@@ -21,20 +21,27 @@ std::unique_ptr<FrameWriter> FrameWriter::Video(const std::string& path,
     throw std::runtime_error(path + ": folder " + parent.string() +
                              " does not exist");
   }
-  if (!w->video_.open(path, cv::CAP_FFMPEG,
-                      cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps,
-                      cv::Size(width, height), true)) {
-    throw std::runtime_error(path +
-                             ": cannot open for writing as MP4 (mp4v); is "
-                             "the folder writable and OpenCV built with "
-                             "FFmpeg?");
+  // H.264 plays in browsers; MPEG-4 Part 2 only in desktop players, but
+  // every FFmpeg build can write it.
+  for (const char* codec : {"avc1", "mp4v"}) {
+    if (w->video_.open(
+            path, cv::CAP_FFMPEG,
+            cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]),
+            fps, cv::Size(width, height), true)) {
+      w->codec_ = codec;
+      return w;
+    }
   }
-  return w;
+  throw std::runtime_error(path +
+                           ": cannot open for writing as MP4 (avc1 or "
+                           "mp4v); is the folder writable and OpenCV built "
+                           "with FFmpeg?");
 }
 
 std::unique_ptr<FrameWriter> FrameWriter::Pngs(const std::string& dir) {
   auto w = std::make_unique<FrameWriter>(Key());
   w->path_ = dir;
+  w->codec_ = "png";
   w->png_ = true;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -1,4 +1,6 @@
-// Writes rendered frames to an MP4 file (OpenCV, MPEG-4 Part 2 "mp4v") or
+// Writes rendered frames to an MP4 file (OpenCV through FFmpeg: H.264
+// "avc1", which browsers play, or MPEG-4 Part 2 "mp4v" when no H.264
+// encoder is available) or
 // to numbered PNG files frame_<k>.png in a folder, k being the frame's index
 // in simulation time (frame time = k / fps).
 #pragma once
@@ -39,12 +41,15 @@ class FrameWriter {
   void Close();
 
   int64_t frames_written() const { return frames_; }
+  // "avc1" or "mp4v" for a video, "png" for frames.
+  const std::string& codec() const { return codec_; }
   const std::string& path() const { return path_; }
   // Path of the PNG for frame `index` (PNG mode).
   static std::string PngName(const std::string& dir, int64_t index);
 
  private:
   std::string path_;
+  std::string codec_;
   bool png_ = false;
   cv::VideoWriter video_;
   int width_ = 0;

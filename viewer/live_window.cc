@@ -115,6 +115,9 @@ struct LiveWindow::Impl {
     self->camera->Zoom(dy > 0 ? 0.9 : 1.0 / 0.9);
     self->changed = true;
   }
+  // A resized window is drawn again at once at its new framebuffer size,
+  // not only when the next new state arrives.
+  static void OnResize(GLFWwindow* w, int, int) { From(w)->changed = true; }
 };
 
 bool LiveWindow::DisplayAvailable() {
@@ -143,6 +146,7 @@ LiveWindow::LiveWindow(const std::string& title, int width, int height,
   glfwSetMouseButtonCallback(impl_->window, &Impl::OnButton);
   glfwSetCursorPosCallback(impl_->window, &Impl::OnMove);
   glfwSetScrollCallback(impl_->window, &Impl::OnScroll);
+  glfwSetFramebufferSizeCallback(impl_->window, &Impl::OnResize);
   MakeCurrent();
   glfwSwapInterval(0);  // never wait for vsync: the stream sets the pace
 }

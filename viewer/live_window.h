@@ -39,7 +39,8 @@ class LiveWindow {
   // Framebuffer size in pixels.
   int width() const;
   int height() const;
-  // True (once) after the camera was moved from the window.
+  // True (once) after the camera was moved from the window or the window
+  // was resized: time to draw again.
   bool TakeCameraChanged();
 
  private:

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
@@ -291,6 +292,18 @@ TEST(LoggerProcess, MissingLcmlogIsBadInput) {
       dir + "/out.txt");
   EXPECT_EQ(logger.Wait(20), 2);
   EXPECT_NE(logger.Output().find(dir + "/nothing.lcmlog"), std::string::npos)
+      << logger.Output();
+}
+
+TEST(LoggerProcess, FileThatIsNotAnLcmLogExitsTwoNamingIt) {
+  const std::string dir = TempDir("logger_not_lcm");
+  std::ofstream(dir + "/plain.txt") << "not an LCM log\n";
+  ChildProcess logger(
+      {LogExe(), "--from-log", dir + "/plain.txt", "--out", dir + "/csv"},
+      dir + "/out.txt");
+  EXPECT_EQ(logger.Wait(20), 2);
+  EXPECT_NE(logger.Output().find("plain.txt: not an LCM log"),
+            std::string::npos)
       << logger.Output();
 }
 

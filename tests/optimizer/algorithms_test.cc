@@ -44,7 +44,7 @@ TEST(OptimizerAlgorithms, AnnealingAndSwarmBeatRandomSearchOnSphere) {
 
 TEST(OptimizerAlgorithms, ResultDoesNotDependOnThreadCount) {
   const GenomeSpec spec = TestFunctionSpec(5, -5.12, 5.12, 4.0);
-  for (const std::string algo : {"ga", "sa", "pso", "random"}) {
+  for (const std::string algo : {"ga", "sa", "pso", "cmaes", "random"}) {
     AlgorithmSettings settings;
     settings.algorithm = algo;
     settings.population = 9;

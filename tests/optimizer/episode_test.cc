@@ -47,6 +47,39 @@ TEST(OptimizerEpisode, SameGenomeGivesTheSameFitnessBitForBit) {
   EXPECT_NE(RunEpisode(problem, other).fitness, a.fitness);
 }
 
+// Episodes reuse a thread's Physics (reset) when the body is unchanged; an
+// episode after others must equal one in a fresh thread, bit for bit, on
+// scenes with terrain, sensor modules and force sensors too.
+TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
+  for (const char* path : {"scenarios/case_study.xml", "scenarios/terrain.xml",
+                           "scenarios/snake11.xml"}) {
+    Problem problem = SnakeProblem(1.5);
+    problem.scenario = ReadScenarioFile(testing::SourcePath(path));
+    EmbedAssets(problem.scenario);
+    problem = DecodeProblem(EncodeProblem(problem), path);
+    Random random(3);
+    std::vector<Genome> genomes;
+    for (int i = 0; i < 4; ++i) {
+      genomes.push_back(problem.genome.RandomGenome(random));
+    }
+    std::vector<EvalResult> in_turn;
+    std::thread one([&] {
+      for (const Genome& g : genomes) in_turn.push_back(RunEpisode(problem, g));
+    });
+    one.join();
+    for (size_t i = 0; i < genomes.size(); ++i) {
+      EvalResult fresh;
+      std::thread t([&] { fresh = RunEpisode(problem, genomes[i]); });
+      t.join();
+      EXPECT_EQ(in_turn[i].fitness, fresh.fitness) << path << " " << i;
+      EXPECT_EQ(in_turn[i].energy, fresh.energy) << path << " " << i;
+      EXPECT_EQ(in_turn[i].drift, fresh.drift) << path << " " << i;
+      EXPECT_EQ(in_turn[i].fell, fresh.fell) << path << " " << i;
+    }
+    EXPECT_NE(in_turn[0].fitness, in_turn[1].fitness) << path;
+  }
+}
+
 TEST(OptimizerEpisode, ForwardPresetScoresPositiveForwardDistance) {
   const Problem problem = SnakeProblem(6.0);
   const EvalResult r = RunEpisode(problem, problem.genome.StartGenome());

@@ -9,6 +9,7 @@
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -281,8 +282,14 @@ TEST(ViewerScene, LiveViewerDrawsTheBallWhereSceneStatesPutIt) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   ASSERT_EQ(view.Wait(30.0), 0) << view.Output();
-  EXPECT_NE(view.Output().find("2 scene states"), std::string::npos)
-      << view.Output();
+  // The test repeats the last scene until the viewer stops, so a loaded
+  // machine may deliver more than two before it does.
+  std::smatch scenes;
+  const std::string output = view.Output();
+  ASSERT_TRUE(
+      std::regex_search(output, scenes, std::regex("(\\d+) scene states")))
+      << output;
+  EXPECT_GE(std::stoi(scenes[1]), 2) << output;
   for (int k = 0; k < 2; ++k) {
     const std::string file = FrameWriter::PngName(frames_dir, k);
     const cv::Mat frame = cv::imread(file);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/version.h"
+#include "lcmtypes/runtime/version.h"
 
 namespace mrsim {
 namespace {
@@ -36,8 +36,7 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
       "mrsim-view: renders the robots of a scenario from their state stream "
       "(live LCM or an .lcmlog) to MP4 or PNG frames, off-screen; with "
       "--window and a display, live as well."};
-  app.set_version_flag("--version",
-                       std::string("mrsim-view ") + mrsim::kVersion);
+  app.set_version_flag("--version", mrsim::VersionLine("mrsim-view"));
   app.add_option("scenario", o->scenario, "Scenario XML file")
       ->required()
       ->check(CLI::ExistingFile);

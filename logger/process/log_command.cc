@@ -1,0 +1,328 @@
+#include "logger/process/log_command.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include "CLI/CLI.hpp"
+#include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/stop_signal.h"
+#include "logger/lcm_type_registry.h"
+#include "logger/message_queue.h"
+
+namespace mrsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Messages queued per subscription before LCM drops them: 1 kHz of a large
+// state for several seconds of a slow disk.
+constexpr int kQueueCapacity = 20000;
+
+void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+           MessageQueue* queue) {
+  try {
+    queue->Push(channel, rbuf->data, rbuf->data_size);
+  } catch (const std::exception&) {
+    // Out of memory for one copy: the seq gap will show it; LCM's C code
+    // must not see an exception.
+  }
+}
+
+void Progress(const Recorder& recorder, bool quiet, std::FILE* err) {
+  if (quiet) return;
+  int64_t missing = 0;
+  const auto stats = recorder.Stats();
+  for (const auto& s : stats) missing += s.missing;
+  std::fprintf(err, "mrsim-log: %lld messages on %zu channels, %lld missing\n",
+               static_cast<long long>(recorder.messages()), stats.size(),
+               static_cast<long long>(missing));
+}
+
+// Formats and writes what the LCM thread queued, so receiving never waits
+// on the disk.
+void WriteQueued(MessageQueue& queue, Recorder& recorder,
+                 std::atomic<bool>& failed, bool quiet, std::FILE* err) {
+  std::vector<QueuedMessage> batch;
+  auto last_flush = Clock::now();
+  auto last_progress = Clock::now();
+  while (queue.PopAll(&batch, std::chrono::milliseconds(100))) {
+    for (const QueuedMessage& m : batch) {
+      recorder.OnMessage(m.channel, m.data.data(), m.data.size());
+    }
+    batch.clear();
+    const auto now = Clock::now();
+    if (now - last_flush > std::chrono::milliseconds(500)) {
+      last_flush = now;
+      try {
+        recorder.Flush();
+      } catch (const std::exception&) {
+        // recorder.error() holds it.
+      }
+    }
+    if (recorder.failed()) failed = true;
+    if (now - last_progress > std::chrono::seconds(10)) {
+      last_progress = now;
+      Progress(recorder, quiet, err);
+    }
+  }
+}
+
+void RunLive(const LogCommand& opt, const std::string& regex,
+             Recorder& recorder, lcm::LCM& lcm, std::FILE* err) {
+  if (!lcm.good()) {
+    throw std::runtime_error("cannot open LCM at '" +
+                             WithReceiveBuffer(opt.lcm_url, opt.recv_buf_size) +
+                             "'");
+  }
+  MessageQueue queue(static_cast<size_t>(opt.max_queue_mb) << 20);
+  std::atomic<bool> failed{false};
+  std::thread writer(WriteQueued, std::ref(queue), std::ref(recorder),
+                     std::ref(failed), opt.quiet, err);
+  lcm::Subscription* sub = lcm.subscribeFunction(regex, &OnLcm, &queue);
+  sub->setQueueCapacity(kQueueCapacity);
+  if (!opt.quiet) {
+    std::fprintf(err, "mrsim-log: recording channels matching '%s' to %s\n",
+                 regex.c_str(), recorder.out_dir().c_str());
+  }
+  try {
+    while (!StopRequested() && !failed) HandleFor(lcm, 100);
+    // Take what already arrived before stopping, but do not wait on a
+    // publisher that never pauses.
+    const auto drain_end = Clock::now() + std::chrono::milliseconds(300);
+    while (!failed && Clock::now() < drain_end && HandleFor(lcm, 20) > 0) {
+    }
+  } catch (...) {
+    queue.Close();
+    writer.join();
+    throw;
+  }
+  lcm.unsubscribe(sub);
+  queue.Close();
+  writer.join();
+  if (queue.dropped() > 0) {
+    std::fprintf(err,
+                 "mrsim-log: %lld messages dropped: the writer fell behind by "
+                 "more than --max-queue-mb (%lld MB)\n",
+                 static_cast<long long>(queue.dropped()),
+                 static_cast<long long>(opt.max_queue_mb));
+  }
+}
+
+// Replays an .lcmlog. A file with no LCM event in it (not a log) or with
+// none on the channels asked is bad input: nothing is written.
+void RunFromLog(const LogCommand& opt, const std::string& regex,
+                Recorder& recorder, std::FILE* err) {
+  lcm::LogFile log(opt.from_log, "r");
+  if (!log.good()) {
+    throw LogInputError("cannot read LCM log " + opt.from_log);
+  }
+  const std::regex re(regex, std::regex::ECMAScript);
+  auto last_progress = Clock::now();
+  int64_t events = 0, matched = 0;
+  std::vector<std::string> seen;  // channels in the log, for the error
+  while (!StopRequested() && !recorder.failed()) {
+    const lcm::LogEvent* ev = log.readNextEvent();
+    if (ev == nullptr) break;
+    ++events;
+    if (!std::regex_match(ev->channel, re)) {
+      if (seen.size() < 20 &&
+          std::find(seen.begin(), seen.end(), ev->channel) == seen.end()) {
+        seen.push_back(ev->channel);
+      }
+      continue;
+    }
+    ++matched;
+    recorder.OnMessage(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+    if ((events & 1023) == 0 &&
+        Clock::now() - last_progress > std::chrono::seconds(5)) {
+      last_progress = Clock::now();
+      Progress(recorder, opt.quiet, err);
+    }
+  }
+  if (events == 0 && !StopRequested()) {
+    throw LogInputError(opt.from_log +
+                        ": not an LCM log (no LCM event found in it; record "
+                        "one with lcm-logger)");
+  }
+  if (matched == 0 && !StopRequested()) {
+    std::string list;
+    for (const std::string& c : seen) list += (list.empty() ? "" : ", ") + c;
+    throw LogInputError(opt.from_log + ": no message on channels matching '" +
+                        regex + "' (the log has " + std::to_string(events) +
+                        " messages on: " + list +
+                        "; choose with --prefix or --channels)");
+  }
+}
+
+// Draws the --plot charts from the CSVs just written. Returns the exit
+// status: 0, or 2 when a chart could not be drawn from its input.
+int WritePlots(const std::vector<LogPlotSpec>& plots, const Recorder& recorder,
+               std::FILE* err) {
+  int status = 0;
+  for (const LogPlotSpec& spec : plots) {
+    const std::string csv = recorder.CsvPath(spec.channel);
+    if (csv.empty()) {
+      std::fprintf(err,
+                   "mrsim-log: plot of %s: nothing was recorded on "
+                   "that channel\n",
+                   spec.channel.c_str());
+      status = 2;
+      continue;
+    }
+    const std::string out = spec.out.front() == '/'
+                                ? spec.out
+                                : recorder.out_dir() + "/" + spec.out;
+    try {
+      PlotCsvToPng(csv, spec.options, out);
+      std::fprintf(err, "mrsim-log: wrote plot %s\n", out.c_str());
+    } catch (const PlotInputError& e) {
+      std::fprintf(err, "mrsim-log: plot: %s\n", e.what());
+      status = 2;
+    } catch (const std::exception& e) {
+      std::fprintf(err, "mrsim-log: plot: %s\n", e.what());
+      status = 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace
+
+// A comma-separated list of channel names becomes an alternation of
+// literal names; anything else is used as a regular expression.
+std::string ChannelRegex(const std::string& channels) {
+  if (channels.find(',') == std::string::npos) return channels;
+  std::string out;
+  size_t start = 0;
+  while (start <= channels.size()) {
+    size_t end = channels.find(',', start);
+    if (end == std::string::npos) end = channels.size();
+    std::string name = channels.substr(start, end - start);
+    if (!name.empty()) {
+      if (!out.empty()) out += "|";
+      for (char c : name) {
+        if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) {
+          out += '\\';
+        }
+        out += c;
+      }
+    }
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string WithReceiveBuffer(const std::string& url, int64_t bytes) {
+  std::string u = url;
+  if (u.empty()) {
+    const char* env = std::getenv("LCM_DEFAULT_URL");
+    u = env != nullptr ? env : "udpm://239.255.76.67:7667?ttl=0";
+  }
+  if (u.rfind("udpm://", 0) != 0 || bytes <= 0 ||
+      u.find("recv_buf_size=") != std::string::npos) {
+    return u;
+  }
+  return u + (u.find('?') == std::string::npos ? "?" : "&") +
+         "recv_buf_size=" + std::to_string(bytes);
+}
+
+void AddLogFlags(CLI::App& app, LogCommand& opt) {
+  app.add_option("--lcm-url", opt.lcm_url,
+                 "LCM URL (default: LCM's default or $LCM_DEFAULT_URL)");
+  app.add_option("--prefix", opt.prefix,
+                 "channel prefix; by default every channel starting with "
+                 "PREFIX_ is recorded")
+      ->capture_default_str();
+  app.add_option("--channels", opt.channels,
+                 "channels to record: a regular expression (whole name) or "
+                 "a comma-separated list of names");
+  app.add_option("--out", opt.out_dir, "output folder (created if needed)")
+      ->capture_default_str();
+  app.add_option("--from-log", opt.from_log,
+                 "read this .lcmlog (from lcm-logger) instead of the network");
+  app.add_option("--types", opt.types,
+                 "extra .lcm files or folders with message definitions");
+  app.add_option("--plot", opt.plots,
+                 "draw a PNG when logging stops (repeatable): "
+                 "CHANNEL:y=COL[,COL...][:x=COL][:title=TEXT]"
+                 "[:style=auto|lines|points][:size=WxH][:out=FILE.png]; "
+                 "x defaults to time, a relative FILE is in --out");
+  app.add_option("--recv-buf-size", opt.recv_buf_size,
+                 "kernel receive buffer (bytes) asked for on udpm URLs that "
+                 "do not set recv_buf_size (capped by net.core.rmem_max); 0 "
+                 "keeps the URL as given")
+      ->capture_default_str();
+  app.add_option("--max-queue-mb", opt.max_queue_mb,
+                 "messages received but not yet written, at most (MB)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--quiet", opt.quiet, "no progress lines");
+}
+
+LogPlan PlanLog(const LogCommand& opt) {
+  LogPlan plan;
+  plan.regex =
+      opt.channels.empty() ? opt.prefix + "_.*" : ChannelRegex(opt.channels);
+  try {
+    std::regex check(plan.regex, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    throw LogInputError("--channels '" + opt.channels +
+                        "' is not a valid regular expression: " + e.what());
+  }
+  for (const std::string& p : opt.plots) {
+    try {
+      plan.plots.push_back(ParseLogPlotSpec(p));
+    } catch (const std::exception& e) {
+      throw LogInputError(e.what());
+    }
+  }
+  if (!opt.from_log.empty() && !std::ifstream(opt.from_log)) {
+    throw LogInputError("cannot read LCM log file " + opt.from_log);
+  }
+  return plan;
+}
+
+int RunLogCommand(const LogCommand& opt, const LogPlan& plan, lcm::LCM* lcm,
+                  std::FILE* err) {
+  LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  for (const std::string& w : registry.warnings()) {
+    std::fprintf(err, "mrsim-log: warning: %s\n", w.c_str());
+  }
+  for (const std::string& t : opt.types) {
+    try {
+      registry.AddPath(t);
+    } catch (const std::exception& e) {
+      throw LogInputError(e.what());
+    }
+  }
+  RecorderOptions recorder_options;
+  recorder_options.out_dir = opt.out_dir;
+  recorder_options.report = [err](const std::string& text) {
+    std::fprintf(err, "mrsim-log: %s\n", text.c_str());
+  };
+  Recorder recorder(registry, recorder_options);
+  if (opt.from_log.empty()) {
+    if (lcm == nullptr) throw std::logic_error("live logging needs an LCM");
+    RunLive(opt, plan.regex, recorder, *lcm, err);
+  } else {
+    RunFromLog(opt, plan.regex, recorder, err);
+  }
+  // Files that did not fail keep everything, even after another failed.
+  try {
+    recorder.Flush();
+  } catch (const std::exception&) {
+    // recorder.error() holds it.
+  }
+  std::fprintf(err, "mrsim-log: summary\n%s\n", recorder.Summary().c_str());
+  if (recorder.failed()) {
+    std::fprintf(err, "mrsim-log: error: %s\n", recorder.error().c_str());
+    return 1;
+  }
+  return WritePlots(plan.plots, recorder, err);
+}
+
+}  // namespace mrsim

@@ -1,0 +1,379 @@
+#include "optimizer/process/opt_command.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "gait_controller/gait_file.h"
+#include "optimizer/body_genes.h"
+#include "optimizer/farm/farm_evaluator.h"
+#include "optimizer/hash.h"
+#include "optimizer/local_evaluator.h"
+#include "optimizer/problem_codec.h"
+#include "sim_core/scenario_xml.h"
+
+namespace fs = std::filesystem;
+
+namespace mrsim {
+namespace {
+
+std::string MakeRunId() {
+  std::random_device device;
+  const auto now = std::chrono::system_clock::now().time_since_epoch().count();
+  return HashHex(device() ^ (static_cast<std::uint64_t>(now) << 1) ^
+                 (static_cast<std::uint64_t>(getpid()) << 40));
+}
+
+// The replay talks where the user asked: --lcm-url, else LCM_DEFAULT_URL,
+// else the launch file's default.
+std::string ReplayLcmUrl(const std::string& lcm_url) {
+  if (!lcm_url.empty()) return lcm_url;
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  return env != nullptr ? env : "";
+}
+
+void WriteReplayLaunch(const std::string& path, const std::string& dir,
+                       const std::string& scenario, const std::string& gait,
+                       const std::string& robot, double duration,
+                       const std::string& lcm_url) {
+  std::ofstream out(path);
+  out << "<!-- Written by mrsim-opt: the best individual in the simulator, "
+         "its gait\n     controller and the viewer (video in "
+         "${out}/replay.mp4; --set view=--window\n     for a window).\n"
+         "     Run: mrsim launch "
+      << path << " [--without view] -->\n"
+      << "<launch name=\"opt-replay\">\n"
+      << "  <arg name=\"out\" default=\"" << dir << "\"/>\n"
+      << "  <arg name=\"view\" default=\"--out ${out}/replay.mp4\"/>\n"
+      << "  <arg name=\"lcm_url\" default=\""
+      << (lcm_url.empty() ? "udpm://239.255.76.67:7667?ttl=0" : lcm_url)
+      << "\"/>\n"
+      << "  <arg name=\"duration\" default=\"" << duration << "\"/>\n"
+      << "  <process name=\"view\" program=\"mrsim-view\" delay=\"0.3\"\n"
+      << "           args=\"" << scenario
+      << " --lcm-url ${lcm_url} --camera follow ${view}\"/>\n"
+      << "  <process name=\"gait\" program=\"mrsim-gait\" delay=\"0.3\"\n"
+      << "           args=\"--robot " << robot << " --scenario " << scenario
+      << " --gait " << gait << " --lcm-url ${lcm_url} --name gait\"/>\n"
+      << "  <process name=\"sim\" program=\"mrsim-sim\" required=\"true\" "
+         "delay=\"1.0\"\n"
+      << "           args=\"" << scenario
+      << " --lcm-url ${lcm_url} --clock realtime --duration ${duration}\"/>\n"
+      << "</launch>\n";
+  if (!out) throw std::runtime_error(path + ": cannot write");
+}
+
+// The best individual's gait, scenario, genome and replay launch file.
+void WriteBestFiles(const OptCommand& c, const Problem& problem,
+                    const RunResult& result, const std::string& dir,
+                    const std::string& launch) {
+  const Gait gait = GaitOfGenome(problem, result.best);
+  const Scenario body =
+      ApplyBodyGenes(problem.scenario, problem.genome, result.best);
+  WriteGaitFile(gait, dir + "/best_gait.xml");
+  WriteScenarioFile(body, dir + "/best_scenario.xml");
+  GenomeSpec best_spec = problem.genome;
+  for (int i = 0; i < best_spec.size(); ++i) {
+    best_spec.genes[i].start = result.best[i];
+  }
+  {
+    std::ofstream out(dir + "/best_genome.xml");
+    out << WriteGenomeString(best_spec);
+    if (!out) throw std::runtime_error(dir + "/best_genome.xml: cannot write");
+  }
+  const std::string robot =
+      body.robots[GenomeRobotIndex(body, problem.genome)].name;
+  WriteReplayLaunch(launch, fs::absolute(dir).string(),
+                    fs::absolute(dir + "/best_scenario.xml"),
+                    fs::absolute(dir + "/best_gait.xml"), robot,
+                    c.episode.duration, ReplayLcmUrl(c.lcm_url));
+}
+
+}  // namespace
+
+void AddOptFlags(CLI::App& app, OptCommand& c) {
+  AlgorithmSettings& a = c.algorithm;
+  EpisodeSettings& e = c.episode;
+  app.add_option("scenario", c.scenario_path, "Scenario XML file")->required();
+  app.add_option("--genome", c.genome_path, "Genome description file")
+      ->required();
+  app.add_option("--out", c.out_dir,
+                 "Output directory (checkpoint, CSVs, best)")
+      ->required();
+  app.add_option("--algorithm", a.algorithm, "ga | sa | pso | cmaes | random")
+      ->capture_default_str();
+  app.add_option("--generations", c.generations, "Generations to run")
+      ->capture_default_str();
+  app.add_option("--population", a.population,
+                 "Individuals (SA: chains, PSO: particles, CMA-ES: lambda) "
+                 "per generation")
+      ->capture_default_str();
+  app.add_option("--seed", a.seed, "Seed of the run's random engine")
+      ->capture_default_str();
+  app.add_flag("--no-start-genome", c.no_start,
+               "Do not put the start genome in generation 0");
+  app.add_option("--episode", e.duration, "Episode length (s of sim time)")
+      ->capture_default_str();
+  app.add_option("--control-period", e.control_period,
+                 "Gait control period (s)")
+      ->capture_default_str();
+  app.add_option("--gait", c.gait_spec,
+                 "Base gait (preset or file) the gait genes modify")
+      ->capture_default_str();
+  app.add_option("--distance", e.fitness.distance_mode,
+                 "forward (+x) | net (any direction)")
+      ->capture_default_str();
+  app.add_option("--w-distance", e.fitness.w_distance)->capture_default_str();
+  app.add_option("--w-speed", e.fitness.w_speed)->capture_default_str();
+  app.add_option("--w-energy", e.fitness.w_energy, "Per joule")
+      ->capture_default_str();
+  app.add_option("--w-drift", e.fitness.w_drift, "Per metre of lateral drift")
+      ->capture_default_str();
+  app.add_option("--w-fall", e.fitness.w_fall,
+                 "Per fraction of the episode upside down")
+      ->capture_default_str();
+  app.add_option("--selection", a.selection, "GA: tournament | truncation")
+      ->capture_default_str();
+  app.add_option("--tournament-size", a.tournament_size)->capture_default_str();
+  app.add_option("--truncation", a.truncation_fraction,
+                 "GA: fraction that may breed")
+      ->capture_default_str();
+  app.add_option("--crossover-rate", a.crossover_rate)->capture_default_str();
+  app.add_option("--mutation-rate", a.mutation_rate)->capture_default_str();
+  app.add_option("--mutation-scale", a.mutation_scale,
+                 "Std dev as a fraction of the gene's range")
+      ->capture_default_str();
+  app.add_option("--elites", a.elites)->capture_default_str();
+  app.add_option("--sa-t0", a.sa_t0, "SA start temperature (0: automatic)")
+      ->capture_default_str();
+  app.add_option("--sa-cooling", a.sa_cooling)->capture_default_str();
+  app.add_option("--sa-rate", a.sa_rate)->capture_default_str();
+  app.add_option("--sa-step", a.sa_step)->capture_default_str();
+  app.add_option("--pso-inertia", a.pso_inertia)->capture_default_str();
+  app.add_option("--pso-c1", a.pso_c1)->capture_default_str();
+  app.add_option("--pso-c2", a.pso_c2)->capture_default_str();
+  app.add_option("--pso-vmax", a.pso_vmax)->capture_default_str();
+  app.add_option("--cmaes-sigma", a.cmaes_sigma,
+                 "CMA-ES start step, fraction of each gene's range")
+      ->capture_default_str();
+  app.add_option("--workers", c.workers,
+                 "local:K (K threads; 0 = one per core)")
+      ->capture_default_str();
+  app.add_flag("--farm", c.farm, "Evaluate on mrsim-worker processes over LCM");
+  app.add_option("--lcm-url", c.lcm_url, "LCM URL for --farm");
+  app.add_option("--prefix", c.prefix, "Farm channel prefix")
+      ->capture_default_str();
+  app.add_option("--job-timeout", c.job_timeout,
+                 "Farm: re-send a job after this many s (0: automatic)")
+      ->capture_default_str();
+  app.add_option("--worker-timeout", c.worker_timeout,
+                 "Farm: s without heartbeat before a worker counts as gone")
+      ->capture_default_str();
+  app.add_option("--chunk-size", c.chunk_size,
+                 "Farm: payload bytes per chunk (1..60000)")
+      ->capture_default_str();
+  app.add_option("--jump-to", c.jump_to,
+                 "Stop after generation N (replayed from the checkpoint "
+                 "when it has them)");
+  app.add_flag("--replay", c.replay,
+               "Afterwards show the best in mrsim-sim + mrsim-gait + "
+               "mrsim-view (via mrsim launch)");
+  app.add_flag("--quiet", c.quiet, "Only the final summary");
+}
+
+OptSetup PrepareOpt(const OptCommand& c) {
+  OptSetup setup;
+  Problem& problem = setup.problem;
+  try {
+    AlgorithmSettings a = c.algorithm;
+    a.include_start = !c.no_start;
+    a.Validate();
+    if (c.generations < 1) throw OptInputError("--generations must be >= 1");
+    if (!c.farm) {
+      if (c.workers.rfind("local:", 0) != 0) {
+        throw OptInputError("--workers: expected local:K, got '" + c.workers +
+                            "' (use --farm for worker processes)");
+      }
+      std::size_t used = 0;
+      const std::string k = c.workers.substr(6);
+      int threads = -1;
+      try {
+        threads = std::stoi(k, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != k.size() || threads < 0) {
+        throw OptInputError(
+            "--workers: K in local:K must be a whole number "
+            ">= 0, got '" +
+            k + "'");
+      }
+      setup.threads = threads > 0
+                          ? threads
+                          : static_cast<int>(std::max(
+                                1u, std::thread::hardware_concurrency()));
+    }
+    problem.scenario = ReadScenarioFile(c.scenario_path);
+    EmbedAssets(problem.scenario);
+    problem.genome = ReadGenomeFile(c.genome_path);
+    EpisodeSettings e = c.episode;
+    e.base_gait = ResolveGait(c.gait_spec);
+    e.Validate();
+    problem.episode = e;
+    GenomeRobotIndex(problem.scenario, problem.genome);
+    ValidateGaitParameters(
+        GaitOfGenome(problem, problem.genome.StartGenome()).parameters);
+  } catch (const OptInputError&) {
+    throw;
+  } catch (const std::exception& err) {
+    throw OptInputError(err.what());
+  }
+  // Local and farm runs evaluate the same decoded payload.
+  setup.payload = EncodeProblem(problem);
+  problem = DecodeProblem(setup.payload, c.scenario_path);
+  setup.hash = HashHex(Fnv1a64(setup.payload));
+  std::error_code ec;
+  fs::create_directories(c.out_dir, ec);
+  if (ec) {
+    throw OptInputError("--out " + c.out_dir + ": cannot create (" +
+                        ec.message() + ")");
+  }
+  return setup;
+}
+
+std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
+    const OptCommand& c, const OptSetup& setup, lcm::LCM* lcm,
+    std::function<bool()> stop, std::function<void(const std::string&)> log) {
+  if (!c.farm) {
+    const Problem& problem = setup.problem;
+    return std::make_unique<LocalEvaluator>(
+        [&problem](const Genome& g) { return RunEpisode(problem, g); },
+        setup.threads, std::move(stop));
+  }
+  if (lcm == nullptr || !lcm->good()) {
+    throw std::runtime_error("cannot open LCM '" + c.lcm_url +
+                             "' (no multicast route? see docs/optimizer.md)");
+  }
+  FarmSettings settings;
+  settings.prefix = c.prefix;
+  settings.job_timeout = c.job_timeout;
+  settings.worker_timeout = c.worker_timeout;
+  settings.chunk_size = c.chunk_size;
+  settings.stop = std::move(stop);
+  settings.log = log;
+  auto farm = std::make_unique<FarmEvaluator>(*lcm, setup.payload, MakeRunId(),
+                                              settings);
+  if (log) {
+    log(fmt::format("farm on {}_* (payload {}, {} bytes)", c.prefix, setup.hash,
+                    setup.payload.size()));
+  }
+  return farm;
+}
+
+std::string FormatDuration(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  const long long t = std::llround(s);
+  if (t >= 3600) return fmt::format("{}h{:02}m", t / 3600, t / 60 % 60);
+  if (t >= 60) return fmt::format("{}m{:02}s", t / 60, t % 60);
+  return fmt::format("{}s", t);
+}
+
+std::string FormatProgress(const GenerationReport& r) {
+  return fmt::format(
+      "generation {} of {}: best {:.6g} mean {:.6g} best-so-far {:.6g} | "
+      "{} | workers {} | ETA {}",
+      r.generation, r.generations, r.best, r.mean, r.best_so_far,
+      r.replayed ? std::string("from checkpoint")
+                 : fmt::format("{:.2f} evals/s", r.evals_per_second),
+      r.workers, FormatDuration(r.eta_seconds));
+}
+
+OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
+                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err) {
+  AlgorithmSettings a = c.algorithm;
+  a.include_start = !c.no_start;
+  RunOptions options;
+  options.generations = c.generations;
+  options.stop_after = c.jump_to;
+  options.out_dir = c.out_dir;
+  options.fingerprint = setup.hash;
+  options.progress = [&](const GenerationReport& r) {
+    if (c.quiet) return;
+    fmt::print(out, "{}\n", FormatProgress(r));
+    std::fflush(out);
+  };
+  OptOutcome outcome;
+  try {
+    outcome.result =
+        RunOptimization(setup.problem.genome, a, evaluator, options);
+  } catch (const CheckpointError& e) {
+    throw OptInputError(e.what());
+  } catch (const EvaluationInterrupted&) {
+    fmt::print(err,
+               "mrsim-opt: stopped; completed generations are in {}/"
+               "checkpoint.txt, run the same command to continue\n",
+               c.out_dir);
+    outcome.stopped = true;
+    return outcome;
+  }
+  const RunResult& result = outcome.result;
+  // A --jump-to into an older part of the run writes the best apart,
+  // leaving the run's own files alone.
+  outcome.best_dir = c.out_dir;
+  if (!result.wrote_files) {
+    outcome.best_dir =
+        fmt::format("{}/jump-{}", c.out_dir, result.generations_done);
+    fs::create_directories(outcome.best_dir);
+  }
+  outcome.launch = outcome.best_dir + "/replay.launch";
+  WriteBestFiles(c, setup.problem, result, outcome.best_dir, outcome.launch);
+
+  std::string genes;
+  for (int i = 0; i < setup.problem.genome.size(); ++i) {
+    genes += fmt::format(" {}={}", setup.problem.genome.genes[i].name,
+                         result.best[i]);
+  }
+  const EvalResult& b = result.best_result;
+  fmt::print(out,
+             "best fitness {} (generation {}, individual {}): distance "
+             "{:.4f} m, speed {:.4f} m/s, energy {:.4g} J, drift {:.4f} m, "
+             "fell {:.2f}\nbest genome:{}\nwrote {}/best_gait.xml, "
+             "best_scenario.xml, best_genome.xml, replay.launch\n",
+             b.fitness, result.best_generation, result.best_index, b.distance,
+             b.speed, b.energy, b.drift, b.fell, genes, outcome.best_dir);
+  if (const auto* farm = dynamic_cast<const FarmEvaluator*>(&evaluator)) {
+    const FarmCounters& n = farm->counters();
+    fmt::print(out,
+               "farm: {} jobs sent, {} re-sent, {} results accepted, {} "
+               "ignored, {} malformed messages\n",
+               n.jobs_sent, n.jobs_resent, n.results_accepted,
+               n.results_ignored, n.messages_malformed);
+  }
+  std::fflush(out);
+  return outcome;
+}
+
+std::string FindLauncher() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path root = self.parent_path().parent_path().parent_path();
+    for (const fs::path& p :
+         {self.parent_path() / "mrsim", root / "bin" / "mrsim",
+          root / "launcher" / "mrsim"}) {
+      if (fs::exists(p)) return p.string();
+    }
+  }
+  return "mrsim";
+}
+
+}  // namespace mrsim

@@ -1,0 +1,167 @@
+#include "optimizer/process/opt_command.h"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+OptCommand Parse(std::vector<std::string> args) {
+  CLI::App app;
+  OptCommand command;
+  AddOptFlags(app, command);
+  std::reverse(args.begin(), args.end());  // CLI11 takes them reversed
+  app.parse(args);
+  return command;
+}
+
+std::vector<std::string> SnakeArgs(const std::string& out) {
+  return {testing::SourcePath("scenarios/snake11.xml"), "--genome",
+          testing::SourcePath("scenarios/forward_gait.genome.xml"), "--out",
+          out};
+}
+
+std::vector<std::string> With(std::vector<std::string> a,
+                              const std::vector<std::string>& more) {
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+// Everything a FILE* received, as text.
+std::string Contents(std::FILE* f) {
+  std::fflush(f);
+  std::rewind(f);
+  std::string text;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  return text;
+}
+
+TEST(OptCommand, FlagsFillTheCommand) {
+  const OptCommand c = Parse(
+      With(SnakeArgs("out"),
+           {"--algorithm", "cmaes", "--cmaes-sigma", "0.2", "--population", "6",
+            "--episode", "3", "--seed", "7", "--w-energy", "0.5", "--farm",
+            "--chunk-size", "1000", "--no-start-genome", "--jump-to", "4"}));
+  EXPECT_EQ(c.algorithm.algorithm, "cmaes");
+  EXPECT_EQ(c.algorithm.cmaes_sigma, 0.2);
+  EXPECT_EQ(c.algorithm.population, 6);
+  EXPECT_EQ(c.algorithm.seed, 7u);
+  EXPECT_EQ(c.episode.duration, 3.0);
+  EXPECT_EQ(c.episode.fitness.w_energy, 0.5);
+  EXPECT_TRUE(c.farm);
+  EXPECT_EQ(c.chunk_size, 1000);
+  EXPECT_TRUE(c.no_start);
+  EXPECT_EQ(c.jump_to, 4);
+  EXPECT_EQ(c.out_dir, "out");
+}
+
+TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
+  const std::string out = testing::TempDir("opt_command_bad");
+  auto message = [&](const std::vector<std::string>& more,
+                     std::vector<std::string> base = {}) {
+    if (base.empty()) base = SnakeArgs(out);
+    try {
+      PrepareOpt(Parse(With(base, more)));
+    } catch (const OptInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({"--workers", "remote:3"}).find("--workers"),
+            std::string::npos);
+  EXPECT_NE(message({"--workers", "local:x"}).find("local:K"),
+            std::string::npos);
+  EXPECT_NE(message({"--generations", "0"}).find("--generations"),
+            std::string::npos);
+  EXPECT_NE(
+      message({"--algorithm", "cmaes", "--population", "1"}).find("CMA-ES"),
+      std::string::npos);
+  EXPECT_NE(message({"--algorithm", "nope"}).find("nope"), std::string::npos);
+  const std::string bad_genome = out + "/bad.genome.xml";
+  std::ofstream(bad_genome)
+      << "<genome><gene name=\"T\" lower=\"1\"/></genome>";
+  EXPECT_NE(message({}, {testing::SourcePath("scenarios/snake11.xml"),
+                         "--genome", bad_genome, "--out", out})
+                .find("bad.genome.xml"),
+            std::string::npos);
+}
+
+TEST(OptCommand, RunWritesTheBestAndAProgressLinePerGeneration) {
+  const std::string out = testing::TempDir("opt_command_run");
+  const OptCommand c =
+      Parse(With(SnakeArgs(out),
+                 {"--algorithm", "cmaes", "--population", "3", "--generations",
+                  "2", "--episode", "0.5", "--workers", "local:1"}));
+  const OptSetup setup = PrepareOpt(c);
+  auto evaluator = MakeOptEvaluator(c, setup, nullptr, nullptr, nullptr);
+  std::FILE* text = std::tmpfile();
+  std::FILE* notes = std::tmpfile();
+  const OptOutcome outcome = RunOpt(c, setup, *evaluator, text, notes);
+  EXPECT_FALSE(outcome.stopped);
+  EXPECT_EQ(outcome.best_dir, out);
+  for (const char* f : {"best_gait.xml", "best_scenario.xml", "best_genome.xml",
+                        "replay.launch", "checkpoint.txt"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  }
+  const std::string printed = Contents(text);
+  EXPECT_NE(printed.find("generation 1 of 2: best"), std::string::npos)
+      << printed;
+  EXPECT_NE(printed.find("generation 2 of 2: best"), std::string::npos);
+  EXPECT_NE(printed.find("best fitness"), std::string::npos);
+  std::fclose(text);
+  std::fclose(notes);
+
+  // A jump into the finished run replays it and writes the best apart.
+  OptCommand jump = c;
+  jump.jump_to = 1;
+  jump.quiet = true;
+  std::FILE* quiet = std::tmpfile();
+  const OptOutcome older = RunOpt(jump, setup, *evaluator, quiet, quiet);
+  EXPECT_EQ(older.best_dir, out + "/jump-1");
+  EXPECT_TRUE(fs::exists(out + "/jump-1/best_gait.xml"));
+  EXPECT_EQ(Contents(quiet).find("generation 1"), std::string::npos);
+  std::fclose(quiet);
+}
+
+TEST(OptCommand, FarmWithoutAnOpenLcmIsRefused) {
+  OptCommand c =
+      Parse(With(SnakeArgs(testing::TempDir("opt_command_farm")), {"--farm"}));
+  const OptSetup setup = PrepareOpt(c);
+  EXPECT_THROW(MakeOptEvaluator(c, setup, nullptr, nullptr, nullptr),
+               std::runtime_error);
+}
+
+TEST(OptCommand, ProgressAndDurationsReadWell) {
+  EXPECT_EQ(FormatDuration(42), "42s");
+  EXPECT_EQ(FormatDuration(75), "1m15s");
+  EXPECT_EQ(FormatDuration(3700), "1h01m");
+  EXPECT_EQ(FormatDuration(-1), "?");
+  GenerationReport r;
+  r.generation = 3;
+  r.generations = 20;
+  r.best = 0.41;
+  r.mean = 0.2;
+  r.best_so_far = 0.45;
+  r.evals_per_second = 5.2;
+  r.workers = 2;
+  r.eta_seconds = 72;
+  EXPECT_EQ(FormatProgress(r),
+            "generation 3 of 20: best 0.41 mean 0.2 best-so-far 0.45 | 5.20 "
+            "evals/s | workers 2 | ETA 1m12s");
+  r.replayed = true;
+  EXPECT_NE(FormatProgress(r).find("from checkpoint"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrsim
