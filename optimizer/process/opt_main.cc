@@ -3,6 +3,7 @@
 // LCM; checkpoints every generation and continues when run again
 // (docs/optimizer.md).
 #include <fmt/format.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
                  "Farm: s without heartbeat before a worker counts as gone")
       ->capture_default_str();
   app.add_option("--chunk-size", farm_settings.chunk_size,
-                 "Farm: payload bytes per chunk (1..60000)")
+                 "Farm: payload bytes per chunk (1..60000; 0: one packet)")
       ->capture_default_str();
   app.add_option("--jump-to", jump_to,
                  "Stop after generation N (replayed from the checkpoint "
@@ -246,23 +247,17 @@ int main(int argc, char** argv) {
     const std::string hash = mrsim::HashHex(mrsim::Fnv1a64(payload));
     fs::create_directories(out_dir);
 
-    std::unique_ptr<lcm::LCM> lcm;
     std::unique_ptr<mrsim::BatchEvaluator> evaluator;
     auto log = [&](const std::string& text) {
       if (!quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
     };
     if (farm) {
-      lcm = std::make_unique<lcm::LCM>(lcm_url);
-      if (!lcm->good()) {
-        throw std::runtime_error("cannot open LCM '" + lcm_url +
-                                 "' (no multicast route? see "
-                                 "docs/optimizer.md)");
-      }
+      signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
       farm_settings.prefix = prefix;
       farm_settings.stop = [] { return mrsim::StopRequested(); };
       farm_settings.log = log;
       evaluator = std::make_unique<mrsim::FarmEvaluator>(
-          *lcm, payload, MakeRunId(), farm_settings);
+          lcm_url, payload, MakeRunId(), farm_settings);
       log(fmt::format("farm on {}_* (payload {}, {} bytes)", prefix, hash,
                       payload.size()));
     } else {
@@ -352,7 +347,6 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     if (replay) {
       evaluator.reset();
-      lcm.reset();
       const std::string launcher = FindLauncher();
       fmt::print("replaying: {} launch {}\n", launcher, launch);
       std::fflush(stdout);
