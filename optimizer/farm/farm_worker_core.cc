@@ -215,9 +215,11 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
     hb.job_count = static_cast<int32_t>(hb.jobs.size());
     // Finished within the last few heartbeats: a heartbeat that overtakes
     // a result must not make the master think the job was lost.
-    for (const auto& [when, r] : recent_) {
-      if (now - when <= 3 * heartbeat_period_ + 1.0)
-        hb.done.push_back(r.job_id);
+    // (the last 32, for 10 s or three heartbeats, whichever is longer).
+    const double window = std::max(10.0, 3 * heartbeat_period_ + 1.0);
+    for (auto it = recent_.rbegin();
+         it != recent_.rend() && hb.done.size() < 32; ++it) {
+      if (now - it->first <= window) hb.done.push_back(it->second.job_id);
     }
     hb.done_count = static_cast<int32_t>(hb.done.size());
     hb.jobs_done = counters_.jobs_done;
