@@ -66,7 +66,7 @@ double FarmMasterCore::heartbeat_period() const {
 }
 
 double FarmMasterCore::worker_timeout() const {
-  return std::max(settings_.worker_timeout, 3 * heartbeat_period() + 1.0);
+  return std::max(settings_.worker_timeout, 5 * heartbeat_period() + 1.0);
 }
 
 double FarmMasterCore::JobTimeout() const {

@@ -29,7 +29,7 @@ struct FarmSettings {
   // holds, plus 2 s).
   double job_timeout = 0.0;
   // s without a heartbeat or result before a worker counts as gone (at least
-  // three heartbeat periods plus a second).
+  // five heartbeat periods plus a second).
   double worker_timeout = 2.0;
   int extra_jobs_per_worker = 1;  // queued beyond its slots (hides latency)
   double announce_period = 0.5;   // s
