@@ -43,11 +43,12 @@ void FarmWorker::Build(WorkerSettings settings, int count) {
     };
   }
   count = std::max(1, count);
+  dirty_.assign(static_cast<size_t>(count), 1);
   for (int k = 0; k < count; ++k) {
     WorkerSettings s = settings;
     if (count > 1) s.id = fmt::format("{}-{}", settings.id, k);
     cores_.push_back(std::make_unique<FarmWorkerCore>(s, host, pid, decode));
-    by_id_[cores_.back()->id()] = cores_.back().get();
+    by_id_[cores_.back()->id()] = cores_.size() - 1;
   }
   if (fake_episode_ <= 0) {
     for (int t = 0; t < settings.threads; ++t) {
@@ -68,7 +69,9 @@ FarmWorker::~FarmWorker() {
 
 FarmWorkerCore* FarmWorker::Find(const std::string& id) {
   auto it = by_id_.find(id);
-  return it == by_id_.end() ? nullptr : it->second;
+  if (it == by_id_.end()) return nullptr;
+  dirty_[it->second] = 1;
+  return cores_[it->second].get();
 }
 
 FarmLink::Handlers FarmWorker::MakeHandlers() {
@@ -76,10 +79,12 @@ FarmLink::Handlers FarmWorker::MakeHandlers() {
   h.run = [this](const opt_run_t& m) {
     const double now = FarmLink::Now();
     for (auto& c : cores_) c->OnRun(m, now);
+    dirty_.assign(cores_.size(), 1);
   };
   h.chunk = [this](const opt_chunk_t& m) {
     const double now = FarmLink::Now();
     for (auto& c : cores_) c->OnChunk(m, now);
+    dirty_.assign(cores_.size(), 1);
   };
   h.job = [this](const opt_job_t& m) {
     if (FarmWorkerCore* c = Find(m.worker_id)) c->OnJob(m, FarmLink::Now());
@@ -171,7 +176,12 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
   }
   FarmOutbox all;
   bool rejoin = false;
-  for (auto& c : cores_) {
+  for (size_t k = 0; k < cores_.size(); ++k) {
+    FarmWorkerCore* c = cores_[k].get();
+    if (!dirty_[k] && c->next_deadline() > now && now - c->last_tick() < 0.5) {
+      continue;
+    }
+    dirty_[k] = 0;
     for (WorkerTask& t : c->TakeTasks()) {
       if (fake_episode_ > 0) {
         fake_running_.emplace(now + fake_episode_,

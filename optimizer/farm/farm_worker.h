@@ -50,7 +50,11 @@ class FarmWorker {
   std::string id_;
   double fake_episode_ = 0;
   std::vector<std::unique_ptr<FarmWorkerCore>> cores_;
-  std::unordered_map<std::string, FarmWorkerCore*> by_id_;
+  std::unordered_map<std::string, size_t> by_id_;
+  // Cores that heard something since their last Tick (the others are
+  // ticked only when their own deadline comes: hundreds of fake workers
+  // in one process cost nothing while idle).
+  std::vector<char> dirty_;
   std::unique_ptr<FarmLink> link_;
   std::vector<std::string> log_;
 

@@ -140,10 +140,11 @@ void FarmWorkerCore::OnJob(const opt_job_t& msg, double now) {
     return;
   }
   if (queued_ids_.count(msg.job_id) || running_.count(msg.job_id)) return;
-  for (const auto& [when, r] : recent_) {
-    if (r.job_id == msg.job_id && r.run_id == msg.run_id) {
+  for (const Recent& r : recent_) {
+    if (r.result.job_id == msg.job_id && r.result.run_id == msg.run_id &&
+        r.genome == msg.genome) {
       // Asked again after we finished it: the answer was lost.
-      outbox_.results.push_back(r);
+      outbox_.results.push_back(r.result);
       ++counters_.results_resent;
       return;
     }
@@ -167,16 +168,21 @@ std::vector<WorkerTask> FarmWorkerCore::TakeTasks() {
     WorkerTask t = std::move(queue_.front());
     queue_.pop_front();
     queued_ids_.erase(t.job_id);
-    running_.insert(t.job_id);
+    running_[t.job_id] = t.genome;
     out.push_back(std::move(t));
   }
   return out;
 }
 
 void FarmWorkerCore::OnEpisodeDone(opt_result_t result, double now) {
-  running_.erase(result.job_id);
+  Genome genome;
+  auto it = running_.find(result.job_id);
+  if (it != running_.end()) {
+    genome = std::move(it->second);
+    running_.erase(it);
+  }
   ++counters_.jobs_done;
-  recent_.emplace_back(now, result);
+  recent_.push_back(Recent{now, result, std::move(genome)});
   while (recent_.size() > kRecentResults) recent_.pop_front();
   outbox_.results.push_back(std::move(result));
 }
@@ -194,6 +200,7 @@ void FarmWorkerCore::RequestMissing(double now) {
 }
 
 FarmOutbox FarmWorkerCore::Tick(double now) {
+  last_tick_ = now;
   // Ask for missing chunks only when none arrived lately: while chunks flow
   // (someone else asked for them too) asking again adds nothing.
   if (fetching_ && now - last_request_ >= settings_.request_period &&
@@ -211,7 +218,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
     }
     hb.slots = settings_.threads;
     hb.jobs.assign(queued_ids_.begin(), queued_ids_.end());
-    hb.jobs.insert(hb.jobs.end(), running_.begin(), running_.end());
+    for (const auto& [id, genome] : running_) hb.jobs.push_back(id);
     hb.job_count = static_cast<int32_t>(hb.jobs.size());
     // Finished within the last few heartbeats: a heartbeat that overtakes
     // a result must not make the master think the job was lost.
@@ -219,7 +226,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
     const double window = std::max(10.0, 3 * heartbeat_period_ + 1.0);
     for (auto it = recent_.rbegin();
          it != recent_.rend() && hb.done.size() < 32; ++it) {
-      if (now - it->first <= window) hb.done.push_back(it->second.job_id);
+      if (now - it->when <= window) hb.done.push_back(it->result.job_id);
     }
     hb.done_count = static_cast<int32_t>(hb.done.size());
     hb.jobs_done = counters_.jobs_done;

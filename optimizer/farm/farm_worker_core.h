@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -75,6 +76,7 @@ class FarmWorkerCore {
   // Heartbeats, chunk requests, results; everything to publish.
   FarmOutbox Tick(double now);
   double next_deadline() const;
+  double last_tick() const { return last_tick_; }
   std::vector<std::string> TakeLog();
 
   const std::string& id() const { return settings_.id; }
@@ -107,11 +109,20 @@ class FarmWorkerCore {
   double phase_;  // spreads the heartbeats of many workers
   double rejoin_backoff_ = 0, last_rejoin_ = -1e9;
   bool heard_master_ = false;
+  double last_tick_ = -1e9;
 
   std::deque<WorkerTask> queue_;
-  std::set<std::int64_t> queued_ids_, running_;
-  // Recent results (for re-asked jobs and the heartbeat's done list).
-  std::deque<std::pair<double, opt_result_t>> recent_;
+  std::set<std::int64_t> queued_ids_;
+  std::map<std::int64_t, Genome> running_;
+  // Recent results (for re-asked jobs and the heartbeat's done list), with
+  // their genomes: a job id is answered from memory only for the same
+  // genome of the same run.
+  struct Recent {
+    double when;
+    opt_result_t result;
+    Genome genome;
+  };
+  std::deque<Recent> recent_;
   std::vector<std::string> log_;
   WorkerCounters counters_;
   FarmOutbox outbox_;

@@ -221,7 +221,7 @@ TEST_F(FarmNet, MasterRestartEqualsLocal) {
 }
 
 TEST_F(FarmNet, MpudpmEqualsLocal) {
-  RunCase("fn_mpudpm", "mpudpm://239.255.76.67:7667?ttl=1", 3);
+  RunCase("fn_mpudpm", "mpudpm://239.255.76.67:7667?ttl=1&nports=16", 3);
 }
 
 TEST_F(FarmNet, TcpqEqualsLocal) {

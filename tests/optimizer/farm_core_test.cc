@@ -253,6 +253,13 @@ TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
   EXPECT_TRUE(w.TakeTasks().empty());
   EXPECT_EQ(w.Tick(2.0).results.size(), 1u);
   EXPECT_EQ(w.counters().results_resent, 1);
+  // The same id with another genome (a master that reused its run id) is
+  // a new job, not a lost answer.
+  opt_job_t other = job;
+  other.genome = {1.0};
+  other.gene_count = 1;
+  w.OnJob(other, 2.1);
+  EXPECT_EQ(w.TakeTasks().size(), 1u);
   // Its heartbeats list the job as done for a while.
   bool listed = false;
   for (const auto& hb : w.Tick(2.5).heartbeats) {
