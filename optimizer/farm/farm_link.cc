@@ -1,14 +1,15 @@
 #include "optimizer/farm/farm_link.h"
 
 #include <fmt/format.h>
+#include <poll.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
 
 #include "lcmtypes/runtime/decode.h"
-#include "lcmtypes/runtime/lcm_loop.h"
 
 namespace mrsim {
 
@@ -152,7 +153,22 @@ void FarmLink::Handle(int timeout_ms) {
     }
   }
   try {
-    HandleFor(*lcm_, timeout_ms);
+    // At most kBurst messages per call: a node that receives faster than it
+    // handles must still get back to beating, dispatching and answering.
+    constexpr int kBurst = 256;
+    int wait_ms = timeout_ms;
+    for (int n = 0; n < kBurst; ++n) {
+      pollfd pfd{lcm_->getFileno(), POLLIN, 0};
+      const int ready = poll(&pfd, 1, wait_ms);
+      if (ready < 0 && errno != EINTR) throw std::runtime_error("poll failed");
+      if (ready <= 0) break;
+      if (pfd.revents & (POLLERR | POLLHUP | POLLNVAL) &&
+          !(pfd.revents & POLLIN)) {
+        throw std::runtime_error("connection closed");
+      }
+      if (lcm_->handle() != 0) throw std::runtime_error("lcm handle() failed");
+      wait_ms = 0;
+    }
   } catch (const std::exception& e) {
     if (!owned_) throw;
     Close(e.what());

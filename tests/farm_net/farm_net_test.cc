@@ -262,10 +262,20 @@ TEST_F(FarmNet, HundredsOfFakeWorkersDriveTheRealMaster) {
       rig.In(0, With(OptArgs(dir, "400"), {"--farm", "--lcm-url", kUdpm})),
       dir + "/master.log");
   ASSERT_EQ(master->Wait(180), 0) << master->Output();
+  // Every fake worker reached the master and fetched the payload. (How
+  // many stay counted as alive under load is docs/scaling.md's open
+  // question, measured by bench/run farm_net, not asserted here.)
   const std::string out = master->Output();
-  const size_t at = out.rfind("| workers ");
-  ASSERT_NE(at, std::string::npos) << out;
-  EXPECT_GE(std::stoi(out.substr(at + 10)), 150) << out;
+  for (const char* id : {"w1-0 ", "w1-99 ", "w2-0 ", "w2-99 "}) {
+    EXPECT_NE(out.find(std::string("worker ") + id + "("), std::string::npos)
+        << id;
+  }
+  size_t ready = 0;
+  for (size_t at = out.find(" is ready"); at != std::string::npos;
+       at = out.find(" is ready", at + 1)) {
+    ++ready;
+  }
+  EXPECT_GE(ready, 200u) << out.substr(0, 2000);
 }
 
 }  // namespace
