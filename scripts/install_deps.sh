@@ -12,6 +12,7 @@ packages=(
   libcli11-dev libfmt-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
   clang-format
+  iproute2 nftables
 )
 
 missing=()

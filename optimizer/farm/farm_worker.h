@@ -1,98 +1,71 @@
-// The worker's side of the farm (mrsim-worker): follows the run a master
-// announces, fetches its payload in chunks (asking again for missing ones),
-// checks the hash, then runs the jobs addressed to it on its own threads
-// and answers with fitness and metrics. Heartbeats go out while episodes
-// run, so the master can tell a busy worker from a dead one.
+// mrsim-worker's node: one or more FarmWorkerCores (more than one only for
+// protocol-only fake workers, which let one process stand in for hundreds
+// of hosts), a FarmLink for LCM and the clock, and a thread pool running
+// the episodes the cores hand out.
 #pragma once
 
-#include <chrono>
 #include <condition_variable>
-#include <cstdint>
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <string>
 #include <thread>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
-#include "mrsim/opt_result_t.hpp"
-#include "optimizer/episode.h"
-#include "optimizer/farm/payload_chunks.h"
+#include "optimizer/farm/farm_link.h"
+#include "optimizer/farm/farm_worker_core.h"
 
 namespace mrsim {
 
-struct WorkerSettings {
-  std::string prefix = "MRSIM_OPT";
-  std::string id;  // unique on the network; default host-pid
-  int threads = 1;
-  double heartbeat_period = 0.2;  // s
-  double request_period = 0.3;    // s between asks for missing chunks
-  double run_silence = 3.0;       // s without announcement before following
-                                  // another master's run
-};
-
-struct WorkerCounters {
-  long long jobs_done = 0;
-  long long messages_ignored = 0;  // other run, payload or worker
-  long long messages_malformed = 0;
-};
-
 class FarmWorker {
  public:
-  FarmWorker(lcm::LCM& lcm, WorkerSettings settings);
+  // `count` > 1 (fake workers only) runs that many workers named
+  // <id>-0 ... <id>-(count-1).
+  FarmWorker(const std::string& lcm_url, WorkerSettings settings,
+             int count = 1);
+  FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count = 1);
   ~FarmWorker();  // finishes the running episodes, drops queued jobs
   FarmWorker(const FarmWorker&) = delete;
   FarmWorker& operator=(const FarmWorker&) = delete;
 
-  // Heartbeats, chunk requests and finished results; call after every
-  // HandleFor. Returns log lines for main to print.
-  std::vector<std::string> Poll();
+  // Handles LCM for up to timeout_ms, then beats, requests chunks, starts
+  // jobs and sends results. Returns log lines for main to print.
+  std::vector<std::string> Poll(int timeout_ms = 20);
 
-  const std::string& id() const { return settings_.id; }
+  const std::string& id() const { return id_; }
   WorkerCounters counters() const;
 
  private:
-  // Handlers run on LCM's thread while episodes run on the pool: lock.
-  void CountMalformed();
-  using Clock = std::chrono::steady_clock;
-  struct Task {
-    std::shared_ptr<const Problem> problem;
-    std::string run_id, hash;
-    std::int64_t job_id = 0;
-    std::int32_t generation = 0, index = 0;
-    Genome genome;
-  };
-
-  void OnRun(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void OnChunk(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void OnJob(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void RequestMissing();
+  void Build(WorkerSettings settings, int count);
+  FarmLink::Handlers MakeHandlers();
+  FarmWorkerCore* Find(const std::string& id);
   void Work();
+  static opt_result_t Run(const WorkerTask& task, const std::string& worker,
+                          double fake_episode);
 
-  lcm::LCM& lcm_;
-  WorkerSettings settings_;
-  std::vector<lcm::Subscription*> subscriptions_;
-  std::string host_;
-
-  // Run being followed (main thread only).
-  std::string run_id_, hash_;
-  Clock::time_point last_announce_;
-  ChunkAssembler assembler_;
-  bool fetching_ = false;
-  std::shared_ptr<const Problem> problem_;  // set once decoded and checked
-  std::string bad_hash_;  // a payload that did not decode: not retried
-  Clock::time_point last_heartbeat_, last_request_;
+  std::string id_;
+  double fake_episode_ = 0;
+  std::vector<std::unique_ptr<FarmWorkerCore>> cores_;
+  std::unordered_map<std::string, size_t> by_id_;
+  // Cores that heard something since their last Tick (the others are
+  // ticked only when their own deadline comes: hundreds of fake workers
+  // in one process cost nothing while idle).
+  std::vector<char> dirty_;
+  std::unique_ptr<FarmLink> link_;
   std::vector<std::string> log_;
 
-  mutable std::mutex mutex_;
+  // Fake episodes: (end time, result), sorted by end time.
+  std::multimap<double, opt_result_t> fake_running_;
+
+  std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<Task> queue_;
-  std::set<std::int64_t> held_;
+  std::deque<std::pair<std::string, WorkerTask>> pool_queue_;
   std::vector<opt_result_t> finished_;
   bool quit_ = false;
-  WorkerCounters counters_;
   std::vector<std::thread> threads_;
 };
 

@@ -22,6 +22,7 @@ class ChunkAssembler {
   std::vector<int> Missing(int max) const;
   bool complete() const { return received_ == count_; }
   int count() const { return count_; }
+  int received() const { return received_; }
   // The payload (call when complete).
   std::string Join() const;
 

@@ -251,17 +251,13 @@ OptSetup PrepareOpt(const OptCommand& c) {
 }
 
 std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
-    const OptCommand& c, const OptSetup& setup, lcm::LCM* lcm,
-    std::function<bool()> stop, std::function<void(const std::string&)> log) {
+    const OptCommand& c, const OptSetup& setup, std::function<bool()> stop,
+    std::function<void(const std::string&)> log) {
   if (!c.farm) {
     const Problem& problem = setup.problem;
     return std::make_unique<LocalEvaluator>(
         [&problem](const Genome& g) { return RunEpisode(problem, g); },
         setup.threads, std::move(stop));
-  }
-  if (lcm == nullptr || !lcm->good()) {
-    throw std::runtime_error("cannot open LCM '" + c.lcm_url +
-                             "' (no multicast route? see docs/optimizer.md)");
   }
   FarmSettings settings;
   settings.prefix = c.prefix;
@@ -270,8 +266,9 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
   settings.chunk_size = c.chunk_size;
   settings.stop = std::move(stop);
   settings.log = log;
-  auto farm = std::make_unique<FarmEvaluator>(*lcm, setup.payload, MakeRunId(),
-                                              settings);
+  // The farm opens its own connection so it can re-connect (tcpq hub).
+  auto farm = std::make_unique<FarmEvaluator>(c.lcm_url, setup.payload,
+                                              MakeRunId(), settings);
   if (log) {
     log(fmt::format("farm on {}_* (payload {}, {} bytes)", c.prefix, setup.hash,
                     setup.payload.size()));

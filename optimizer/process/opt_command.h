@@ -66,10 +66,10 @@ struct OptSetup {
 OptSetup PrepareOpt(const OptCommand& command);
 
 // The evaluator the command asks for: local threads, or (--farm) the farm
-// master over `lcm`, which must then be open. `stop` abandons a batch;
-// `log` gets the farm's events.
+// master on its own connection to --lcm-url (throws when it cannot open).
+// `stop` abandons a batch; `log` gets the farm's events.
 std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
-    const OptCommand& command, const OptSetup& setup, lcm::LCM* lcm,
+    const OptCommand& command, const OptSetup& setup,
     std::function<bool()> stop, std::function<void(const std::string&)> log);
 
 // What a run left.

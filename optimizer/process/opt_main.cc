@@ -3,10 +3,10 @@
 // LCM; checkpoints every generation and continues when run again
 // (docs/optimizer.md). The work is in opt_command.h.
 #include <fmt/format.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <lcm/lcm-cpp.hpp>
 #include <memory>
 
 #include "lcmtypes/runtime/stop_signal.h"
@@ -26,10 +26,9 @@ int main(int argc, char** argv) {
   try {
     mrsim::InstallStopHandlers();
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
-    std::unique_ptr<lcm::LCM> lcm;
-    if (command.farm) lcm = std::make_unique<lcm::LCM>(command.lcm_url);
+    signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
     auto evaluator = mrsim::MakeOptEvaluator(
-        command, setup, lcm.get(), [] { return mrsim::StopRequested(); },
+        command, setup, [] { return mrsim::StopRequested(); },
         [&](const std::string& text) {
           if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
         });
@@ -37,7 +36,6 @@ int main(int argc, char** argv) {
         mrsim::RunOpt(command, setup, *evaluator, stdout, stderr);
     if (outcome.stopped || !command.replay) return 0;
     evaluator.reset();
-    lcm.reset();
     const std::string launcher = mrsim::FindLauncher();
     fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);
     std::fflush(stdout);

@@ -104,7 +104,7 @@ TEST(OptCommand, RunWritesTheBestAndAProgressLinePerGeneration) {
                  {"--algorithm", "cmaes", "--population", "3", "--generations",
                   "2", "--episode", "0.5", "--workers", "local:1"}));
   const OptSetup setup = PrepareOpt(c);
-  auto evaluator = MakeOptEvaluator(c, setup, nullptr, nullptr, nullptr);
+  auto evaluator = MakeOptEvaluator(c, setup, nullptr, nullptr);
   std::FILE* text = std::tmpfile();
   std::FILE* notes = std::tmpfile();
   const OptOutcome outcome = RunOpt(c, setup, *evaluator, text, notes);
@@ -134,11 +134,11 @@ TEST(OptCommand, RunWritesTheBestAndAProgressLinePerGeneration) {
   std::fclose(quiet);
 }
 
-TEST(OptCommand, FarmWithoutAnOpenLcmIsRefused) {
-  OptCommand c =
-      Parse(With(SnakeArgs(testing::TempDir("opt_command_farm")), {"--farm"}));
+TEST(OptCommand, FarmOnAnUnusableLcmUrlIsRefused) {
+  OptCommand c = Parse(With(SnakeArgs(testing::TempDir("opt_command_farm")),
+                            {"--farm", "--lcm-url", "nonsense://nowhere"}));
   const OptSetup setup = PrepareOpt(c);
-  EXPECT_THROW(MakeOptEvaluator(c, setup, nullptr, nullptr, nullptr),
+  EXPECT_THROW(MakeOptEvaluator(c, setup, nullptr, nullptr),
                std::runtime_error);
 }
 

@@ -1,0 +1,208 @@
+// bench_farm_net: the farm over namespace "hosts" behind a bridge
+// (tests/farm_net/farm_rig.h). The master is this process, moved into the
+// rig's master namespace; workers are real mrsim-worker processes (capped
+// to 0.2 CPU) or protocol-only fake workers.
+//   farm_net_efficiency_8w   evaluations/s over workers / mean episode time
+//   farm_loss5_slowdown      wall time with 5% frame loss over without
+//   farm_jitter_duplicates   fraction of episodes run twice, 20 ms +-5 ms
+//                            (simulated network: the kernel has no netem)
+//   farm_master_cpu_1000w    the master's share of a core, 1,000 fake
+//                            workers, 1 s episodes
+//   farm_throughput_1000w    evaluations/s over 1,000 / 1 s
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sched.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gait_controller/gait_presets.h"
+#include "optimizer/episode.h"
+#include "optimizer/farm/farm_evaluator.h"
+#include "optimizer/problem_codec.h"
+#include "optimizer/random.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+#include "tests/farm_net/farm_rig.h"
+#include "tests/optimizer/sim_farm.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using mrsim::testing::ChildProcess;
+using mrsim::testing::FarmRig;
+constexpr const char* kUrl = "udpm://239.255.76.67:7667?ttl=1";
+
+double Since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double CpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec +
+         1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+mrsim::Problem SnakeProblem(double episode) {
+  mrsim::Problem p;
+  p.scenario = mrsim::ReadScenarioFile(std::string(MRSIM_SOURCE_DIR) +
+                                       "/scenarios/snake11.xml");
+  p.genome = mrsim::ReadGenomeFile(std::string(MRSIM_SOURCE_DIR) +
+                                   "/scenarios/forward_gait.genome.xml");
+  p.episode.duration = episode;
+  p.episode.base_gait = *mrsim::FindGaitPreset("forward");
+  return mrsim::DecodeProblem(mrsim::EncodeProblem(p), "bench");
+}
+
+std::vector<mrsim::Genome> RandomBatch(const mrsim::GenomeSpec& spec, int n,
+                                       std::uint64_t seed) {
+  mrsim::Random random(seed);
+  std::vector<mrsim::Genome> batch;
+  for (int i = 0; i < n; ++i) batch.push_back(spec.RandomGenome(random));
+  return batch;
+}
+
+// Moves this thread (the master: LCM opens its sockets here) into a
+// namespace, back again on destruction.
+class InNamespace {
+ public:
+  explicit InNamespace(const std::string& ns)
+      : home_(open("/proc/self/ns/net", O_RDONLY)) {
+    const int fd = open(("/var/run/netns/" + ns).c_str(), O_RDONLY);
+    if (fd < 0 || setns(fd, CLONE_NEWNET) != 0) {
+      throw std::runtime_error("cannot enter namespace " + ns);
+    }
+    close(fd);
+  }
+  ~InNamespace() {
+    setns(home_, CLONE_NEWNET);
+    close(home_);
+  }
+
+ private:
+  int home_;
+};
+
+std::string NsOf(const FarmRig& rig, int node) {
+  return rig.In(node, {}).back();  // ".. ip netns exec <ns>"
+}
+
+struct Measure {
+  double wall = 0, episodes = 0, cpu = 0;
+  int jobs = 0;
+};
+
+// Runs `batches` batches of `population` on a ready farm (after a warm-up
+// batch that fetches the payload).
+Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
+                int batches) {
+  static int runs = 0;
+  InNamespace in(NsOf(rig, 0));
+  mrsim::FarmSettings settings;
+  mrsim::FarmEvaluator farm(std::string(kUrl), mrsim::EncodeProblem(problem),
+                            fmt::format("bench-{}-{}", getpid(), ++runs),
+                            settings);
+  farm.Evaluate(RandomBatch(problem.genome, population, 1));
+  Measure m;
+  const double before = farm.episode_seconds();
+  const double cpu0 = CpuSeconds();
+  const auto t0 = Clock::now();
+  for (int b = 0; b < batches; ++b) {
+    farm.Evaluate(RandomBatch(problem.genome, population, 2 + b));
+    m.jobs += population;
+  }
+  m.wall = Since(t0);
+  m.cpu = CpuSeconds() - cpu0;
+  m.episodes = farm.episode_seconds() - before;
+  return m;
+}
+
+void Efficiency() {
+  const int workers = 8;
+  const mrsim::Problem problem = SnakeProblem(1.0);
+  FarmRig rig(workers + 1);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= workers; ++k) {
+    ws.push_back(std::make_unique<ChildProcess>(rig.In(
+        k, {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
+            "--lcm-url", kUrl, "--id", fmt::format("w{}", k), "--quiet"})));
+    rig.CapCpu(ws.back()->pid(), 0.2);
+  }
+  for (int population : {8, 16}) {
+    const Measure m = RunFarm(rig, problem, population, 3);
+    const double mean_episode = m.episodes / m.jobs;
+    const double efficiency = (m.jobs / m.wall) / (workers / mean_episode);
+    fmt::print("BENCH farm_net_efficiency_8w{} {:.3f} ratio\n",
+               population == 8 ? "_pop8" : "", efficiency);
+    std::fflush(stdout);
+  }
+  const Measure clean = RunFarm(rig, problem, 16, 2);
+  rig.SetLoss(5);
+  const Measure lossy = RunFarm(rig, problem, 16, 2);
+  rig.SetLoss(0);
+  // Per episode-second, so slower or faster episodes do not count.
+  fmt::print("BENCH farm_loss5_slowdown {:.3f} ratio\n",
+             (lossy.wall / lossy.episodes) / (clean.wall / clean.episodes));
+}
+
+void JitterDuplicates() {
+  mrsim::testing::SimNetwork net;
+  net.delay = 0.020;
+  net.jitter = 0.005;
+  mrsim::testing::SimFarm farm(std::string(30000, 'x'), mrsim::FarmSettings{},
+                               net);
+  for (int w = 0; w < 8; ++w) farm.AddWorker(fmt::format("w{}", w), 0.3);
+  std::vector<mrsim::EvalResult> out;
+  long long jobs = 0;
+  for (int g = 0; g < 41; ++g) {
+    std::vector<mrsim::Genome> batch(8, mrsim::Genome{1.0 * g});
+    if (!farm.Evaluate(batch, 600, &out)) throw std::runtime_error("stuck");
+    jobs += 8;
+  }
+  fmt::print("BENCH farm_jitter_duplicates {:.4f} fraction\n",
+             static_cast<double>(farm.episodes_run() - jobs) / jobs);
+}
+
+void Thousand() {
+  const int processes = 4, per = 250;
+  const mrsim::Problem problem = SnakeProblem(1.0);
+  FarmRig rig(processes + 1);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= processes; ++k) {
+    ws.push_back(std::make_unique<ChildProcess>(rig.In(
+        k, {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
+            "--lcm-url", kUrl, "--id", fmt::format("f{}", k), "--quiet",
+            "--fake-episode", "1", "--fake-workers", std::to_string(per)})));
+  }
+  const Measure m = RunFarm(rig, problem, processes * per * 2, 2);
+  fmt::print("BENCH farm_master_cpu_1000w {:.3f} core\n", m.cpu / m.wall);
+  fmt::print("BENCH farm_throughput_1000w {:.3f} ratio\n",
+             (m.jobs / m.wall) / (processes * per / 1.0));
+}
+
+}  // namespace
+
+int main() {
+  std::string why;
+  if (!FarmRig::Available(&why)) {
+    fmt::print("bench_farm_net: skipped: {}\n", why);
+    return 0;
+  }
+  try {
+    FarmRig::CleanupStale();
+    JitterDuplicates();
+    std::fflush(stdout);
+    Efficiency();
+    std::fflush(stdout);
+    Thousand();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "bench_farm_net: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,200 @@
+#include "optimizer/farm/farm_link.h"
+
+#include <fmt/format.h>
+#include <poll.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "lcmtypes/runtime/decode.h"
+
+namespace mrsim {
+
+double FarmLink::Now() {
+  return std::chrono::duration<double>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+std::int64_t FarmLink::WallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+FarmLink::FarmLink(std::string url, const std::string& prefix,
+                   Handlers handlers)
+    : url_(std::move(url)), channels_(prefix), handlers_(std::move(handlers)) {
+  Open();
+  if (!lcm_) {
+    throw std::runtime_error("cannot open LCM '" + url_ +
+                             "' (no multicast route, or no tcpq hub? see "
+                             "docs/optimizer.md)");
+  }
+}
+
+FarmLink::FarmLink(lcm::LCM& borrowed, const std::string& prefix,
+                   Handlers handlers)
+    : channels_(prefix), handlers_(std::move(handlers)), lcm_(&borrowed) {
+  Subscribe();
+}
+
+FarmLink::~FarmLink() {
+  if (lcm_) {
+    for (lcm::Subscription* s : subscriptions_) lcm_->unsubscribe(s);
+  }
+}
+
+std::vector<std::string> FarmLink::TakeLog() {
+  std::vector<std::string> out;
+  out.swap(log_);
+  return out;
+}
+
+void FarmLink::Open() {
+  auto lcm = std::make_unique<lcm::LCM>(url_);
+  if (!lcm->good()) return;
+  owned_ = std::move(lcm);
+  lcm_ = owned_.get();
+  Subscribe();
+}
+
+void FarmLink::Close(const std::string& why) {
+  if (!owned_) return;  // a borrowed connection is the owner's business
+  subscriptions_.clear();
+  owned_.reset();
+  lcm_ = nullptr;
+  next_attempt_ = Now() + backoff_;
+  log_.push_back(fmt::format("LCM connection lost ({}); re-connecting", why));
+}
+
+void FarmLink::Rejoin() {
+  if (!owned_) return;
+  subscriptions_.clear();
+  owned_.reset();
+  lcm_ = nullptr;
+  Open();
+  if (!lcm_) next_attempt_ = Now() + backoff_;
+}
+
+void FarmLink::Subscribe() {
+  const auto sub =
+      [&](const std::string& channel, bool wanted,
+          void (FarmLink::*fn)(const lcm::ReceiveBuffer*, const std::string&)) {
+        if (wanted)
+          subscriptions_.push_back(lcm_->subscribe(channel, fn, this));
+      };
+  sub(channels_.run, bool(handlers_.run), &FarmLink::OnRun);
+  sub(channels_.chunk, bool(handlers_.chunk), &FarmLink::OnChunk);
+  sub(channels_.chunk_request, bool(handlers_.chunk_request),
+      &FarmLink::OnChunkRequest);
+  sub(channels_.heartbeat, bool(handlers_.heartbeat), &FarmLink::OnHeartbeat);
+  sub(channels_.job, bool(handlers_.job), &FarmLink::OnJob);
+  sub(channels_.result, bool(handlers_.result), &FarmLink::OnResult);
+}
+
+template <class Message>
+void FarmLink::Deliver(const lcm::ReceiveBuffer* rbuf,
+                       const std::function<void(const Message&)>& handler) {
+  try {
+    Message msg;
+    if (!DecodeMessage(rbuf, &msg)) {
+      if (handlers_.malformed) handlers_.malformed();
+      return;
+    }
+    handler(msg);
+  } catch (...) {
+    // Handlers never throw through LCM; a message that makes one fail is
+    // counted like an undecodable one.
+    if (handlers_.malformed) handlers_.malformed();
+  }
+}
+
+void FarmLink::OnRun(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.run);
+}
+void FarmLink::OnChunk(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.chunk);
+}
+void FarmLink::OnChunkRequest(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.chunk_request);
+}
+void FarmLink::OnHeartbeat(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.heartbeat);
+}
+void FarmLink::OnJob(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.job);
+}
+void FarmLink::OnResult(const lcm::ReceiveBuffer* b, const std::string&) {
+  Deliver(b, handlers_.result);
+}
+
+void FarmLink::Handle(int timeout_ms) {
+  if (!lcm_) {
+    const double now = Now();
+    if (now >= next_attempt_) {
+      Open();
+      if (lcm_) {
+        log_.push_back("LCM connection re-opened");
+        backoff_ = 0.1;
+      } else {
+        backoff_ = std::min(5.0, backoff_ * 2);
+        next_attempt_ = now + backoff_;
+      }
+    }
+    if (!lcm_) {
+      const double wait =
+          std::clamp(next_attempt_ - Now(), 0.0, timeout_ms / 1000.0);
+      std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+      return;
+    }
+  }
+  try {
+    // At most kBurst messages per call: a node that receives faster than it
+    // handles must still get back to beating, dispatching and answering.
+    constexpr int kBurst = 256;
+    int wait_ms = timeout_ms;
+    for (int n = 0; n < kBurst; ++n) {
+      pollfd pfd{lcm_->getFileno(), POLLIN, 0};
+      const int ready = poll(&pfd, 1, wait_ms);
+      if (ready < 0 && errno != EINTR) throw std::runtime_error("poll failed");
+      if (ready <= 0) break;
+      if (pfd.revents & (POLLERR | POLLHUP | POLLNVAL) &&
+          !(pfd.revents & POLLIN)) {
+        throw std::runtime_error("connection closed");
+      }
+      if (lcm_->handle() != 0) throw std::runtime_error("lcm handle() failed");
+      wait_ms = 0;
+    }
+  } catch (const std::exception& e) {
+    if (!owned_) throw;
+    Close(e.what());
+  }
+}
+
+void FarmLink::Publish(FarmOutbox& out) {
+  if (out.rejoin) {
+    Rejoin();
+    log_.push_back(lcm_ ? "re-joined the LCM group"
+                        : "re-join failed; re-connecting");
+  }
+  if (!lcm_) return;  // lost; the protocol asks again
+  const std::int64_t stamp = WallMicros();
+  const auto send = [&](const std::string& channel, auto& list) {
+    for (auto& msg : list) {
+      msg.utime = stamp;
+      lcm_->publish(channel, &msg);
+    }
+  };
+  send(channels_.run, out.runs);
+  send(channels_.chunk, out.chunks);
+  send(channels_.chunk_request, out.chunk_requests);
+  send(channels_.heartbeat, out.heartbeats);
+  send(channels_.job, out.jobs);
+  send(channels_.result, out.results);
+}
+
+}  // namespace mrsim

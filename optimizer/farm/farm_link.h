@@ -1,0 +1,79 @@
+// The one place a farm node meets LCM and the clock (as Drake's DrakeLcm
+// is for its systems): owns the lcm::LCM, decodes the farm's channels into
+// handler calls, publishes a core's FarmOutbox, and re-connects with
+// back-off when the connection fails (a tcpq hub that went away) or when
+// asked to re-join (a worker that lost its multicast membership).
+#pragma once
+
+#include <functional>
+#include <lcm/lcm-cpp.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "optimizer/farm/farm_channels.h"
+#include "optimizer/farm/farm_outbox.h"
+
+namespace mrsim {
+
+class FarmLink {
+ public:
+  // Handlers for the channels a node listens to (unset: not subscribed).
+  // Undecodable messages on a subscribed channel go to `malformed`.
+  struct Handlers {
+    std::function<void(const opt_run_t&)> run;
+    std::function<void(const opt_chunk_t&)> chunk;
+    std::function<void(const opt_chunk_request_t&)> chunk_request;
+    std::function<void(const opt_heartbeat_t&)> heartbeat;
+    std::function<void(const opt_job_t&)> job;
+    std::function<void(const opt_result_t&)> result;
+    std::function<void()> malformed;
+  };
+
+  // Opens `url`; throws naming the URL when the first attempt fails.
+  FarmLink(std::string url, const std::string& prefix, Handlers handlers);
+  // Uses a connection the caller owns (no re-connecting).
+  FarmLink(lcm::LCM& borrowed, const std::string& prefix, Handlers handlers);
+  ~FarmLink();
+  FarmLink(const FarmLink&) = delete;
+  FarmLink& operator=(const FarmLink&) = delete;
+
+  // Handles what arrives within timeout_ms. A failed connection is
+  // re-opened with back-off (0.1 s doubling to 5 s) meanwhile.
+  void Handle(int timeout_ms);
+  void Publish(FarmOutbox& out);
+  // Closes and re-opens the connection now (re-joins multicast groups).
+  void Rejoin();
+  bool connected() const { return lcm_ != nullptr; }
+  // Seconds on a monotonic clock.
+  static double Now();
+  // Wall-clock microseconds (message stamps, master start).
+  static std::int64_t WallMicros();
+  std::vector<std::string> TakeLog();
+
+ private:
+  void Open();
+  void Close(const std::string& why);
+  void Subscribe();
+  template <class Message>
+  void Deliver(const lcm::ReceiveBuffer* rbuf,
+               const std::function<void(const Message&)>& handler);
+  void OnRun(const lcm::ReceiveBuffer* b, const std::string&);
+  void OnChunk(const lcm::ReceiveBuffer* b, const std::string&);
+  void OnChunkRequest(const lcm::ReceiveBuffer* b, const std::string&);
+  void OnHeartbeat(const lcm::ReceiveBuffer* b, const std::string&);
+  void OnJob(const lcm::ReceiveBuffer* b, const std::string&);
+  void OnResult(const lcm::ReceiveBuffer* b, const std::string&);
+
+  std::string url_;
+  FarmChannels channels_;
+  Handlers handlers_;
+  std::unique_ptr<lcm::LCM> owned_;
+  lcm::LCM* lcm_ = nullptr;
+  std::vector<lcm::Subscription*> subscriptions_;
+  double backoff_ = 0.1;
+  double next_attempt_ = 0;
+  std::vector<std::string> log_;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,381 @@
+#include "optimizer/farm/farm_master_core.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "optimizer/farm/farm_channels.h"
+#include "optimizer/farm/payload_chunks.h"
+#include "optimizer/hash.h"
+
+namespace mrsim {
+namespace {
+
+constexpr int kJobIdShift = 24;  // job id = batch << 24 | index
+constexpr std::int64_t kIndexMask = (std::int64_t{1} << kJobIdShift) - 1;
+constexpr double kMaintainPeriod = 0.1;  // s
+// A heartbeat received this long after a job went out should list it.
+constexpr double kListGrace = 0.5;
+
+}  // namespace
+
+int OnePacketChunkSize(const std::string& prefix, const std::string& run_id,
+                       const std::string& hash) {
+  opt_chunk_t empty{};
+  empty.run_id = run_id;
+  empty.scenario_hash = hash;
+  empty.size = 0;
+  constexpr int kDatagram = 1472;  // 1500 - IPv4 20 - UDP 8
+  constexpr int kLcmHeader = 8;    // magic + sequence number
+  const int channel = static_cast<int>(FarmChannels(prefix).chunk.size()) + 1;
+  return std::max(256, kDatagram - kLcmHeader - channel -
+                           static_cast<int>(empty.getEncodedSize()));
+}
+
+FarmMasterCore::FarmMasterCore(std::string payload, std::string run_id,
+                               std::int64_t started_utime,
+                               FarmSettings settings)
+    : payload_(std::move(payload)),
+      run_id_(std::move(run_id)),
+      hash_(HashHex(Fnv1a64(payload_))),
+      started_(started_utime),
+      settings_(std::move(settings)) {
+  int size = settings_.chunk_size;
+  if (size <= 0) size = OnePacketChunkSize(settings_.prefix, run_id_, hash_);
+  chunks_ =
+      SplitPayload(payload_, static_cast<size_t>(std::clamp(size, 1, 60000)));
+  chunk_sent_.assign(chunks_.size(), -1e9);
+}
+
+void FarmMasterCore::Log(const std::string& text) const {
+  if (settings_.log) settings_.log(text);
+}
+
+int FarmMasterCore::workers_ready() const {
+  int n = 0;
+  for (const auto& [id, w] : workers_) n += w.ready ? 1 : 0;
+  return n;
+}
+
+double FarmMasterCore::heartbeat_period() const {
+  return std::max(settings_.min_heartbeat_period,
+                  static_cast<double>(workers_.size()) /
+                      std::max(1.0, settings_.heartbeat_budget));
+}
+
+double FarmMasterCore::worker_timeout() const {
+  return std::max(settings_.worker_timeout, 5 * heartbeat_period() + 1.0);
+}
+
+double FarmMasterCore::JobTimeout() const {
+  if (settings_.job_timeout > 0) return settings_.job_timeout;
+  if (slowest_episode_ <= 0) return 10.0;
+  return 2.0 + 3.0 * slowest_episode_ * (1 + settings_.extra_jobs_per_worker);
+}
+
+FarmMasterCore::Job* FarmMasterCore::FindJob(std::int64_t job_id) {
+  if ((job_id >> kJobIdShift) != batch_) return nullptr;
+  const std::int64_t index = job_id & kIndexMask;
+  if (index < 0 || index >= static_cast<std::int64_t>(jobs_.size())) {
+    return nullptr;
+  }
+  return &jobs_[static_cast<size_t>(index)];
+}
+
+void FarmMasterCore::Reindex(Worker& w, double now) {
+  if (w.room_load >= 0) room_.erase({w.room_load, w.id});
+  w.room_load = -1;
+  const int capacity = w.slots + settings_.extra_jobs_per_worker;
+  const int load = static_cast<int>(w.assigned.size());
+  if (w.ready && now >= w.deaf_until && load < capacity) {
+    w.room_load = load;
+    room_.emplace(load, w.id);
+  }
+}
+
+void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
+  if (batch.size() >= (size_t{1} << kJobIdShift)) {
+    throw std::invalid_argument("farm: batch too large");
+  }
+  ++batch_;
+  genomes_ = batch;
+  jobs_.assign(batch.size(), Job{});
+  results_.assign(batch.size(), EvalResult{});
+  pending_.clear();
+  for (size_t i = 0; i < batch.size(); ++i) {
+    pending_.push_back((batch_ << kJobIdShift) | static_cast<std::int64_t>(i));
+  }
+  remaining_ = batch.size();
+  for (auto& [id, w] : workers_) {
+    w.assigned.clear();  // the old batch's jobs are of no use now
+    Reindex(w, now);
+  }
+}
+
+void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
+  ++counters_.messages_received;
+  if (msg.worker_id.empty() || msg.slots < 1 || msg.job_count < 0 ||
+      msg.done_count < 0) {
+    ++counters_.messages_malformed;
+    return;
+  }
+  auto [it, fresh] = workers_.try_emplace(msg.worker_id);
+  Worker& w = it->second;
+  if (fresh) {
+    w.id = msg.worker_id;
+    Log(fmt::format("worker {} ({}) joined", w.id, msg.host));
+  }
+  w.last_seen = now;
+  w.slots = std::clamp(msg.slots, 1, 64);
+  const bool ready = msg.run_id == run_id_ && msg.scenario_hash == hash_;
+  if (ready && !w.ready) Log(fmt::format("worker {} is ready", w.id));
+  if (!ready && w.ready) {
+    // It follows another run now (or lost the payload): nothing it holds
+    // of ours will be answered.
+    std::vector<std::int64_t> lost(w.assigned.begin(), w.assigned.end());
+    for (std::int64_t id : lost) Requeue(id, "its worker left the run");
+  }
+  w.ready = ready;
+  if (ready) {
+    // One heartbeat's word is not enough to re-send a job: under jitter a
+    // heartbeat may overtake the job or its result. A job is taken back
+    // after two heartbeats, both well after it went out, list it neither
+    // as held nor as recently done.
+    std::vector<std::int64_t> assigned(w.assigned.begin(), w.assigned.end());
+    for (std::int64_t id : assigned) {
+      Job* job = FindJob(id);
+      if (!job) continue;
+      const bool held =
+          std::find(msg.jobs.begin(), msg.jobs.end(), id) != msg.jobs.end();
+      const bool done =
+          std::find(msg.done.begin(), msg.done.end(), id) != msg.done.end();
+      if (held || done) {
+        job->unlisted = 0;
+        w.misses = 0;
+        w.deaf_backoff = 0;
+        if (done && job->done_seen < 0) job->done_seen = now;
+        continue;
+      }
+      if (now - job->sent < kListGrace) continue;
+      if (++job->unlisted < 2) continue;
+      Requeue(id, "never listed by its worker");
+      if (++w.misses >= 2) {
+        // A worker that never lists what it is sent does not hear us (a
+        // lost multicast membership): stop feeding it for a while; it
+        // re-joins when it notices the silence.
+        w.deaf_backoff = std::clamp(w.deaf_backoff * 2, 2.0, 30.0);
+        w.deaf_until = now + w.deaf_backoff;
+        Log(fmt::format(
+            "worker {} does not list the jobs it was sent; none for {:.0f} s",
+            w.id, w.deaf_backoff));
+      }
+    }
+  }
+  Reindex(w, now);
+}
+
+void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
+  ++counters_.messages_received;
+  if (msg.run_id != run_id_ || msg.scenario_hash != hash_) {
+    ++counters_.results_ignored;
+    return;
+  }
+  auto wit = workers_.find(msg.worker_id);
+  if (wit != workers_.end()) wit->second.last_seen = now;  // a sign of life
+  Job* job = FindJob(msg.job_id);
+  if (!job || job->done) {
+    ++counters_.results_ignored;  // late (older batch) or duplicate
+    return;
+  }
+  if (!msg.error.empty()) {
+    Log(fmt::format("worker {} could not run job {}: {}", msg.worker_id,
+                    msg.job_id, msg.error));
+    if (!job->pending) Requeue(msg.job_id, "error");
+    return;
+  }
+  for (double v : {msg.fitness, msg.distance, msg.speed, msg.energy, msg.drift,
+                   msg.fell}) {
+    if (std::isnan(v)) {
+      ++counters_.messages_malformed;
+      return;
+    }
+  }
+  EvalResult& r = results_[static_cast<size_t>(msg.job_id & kIndexMask)];
+  r.fitness = msg.fitness;
+  r.distance = msg.distance;
+  r.speed = msg.speed;
+  r.energy = msg.energy;
+  r.drift = msg.drift;
+  r.fell = msg.fell;
+  r.failed = msg.failed;
+  job->done = true;
+  job->pending = false;  // a stale id in pending_ is skipped
+  --remaining_;
+  ++counters_.results_accepted;
+  auto owner = workers_.find(job->worker);
+  if (owner != workers_.end() && owner->second.assigned.erase(msg.job_id)) {
+    Reindex(owner->second, now);
+  }
+  if (std::isfinite(msg.eval_seconds) && msg.eval_seconds > 0) {
+    slowest_episode_ = std::max(slowest_episode_, msg.eval_seconds);
+    episode_seconds_ += msg.eval_seconds;
+  }
+}
+
+void FarmMasterCore::OnChunkRequest(const opt_chunk_request_t& msg,
+                                    double now) {
+  ++counters_.messages_received;
+  if (msg.run_id != run_id_ || msg.scenario_hash != hash_) return;
+  for (int index : msg.missing) {
+    if (index < 0 || index >= static_cast<int>(chunks_.size())) {
+      ++counters_.messages_malformed;
+      continue;
+    }
+    if (now - chunk_sent_[index] < 0.1) continue;
+    chunk_sent_[index] = now;
+    opt_chunk_t chunk{};
+    chunk.run_id = run_id_;
+    chunk.scenario_hash = hash_;
+    chunk.index = index;
+    chunk.count = static_cast<int32_t>(chunks_.size());
+    chunk.data.assign(chunks_[index].begin(), chunks_[index].end());
+    chunk.size = static_cast<int32_t>(chunk.data.size());
+    outbox_.chunks.push_back(std::move(chunk));
+    ++counters_.chunks_sent;
+  }
+}
+
+void FarmMasterCore::Announce(double now) {
+  opt_run_t msg{};
+  msg.run_id = run_id_;
+  msg.started = started_;
+  msg.heartbeat_period = heartbeat_period();
+  msg.scenario_hash = hash_;
+  msg.payload_size = static_cast<std::int64_t>(payload_.size());
+  msg.chunk_count = static_cast<int32_t>(chunks_.size());
+  msg.chunk_size = static_cast<int32_t>(chunks_.front().size());
+  outbox_.runs.push_back(std::move(msg));
+  last_announce_ = now;
+}
+
+void FarmMasterCore::Requeue(std::int64_t job_id, const char* why) {
+  Job* job = FindJob(job_id);
+  if (!job || job->done || job->pending) return;
+  auto w = workers_.find(job->worker);
+  if (w != workers_.end()) w->second.assigned.erase(job_id);
+  job->pending = true;
+  job->unlisted = 0;
+  job->done_seen = -1;
+  pending_.push_front(job_id);  // stragglers first
+  Log(fmt::format("job {} re-queued: {}", job_id, why));
+}
+
+void FarmMasterCore::Maintain(double now) {
+  last_maintain_ = now;
+  const double silence = worker_timeout();
+  for (auto it = workers_.begin(); it != workers_.end();) {
+    Worker& w = it->second;
+    if (now - w.last_seen > silence) {
+      const size_t lost = w.assigned.size();
+      std::vector<std::int64_t> ids(w.assigned.begin(), w.assigned.end());
+      for (std::int64_t id : ids) Requeue(id, "its worker is gone");
+      if (w.room_load >= 0) room_.erase({w.room_load, w.id});
+      Log(fmt::format("worker {} is gone{}", it->first,
+                      lost ? fmt::format("; {} job(s) re-queued", lost) : ""));
+      it = workers_.erase(it);
+      continue;
+    }
+    if (w.deaf_until > 0 && now >= w.deaf_until && w.room_load < 0) {
+      Reindex(w, now);  // probation over: one more try
+    }
+    ++it;
+  }
+  const double timeout = JobTimeout();
+  for (size_t i = 0; i < jobs_.size(); ++i) {
+    Job& job = jobs_[i];
+    if (job.done || job.pending) continue;
+    const std::int64_t id = (batch_ << kJobIdShift) | static_cast<int64_t>(i);
+    if (now - job.sent > timeout) {
+      Requeue(id, "no answer by its deadline");
+      continue;
+    }
+    if (job.done_seen >= 0 && now - job.done_seen > settings_.result_wait) {
+      // Its worker finished it but the result was lost: ask the same worker
+      // again; it answers from its recent results without re-running.
+      auto w = workers_.find(job.worker);
+      if (w == workers_.end()) continue;
+      opt_job_t msg{};
+      msg.run_id = run_id_;
+      msg.scenario_hash = hash_;
+      msg.worker_id = job.worker;
+      msg.job_id = id;
+      msg.generation = static_cast<int32_t>(batch_);
+      msg.index = static_cast<int32_t>(i);
+      msg.genome = genomes_[i];
+      msg.gene_count = static_cast<int32_t>(msg.genome.size());
+      outbox_.jobs.push_back(std::move(msg));
+      job.done_seen = now;
+      ++counters_.results_rerequested;
+    }
+  }
+}
+
+void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
+  Job& job = jobs_[static_cast<size_t>(job_id & kIndexMask)];
+  opt_job_t msg{};
+  msg.run_id = run_id_;
+  msg.scenario_hash = hash_;
+  msg.worker_id = w.id;
+  msg.job_id = job_id;
+  msg.generation = static_cast<int32_t>(batch_);
+  msg.index = static_cast<int32_t>(job_id & kIndexMask);
+  msg.genome = genomes_[static_cast<size_t>(msg.index)];
+  msg.gene_count = static_cast<int32_t>(msg.genome.size());
+  outbox_.jobs.push_back(std::move(msg));
+  if (job.sends > 0) ++counters_.jobs_resent;
+  ++counters_.jobs_sent;
+  ++job.sends;
+  job.pending = false;
+  job.worker = w.id;
+  job.sent = now;
+  job.unlisted = 0;
+  job.done_seen = -1;
+  w.assigned.insert(job_id);
+  Reindex(w, now);
+}
+
+void FarmMasterCore::Dispatch(double now) {
+  while (!pending_.empty() && !room_.empty()) {
+    const std::int64_t id = pending_.front();
+    Job* job = FindJob(id);
+    if (!job || job->done || !job->pending) {
+      pending_.pop_front();  // stale
+      continue;
+    }
+    // Least loaded first (ties by id); a re-sent job goes to another
+    // worker than its last one when there is one with room.
+    auto slot = room_.begin();
+    if (slot->second == job->worker && room_.size() > 1) ++slot;
+    Worker& w = workers_.at(slot->second);
+    pending_.pop_front();
+    Send(id, w, now);
+  }
+}
+
+FarmOutbox FarmMasterCore::Tick(double now) {
+  if (now - last_announce_ >= settings_.announce_period) Announce(now);
+  if (now - last_maintain_ >= kMaintainPeriod) Maintain(now);
+  Dispatch(now);
+  FarmOutbox out;
+  std::swap(out, outbox_);
+  return out;
+}
+
+double FarmMasterCore::next_deadline() const {
+  return std::min(last_announce_ + settings_.announce_period,
+                  last_maintain_ + kMaintainPeriod);
+}
+
+}  // namespace mrsim

@@ -1,0 +1,159 @@
+// The farm master's logic without LCM or a clock: decoded worker messages
+// and the current time in, messages to publish out (FarmEvaluator wires it
+// to LCM; tests drive it with a fake clock and simulated workers).
+//
+// Every message costs O(log workers): workers with room sit in a set
+// ordered by load, so each ready worker gets a job before any gets a
+// second; silence and deadlines are checked on a timer, not per message.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <set>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "optimizer/eval_result.h"
+#include "optimizer/farm/farm_outbox.h"
+#include "optimizer/genome.h"
+
+namespace mrsim {
+
+struct FarmSettings {
+  std::string prefix = "MRSIM_OPT";
+  // A job is re-sent when not answered this long after it was sent; 0:
+  // automatic (10 s, then 3 x the slowest episode seen x the jobs a worker
+  // holds, plus 2 s).
+  double job_timeout = 0.0;
+  // s without a heartbeat or result before a worker counts as gone (at least
+  // five heartbeat periods plus a second).
+  double worker_timeout = 2.0;
+  int extra_jobs_per_worker = 1;  // queued beyond its slots (hides latency)
+  double announce_period = 0.5;   // s
+  // Payload bytes per chunk; 0: what fits one 1500-byte Ethernet frame
+  // with the chunk's header (one IP packet: a lost fragment loses only it).
+  int chunk_size = 0;
+  // Heartbeats asked of the workers: every max(min_heartbeat_period,
+  // workers / heartbeat_budget) s, so the master hears at most about
+  // heartbeat_budget heartbeats a second however large the farm grows.
+  double min_heartbeat_period = 0.2;
+  double heartbeat_budget = 250.0;
+  double result_wait = 1.0;    // s after a heartbeat lists a job done before
+                               // its result is asked for again
+  std::function<bool()> stop;  // polled; true abandons the batch
+  std::function<void(const std::string&)> log;  // events (worker joined...)
+};
+
+struct FarmCounters {
+  long long jobs_sent = 0;
+  long long jobs_resent = 0;
+  long long results_accepted = 0;
+  long long results_ignored = 0;  // late, duplicate, other run or payload
+  long long results_rerequested = 0;
+  long long messages_malformed = 0;
+  long long chunks_sent = 0;
+  long long messages_received = 0;
+};
+
+// The largest chunk whose opt_chunk_t, with LCM's header and the channel
+// name, fits one 1472-byte UDP datagram (1500-byte MTU).
+int OnePacketChunkSize(const std::string& prefix, const std::string& run_id,
+                       const std::string& hash);
+
+class FarmMasterCore {
+ public:
+  // `payload` is EncodeProblem's output; `run_id` tells this master's
+  // messages apart from any other's; `started_utime` orders masters (the
+  // newest is followed at once).
+  FarmMasterCore(std::string payload, std::string run_id,
+                 std::int64_t started_utime, FarmSettings settings);
+
+  // Starts a batch (the previous one's late answers are ignored from now).
+  void StartBatch(const std::vector<Genome>& batch, double now);
+  bool batch_done() const { return remaining_ == 0; }
+  const std::vector<EvalResult>& results() const { return results_; }
+
+  void OnHeartbeat(const opt_heartbeat_t& msg, double now);
+  void OnResult(const opt_result_t& msg, double now);
+  void OnChunkRequest(const opt_chunk_request_t& msg, double now);
+  void CountMalformed() { ++counters_.messages_malformed; }
+
+  // Announces, checks silence and deadlines, dispatches; returns everything
+  // to publish since the last call.
+  FarmOutbox Tick(double now);
+  // When Tick next has timed work (announce, maintenance).
+  double next_deadline() const;
+
+  int workers_alive() const { return static_cast<int>(workers_.size()); }
+  int workers_ready() const;
+  double heartbeat_period() const;
+  double worker_timeout() const;
+  double JobTimeout() const;
+  const std::string& scenario_hash() const { return hash_; }
+  const std::string& run_id() const { return run_id_; }
+  int chunk_count() const { return static_cast<int>(chunks_.size()); }
+  const FarmCounters& counters() const { return counters_; }
+  // Sum of the workers' reported episode wall times (s), for overhead.
+  double episode_seconds() const { return episode_seconds_; }
+
+ private:
+  struct Worker {
+    std::string id;
+    bool ready = false;  // holds our payload
+    int slots = 1;
+    double last_seen = 0;
+    std::set<std::int64_t> assigned;  // sent, not answered
+    int room_load = -1;               // its key in room_ (-1: not there)
+    int misses = 0;                   // jobs in a row it never listed
+    double deaf_until = 0;
+    double deaf_backoff = 0;
+  };
+  struct Job {
+    bool done = false;
+    bool pending = true;  // waiting in pending_ to be (re)sent
+    std::string worker;   // latest assignee
+    int sends = 0;
+    double sent = 0;
+    int unlisted = 0;       // heartbeats of its worker not listing it
+    double done_seen = -1;  // a heartbeat listed it done; result not here
+  };
+
+  void Announce(double now);
+  void Maintain(double now);
+  void Dispatch(double now);
+  void Send(std::int64_t job_id, Worker& w, double now);
+  void Requeue(std::int64_t job_id, const char* why);
+  void Reindex(Worker& w, double now);
+  Job* FindJob(std::int64_t job_id);
+  void Log(const std::string& text) const;
+
+  std::string payload_;
+  std::string run_id_;
+  std::string hash_;
+  std::int64_t started_;
+  FarmSettings settings_;
+  std::vector<std::string> chunks_;
+  // When each chunk last went out: workers asking together get one copy
+  // (it reaches all of them).
+  std::vector<double> chunk_sent_;
+
+  std::unordered_map<std::string, Worker> workers_;
+  std::set<std::pair<int, std::string>> room_;  // (load, id), ready, room
+  std::vector<Genome> genomes_;
+  std::vector<Job> jobs_;             // of the current batch
+  std::deque<std::int64_t> pending_;  // may hold stale ids
+  std::vector<EvalResult> results_;
+  std::int64_t batch_ = 0;
+  size_t remaining_ = 0;
+  double last_announce_ = -1e9;
+  double last_maintain_ = -1e9;
+  double slowest_episode_ = 0.0;
+  double episode_seconds_ = 0.0;
+  FarmCounters counters_;
+  FarmOutbox outbox_;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,282 @@
+// The farm across simulated hosts (tests/farm_net/farm_rig.h): a master
+// and workers each in its own network namespace behind a snooping bridge,
+// workers capped to 0.2 CPU, real mrsim-opt and mrsim-worker. Each case
+// must end byte for byte like the local run of the same seed.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "tests/common/child_process.h"
+#include "tests/farm_net/farm_rig.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::FarmRig;
+using testing::SourcePath;
+using testing::TempDir;
+
+constexpr const char* kUdpm = "udpm://239.255.76.67:7667?ttl=1";
+constexpr int kHubPort = 7700;
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> OptArgs(const std::string& out,
+                                 const std::string& population = "6") {
+  return {BinaryPath("optimizer/process/mrsim-opt"),
+          SourcePath("scenarios/snake11.xml"),
+          "--genome",
+          SourcePath("scenarios/forward_gait.genome.xml"),
+          "--algorithm",
+          "ga",
+          "--generations",
+          "3",
+          "--population",
+          population,
+          "--seed",
+          "23",
+          "--episode",
+          "0.6",
+          "--out",
+          out};
+}
+
+std::vector<std::string> With(std::vector<std::string> a,
+                              const std::vector<std::string>& more) {
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+bool WaitForText(ChildProcess& p, const std::string& text, double seconds) {
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::milliseconds(static_cast<int>(seconds * 1000));
+  while (std::chrono::steady_clock::now() < end) {
+    if (p.Output().find(text) != std::string::npos) return true;
+    if (!p.running()) return p.Output().find(text) != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+void ExpectSameResult(const std::string& a, const std::string& b) {
+  for (const char* f :
+       {"/generations.csv", "/evaluations.csv", "/best_gait.xml",
+        "/best_scenario.xml", "/best_genome.xml"}) {
+    const std::string x = ReadAll(a + f);
+    EXPECT_FALSE(x.empty()) << a << f;
+    EXPECT_EQ(x, ReadAll(b + f)) << f;
+  }
+}
+
+class FarmNet : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string why;
+    if (!FarmRig::Available(&why)) GTEST_SKIP() << why;
+    FarmRig::CleanupStale();
+  }
+
+  // The local run of the same seed, the reference every case must equal.
+  std::string Local(const std::string& name) {
+    const std::string dir = TempDir(name + "_local");
+    ChildProcess p(With(OptArgs(dir), {"--workers", "local:2"}),
+                   dir + "/log.txt");
+    EXPECT_EQ(p.Wait(120), 0) << p.Output();
+    return dir;
+  }
+
+  // A worker in node k, capped to a fifth of a CPU like a small host.
+  std::unique_ptr<ChildProcess> Worker(FarmRig& rig, int node,
+                                       const std::string& url,
+                                       const std::string& dir,
+                                       std::vector<std::string> more = {}) {
+    const std::string id = "w" + std::to_string(node);
+    auto p = std::make_unique<ChildProcess>(
+        rig.In(node, With({BinaryPath("optimizer/process/mrsim-worker"),
+                           "--lcm-url", url, "--id", id},
+                          more)),
+        dir + "/" + id + ".log");
+    // Fake workers stand in for many hosts: not capped.
+    if (more.empty()) rig.CapCpu(p->pid(), 0.2);
+    return p;
+  }
+
+  std::unique_ptr<ChildProcess> Master(FarmRig& rig, const std::string& url,
+                                       const std::string& dir,
+                                       const std::string& log = "master") {
+    return std::make_unique<ChildProcess>(
+        rig.In(0, With(OptArgs(dir),
+                       {"--farm", "--lcm-url", url, "--worker-timeout", "2"})),
+        dir + "/" + log + ".log");
+  }
+
+  std::unique_ptr<ChildProcess> Hub(FarmRig& rig, const std::string& log) {
+    auto hub = std::make_unique<ChildProcess>(
+        rig.In(0, {"/usr/bin/java", "-cp", "/usr/share/java/lcm.jar",
+                   "lcm.lcm.TCPService", std::to_string(kHubPort)}),
+        log + "_hub.log");
+    // It prints its client count once a second once it listens.
+    EXPECT_TRUE(WaitForText(*hub, "clients", 30)) << hub->Output();
+    return hub;
+  }
+
+  // Runs a farm of `workers` on `url` with `fault` called once generation 1
+  // is done; the result must equal the local one.
+  void RunCase(
+      const std::string& name, const std::string& url, int workers,
+      const std::function<void(FarmRig&, ChildProcess& master,
+                               std::vector<std::unique_ptr<ChildProcess>>& ws,
+                               const std::string& dir)>& fault = {},
+      bool hub = false) {
+    const std::string local = Local(name);
+    const std::string dir = TempDir(name);
+    FarmRig rig(workers + 3);
+    std::unique_ptr<ChildProcess> hub_process;
+    if (hub) hub_process = Hub(rig, dir);
+    std::vector<std::unique_ptr<ChildProcess>> ws;
+    for (int k = 1; k <= workers; ++k) ws.push_back(Worker(rig, k, url, dir));
+    auto master = Master(rig, url, dir);
+    if (fault) {
+      ASSERT_TRUE(WaitForText(*master, "generation 1 of 3", 120))
+          << master->Output();
+      fault(rig, *master, ws, dir);
+    }
+    ASSERT_EQ(master->Wait(180), 0) << master->Output();
+    ExpectSameResult(local, dir);
+  }
+};
+
+TEST_F(FarmNet, CleanUdpmEqualsLocal) { RunCase("fn_clean", kUdpm, 4); }
+
+TEST_F(FarmNet, FivePercentLossEqualsLocal) {
+  RunCase("fn_loss", kUdpm, 4,
+          [](FarmRig& rig, ChildProcess&, auto&, const std::string&) {
+            rig.SetLoss(5);
+          });
+}
+
+TEST_F(FarmNet, KillThreeAddTwoEqualsLocal) {
+  RunCase("fn_churn", kUdpm, 4,
+          [this](FarmRig& rig, ChildProcess& master, auto& ws,
+                 const std::string& dir) {
+            for (int k = 0; k < 3; ++k) ws[k]->Signal(SIGKILL);
+            ws.push_back(Worker(rig, 5, kUdpm, dir));
+            ws.push_back(Worker(rig, 6, kUdpm, dir));
+            EXPECT_TRUE(WaitForText(master, "worker w5 is ready", 60))
+                << master.Output();
+          });
+}
+
+TEST_F(FarmNet, PartitionedWorkerEqualsLocal) {
+  RunCase("fn_partition", kUdpm, 3,
+          [](FarmRig& rig, ChildProcess& master, auto&, const std::string&) {
+            rig.SetPartitioned(1, true);
+            EXPECT_TRUE(WaitForText(master, "worker w1 is gone", 60))
+                << master.Output();
+            rig.SetPartitioned(1, false);
+          });
+}
+
+TEST_F(FarmNet, PortFlapEqualsLocalAndTheWorkerRejoins) {
+  RunCase("fn_flap", kUdpm, 3,
+          [](FarmRig& rig, ChildProcess&, auto& ws, const std::string&) {
+            rig.SetPortUp(1, false);
+            rig.SetPortUp(1, true);
+            EXPECT_TRUE(WaitForText(*ws[0], "re-join", 60)) << ws[0]->Output();
+          });
+}
+
+TEST_F(FarmNet, MasterRestartEqualsLocal) {
+  const std::string local = Local("fn_restart");
+  const std::string dir = TempDir("fn_restart");
+  FarmRig rig(4);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= 3; ++k) ws.push_back(Worker(rig, k, kUdpm, dir));
+  {
+    auto first = Master(rig, kUdpm, dir, "first");
+    ASSERT_TRUE(WaitForText(*first, "generation 1 of 3", 120))
+        << first->Output();
+    first->Signal(SIGKILL);
+    EXPECT_EQ(first->Wait(10), 128 + SIGKILL);
+  }
+  auto second = Master(rig, kUdpm, dir, "second");
+  ASSERT_EQ(second->Wait(180), 0) << second->Output();
+  EXPECT_NE(second->Output().find("from checkpoint"), std::string::npos);
+  // Workers took the new run at once (not after 3 s of silence).
+  EXPECT_NE(ws[0]->Output().find("already here"), std::string::npos)
+      << ws[0]->Output();
+  ExpectSameResult(local, dir);
+}
+
+TEST_F(FarmNet, MpudpmEqualsLocal) {
+  RunCase("fn_mpudpm", "mpudpm://239.255.76.67:7667?ttl=1&nports=16", 3);
+}
+
+TEST_F(FarmNet, TcpqEqualsLocal) {
+  RunCase("fn_tcpq", "tcpq://10.77.0.1:" + std::to_string(kHubPort), 3, {},
+          true);
+}
+
+TEST_F(FarmNet, TcpqHubRestartEqualsLocal) {
+  const std::string local = Local("fn_hub");
+  const std::string dir = TempDir("fn_hub");
+  const std::string url = "tcpq://10.77.0.1:" + std::to_string(kHubPort);
+  FarmRig rig(4);
+  auto hub = Hub(rig, dir);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= 3; ++k) ws.push_back(Worker(rig, k, url, dir));
+  auto master = Master(rig, url, dir);
+  ASSERT_TRUE(WaitForText(*master, "generation 1 of 3", 120))
+      << master->Output();
+  hub->Signal(SIGKILL);
+  hub->Wait(10);
+  EXPECT_TRUE(WaitForText(*master, "connection lost", 30)) << master->Output();
+  hub.reset();
+  hub = Hub(rig, dir + "/again");
+  ASSERT_EQ(master->Wait(180), 0) << master->Output();
+  EXPECT_NE(master->Output().find("re-opened"), std::string::npos);
+  ExpectSameResult(local, dir);
+}
+
+TEST_F(FarmNet, HundredsOfFakeWorkersDriveTheRealMaster) {
+  const std::string dir = TempDir("fn_fake");
+  FarmRig rig(3);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= 2; ++k) {
+    ws.push_back(Worker(rig, k, kUdpm, dir,
+                        {"--fake-episode", "0.5", "--fake-workers", "100"}));
+  }
+  auto master = std::make_unique<ChildProcess>(
+      rig.In(0, With(OptArgs(dir, "400"), {"--farm", "--lcm-url", kUdpm})),
+      dir + "/master.log");
+  ASSERT_EQ(master->Wait(180), 0) << master->Output();
+  // Every fake worker reached the master and fetched the payload. (How
+  // many stay counted as alive under load is docs/scaling.md's open
+  // question, measured by bench/run farm_net, not asserted here.)
+  const std::string out = master->Output();
+  for (const char* id : {"w1-0 ", "w1-99 ", "w2-0 ", "w2-99 "}) {
+    EXPECT_NE(out.find(std::string("worker ") + id + "("), std::string::npos)
+        << id;
+  }
+  size_t ready = 0;
+  for (size_t at = out.find(" is ready"); at != std::string::npos;
+       at = out.find(" is ready", at + 1)) {
+    ++ready;
+  }
+  EXPECT_GE(ready, 200u) << out.substr(0, 2000);
+}
+
+}  // namespace
+}  // namespace mrsim

@@ -1,0 +1,53 @@
+// A farm of "hosts" for tests: one network namespace per node (a master
+// and N workers) joined by a Linux bridge that lives in a namespace of its
+// own, so no address or interface of this machine is touched. Faults are
+// made on the bridge: packet loss with nftables, partitions, port flaps;
+// workers can be capped to a share of a CPU (cgroup v1). Needs root: use
+// FarmRig::Available() and GTEST_SKIP otherwise. Everything is torn down
+// by the destructor, and rigs left by a crashed test are removed when the
+// next one starts (names carry the creating pid).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mrsim::testing {
+
+class FarmRig {
+ public:
+  // True when namespaces can be made here; otherwise `why` says why not.
+  static bool Available(std::string* why);
+  // Removes farmrig* namespaces and cgroups whose creating process is gone.
+  static void CleanupStale();
+
+  // `nodes` namespaces: node 0 is the master's (10.77.0.1), node k a
+  // worker's (10.77.0.k+1). Throws naming the command that failed.
+  explicit FarmRig(int nodes);
+  ~FarmRig();
+  FarmRig(const FarmRig&) = delete;
+  FarmRig& operator=(const FarmRig&) = delete;
+
+  // argv prefixed to run a program inside node k's namespace.
+  std::vector<std::string> In(int node, std::vector<std::string> argv) const;
+  std::string Address(int node) const;
+  // Drops this percentage of the frames the bridge forwards (0: none).
+  void SetLoss(int percent);
+  // Cuts node k off (both directions) or heals it.
+  void SetPartitioned(int node, bool on);
+  // Sets node k's bridge port down or up (up again loses its multicast
+  // group membership on the snooping bridge).
+  void SetPortUp(int node, bool up);
+  // Caps a process to `share` of one CPU (0.2: a fifth).
+  void CapCpu(int pid, double share);
+
+ private:
+  void Nft();
+
+  std::string tag_;
+  int nodes_;
+  std::vector<std::string> cgroups_;
+  int loss_ = 0;
+  std::vector<bool> partitioned_;
+};
+
+}  // namespace mrsim::testing

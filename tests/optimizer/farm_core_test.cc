@@ -1,0 +1,398 @@
+// The farm's master and worker cores in one process on a fake clock
+// (tests/optimizer/sim_farm.h): dispatch, deadlines, re-sends, late and
+// duplicate answers, workers joining and leaving, lost chunks, a deaf
+// worker and a master restart. No sockets, no sleeps.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "optimizer/farm/farm_channels.h"
+#include "optimizer/farm/farm_master_core.h"
+#include "optimizer/farm/farm_worker_core.h"
+#include "tests/optimizer/sim_farm.h"
+
+namespace mrsim {
+namespace {
+
+using testing::SimFarm;
+using testing::SimFitness;
+using testing::SimNetwork;
+
+std::string Payload(size_t size) {
+  std::string p(size, '\0');
+  for (size_t i = 0; i < size; ++i) p[i] = static_cast<char>(i * 131 % 251);
+  return p;
+}
+
+std::vector<Genome> Batch(int n, int generation) {
+  std::vector<Genome> batch;
+  Random random(static_cast<std::uint64_t>(generation) + 7);
+  for (int i = 0; i < n; ++i) {
+    batch.push_back(
+        {random.Uniform(0, 2), random.Uniform(0, 2), random.Uniform(0, 2)});
+  }
+  return batch;
+}
+
+// Runs `generations` batches; every result must be the genome's own.
+void RunAndCheck(SimFarm& farm, int generations, int population,
+                 double limit_per_generation = 600) {
+  for (int g = 0; g < generations; ++g) {
+    const std::vector<Genome> batch = Batch(population, g);
+    std::vector<EvalResult> results;
+    ASSERT_TRUE(farm.Evaluate(batch, limit_per_generation, &results))
+        << "generation " << g << " did not finish by simulated " << farm.now()
+        << " s";
+    ASSERT_EQ(results.size(), batch.size());
+    for (size_t i = 0; i < batch.size(); ++i) {
+      EXPECT_EQ(results[i].fitness, SimFitness(batch[i])) << "gen " << g;
+    }
+  }
+}
+
+opt_heartbeat_t Beat(const FarmMasterCore& m, const std::string& id,
+                     std::vector<std::int64_t> held = {},
+                     std::vector<std::int64_t> done = {}) {
+  opt_heartbeat_t hb{};
+  hb.worker_id = id;
+  hb.run_id = m.run_id();
+  hb.scenario_hash = m.scenario_hash();
+  hb.slots = 1;
+  hb.jobs = std::move(held);
+  hb.job_count = static_cast<int32_t>(hb.jobs.size());
+  hb.done = std::move(done);
+  hb.done_count = static_cast<int32_t>(hb.done.size());
+  return hb;
+}
+
+TEST(FarmMasterCore, EveryReadyWorkerGetsAJobBeforeAnyGetsASecond) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  for (int w = 0; w < 8; ++w) {
+    m.OnHeartbeat(Beat(m, "w" + std::to_string(w)), 0.0);
+  }
+  m.StartBatch(Batch(8, 0), 0.0);
+  const FarmOutbox out = m.Tick(0.0);
+  ASSERT_EQ(out.jobs.size(), 8u);
+  std::set<std::string> got;
+  for (const auto& j : out.jobs) got.insert(j.worker_id);
+  EXPECT_EQ(got.size(), 8u) << "8 jobs and 8 idle workers: one each";
+  // With more jobs than workers the second round starts only after all
+  // have one, and nobody gets more than slots + 1.
+  FarmMasterCore m2(Payload(100), "run", 1, FarmSettings{});
+  for (int w = 0; w < 3; ++w) {
+    m2.OnHeartbeat(Beat(m2, "w" + std::to_string(w)), 0.0);
+  }
+  m2.StartBatch(Batch(10, 0), 0.0);
+  std::map<std::string, int> per;
+  for (const auto& j : m2.Tick(0.0).jobs) ++per[j.worker_id];
+  EXPECT_EQ(per.size(), 3u);
+  for (const auto& [id, n] : per) EXPECT_EQ(n, 2) << id;
+}
+
+TEST(FarmMasterCore, OneHeartbeatNotListingAJobDoesNotResendIt) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.OnHeartbeat(Beat(m, "b"), 0.0);
+  m.StartBatch(Batch(1, 0), 0.0);
+  const FarmOutbox first = m.Tick(0.0);
+  ASSERT_EQ(first.jobs.size(), 1u);
+  const std::string owner = first.jobs[0].worker_id;
+  const std::int64_t id = first.jobs[0].job_id;
+  // A heartbeat that overtook the job: not listed once -> no re-send.
+  m.OnHeartbeat(Beat(m, owner), 0.6);
+  EXPECT_TRUE(m.Tick(0.6).jobs.empty());
+  // Listed as done (the result is on its way): still no re-send.
+  m.OnHeartbeat(Beat(m, owner, {}, {id}), 0.8);
+  m.OnHeartbeat(Beat(m, owner, {}, {id}), 0.9);
+  EXPECT_TRUE(m.Tick(0.9).jobs.empty());
+  // The result never comes: the same worker is asked again (it answers
+  // from memory) instead of another worker running the episode again.
+  const FarmOutbox again = m.Tick(2.0);
+  ASSERT_EQ(again.jobs.size(), 1u);
+  EXPECT_EQ(again.jobs[0].worker_id, owner);
+  EXPECT_EQ(m.counters().results_rerequested, 1);
+  EXPECT_EQ(m.counters().jobs_resent, 0);
+}
+
+TEST(FarmMasterCore, TwoHeartbeatsNotListingAJobSendItElsewhere) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.OnHeartbeat(Beat(m, "b"), 0.0);
+  m.StartBatch(Batch(1, 0), 0.0);
+  const FarmOutbox first = m.Tick(0.0);
+  ASSERT_EQ(first.jobs.size(), 1u);
+  const std::string owner = first.jobs[0].worker_id;
+  m.OnHeartbeat(Beat(m, owner), 0.6);
+  m.OnHeartbeat(Beat(m, owner), 0.8);
+  const FarmOutbox second = m.Tick(0.8);
+  ASSERT_EQ(second.jobs.size(), 1u);
+  EXPECT_NE(second.jobs[0].worker_id, owner);
+  EXPECT_EQ(m.counters().jobs_resent, 1);
+}
+
+TEST(FarmMasterCore, LateDuplicateAndForeignResultsAreIgnored) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  const std::vector<Genome> batch = Batch(1, 0);
+  m.StartBatch(batch, 0.0);
+  const opt_job_t job = m.Tick(0.0).jobs.at(0);
+  opt_result_t r{};
+  r.run_id = "run";
+  r.scenario_hash = m.scenario_hash();
+  r.worker_id = "a";
+  r.job_id = job.job_id;
+  r.fitness = 4.0;
+  opt_result_t foreign = r;
+  foreign.run_id = "other";
+  foreign.fitness = 1e9;
+  m.OnResult(foreign, 0.5);
+  EXPECT_FALSE(m.batch_done());
+  m.OnResult(r, 1.0);
+  ASSERT_TRUE(m.batch_done());
+  r.fitness = 5.0;
+  m.OnResult(r, 1.1);  // duplicate
+  EXPECT_EQ(m.results()[0].fitness, 4.0);
+  m.StartBatch(batch, 2.0);
+  m.OnResult(r, 2.1);  // late: the previous batch's id
+  EXPECT_FALSE(m.batch_done());
+  EXPECT_EQ(m.counters().results_ignored, 3);
+  opt_result_t nan = r;
+  nan.job_id = m.Tick(2.1).jobs.at(0).job_id;
+  nan.fitness = std::nan("");
+  m.OnResult(nan, 2.2);
+  EXPECT_EQ(m.counters().messages_malformed, 1);
+  EXPECT_FALSE(m.batch_done());
+}
+
+TEST(FarmMasterCore, DefaultChunkFitsOneEthernetFrame) {
+  FarmMasterCore m(Payload(50000), "some-host-12345-1700000000", 1,
+                   FarmSettings{});
+  EXPECT_EQ(m.chunk_count(), (50000 + 1377) / 1378 + 0 * m.chunk_count())
+      << "about 1378 bytes a chunk";
+  opt_chunk_request_t req{};
+  req.run_id = m.run_id();
+  req.scenario_hash = m.scenario_hash();
+  req.missing = {0};
+  req.count = 1;
+  m.OnChunkRequest(req, 0.0);
+  const FarmOutbox out = m.Tick(0.0);
+  ASSERT_EQ(out.chunks.size(), 1u);
+  const int datagram =
+      8 + static_cast<int>(FarmChannels(kDefaultFarmPrefix).chunk.size()) + 1 +
+      out.chunks[0].getEncodedSize();
+  EXPECT_LE(datagram, 1472);
+  EXPECT_GE(datagram, 1400);
+}
+
+TEST(FarmMasterCore, HeartbeatsSlowDownAsTheFarmGrows) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "w"), 0.0);
+  EXPECT_DOUBLE_EQ(m.heartbeat_period(), 0.2);
+  for (int w = 0; w < 1000; ++w) {
+    m.OnHeartbeat(Beat(m, "w" + std::to_string(w)), 0.0);
+  }
+  EXPECT_GE(m.heartbeat_period(), 4.0);
+  EXPECT_GT(m.worker_timeout(), 3 * m.heartbeat_period());
+  const FarmOutbox out = m.Tick(0.0);
+  ASSERT_EQ(out.runs.size(), 1u);
+  EXPECT_EQ(out.runs[0].heartbeat_period, m.heartbeat_period());
+}
+
+TEST(FarmWorkerCore, FollowsARestartedMasterAtOnceKeepingItsPayload) {
+  FarmWorkerCore w(WorkerSettings{}, "h", 1,
+                   [](const std::string&, const std::string&) {
+                     return std::make_shared<const Problem>();
+                   });
+  FarmMasterCore a(Payload(3000), "run-a", 100, FarmSettings{});
+  for (const auto& m : a.Tick(0).runs) w.OnRun(m, 0.0);
+  for (const auto& r : w.Tick(0.0).chunk_requests) a.OnChunkRequest(r, 0.0);
+  for (const auto& c : a.Tick(0.0).chunks) w.OnChunk(c, 0.0);
+  ASSERT_TRUE(w.ready());
+  FarmMasterCore b(Payload(3000), "run-b", 200, FarmSettings{});
+  // A late announcement of the dead master must not pull it back.
+  for (const auto& m : b.Tick(0.1).runs) w.OnRun(m, 0.1);
+  EXPECT_EQ(w.run_id(), "run-b");
+  EXPECT_TRUE(w.ready()) << "same payload: nothing to fetch again";
+  opt_run_t stale{};
+  stale.run_id = "run-a";
+  stale.started = 100;
+  stale.scenario_hash = a.scenario_hash();
+  stale.chunk_count = 3;
+  w.OnRun(stale, 0.2);
+  EXPECT_EQ(w.run_id(), "run-b");
+}
+
+TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
+  WorkerSettings s;
+  s.id = "w";
+  FarmWorkerCore w(s, "h", 1, [](const std::string&, const std::string&) {
+    return std::make_shared<const Problem>();
+  });
+  FarmMasterCore m(Payload(10), "run", 1, FarmSettings{});
+  for (const auto& x : m.Tick(0).runs) w.OnRun(x, 0.0);
+  for (const auto& r : w.Tick(0.0).chunk_requests) m.OnChunkRequest(r, 0.0);
+  for (const auto& c : m.Tick(0.0).chunks) w.OnChunk(c, 0.0);
+  ASSERT_TRUE(w.ready());
+  opt_job_t job{};
+  job.run_id = "run";
+  job.scenario_hash = m.scenario_hash();
+  job.worker_id = "w";
+  job.job_id = 42;
+  w.OnJob(job, 0.1);
+  w.OnJob(job, 0.1);  // a re-send of a queued job: one task
+  const auto tasks = w.TakeTasks();
+  ASSERT_EQ(tasks.size(), 1u);
+  opt_result_t r{};
+  r.run_id = "run";
+  r.worker_id = "w";
+  r.job_id = 42;
+  w.OnEpisodeDone(r, 1.0);
+  EXPECT_EQ(w.Tick(1.0).results.size(), 1u);
+  w.OnJob(job, 2.0);
+  EXPECT_TRUE(w.TakeTasks().empty());
+  EXPECT_EQ(w.Tick(2.0).results.size(), 1u);
+  EXPECT_EQ(w.counters().results_resent, 1);
+  // The same id with another genome (a master that reused its run id) is
+  // a new job, not a lost answer.
+  opt_job_t other = job;
+  other.genome = {1.0};
+  other.gene_count = 1;
+  w.OnJob(other, 2.1);
+  EXPECT_EQ(w.TakeTasks().size(), 1u);
+  // Its heartbeats list the job as done for a while.
+  bool listed = false;
+  for (const auto& hb : w.Tick(2.5).heartbeats) {
+    for (auto id : hb.done) listed = listed || id == 42;
+  }
+  EXPECT_TRUE(listed);
+}
+
+TEST(SimFarm, EightWorkersPopulationEightAllWork) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 8; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.RunUntil(3.0);
+  RunAndCheck(farm, 10, 8);
+  for (int w = 0; w < 8; ++w) {
+    EXPECT_GE(farm.episodes_run_by("w" + std::to_string(w)), 9) << w;
+  }
+  EXPECT_EQ(farm.episodes_run(), 80);
+}
+
+TEST(SimFarm, JitterRunsNoEpisodeTwice) {
+  SimNetwork net;
+  net.delay = 0.020;
+  net.jitter = 0.005;
+  SimFarm farm(Payload(20000), FarmSettings{}, net);
+  for (int w = 0; w < 8; ++w) farm.AddWorker("w" + std::to_string(w), 0.3);
+  RunAndCheck(farm, 40, 8);
+  EXPECT_LE(farm.episodes_run(), 320 * 102 / 100)
+      << farm.master().counters().jobs_resent << " re-sent";
+}
+
+TEST(SimFarm, FivePercentLossKeepsEveryResult) {
+  SimNetwork net;
+  net.loss = 0.05;
+  net.delay = 0.002;
+  net.jitter = 0.001;
+  SimFarm farm(Payload(60000), FarmSettings{}, net, 3);
+  for (int w = 0; w < 6; ++w) farm.AddWorker("w" + std::to_string(w), 0.5);
+  RunAndCheck(farm, 30, 12);
+  EXPECT_GT(farm.master().counters().chunks_sent, farm.master().chunk_count())
+      << "lost chunks were asked for again";
+}
+
+TEST(SimFarm, KilledAndAddedWorkersGiveEveryResult) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 6; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.At(5.5, [&] {
+    farm.KillWorker("w0");
+    farm.KillWorker("w1");
+    farm.KillWorker("w2");
+  });
+  farm.At(7.0, [&] {
+    farm.AddWorker("n0", 0.7);
+    farm.AddWorker("n1", 0.7);
+  });
+  RunAndCheck(farm, 12, 8);
+  EXPECT_GT(farm.episodes_run_by("n0"), 0);
+  EXPECT_EQ(farm.master().workers_alive(), 5);
+}
+
+TEST(SimFarm, PartitionedWorkerIsDroppedAndRejoinsAfterHealing) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 4; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.At(4.2, [&] { farm.SetPartitioned("w3", true); });
+  farm.At(20.0, [&] { farm.SetPartitioned("w3", false); });
+  RunAndCheck(farm, 12, 8);
+  const long long before = farm.episodes_run_by("w3");
+  RunAndCheck(farm, 4, 8);
+  EXPECT_GT(farm.episodes_run_by("w3"), before) << "w3 works again";
+}
+
+TEST(SimFarm, DeafWorkerGetsNoMoreJobsAndHealsByRejoining) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 4; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.RunUntil(2.0);
+  farm.SetDeaf("w0", true);  // beats on, hears nothing
+  const long long sent_before = farm.jobs_addressed_to("w0");
+  RunAndCheck(farm, 3, 8);
+  EXPECT_LE(farm.jobs_addressed_to("w0") - sent_before, 6);
+  EXPECT_GE(farm.worker("w0").counters().rejoins, 1);
+  const long long before = farm.episodes_run_by("w0");
+  RunAndCheck(farm, 6, 8);
+  EXPECT_GT(farm.episodes_run_by("w0"), before) << "healed by re-joining";
+}
+
+TEST(SimFarm, RestartedMasterIsFollowedAtOnce) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 4; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  RunAndCheck(farm, 2, 8);
+  farm.StartMaster("run-2", 2000);
+  const double restart = farm.now();
+  farm.RunUntil(restart + 10.0,
+                [&] { return farm.master().workers_ready() == 4; });
+  EXPECT_LT(farm.now() - restart, 1.5) << "not after 3 s of silence";
+  RunAndCheck(farm, 2, 8);
+}
+
+TEST(SimFarm, LostResultsAreAskedForNotRunAgain) {
+  SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
+  for (int w = 0; w < 2; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.RunUntil(2.0);
+  farm.DropResults("w0", 3);
+  RunAndCheck(farm, 3, 4);
+  EXPECT_EQ(farm.episodes_run(), 12);
+  EXPECT_GE(farm.master().counters().results_rerequested, 3);
+}
+
+TEST(SimFarm, ThousandsOfSimulatedSecondsWithChurnAndLoss) {
+  SimNetwork net;
+  net.loss = 0.02;
+  net.delay = 0.01;
+  net.jitter = 0.005;
+  SimFarm farm(Payload(30000), FarmSettings{}, net, 9);
+  for (int w = 0; w < 10; ++w) farm.AddWorker("w" + std::to_string(w), 6.0);
+  for (int k = 0; k < 20; ++k) {
+    const double t = 100.0 * (k + 1);
+    const std::string id = "w" + std::to_string(k % 10);
+    farm.At(t, [&farm, id] { farm.KillWorker(id); });
+    farm.At(t + 30, [&farm, id] { farm.AddWorker(id, 6.0); });
+  }
+  RunAndCheck(farm, 300, 10);
+  EXPECT_GT(farm.now(), 1800.0);
+}
+
+TEST(SimFarm, AHundredWorkersAreFedWithoutIdling) {
+  FarmSettings s;
+  SimFarm farm(Payload(20000), s, SimNetwork{});
+  for (int w = 0; w < 100; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.RunUntil(3.0);
+  const double t0 = farm.now();
+  RunAndCheck(farm, 5, 400);
+  // 2000 one-second episodes on 100 workers: about 20 s when nobody idles.
+  EXPECT_LT(farm.now() - t0, 20.0 * 1.15);
+}
+
+}  // namespace
+}  // namespace mrsim
