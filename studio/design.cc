@@ -81,6 +81,16 @@ Scenario EmptyScenario() {
   return s;
 }
 
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules) {
+  std::vector<int> after;
+  if (placement == SensorPlacement::kNone) return after;
+  const bool all = placement == SensorPlacement::kAll;
+  for (int i = all ? -1 : 0; i < (all ? modules : modules - 1); ++i) {
+    after.push_back(i);
+  }
+  return after;
+}
+
 Scenario MakeTemplateScenario(const TemplateOptions& options) {
   Scenario s = EmptyScenario();
   try {

@@ -41,6 +41,10 @@ struct TemplateOptions {
   std::string ground_material = "ground";
   double friction = -1;  // < 0: no ContactFriction
 };
+// Where `mrsim-scenario new --sensors none|all|between` puts sensor
+// modules (ChainOptions::sensor_after) for a chain of `modules`.
+enum class SensorPlacement { kNone, kAll, kBetween };
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules);
 // The scenario `mrsim-scenario new` writes for these options.
 Scenario MakeTemplateScenario(const TemplateOptions& options);
 // No robot yet, flat ground: where a new design starts.

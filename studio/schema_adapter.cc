@@ -1,6 +1,7 @@
 // TEMPORARY ADAPTER (see schema_adapter.h): deleted when the schema lands.
 #include "studio/schema_adapter.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -37,11 +38,8 @@ FieldLimits Any() { return {}; }
 
 std::string Num(double v) {
   char buf[64];
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof(buf), "%.*g", p, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
+  const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+  return std::string(buf, r.ptr);
 }
 
 double ParseNum(const std::string& text) {
