@@ -134,10 +134,10 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     layout_.State("dirty", design_.dirty() ? "1" : "0");
     layout_.State("path", design_.path());
     layout_.State("revision", std::to_string(built_revision_));
-    layout_.State("modal", ask_unsaved_         ? "unsaved"
-                           : browser_.is_open() ? "file"
-                           : show_template_     ? "template"
-                                                : "none");
+    layout_.State("modal", ask_unsaved_ && unsaved_shown_ ? "unsaved"
+                           : browser_.is_open()           ? "file"
+                           : show_template_               ? "template"
+                                                          : "none");
     layout_.State("message", message_);
     for (const PartMarker& m : preview_->Markers(view, height)) {
       char xy[64];
@@ -152,32 +152,38 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
 }
 
 void StudioApp::HandleKeys() {
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
-  const bool ctrl = io.KeyCtrl;
-  if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) {
-    io.KeyShift ? design_.Redo() : design_.Undo();
-  } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) {
-    design_.Redo();
-  } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
-    if (io.KeyShift) {
-      browse_for_ = BrowseFor::kSaveAs;
-      browser_.Open("Save scenario as", "scenarios", ".xml", true);
-    } else {
-      SaveFile();
+  const bool typing = ImGui::GetIO().WantTextInput;
+  const std::vector<std::pair<int, int>> keys = std::move(keys_);
+  keys_.clear();
+  for (const auto& [key, mods] : keys) {
+    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
+    const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
+    if (ctrl && key == GLFW_KEY_Q) {
+      RequestClose();
+    } else if (typing) {
+      continue;  // the text field has the keys
+    } else if (ctrl && key == GLFW_KEY_Z) {
+      shift ? design_.Redo() : design_.Undo();
+    } else if (ctrl && key == GLFW_KEY_Y) {
+      design_.Redo();
+    } else if (ctrl && key == GLFW_KEY_S) {
+      if (shift) {
+        browse_for_ = BrowseFor::kSaveAs;
+        browser_.Open("Save scenario as", "scenarios", ".xml", true);
+      } else {
+        SaveFile();
+      }
+    } else if (ctrl && key == GLFW_KEY_O) {
+      Guard(Pending::kOpen);
+    } else if (ctrl && key == GLFW_KEY_N) {
+      Guard(Pending::kNew);
+    } else if (key == GLFW_KEY_DELETE) {
+      Try([&] { design_.RemoveSelected(); });
+    } else if (key == GLFW_KEY_F1) {
+      show_help_ = !show_help_;
+    } else if (!ctrl && key == GLFW_KEY_F) {
+      preview_->FrameAll();
     }
-  } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
-    Guard(Pending::kOpen);
-  } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_N, false)) {
-    Guard(Pending::kNew);
-  } else if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false)) {
-    RequestClose();
-  } else if (ImGui::IsKeyPressed(GLFW_KEY_DELETE, false)) {
-    Try([&] { design_.RemoveSelected(); });
-  } else if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) {
-    show_help_ = !show_help_;
-  } else if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
-    preview_->FrameAll();
   }
 }
 
@@ -190,14 +196,16 @@ void StudioApp::HandleViewInput(const mjrRect& view, float left, float top) {
   if (io.WantCaptureMouse && !dragging) return;
   const double h = view.height;
   if (inside && io.MouseWheel != 0) preview_->Zoom(-0.05 * io.MouseWheel);
-  if (inside && (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1))) {
-    dragging = true;
-  }
+  const bool clicked = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1);
+  if (inside && clicked) dragging = true;
   if (!dragging) return;
+  // The frame of the press carries the jump to where it happened: no drag.
   const double dx = io.MouseDelta.x / h, dy = io.MouseDelta.y / h;
-  if (ImGui::IsMouseDown(1) || (ImGui::IsMouseDown(0) && io.KeyShift)) {
+  const bool pan =
+      ImGui::IsMouseDown(1) || (ImGui::IsMouseDown(0) && io.KeyShift);
+  if (!clicked && pan) {
     preview_->Pan(dx, dy);
-  } else if (ImGui::IsMouseDown(0)) {
+  } else if (!clicked && ImGui::IsMouseDown(0)) {
     preview_->Orbit(dx, dy);
   }
   if (ImGui::IsMouseReleased(0) && io.MouseDragMaxDistanceSqr[0] < 16) {
@@ -597,13 +605,17 @@ void StudioApp::DrawDialogs() {
     ImGui::OpenPopup("Unsaved changes");
   }
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 180, display.y / 2 - 60));
-  ImGui::SetNextWindowSize(ImVec2(360, 120));
+  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 180, display.y / 2 - 45));
+  ImGui::SetNextWindowSize(ImVec2(360, 90));
   if (ImGui::BeginPopupModal(
           "Unsaved changes", nullptr,
           ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    // Reported (for tests) once it takes clicks: not on its first frame.
+    unsaved_shown_ = !ImGui::IsWindowAppearing();
     ImGui::TextWrapped("The design has unsaved changes. Save them first?");
-    if (Button("Save", 100)) {
+    const bool save = ImGui::Button("Save", ImVec2(100, 0));
+    Record("unsaved Save");
+    if (save) {
       ask_unsaved_ = false;
       ImGui::CloseCurrentPopup();
       if (design_.path().empty()) {
@@ -614,7 +626,9 @@ void StudioApp::DrawDialogs() {
       }
     }
     ImGui::SameLine();
-    if (Button("Discard", 100)) {
+    const bool discard = ImGui::Button("Discard", ImVec2(100, 0));
+    Record("unsaved Discard");
+    if (discard) {
       ask_unsaved_ = false;
       ImGui::CloseCurrentPopup();
       if (pending_ == Pending::kOpen && !pending_path_.empty()) {
@@ -626,7 +640,9 @@ void StudioApp::DrawDialogs() {
       }
     }
     ImGui::SameLine();
-    if (Button("Cancel", 100)) {
+    const bool cancel = ImGui::Button("Cancel", ImVec2(100, 0));
+    Record("unsaved Cancel");
+    if (cancel) {
       ask_unsaved_ = false;
       pending_ = Pending::kNone;
       ImGui::CloseCurrentPopup();

@@ -11,6 +11,8 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "studio/design.h"
 #include "studio/file_browser.h"
@@ -38,6 +40,9 @@ class StudioApp {
   void Frame(int width, int height, bool offscreen);
   // The user closed the window: quits now, or asks first when unsaved.
   void RequestClose();
+  // A key pressed in the window (GLFW key and modifier codes). Queued and
+  // handled at the next frame, so a press shorter than a frame still counts.
+  void OnKey(int key, int mods) { keys_.push_back({key, mods}); }
   bool should_quit() const { return quit_; }
 
   Design& design() { return design_; }
@@ -86,13 +91,16 @@ class StudioApp {
   Pending pending_ = Pending::kNone;
   std::string pending_path_;
   bool ask_unsaved_ = false;
+  bool unsaved_shown_ = false;
   bool show_help_ = false;
   bool show_template_ = false;
   TemplateOptions template_;
   int template_pattern_ = 2;  // ChainPattern
   int template_sensors_ = 0;  // SensorPlacement
   bool quit_ = false;
-  bool view_drag_ = false;  // a drag that started in the 3-D view
+  bool view_drag_ = false;
+  std::vector<std::pair<int, int>>
+      keys_;  // key, mods  // a drag that started in the 3-D view
   double last_rebuild_ms_ = -1;
 };
 

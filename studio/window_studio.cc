@@ -35,6 +35,16 @@ void RunWindow(StudioApp* app, int width, int height,
   if (!SetUpImGui()) {
     throw std::runtime_error("cannot start ImGui's OpenGL3 renderer");
   }
+  // Shortcuts through our own callback (ImGui's chains to it): a key press
+  // and release within one frame still count.
+  glfwSetWindowUserPointer(w.window, app);
+  glfwSetKeyCallback(
+      w.window, [](GLFWwindow* window, int key, int, int action, int mods) {
+        if (action == GLFW_PRESS || action == GLFW_REPEAT) {
+          static_cast<StudioApp*>(glfwGetWindowUserPointer(window))
+              ->OnKey(key, mods);
+        }
+      });
   ImGui_ImplGlfw_InitForOpenGL(w.window, true);
   int redraws = 3;  // ImGui settles its layout over a couple of frames
   while (!app->should_quit() && !(stop && *stop)) {
