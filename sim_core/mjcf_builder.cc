@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "sim_core/contact_model.h"
+#include "sim_core/scenario_validate.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -209,11 +210,6 @@ std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
 }
 
 GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name) {
-  if (!(frame.mass > 0)) {
-    throw std::runtime_error("frame '" + frame.guid +
-                             "': mass must be positive, got " +
-                             Num(frame.mass));
-  }
   GeomSpec g;
   g.name = name;
   g.mass = frame.mass;
@@ -222,11 +218,6 @@ GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name) {
     g.type = "mesh";
     g.mesh = MeshAsset(frame.shape, frame.scale, "frame '" + frame.guid + "'");
   } else {
-    if (!(frame.scale.minCoeff() > 0)) {
-      throw std::runtime_error("frame '" + frame.guid +
-                               "': box scale must be positive, got " +
-                               Vec(frame.scale));
-    }
     g.type = "box";
     g.size = frame.scale / 2;
   }
@@ -238,16 +229,6 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
   const Vector3d half = sm.size / 2;
   if (sm.force_sensor) {
     const ForceSensor& fsr = *sm.force_sensor;
-    if (fsr.sensor_position < 0 || fsr.sensor_position > 3) {
-      throw std::runtime_error("sensor module '" + sm.guid +
-                               "': force sensor sensorPosition must be 0..3, "
-                               "got " +
-                               std::to_string(fsr.sensor_position));
-    }
-    if (!(fsr.mass > 0) || !(fsr.size.minCoeff() > 0)) {
-      throw std::runtime_error("force sensor '" + fsr.guid +
-                               "': mass and size must be positive");
-    }
     const Vector3d n = SensorFaceNormal(fsr.sensor_position);
     const double h = std::abs(n.dot(half));
     // The plate lies flat on the face: its thickness (size.z) along n.
@@ -274,11 +255,6 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
   }
   for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
     const DistanceSensor& ds = sm.distance_sensors[k];
-    if (ds.sensor_position < 0 || ds.sensor_position > 5) {
-      throw std::runtime_error("distance sensor '" + ds.guid +
-                               "': sensorPosition must be 0..5, got " +
-                               std::to_string(ds.sensor_position));
-    }
     const Vector3d n = SensorFaceNormal(ds.sensor_position);
     const double h = std::abs(n.dot(half));
     Vector3d dir = ds.ray_direction;
@@ -313,14 +289,7 @@ void Builder::AddRobot(const std::string& robot_name,
   std::map<std::string, int> by_guid;
   auto add_node = [&](const std::string& guid, const std::string& what,
                       int body, bool is_static) {
-    if (!guid.empty()) {
-      if (by_guid.count(guid)) {
-        throw std::runtime_error(what + ": guid '" + guid +
-                                 "' is used twice in robot '" + robot_name +
-                                 "'");
-      }
-      by_guid[guid] = static_cast<int>(nodes.size());
-    }
+    if (!guid.empty()) by_guid[guid] = static_cast<int>(nodes.size());
     nodes.push_back({guid, what, body, is_static});
     return static_cast<int>(nodes.size()) - 1;
   };
@@ -352,10 +321,6 @@ void Builder::AddRobot(const std::string& robot_name,
   std::vector<int> sm_nodes;
   for (size_t k = 0; k < sensor_modules.size(); ++k) {
     const SensorModule& sm = sensor_modules[k];
-    if (!(sm.mass > 0) || !(sm.size.minCoeff() > 0)) {
-      throw std::runtime_error("sensor module '" + sm.guid +
-                               "': mass and size must be positive");
-    }
     const std::string name = mjcf_names::SensorModuleBody(robot_name, k);
     const int body = AddBody(name, sm.position, sm.quat_rotation);
     GeomSpec g;
@@ -397,12 +362,6 @@ void Builder::AddRobot(const std::string& robot_name,
     e.actuator_name = mjcf_names::Servo(robot_name, i);
     e.lower = m.joint.lower_range_limit;
     e.upper = m.joint.upper_range_limit;
-    if (e.hinge && !(e.lower <= e.upper)) {
-      throw std::runtime_error("robot '" + robot_name + "' module " +
-                               std::to_string(i) + ": lowerRangeLimit " +
-                               Num(e.lower) + " is above upperRangeLimit " +
-                               Num(e.upper));
-    }
     e.max_vel = m.joint.max_vel;
     e.servo = servos;
     edges.push_back(e);
@@ -413,10 +372,7 @@ void Builder::AddRobot(const std::string& robot_name,
     auto left = by_guid.find(j.left_frame_guid);
     auto right = by_guid.find(j.right_frame_guid);
     if (left == by_guid.end() || right == by_guid.end()) {
-      const std::string& missing =
-          left == by_guid.end() ? j.left_frame_guid : j.right_frame_guid;
-      throw std::runtime_error("robot '" + robot_name + "' joint '" + j.guid +
-                               "': names unknown part '" + missing + "'");
+      throw std::logic_error("joint '" + j.guid + "' was not validated");
     }
     Edge e;
     e.a = left->second;
@@ -483,10 +439,7 @@ void Builder::ConnectTree(const std::string& robot_name,
       const int ra = find(e.a), rb = find(e.b);
       if (ra == rb) {
         if (e.hinge) {
-          throw std::runtime_error("robot '" + robot_name + "' joint '" +
-                                   e.guid +
-                                   "': hinges that form a closed loop are "
-                                   "not supported");
+          throw std::logic_error("hinge '" + e.guid + "' was not validated");
         }
         welds_.push_back({robot_name + "/weld/" + e.guid,
                           bodies_[nodes[e.a].body].name,
@@ -574,10 +527,6 @@ void Builder::AddSceneObjects() {
   for (size_t i = 0; i < s_.scene_objects.size(); ++i) {
     const SceneObject& o = s_.scene_objects[i];
     const std::string name = mjcf_names::SceneObject(i);
-    if (!(o.size.minCoeff() > 0)) {
-      throw std::runtime_error("scene object '" + o.guid +
-                               "': size must be positive, got " + Vec(o.size));
-    }
     GeomSpec g;
     g.name = name;
     g.material = o.material_name;
@@ -605,11 +554,6 @@ void Builder::AddSceneObjects() {
     }
     const int body = AddBody(name, o.position, o.quat_rotation);
     if (!o.is_static) {
-      if (!(o.mass > 0)) {
-        throw std::runtime_error("scene object '" + o.guid +
-                                 "': mass must be positive, got " +
-                                 Num(o.mass));
-      }
       bodies_[body].joint = JointKind::kFree;
       bodies_[body].joint_name = name;
     } else if (!(g.mass > 0)) {
@@ -632,11 +576,6 @@ void Builder::AddTerrain() {
     return;
   }
   const TerrainImage image = LoadTerrainImage(scene, s_.base_dir);
-  if (!(scene.meters_per_pixel > 0) || !(scene.height >= 0)) {
-    throw std::runtime_error(
-        "scene '" + scene.guid +
-        "': meters_per_pixel must be positive and height non-negative");
-  }
   const double rx = image.cols * scene.meters_per_pixel / 2;
   const double ry = image.rows * scene.meters_per_pixel / 2;
   // MuJoCo needs a positive elevation range; a flat image still gets one.
@@ -749,13 +688,10 @@ void Builder::WriteBody(std::ostringstream& out, int index, int depth) const {
 }
 
 std::string Builder::Build() {
-  std::set<std::string> names;
+  ValidateScenario(s_);
   for (size_t r = 0; r < s_.robots.size(); ++r) {
     const Robot& robot = s_.robots[r];
     const std::string name = mjcf_names::RobotName(s_, r);
-    if (!names.insert(name).second) {
-      throw std::runtime_error("two robots are named '" + name + "'");
-    }
     AddRobot(name, robot.modules, robot.sensor_modules, {}, robot.locks, true);
   }
   if (!s_.loose_frames.empty() || !s_.loose_sensor_modules.empty()) {

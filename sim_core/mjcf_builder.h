@@ -32,9 +32,9 @@ struct MjcfOptions {
 
 // Export form: equal to BuildMjcf(scenario, MjcfOptions{}).
 std::string BuildMjcf(const Scenario& scenario);
-// Throws std::runtime_error naming the part (robot, module, guid, file) on
-// anything that cannot be modelled: duplicate robot names, unreadable mesh
-// or terrain image, a hinge that closes a loop, an unknown lock end.
+// Throws ScenarioError (ValidateScenario, naming the element path) on
+// anything the simulator cannot run, std::runtime_error when a mesh file
+// vanished or the terrain image cannot be written.
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options);
 
 // Outward normal of a sensor module face in the module's own frame (the

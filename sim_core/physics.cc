@@ -11,6 +11,7 @@
 
 #include "sim_core/fluid_forces.h"
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/scenario_validate.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -274,6 +275,7 @@ void Physics::Impl::CheckStability(double time_before) {
 }
 
 Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
+  ValidateScenario(scenario);
   impl_->scenario = scenario;
   MjcfOptions options;
   options.hfield_data_after_compile = true;

@@ -1,7 +1,6 @@
 #include "sim_core/scenario.h"
 
-#include <functional>
-#include <utility>
+#include "sim_core/scenario_schema_inl.h"
 
 namespace mrsim {
 
@@ -139,108 +138,19 @@ bool operator==(const Scenario& a, const Scenario& b) {
          a.loose_sensor_modules == b.loose_sensor_modules;
 }
 
-namespace {
-
-// Applies the per-field maps of a frame change or a unit scale to every
-// part of a scenario, so the two conversions cannot miss a field.
-struct FieldMap {
-  // Positions, sizes, scales, directions.
-  std::function<void(Eigen::Vector3d*, bool is_length)> vector;
-  std::function<void(Eigen::Quaterniond*)> quat;
-  std::function<void(Eigen::Vector3d*)> euler;
-  std::function<void(double*)> length;
-};
-
-void Apply(const FieldMap& m, Frame* f) {
-  m.vector(&f->scale, true);
-  m.vector(&f->position, true);
-  m.euler(&f->rotation);
-  m.quat(&f->quat_rotation);
+void ConvertUnityToZUp(Scenario* scenario) {
+  schema::GeometryMap m;
+  m.swap_yz = true;
+  schema::Describe(m, *scenario);
 }
 
-void Apply(const FieldMap& m, SensorModule* s) {
-  if (s->force_sensor) {
-    ForceSensor& fs = *s->force_sensor;
-    m.vector(&fs.position, true);
-    m.quat(&fs.rotation);
-    m.vector(&fs.size, true);
-  }
-  m.vector(&s->force_lock_position, true);
-  for (DistanceSensor& d : s->distance_sensors) {
-    m.vector(&d.position, true);
-    m.euler(&d.rotation);
-    m.quat(&d.quat_rotation);
-    m.vector(&d.size, true);
-    m.length(&d.max_ray_distance);
-    m.vector(&d.ray_direction, false);
-  }
-  m.vector(&s->distance_lock_position, true);
-  m.vector(&s->position, true);
-  m.euler(&s->rotation);
-  m.vector(&s->size, true);
-  m.quat(&s->quat_rotation);
-}
-
-void Apply(const FieldMap& m, Scenario* s) {
-  for (Robot& robot : s->robots) {
-    for (Module& module : robot.modules) {
-      m.vector(&module.position, true);
-      for (Frame& frame : module.frames) Apply(m, &frame);
-    }
-    for (SensorModule& sm : robot.sensor_modules) Apply(m, &sm);
-  }
-  m.vector(&s->scene.position, true);
-  m.length(&s->scene.height);
-  m.length(&s->scene.meters_per_pixel);
-  for (SceneObject& o : s->scene_objects) {
-    m.vector(&o.size, true);
-    m.vector(&o.position, true);
-    m.euler(&o.rotation);
-    m.quat(&o.quat_rotation);
-  }
-  for (FluidRegion& r : s->fluid_regions) {
-    m.vector(&r.position, true);
-    m.vector(&r.size, true);
-    m.vector(&r.velocity, true);
-  }
-  m.vector(&s->settings.gravity, true);
-  for (Frame& frame : s->loose_frames) Apply(m, &frame);
-  for (SensorModule& sm : s->loose_sensor_modules) Apply(m, &sm);
-}
-
-// Swapping y and z is its own inverse, so one map serves both directions.
-FieldMap SwapYZ() {
-  FieldMap m;
-  m.vector = [](Eigen::Vector3d* v, bool) { std::swap((*v)[1], (*v)[2]); };
-  m.quat = [](Eigen::Quaterniond* q) {
-    const double x = q->x(), y = q->y(), z = q->z();
-    q->x() = -x;
-    q->y() = -z;
-    q->z() = -y;
-  };
-  m.euler = [](Eigen::Vector3d* e) {
-    const double x = (*e)[0], y = (*e)[1], z = (*e)[2];
-    *e = Eigen::Vector3d(-x, -z, -y);
-  };
-  m.length = [](double*) {};
-  return m;
-}
-
-}  // namespace
-
-void ConvertUnityToZUp(Scenario* scenario) { Apply(SwapYZ(), scenario); }
-
-void ConvertZUpToUnity(Scenario* scenario) { Apply(SwapYZ(), scenario); }
+// Swapping y and z is its own inverse.
+void ConvertZUpToUnity(Scenario* scenario) { ConvertUnityToZUp(scenario); }
 
 void ScaleLengths(Scenario* scenario, double factor) {
-  FieldMap m;
-  m.vector = [factor](Eigen::Vector3d* v, bool is_length) {
-    if (is_length) *v *= factor;
-  };
-  m.quat = [](Eigen::Quaterniond*) {};
-  m.euler = [](Eigen::Vector3d*) {};
-  m.length = [factor](double* x) { *x *= factor; };
-  Apply(m, scenario);
+  schema::GeometryMap m;
+  m.scale = factor;
+  schema::Describe(m, *scenario);
 }
 
 }  // namespace mrsim

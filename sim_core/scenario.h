@@ -93,7 +93,7 @@ struct DistanceSensor {
   Eigen::Vector3d size = Eigen::Vector3d(0.01, 0.01, 0.01);
   double max_ray_distance = 2.0;
   Eigen::Vector3d ray_direction = Eigen::Vector3d::UnitX();
-  int ray_resolution = 1;
+  double ray_resolution = 1.0;  // sampling step along the ray (m)
 };
 
 // A box between two modules (left_mod_nr/right_mod_nr, -1 = chain end)
@@ -251,13 +251,16 @@ inline bool operator!=(const Scenario& a, const Scenario& b) {
 // model is Z-up and right-handed. Positions, sizes, scales and directions
 // swap y and z; quaternions (x,y,z,w) become (-x,-z,-y,w); Euler angles
 // (x,y,z) become (-x,-z,-y). Each function is the other's exact inverse.
+// The schema (scenario_schema.h) says which fields are which.
 void ConvertUnityToZUp(Scenario* scenario);
 void ConvertZUpToUnity(Scenario* scenario);
 
 // Multiplies every length (positions, sizes, scales, lock positions, ray
-// range, terrain height and pixel size, fluid regions, gravity and flow
+// range and step, terrain height and pixel size, fluid regions and flow
 // velocity) by `factor`, e.g. to turn Unity scene units into metres.
-// Masses, angles and directions are unchanged.
+// Gravity is a physical constant, not a scene size: it, masses, angles and
+// directions are unchanged. Which fields are lengths is in the schema
+// (scenario_schema.h).
 void ScaleLengths(Scenario* scenario, double factor);
 
 const char* ToString(Axis axis);

@@ -1,31 +1,41 @@
 // Reads and writes scenario files in the MRSim XML layout (domain.md
-// section 3). Every field round-trips; writing twice gives identical bytes.
+// section 3), including files the original wrote (section 8). Every field
+// round-trips; writing twice gives identical bytes. Field names, types and
+// limits come from the schema (scenario_schema.h); the reader ends with
+// ValidateScenario (scenario_validate.h).
 #pragma once
 
-#include <stdexcept>
+#include <optional>
 #include <string>
 
 #include "sim_core/scenario.h"
+#include "sim_core/scenario_validate.h"
 
 namespace mrsim {
 
-// A bad scenario file. what() names the file, line, element path and what
-// was expected, e.g.
-//   "snake.xml:42: Scenario/robot/modules/Module[3]/joint/Kp: expected a
-//    number, got 'fast'".
-class ScenarioError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
+struct ScenarioReadOptions {
+  // The frame of a file that has no frame attribute, e.g. kUnityYUp for a
+  // file the original wrote. Unset: such a file is Z-up. A file whose
+  // attribute says otherwise is an error.
+  std::optional<FrameConvention> frame;
+  // Multiplies every length the file gives (positions, sizes, ray lengths,
+  // terrain extent and height; never gravity or masses), e.g. 0.01 for a
+  // file in centimetres. Fields the file leaves out take the model's
+  // defaults, which are already in metres.
+  double length_scale = 1.0;
 };
 
 // Reads and validates a file; relative mesh/image paths resolve against the
-// file's directory. Throws ScenarioError; nothing half-loads.
-Scenario ReadScenarioFile(const std::string& path);
+// file's directory. Throws ScenarioError ("file:line: path: what"); nothing
+// half-loads.
+Scenario ReadScenarioFile(const std::string& path,
+                          const ScenarioReadOptions& options = {});
 
 // As ReadScenarioFile, from a string. `name` is used in error messages;
 // `base_dir` resolves relative paths.
 Scenario ReadScenarioString(const std::string& xml, const std::string& name,
-                            const std::string& base_dir);
+                            const std::string& base_dir,
+                            const ScenarioReadOptions& options = {});
 
 // Writes the scenario in the given frame convention (recorded as the root
 // attribute frame="z-up" or frame="unity-y-up").

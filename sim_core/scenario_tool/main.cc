@@ -103,15 +103,21 @@ int Run(int argc, char** argv) {
                           "Output file (default: stdout)");
 
   double scale = 1.0;
-  std::string to_frame = "z-up";
+  std::string to_frame = "z-up", from_frame;
   auto* convert = app.add_subcommand(
       "convert",
       "Rewrite a scenario (e.g. a Unity Y-up file) in the native Z-up frame");
   convert->add_option("IN", in_path, "Input scenario file")->required();
   convert->add_option("OUT", out_path, "Output file ('-' for stdout)")
       ->required();
+  convert
+      ->add_option("--from", from_frame,
+                   "Frame of an input file that has no frame attribute "
+                   "(files the original MRSim wrote: unity-y-up)")
+      ->check(CLI::IsMember({"z-up", "unity-y-up"}));
   convert->add_option("--scale", scale,
-                      "Multiply every length by this (scene units to m)");
+                      "Multiply every length by this (scene units to m); "
+                      "gravity and masses stay as they are");
   convert->add_option("--frame", to_frame, "Output frame convention")
       ->check(CLI::IsMember({"z-up", "unity-y-up"}));
 
@@ -193,8 +199,13 @@ int Run(int argc, char** argv) {
                         "got {}",
                         scale));
       }
-      mrsim::Scenario s = mrsim::ReadScenarioFile(in_path);
-      if (scale != 1.0) mrsim::ScaleLengths(&s, scale);
+      mrsim::ScenarioReadOptions read;
+      if (!from_frame.empty()) {
+        read.frame = from_frame == "z-up" ? mrsim::FrameConvention::kZUp
+                                          : mrsim::FrameConvention::kUnityYUp;
+      }
+      read.length_scale = scale;
+      const mrsim::Scenario s = mrsim::ReadScenarioFile(in_path, read);
       const auto frame = to_frame == "z-up" ? mrsim::FrameConvention::kZUp
                                             : mrsim::FrameConvention::kUnityYUp;
       WriteOutput(mrsim::WriteScenarioString(s, frame), out_path);

@@ -49,6 +49,7 @@ TEST(PhysicsDistanceSensor, ReadsBoxTerrainAndMaxRange) {
       StaticBox(Eigen::Vector3d(0.8, 0, 0.3), Eigen::Vector3d(0.2, 0.4, 0.4)));
   s.scene_objects.push_back(
       StaticBox(Eigen::Vector3d(-0.6, 0, 0.3), Eigen::Vector3d(0.2, 0.4, 0.4)));
+  s.scene_objects.back().guid = "box behind";  // guids are unique
   Physics physics(s);
   physics.Step();
   const SensorModuleState state = physics.ReadRobotState(0).sensor_modules[0];

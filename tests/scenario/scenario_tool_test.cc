@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
 
@@ -20,6 +21,7 @@ using testing::ChildProcess;
 using ::testing::HasSubstr;
 using testing::SourcePath;
 using testing::TempDir;
+using testing::TestLcmUrl;
 
 struct Result {
   int code = -1;
@@ -178,6 +180,39 @@ TEST(ScenarioTool, FailedConvertLeavesAnExistingOutputUntouched) {
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.output, HasSubstr("malformed XML"));
   EXPECT_EQ(ReadText(dir + "/out.xml"), "precious");
+}
+
+// The whole import: a file the original wrote converts, validates, exports
+// to MJCF that MuJoCo compiles, and runs in the simulator process.
+TEST(ScenarioTool, OriginalFileConvertsValidatesExportsAndRuns) {
+  const std::string dir = TempDir("tool_original");
+  const std::string native = dir + "/native.xml";
+  Result r = RunTool({"convert", "--from", "unity-y-up",
+                      Example("mrsim_original.xml"), native, "--scale", "0.01"},
+                     dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(ReadText(native), HasSubstr("frame=\"z-up\""));
+  r = RunTool({"validate", native}, dir);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("ok (1 robots, 2 scene objects)"));
+  r = RunTool({"export-mjcf", native, "-o", dir + "/native.mjcf.xml"}, dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  char error[1000] = {0};
+  MjModelPtr model(mj_loadXML((dir + "/native.mjcf.xml").c_str(), nullptr,
+                              error, sizeof(error)));
+  EXPECT_TRUE(model) << error;
+  ChildProcess sim(
+      {BinaryPath("sim_core/sim_process/mrsim-sim"), native, "--lcm-url",
+       TestLcmUrl(7920), "--clock", "fast", "--duration", "1"},
+      dir + "/sim.log");
+  EXPECT_EQ(sim.Wait(120), 0) << sim.Output();
+  EXPECT_THAT(sim.Output(), HasSubstr("stopped (duration reached)"));
+  // Without --from the file is taken as Z-up; a file that says its frame
+  // cannot be read as another.
+  r = RunTool({"convert", "--from", "unity-y-up", native, dir + "/again.xml"},
+              dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.output, HasSubstr("Scenario/@frame: the file says"));
 }
 
 }  // namespace

@@ -163,10 +163,13 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   r.modules[2].frames[1].material_name = "rubber & <steel>";
   r.modules[0].joint.kp = 12.345678901234567;
   r.modules[0].joint.max_vel = 1e-7;
+  r.modules[0].joint.velocity_gain = 7.5;
+  r.modules[1].joint.max_torque = 0.35;
+  r.locks[0].break_force = 12.5;
   SensorModule& sm = r.sensor_modules[0];
   sm.force_sensor->force_value = 3.25;
   sm.force_sensor->rotation = Eigen::Quaterniond(0.5, 0.5, -0.5, 0.5);
-  sm.distance_sensors[0].ray_resolution = 7;
+  sm.distance_sensors[0].ray_resolution = 0.05;
   sm.distance_sensors[0].max_ray_distance = 1.75;
   sm.distance_sensors[0].rotation = Eigen::Vector3d(1, 2, 3);
   sm.quat_rotation = Eigen::Quaterniond(0, 1, 0, 0);
@@ -223,13 +226,16 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   loose.guid = "loose_frame";
   loose.position = Eigen::Vector3d(3, 3, 0.1);
   s.loose_frames.push_back(loose);
+  loose.guid = "loose_door";
+  loose.position = Eigen::Vector3d(3, 3.05, 0.1);
+  s.loose_frames.push_back(loose);
   SensorModule loose_sensor;
   loose_sensor.guid = "loose_sensor";
   s.loose_sensor_modules.push_back(loose_sensor);
   Joint hinge;
   hinge.guid = "loose_hinge";
   hinge.left_frame_guid = "loose_frame";
-  hinge.right_frame_guid = "ramp";
+  hinge.right_frame_guid = "loose_door";
   hinge.lower_range_limit = -0.25;
   hinge.upper_range_limit = 0.5;
   s.loose_joints.push_back(hinge);
@@ -255,6 +261,9 @@ TEST(ScenarioXml, RoundTripKeepsEveryField) {
   // Equality really looks at fields: change one and it differs.
   Scenario changed = back;
   changed.robots[0].sensor_modules[0].distance_sensors[0].ray_resolution = 8;
+  EXPECT_TRUE(changed != s);
+  changed = back;
+  changed.robots[0].locks[0].break_force = 0;
   EXPECT_TRUE(changed != s);
   changed = back;
   changed.robots[0].modules[1].frames[0].quat_rotation.coeffs()[3] += 1e-16;
@@ -392,8 +401,8 @@ TEST(ScenarioXml, JointNamingAMissingFrameIsRejected) {
               "<rightFrameGuid>nope</rightFrameGuid><type>Hinge");
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<joint>") + kModulePath +
-                         "/joint/rightFrameGuid: no frame, sensor module or "
-                         "sensor with guid 'nope' in robot 'r'"));
+                         "/joint/rightFrameGuid: no frame or sensor module "
+                         "with guid 'nope' in robot 'r'"));
 }
 
 TEST(ScenarioXml, LockNamingAMissingPartIsRejected) {
@@ -448,8 +457,8 @@ TEST(ScenarioXml, SecondForceSensorIsRejected) {
               "        <forceSensor><guid>fs1</guid></forceSensor>\n"
               "        <forceSensorLock>");
   EXPECT_THAT(ErrorOf(xml), StartsWith(At(xml, "<guid>fs1") + kSensorPath +
-                                       "/forceSensor: more than one force "
-                                       "sensor"));
+                                       "/forceSensor: given twice (first at "
+                                       "line"));
 }
 
 TEST(ScenarioXml, SeventhDistanceSensorIsRejected) {
@@ -463,7 +472,7 @@ TEST(ScenarioXml, SeventhDistanceSensorIsRejected) {
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<guid>d6<") + kSensorPath +
                          "/distanceSensors/DistanceSensor[7]: more than 6 "
-                         "distance sensors"));
+                         "<DistanceSensor> in <distanceSensors>"));
   // Six are fine.
   const std::string six = Replace(
       xml, "          <DistanceSensor><guid>d6</guid></DistanceSensor>\n", "");
@@ -480,7 +489,24 @@ TEST(ScenarioXml, NonPositiveMassIsRejected) {
   EXPECT_THAT(ErrorOf(xml),
               StartsWith(At(xml, "<mass>-1") +
                          "Scenario/sceneObjects/SceneObject[1]/mass: "
-                         "expected a positive value"));
+                         "expected a value >= 0, got -1"));
+  // Only a static object may weigh nothing.
+  xml = Replace(kTemplate, "<mass>0.2</mass>", "<mass>0</mass>");
+  EXPECT_THAT(ErrorOf(xml), StartsWith(At(xml, "<mass>0</mass>") +
+                                       "Scenario/sceneObjects/SceneObject[1]/"
+                                       "mass: expected a positive value, got "
+                                       "0 (only a static object"));
+  xml =
+      Replace(xml, "<mass>0</mass>", "<mass>0</mass><isStatic>true</isStatic>");
+  EXPECT_NO_THROW(ReadScenarioString(xml, "t.xml", "."));
+  // A static frame still needs a mass: the simulator gives it a body.
+  xml = Replace(kTemplate, "<Frame><guid>f0</guid><mass>0.05</mass>",
+                "<Frame><guid>f0</guid><mass>0</mass><isStatic>true"
+                "</isStatic>");
+  EXPECT_THAT(ErrorOf(xml),
+              StartsWith(At(xml, "<mass>0</mass>") + kModulePath +
+                         "/frames/Frame[1]/mass: expected a positive value, "
+                         "got 0"));
 }
 
 TEST(ScenarioXml, NonPositiveSizeIsRejected) {
@@ -519,20 +545,20 @@ TEST(ScenarioXml, PartNotJoinedToTheRobotIsRejected) {
   xml.erase(from, xml.find("</Joint>\n", from) + 9 - from);
   // Without any lock a sensor module is locked to its neighbour modules...
   EXPECT_NO_THROW(ReadScenarioString(xml, "t.xml", "."));
-  // ...but with none it floats: its sensors are the first parts reported.
+  // ...but with none it floats (its sensors with it).
   xml =
       Replace(xml, "<leftMod_Nr>0</leftMod_Nr>", "<leftMod_Nr>-1</leftMod_Nr>");
   EXPECT_THAT(ErrorOf(xml),
-              StartsWith(At(xml, "<guid>d0") + kSensorPath +
-                         "/distanceSensors/DistanceSensor[1]/guid: part 'd0' "
-                         "is not joined to the rest of robot 'r'"));
+              StartsWith(At(xml, "<guid>s0") + kSensorPath +
+                         "/guid: part 's0' is not joined to the rest of robot "
+                         "'r'"));
 }
 
-// Parts without a robot: a loose frame hinged to a static scene object.
+// Parts without a robot: a loose frame hinged to a static one.
 const char kLoose[] = R"(<?xml version="1.0" encoding="utf-8"?>
 <Scenario>
-  <sceneObjects><SceneObject><guid>post</guid><shape>Cylinder</shape><isStatic>true</isStatic></SceneObject></sceneObjects>
-  <frames><Frame><guid>door</guid></Frame></frames>
+  <sceneObjects><SceneObject><guid>ball</guid><shape>Sphere</shape></SceneObject></sceneObjects>
+  <frames><Frame><guid>post</guid><isStatic>true</isStatic></Frame><Frame><guid>door</guid></Frame></frames>
   <sensorModules><SensorModule><guid>eye</guid></SensorModule></sensorModules>
   <joints><Joint><guid>hinge</guid><leftFrameGuid>post</leftFrameGuid><rightFrameGuid>door</rightFrameGuid><type>Hinge</type></Joint></joints>
 </Scenario>
@@ -541,7 +567,7 @@ const char kLoose[] = R"(<?xml version="1.0" encoding="utf-8"?>
 TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
   const Scenario s = ReadScenarioString(kLoose, "t.xml", ".");
   EXPECT_TRUE(s.robots.empty());
-  ASSERT_EQ(s.loose_frames.size(), 1u);
+  ASSERT_EQ(s.loose_frames.size(), 2u);
   ASSERT_EQ(s.loose_sensor_modules.size(), 1u);
   ASSERT_EQ(s.loose_joints.size(), 1u);
   EXPECT_EQ(s.loose_joints[0].left_frame_guid, "post");
@@ -551,9 +577,17 @@ TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
       Replace(kLoose, "<rightFrameGuid>door", "<rightFrameGuid>window");
   EXPECT_THAT(ErrorOf(bad),
               StartsWith(At(bad, "<joints>") +
-                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame, "
-                         "sensor module, sensor or scene object with guid "
-                         "'window'"));
+                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame "
+                         "or sensor module with guid 'window' among the loose "
+                         "parts"));
+  // The simulator cannot hinge a loose part to a scene object.
+  const std::string object =
+      Replace(kLoose, "<rightFrameGuid>door", "<rightFrameGuid>ball");
+  EXPECT_THAT(ErrorOf(object),
+              StartsWith(At(object, "<joints>") +
+                         "Scenario/joints/Joint[1]/rightFrameGuid: no frame "
+                         "or sensor module with guid 'ball' among the loose "
+                         "parts (it is not a part this joint can join"));
 }
 
 TEST(ScenarioXml, UnreadableImageIsRejected) {
@@ -699,6 +733,180 @@ TEST(ScenarioXml, UnityRoundTripKeepsEveryField) {
   // In the Unity file gravity points along -y.
   EXPECT_THAT(unity,
               HasSubstr("<gravity>\n      <x>0</x>\n      <y>-1.62</y>"));
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+// scenarios/mrsim_original.xml as the original wrote it: Unity frame,
+// centimetres, no frame attribute.
+Scenario ReadOriginal() {
+  ScenarioReadOptions options;
+  options.frame = FrameConvention::kUnityYUp;
+  options.length_scale = 0.01;
+  return ReadScenarioFile(SourcePath("scenarios/mrsim_original.xml"), options);
+}
+
+bool Near(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return (a - b).norm() < 1e-12;
+}
+
+TEST(ScenarioOriginal, FileTheOriginalWroteLoadsWithItsMeaning) {
+  const Scenario s = ReadOriginal();
+  ASSERT_EQ(s.robots.size(), 1u);
+  const Robot& r = s.robots[0];
+  EXPECT_EQ(r.name, "robot0");
+  ASSERT_EQ(r.modules.size(), 4u);
+  EXPECT_EQ(r.modules[1].axis, Axis::kYaw);
+  // <scale>10</scale>: a uniform 10 cm box; Unity y (up) is our z.
+  EXPECT_TRUE(
+      Near(r.modules[0].frames[0].scale, Eigen::Vector3d::Constant(0.1)));
+  EXPECT_TRUE(Near(r.modules[1].position, Eigen::Vector3d(-0.2, 0, 0.05)));
+  // The three placeholder locks became locks between neighbouring modules'
+  // nearest frames.
+  ASSERT_EQ(r.locks.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(r.locks[k].type, JointType::kLock);
+    EXPECT_EQ(r.locks[k].left_frame_guid, r.modules[k].frames[1].guid);
+    EXPECT_EQ(r.locks[k].right_frame_guid, r.modules[k + 1].frames[0].guid);
+  }
+  ASSERT_EQ(r.sensor_modules.size(), 1u);
+  const SensorModule& sm = r.sensor_modules[0];
+  EXPECT_FALSE(sm.force_sensor_lock.has_value());
+  EXPECT_TRUE(sm.distance_sensor_locks.empty());
+  ASSERT_TRUE(sm.force_sensor.has_value());
+  EXPECT_TRUE(Near(sm.force_sensor->size, Eigen::Vector3d(0.08, 0.08, 0.005)));
+  EXPECT_EQ(sm.force_sensor->rotation.coeffs(),
+            Eigen::Quaterniond::Identity().coeffs());
+  ASSERT_EQ(sm.distance_sensors.size(), 2u);
+  for (const DistanceSensor& d : sm.distance_sensors) {
+    EXPECT_EQ(d.quat_rotation.coeffs(),
+              Eigen::Quaterniond::Identity().coeffs());
+    EXPECT_NEAR(d.max_ray_distance, 2.0, 1e-12);
+    EXPECT_NEAR(d.ray_resolution, 0.0005, 1e-15);  // 0.05 scene units
+  }
+  EXPECT_EQ(sm.distance_sensors[1].ray_direction, Eigen::Vector3d::UnitZ());
+  // Lengths are scaled, gravity and masses are not; what the file leaves
+  // out takes the model's defaults in metres.
+  EXPECT_EQ(s.settings.gravity, SimulationSettings().gravity);
+  EXPECT_EQ(r.modules[0].frames[0].mass, 0.05);
+  EXPECT_NEAR(s.scene.height, 0.3, 1e-12);
+  EXPECT_TRUE(Near(s.scene.position, Eigen::Vector3d(-1.6, -1.6, 0)));
+  EXPECT_EQ(s.scene.meters_per_pixel, Scene().meters_per_pixel);
+  EXPECT_EQ(r.modules[0].joint.velocity_gain, Joint().velocity_gain);
+  ASSERT_EQ(s.scene_objects.size(), 2u);
+  EXPECT_TRUE(Near(s.scene_objects[1].size, Eigen::Vector3d(0.1, 0.4, 0.1)));
+  // Written in our layout it reads back the same.
+  const std::string native = WriteScenarioString(s);
+  EXPECT_TRUE(
+      ReadScenarioString(native, "native.xml", SourcePath("scenarios")) == s);
+}
+
+TEST(ScenarioOriginal, EachOddityOfTheOriginalIsReadWithItsMeaning) {
+  std::string xml = Replace(kTemplate,
+                            "<scale><x>0.05</x><y>0.05</y><z>0.05"
+                            "</z></scale>",
+                            "<scale>0.04</scale>");
+  xml = Replace(xml, "<guid>d0</guid>",
+                "<guid>d0</guid><quatRotation><x>0</x><y>0</y><z>0</z><w>0</w>"
+                "</quatRotation><ray_Resolution>0.05</ray_Resolution>");
+  const std::string zero = "00000000-0000-0000-0000-000000000000";
+  const std::string placeholder =
+      "<guid>" + zero + "</guid><leftFrameGuid>" + zero +
+      "</leftFrameGuid><rightFrameGuid>" + zero +
+      "</rightFrameGuid><Kp>3</Kp><max_vel>0</max_vel>";
+  xml = Replace(xml,
+                "<forceSensorLock><guid>fl0</guid><leftFrameGuid>s0"
+                "</leftFrameGuid><rightFrameGuid>fs0</rightFrameGuid><type>"
+                "Lock</type></forceSensorLock>",
+                "<forceSensorLock>" + placeholder + "</forceSensorLock>");
+  xml = Replace(xml, "<scene><guid>scene</guid></scene>",
+                "<scene><guid>scene</guid><vertices /><triangles />"
+                "</scene>");
+  // A real lock without <type> and with max_vel 0, as the original wrote.
+  xml = Replace(xml, "<rightFrameGuid>s0</rightFrameGuid><type>Lock</type>",
+                "<rightFrameGuid>s0</rightFrameGuid><max_vel>0</max_vel>");
+  const Scenario s = ReadScenarioString(xml, "t.xml", ".");
+  const Robot& r = s.robots[0];
+  EXPECT_EQ(r.modules[0].frames[1].scale, Eigen::Vector3d::Constant(0.04));
+  const DistanceSensor& d = r.sensor_modules[0].distance_sensors[0];
+  EXPECT_EQ(d.quat_rotation.coeffs(), Eigen::Quaterniond::Identity().coeffs());
+  EXPECT_EQ(d.ray_resolution, 0.05);
+  EXPECT_FALSE(r.sensor_modules[0].force_sensor_lock.has_value());
+  ASSERT_EQ(r.locks.size(), 1u);
+  EXPECT_EQ(r.locks[0].type, JointType::kLock);
+  EXPECT_EQ(r.locks[0].max_vel, 0);
+  // A placeholder among a robot's locks: the default lock between the
+  // modules it stood for (here one module, so nothing to add).
+  const std::string with_placeholder = Replace(
+      xml, "    </locks>", "<Joint>" + placeholder + "</Joint></locks>");
+  EXPECT_EQ(
+      ReadScenarioString(with_placeholder, "t.xml", ".").robots[0].locks.size(),
+      1u);
+  // A hinge still needs a speed; a mesh terrain is not modelled.
+  const std::string still =
+      Replace(xml, "<Kp>10</Kp>", "<Kp>10</Kp><max_vel>0</max_vel>");
+  EXPECT_THAT(ErrorOf(still),
+              StartsWith(At(still, "<max_vel>0</max_vel>") + kModulePath +
+                         "/joint/max_vel: expected a positive "
+                         "value for a hinge, got 0"));
+  const std::string mesh =
+      Replace(xml, "<vertices />", "<vertices><Vector3 /></vertices>");
+  EXPECT_THAT(ErrorOf(mesh), StartsWith(At(mesh, "<vertices>") +
+                                        "Scenario/scene/vertices: mrsim does "
+                                        "not model the original's mesh "
+                                        "terrain"));
+}
+
+// Replaces the n-th (1-based) occurrence of `from`.
+std::string ReplaceNth(std::string text, const std::string& from,
+                       const std::string& to, int n) {
+  size_t at = std::string::npos;
+  for (int i = 0; i < n; ++i) at = text.find(from, at + 1);
+  EXPECT_NE(at, std::string::npos) << "no " << n << "th '" << from << "'";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(ScenarioOriginal, BrokenFieldInAnOriginalFileIsNamed) {
+  const std::string original =
+      ReadText(SourcePath("scenarios/mrsim_original.xml"));
+  ScenarioReadOptions options;
+  options.frame = FrameConvention::kUnityYUp;
+  auto error = [&](const std::string& xml) -> std::string {
+    try {
+      ReadScenarioString(xml, "t.xml", SourcePath("scenarios"), options);
+    } catch (const ScenarioError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "loaded";
+    return "";
+  };
+  std::string xml = ReplaceNth(original, "<Kp>3</Kp>", "<Kp>fast</Kp>", 3);
+  EXPECT_THAT(error(xml), StartsWith(At(xml, "<Kp>fast") +
+                                     "Scenario/robot[1]/modules/Module[3]/"
+                                     "joint/Kp: expected a number, got "
+                                     "'fast'"));
+  xml = ReplaceNth(original, "<scale>10</scale>", "<scale>ten</scale>", 2);
+  EXPECT_THAT(error(xml), StartsWith(At(xml, "<scale>ten") +
+                                     "Scenario/robot[1]/modules/Module[1]/"
+                                     "frames/Frame[2]/scale: expected a "
+                                     "number, got 'ten'"));
+  xml =
+      ReplaceNth(original, "0.05</ray_Resolution>", "fine</ray_Resolution>", 2);
+  EXPECT_THAT(error(xml),
+              StartsWith(At(xml, "fine</ray") +
+                         "Scenario/robot[1]/sensorModules/SensorModule[1]/"
+                         "distanceSensors/DistanceSensor[2]/ray_Resolution: "
+                         "expected a number, got 'fine'"));
+  // A frame that says z-up cannot be read as Unity's.
+  EXPECT_THAT(
+      error(Replace(original, "<Scenario ", "<Scenario frame=\"z-up\" ")),
+      HasSubstr("Scenario/@frame: the file says frame=\"z-up\" but "
+                "it was read as unity-y-up"));
 }
 
 }  // namespace

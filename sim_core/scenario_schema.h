@@ -1,0 +1,222 @@
+// The one description of every scenario part: for each field its XML name,
+// C++ member, type, unit, limits, default and help text, and for each part
+// the child parts it holds. Reading, writing and validating scenario files,
+// frame and unit conversion, and the studio's inspector all walk it
+// (docs/scenario.md, "The schema").
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sim_core/scenario.h"
+
+namespace mrsim {
+
+// How a field's value is stored and written.
+enum class FieldType {
+  kText,        // std::string
+  kNumber,      // double
+  kInteger,     // int
+  kBool,        // bool, "true"/"false"
+  kVector,      // Eigen::Vector3d, <x><y><z>; as text "x y z"
+  kQuaternion,  // Eigen::Quaterniond, <x><y><z><w>; as text "x y z w"
+  kChoice,      // an enum, written by name (FieldRef::choices())
+};
+const char* ToString(FieldType type);
+
+// What a field means geometrically: how a frame change (Unity Y-up to
+// Z-up) and a unit scale (ScaleLengths) act on it.
+enum class Geometry {
+  kNone,          // unchanged by both
+  kLength,        // scalar length: scaled
+  kLengthVector,  // position, size, scale, velocity: y/z swapped, scaled
+  kDirection,     // direction or acceleration: y/z swapped, not scaled
+  kEuler,         // Euler angles in degrees: (x,y,z) -> (-x,-z,-y)
+  kQuaternion,    // rotation: (x,y,z,w) -> (-x,-z,-y,w)
+};
+
+// The values a field accepts. For vectors min/max apply to each component.
+struct FieldLimits {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;  // min < value, not min <= value
+  bool nonzero = false;        // vector or quaternion: not all zeros
+  bool nonempty = false;       // text: not empty
+  const char* meaning = "";    // names of an integer range's values
+
+  static FieldLimits Any() { return {}; }
+  static FieldLimits Positive() {
+    FieldLimits l;
+    l.min = 0;
+    l.min_exclusive = true;
+    return l;
+  }
+  static FieldLimits NonNegative() {
+    FieldLimits l;
+    l.min = 0;
+    return l;
+  }
+  static FieldLimits AtLeast(double min) {
+    FieldLimits l;
+    l.min = min;
+    return l;
+  }
+  static FieldLimits Range(double min, double max, const char* meaning = "") {
+    FieldLimits l;
+    l.min = min;
+    l.max = max;
+    l.meaning = meaning;
+    return l;
+  }
+  static FieldLimits NonZero() {
+    FieldLimits l;
+    l.nonzero = true;
+    return l;
+  }
+  static FieldLimits NonEmpty() {
+    FieldLimits l;
+    l.nonempty = true;
+    return l;
+  }
+};
+
+// One field of a part. The type comes from the member it describes.
+struct FieldInfo {
+  const char* xml;     // element name in the file, e.g. "Kp"
+  const char* member;  // C++ member, e.g. "kp"
+  const char* unit;    // "m", "kg", "rad", "rad/s", "N m", ... or ""
+  FieldLimits limits;
+  const char* help;       // one line for tooltips and docs
+  bool required = false;  // must appear in a file
+  Geometry geometry = Geometry::kNone;
+  bool uniform_scalar = false;  // a vector may be written as one number
+};
+
+// How many of a child part there are.
+enum class ChildCount {
+  kOne,       // always present in the model (the element may be optional)
+  kOptional,  // std::optional
+  kArray,     // std::array, exactly N items in a wrapper
+  kList,      // std::vector in a wrapper element of `item`s
+  kRepeated,  // std::vector of elements repeated in the parent, no wrapper
+};
+
+// What kind of part a child is.
+enum class PartKind {
+  kScenario,
+  kRobot,
+  kModule,
+  kFrame,
+  kJoint,
+  kSensorModule,
+  kForceSensor,
+  kDistanceSensor,
+  kScene,
+  kSceneObject,
+  kContactFriction,
+  kFluidRegion,
+  kSettings,
+};
+// The part's element name in files, e.g. "Frame", "SensorModule".
+const char* ToString(PartKind kind);
+
+// A child part (or list of parts) of a part.
+struct ChildInfo {
+  const char* xml;   // the element (or wrapper) name, e.g. "modules"
+  const char* item;  // list items' element name, e.g. "Module"; else ""
+  const char* member;
+  const char* help;
+  bool required = false;         // the element must appear in a file
+  int max_items = 0;             // lists: at most this many (0: no limit)
+  bool assembly = false;         // the wrapper carries xmlns="Assembly"
+  bool omit_when_empty = false;  // an empty list is not written at all
+  bool locks = false;  // joints in a lock list: <type> may be left out
+};
+
+// A field's value, the variant of all member types a field can have.
+using FieldPtr = std::variant<std::string*, double*, int*, bool*,
+                              Eigen::Vector3d*, Eigen::Quaterniond*, Axis*,
+                              JointType*, PrimitiveShape*, FluidKind*>;
+
+// A value that does not parse or is outside a field's limits. what() is the
+// schema's message, e.g. "expected a positive value, got 0".
+class FieldError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One field of one part in memory: what the inspector edits.
+class FieldRef {
+ public:
+  FieldRef(const FieldInfo& info, FieldPtr value)
+      : info_(&info), value_(value) {}
+
+  const FieldInfo& info() const { return *info_; }
+  FieldType type() const;
+  // kChoice: the names it accepts ("Pitch", "Yaw"); else empty.
+  std::vector<std::string> choices() const;
+  // The value as text: shortest round-tripping numbers, vectors "x y z",
+  // quaternions "x y z w", bools "true"/"false", choices by name.
+  std::string GetText() const;
+  // Parses `text` as GetText writes it, checks the limits and stores it.
+  // Throws FieldError with the schema's message; the value is unchanged
+  // on error.
+  void SetText(const std::string& text) const;
+  // As SetText without the limits, for readers that validate the whole
+  // scenario afterwards (ValidateScenario). Throws FieldError.
+  void SetTextUnchecked(const std::string& text) const;
+  // Empty when the value is within the limits, else the schema's message.
+  std::string Check() const;
+  const FieldPtr& value() const { return value_; }
+
+ private:
+  const FieldInfo* info_;
+  FieldPtr value_;
+};
+
+// The fields (not child parts) of one part, in file order.
+std::vector<FieldRef> FieldsOf(Scenario& part);
+std::vector<FieldRef> FieldsOf(Robot& part);
+std::vector<FieldRef> FieldsOf(Module& part);
+std::vector<FieldRef> FieldsOf(Frame& part);
+std::vector<FieldRef> FieldsOf(Joint& part);
+std::vector<FieldRef> FieldsOf(SensorModule& part);
+std::vector<FieldRef> FieldsOf(ForceSensor& part);
+std::vector<FieldRef> FieldsOf(DistanceSensor& part);
+std::vector<FieldRef> FieldsOf(Scene& part);
+std::vector<FieldRef> FieldsOf(SceneObject& part);
+std::vector<FieldRef> FieldsOf(ContactFriction& part);
+std::vector<FieldRef> FieldsOf(FluidRegion& part);
+std::vector<FieldRef> FieldsOf(SimulationSettings& part);
+
+// A field of a kind of part, without an instance: for listings and docs.
+struct FieldSpec {
+  FieldInfo info;
+  FieldType type;
+  std::string default_text;  // the value in a default-constructed part
+  std::vector<std::string> choices;
+};
+// A child of a kind of part.
+struct ChildSpec {
+  ChildInfo info;
+  ChildCount count;
+  PartKind kind;
+};
+const std::vector<FieldSpec>& FieldSpecsOf(PartKind kind);
+const std::vector<ChildSpec>& ChildSpecsOf(PartKind kind);
+
+// Text <-> value with the schema's messages, for one field type; used by
+// FieldRef and the XML reader. ParseNumber accepts what XML and .NET write
+// ("1.5", "+2", "1e-3"); FormatNumber gives the shortest text that reads
+// back to the same double.
+double ParseNumber(const std::string& text);  // throws FieldError
+int ParseInteger(const std::string& text);    // throws FieldError
+bool ParseBool(const std::string& text);      // throws FieldError
+std::string FormatNumber(double value);
+
+}  // namespace mrsim

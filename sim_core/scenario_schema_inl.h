@@ -1,0 +1,685 @@
+// The schema table itself: one Describe() per part lists its fields and
+// children in file order. A visitor V provides
+//   void Field(const FieldInfo&, T& member)        T: a FieldPtr type
+//   void Child(const ChildInfo&, P& part)          ChildCount::kOne
+//   void Optional(const ChildInfo&, std::optional<P>& part)
+//   void Array(const ChildInfo&, std::array<P, N>& parts)
+//   void List(const ChildInfo&, std::vector<P>& parts)  kList / kRepeated
+//   void Unsupported(const ChildInfo&)  an element of the original's files
+//                                       mrsim does not model
+// and walks into children by calling Describe(visitor, child) itself.
+// Included by the reader, writer, validator and converters; every scenario
+// field is named here and nowhere else.
+#pragma once
+
+#include <optional>
+#include <type_traits>
+#include <utility>
+
+#include "sim_core/scenario_schema.h"
+
+namespace mrsim {
+namespace schema {
+
+using L = FieldLimits;
+using G = Geometry;
+
+inline ChildInfo Wrapper(const char* xml, const char* item, const char* member,
+                         const char* help, bool assembly = true) {
+  ChildInfo c{xml, item, member, help};
+  c.assembly = assembly;
+  return c;
+}
+
+template <typename V>
+void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
+                  Eigen::Quaterniond& quat) {
+  static const FieldInfo kPosition{
+      "position", "position",      "m", L::Any(), "Position of the centre",
+      false,      G::kLengthVector};
+  static const FieldInfo kRotation{
+      "rotation",
+      "rotation",
+      "deg",
+      L::Any(),
+      "Euler angles as the original stored them (quatRotation is what "
+      "places the part)",
+      false,
+      G::kEuler};
+  static const FieldInfo kQuat{"quatRotation",
+                               "quat_rotation",
+                               "",
+                               L::NonZero(),
+                               "Orientation as a quaternion; (0,0,0,0) in a "
+                               "file means none given (identity)",
+                               false,
+                               G::kQuaternion};
+  v.Field(kPosition, position);
+  v.Field(kRotation, rotation);
+  v.Field(kQuat, quat);
+}
+
+template <typename V>
+void Describe(V& v, Frame& f) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id joints refer to", true};
+  static const FieldInfo kShape{
+      "shape", "shape", "", L::NonEmpty(),
+      "Box, or a mesh file (.obj or .stl) relative to the scenario file"};
+  static const FieldInfo kScale{"scale",
+                                "scale",
+                                "m",
+                                L::Positive(),
+                                "Box: full extents; mesh: scale of its "
+                                "vertices. One number means the same on x, "
+                                "y and z",
+                                false,
+                                G::kLengthVector,
+                                true};
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+                               "Mass of the frame (static frames too)"};
+  static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
+                                 "Fixed to the world where it is placed"};
+  static const FieldInfo kMaterial{
+      "materialName", "material_name", "", L::Any(),
+      "Material name; ContactFriction pairs give its contact parameters"};
+  v.Field(kGuid, f.guid);
+  v.Field(kShape, f.shape);
+  v.Field(kScale, f.scale);
+  DescribePose(v, f.position, f.rotation, f.quat_rotation);
+  v.Field(kMass, f.mass);
+  v.Field(kStatic, f.is_static);
+  v.Field(kMaterial, f.material_name);
+}
+
+template <typename V>
+void Describe(V& v, Joint& j) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id of the joint", true};
+  static const FieldInfo kLeft{
+      "leftFrameGuid",
+      "left_frame_guid",
+      "",
+      L::NonEmpty(),
+      "guid of the first part joined (a frame or sensor module)",
+      true};
+  static const FieldInfo kRight{"rightFrameGuid",
+                                "right_frame_guid",
+                                "",
+                                L::NonEmpty(),
+                                "guid of the second part joined",
+                                true};
+  static const FieldInfo kType{
+      "type",
+      "type",
+      "",
+      L::Any(),
+      "Hinge (motorised, turns about the module axis) or Lock (rigid)",
+      true};
+  static const FieldInfo kLower{"lowerRangeLimit", "lower_range_limit", "rad",
+                                L::Any(), "Hinge: lowest angle"};
+  static const FieldInfo kUpper{"upperRangeLimit", "upper_range_limit", "rad",
+                                L::Any(), "Hinge: highest angle"};
+  static const FieldInfo kKp{
+      "Kp", "kp", "1/s", L::NonNegative(),
+      "Hinge: servo gain, speed = Kp * (target - angle)"};
+  static const FieldInfo kMaxVel{
+      "max_vel", "max_vel", "rad/s", L::NonNegative(),
+      "Hinge: speed limit of the servo (positive; locks ignore it)"};
+  static const FieldInfo kVelocityGain{
+      "velocityGain", "velocity_gain", "N m s/rad", L::Positive(),
+      "Hinge: torque per rad/s of speed error in the servo's velocity loop"};
+  static const FieldInfo kMaxTorque{
+      "maxTorque", "max_torque", "N m", L::Positive(),
+      "Hinge: stall torque, the most the servo can apply"};
+  static const FieldInfo kBreakForce{
+      "breakForce", "break_force", "N", L::NonNegative(),
+      "Lock: force at which it breaks; 0 never breaks"};
+  v.Field(kGuid, j.guid);
+  v.Field(kLeft, j.left_frame_guid);
+  v.Field(kRight, j.right_frame_guid);
+  v.Field(kType, j.type);
+  v.Field(kLower, j.lower_range_limit);
+  v.Field(kUpper, j.upper_range_limit);
+  v.Field(kKp, j.kp);
+  v.Field(kMaxVel, j.max_vel);
+  v.Field(kVelocityGain, j.velocity_gain);
+  v.Field(kMaxTorque, j.max_torque);
+  v.Field(kBreakForce, j.break_force);
+}
+
+template <typename V>
+void Describe(V& v, Module& m) {
+  static const FieldInfo kNr{
+      "mod_Nr",
+      "mod_nr",
+      "",
+      L::Any(),
+      "Module number, unique in its robot; sensor modules refer to it",
+      true};
+  static const FieldInfo kPosition{
+      "position", "position",      "m", L::Any(), "Position of the hinge",
+      false,      G::kLengthVector};
+  static const FieldInfo kAxis{
+      "axis",
+      "axis",
+      "",
+      L::Any(),
+      "Pitch (bends up/down) or Yaw (bends left/right)",
+      true};
+  static const ChildInfo kFrames{"frames", "Frame", "frames",
+                                 "The two rigid bodies", true};
+  static const ChildInfo kJoint{"joint", "", "joint",
+                                "The hinge between the two frames", true};
+  v.Field(kNr, m.mod_nr);
+  v.Field(kPosition, m.position);
+  v.Field(kAxis, m.axis);
+  v.Array(kFrames, m.frames);
+  v.Child(kJoint, m.joint);
+}
+
+template <typename V>
+void Describe(V& v, ForceSensor& s) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor plate", true};
+  static const FieldInfo kForce{
+      "forceValue", "force_value", "N", L::Any(),
+      "Last reading the original saved; not an input"};
+  static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
+                               L::Range(0, 3, "bottom, left, top, right"),
+                               "Face of the sensor module the plate is on"};
+  static const FieldInfo kPosition{
+      "position", "position",      "m", L::Any(), "Position of the plate",
+      false,      G::kLengthVector};
+  static const FieldInfo kRotation{"rotation",
+                                   "rotation",
+                                   "",
+                                   L::NonZero(),
+                                   "Orientation of the plate as a quaternion",
+                                   false,
+                                   G::kQuaternion};
+  static const FieldInfo kMaterial{"materialName", "material_name", "",
+                                   L::Any(), "Material of the plate"};
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+                               "Mass of the plate"};
+  static const FieldInfo kSize{"size",
+                               "size",
+                               "m",
+                               L::Positive(),
+                               "Plate extents; z is its thickness",
+                               false,
+                               G::kLengthVector};
+  v.Field(kGuid, s.guid);
+  v.Field(kForce, s.force_value);
+  v.Field(kFace, s.sensor_position);
+  v.Field(kPosition, s.position);
+  v.Field(kRotation, s.rotation);
+  v.Field(kMaterial, s.material_name);
+  v.Field(kMass, s.mass);
+  v.Field(kSize, s.size);
+}
+
+template <typename V>
+void Describe(V& v, DistanceSensor& s) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor", true};
+  static const FieldInfo kFace{
+      "sensorPosition", "sensor_position", "",
+      L::Range(0, 5, "bottom, left, top, right, front, back"),
+      "Face of the sensor module the ray starts from"};
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+                               "Mass of the sensor"};
+  static const FieldInfo kSize{
+      "size", "size",          "m", L::Positive(), "Extents of the sensor body",
+      false,  G::kLengthVector};
+  static const FieldInfo kRange{"max_rayDistance",
+                                "max_ray_distance",
+                                "m",
+                                L::Positive(),
+                                "Reading when nothing is hit within range",
+                                false,
+                                G::kLength};
+  static const FieldInfo kDirection{
+      "ray_Direction",
+      "ray_direction",
+      "",
+      L::NonZero(),
+      "Ray direction in the sensor module's frame",
+      false,
+      G::kDirection};
+  static const FieldInfo kResolution{
+      "ray_Resolution",
+      "ray_resolution",
+      "m",
+      L::Positive(),
+      "Sampling step along the ray in the original; MuJoCo's ray is exact, "
+      "so it does not change readings",
+      false,
+      G::kLength};
+  v.Field(kGuid, s.guid);
+  v.Field(kFace, s.sensor_position);
+  DescribePose(v, s.position, s.rotation, s.quat_rotation);
+  v.Field(kMass, s.mass);
+  v.Field(kSize, s.size);
+  v.Field(kRange, s.max_ray_distance);
+  v.Field(kDirection, s.ray_direction);
+  v.Field(kResolution, s.ray_resolution);
+}
+
+template <typename V>
+void Describe(V& v, SensorModule& s) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor module",
+      true};
+  static const FieldInfo kLeft{
+      "leftMod_Nr", "left_mod_nr", "", L::AtLeast(-1),
+      "mod_Nr of the module on one side; -1: chain end"};
+  static const FieldInfo kRight{
+      "rightMod_Nr", "right_mod_nr", "", L::AtLeast(-1),
+      "mod_Nr of the module on the other side; -1: chain end"};
+  static const ChildInfo kForce{"forceSensor", "", "force_sensor",
+                                "At most one force plate"};
+  static const ChildInfo kForceLock = [] {
+    ChildInfo c{"forceSensorLock", "", "force_sensor_lock",
+                "Lock of the plate (a placeholder in the original's files)"};
+    c.locks = true;
+    return c;
+  }();
+  static const FieldInfo kForceLockPosition{
+      "forceLockPosition",
+      "force_lock_position",
+      "m",
+      L::Any(),
+      "Where the original placed the plate's lock",
+      false,
+      G::kLengthVector};
+  static const ChildInfo kDistance = [] {
+    ChildInfo c = Wrapper("distanceSensors", "DistanceSensor",
+                          "distance_sensors", "Up to six distance sensors");
+    c.max_items = 6;
+    return c;
+  }();
+  static const FieldInfo kDistanceLockPosition{
+      "distanceLockPosition",
+      "distance_lock_position",
+      "m",
+      L::Any(),
+      "Where the original placed the distance sensors' locks",
+      false,
+      G::kLengthVector};
+  static const ChildInfo kDistanceLocks = [] {
+    ChildInfo c =
+        Wrapper("distanceSensorLocks", "Joint", "distance_sensor_locks",
+                "Locks of the distance sensors (placeholders in the "
+                "original's files)");
+    c.locks = true;
+    return c;
+  }();
+  static const FieldInfo kSize{
+      "size", "size",          "m", L::Positive(), "Extents of the box",
+      false,  G::kLengthVector};
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+                               "Mass of the box"};
+  static const FieldInfo kMaterial{"materialName", "material_name", "",
+                                   L::Any(), "Material of the box"};
+  static const FieldInfo kPosition{
+      "position", "position",      "m", L::Any(), "Position of the centre",
+      false,      G::kLengthVector};
+  static const FieldInfo kRotation{"rotation",
+                                   "rotation",
+                                   "deg",
+                                   L::Any(),
+                                   "Euler angles as the original stored them",
+                                   false,
+                                   G::kEuler};
+  static const FieldInfo kQuat{"quatRotation",
+                               "quat_rotation",
+                               "",
+                               L::NonZero(),
+                               "Orientation as a quaternion",
+                               false,
+                               G::kQuaternion};
+  v.Field(kGuid, s.guid);
+  v.Field(kLeft, s.left_mod_nr);
+  v.Field(kRight, s.right_mod_nr);
+  v.Optional(kForce, s.force_sensor);
+  v.Optional(kForceLock, s.force_sensor_lock);
+  v.Field(kForceLockPosition, s.force_lock_position);
+  v.List(kDistance, s.distance_sensors);
+  v.Field(kDistanceLockPosition, s.distance_lock_position);
+  v.List(kDistanceLocks, s.distance_sensor_locks);
+  v.Field(kPosition, s.position);
+  v.Field(kRotation, s.rotation);
+  v.Field(kSize, s.size);
+  v.Field(kQuat, s.quat_rotation);
+  v.Field(kMass, s.mass);
+  v.Field(kMaterial, s.material_name);
+}
+
+template <typename V>
+void Describe(V& v, Robot& r) {
+  static const FieldInfo kName{
+      "name", "name", "", L::Any(),
+      "Unique robot name (letters, digits, _ - .); used in LCM channels; "
+      "robot<i> when left out"};
+  static const ChildInfo kModules =
+      Wrapper("modules", "Module", "modules", "The modules of the chain");
+  static const ChildInfo kSensorModules =
+      Wrapper("sensorModules", "SensorModule", "sensor_modules",
+              "Sensor modules between the modules");
+  static const ChildInfo kLocks = [] {
+    ChildInfo c = Wrapper("locks", "Joint", "locks",
+                          "Rigid joints between consecutive parts");
+    c.locks = true;
+    return c;
+  }();
+  v.Field(kName, r.name);
+  v.List(kModules, r.modules);
+  v.List(kSensorModules, r.sensor_modules);
+  v.List(kLocks, r.locks);
+}
+
+template <typename V>
+void Describe(V& v, Scene& s) {
+  static const FieldInfo kGuid{"guid", "guid", "", L::Any(),
+                               "Id of the terrain (optional)"};
+  static const FieldInfo kImage{
+      "height_Image", "height_image", "", L::Any(),
+      "Grey-scale height image: a file path or base64 image bytes; empty: "
+      "a flat ground plane"};
+  static const FieldInfo kPosition{"position",
+                                   "position",
+                                   "m",
+                                   L::Any(),
+                                   "Corner of the terrain (or the plane's "
+                                   "height)",
+                                   false,
+                                   G::kLengthVector};
+  static const FieldInfo kMaterial{"materialName", "material_name", "",
+                                   L::Any(), "Material of the ground"};
+  static const FieldInfo kHeight{"height",
+                                 "height",
+                                 "m",
+                                 L::NonNegative(),
+                                 "Height of the brightest pixel",
+                                 false,
+                                 G::kLength};
+  static const FieldInfo kPixel{"metersPerPixel",
+                                "meters_per_pixel",
+                                "m",
+                                L::Positive(),
+                                "Horizontal extent of one pixel",
+                                false,
+                                G::kLength};
+  static const ChildInfo kVertices{
+      "vertices", "", "",
+      "The original's optional mesh terrain; read only when empty"};
+  static const ChildInfo kTriangles{
+      "triangles", "", "",
+      "The original's optional mesh terrain; read only when empty"};
+  v.Field(kGuid, s.guid);
+  v.Field(kImage, s.height_image);
+  v.Field(kPosition, s.position);
+  v.Field(kMaterial, s.material_name);
+  v.Field(kHeight, s.height);
+  v.Field(kPixel, s.meters_per_pixel);
+  v.Unsupported(kVertices);
+  v.Unsupported(kTriangles);
+}
+
+template <typename V>
+void Describe(V& v, SceneObject& o) {
+  static const FieldInfo kGuid{
+      "guid", "guid", "", L::NonEmpty(), "Unique id of the object", true};
+  static const FieldInfo kSize{
+      "size",
+      "size",
+      "m",
+      L::Positive(),
+      "Box: extents; Sphere: x is the diameter; Cylinder/Capsule: x "
+      "diameter, z length",
+      false,
+      G::kLengthVector};
+  static const FieldInfo kMaterial{"materialName", "material_name", "",
+                                   L::Any(), "Material of the object"};
+  static const FieldInfo kShape{
+      "shape", "shape", "", L::Any(), "Box, Sphere, Cylinder or Capsule", true};
+  static const FieldInfo kMass{"mass", "mass", "kg", L::NonNegative(),
+                               "Mass; positive unless the object is static"};
+  static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
+                                 "Fixed to the world where it is placed"};
+  v.Field(kGuid, o.guid);
+  v.Field(kSize, o.size);
+  DescribePose(v, o.position, o.rotation, o.quat_rotation);
+  v.Field(kMaterial, o.material_name);
+  v.Field(kShape, o.shape);
+  v.Field(kMass, o.mass);
+  v.Field(kStatic, o.is_static);
+}
+
+template <typename V>
+void Describe(V& v, ContactFriction& f) {
+  static const FieldInfo kM1{
+      "material1", "material1", "", L::NonEmpty(), "First material of the pair",
+      true};
+  static const FieldInfo kM2{"material2",
+                             "material2",
+                             "",
+                             L::NonEmpty(),
+                             "Second material (order does not matter)",
+                             true};
+  static const FieldInfo kRestitution{
+      "restitution", "restitution", "", L::Range(0, 1),
+      "Bounce: 0 none (critically damped) .. 1 elastic"};
+  static const FieldInfo kFriction{"friction", "friction", "", L::NonNegative(),
+                                   "Sliding friction coefficient"};
+  static const FieldInfo kYoung{"youngsModulus", "youngs_modulus", "Pa",
+                                L::Positive(),
+                                "Stiffness of the contact (docs/physics.md)"};
+  v.Field(kM1, f.material1);
+  v.Field(kM2, f.material2);
+  v.Field(kRestitution, f.restitution);
+  v.Field(kFriction, f.friction);
+  v.Field(kYoung, f.youngs_modulus);
+}
+
+template <typename V>
+void Describe(V& v, FluidRegion& r) {
+  static const FieldInfo kGuid{"guid", "guid", "", L::Any(),
+                               "Id of the region (optional)"};
+  static const FieldInfo kKind{
+      "kind",
+      "kind",
+      "",
+      L::Any(),
+      "Water (buoyancy and drag) or Air (drag); sets density and viscosity "
+      "defaults",
+      true};
+  static const FieldInfo kPosition{"position",      "position",          "m",
+                                   L::Any(),        "Centre of the box", false,
+                                   G::kLengthVector};
+  static const FieldInfo kSize{
+      "size", "size",          "m", L::Positive(), "Extents of the box",
+      false,  G::kLengthVector};
+  static const FieldInfo kDensity{"density", "density", "kg/m^3", L::Positive(),
+                                  "Density of the fluid"};
+  static const FieldInfo kViscosity{"viscosity", "viscosity", "Pa s",
+                                    L::NonNegative(),
+                                    "Dynamic viscosity of the fluid"};
+  static const FieldInfo kVelocity{
+      "velocity", "velocity",      "m/s", L::Any(), "Flow or wind velocity",
+      false,      G::kLengthVector};
+  v.Field(kGuid, r.guid);
+  v.Field(kKind, r.kind);
+  v.Field(kPosition, r.position);
+  v.Field(kSize, r.size);
+  v.Field(kDensity, r.density);
+  v.Field(kViscosity, r.viscosity);
+  v.Field(kVelocity, r.velocity);
+}
+
+template <typename V>
+void Describe(V& v, SimulationSettings& s) {
+  static const FieldInfo kTimestep{"timestep", "timestep", "s", L::Positive(),
+                                   "Physics step"};
+  static const FieldInfo kGravity{
+      "gravity",
+      "gravity",
+      "m/s^2",
+      L::Any(),
+      "Gravity; a unit scale (convert --scale) leaves it alone",
+      false,
+      G::kDirection};
+  v.Field(kTimestep, s.timestep);
+  v.Field(kGravity, s.gravity);
+}
+
+template <typename V>
+void Describe(V& v, Scenario& s) {
+  static const ChildInfo kRobot{"robot", "", "robots",
+                                "Robots (repeat <robot>)"};
+  static const ChildInfo kScene{"scene", "", "scene",
+                                "Terrain, or the flat ground"};
+  static const ChildInfo kObjects = Wrapper(
+      "sceneObjects", "SceneObject", "scene_objects", "Free-standing objects");
+  static const ChildInfo kFrictions =
+      Wrapper("contactFrictions", "ContactFriction", "contact_frictions",
+              "Contact parameters per pair of materials");
+  static const ChildInfo kFluids = [] {
+    ChildInfo c = Wrapper("fluidRegions", "FluidRegion", "fluid_regions",
+                          "Water and air regions", false);
+    c.omit_when_empty = true;
+    return c;
+  }();
+  static const ChildInfo kSettings{"settings", "", "settings",
+                                   "Timestep and gravity"};
+  static const ChildInfo kFrames = [] {
+    ChildInfo c = Wrapper("frames", "Frame", "loose_frames",
+                          "Frames without a robot", false);
+    c.omit_when_empty = true;
+    return c;
+  }();
+  static const ChildInfo kSensorModules = [] {
+    ChildInfo c =
+        Wrapper("sensorModules", "SensorModule", "loose_sensor_modules",
+                "Sensor modules without a robot");
+    c.omit_when_empty = true;
+    return c;
+  }();
+  static const ChildInfo kJoints = [] {
+    ChildInfo c =
+        Wrapper("joints", "Joint", "loose_joints",
+                "Joints between loose frames and sensor modules", false);
+    c.omit_when_empty = true;
+    return c;
+  }();
+  v.List(kRobot, s.robots);
+  v.Child(kScene, s.scene);
+  v.List(kObjects, s.scene_objects);
+  v.List(kFrictions, s.contact_frictions);
+  v.List(kFluids, s.fluid_regions);
+  v.Child(kSettings, s.settings);
+  v.List(kFrames, s.loose_frames);
+  v.List(kSensorModules, s.loose_sensor_modules);
+  v.List(kJoints, s.loose_joints);
+}
+
+template <typename T>
+struct KindOf;
+#define MRSIM_KIND_OF(Type, Kind)                      \
+  template <>                                          \
+  struct KindOf<Type> {                                \
+    static constexpr PartKind kValue = PartKind::Kind; \
+  }
+MRSIM_KIND_OF(Scenario, kScenario);
+MRSIM_KIND_OF(Robot, kRobot);
+MRSIM_KIND_OF(Module, kModule);
+MRSIM_KIND_OF(Frame, kFrame);
+MRSIM_KIND_OF(Joint, kJoint);
+MRSIM_KIND_OF(SensorModule, kSensorModule);
+MRSIM_KIND_OF(ForceSensor, kForceSensor);
+MRSIM_KIND_OF(DistanceSensor, kDistanceSensor);
+MRSIM_KIND_OF(Scene, kScene);
+MRSIM_KIND_OF(SceneObject, kSceneObject);
+MRSIM_KIND_OF(ContactFriction, kContactFriction);
+MRSIM_KIND_OF(FluidRegion, kFluidRegion);
+MRSIM_KIND_OF(SimulationSettings, kSettings);
+#undef MRSIM_KIND_OF
+
+// The names of a choice field's values, in enum order.
+inline const std::vector<std::string>& ChoiceNames(const Axis*) {
+  static const std::vector<std::string> k{"Pitch", "Yaw"};
+  return k;
+}
+inline const std::vector<std::string>& ChoiceNames(const JointType*) {
+  static const std::vector<std::string> k{"Hinge", "Lock"};
+  return k;
+}
+inline const std::vector<std::string>& ChoiceNames(const PrimitiveShape*) {
+  static const std::vector<std::string> k{"Box", "Sphere", "Cylinder",
+                                          "Capsule"};
+  return k;
+}
+inline const std::vector<std::string>& ChoiceNames(const FluidKind*) {
+  static const std::vector<std::string> k{"Water", "Air"};
+  return k;
+}
+
+// Applies a frame change and/or a unit scale to every field the schema
+// marks with a Geometry, in a part and all its children.
+struct GeometryMap {
+  bool swap_yz = false;  // Unity Y-up <-> Z-up (its own inverse)
+  double scale = 1.0;    // multiplies lengths
+
+  template <typename T>
+  void Field(const FieldInfo& info, T& value) {
+    if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
+      Eigen::Vector3d& v = value;
+      switch (info.geometry) {
+        case Geometry::kLengthVector:
+          if (swap_yz) std::swap(v[1], v[2]);
+          v *= scale;
+          break;
+        case Geometry::kDirection:
+          if (swap_yz) std::swap(v[1], v[2]);
+          break;
+        case Geometry::kEuler:
+          // + 0.0 turns -0 into 0, so converted zeros print as "0".
+          if (swap_yz) v = Eigen::Vector3d(-v[0], -v[2], -v[1]) + Zero();
+          break;
+        default:
+          break;
+      }
+    } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+      if (swap_yz && info.geometry == Geometry::kQuaternion) {
+        const double x = value.x(), y = value.y(), z = value.z();
+        value.x() = -x + 0.0;
+        value.y() = -z + 0.0;
+        value.z() = -y + 0.0;
+      }
+    } else if constexpr (std::is_same_v<T, double>) {
+      if (info.geometry == Geometry::kLength) value *= scale;
+    }
+  }
+  template <typename P>
+  void Child(const ChildInfo&, P& part) {
+    Describe(*this, part);
+  }
+  static Eigen::Vector3d Zero() { return Eigen::Vector3d::Zero(); }
+  template <typename P>
+  void Optional(const ChildInfo&, std::optional<P>& part) {
+    if (part) Describe(*this, *part);
+  }
+  template <typename P, size_t N>
+  void Array(const ChildInfo&, std::array<P, N>& parts) {
+    for (P& p : parts) Describe(*this, p);
+  }
+  template <typename P>
+  void List(const ChildInfo&, std::vector<P>& parts) {
+    for (P& p : parts) Describe(*this, p);
+  }
+  void Unsupported(const ChildInfo&) {}
+};
+
+}  // namespace schema
+}  // namespace mrsim

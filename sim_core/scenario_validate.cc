@@ -1,0 +1,484 @@
+#include "sim_core/scenario_validate.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "sim_core/mjcf_builder.h"
+#include "sim_core/scenario_schema_inl.h"
+#include "sim_core/terrain.h"
+
+namespace mrsim {
+
+ScenarioError::ScenarioError(const std::string& file, int line,
+                             std::string path, std::string message)
+    : std::runtime_error(file.empty() ? fmt::format("{}: {}", path, message)
+                                      : fmt::format("{}:{}: {}: {}", file, line,
+                                                    path, message)),
+      path_(std::move(path)),
+      message_(std::move(message)),
+      line_(line) {}
+
+int ScenarioSource::LineOf(const std::string& path) const {
+  std::string p = path;
+  while (!p.empty()) {
+    auto it = lines.find(p);
+    if (it != lines.end()) return it->second;
+    const size_t slash = p.rfind('/');
+    if (slash == std::string::npos) break;
+    p.erase(slash);
+  }
+  return 0;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Lower(std::string s) {
+  for (char& c : s) {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return s;
+}
+
+// Which parts a joint may name.
+enum class JointScope {
+  kRobotBodies,  // a robot's hinge or lock: its frames and sensor modules
+  kSensorLock,   // a sensor's lock: any part of its robot, sensors too
+  kLooseBodies,  // a loose joint: loose frames and sensor modules
+  kLooseSensorLock,
+};
+
+struct JointUse {
+  const Joint* joint;
+  std::string path;
+  int robot;  // -1: loose parts
+  JointScope scope;
+};
+
+class Validator {
+ public:
+  Validator(const Scenario& s, const ScenarioSource* source)
+      : s_(s), source_(source) {}
+
+  void Run() {
+    path_ = "Scenario";
+    schema::Describe(*this, const_cast<Scenario&>(s_));
+    CheckJointEnds();
+    for (size_t r = 0; r < s_.robots.size(); ++r)
+      CheckTree(static_cast<int>(r));
+    CheckTree(-1);
+  }
+
+  // Visitor interface (scenario_schema_inl.h).
+  template <typename T>
+  void Field(const FieldInfo& info, T& value) {
+    const std::string problem = FieldRef(info, &value).Check();
+    if (!problem.empty()) Fail(path_ + "/" + info.xml, problem);
+  }
+  template <typename P>
+  void Child(const ChildInfo& info, P& part) {
+    Enter(path_ + "/" + info.xml, part);
+  }
+  template <typename P>
+  void Optional(const ChildInfo& info, std::optional<P>& part) {
+    if (part) Enter(path_ + "/" + info.xml, *part, info.locks);
+  }
+  template <typename P, size_t N>
+  void Array(const ChildInfo& info, std::array<P, N>& parts) {
+    for (size_t i = 0; i < N; ++i) Enter(ItemPath(info, i), parts[i]);
+  }
+  template <typename P>
+  void List(const ChildInfo& info, std::vector<P>& parts) {
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (info.max_items > 0 && static_cast<int>(i) == info.max_items) {
+        Fail(ItemPath(info, i),
+             fmt::format("more than {} <{}> in <{}> (at most {})",
+                         info.max_items, info.item, info.xml, info.max_items));
+      }
+      Enter(ItemPath(info, i), parts[i], info.locks);
+    }
+  }
+  void Unsupported(const ChildInfo&) {}
+
+ private:
+  std::string ItemPath(const ChildInfo& info, size_t i) const {
+    if (*info.item) {
+      return fmt::format("{}/{}/{}[{}]", path_, info.xml, info.item, i + 1);
+    }
+    return fmt::format("{}/{}[{}]", path_, info.xml, i + 1);
+  }
+
+  template <typename P>
+  void Enter(const std::string& path, P& part, bool lock = false) {
+    const std::string saved = path_;
+    path_ = path;
+    Before(part);
+    schema::Describe(*this, part);
+    After(part, lock);
+    path_ = saved;
+  }
+
+  [[noreturn]] void Fail(const std::string& path,
+                         const std::string& what) const {
+    if (source_) {
+      throw ScenarioError(source_->file, source_->LineOf(path), path, what);
+    }
+    throw ScenarioError("", 0, path, what);
+  }
+
+  // "line 12, Scenario/..." or just the path for a scenario in memory.
+  std::string Where(const std::string& path) const {
+    if (source_) return fmt::format("line {}, {}", source_->LineOf(path), path);
+    return path;
+  }
+
+  void AddGuid(const std::string& guid, bool body) {
+    const std::string path = path_ + "/guid";
+    auto [it, inserted] = guids_.emplace(guid, path);
+    if (!inserted) {
+      Fail(path, fmt::format("duplicate guid '{}' (first used at {})", guid,
+                             Where(it->second)));
+    }
+    if (body) bodies_[robot_].push_back(guid);
+  }
+
+  void Before(const Robot& r) {
+    robot_ = static_cast<int>(&r - s_.robots.data());
+    module_numbers_.clear();
+    const std::string name = mjcf_names::RobotName(s_, robot_);
+    const bool ok = std::all_of(name.begin(), name.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' ||
+             ch == '-' || ch == '.';
+    });
+    if (!ok) {
+      Fail(path_ + "/name",
+           "expected a robot name of letters, digits, '_', '-' or '.', got "
+           "'" +
+               name + "'");
+    }
+    auto [it, inserted] = robot_names_.emplace(name, path_ + "/name");
+    if (!inserted) {
+      Fail(path_ + "/name",
+           fmt::format("duplicate robot name '{}' (first at {}); robot names "
+                       "must be unique",
+                       name, Where(it->second)));
+    }
+    if (r.modules.empty() && r.sensor_modules.empty()) {
+      Fail(path_ + "/modules",
+           "expected at least one <Module> or "
+           "<SensorModule>");
+    }
+  }
+  void After(const Robot&, bool) { robot_ = -1; }
+
+  void Before(const Module& m) {
+    auto [it, inserted] = module_numbers_.emplace(m.mod_nr, path_ + "/mod_Nr");
+    if (!inserted) {
+      Fail(path_ + "/mod_Nr", fmt::format("duplicate mod_Nr {} (first at {})",
+                                          m.mod_nr, Where(it->second)));
+    }
+  }
+  void After(const Module& m, bool) {
+    if (m.joint.type != JointType::kHinge) {
+      Fail(path_ + "/joint/type", "a module's joint must be of type Hinge");
+    }
+  }
+
+  void Before(const Frame&) {}
+  void After(const Frame& f, bool) {
+    AddGuid(f.guid, true);
+    if (f.is_mesh()) CheckMesh(f);
+  }
+
+  void Before(const Joint&) {}
+  void After(const Joint& j, bool lock) {
+    AddGuid(j.guid, false);
+    if (j.lower_range_limit > j.upper_range_limit) {
+      Fail(path_ + "/lowerRangeLimit",
+           fmt::format("lower limit {} is above the upper limit {}",
+                       j.lower_range_limit, j.upper_range_limit));
+    }
+    if (j.type == JointType::kHinge && !(j.max_vel > 0)) {
+      Fail(path_ + "/max_vel",
+           fmt::format("expected a positive value for a hinge, got {}",
+                       j.max_vel));
+    }
+    if (j.left_frame_guid == j.right_frame_guid) {
+      Fail(path_ + "/rightFrameGuid",
+           "a joint must join two different parts, both ends are '" +
+               j.left_frame_guid + "'");
+    }
+    const bool sensor_lock = lock && in_sensor_module_;
+    JointScope scope;
+    if (robot_ >= 0) {
+      scope = sensor_lock ? JointScope::kSensorLock : JointScope::kRobotBodies;
+    } else {
+      scope =
+          sensor_lock ? JointScope::kLooseSensorLock : JointScope::kLooseBodies;
+    }
+    joints_.push_back({&j, path_, robot_, scope});
+  }
+
+  void Before(const SensorModule&) { in_sensor_module_ = true; }
+  void After(const SensorModule& sm, bool) {
+    in_sensor_module_ = false;
+    AddGuid(sm.guid, true);
+    if (robot_ < 0) return;
+    for (const auto& [field, nr] :
+         {std::make_pair("leftMod_Nr", sm.left_mod_nr),
+          std::make_pair("rightMod_Nr", sm.right_mod_nr)}) {
+      if (nr != -1 && !module_numbers_.count(nr)) {
+        Fail(path_ + "/" + field,
+             fmt::format("no module with mod_Nr {} in robot '{}' (use -1 for "
+                         "the chain end)",
+                         nr, mjcf_names::RobotName(s_, robot_)));
+      }
+    }
+  }
+
+  void Before(const ForceSensor&) {}
+  void After(const ForceSensor& f, bool) {
+    AddGuid(f.guid, false);
+    sensors_[robot_].insert(f.guid);
+  }
+  void Before(const DistanceSensor&) {}
+  void After(const DistanceSensor& d, bool) {
+    AddGuid(d.guid, false);
+    sensors_[robot_].insert(d.guid);
+  }
+
+  void Before(const Scene&) {}
+  void After(const Scene& scene, bool) {
+    if (!scene.guid.empty()) AddGuid(scene.guid, false);
+    if (scene.height_image.empty()) return;
+    // The physics decodes the image the same way, so what validates loads.
+    try {
+      LoadTerrainImage(scene, s_.base_dir);
+    } catch (const std::exception& e) {
+      Fail(path_ + "/height_Image",
+           std::string("cannot read the height image: ") + e.what());
+    }
+  }
+
+  void Before(const SceneObject&) {}
+  void After(const SceneObject& o, bool) {
+    AddGuid(o.guid, false);
+    if (!o.is_static && !(o.mass > 0)) {
+      Fail(path_ + "/mass",
+           fmt::format("expected a positive value, got {} (only a static "
+                       "object may have mass 0)",
+                       o.mass));
+    }
+  }
+
+  void Before(const ContactFriction&) {}
+  void After(const ContactFriction& f, bool) {
+    auto key = std::minmax(f.material1, f.material2);
+    auto [it, inserted] =
+        pairs_.emplace(std::make_pair(key.first, key.second), path_);
+    if (!inserted) {
+      Fail(path_, fmt::format("second ContactFriction for materials '{}'/'{}' "
+                              "(first at {})",
+                              f.material1, f.material2, Where(it->second)));
+    }
+  }
+
+  void Before(const FluidRegion&) {}
+  void After(const FluidRegion& r, bool) {
+    if (!r.guid.empty()) AddGuid(r.guid, false);
+  }
+  void Before(const SimulationSettings&) {}
+  void After(const SimulationSettings&, bool) {}
+  void Before(const Scenario&) {}
+  void After(const Scenario&, bool) {}
+
+  void CheckMesh(const Frame& frame) {
+    const std::string path = path_ + "/shape";
+    const std::string ext = Lower(fs::path(frame.shape).extension().string());
+    if (ext != ".obj" && ext != ".stl") {
+      Fail(path, "expected Box or a mesh file ending in .obj or .stl, got '" +
+                     frame.shape + "'");
+    }
+    fs::path p(frame.shape);
+    if (p.is_relative() && !s_.base_dir.empty()) p = fs::path(s_.base_dir) / p;
+    const std::string resolved = p.string();
+    std::ifstream in(resolved, std::ios::binary);
+    std::error_code ec;
+    if (!in || !fs::is_regular_file(resolved, ec)) {
+      Fail(path, "cannot read mesh file '" + resolved + "'");
+    }
+    const std::string bytes((std::istreambuf_iterator<char>(in)),
+                            std::istreambuf_iterator<char>());
+    bool ok = false;
+    const bool ascii_stl = bytes.rfind("solid", 0) == 0 &&
+                           bytes.find("facet") != std::string::npos;
+    if (ext == ".obj") {
+      std::istringstream lines(bytes);
+      std::string line;
+      bool vertex = false, face = false;
+      while (std::getline(lines, line)) {
+        if (line.rfind("v ", 0) == 0) vertex = true;
+        if (line.rfind("f ", 0) == 0) face = true;
+      }
+      ok = vertex && face;
+    } else if (bytes.size() >= 84) {
+      std::uint32_t triangles = 0;
+      std::memcpy(&triangles, bytes.data() + 80, 4);
+      ok = (triangles > 0 && bytes.size() == 84 + 50ull * triangles) ||
+           ascii_stl;
+    } else {
+      ok = ascii_stl;
+    }
+    if (!ok) {
+      Fail(path, "mesh file '" + resolved + "' is not a valid " +
+                     (ext == ".obj" ? "OBJ (needs v and f lines)"
+                                    : "STL (binary or ASCII)"));
+    }
+  }
+
+  // Joints name parts the simulator can join (mjcf_builder.cc): a robot's
+  // hinges and locks its own frames and sensor modules, loose joints loose
+  // frames and sensor modules; a sensor's lock may name its sensors too.
+  void CheckJointEnds() const {
+    std::set<std::string> everywhere;
+    for (const auto& [robot, names] : bodies_) {
+      everywhere.insert(names.begin(), names.end());
+    }
+    for (const auto& [robot, names] : sensors_) {
+      everywhere.insert(names.begin(), names.end());
+    }
+    for (const JointUse& use : joints_) {
+      auto bodies_it = bodies_.find(use.robot);
+      std::set<std::string> allowed;
+      if (bodies_it != bodies_.end()) {
+        allowed.insert(bodies_it->second.begin(), bodies_it->second.end());
+      }
+      const bool sensors_ok = use.scope == JointScope::kSensorLock ||
+                              use.scope == JointScope::kLooseSensorLock;
+      auto sensors_it = sensors_.find(use.robot);
+      if (sensors_ok && sensors_it != sensors_.end()) {
+        allowed.insert(sensors_it->second.begin(), sensors_it->second.end());
+      }
+      for (const char* end : {"leftFrameGuid", "rightFrameGuid"}) {
+        const std::string& guid = std::string(end) == "leftFrameGuid"
+                                      ? use.joint->left_frame_guid
+                                      : use.joint->right_frame_guid;
+        if (allowed.count(guid)) continue;
+        const std::string what = sensors_ok ? "frame, sensor module or sensor"
+                                            : "frame or sensor module";
+        std::string hint;
+        if (everywhere.count(guid) || guids_.count(guid)) {
+          hint = use.robot >= 0
+                     ? " (it is not a part this joint can join; joints of a "
+                       "robot join only its own frames and sensor modules)"
+                     : " (it is not a part this joint can join; loose joints "
+                       "join loose frames and sensor modules)";
+        }
+        const std::string where =
+            use.robot >= 0 ? fmt::format(" in robot '{}'",
+                                         mjcf_names::RobotName(s_, use.robot))
+                           : " among the loose parts";
+        Fail(use.path + "/" + end,
+             fmt::format("no {} with guid '{}'{}{}", what, guid, where, hint));
+      }
+    }
+  }
+
+  // As the builder joins parts (mjcf_builder.cc): hinges first, each must
+  // join two parts not yet joined (MuJoCo joints live in a tree); then
+  // locks, and sensor modules no joint names are locked to their
+  // neighbouring modules. Every part of a robot must end up joined.
+  void CheckTree(int robot) const {
+    auto bodies_it = bodies_.find(robot);
+    if (bodies_it == bodies_.end()) return;
+    const std::vector<std::string>& nodes = bodies_it->second;
+    std::map<std::string, std::string> parent;
+    for (const std::string& n : nodes) parent[n] = n;
+    std::function<std::string(const std::string&)> root =
+        [&](const std::string& x) -> std::string {
+      const std::string& p = parent.at(x);
+      return p == x ? x : parent[x] = root(p);
+    };
+    std::vector<const JointUse*> edges;
+    std::set<std::string> named;
+    for (const JointUse& use : joints_) {
+      if (use.robot != robot || (use.scope != JointScope::kRobotBodies &&
+                                 use.scope != JointScope::kLooseBodies)) {
+        continue;
+      }
+      edges.push_back(&use);
+      named.insert(use.joint->left_frame_guid);
+      named.insert(use.joint->right_frame_guid);
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      for (const JointUse* use : edges) {
+        const bool hinge = use->joint->type == JointType::kHinge;
+        if (hinge != (pass == 0)) continue;
+        const std::string a = root(use->joint->left_frame_guid);
+        const std::string b = root(use->joint->right_frame_guid);
+        if (a == b && hinge) {
+          Fail(use->path,
+               fmt::format("hinge '{}' closes a loop of hinges and locks; "
+                           "hinges that form a closed loop are not supported",
+                           use->joint->guid));
+        }
+        parent[a] = b;
+      }
+    }
+    if (robot < 0) return;
+    const Robot& r = s_.robots[robot];
+    for (const SensorModule& sm : r.sensor_modules) {
+      if (named.count(sm.guid)) continue;
+      for (const Module& m : r.modules) {
+        if (m.mod_nr == sm.left_mod_nr || m.mod_nr == sm.right_mod_nr) {
+          parent[root(m.frames[0].guid)] = root(sm.guid);
+          parent[root(m.frames[1].guid)] = root(sm.guid);
+        }
+      }
+    }
+    const std::string first = root(nodes.front());
+    for (const std::string& n : nodes) {
+      if (root(n) != first) {
+        Fail(guids_.at(n),
+             fmt::format("part '{}' is not joined to the rest of robot '{}' "
+                         "(expected a hinge or a lock in <locks> linking it)",
+                         n, mjcf_names::RobotName(s_, robot)));
+      }
+    }
+  }
+
+  const Scenario& s_;
+  const ScenarioSource* source_;
+  std::string path_;
+  int robot_ = -1;  // index of the robot being walked; -1: loose parts
+  bool in_sensor_module_ = false;
+  std::map<std::string, std::string> guids_;  // guid -> path of its <guid>
+  std::map<std::string, std::string> robot_names_;
+  std::map<int, std::string> module_numbers_;
+  std::map<std::pair<std::string, std::string>, std::string> pairs_;
+  // Frames and sensor modules (what the builder makes bodies of) and
+  // sensors, per robot index; -1 for loose parts.
+  std::map<int, std::vector<std::string>> bodies_;
+  std::map<int, std::set<std::string>> sensors_;
+  std::vector<JointUse> joints_;
+};
+
+}  // namespace
+
+void ValidateScenario(const Scenario& scenario, const ScenarioSource* source) {
+  Validator(scenario, source).Run();
+}
+
+}  // namespace mrsim

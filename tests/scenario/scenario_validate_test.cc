@@ -1,0 +1,259 @@
+// One validator: every rule the MJCF builder and the physics used to
+// enforce on their own is refused, with the same element path, by the file
+// reader (file:line: path) and by BuildMjcf and Physics on a scenario built
+// in memory; and what validates builds.
+#include "sim_core/scenario_validate.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim_core/chain_builder.h"
+#include "sim_core/mjcf_builder.h"
+#include "sim_core/physics.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using ::testing::HasSubstr;
+using testing::SourcePath;
+using ::testing::StartsWith;
+using testing::TempDir;
+
+// A valid scenario with every kind of part the builder looks at: a chain
+// with a sensor module (force plate and ray), a ball, a height field and
+// two loose frames joined by a hinge.
+Scenario Base(const std::string& dir) {
+  std::ifstream png(SourcePath("scenarios/terrain.png"), std::ios::binary);
+  std::ofstream(dir + "/terrain.png", std::ios::binary) << png.rdbuf();
+  ChainOptions options;
+  options.name = "r";
+  options.modules = 2;
+  options.sensor_after = {-1};
+  options.force_sensors = true;
+  options.front_distance_sensor = true;
+  options.origin = Eigen::Vector3d(0, 0, 0.1);
+  Scenario s;
+  s.base_dir = dir;
+  s.robots.push_back(MakeChain(options));
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.shape = PrimitiveShape::kSphere;
+  ball.position = Eigen::Vector3d(0.5, 0, 0.2);
+  s.scene_objects.push_back(ball);
+  s.scene.guid = "ground";
+  s.scene.height_image = "terrain.png";
+  s.scene.height = 0.3;
+  s.scene.position = Eigen::Vector3d(-1.6, -1.6, 0);
+  for (int f = 0; f < 2; ++f) {
+    Frame frame;
+    frame.guid = "loose" + std::to_string(f);
+    frame.position = Eigen::Vector3d(1, 0.05 * f, 0.3);
+    s.loose_frames.push_back(frame);
+  }
+  Joint hinge;
+  hinge.guid = "loose hinge";
+  hinge.left_frame_guid = "loose0";
+  hinge.right_frame_guid = "loose1";
+  s.loose_joints.push_back(hinge);
+  return s;
+}
+
+struct Rule {
+  std::string name;
+  std::function<void(Scenario&)> break_it;
+  std::string path;
+  std::string message;
+};
+
+const char kM1[] = "Scenario/robot[1]/modules/Module[1]";
+const char kSm1[] = "Scenario/robot[1]/sensorModules/SensorModule[1]";
+
+std::vector<Rule> BuilderRules() {
+  const std::string m1 = kM1, sm1 = kSm1;
+  return {
+      {"static frame of mass 0",
+       [](Scenario& s) {
+         Frame& f = s.robots[0].modules[0].frames[0];
+         f.is_static = true;
+         f.mass = 0;
+       },
+       m1 + "/frames/Frame[1]/mass", "expected a positive value, got 0"},
+      {"box scale not positive",
+       [](Scenario& s) { s.robots[0].modules[0].frames[1].scale.y() = 0; },
+       m1 + "/frames/Frame[2]/scale", "expected positive x, y, z"},
+      {"force plate face",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].force_sensor->sensor_position = 4;
+       },
+       sm1 + "/forceSensor/sensorPosition", "expected 0..3"},
+      {"force plate mass",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].force_sensor->mass = 0;
+       },
+       sm1 + "/forceSensor/mass", "expected a positive value"},
+      {"force plate size",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].force_sensor->size.z() = -0.001;
+       },
+       sm1 + "/forceSensor/size", "expected positive x, y, z"},
+      {"distance sensor face",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].distance_sensors[0].sensor_position = 6;
+       },
+       sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
+       "expected 0..5"},
+      {"sensor module mass",
+       [](Scenario& s) { s.robots[0].sensor_modules[0].mass = 0; },
+       sm1 + "/mass", "expected a positive value"},
+      {"sensor module size",
+       [](Scenario& s) { s.robots[0].sensor_modules[0].size.x() = -1; },
+       sm1 + "/size", "expected positive x, y, z"},
+      {"guid used twice in a robot",
+       [](Scenario& s) {
+         Module& m = s.robots[0].modules[1];
+         m.frames[1].guid = s.robots[0].modules[0].frames[0].guid;
+       },
+       "Scenario/robot[1]/modules/Module[2]/frames/Frame[2]/guid",
+       "duplicate guid 'r/m0/f0'"},
+      {"lower limit above upper",
+       [](Scenario& s) {
+         s.robots[0].modules[0].joint.lower_range_limit = 2;
+         s.robots[0].modules[0].joint.upper_range_limit = 1;
+       },
+       m1 + "/joint/lowerRangeLimit", "lower limit 2 is above the upper limit"},
+      {"lock naming an unknown part",
+       [](Scenario& s) { s.robots[0].locks[0].right_frame_guid = "nowhere"; },
+       "Scenario/robot[1]/locks/Joint[1]/rightFrameGuid",
+       "no frame or sensor module with guid 'nowhere' in robot 'r'"},
+      {"lock naming a sensor",
+       [](Scenario& s) {
+         s.robots[0].locks[0].right_frame_guid =
+             s.robots[0].sensor_modules[0].force_sensor->guid;
+       },
+       "Scenario/robot[1]/locks/Joint[1]/rightFrameGuid",
+       "it is not a part this joint can join"},
+      {"hinges closing a loop",
+       [](Scenario& s) {
+         Joint extra;
+         extra.guid = "extra";
+         extra.left_frame_guid = s.robots[0].modules[0].frames[0].guid;
+         extra.right_frame_guid = s.robots[0].modules[0].frames[1].guid;
+         s.robots[0].locks.push_back(extra);
+       },
+       "Scenario/robot[1]/locks/Joint[3]", "hinge 'extra' closes a loop"},
+      {"scene object size",
+       [](Scenario& s) { s.scene_objects[0].size.z() = 0; },
+       "Scenario/sceneObjects/SceneObject[1]/size",
+       "expected positive x, y, z"},
+      {"moving scene object of mass 0",
+       [](Scenario& s) { s.scene_objects[0].mass = 0; },
+       "Scenario/sceneObjects/SceneObject[1]/mass",
+       "expected a positive value, got 0"},
+      {"terrain pixel size", [](Scenario& s) { s.scene.meters_per_pixel = 0; },
+       "Scenario/scene/metersPerPixel", "expected a positive value"},
+      {"terrain height", [](Scenario& s) { s.scene.height = -0.1; },
+       "Scenario/scene/height", "expected a value >= 0"},
+      {"two robots of one name",
+       [](Scenario& s) {
+         ChainOptions o;
+         o.name = "q";
+         o.modules = 1;
+         o.origin = Eigen::Vector3d(0, 0.5, 0.1);
+         s.robots.push_back(MakeChain(o));
+         s.robots.back().name = "r";
+       },
+       "Scenario/robot[2]/name", "duplicate robot name 'r'"},
+      {"unreadable mesh",
+       [](Scenario& s) { s.robots[0].modules[0].frames[0].shape = "no.obj"; },
+       m1 + "/frames/Frame[1]/shape", "cannot read mesh file"},
+      {"unreadable height image",
+       [](Scenario& s) { s.scene.height_image = "missing.png"; },
+       "Scenario/scene/height_Image", "cannot read the height image"},
+      {"loose joint naming a scene object",
+       [](Scenario& s) { s.loose_joints[0].right_frame_guid = "ball"; },
+       "Scenario/joints/Joint[1]/rightFrameGuid",
+       "no frame or sensor module with guid 'ball' among the loose parts"},
+  };
+}
+
+std::string LineOf(const std::string& path, int line) {
+  std::ifstream in(path);
+  std::string text;
+  for (int i = 0; i < line && std::getline(in, text); ++i) {
+  }
+  return text;
+}
+
+TEST(ScenarioValidate, TheBaseScenarioValidatesBuildsAndLoads) {
+  const std::string dir = TempDir("validate_base");
+  const Scenario s = Base(dir);
+  EXPECT_NO_THROW(ValidateScenario(s));
+  EXPECT_NO_THROW(BuildMjcf(s));
+  EXPECT_NO_THROW(Physics physics(s));
+  WriteScenarioFile(s, dir + "/base.xml");
+  EXPECT_TRUE(ReadScenarioFile(dir + "/base.xml") == s);
+}
+
+TEST(ScenarioValidate, EveryBuilderRuleIsRefusedByTheReaderBuilderAndPhysics) {
+  const std::string dir = TempDir("validate_rules");
+  for (const Rule& rule : BuilderRules()) {
+    SCOPED_TRACE(rule.name);
+    Scenario s = Base(dir);
+    rule.break_it(s);
+    // In memory: the builder and the physics refuse it with the path.
+    try {
+      BuildMjcf(s);
+      ADD_FAILURE() << "BuildMjcf accepted it";
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(e.path(), rule.path) << e.what();
+      EXPECT_THAT(e.message(), HasSubstr(rule.message));
+      EXPECT_THAT(e.what(), StartsWith(rule.path + ": "));
+    }
+    EXPECT_THROW(Physics physics(s), ScenarioError);
+    // In a file: the reader refuses it with file:line: path.
+    const std::string file = dir + "/broken.xml";
+    WriteScenarioFile(s, file);
+    try {
+      ReadScenarioFile(file);
+      ADD_FAILURE() << "the reader accepted it";
+    } catch (const ScenarioError& e) {
+      EXPECT_THAT(e.what(), StartsWith(file + ":" + std::to_string(e.line()) +
+                                       ": " + rule.path + ": "));
+      EXPECT_THAT(e.message(), HasSubstr(rule.message));
+      // The line is that of the element the path ends in.
+      std::string leaf = rule.path.substr(rule.path.rfind('/') + 1);
+      leaf = leaf.substr(0, leaf.find('['));
+      EXPECT_THAT(LineOf(file, e.line()), HasSubstr("<" + leaf + ">"));
+    }
+  }
+}
+
+TEST(ScenarioValidate, ValidateCommandRefusesAStaticFrameOfMassZero) {
+  const std::string dir = TempDir("validate_tool_mass");
+  Scenario s = Base(dir);
+  s.robots[0].modules[0].frames[0].is_static = true;
+  s.robots[0].modules[0].frames[0].mass = 0;
+  WriteScenarioFile(s, dir + "/static.xml");
+  ChildProcess tool({BinaryPath("sim_core/scenario_tool/mrsim-scenario"),
+                     "validate", dir + "/static.xml"},
+                    dir + "/tool.log");
+  EXPECT_EQ(tool.Wait(60), 2);
+  EXPECT_THAT(tool.Output(), HasSubstr(dir + "/static.xml:"));
+  EXPECT_THAT(tool.Output(),
+              HasSubstr(std::string(kM1) +
+                        "/frames/Frame[1]/mass: expected a positive value, "
+                        "got 0"));
+}
+
+}  // namespace
+}  // namespace mrsim
