@@ -91,7 +91,7 @@ void Preview::FrameAll() {
   for (int i = 0; i < 3; ++i) camera_.lookat[i] = centre[i];
   // Fit the extent across the narrower side of the view (fovy 45 deg).
   const double fit = std::tan(22.5 * M_PI / 180) * std::min(1.0, aspect_);
-  camera_.distance = 0.45 * extent / fit + 0.1;
+  camera_.distance = 0.58 * extent / fit + 0.1;
   camera_.azimuth = 100;  // the chain (along x) runs across the view
   camera_.elevation = -28;
 }

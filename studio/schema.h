@@ -1,6 +1,6 @@
 // Where the studio gets the scenario schema (FieldRef, FieldsOf) and the
-// validator from. Until the schema branch is merged this is the temporary
-// adapter; afterwards sim_core/scenario_schema.h and scenario_validate.h.
+// one validator from: sim_core, so the inspector names no field itself.
 #pragma once
 
-#include "studio/schema_adapter.h"
+#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario_validate.h"
