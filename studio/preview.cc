@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -43,7 +44,9 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   const mjModel* m = physics->model();
   physics_ = std::move(physics);
   data_ = physics_->mutable_data();
-  mj_forward(m, data_);
+  // Poses only: the preview draws the initial state, no dynamics needed.
+  mj_kinematics(m, data_);
+  mj_camlight(m, data_);
   geoms_ = MapGeoms(m, scenario);
   rays_ = MapRays(m, scenario);
   labels_.clear();
@@ -65,6 +68,14 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   sized.vis.global.offwidth = std::max(width_, 16);
   sized.vis.global.offheight = std::max(height_, 16);
   sized.vis.quality.shadowsize = 2048;
+  // Software OpenGL (llvmpipe, no GPU): multisampling and shadows cost
+  // most of the frame, so they go (docs/studio.md).
+  const char* renderer =
+      reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  software_ =
+      renderer != nullptr && (std::strstr(renderer, "llvmpipe") != nullptr ||
+                              std::strstr(renderer, "softpipe") != nullptr);
+  if (software_) sized.vis.quality.offsamples = 0;
   mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
   context_made_ = true;
   return "";
@@ -147,6 +158,7 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
   const mjModel* m = physics_->model();
   mjv_updateScene(m, data_, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
   ApplyLooks(geoms_, selected, &scene_);
+  if (software_) scene_.flags[mjRND_SHADOW] = 0;
   for (int i = 0; i < scene_.ngeom; ++i) {
     mjvGeom& g = scene_.geoms[i];
     if (g.objtype != mjOBJ_GEOM) continue;

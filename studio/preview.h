@@ -79,6 +79,7 @@ class Preview {
   mjrContext context_;
   bool framed_ = false;
   double aspect_ = 1.0;
+  bool software_ = false;  // llvmpipe: no MSAA, no shadows
   bool context_made_ = false;
 };
 

@@ -47,6 +47,8 @@ class StudioApp {
 
   Design& design() { return design_; }
   Preview& preview() { return *preview_; }
+  // Why the preview could not be built from the design ("" when it was).
+  const std::string& build_error() const { return build_error_; }
   // Time the last model rebuild took (ms), -1 before the first.
   double last_rebuild_ms() const { return last_rebuild_ms_; }
 
