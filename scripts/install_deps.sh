@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
+  libimgui-dev xdotool fonts-dejavu-core
   clang-format
   iproute2 nftables
 )

@@ -1,0 +1,105 @@
+// Benchmarks of mrsim-studio, off-screen through EGL like --screenshot
+// (software GL without a GPU), in one run:
+//   BENCH studio_fps                 full UI, scenarios/snake11.xml, 1280x800
+//                                    (target >= 30)
+//   BENCH studio_render_only_fps     baseline: the same frames without the
+//                                    ImGui panels (3-D preview alone)
+//   BENCH studio_rebuild_ms_50       edit of a 50-module robot until the new
+//                                    preview is drawn (median, target <= 100)
+//   BENCH studio_frame_ms_50         baseline: a frame of that robot with no
+//                                    edit
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "studio/design.h"
+#include "studio/headless_studio.h"
+#include "studio/studio_app.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kWidth = 1280;
+constexpr int kHeight = 800;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main() {
+  using namespace mrsim::studio;
+  AppOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.recent_store = "-";
+  {
+    StudioApp app(Design::Open("scenarios/snake11.xml"), options);
+    HeadlessStudio studio(&app, kWidth, kHeight);
+    for (int i = 0; i < 5; ++i) studio.Frame();
+    int frames = 0;
+    const auto start = Clock::now();
+    while (Seconds(start) < 4.0) {
+      studio.Frame();
+      ++frames;
+    }
+    const double fps = frames / Seconds(start);
+    // Baseline: the 3-D preview alone, same context and model.
+    frames = 0;
+    const auto start3d = Clock::now();
+    while (Seconds(start3d) < 4.0) {
+      app.preview().Render({0, 0, kWidth, kHeight}, true,
+                           app.design().selection());
+      glFinish();
+      ++frames;
+    }
+    const double fps3d = frames / Seconds(start3d);
+    std::printf("BENCH studio_fps %.1f frames/s\n", fps);
+    std::printf("BENCH studio_render_only_fps %.1f frames/s\n", fps3d);
+    std::printf("BENCH studio_fps_ratio %.3f x\n", fps / fps3d);
+  }
+  // 50 modules is the target; 40 is reported too, as a size today's MJCF
+  // builder compiles (deep chains need sub-trees, branch physics).
+  for (int modules : {50, 40}) {
+    TemplateOptions big;
+    big.chain.modules = modules;
+    big.chain.pattern = mrsim::ChainPattern::kPitchYaw;
+    Design design;
+    design.ApplyTemplate(big);
+    StudioApp app(std::move(design), options);
+    HeadlessStudio studio(&app, kWidth, kHeight);
+    for (int i = 0; i < 3; ++i) studio.Frame();
+    if (!app.build_error().empty()) {
+      std::fprintf(stderr,
+                   "bench_studio: the %d-module preview does not build: %s\n",
+                   modules, app.build_error().c_str());
+      std::printf("BENCH studio_rebuild_ms_%d nan ms\n", modules);
+      continue;
+    }
+    std::vector<double> edit_ms, frame_ms;
+    for (int k = 0; k < 11; ++k) {
+      auto start = Clock::now();
+      studio.Frame();
+      frame_ms.push_back(1000 * Seconds(start));
+      start = Clock::now();
+      app.design().SetField({{PartKind::kModule, 0, k}, "joint", "Kp"},
+                            std::to_string(11 + k));
+      studio.Frame();  // rebuilds the model and draws it
+      edit_ms.push_back(1000 * Seconds(start));
+    }
+    std::printf("BENCH studio_rebuild_ms_%d %.1f ms\n", modules,
+                Median(edit_ms));
+    std::printf("BENCH studio_frame_ms_%d %.1f ms\n", modules,
+                Median(frame_ms));
+  }
+  return 0;
+}

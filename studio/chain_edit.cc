@@ -1,0 +1,164 @@
+#include "studio/chain_edit.h"
+
+#include <stdexcept>
+
+namespace mrsim::studio {
+namespace {
+
+std::string Renamed(const std::string& guid, const std::string& from,
+                    const std::string& to) {
+  if (guid.compare(0, from.size(), from) == 0) {
+    return to + guid.substr(from.size());
+  }
+  return guid;
+}
+
+void CarryModule(const Module& from, Module* to) {
+  for (int f = 0; f < 2; ++f) {
+    const Frame& a = from.frames[f];
+    Frame& b = to->frames[f];
+    b.shape = a.shape;
+    b.scale = a.scale;
+    b.mass = a.mass;
+    b.is_static = a.is_static;
+    b.material_name = a.material_name;
+  }
+  const Joint& a = from.joint;
+  Joint& b = to->joint;
+  b.type = a.type;
+  b.lower_range_limit = a.lower_range_limit;
+  b.upper_range_limit = a.upper_range_limit;
+  b.kp = a.kp;
+  b.max_vel = a.max_vel;
+  b.velocity_gain = a.velocity_gain;
+  b.max_torque = a.max_torque;
+  b.break_force = a.break_force;
+}
+
+void CarrySensorModule(const SensorModule& from, SensorModule* to) {
+  to->mass = from.mass;
+  to->material_name = from.material_name;
+  if (from.force_sensor && to->force_sensor) {
+    to->force_sensor->mass = from.force_sensor->mass;
+    to->force_sensor->material_name = from.force_sensor->material_name;
+    to->force_sensor->force_value = from.force_sensor->force_value;
+  }
+  // Distance sensors keep their place on the module as it moves.
+  const Eigen::Vector3d shift = to->position - from.position;
+  to->distance_sensors = from.distance_sensors;
+  to->distance_sensor_locks = from.distance_sensor_locks;
+  to->distance_lock_position = from.distance_lock_position + shift;
+  for (DistanceSensor& d : to->distance_sensors) {
+    d.position += shift;
+    d.guid = Renamed(d.guid, from.guid, to->guid);
+  }
+  for (Joint& lock : to->distance_sensor_locks) {
+    lock.guid = Renamed(lock.guid, from.guid, to->guid);
+    lock.left_frame_guid = Renamed(lock.left_frame_guid, from.guid, to->guid);
+    lock.right_frame_guid = Renamed(lock.right_frame_guid, from.guid, to->guid);
+  }
+}
+
+}  // namespace
+
+std::vector<ChainSlot> ChainOrder(const Robot& robot) {
+  std::vector<ChainSlot> slots;
+  std::vector<bool> placed(robot.sensor_modules.size(), false);
+  auto sensors_after = [&](int mod_nr) {
+    for (size_t j = 0; j < robot.sensor_modules.size(); ++j) {
+      if (!placed[j] && robot.sensor_modules[j].left_mod_nr == mod_nr) {
+        placed[j] = true;
+        slots.push_back({true, static_cast<int>(j), Axis::kPitch});
+      }
+    }
+  };
+  sensors_after(-1);
+  for (size_t i = 0; i < robot.modules.size(); ++i) {
+    slots.push_back({false, static_cast<int>(i), robot.modules[i].axis});
+    sensors_after(robot.modules[i].mod_nr);
+  }
+  for (size_t j = 0; j < placed.size(); ++j) {
+    if (!placed[j]) slots.push_back({true, static_cast<int>(j), Axis::kPitch});
+  }
+  return slots;
+}
+
+ChainOptions OptionsOf(const Robot& robot) {
+  ChainOptions options;
+  if (!robot.name.empty()) options.name = robot.name;
+  for (const SensorModule& sm : robot.sensor_modules) {
+    if (sm.force_sensor) options.force_sensors = true;
+  }
+  if (robot.sensor_modules.empty()) options.force_sensors = true;
+  if (robot.modules.empty()) return options;
+  const Module& m = robot.modules[0];
+  options.frame_size = m.frames[0].scale;
+  options.module_mass = m.frames[0].mass + m.frames[1].mass;
+  options.material = m.frames[0].material_name;
+  options.kp = m.joint.kp;
+  options.max_vel = m.joint.max_vel;
+  options.joint_limit = m.joint.upper_range_limit;
+  bool plates = false;
+  for (const SensorModule& sm : robot.sensor_modules) {
+    if (sm.force_sensor) plates = true;
+  }
+  const double lift = plates ? ForceSensor().size.z() : 0.0;
+  options.origin =
+      Eigen::Vector3d(m.position.x(), m.position.y(),
+                      m.position.z() - options.frame_size.z() / 2 - lift);
+  return options;
+}
+
+Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
+               const ChainOptions& options) {
+  ChainOptions chain = options;
+  chain.modules = 0;
+  chain.pattern = ChainPattern::kPitch;
+  chain.sensor_after.clear();
+  bool previous_sensor = false;
+  bool old_rays = false;
+  for (const SensorModule& sm : old.sensor_modules) {
+    if (!sm.distance_sensors.empty()) old_rays = true;
+  }
+  for (const ChainSlot& slot : slots) {
+    if (slot.sensor) {
+      if (previous_sensor) {
+        throw std::invalid_argument(
+            "two sensor modules next to each other: put a module between "
+            "them");
+      }
+      chain.sensor_after.push_back(chain.modules - 1);
+    } else {
+      ++chain.modules;
+    }
+    previous_sensor = slot.sensor;
+  }
+  if (chain.modules == 0) {
+    throw std::invalid_argument(
+        "a robot needs at least one module: add a module first");
+  }
+  // MakeChain lifts the chain onto plates even when there are no sensor
+  // modules to carry them.
+  if (chain.sensor_after.empty()) chain.force_sensors = false;
+  // A new sensor module at the very front looks ahead, as in the case study.
+  chain.front_distance_sensor =
+      !old_rays && slots[0].sensor && slots[0].source < 0;
+  Robot robot = MakeChain(chain);
+  int module = 0;
+  int sensor = 0;
+  for (const ChainSlot& slot : slots) {
+    if (slot.sensor) {
+      SensorModule& sm = robot.sensor_modules[sensor++];
+      if (slot.source >= 0) {
+        CarrySensorModule(old.sensor_modules.at(slot.source), &sm);
+      }
+    } else {
+      Module& m = robot.modules[module++];
+      m.axis = slot.axis;
+      if (slot.source >= 0) CarryModule(old.modules.at(slot.source), &m);
+    }
+  }
+  return robot;
+}
+
+}  // namespace mrsim::studio

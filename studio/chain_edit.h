@@ -1,0 +1,40 @@
+// Structural edits of a chain robot (insert, remove, reorder parts). The
+// robot is laid out again with MakeChain's geometry (sim_core/chain_builder.h)
+// so a chain built part by part equals what `mrsim-scenario new` makes; the
+// fields a user edited on existing parts (masses, materials, gains, limits,
+// sensors) are carried over.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "sim_core/chain_builder.h"
+#include "sim_core/scenario.h"
+
+namespace mrsim::studio {
+
+// One part of a chain from front to back: a module or a sensor module.
+// `source` is its index in the robot being edited, or -1 for a new part.
+struct ChainSlot {
+  bool sensor = false;
+  int source = -1;
+  Axis axis = Axis::kPitch;  // modules only
+};
+
+// The parts of `robot` from front to back: modules in list order, each
+// sensor module after the module named by its left_mod_nr (-1: in front).
+std::vector<ChainSlot> ChainOrder(const Robot& robot);
+
+// The chain options a new part of `robot` takes (frame size, mass,
+// material, gains and origin of its module 0); ChainOptions' defaults for an
+// empty robot.
+ChainOptions OptionsOf(const Robot& robot);
+
+// Lays out `slots` as a chain with `options` (name, sizes, origin) and
+// carries the edited fields of the parts `slots` take from `old`. Throws
+// std::invalid_argument when the chain cannot be built: no module, or two
+// sensor modules next to each other.
+Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
+               const ChainOptions& options);
+
+}  // namespace mrsim::studio

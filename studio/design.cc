@@ -1,0 +1,460 @@
+#include "studio/design.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "sim_core/scenario_xml.h"
+#include "studio/chain_edit.h"
+#include "studio/inspector_fields.h"
+#include "studio/schema.h"
+
+namespace mrsim::studio {
+namespace {
+
+constexpr size_t kMaxUndo = 500;
+
+bool IsChainPart(const Selection& s) {
+  return s.kind == PartKind::kModule || s.kind == PartKind::kSensorModule;
+}
+
+// Position of the selected chain part in ChainOrder, or -1.
+int SlotOf(const std::vector<ChainSlot>& slots, const Selection& sel) {
+  for (size_t i = 0; i < slots.size(); ++i) {
+    if (slots[i].sensor == (sel.kind == PartKind::kSensorModule) &&
+        slots[i].source == sel.index) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+// The selection of the part at `slot` once `slots` are laid out.
+Selection SelectionAt(const std::vector<ChainSlot>& slots, int robot,
+                      int slot) {
+  int modules = 0, sensors = 0;
+  for (int i = 0; i < slot; ++i) (slots[i].sensor ? sensors : modules)++;
+  return {slots[slot].sensor ? PartKind::kSensorModule : PartKind::kModule,
+          robot, slots[slot].sensor ? sensors : modules};
+}
+
+// x of the front face of the robot's frontmost part.
+double FrontOf(const Robot& robot) {
+  double front = -INFINITY;
+  for (const Module& m : robot.modules) {
+    for (const Frame& f : m.frames) {
+      front = std::max(front, f.position.x() + f.scale.x() / 2);
+    }
+  }
+  for (const SensorModule& sm : robot.sensor_modules) {
+    front = std::max(front, sm.position.x() + sm.size.x() / 2);
+    for (const DistanceSensor& d : sm.distance_sensors) {
+      front = std::max(front, d.position.x() + d.size.x() / 2);
+    }
+  }
+  return std::isfinite(front) ? front : 0.0;
+}
+
+std::string UniqueGuid(const Scenario& s, const std::string& base) {
+  auto used = [&](const std::string& g) {
+    for (const SceneObject& o : s.scene_objects) {
+      if (o.guid == g) return true;
+    }
+    for (const FluidRegion& f : s.fluid_regions) {
+      if (f.guid == g) return true;
+    }
+    return false;
+  };
+  if (!used(base)) return base;
+  for (int i = 2;; ++i) {
+    const std::string g = base + std::to_string(i);
+    if (!used(g)) return g;
+  }
+}
+
+}  // namespace
+
+Scenario EmptyScenario() {
+  Scenario s;
+  s.scene.guid = "scene";
+  s.scene.material_name = "ground";
+  return s;
+}
+
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules) {
+  std::vector<int> after;
+  if (placement == SensorPlacement::kNone) return after;
+  const bool all = placement == SensorPlacement::kAll;
+  for (int i = all ? -1 : 0; i < (all ? modules : modules - 1); ++i) {
+    after.push_back(i);
+  }
+  return after;
+}
+
+Scenario MakeTemplateScenario(const TemplateOptions& options) {
+  Scenario s = EmptyScenario();
+  try {
+    s.robots.push_back(MakeChain(options.chain));
+  } catch (const std::invalid_argument& e) {
+    throw DesignError(e.what());
+  }
+  s.scene.material_name = options.ground_material;
+  if (options.friction >= 0) {
+    ContactFriction pair;
+    pair.material1 = options.chain.material;
+    pair.material2 = options.ground_material;
+    pair.friction = options.friction;
+    s.contact_frictions.push_back(pair);
+  }
+  return s;
+}
+
+Design::Design() : scenario_(EmptyScenario()) {
+  saved_text_ = WriteScenarioString(scenario_);
+}
+
+Design Design::Open(const std::string& path) {
+  Design design;
+  design.path_ = path;
+  if (std::filesystem::exists(path)) {
+    design.scenario_ = ReadScenarioFile(path);
+    design.saved_text_ = WriteScenarioString(design.scenario_);
+  } else {
+    const auto dir = std::filesystem::absolute(path).parent_path();
+    design.scenario_.base_dir = dir.string();
+  }
+  if (!design.scenario_.robots.empty() &&
+      !design.scenario_.robots[0].modules.empty()) {
+    design.selection_ = {PartKind::kModule, 0, 0};
+  }
+  return design;
+}
+
+void Design::Select(const Selection& selection) {
+  Scenario copy = scenario_;
+  const bool valid = selection.kind == PartKind::kNone ||
+                     !InspectorFields(copy, selection).empty();
+  selection_ = valid ? selection : Selection{};
+}
+
+int Design::TargetRobot() const {
+  if (IsChainPart(selection_) || selection_.kind == PartKind::kRobot) {
+    return selection_.robot;
+  }
+  return scenario_.robots.empty() ? -1 : 0;
+}
+
+void Design::Commit(Scenario next, const Selection& selection) {
+  try {
+    ValidateScenario(next);
+  } catch (const std::exception& e) {
+    throw DesignError(e.what());
+  }
+  undo_.push_back({std::move(scenario_), selection_});
+  if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
+  redo_.clear();
+  scenario_ = std::move(next);
+  selection_ = selection;
+  Changed();
+}
+
+void Design::Changed() {
+  ++revision_;
+  dirty_ = WriteScenarioString(scenario_) != saved_text_;
+}
+
+void Design::AddPart(NextPart part, Where where) {
+  Scenario next = scenario_;
+  int r = TargetRobot();
+  if (r < 0) {
+    next.robots.push_back(Robot{});
+    next.robots.back().name = ChainOptions().name;
+    r = 0;
+  }
+  const Robot& old = next.robots[r];
+  std::vector<ChainSlot> slots = ChainOrder(old);
+  int at = where == Where::kFront ? 0 : static_cast<int>(slots.size());
+  if (where == Where::kAfterSelection && IsChainPart(selection_) &&
+      selection_.robot == r) {
+    const int selected = SlotOf(slots, selection_);
+    if (selected >= 0) at = selected + 1;
+  }
+  ChainSlot slot;
+  slot.sensor = part == NextPart::kSensorModule;
+  slot.axis = part == NextPart::kYawModule ? Axis::kYaw : Axis::kPitch;
+  slots.insert(slots.begin() + at, slot);
+  try {
+    next.robots[r] = Relayout(old, slots, OptionsOf(old));
+  } catch (const std::invalid_argument& e) {
+    throw DesignError(e.what());
+  }
+  Commit(std::move(next), SelectionAt(slots, r, at));
+}
+
+void Design::AddObject(ObjectKind kind) {
+  Scenario next = scenario_;
+  SceneObject o;
+  const double front = next.robots.empty() ? 0.0 : FrontOf(next.robots[0]);
+  const double ground = next.robots.empty() || next.robots[0].modules.empty()
+                            ? 0.0
+                            : OptionsOf(next.robots[0]).origin.z();
+  const char* name = "box";
+  switch (kind) {
+    case ObjectKind::kBall:
+      name = "ball";
+      o.shape = PrimitiveShape::kSphere;
+      o.size = Eigen::Vector3d(0.1, 0.1, 0.1);
+      o.mass = 0.05;
+      break;
+    case ObjectKind::kBox:
+      o.shape = PrimitiveShape::kBox;
+      o.size = Eigen::Vector3d(0.1, 0.1, 0.1);
+      o.mass = 0.2;
+      break;
+    case ObjectKind::kCylinder:
+      name = "cylinder";
+      o.shape = PrimitiveShape::kCylinder;
+      o.size = Eigen::Vector3d(0.1, 0.1, 0.1);
+      o.mass = 0.2;
+      break;
+    case ObjectKind::kCapsule:
+      name = "capsule";
+      o.shape = PrimitiveShape::kCapsule;
+      o.size = Eigen::Vector3d(0.06, 0.06, 0.16);
+      o.mass = 0.1;
+      break;
+    case ObjectKind::kRamp:
+      name = "ramp";
+      o.shape = PrimitiveShape::kBox;
+      o.size = Eigen::Vector3d(0.5, 0.3, 0.02);
+      o.mass = 1.0;
+      o.is_static = true;
+      // Rises towards +x, the way the robot crawls.
+      o.rotation = Eigen::Vector3d(0, -10, 0);
+      o.quat_rotation =
+          Eigen::AngleAxisd(-10 * M_PI / 180, Eigen::Vector3d::UnitY());
+      break;
+  }
+  o.guid = UniqueGuid(next, name);
+  const double gap =
+      0.3 + 0.25 * static_cast<double>(next.scene_objects.size());
+  const double half = kind == ObjectKind::kRamp ? 0.25 : o.size.x() / 2;
+  const double height =
+      kind == ObjectKind::kCapsule || kind == ObjectKind::kCylinder
+          ? o.size.z() / 2 + (kind == ObjectKind::kCapsule ? o.size.x() / 2 : 0)
+          : o.size.z() / 2;
+  o.position = Eigen::Vector3d(
+      front + gap + half, 0,
+      ground + (kind == ObjectKind::kRamp ? 0.25 * std::sin(10 * M_PI / 180)
+                                          : height));
+  if (!next.robots.empty()) {
+    o.position.y() = OptionsOf(next.robots[0]).origin.y();
+  }
+  next.scene_objects.push_back(o);
+  Commit(std::move(next), {PartKind::kObject, 0,
+                           static_cast<int>(next.scene_objects.size()) - 1});
+}
+
+void Design::AddFluid(FluidKind kind) {
+  Scenario next = scenario_;
+  FluidRegion f;
+  f.kind = kind;
+  f.guid = UniqueGuid(next, kind == FluidKind::kWater ? "water" : "air");
+  const double front = next.robots.empty() ? 0.0 : FrontOf(next.robots[0]);
+  if (kind == FluidKind::kWater) {
+    f.size = Eigen::Vector3d(1.0, 1.0, 0.2);
+    f.position = Eigen::Vector3d(front + 0.8, 0, 0.1);
+  } else {
+    f.density = 1.2;
+    f.viscosity = 1.8e-5;
+    f.size = Eigen::Vector3d(2.0, 2.0, 1.0);
+    f.position = Eigen::Vector3d(0, 0, 0.5);
+  }
+  next.fluid_regions.push_back(f);
+  const int index = static_cast<int>(next.fluid_regions.size()) - 1;
+  Commit(std::move(next), {PartKind::kFluid, 0, index});
+}
+
+void Design::AddContact() {
+  Scenario next = scenario_;
+  ContactFriction pair;
+  pair.material1 = next.robots.empty() || next.robots[0].modules.empty()
+                       ? "plastic"
+                       : next.robots[0].modules[0].frames[0].material_name;
+  pair.material2 = next.scene.material_name;
+  next.contact_frictions.push_back(pair);
+  const int index = static_cast<int>(next.contact_frictions.size()) - 1;
+  Commit(std::move(next), {PartKind::kContact, 0, index});
+}
+
+void Design::RemoveSelected() {
+  Scenario next = scenario_;
+  const Selection sel = selection_;
+  auto erase = [&](auto& list) {
+    if (sel.index < 0 || sel.index >= static_cast<int>(list.size())) {
+      throw DesignError("nothing selected to remove");
+    }
+    list.erase(list.begin() + sel.index);
+    const int left = static_cast<int>(list.size());
+    return left == 0
+               ? Selection{}
+               : Selection{sel.kind, sel.robot, std::min(sel.index, left - 1)};
+  };
+  Selection after;
+  switch (sel.kind) {
+    case PartKind::kModule:
+    case PartKind::kSensorModule: {
+      const Robot& old = next.robots.at(sel.robot);
+      std::vector<ChainSlot> slots = ChainOrder(old);
+      const int at = SlotOf(slots, sel);
+      if (at < 0) throw DesignError("nothing selected to remove");
+      slots.erase(slots.begin() + at);
+      if (slots.empty()) {
+        next.robots.erase(next.robots.begin() + sel.robot);
+        break;
+      }
+      try {
+        next.robots[sel.robot] = Relayout(old, slots, OptionsOf(old));
+      } catch (const std::invalid_argument& e) {
+        throw DesignError("cannot remove it: " + std::string(e.what()));
+      }
+      after = SelectionAt(slots, sel.robot,
+                          std::min(at, static_cast<int>(slots.size()) - 1));
+      break;
+    }
+    case PartKind::kObject:
+      after = erase(next.scene_objects);
+      break;
+    case PartKind::kFluid:
+      after = erase(next.fluid_regions);
+      break;
+    case PartKind::kContact:
+      after = erase(next.contact_frictions);
+      break;
+    default:
+      throw DesignError("select a part, object, region or contact to remove");
+  }
+  Commit(std::move(next), after);
+}
+
+void Design::MoveSelected(int steps) {
+  if (!IsChainPart(selection_)) {
+    throw DesignError("select a module or sensor module to move");
+  }
+  Scenario next = scenario_;
+  const Robot& old = next.robots.at(selection_.robot);
+  std::vector<ChainSlot> slots = ChainOrder(old);
+  const int at = SlotOf(slots, selection_);
+  const int to = at + steps;
+  if (at < 0 || to < 0 || to >= static_cast<int>(slots.size())) {
+    throw DesignError("it is already at the end of the chain");
+  }
+  const ChainSlot moved = slots[at];
+  slots.erase(slots.begin() + at);
+  slots.insert(slots.begin() + to, moved);
+  try {
+    next.robots[selection_.robot] = Relayout(old, slots, OptionsOf(old));
+  } catch (const std::invalid_argument& e) {
+    throw DesignError("cannot move it: " + std::string(e.what()));
+  }
+  Commit(std::move(next), SelectionAt(slots, selection_.robot, to));
+}
+
+namespace {
+
+FieldRef FindField(Scenario& s, const FieldAddress& a) {
+  for (const FieldGroup& g : InspectorFields(s, a.part)) {
+    if (g.sub != a.sub) continue;
+    for (const FieldRef& f : g.fields) {
+      if (a.field == f.info().xml) return f;
+    }
+  }
+  throw DesignError("no field '" + a.field + "' in " + ToString(a.part.kind) +
+                    (a.sub.empty() ? "" : "/" + a.sub));
+}
+
+}  // namespace
+
+std::string Design::FieldText(const FieldAddress& address) const {
+  Scenario copy = scenario_;
+  return FindField(copy, address).GetText();
+}
+
+void Design::SetField(const FieldAddress& address, const std::string& text) {
+  Scenario next = scenario_;
+  const FieldRef field = FindField(next, address);
+  if (field.GetText() == text) return;
+  try {
+    field.SetText(text);
+  } catch (const FieldError& e) {
+    throw DesignError(e.what());
+  }
+  // Euler angles place nothing; keep the quaternion that does in step.
+  if (address.field == "rotation" && address.part.kind == PartKind::kObject) {
+    SceneObject& o = next.scene_objects[address.part.index];
+    const Eigen::Vector3d r = o.rotation * M_PI / 180;
+    o.quat_rotation = Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX());
+  }
+  Commit(std::move(next), selection_);
+}
+
+void Design::SetTerrain(const std::string& image, double height,
+                        double meters_per_pixel) {
+  Scenario next = scenario_;
+  next.scene.height_image = image;
+  next.scene.height = height;
+  next.scene.meters_per_pixel = meters_per_pixel;
+  Commit(std::move(next), {PartKind::kScene, 0, 0});
+}
+
+void Design::ApplyTemplate(const TemplateOptions& options) {
+  Scenario next = MakeTemplateScenario(options);
+  next.base_dir = scenario_.base_dir;
+  Commit(std::move(next), {PartKind::kModule, 0, 0});
+}
+
+void Design::Clear() {
+  Scenario next = EmptyScenario();
+  next.base_dir = scenario_.base_dir;
+  Commit(std::move(next), {});
+}
+
+void Design::Undo() {
+  if (undo_.empty()) return;
+  redo_.push_back({std::move(scenario_), selection_});
+  scenario_ = std::move(undo_.back().scenario);
+  selection_ = undo_.back().selection;
+  undo_.pop_back();
+  Changed();
+}
+
+void Design::Redo() {
+  if (redo_.empty()) return;
+  undo_.push_back({std::move(scenario_), selection_});
+  scenario_ = std::move(redo_.back().scenario);
+  selection_ = redo_.back().selection;
+  redo_.pop_back();
+  Changed();
+}
+
+void Design::Save() {
+  if (path_.empty()) throw std::runtime_error("no file name: use Save As");
+  WriteScenarioFile(scenario_, path_);
+  saved_text_ = WriteScenarioString(scenario_);
+  dirty_ = false;
+}
+
+void Design::SaveAs(const std::string& path) {
+  const std::string previous = path_;
+  path_ = path;
+  try {
+    Save();
+  } catch (...) {
+    path_ = previous;
+    throw;
+  }
+}
+
+}  // namespace mrsim::studio

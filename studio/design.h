@@ -1,0 +1,130 @@
+// The studio's editing model, with no window: the scenario being designed,
+// the selection, and every edit as a command that goes through the one
+// validator and can be undone. The window only calls these.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim_core/chain_builder.h"
+#include "sim_core/scenario.h"
+#include "studio/selection.h"
+
+namespace mrsim::studio {
+
+// An edit the design refuses; what() says why (the schema's message for a
+// field). The design is unchanged.
+class DesignError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class NextPart { kPitchModule, kYawModule, kSensorModule };
+// Where AddPart puts the new part in the chain.
+enum class Where { kAfterSelection, kFront, kTail };
+enum class ObjectKind { kBall, kBox, kCylinder, kCapsule, kRamp };
+
+// One field of one part: the part, the sub-part ("" for the part itself,
+// "frames[0]", "frames[1]", "joint", "force_sensor", "distance_sensors[k]")
+// and the field's XML name.
+struct FieldAddress {
+  Selection part;
+  std::string sub;
+  std::string field;
+};
+
+// The options of `mrsim-scenario new` (sim_core/scenario_tool): a chain,
+// the ground's material and an optional robot-ground friction pair.
+struct TemplateOptions {
+  ChainOptions chain;
+  std::string ground_material = "ground";
+  double friction = -1;  // < 0: no ContactFriction
+};
+// Where `mrsim-scenario new --sensors none|all|between` puts sensor
+// modules (ChainOptions::sensor_after) for a chain of `modules`.
+enum class SensorPlacement { kNone, kAll, kBetween };
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules);
+// The scenario `mrsim-scenario new` writes for these options.
+Scenario MakeTemplateScenario(const TemplateOptions& options);
+// No robot yet, flat ground: where a new design starts.
+Scenario EmptyScenario();
+
+class Design {
+ public:
+  Design();
+  // Opens a file (throws ScenarioError naming it). A path that does not
+  // exist yet starts an empty design that saves there.
+  static Design Open(const std::string& path);
+
+  const Scenario& scenario() const { return scenario_; }
+  const Selection& selection() const { return selection_; }
+  const std::string& path() const { return path_; }
+  // Unsaved changes since the last open or save.
+  bool dirty() const { return dirty_; }
+  // Grows by one on every change of the scenario (the preview rebuilds).
+  long revision() const { return revision_; }
+
+  // Selecting is not an edit: no undo step. Out-of-range selections clear.
+  void Select(const Selection& selection);
+
+  // Edits. Each is one undo step; each throws DesignError and leaves the
+  // design unchanged when the result would not validate.
+  // Inserts into the selected (or first) robot: after the selected module
+  // or sensor module (at the tail when none is selected), at the front or
+  // at the tail; selects the new part.
+  void AddPart(NextPart part, Where where = Where::kAfterSelection);
+  // In front of the first robot, next to earlier objects; selects it.
+  void AddObject(ObjectKind kind);
+  void AddFluid(FluidKind kind);
+  void AddContact();
+  // Removes the selected module, sensor module, object, fluid region or
+  // contact pair.
+  void RemoveSelected();
+  // Moves the selected chain part `steps` places towards the back (> 0) or
+  // the front (< 0).
+  void MoveSelected(int steps);
+  // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
+  void SetField(const FieldAddress& address, const std::string& text);
+  // Terrain: an image (empty: flat ground), brightest-pixel height and
+  // metres per pixel, as one edit.
+  void SetTerrain(const std::string& image, double height,
+                  double meters_per_pixel);
+  // Replaces everything with a template (undoable).
+  void ApplyTemplate(const TemplateOptions& options);
+  // Replaces everything with an empty scenario (undoable; path kept).
+  void Clear();
+
+  bool can_undo() const { return !undo_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  void Undo();
+  void Redo();
+
+  // Writes the file (atomically); throws std::runtime_error naming it.
+  void Save();
+  void SaveAs(const std::string& path);
+
+  // The current value of a field as text, or throws DesignError.
+  std::string FieldText(const FieldAddress& address) const;
+
+ private:
+  struct Snapshot {
+    Scenario scenario;
+    Selection selection;
+  };
+  // Validates `next` and makes it current as one undo step.
+  void Commit(Scenario next, const Selection& selection);
+  void Changed();
+  int TargetRobot() const;
+
+  Scenario scenario_;
+  Selection selection_;
+  std::string path_;
+  std::string saved_text_;
+  bool dirty_ = false;
+  long revision_ = 0;
+  std::vector<Snapshot> undo_;
+  std::vector<Snapshot> redo_;
+};
+
+}  // namespace mrsim::studio

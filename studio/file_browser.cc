@@ -1,0 +1,131 @@
+#include "studio/file_browser.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "studio/layout_recorder.h"
+
+namespace mrsim::studio {
+
+namespace fs = std::filesystem;
+
+void FileBrowser::Open(const std::string& title, const std::string& dir,
+                       const std::string& extension, bool save) {
+  title_ = title;
+  std::error_code ec;
+  dir_ = fs::absolute(dir.empty() ? "." : dir, ec).lexically_normal().string();
+  extension_ = extension;
+  save_ = save;
+  name_.clear();
+  error_.clear();
+  open_ = true;
+  opening_ = true;
+  List();
+}
+
+void FileBrowser::List() {
+  dirs_.clear();
+  files_.clear();
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir_, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.empty() || name[0] == '.') continue;
+    if (e.is_directory(ec)) {
+      dirs_.push_back(name);
+    } else if (e.path().extension() == extension_) {
+      files_.push_back(name);
+    }
+  }
+  std::sort(dirs_.begin(), dirs_.end());
+  std::sort(files_.begin(), files_.end());
+  if (ec) error_ = "cannot list " + dir_ + ": " + ec.message();
+}
+
+bool FileBrowser::Draw(std::string* chosen, LayoutRecorder* layout) {
+  if (!open_) return false;
+  if (opening_) {
+    ImGui::OpenPopup(title_.c_str());
+    opening_ = false;
+  }
+  bool done = false;
+  const ImVec2 size(560, 440);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(
+      ImVec2((display.x - size.x) / 2, (display.y - size.y) / 2));
+  ImGui::SetNextWindowSize(size);
+  if (ImGui::BeginPopupModal(
+          title_.c_str(), nullptr,
+          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    ImGui::TextWrapped("%s", dir_.c_str());
+    ImGui::BeginChild("entries", ImVec2(0, size.y - 140), true);
+    if (ImGui::Selectable("[..]")) {
+      dir_ = fs::path(dir_).parent_path().string();
+      List();
+    }
+    for (const std::string& d : dirs_) {
+      if (ImGui::Selectable(("[" + d + "]").c_str())) {
+        dir_ = (fs::path(dir_) / d).string();
+        List();
+        break;
+      }
+    }
+    for (const std::string& f : files_) {
+      if (ImGui::Selectable(f.c_str(), f == name_,
+                            ImGuiSelectableFlags_AllowDoubleClick)) {
+        name_ = f;
+        if (ImGui::IsMouseDoubleClicked(0)) done = true;
+      }
+    }
+    ImGui::EndChild();
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::InputText("##name", &name_,
+                         ImGuiInputTextFlags_EnterReturnsTrue)) {
+      done = true;
+    }
+    if (layout) {
+      const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+      layout->Widget("file name", a.x, a.y, b.x - a.x, b.y - a.y);
+    }
+    if (!error_.empty()) {
+      ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error_.c_str());
+    }
+    if (ImGui::Button(save_ ? "Save" : "Open", ImVec2(100, 0))) done = true;
+    if (layout) {
+      const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+      layout->Widget("file ok", a.x, a.y, b.x - a.x, b.y - a.y);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(100, 0))) {
+      open_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    if (done) {
+      error_.clear();
+      std::string name = name_;
+      if (save_ && !name.empty() && fs::path(name).extension().empty()) {
+        name += extension_;
+      }
+      const fs::path path =
+          fs::path(name).is_absolute() ? fs::path(name) : fs::path(dir_) / name;
+      std::error_code ec;
+      if (name.empty()) {
+        error_ = "type or pick a file name";
+        done = false;
+      } else if (!save_ && !fs::is_regular_file(path, ec)) {
+        error_ = path.string() + ": no such file";
+        done = false;
+      } else {
+        *chosen = path.lexically_normal().string();
+        open_ = false;
+        ImGui::CloseCurrentPopup();
+      }
+    }
+    ImGui::EndPopup();
+  }
+  return done;
+}
+
+}  // namespace mrsim::studio

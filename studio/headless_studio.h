@@ -1,0 +1,35 @@
+// The studio drawn off-screen (EGL, no display): for --screenshot and the
+// benchmarks. The whole window (panels and 3-D view) goes into MuJoCo's
+// off-screen buffer and can be written to a PNG.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "studio/studio_app.h"
+#include "viewer/gl_context.h"
+
+namespace mrsim::studio {
+
+class HeadlessStudio {
+ public:
+  // Makes the EGL context and ImGui. Throws std::runtime_error when
+  // off-screen OpenGL is not available.
+  HeadlessStudio(StudioApp* app, int width, int height);
+  ~HeadlessStudio();
+  HeadlessStudio(const HeadlessStudio&) = delete;
+  HeadlessStudio& operator=(const HeadlessStudio&) = delete;
+
+  // Draws one frame and waits until OpenGL finished it.
+  void Frame();
+  // Writes the last frame; throws std::runtime_error naming the path.
+  void SavePng(const std::string& path);
+
+ private:
+  StudioApp* app_;
+  int width_;
+  int height_;
+  GlContext gl_;
+};
+
+}  // namespace mrsim::studio

@@ -1,0 +1,96 @@
+#include "studio/inspector_fields.h"
+
+namespace mrsim::studio {
+
+std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
+  std::vector<FieldGroup> groups;
+  auto robot_ok = [&]() {
+    return sel.robot >= 0 && sel.robot < static_cast<int>(s.robots.size());
+  };
+  auto in = [](int i, size_t n) { return i >= 0 && i < static_cast<int>(n); };
+  switch (sel.kind) {
+    case PartKind::kRobot:
+      if (robot_ok()) {
+        groups.push_back({"", "Robot", FieldsOf(s.robots[sel.robot])});
+      }
+      break;
+    case PartKind::kModule:
+      if (robot_ok() && in(sel.index, s.robots[sel.robot].modules.size())) {
+        Module& m = s.robots[sel.robot].modules[sel.index];
+        groups.push_back({"", "Module", FieldsOf(m)});
+        groups.push_back({"joint", "Joint", FieldsOf(m.joint)});
+        groups.push_back({"frames[0]", "Front frame", FieldsOf(m.frames[0])});
+        groups.push_back({"frames[1]", "Back frame", FieldsOf(m.frames[1])});
+      }
+      break;
+    case PartKind::kSensorModule:
+      if (robot_ok() &&
+          in(sel.index, s.robots[sel.robot].sensor_modules.size())) {
+        SensorModule& sm = s.robots[sel.robot].sensor_modules[sel.index];
+        groups.push_back({"", "Sensor module", FieldsOf(sm)});
+        if (sm.force_sensor) {
+          groups.push_back(
+              {"force_sensor", "Force plate", FieldsOf(*sm.force_sensor)});
+        }
+        for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
+          groups.push_back({"distance_sensors[" + std::to_string(k) + "]",
+                            "Distance sensor " + std::to_string(k),
+                            FieldsOf(sm.distance_sensors[k])});
+        }
+      }
+      break;
+    case PartKind::kObject:
+      if (in(sel.index, s.scene_objects.size())) {
+        groups.push_back(
+            {"", "Scene object", FieldsOf(s.scene_objects[sel.index])});
+      }
+      break;
+    case PartKind::kScene:
+      groups.push_back({"", "Terrain", FieldsOf(s.scene)});
+      break;
+    case PartKind::kFluid:
+      if (in(sel.index, s.fluid_regions.size())) {
+        groups.push_back(
+            {"", "Fluid region", FieldsOf(s.fluid_regions[sel.index])});
+      }
+      break;
+    case PartKind::kContact:
+      if (in(sel.index, s.contact_frictions.size())) {
+        groups.push_back(
+            {"", "Contact material", FieldsOf(s.contact_frictions[sel.index])});
+      }
+      break;
+    case PartKind::kSettings:
+      groups.push_back({"", "Simulation", FieldsOf(s.settings)});
+      break;
+    case PartKind::kNone:
+      break;
+  }
+  return groups;
+}
+
+const char* ToString(PartKind kind) {
+  switch (kind) {
+    case PartKind::kNone:
+      return "none";
+    case PartKind::kRobot:
+      return "robot";
+    case PartKind::kModule:
+      return "module";
+    case PartKind::kSensorModule:
+      return "sensor_module";
+    case PartKind::kObject:
+      return "object";
+    case PartKind::kScene:
+      return "terrain";
+    case PartKind::kFluid:
+      return "fluid";
+    case PartKind::kContact:
+      return "contact";
+    case PartKind::kSettings:
+      return "settings";
+  }
+  return "?";
+}
+
+}  // namespace mrsim::studio

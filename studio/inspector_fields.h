@@ -1,0 +1,25 @@
+// The fields the inspector shows for a selected part, grouped by sub-part
+// (a module's two frames and joint, a sensor module's plate and rays),
+// taken from the scenario schema so no field is named twice.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "studio/schema.h"
+#include "studio/selection.h"
+
+namespace mrsim::studio {
+
+struct FieldGroup {
+  std::string sub;    // as in FieldAddress::sub
+  std::string title;  // "Front frame", "Joint", ...
+  std::vector<FieldRef> fields;
+};
+
+// Pointers into `scenario`: valid until it changes. Empty for no selection
+// or one out of range.
+std::vector<FieldGroup> InspectorFields(Scenario& scenario,
+                                        const Selection& selection);
+
+}  // namespace mrsim::studio

@@ -1,0 +1,277 @@
+#include "studio/preview.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include "studio/part_colors.h"
+
+namespace mrsim::studio {
+namespace {
+
+constexpr int kExtraGeoms = 1500;  // rays, checker squares
+constexpr double kChecker = 0.2;   // m, floor squares
+constexpr int kCheckerHalf = 15;   // squares each side of the origin
+
+}  // namespace
+
+Preview::Preview(int width, int height) : width_(width), height_(height) {
+  mjv_defaultScene(&scene_);
+  mjv_defaultOption(&option_);
+  mjv_defaultCamera(&camera_);
+  camera_.type = mjCAMERA_FREE;
+  mjr_defaultContext(&context_);
+  option_.flags[mjVIS_RANGEFINDER] = 0;
+}
+
+Preview::~Preview() {
+  if (context_made_) mjr_freeContext(&context_);
+  mjv_freeScene(&scene_);
+}
+
+std::string Preview::Rebuild(const Scenario& scenario) {
+  std::unique_ptr<Physics> physics;
+  try {
+    physics = std::make_unique<Physics>(scenario);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  const mjModel* m = physics->model();
+  physics_ = std::move(physics);
+  data_ = physics_->mutable_data();
+  // Poses only: the preview draws the initial state, no dynamics needed.
+  mj_kinematics(m, data_);
+  mj_camlight(m, data_);
+  geoms_ = MapGeoms(m, scenario);
+  rays_ = MapRays(m, scenario);
+  labels_.clear();
+  for (int r = 0; r < static_cast<int>(scenario.robots.size()); ++r) {
+    for (int g = 0; g < m->ngeom; ++g) {
+      const GeomPart& p = geoms_[g];
+      if (p.part.kind == PartKind::kModule && p.part.robot == r &&
+          (g + 1 >= m->ngeom || geoms_[g + 1].part != p.part)) {
+        // One label per module, on its back frame's geom (the last one).
+        labels_.emplace_back(g, std::to_string(p.part.index));
+      }
+    }
+  }
+  mjv_freeScene(&scene_);
+  mjv_makeScene(m, &scene_, m->ngeom + kExtraGeoms);
+  // The context holds the model's meshes and textures: made again per model.
+  if (context_made_) mjr_freeContext(&context_);
+  mjModel sized = *m;
+  sized.vis.global.offwidth = std::max(width_, 16);
+  sized.vis.global.offheight = std::max(height_, 16);
+  sized.vis.quality.shadowsize = 2048;
+  // Software OpenGL (llvmpipe, no GPU): multisampling and shadows cost
+  // most of the frame, so they go (docs/studio.md).
+  const char* renderer =
+      reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  software_ =
+      renderer != nullptr && (std::strstr(renderer, "llvmpipe") != nullptr ||
+                              std::strstr(renderer, "softpipe") != nullptr);
+  if (software_) sized.vis.quality.offsamples = 0;
+  mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
+  context_made_ = true;
+  return "";
+}
+
+void Preview::FrameAll() {
+  if (!physics_) return;
+  const mjModel* m = physics_->model();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY);
+  Eigen::Vector3d hi = -lo;
+  bool any = false;
+  for (int b = 1; b < m->nbody; ++b) {
+    const Eigen::Vector3d p(data_->xpos + 3 * b);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    any = true;
+  }
+  if (!any) {
+    lo.setZero();
+    hi.setZero();
+  }
+  const Eigen::Vector3d centre = (lo + hi) / 2;
+  const double extent = std::max(0.3, (hi - lo).norm());
+  for (int i = 0; i < 3; ++i) camera_.lookat[i] = centre[i];
+  // Fit the extent across the narrower side of the view (fovy 45 deg).
+  const double fit = std::tan(22.5 * M_PI / 180) * std::min(1.0, aspect_);
+  camera_.distance = 0.58 * extent / fit + 0.1;
+  camera_.azimuth = 100;  // the chain (along x) runs across the view
+  camera_.elevation = -28;
+}
+
+void Preview::AddDecor() {
+  // Checker floor: darker squares over the ground plane.
+  const float dark[4] = {0.30f, 0.33f, 0.37f, 1.0f};
+  for (int i = -kCheckerHalf; i < kCheckerHalf; ++i) {
+    for (int j = -kCheckerHalf; j < kCheckerHalf; ++j) {
+      if (((i + j) & 1) == 0 || scene_.ngeom >= scene_.maxgeom) continue;
+      const mjtNum size[3] = {kChecker / 2, kChecker / 2, 0.0005};
+      const mjtNum pos[3] = {(i + 0.5) * kChecker, (j + 0.5) * kChecker,
+                             0.0002};
+      mjvGeom* g = scene_.geoms + scene_.ngeom++;
+      mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, dark);
+      g->category = mjCAT_DECOR;
+      g->shininess = 0;
+      g->specular = 0;
+    }
+  }
+  const mjModel* m = physics_->model();
+  const float ray_rgba[4] = {1.0f, 0.85f, 0.1f, 0.7f};
+  for (const RaySite& ray : rays_) {
+    if (scene_.ngeom >= scene_.maxgeom) break;
+    const mjtNum* p = data_->site_xpos + 3 * ray.site;
+    const mjtNum* x = data_->site_xmat + 9 * ray.site;
+    mjvGeom* g = scene_.geoms + scene_.ngeom++;
+    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, ray_rgba);
+    mjv_makeConnector(g, mjGEOM_CAPSULE, 0.003, p[0], p[1], p[2],
+                      p[0] + ray.length * x[0], p[1] + ray.length * x[3],
+                      p[2] + ray.length * x[6]);
+    g->category = mjCAT_DECOR;
+  }
+  (void)m;
+}
+
+void Preview::Bind(bool offscreen) {
+  if (context_made_) {
+    mjr_setBuffer(offscreen ? mjFB_OFFSCREEN : mjFB_WINDOW, &context_);
+  }
+}
+
+void Preview::Render(const mjrRect& viewport, bool offscreen,
+                     const Selection& selected) {
+  if (!physics_) return;
+  Bind(offscreen);
+  aspect_ = static_cast<double>(viewport.width) / viewport.height;
+  if (!framed_) {
+    FrameAll();
+    framed_ = true;
+  }
+  DrawSky(viewport);
+  const mjModel* m = physics_->model();
+  mjv_updateScene(m, data_, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  ApplyLooks(geoms_, selected, &scene_);
+  if (software_) scene_.flags[mjRND_SHADOW] = 0;
+  for (int i = 0; i < scene_.ngeom; ++i) {
+    mjvGeom& g = scene_.geoms[i];
+    if (g.objtype != mjOBJ_GEOM) continue;
+    for (const auto& [geom, text] : labels_) {
+      if (g.objid == geom) {
+        std::snprintf(g.label, sizeof(g.label), "%s", text.c_str());
+      }
+    }
+  }
+  AddDecor();
+  mjr_render(viewport, &scene_, &context_);
+}
+
+void Preview::DrawSky(const mjrRect& v) {
+  // A gradient behind the scene: mjr_render draws over what is there.
+  glViewport(v.left, v.bottom, v.width, v.height);
+  glScissor(v.left, v.bottom, v.width, v.height);
+  glEnable(GL_SCISSOR_TEST);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glUseProgram(0);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_TEXTURE_2D);
+  glBegin(GL_QUADS);
+  glColor3f(0.78f, 0.86f, 0.95f);
+  glVertex2f(-1, -1);
+  glVertex2f(1, -1);
+  glColor3f(0.30f, 0.48f, 0.75f);
+  glVertex2f(1, 1);
+  glVertex2f(-1, 1);
+  glEnd();
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void Preview::ReadPixels(int width, int height,
+                         std::vector<unsigned char>* rgb) {
+  rgb->resize(static_cast<size_t>(width) * height * 3);
+  mjr_setBuffer(mjFB_OFFSCREEN, &context_);
+  mjr_readPixels(rgb->data(), nullptr, {0, 0, width, height}, &context_);
+}
+
+void Preview::Orbit(double dx, double dy) {
+  if (physics_) {
+    mjv_moveCamera(physics_->model(), mjMOUSE_ROTATE_V, dx, dy, &scene_,
+                   &camera_);
+  }
+}
+
+void Preview::Pan(double dx, double dy) {
+  if (physics_) {
+    mjv_moveCamera(physics_->model(), mjMOUSE_MOVE_V, dx, dy, &scene_,
+                   &camera_);
+  }
+}
+
+void Preview::Zoom(double amount) {
+  if (physics_) {
+    mjv_moveCamera(physics_->model(), mjMOUSE_ZOOM, 0, amount, &scene_,
+                   &camera_);
+  }
+}
+
+Selection Preview::Pick(const mjrRect& viewport, double x, double y) const {
+  if (!physics_) return {};
+  mjtNum point[3];
+  int geom = -1;
+  int skin = -1;
+  const mjtNum aspect = static_cast<mjtNum>(viewport.width) / viewport.height;
+  mjv_select(physics_->model(), data_, &option_, aspect, x / viewport.width,
+             (viewport.height - y) / viewport.height, &scene_, point, &geom,
+             &skin);
+  if (geom < 0 || geom >= static_cast<int>(geoms_.size())) return {};
+  return geoms_[geom].part;
+}
+
+std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
+                                         int window_height) const {
+  std::vector<PartMarker> markers;
+  if (!physics_ || scene_.ngeom == 0) return markers;
+  // The scene's camera as mjr_render used it (average of the two eyes).
+  const mjvGLCamera& c = scene_.camera[0];
+  const Eigen::Vector3d pos(c.pos[0], c.pos[1], c.pos[2]);
+  const Eigen::Vector3d forward(c.forward[0], c.forward[1], c.forward[2]);
+  const Eigen::Vector3d up(c.up[0], c.up[1], c.up[2]);
+  const Eigen::Vector3d right = forward.cross(up);
+  const double half_h = (c.frustum_top - c.frustum_bottom) / 2;
+  const double centre_y = (c.frustum_top + c.frustum_bottom) / 2;
+  const double half_w =
+      half_h * static_cast<double>(viewport.width) / viewport.height;
+  const mjModel* m = physics_->model();
+  for (int g = 0; g < m->ngeom; ++g) {
+    const GeomPart& part = geoms_[g];
+    if (part.look != Look::kPitchModule && part.look != Look::kYawModule &&
+        part.look != Look::kSensorModule) {
+      continue;
+    }
+    const Eigen::Vector3d p(data_->geom_xpos + 3 * g);
+    const Eigen::Vector3d v = p - pos;
+    const double z = v.dot(forward);
+    if (z <= c.frustum_near) continue;
+    const double sx = v.dot(right) * c.frustum_near / z;
+    const double sy = v.dot(up) * c.frustum_near / z;
+    const double nx = (sx - c.frustum_center) / half_w;
+    const double ny = (sy - centre_y) / half_h;
+    const double px = viewport.left + (nx + 1) / 2 * viewport.width;
+    const double py = viewport.bottom + (ny + 1) / 2 * viewport.height;
+    markers.push_back({part.part, px, window_height - py});
+  }
+  return markers;
+}
+
+}  // namespace mrsim::studio

@@ -1,0 +1,86 @@
+// The studio's 3-D view: the MuJoCo model the physics builds from the
+// design (sim_core Physics, so the same BuildMjcf), drawn with MuJoCo's
+// renderer with per-kind colours, a checker floor, module numbers and
+// distance-sensor rays; orbit/pan/zoom and click-to-select as in
+// mujoco-simulate. Needs a current OpenGL context.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim_core/physics.h"
+#include "sim_core/scenario.h"
+#include "studio/part_map.h"
+#include "studio/selection.h"
+
+namespace mrsim::studio {
+
+// Where a chain part appears in the window (pixels from the top left).
+struct PartMarker {
+  Selection part;
+  double x = 0;
+  double y = 0;
+};
+
+class Preview {
+ public:
+  // The off-screen buffer (for screenshots) is at least width x height.
+  Preview(int width, int height);
+  ~Preview();
+  Preview(const Preview&) = delete;
+  Preview& operator=(const Preview&) = delete;
+
+  // Builds the model of `scenario`; on failure keeps the previous model and
+  // returns the error ("" on success). Frames the camera on the first model.
+  std::string Rebuild(const Scenario& scenario);
+  bool has_model() const { return physics_ != nullptr; }
+
+  // Binds the window (or off-screen) framebuffer for drawing.
+  void Bind(bool offscreen);
+  // Draws into the window (or the off-screen buffer) inside `viewport`
+  // (OpenGL pixels, origin bottom left).
+  void Render(const mjrRect& viewport, bool offscreen,
+              const Selection& selected);
+  // Reads the whole off-screen buffer (RGB, bottom row first).
+  void ReadPixels(int width, int height, std::vector<unsigned char>* rgb);
+
+  // Mouse: dx, dy as fractions of the viewport height (as simulate does).
+  void Orbit(double dx, double dy);
+  void Pan(double dx, double dy);
+  void Zoom(double amount);
+  // Frames the whole scene (at the next render when first built).
+  void FrameAll();
+  void Reframe() { framed_ = false; }
+  // The part under (x, y), viewport pixels from its top left.
+  Selection Pick(const mjrRect& viewport, double x, double y) const;
+  // Module and sensor module centres in window pixels (top-left origin) for
+  // a window of height window_height.
+  std::vector<PartMarker> Markers(const mjrRect& viewport,
+                                  int window_height) const;
+
+ private:
+  void AddDecor();
+  void DrawSky(const mjrRect& viewport);
+
+  int width_;
+  int height_;
+  std::unique_ptr<Physics> physics_;
+  mjData* data_ = nullptr;  // owned by physics_
+  std::vector<GeomPart> geoms_;
+  std::vector<RaySite> rays_;
+  std::vector<std::pair<int, std::string>> labels_;  // geom id, text
+  mjvScene scene_;
+  mjvOption option_;
+  mjvCamera camera_;
+  mjrContext context_;
+  bool framed_ = false;
+  double aspect_ = 1.0;
+  bool software_ = false;  // llvmpipe: no MSAA, no shadows
+  bool context_made_ = false;
+};
+
+}  // namespace mrsim::studio

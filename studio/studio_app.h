@@ -1,0 +1,109 @@
+// The studio's window contents, drawn with Dear ImGui each frame: the
+// easy-mode palette and part list on the left, the inspector on the right,
+// the 3-D preview between them, file dialogs, the template dialog, the
+// unsaved-changes prompt and the help overlay. Every edit goes to the
+// Design; this class holds no editing logic of its own. The platform
+// shell (window or off-screen) owns the OpenGL context and ImGui's
+// platform backend and calls Frame().
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "studio/design.h"
+#include "studio/file_browser.h"
+#include "studio/layout_recorder.h"
+#include "studio/preview.h"
+#include "studio/recent_files.h"
+
+namespace mrsim::studio {
+
+struct AppOptions {
+  int width = 1280;  // largest frame the off-screen buffer must hold
+  int height = 800;
+  std::string layout_dump;   // --layout-dump file, "" for none
+  std::string recent_store;  // RecentFiles store, "" for the default
+};
+
+class StudioApp {
+ public:
+  StudioApp(Design design, const AppOptions& options);
+  ~StudioApp();
+
+  // One frame: ImGui::NewFrame() .. render 3-D and ImGui into the bound
+  // framebuffer of width x height pixels. The platform backend's NewFrame
+  // (or DisplaySize/DeltaTime) must be set before.
+  void Frame(int width, int height, bool offscreen);
+  // The user closed the window: quits now, or asks first when unsaved.
+  void RequestClose();
+  // A key pressed in the window (GLFW key and modifier codes). Queued and
+  // handled at the next frame, so a press shorter than a frame still counts.
+  void OnKey(int key, int mods) { keys_.push_back({key, mods}); }
+  bool should_quit() const { return quit_; }
+
+  Design& design() { return design_; }
+  Preview& preview() { return *preview_; }
+  // Why the preview could not be built from the design ("" when it was).
+  const std::string& build_error() const { return build_error_; }
+  // Time the last model rebuild took (ms), -1 before the first.
+  double last_rebuild_ms() const { return last_rebuild_ms_; }
+
+ private:
+  enum class Pending { kNone, kNew, kOpen, kTemplate, kQuit };
+
+  void DrawDesignPanel(float x, float y, float w, float h);
+  void DrawInspector(float x, float y, float w, float h);
+  void DrawStatus(float x, float y, float w);
+  void DrawDialogs();
+  void DrawHelp();
+  void DrawTemplateDialog();
+  void HandleViewInput(const mjrRect& view, float top_left_x, float top_left_y);
+  void HandleKeys();
+  bool Button(const char* label, float width = 0);
+  void Record(const std::string& name);
+  // Runs `action` now, or after the unsaved-changes prompt.
+  void Guard(Pending action);
+  void RunPending();
+  void Try(const std::function<void()>& edit);
+  void OpenFile(const std::string& path);
+  void SaveFile();
+
+  Design design_;
+  AppOptions options_;
+  std::unique_ptr<Preview> preview_;
+  LayoutRecorder layout_;
+  RecentFiles recent_;
+  FileBrowser browser_;
+  enum class BrowseFor {
+    kNone,
+    kOpen,
+    kSaveAs,
+    kHeightImage
+  } browse_for_ = BrowseFor::kNone;
+  long built_revision_ = -1;
+  std::string build_error_;
+  std::string message_;  // last refusal or error, shown in the status bar
+  std::map<std::string, std::string> field_errors_;  // by field key
+  std::map<std::string, std::string> field_edits_;   // text being typed
+  Where where_ = Where::kAfterSelection;
+  Pending pending_ = Pending::kNone;
+  std::string pending_path_;
+  bool ask_unsaved_ = false;
+  bool unsaved_shown_ = false;
+  bool show_help_ = false;
+  bool show_template_ = false;
+  TemplateOptions template_;
+  int template_pattern_ = 2;  // ChainPattern
+  int template_sensors_ = 0;  // SensorPlacement
+  bool quit_ = false;
+  bool view_drag_ = false;
+  std::vector<std::pair<int, int>>
+      keys_;  // key, mods  // a drag that started in the 3-D view
+  double last_rebuild_ms_ = -1;
+};
+
+}  // namespace mrsim::studio

@@ -1,0 +1,75 @@
+#include "studio/window_studio.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "studio/gui_setup.h"
+
+namespace mrsim::studio {
+namespace {
+
+struct GlfwWindow {
+  GLFWwindow* window = nullptr;
+  ~GlfwWindow() {
+    if (window) glfwDestroyWindow(window);
+    glfwTerminate();
+  }
+};
+
+}  // namespace
+
+void RunWindow(StudioApp* app, int width, int height,
+               const std::atomic<bool>* stop) {
+  if (!glfwInit()) throw std::runtime_error("GLFW cannot initialise");
+  GlfwWindow w;
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  w.window = glfwCreateWindow(width, height, "mrsim-studio", nullptr, nullptr);
+  if (!w.window) throw std::runtime_error("GLFW cannot open a window");
+  glfwMakeContextCurrent(w.window);
+  glfwSwapInterval(1);
+  if (!SetUpImGui()) {
+    throw std::runtime_error("cannot start ImGui's OpenGL3 renderer");
+  }
+  // Shortcuts through our own callback (ImGui's chains to it): a key press
+  // and release within one frame still count.
+  glfwSetWindowUserPointer(w.window, app);
+  glfwSetKeyCallback(
+      w.window, [](GLFWwindow* window, int key, int, int action, int mods) {
+        if (action == GLFW_PRESS || action == GLFW_REPEAT) {
+          static_cast<StudioApp*>(glfwGetWindowUserPointer(window))
+              ->OnKey(key, mods);
+        }
+      });
+  ImGui_ImplGlfw_InitForOpenGL(w.window, true);
+  int redraws = 3;  // ImGui settles its layout over a couple of frames
+  while (!app->should_quit() && !(stop && *stop)) {
+    if (redraws > 0) {
+      glfwPollEvents();
+      --redraws;
+    } else {
+      // Idle: wait for input instead of spinning the CPU.
+      glfwWaitEventsTimeout(0.25);
+      redraws = 2;
+    }
+    if (glfwWindowShouldClose(w.window)) {
+      glfwSetWindowShouldClose(w.window, GLFW_FALSE);
+      app->RequestClose();
+    }
+    int fb_width = 0, fb_height = 0;
+    glfwGetFramebufferSize(w.window, &fb_width, &fb_height);
+    if (fb_width < 16 || fb_height < 16) continue;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    app->Frame(fb_width, fb_height, false);
+    glfwSwapBuffers(w.window);
+  }
+  ImGui_ImplGlfw_Shutdown();
+  ShutDownImGui();
+}
+
+}  // namespace mrsim::studio

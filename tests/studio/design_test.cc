@@ -1,0 +1,239 @@
+// The studio's editing model without a window: commands, undo/redo, the
+// validator, and equality with what `mrsim-scenario new` writes.
+#include "studio/design.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim::studio {
+namespace {
+
+using mrsim::testing::BinaryPath;
+using mrsim::testing::ChildProcess;
+using mrsim::testing::SourcePath;
+using mrsim::testing::TempDir;
+
+std::string Bytes(const Design& d) { return WriteScenarioString(d.scenario()); }
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs mrsim-scenario new with `args` and returns the file it wrote.
+std::string ScenarioNew(const std::vector<std::string>& args,
+                        const std::string& dir) {
+  const std::string out = dir + "/new.xml";
+  std::vector<std::string> argv = {
+      BinaryPath("sim_core/scenario_tool/mrsim-scenario"), "new"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  argv.push_back("-o");
+  argv.push_back(out);
+  ChildProcess tool(argv, dir + "/tool.log");
+  EXPECT_EQ(tool.Wait(60), 0) << tool.Output();
+  return out;
+}
+
+TEST(StudioDesign, EveryEditUndoesAndRedoesToIdenticalBytes) {
+  Design d;
+  const Selection module1{PartKind::kModule, 0, 1};
+  const std::vector<std::pair<std::string, std::function<void()>>> edits = {
+      {"add pitch", [&] { d.AddPart(NextPart::kPitchModule); }},
+      {"add yaw", [&] { d.AddPart(NextPart::kYawModule); }},
+      {"add sensor", [&] { d.AddPart(NextPart::kSensorModule); }},
+      {"add pitch 2", [&] { d.AddPart(NextPart::kPitchModule); }},
+      {"select+insert",
+       [&] {
+         d.Select(module1);
+         d.AddPart(NextPart::kYawModule);
+       }},
+      {"move back", [&] { d.MoveSelected(1); }},
+      {"set Kp",
+       [&] {
+         d.SetField({d.selection(), "joint", "Kp"}, "12.5");
+       }},
+      {"set mass",
+       [&] {
+         d.SetField({d.selection(), "frames[1]", "mass"}, "0.07");
+       }},
+      {"remove", [&] { d.RemoveSelected(); }},
+      {"ball", [&] { d.AddObject(ObjectKind::kBall); }},
+      {"box", [&] { d.AddObject(ObjectKind::kBox); }},
+      {"cylinder", [&] { d.AddObject(ObjectKind::kCylinder); }},
+      {"capsule", [&] { d.AddObject(ObjectKind::kCapsule); }},
+      {"ramp", [&] { d.AddObject(ObjectKind::kRamp); }},
+      {"object size",
+       [&] {
+         d.SetField({d.selection(), "", "size"}, "0.6 0.3 0.03");
+       }},
+      {"water", [&] { d.AddFluid(FluidKind::kWater); }},
+      {"air", [&] { d.AddFluid(FluidKind::kAir); }},
+      {"contact", [&] { d.AddContact(); }},
+      {"friction",
+       [&] {
+         d.SetField({d.selection(), "", "friction"}, "0.9");
+       }},
+      {"terrain",
+       [&] { d.SetTerrain(SourcePath("scenarios/terrain.png"), 0.3, 0.05); }},
+      {"template", [&] {
+         TemplateOptions t;
+         t.chain.modules = 3;
+         d.ApplyTemplate(t);
+       }}};
+  for (const auto& [name, edit] : edits) {
+    const std::string before = Bytes(d);
+    edit();
+    const std::string after = Bytes(d);
+    EXPECT_TRUE(before != after) << name << " changed nothing";
+    ASSERT_TRUE(d.can_undo()) << name;
+    d.Undo();
+    EXPECT_TRUE(Bytes(d) == before) << "undo of " << name;
+    d.Redo();
+    EXPECT_TRUE(Bytes(d) == after) << "redo of " << name;
+    EXPECT_NO_THROW(ReadScenarioString(after, name, d.scenario().base_dir))
+        << name;
+  }
+}
+
+TEST(StudioDesign, InvalidFieldValuesAreRefusedWithTheSchemaMessage) {
+  Design d;
+  d.AddPart(NextPart::kPitchModule);
+  const std::string before = Bytes(d);
+  const Selection m0{PartKind::kModule, 0, 0};
+  try {
+    d.SetField({m0, "frames[0]", "mass"}, "-1");
+    FAIL() << "negative mass accepted";
+  } catch (const DesignError& e) {
+    EXPECT_NE(std::string(e.what()).find("positive"), std::string::npos)
+        << e.what();
+  }
+  try {
+    d.SetField({m0, "joint", "Kp"}, "fast");
+    FAIL() << "text accepted as Kp";
+  } catch (const DesignError& e) {
+    EXPECT_NE(std::string(e.what()).find("fast"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(d.SetField({m0, "joint", "no_such_field"}, "1"), DesignError);
+  EXPECT_EQ(Bytes(d), before);
+  d.Undo();  // only the AddPart is on the stack
+  EXPECT_FALSE(d.can_undo());
+  EXPECT_TRUE(d.scenario().robots.empty());
+}
+
+TEST(StudioDesign, RefusesTwoSensorModulesSideBySide) {
+  Design d;
+  d.AddPart(NextPart::kPitchModule);
+  d.AddPart(NextPart::kSensorModule);
+  const std::string before = Bytes(d);
+  EXPECT_THROW(d.AddPart(NextPart::kSensorModule), DesignError);
+  EXPECT_EQ(Bytes(d), before);
+}
+
+TEST(StudioDesign, PartByPartEqualsScenarioNew) {
+  const std::string dir = TempDir("studio_design_new");
+  // The case study's robot: a sensor module in front of, between and
+  // behind 5 pitch-yaw modules, force plates, a front distance sensor.
+  Design d;
+  const NextPart order[] = {NextPart::kPitchModule, NextPart::kYawModule,
+                            NextPart::kPitchModule, NextPart::kYawModule,
+                            NextPart::kPitchModule};
+  for (NextPart p : order) {
+    d.AddPart(p);
+    d.AddPart(NextPart::kSensorModule);
+  }
+  d.AddPart(NextPart::kSensorModule, Where::kFront);
+  d.AddContact();
+  d.SaveAs(dir + "/studio.xml");
+  const std::string tool = ScenarioNew(
+      {"--modules", "5", "--pattern", "pitch-yaw", "--sensors", "all",
+       "--force-sensors", "--front-distance-sensor", "--friction", "0.5"},
+      dir);
+  EXPECT_TRUE(ReadFile(dir + "/studio.xml") == ReadFile(tool))
+      << "diff " << dir << "/studio.xml " << tool;
+
+  // The same edits on both give the same file again.
+  Design from_tool = Design::Open(tool);
+  for (Design* x : {&d, &from_tool}) {
+    x->SetField({{PartKind::kModule, 0, 2}, "joint", "Kp"}, "14");
+    x->Select({PartKind::kModule, 0, 4});
+    x->AddObject(ObjectKind::kBall);
+  }
+  d.Save();
+  from_tool.SaveAs(dir + "/edited.xml");
+  EXPECT_TRUE(ReadFile(dir + "/studio.xml") == ReadFile(dir + "/edited.xml"))
+      << "diff " << dir << "/studio.xml " << dir << "/edited.xml";
+}
+
+TEST(StudioDesign, AppendingPitchModulesEqualsScenarioNewPitch) {
+  const std::string dir = TempDir("studio_design_pitch");
+  Design d;
+  for (int i = 0; i < 4; ++i) d.AddPart(NextPart::kPitchModule);
+  d.SaveAs(dir + "/studio.xml");
+  EXPECT_TRUE(ReadFile(dir + "/studio.xml") ==
+              ReadFile(ScenarioNew({"--modules", "4"}, dir)))
+      << "diff " << dir << "/studio.xml " << dir << "/new.xml";
+}
+
+TEST(StudioDesign, MoveAndRemoveKeepTheChainWhole) {
+  Design d;
+  d.AddPart(NextPart::kPitchModule);
+  d.AddPart(NextPart::kYawModule);
+  d.AddPart(NextPart::kSensorModule);
+  d.AddPart(NextPart::kPitchModule);
+  d.Select({PartKind::kSensorModule, 0, 0});
+  d.MoveSelected(-1);  // between module 0 and 1 now
+  const Robot& r = d.scenario().robots[0];
+  ASSERT_EQ(r.sensor_modules.size(), 1u);
+  EXPECT_EQ(r.sensor_modules[0].left_mod_nr, 0);
+  EXPECT_EQ(r.sensor_modules[0].right_mod_nr, 1);
+  EXPECT_EQ(d.selection(), (Selection{PartKind::kSensorModule, 0, 0}));
+  d.Select({PartKind::kModule, 0, 1});
+  d.RemoveSelected();
+  const Robot& r2 = d.scenario().robots[0];
+  ASSERT_EQ(r2.modules.size(), 2u);
+  EXPECT_EQ(r2.modules[1].mod_nr, 1);
+  EXPECT_EQ(r2.modules[1].axis, Axis::kPitch);
+  EXPECT_EQ(r2.sensor_modules[0].right_mod_nr, 1);
+}
+
+TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(SourcePath("scenarios"))) {
+    const std::string path = entry.path().string();
+    if (entry.path().extension() != ".xml" ||
+        path.find("genome") != std::string::npos) {
+      continue;
+    }
+    Design d = Design::Open(path);
+    EXPECT_FALSE(d.dirty()) << path;
+    EXPECT_FALSE(d.scenario().robots.empty()) << path;
+  }
+}
+
+TEST(StudioDesign, DirtyUntilSavedAndAfterUndoingBackToSaved) {
+  const std::string dir = TempDir("studio_design_dirty");
+  Design d = Design::Open(dir + "/fresh.xml");
+  EXPECT_FALSE(d.dirty());
+  d.AddPart(NextPart::kPitchModule);
+  EXPECT_TRUE(d.dirty());
+  d.Save();
+  EXPECT_FALSE(d.dirty());
+  EXPECT_TRUE(std::filesystem::exists(dir + "/fresh.xml"));
+  d.AddObject(ObjectKind::kBox);
+  EXPECT_TRUE(d.dirty());
+  d.Undo();
+  EXPECT_FALSE(d.dirty());
+}
+
+}  // namespace
+}  // namespace mrsim::studio

@@ -1,0 +1,46 @@
+// For the studio's window tests: a private Xvfb display per test, the
+// studio's --layout-dump file, and real X input through xdotool.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "tests/common/child_process.h"
+
+namespace mrsim::testing {
+
+// An Xvfb server on a free display number (Xvfb picks it: -displayfd),
+// ready when the constructor returns; DISPLAY is set for child processes.
+class XvfbDisplay {
+ public:
+  explicit XvfbDisplay(const std::string& dir);
+  bool ok() const { return !display_.empty(); }
+  const std::string& display() const { return display_; }
+
+ private:
+  std::unique_ptr<ChildProcess> server_;
+  std::string display_;
+};
+
+// The studio's --layout-dump file as key -> value.
+std::map<std::string, std::string> ReadLayout(const std::string& path);
+
+// Polls `done` until true or `timeout_s` passed.
+bool WaitUntil(const std::function<bool()>& done, double timeout_s);
+
+// Waits until the layout file has `key` equal to `value`.
+bool WaitForLayout(const std::string& layout, const std::string& key,
+                   const std::string& value, double timeout_s = 90);
+
+// The centre of widget `name` ("widget <name>" line) in window pixels.
+bool WidgetCentre(const std::string& layout, const std::string& name, int* x,
+                  int* y);
+
+// Runs xdotool with `args` on the current DISPLAY; true on exit code 0.
+bool Xdotool(const std::vector<std::string>& args);
+// Moves the pointer to (x, y) and clicks the left button.
+bool ClickAt(int x, int y);
+
+}  // namespace mrsim::testing
