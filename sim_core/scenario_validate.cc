@@ -205,7 +205,11 @@ class Validator {
 
   void Before(const Joint&) {}
   void After(const Joint& j, bool lock) {
-    AddGuid(j.guid, false);
+    // The original's all-zero GUID on a lock is a placeholder: such locks
+    // are named by their place (lock<k>), so it may repeat.
+    const bool placeholder =
+        !j.guid.empty() && j.guid.find_first_not_of("0-") == std::string::npos;
+    if (!placeholder) AddGuid(j.guid, false);
     if (j.lower_range_limit > j.upper_range_limit) {
       Fail(path_ + "/lowerRangeLimit",
            fmt::format("lower limit {} is above the upper limit {}",

@@ -350,6 +350,7 @@ TEST(MjcfBuilder, EveryKindOfPartHasItsOwnColourAndTheSceneMujocosLook) {
   Scenario s = SnakeScenario();
   s.robots[0].modules[1].axis = Axis::kYaw;
   SceneObject ball;
+  ball.guid = "ball";
   ball.shape = PrimitiveShape::kSphere;
   ball.position = Eigen::Vector3d(1, 0, 0.1);
   s.scene_objects.push_back(ball);
