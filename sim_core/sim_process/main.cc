@@ -29,9 +29,12 @@ int main(int argc, char** argv) {
     mrsim::SimServer server(lcm, std::move(physics), flags.options, std::cerr);
     if (!server.PeriodNote().empty()) std::cerr << server.PeriodNote() << "\n";
     std::cerr << server.StartLine() << "\n";
-    server.Run([] { return mrsim::StopRequested(); });
+    const mrsim::StopReason reason =
+        server.Run([] { return mrsim::StopRequested(); });
     std::cout << server.node().Summary() << std::endl;
-    return server.exit_checkpoint_error().empty() ? 0 : 1;
+    const bool failed = reason == mrsim::StopReason::kPhysicsFailed ||
+                        !server.exit_checkpoint_error().empty();
+    return failed ? 1 : 0;
   } catch (const mrsim::UsageError& e) {
     std::cerr << "mrsim-sim: " << e.what() << "\n";
     return 2;

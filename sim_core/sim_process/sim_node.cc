@@ -44,6 +44,8 @@ const char* ToString(StopReason reason) {
       return "duration reached";
     case StopReason::kSignal:
       return "stop signal";
+    case StopReason::kPhysicsFailed:
+      return "physics failed";
   }
   return "?";
 }
@@ -207,9 +209,16 @@ void SimNode::RunPeriod(WallTime now, SimOutbox* out) {
   try {
     physics_->Step(steps_per_period_);
   } catch (const PhysicsError& e) {
+    // A batch run (--duration) has nobody to send RESET: it ends, and the
+    // exit status says so.
+    const bool batch = options_.duration > 0;
     Fail(std::string("physics: ") + e.what() +
-         " (paused; send RESET or LOAD_CHECKPOINT)");
+         (batch ? " (run ended)" : " (paused; send RESET or LOAD_CHECKPOINT)"));
     log_ << "mrsim-sim: " << last_error_ << std::endl;
+    if (batch) {
+      Finish(StopReason::kPhysicsFailed, now, out);
+      return;
+    }
     paused_ = true;
     steps_pending_ = 0;
     PublishStatus(now, out);
@@ -509,7 +518,9 @@ void SimNode::Stop(StopReason reason, WallTime now, SimOutbox* out) {
 }
 
 void SimNode::Finish(StopReason reason, WallTime now, SimOutbox* out) {
-  if (!options_.checkpoint_on_exit.empty()) {
+  // A failed state is not worth keeping over a good checkpoint file.
+  if (!options_.checkpoint_on_exit.empty() &&
+      reason != StopReason::kPhysicsFailed) {
     try {
       SaveCheckpoint(options_.checkpoint_on_exit);
     } catch (const std::exception& e) {

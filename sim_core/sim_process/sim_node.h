@@ -24,7 +24,9 @@
 namespace mrsim {
 
 // Why the node stopped.
-enum class StopReason { kQuit, kDuration, kSignal };
+// kPhysicsFailed: the physics failed in a batch run (--duration); an
+// interactive run pauses instead, for RESET or LOAD_CHECKPOINT.
+enum class StopReason { kQuit, kDuration, kSignal, kPhysicsFailed };
 const char* ToString(StopReason reason);
 
 class SimNode {

@@ -69,20 +69,39 @@ TEST_F(ExplodingProcess, SimulatorNamesTheErrorAndKeepsStdoutClean) {
   // stdout and stderr apart: stdout is for the run's summary only.
   ChildProcess sim(
       {"/bin/sh", "-c",
-       "exec \"$0\" ex.xml --clock fast --duration 60 "
-       "--no-state --lcm-url \"$1\" 2>err.txt",
+       "exec \"$0\" ex.xml --clock fast --no-state --lcm-url \"$1\" "
+       "2>err.txt",
        BinaryPath("sim_core/sim_process/mrsim-sim"), TestLcmUrl(7900)},
       dir_ + "/out.txt");
   ASSERT_TRUE(WaitForFileText(dir_ + "/err.txt", "physics unstable", 60))
       << ReadAll(dir_ + "/err.txt");
   const std::string err = ReadAll(dir_ + "/err.txt");
   EXPECT_NE(err.find("BADQACC"), std::string::npos) << err;
-  // Paused on the error (a user may RESET); a stop request still ends it.
+  // Interactive (no --duration): paused on the error, so a user may RESET;
+  // a stop request still ends it cleanly.
+  EXPECT_NE(err.find("paused"), std::string::npos) << err;
   sim.Signal(SIGINT);
   EXPECT_EQ(sim.Wait(30), 0);
   const std::string out = ReadAll(dir_ + "/out.txt");
   EXPECT_EQ(out.find(kMujocoText), std::string::npos) << out;
   EXPECT_EQ(out.find("WARNING"), std::string::npos) << out;
+}
+
+TEST_F(ExplodingProcess, BatchSimulatorEndsWithAFailureExit) {
+  ChildProcess sim(
+      {"/bin/sh", "-c",
+       "exec \"$0\" ex.xml --clock fast --duration 60 --no-state "
+       "--checkpoint-on-exit end.checkpoint --lcm-url \"$1\" 2>err.txt",
+       BinaryPath("sim_core/sim_process/mrsim-sim"), TestLcmUrl(7902)},
+      dir_ + "/out.txt");
+  // Nobody can RESET a batch run: it ends by itself, non-zero, and keeps
+  // no checkpoint of the failed state.
+  EXPECT_EQ(sim.Wait(60), 1) << ReadAll(dir_ + "/err.txt");
+  const std::string err = ReadAll(dir_ + "/err.txt");
+  EXPECT_NE(err.find("physics unstable"), std::string::npos) << err;
+  EXPECT_NE(err.find("run ended"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/end.checkpoint"));
+  EXPECT_EQ(ReadAll(dir_ + "/out.txt").find(kMujocoText), std::string::npos);
 }
 
 TEST_F(ExplodingProcess, WorkerReportsFailedEpisodesAndLivesOn) {
