@@ -183,8 +183,12 @@ TEST_F(FarmNet, PartitionedWorkerEqualsLocal) {
   RunCase("fn_partition", kUdpm, 3,
           [](FarmRig& rig, ChildProcess& master, auto&, const std::string&) {
             rig.SetPartitioned(1, true);
-            EXPECT_TRUE(WaitForText(master, "worker w1 is gone", 60))
-                << master.Output();
+            // The other workers may finish the last two generations before
+            // w1's 2 s timeout; when the run is still going, the master
+            // must notice w1 is gone. Either way the result must equal the
+            // local run (RunCase).
+            const bool gone = WaitForText(master, "worker w1 is gone", 60);
+            EXPECT_TRUE(gone || !master.running()) << master.Output();
             rig.SetPartitioned(1, false);
           });
 }
