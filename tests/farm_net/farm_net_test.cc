@@ -59,17 +59,6 @@ std::vector<std::string> With(std::vector<std::string> a,
   return a;
 }
 
-bool WaitForText(ChildProcess& p, const std::string& text, double seconds) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::milliseconds(static_cast<int>(seconds * 1000));
-  while (std::chrono::steady_clock::now() < end) {
-    if (p.Output().find(text) != std::string::npos) return true;
-    if (!p.running()) return p.Output().find(text) != std::string::npos;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 void ExpectSameResult(const std::string& a, const std::string& b) {
   for (const char* f :
        {"/generations.csv", "/evaluations.csv", "/best_gait.xml",
@@ -128,7 +117,7 @@ class FarmNet : public ::testing::Test {
                    "lcm.lcm.TCPService", std::to_string(kHubPort)}),
         log + "_hub.log");
     // It prints its client count once a second once it listens.
-    EXPECT_TRUE(WaitForText(*hub, "clients", 30)) << hub->Output();
+    EXPECT_TRUE(hub->WaitForOutput("clients", 30)) << hub->Output();
     return hub;
   }
 
@@ -149,7 +138,7 @@ class FarmNet : public ::testing::Test {
     for (int k = 1; k <= workers; ++k) ws.push_back(Worker(rig, k, url, dir));
     auto master = Master(rig, url, dir);
     if (fault) {
-      ASSERT_TRUE(WaitForText(*master, "generation 1 of 3", 120))
+      ASSERT_TRUE(master->WaitForOutput("generation 1 of 3", 120))
           << master->Output();
       fault(rig, *master, ws, dir);
     }
@@ -174,7 +163,7 @@ TEST_F(FarmNet, KillThreeAddTwoEqualsLocal) {
             for (int k = 0; k < 3; ++k) ws[k]->Signal(SIGKILL);
             ws.push_back(Worker(rig, 5, kUdpm, dir));
             ws.push_back(Worker(rig, 6, kUdpm, dir));
-            EXPECT_TRUE(WaitForText(master, "worker w5 is ready", 60))
+            EXPECT_TRUE(master.WaitForOutput("worker w5 is ready", 60))
                 << master.Output();
           });
 }
@@ -187,7 +176,7 @@ TEST_F(FarmNet, PartitionedWorkerEqualsLocal) {
             // w1's 2 s timeout; when the run is still going, the master
             // must notice w1 is gone. Either way the result must equal the
             // local run (RunCase).
-            const bool gone = WaitForText(master, "worker w1 is gone", 60);
+            const bool gone = master.WaitForOutput("worker w1 is gone", 60);
             EXPECT_TRUE(gone || !master.running()) << master.Output();
             rig.SetPartitioned(1, false);
           });
@@ -198,7 +187,7 @@ TEST_F(FarmNet, PortFlapEqualsLocalAndTheWorkerRejoins) {
           [](FarmRig& rig, ChildProcess&, auto& ws, const std::string&) {
             rig.SetPortUp(1, false);
             rig.SetPortUp(1, true);
-            EXPECT_TRUE(WaitForText(*ws[0], "re-join", 60)) << ws[0]->Output();
+            EXPECT_TRUE(ws[0]->WaitForOutput("re-join", 60)) << ws[0]->Output();
           });
 }
 
@@ -210,7 +199,7 @@ TEST_F(FarmNet, MasterRestartEqualsLocal) {
   for (int k = 1; k <= 3; ++k) ws.push_back(Worker(rig, k, kUdpm, dir));
   {
     auto first = Master(rig, kUdpm, dir, "first");
-    ASSERT_TRUE(WaitForText(*first, "generation 1 of 3", 120))
+    ASSERT_TRUE(first->WaitForOutput("generation 1 of 3", 120))
         << first->Output();
     first->Signal(SIGKILL);
     EXPECT_EQ(first->Wait(10), 128 + SIGKILL);
@@ -242,11 +231,11 @@ TEST_F(FarmNet, TcpqHubRestartEqualsLocal) {
   std::vector<std::unique_ptr<ChildProcess>> ws;
   for (int k = 1; k <= 3; ++k) ws.push_back(Worker(rig, k, url, dir));
   auto master = Master(rig, url, dir);
-  ASSERT_TRUE(WaitForText(*master, "generation 1 of 3", 120))
+  ASSERT_TRUE(master->WaitForOutput("generation 1 of 3", 120))
       << master->Output();
   hub->Signal(SIGKILL);
   hub->Wait(10);
-  EXPECT_TRUE(WaitForText(*master, "connection lost", 30)) << master->Output();
+  EXPECT_TRUE(master->WaitForOutput("connection lost", 30)) << master->Output();
   hub.reset();
   hub = Hub(rig, dir + "/again");
   ASSERT_EQ(master->Wait(180), 0) << master->Output();

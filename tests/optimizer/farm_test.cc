@@ -51,17 +51,6 @@ std::vector<std::string> With(std::vector<std::string> args,
   return args;
 }
 
-bool WaitForText(ChildProcess& p, const std::string& text, double seconds) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::milliseconds(static_cast<int>(seconds * 1000));
-  while (std::chrono::steady_clock::now() < end) {
-    if (p.Output().find(text) != std::string::npos) return true;
-    if (!p.running()) return p.Output().find(text) != std::string::npos;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 // The files a run's result consists of must match byte for byte.
 void ExpectSameResult(const std::string& a, const std::string& b) {
   for (const char* f :
@@ -98,15 +87,16 @@ TEST(FarmProcess, KilledAndLateWorkersGiveTheLocalResult) {
       With(OptArgs(dir), {"--farm", "--lcm-url", url, "--worker-timeout", "1",
                           "--chunk-size", "4000"}),
       dir + "/master.log");
-  ASSERT_TRUE(WaitForText(master, "generation 1 of 4", 60)) << master.Output();
+  ASSERT_TRUE(master.WaitForOutput("generation 1 of 4", 60)) << master.Output();
   // Mid-generation 2: w1 dies and w2 freezes (a suspended host), so the run
   // cannot end before the late worker w3 has joined, fetched the payload
   // and taken over their jobs, however slowly each process gets scheduled.
   w1->Signal(SIGKILL);
   w2->Signal(SIGSTOP);
   auto w3 = worker("w3");
-  EXPECT_TRUE(WaitForText(master, "worker w1 is gone", 60)) << master.Output();
-  EXPECT_TRUE(WaitForText(master, "worker w3 is ready", 60)) << master.Output();
+  EXPECT_TRUE(master.WaitForOutput("worker w1 is gone", 60)) << master.Output();
+  EXPECT_TRUE(master.WaitForOutput("worker w3 is ready", 60))
+      << master.Output();
   // w2 comes back: its stale answers must not change anything.
   w2->Signal(SIGCONT);
   ASSERT_EQ(master.Wait(90), 0) << master.Output();
@@ -120,7 +110,7 @@ TEST(OptimizerProcess, MasterKilledAndRestartedEndsWithTheSameResult) {
   const auto args = With(OptArgs(dir), {"--workers", "local:2"});
   {
     ChildProcess first(args, dir + "/first.log");
-    ASSERT_TRUE(WaitForText(first, "generation 2 of 4", 60)) << first.Output();
+    ASSERT_TRUE(first.WaitForOutput("generation 2 of 4", 60)) << first.Output();
     first.Signal(SIGKILL);
     EXPECT_EQ(first.Wait(10), 128 + SIGKILL);
   }
@@ -135,7 +125,7 @@ TEST(OptimizerProcess, SigintStopsCleanlyKeepingCompletedGenerations) {
   const std::string dir = TempDir("opt_sigint");
   ChildProcess p(With(OptArgs(dir), {"--workers", "local:1"}),
                  dir + "/log.txt");
-  ASSERT_TRUE(WaitForText(p, "generation 1 of 4", 60)) << p.Output();
+  ASSERT_TRUE(p.WaitForOutput("generation 1 of 4", 60)) << p.Output();
   p.Signal(SIGINT);
   EXPECT_EQ(p.Wait(30), 0) << p.Output();
   EXPECT_NE(p.Output().find("run the same command to continue"),
