@@ -61,8 +61,10 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
     shape_.push_back(s.num_distances);
     for (int8_t face : s.distance_face) shape_.push_back(face);
   }
-  if (!have_shape_ || shape_ != last_shape_) {
+  shape_.push_back(m.num_locks);
+  if (!have_shape_ || shape_ != last_shape_ || m.lock_names != last_locks_) {
     last_shape_ = shape_;
+    last_locks_ = m.lock_names;
     have_shape_ = true;
     SetColumns(ColumnNames());
   }
@@ -120,6 +122,7 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
     cells.CommaDouble(v);
   }
   cells.Flush();
+  for (bool attached : m.lock_attached) out.append(attached ? ",1" : ",0");
   row->has_seq = true;
   row->seq = m.seq;
   return true;
@@ -175,6 +178,11 @@ std::vector<std::string> RobotStateFlattener::ColumnNames() const {
   for (const char* n : {"com.x", "com.y", "com.z", "com_velocity.x",
                         "com_velocity.y", "com_velocity.z"}) {
     names.push_back(n);
+  }
+  // Named by the lock (guid or robot/lockN) so a column keeps its meaning
+  // across scenarios; 1 while the lock holds, 0 after DETACH or a break.
+  for (const std::string& lock : m.lock_names) {
+    names.push_back("lock." + lock + ".attached");
   }
   return names;
 }

@@ -2,7 +2,8 @@
 // `robot`, `sim_time`, `module3.x .. module3.qz`, `module3.frame0.x ..`,
 // `module3.joint.angle/speed/torque/x..qz`, `sensor_module0.x ..`,
 // `sensor_module0.force`, `sensor_module0.distance4` (4 = face), `com.x`,
-// `com_velocity.x`. SI units throughout.
+// `com_velocity.x`, `lock.snake/lock3.attached` (1 holds, 0 released). SI
+// units throughout.
 #pragma once
 
 #include <string>
@@ -30,6 +31,7 @@ class RobotStateFlattener : public MessageFlattener {
   robot_state_t msg_;
   std::vector<int> shape_;
   std::vector<int> last_shape_;
+  std::vector<std::string> last_locks_;
   bool have_shape_ = false;
 };
 

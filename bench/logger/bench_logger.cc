@@ -148,6 +148,11 @@ mrsim::robot_state_t State(int64_t seq) {
     }
     m.sensor_modules.push_back(sm);
   }
+  m.num_locks = kModules - 1;  // what the simulator sends for a chain
+  for (int k = 0; k < m.num_locks; ++k) {
+    m.lock_names.push_back("bench/lock" + std::to_string(k));
+    m.lock_attached.push_back(true);
+  }
   for (int k = 0; k < 3; ++k) {
     m.com[k] = 0.01 * t * (k + 1);
     m.com_velocity[k] = 0.01 * (k + 1);

@@ -246,6 +246,7 @@ void SimNode::PublishStates(WallTime now, SimOutbox* out) {
       const std::string& name = physics_->robot_name(r);
       robot_state_t msg =
           ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);
+      SetLockStates(physics_->LockStates(name), &msg);
       published.messages.emplace_back(StateChannel(options_.prefix, name),
                                       std::move(msg));
     }

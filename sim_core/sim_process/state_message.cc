@@ -32,6 +32,17 @@ int64_t SimTimeToUtime(double seconds) {
   return static_cast<int64_t>(std::llround(seconds * 1e6));
 }
 
+void SetLockStates(const std::vector<std::pair<std::string, bool>>& locks,
+                   robot_state_t* msg) {
+  msg->num_locks = static_cast<int32_t>(locks.size());
+  msg->lock_names.resize(locks.size());
+  msg->lock_attached.resize(locks.size());
+  for (size_t i = 0; i < locks.size(); ++i) {
+    msg->lock_names[i] = locks[i].first;
+    msg->lock_attached[i] = locks[i].second;
+  }
+}
+
 robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq) {
   robot_state_t msg{};
   msg.utime = SimTimeToUtime(state.time);

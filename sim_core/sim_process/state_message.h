@@ -21,6 +21,11 @@ int64_t SimTimeToUtime(double seconds);
 // The message for one robot's state; seq is the publication counter.
 robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq);
 
+// Fills the message's lock list (Physics::LockStates: names in scenario
+// order and whether each holds).
+void SetLockStates(const std::vector<std::pair<std::string, bool>>& locks,
+                   robot_state_t* msg);
+
 // The inverse (time from sim_time); lossless for everything the message
 // holds.
 RobotState FromRobotStateMessage(const robot_state_t& msg);

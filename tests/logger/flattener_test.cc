@@ -67,6 +67,22 @@ TEST(LoggerFlatten, RobotStateColumnsAreNamedAndValuesExact) {
             msg.sensor_modules[0].distance[1]);
   EXPECT_EQ(Parse(cell("com.x")), msg.com[0]);
   EXPECT_EQ(Parse(cell("com_velocity.z")), msg.com_velocity[2]);
+  EXPECT_EQ(cell("lock.snake/lock0.attached"), "1");
+  EXPECT_EQ(cell("lock.snake/lock3.attached"), "0");
+  EXPECT_EQ(cols.back(), "lock.snake/lock3.attached");
+}
+
+TEST(LoggerFlatten, RenamedLocksGetNewColumns) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  RobotStateFlattener flattener(registry);
+  FlatRow row;
+  auto a = Encode(testing::KnownRobotState(0, 3, 0, "snake"));
+  auto b = Encode(testing::KnownRobotState(1, 3, 0, "worm"));
+  ASSERT_TRUE(flattener.Flatten(a.data(), a.size(), &row));
+  const uint64_t v1 = flattener.shape_version();
+  ASSERT_TRUE(flattener.Flatten(b.data(), b.size(), &row));
+  EXPECT_NE(flattener.shape_version(), v1);
+  EXPECT_EQ(flattener.columns().back(), "lock.worm/lock1.attached");
 }
 
 TEST(LoggerFlatten, ShapeChangeBumpsTheColumnVersion) {
@@ -154,6 +170,7 @@ TEST(LoggerFlatten, RobotStateHasAColumnForEveryField) {
   for (const std::string& c : generic.columns()) {
     if (c.rfind("num_", 0) == 0 || c.find(".num_") != std::string::npos ||
         c.find("has_force") != std::string::npos ||
+        c.rfind("lock_names", 0) == 0 ||
         c.find("distance_face") != std::string::npos) {
       ++counts;
     }

@@ -63,6 +63,11 @@ inline robot_state_t KnownRobotState(int64_t seq, int modules,
     m.com[k] = KnownValue(seq, 200, k);
     m.com_velocity[k] = KnownValue(seq, 200, 3 + k);
   }
+  m.num_locks = modules > 0 ? modules - 1 : 0;  // a chain's locks
+  for (int k = 0; k < m.num_locks; ++k) {
+    m.lock_names.push_back(robot + "/lock" + std::to_string(k));
+    m.lock_attached.push_back(k % 2 == 0);  // both values in every row
+  }
   return m;
 }
 

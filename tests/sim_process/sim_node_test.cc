@@ -462,11 +462,12 @@ TEST(SimNode, ResetAndCheckpointLoadRestartTheLockstepEpoch) {
   }
 }
 
-TEST(SimNode, LocksDetachAndAttachOnRequest) {
+TEST(SimNode, LocksDetachAndAttachOnRequestAndStatesSayWhich) {
   Driver d(Lockstep());
-  auto locks = [&] { return d.node().physics().LockStates("snake"); };
-  ASSERT_EQ(locks().size(), 5u);  // six modules, five locks
-  EXPECT_EQ(locks()[2].first, "snake/lock2");
+  const robot_state_t& first = d.states_.back();
+  ASSERT_EQ(first.num_locks, 5);  // six modules, five locks
+  EXPECT_EQ(first.lock_names[2], "snake/lock2");
+  for (bool attached : first.lock_attached) EXPECT_TRUE(attached);
 
   sim_control_t detach{};
   detach.seq = 1;
@@ -478,8 +479,9 @@ TEST(SimNode, LocksDetachAndAttachOnRequest) {
   d.node().OnControl(detach, d.now(), &out);
   EXPECT_TRUE(d.node().status().control_ok) << d.node().status().last_error;
   const robot_state_t cut = DriveLockstep(d, 100);
-  EXPECT_FALSE(locks()[2].second);
-  EXPECT_TRUE(locks()[1].second);
+  ASSERT_EQ(cut.num_locks, 5);
+  EXPECT_FALSE(cut.lock_attached[2]);
+  EXPECT_TRUE(cut.lock_attached[1]);
   // The body really came apart: not the trajectory of the whole snake.
   const robot_state_t whole =
       ToRobotStateMessage(InProcessRun(Snake(), 100, 0), cut.seq);
@@ -498,8 +500,8 @@ TEST(SimNode, LocksDetachAndAttachOnRequest) {
   attach.command = sim_control_t::ATTACH;
   d.node().OnControl(attach, d.now(), &out);
   EXPECT_TRUE(d.node().status().control_ok);
-  DriveLockstep(d, 101);
-  EXPECT_TRUE(locks()[2].second);
+  const robot_state_t joined = DriveLockstep(d, 101);
+  EXPECT_TRUE(joined.lock_attached[2]);
 }
 
 TEST(SimNode, DurationStopsAndWritesTheExitCheckpoint) {
