@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include "logger/csv_writer.h"
@@ -168,6 +169,25 @@ TEST(LoggerQueue, DropsAndCountsWhenFullAndDrainsAfterClose) {
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].channel, "B");
   EXPECT_FALSE(q.PopAll(&out, std::chrono::milliseconds(10)));
+}
+
+TEST(LoggerQueue, WriterWakesOnceEnoughIsQueuedOrAtItsPeriod) {
+  MessageQueue q(1000, 100);
+  const uint8_t data[60] = {};
+  // Below the wake level a wait ends at its timeout with what is there.
+  ASSERT_TRUE(q.Push("A", data, 60));
+  std::vector<QueuedMessage> out;
+  EXPECT_TRUE(q.PopAll(&out, std::chrono::milliseconds(10)));
+  EXPECT_EQ(out.size(), 1u);
+  // Crossing the wake level ends a wait that would otherwise last an hour
+  // (a missing wake-up hangs this test until ctest's timeout).
+  out.clear();
+  std::thread writer([&] { q.PopAll(&out, std::chrono::hours(1)); });
+  ASSERT_TRUE(q.Push("A", data, 60));
+  ASSERT_TRUE(q.Push("B", data, 60));
+  writer.join();
+  EXPECT_GE(out.size(), 1u);
+  q.Close();
 }
 
 }  // namespace
