@@ -289,10 +289,13 @@ int main(int argc, char** argv) {
         "over one here; speed-up with 2 workers %.3f\n",
         cpu.cores, cpu_after.cores, cpu.one_thread, cpu_after.one_thread, bound,
         speedup);
-    std::printf("# speed-up over min(2, cpu_available) alone: %.3f\n",
-                speedup / std::min(2.0, cores));
     std::printf("BENCH farm_speedup_2w %.3f x\n", speedup);
-    std::printf("BENCH farm_efficiency %.3f x\n", speedup / bound);
+    // The figure as defined: speed-up over min(2, cpu_available). Under
+    // heavy load it exceeds 1 (two processes get two fair shares), so the
+    // fair-share bound is printed beside it.
+    std::printf("BENCH farm_efficiency %.3f x\n",
+                speedup / std::min(2.0, cores));
+    std::printf("BENCH farm_efficiency_fair_share %.3f x\n", speedup / bound);
     std::printf("BENCH farm_overhead %.3f %%\n", one.overhead_percent);
     std::fflush(stdout);
 
