@@ -2,6 +2,7 @@
 // and the gait text it takes from gait commands.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -92,6 +93,14 @@ TEST(ViewerInbox, DropsAndCountsMalformedStatesAndFollowsGaitCommands) {
   b = Bytes(gait);
   inbox.Receive(inbox.gait_channel(), b.data(), static_cast<int>(b.size()));
   EXPECT_EQ(inbox.gait_text(), "sidewind (sidewind-left)");
+
+  // A live viewer subscribes to exactly what the inbox takes.
+  const auto all = inbox.AllChannels();
+  for (const std::string& channel :
+       {inbox.gait_status_channel(), inbox.gait_channel(),
+        inbox.scene_channel(), inbox.channels().begin()->first}) {
+    EXPECT_NE(std::find(all.begin(), all.end(), channel), all.end()) << channel;
+  }
 }
 
 }  // namespace

@@ -105,6 +105,15 @@ bool StateInbox::ReceiveGaitStatus(const void* data, int size) {
   return false;
 }
 
+std::vector<std::string> StateInbox::AllChannels() const {
+  std::vector<std::string> all;
+  for (const auto& [channel, robot] : channels_) all.push_back(channel);
+  all.push_back(gait_channel_);
+  all.push_back(gait_status_channel_);
+  all.push_back(scene_channel_);
+  return all;
+}
+
 bool StateInbox::Receive(const std::string& channel, const void* data,
                          int size) {
   try {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "viewer/frame_scheduler.h"
 #include "viewer/state_viewer.h"
@@ -30,6 +31,8 @@ class StateInbox {
   }
   // SceneChannel(prefix): scene_state_t.
   const std::string& scene_channel() const { return scene_channel_; }
+  // Every channel Receive takes: what a live viewer subscribes to.
+  std::vector<std::string> AllChannels() const;
   // "gait (motion)" from the latest gait status (or, until one came, the
   // latest gait commands); empty before any.
   const std::string& gait_text() const { return gait_text_; }

@@ -29,14 +29,11 @@ class Receiver {
  public:
   Receiver(lcm::LCM* lcm, StateInbox* inbox, std::mutex* mutex)
       : lcm_(lcm), inbox_(inbox), mutex_(mutex) {
-    for (const auto& [channel, robot] : inbox->channels()) {
-      (void)robot;
+    // The inbox's own list: a channel it handles but nobody subscribed to
+    // (the gait status once) leaves the overlay silently empty.
+    for (const std::string& channel : inbox->AllChannels()) {
       lcm->subscribe(channel, &Receiver::On, this)->setQueueCapacity(kLcmQueue);
     }
-    lcm->subscribe(inbox->gait_channel(), &Receiver::On, this)
-        ->setQueueCapacity(kLcmQueue);
-    lcm->subscribe(inbox->scene_channel(), &Receiver::On, this)
-        ->setQueueCapacity(kLcmQueue);
     thread_ = std::thread([this] { Loop(); });
   }
   ~Receiver() { Stop(); }
