@@ -11,6 +11,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace mrsim {
 namespace {
@@ -23,6 +24,8 @@ std::string DescribeStatus(int status) { return DescribeExitStatus(status); }
 
 ProcessGroup::ProcessGroup(std::FILE* out)
     : out_(out), colour_(isatty(fileno(out)) != 0) {}
+
+ProcessGroup::ProcessGroup(LineSink sink) : sink_(std::move(sink)) {}
 
 ProcessGroup::~ProcessGroup() { StopAll(2.0); }
 
@@ -50,6 +53,10 @@ void ProcessGroup::Start(const ProcessSpec& spec,
 }
 
 void ProcessGroup::PrintLine(const Child& child, const std::string& line) {
+  if (sink_) {
+    sink_(child.spec.name, line);
+    return;
+  }
   if (colour_) {
     std::fprintf(out_, "\033[%dm[%-*s]\033[0m %s\n", child.colour,
                  static_cast<int>(name_width_), child.spec.name.c_str(),
@@ -62,6 +69,10 @@ void ProcessGroup::PrintLine(const Child& child, const std::string& line) {
 }
 
 void ProcessGroup::Say(const std::string& line) {
+  if (sink_) {
+    sink_("launch", line);
+    return;
+  }
   std::fprintf(out_, "[%-*s] %s\n", static_cast<int>(name_width_), "launch",
                line.c_str());
   std::fflush(out_);

@@ -5,6 +5,7 @@
 #include <sys/types.h>
 
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ class ProcessGroup {
  public:
   // Output goes to `out` (stdout in the launcher); colours when it is a tty.
   explicit ProcessGroup(std::FILE* out);
+  // Each whole line goes to `sink` with the name of the process that wrote
+  // it ("launch" for the group's own), e.g. a console panel in a window.
+  using LineSink =
+      std::function<void(const std::string& name, const std::string& line)>;
+  explicit ProcessGroup(LineSink sink);
   ~ProcessGroup();
   ProcessGroup(const ProcessGroup&) = delete;
   ProcessGroup& operator=(const ProcessGroup&) = delete;
@@ -56,8 +62,9 @@ class ProcessGroup {
   void Reap(Child& child, int status);
   void PrintLine(const Child& child, const std::string& line);
 
-  std::FILE* out_;
-  bool colour_;
+  std::FILE* out_ = nullptr;
+  LineSink sink_;
+  bool colour_ = false;
   size_t name_width_ = 6;
   std::vector<Child> children_;
 };

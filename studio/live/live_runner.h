@@ -1,0 +1,83 @@
+// What the studio's Run and Record buttons start: mrsim-sim and one
+// mrsim-gait per robot for the current design, and mrsim-log into a folder,
+// as ordinary child processes (the launcher's ProcessGroup), their output
+// kept for the console panel. Every command line is one a user could type.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "launcher/launch_file.h"
+#include "launcher/process_group.h"
+
+namespace mrsim {
+
+struct RunOptions {
+  std::string scenario_path;        // a saved scenario file
+  std::vector<std::string> robots;  // one mrsim-gait each
+  std::string lcm_url;              // empty: LCM's default
+  std::string prefix = "MRSIM";
+  std::string clock = "realtime";  // realtime | fast | lockstep
+  double rate = 100;               // Hz
+  double speed = 1;                // real-time factor (realtime clock)
+  std::string gait = "forward";    // each robot's starting gait
+  bool paused = false;
+};
+
+// A CSV the recording wrote, with its data rows (header excluded).
+struct RecordedFile {
+  std::string path;
+  int64_t rows = 0;
+};
+
+class LiveRunner {
+ public:
+  // Programs are looked up on `search_path` (ProgramSearchPath(argv0)).
+  explicit LiveRunner(std::vector<std::string> search_path);
+  ~LiveRunner();
+  LiveRunner(const LiveRunner&) = delete;
+  LiveRunner& operator=(const LiveRunner&) = delete;
+
+  // The processes Start runs, in start order: the gait nodes first so they
+  // hear the first state. Throws std::invalid_argument for options that no
+  // run could use (no scenario, unknown clock, rate or speed not positive).
+  static std::vector<ProcessSpec> RunSpecs(const RunOptions& options);
+  static ProcessSpec RecordSpec(const RunOptions& options,
+                                const std::string& out_dir);
+
+  // Stops what runs, then starts a run. Throws std::runtime_error naming
+  // the program that could not be found or started.
+  void Start(const RunOptions& options);
+  // Ends the run (and a recording) cleanly: SIGINT, then harder.
+  void Stop();
+  bool running() const;
+
+  void StartRecording(const std::string& out_dir);
+  void StopRecording();
+  bool recording() const;
+  const std::string& record_dir() const { return record_dir_; }
+  // The CSVs in the recording folder with their row counts.
+  std::vector<RecordedFile> RecordedFiles() const;
+
+  // Takes the children's output and notices exits; call once per frame.
+  void Poll();
+  // "[sim] ..." lines, the newest last (at most kConsoleLines).
+  const std::deque<std::string>& console() const { return console_; }
+  static constexpr size_t kConsoleLines = 2000;
+
+ private:
+  void Line(const std::string& name, const std::string& line);
+  std::string Find(const std::string& program) const;
+
+  std::vector<std::string> search_path_;
+  RunOptions options_;
+  std::unique_ptr<ProcessGroup> run_;
+  std::unique_ptr<ProcessGroup> record_;
+  std::string record_dir_;
+  std::deque<std::string> console_;
+};
+
+}  // namespace mrsim

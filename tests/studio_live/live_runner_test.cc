@@ -1,0 +1,152 @@
+// The studio's Run and Record: the command lines it would start, and a real
+// run of the case study recorded for 2 s of simulated time.
+#include "studio/live/live_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <stdexcept>
+
+#include "launcher/program_locator.h"
+#include "studio/live/live_link.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::SourcePath;
+using testing::TempDir;
+using testing::TestLcmUrl;
+
+bool Has(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
+  RunOptions o;
+  o.scenario_path = "robots.xml";
+  o.robots = {"a", "b"};
+  o.clock = "lockstep";
+  o.lcm_url = "udpm://239.255.76.67:7000?ttl=0";
+  const auto specs = LiveRunner::RunSpecs(o);
+  ASSERT_EQ(specs.size(), 3u);
+  // Controllers first, so they hear the simulator's first state.
+  EXPECT_EQ(specs[0].program, "mrsim-gait");
+  EXPECT_EQ(specs[1].name, "gait-b");
+  EXPECT_EQ(specs[2].program, "mrsim-sim");
+  EXPECT_TRUE(specs[2].required);
+  const auto& sim = specs[2].args;
+  EXPECT_EQ(sim[0], "robots.xml");
+  const auto controllers = std::find(sim.begin(), sim.end(), "--controllers");
+  ASSERT_NE(controllers, sim.end());
+  EXPECT_EQ(*(controllers + 1), "gait-a");
+  EXPECT_EQ(*(controllers + 2), "gait-b");
+  EXPECT_FALSE(Has(sim, "--speed"));  // realtime only
+  EXPECT_TRUE(Has(specs[0].args, o.lcm_url));
+
+  o.clock = "realtime";
+  o.speed = 0.5;
+  o.paused = true;
+  const auto rt = LiveRunner::RunSpecs(o)[2].args;
+  EXPECT_TRUE(Has(rt, "0.5"));
+  EXPECT_TRUE(Has(rt, "--paused"));
+
+  EXPECT_TRUE(Has(LiveRunner::RecordSpec(o, "rec").args, "rec"));
+  o.clock = "wallclock";
+  EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
+  o.clock = "fast";
+  o.rate = 0;
+  EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
+  o.rate = 100;
+  o.scenario_path.clear();
+  EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
+}
+
+bool PollUntil(LiveLink& link, LiveRunner& runner,
+               const std::function<bool()>& done, double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::duration<double>(timeout_s);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    link.Poll(20);
+    runner.Poll();
+  }
+  return true;
+}
+
+std::string Console(const LiveRunner& runner) {
+  std::string all;
+  for (const auto& line : runner.console()) all += line + "\n";
+  return all;
+}
+
+TEST(LiveRunner, RunsTheCaseStudyAndRecordsEveryStateOfTwoSeconds) {
+  const std::string url = TestLcmUrl(7966);
+  const std::string dir = TempDir("live_runner");
+  LiveRunner runner({std::filesystem::path(BinaryPath("bin/mrsim-sim"))
+                         .parent_path()
+                         .string()});
+  RunOptions o;
+  o.scenario_path = SourcePath("scenarios/case_study.xml");
+  o.robots = {"case_study"};
+  o.lcm_url = url;
+  o.paused = true;
+  runner.Start(o);
+
+  LiveSessionOptions so;
+  so.sender = "studio-runner-test";
+  so.request_timeout_s = 20;
+  LiveSession session(so);
+  LiveLink link(url, &session);
+  ASSERT_TRUE(PollUntil(
+      link, runner,
+      [&] {
+        const LiveRobot* r = session.robot("case_study");
+        return r != nullptr && r->states > 0 && r->gait.has_value();
+      },
+      60))
+      << Console(runner);
+  EXPECT_TRUE(runner.running());
+
+  runner.StartRecording(dir + "/rec");
+  ASSERT_TRUE(PollUntil(
+      link, runner,
+      [&] {
+        return Console(runner).find("[log] mrsim-log: recording") !=
+               std::string::npos;
+      },
+      60))
+      << Console(runner);
+  const double t0 = session.robot("case_study")->state.sim_time;
+  StudioOutbox out;
+  const int64_t step = session.Step(200, WallClock::now(), &out);
+  link.Publish(&out);
+  ASSERT_TRUE(PollUntil(
+      link, runner,
+      [&] {
+        return session.robot("case_study")->state.sim_time >= t0 + 2 - 1e-9;
+      },
+      120))
+      << Console(runner);
+  EXPECT_EQ(session.request(step)->state, LiveRequest::State::kDone);
+  runner.StopRecording();
+  EXPECT_FALSE(runner.recording());
+
+  const auto files = runner.RecordedFiles();
+  const auto state = std::find_if(files.begin(), files.end(), [](auto& f) {
+    return f.path.find("MRSIM_STATE_case_study.csv") != std::string::npos;
+  });
+  ASSERT_NE(state, files.end()) << Console(runner);
+  EXPECT_EQ(state->rows, 200);  // one state per period stepped
+
+  runner.Stop();
+  EXPECT_FALSE(runner.running());
+  EXPECT_NE(Console(runner).find("[launch] sim"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrsim
