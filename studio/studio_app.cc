@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "launcher/program_locator.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
@@ -56,6 +57,7 @@ StudioApp::StudioApp(Design design, const AppOptions& options)
       options_(options),
       preview_(std::make_unique<Preview>(options.width, options.height)),
       layout_(options.layout_dump),
+      live_(std::make_unique<LivePanel>(ProgramSearchPath(""), &layout_)),
       recent_(options.recent_store) {
   template_.chain.modules = 5;
   template_.chain.pattern = ChainPattern::kPitchYaw;
@@ -92,9 +94,21 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   layout_.BeginFrame();
   HandleKeys();
 
+  live_->Poll();
   DrawDesignPanel(0, 0, kLeftWidth, static_cast<float>(height));
-  DrawInspector(width - kRightWidth, 0, kRightWidth,
-                static_cast<float>(height));
+  if (show_run_) {
+    LiveDesign live;
+    live.path = design_.path();
+    live.dirty = design_.dirty();
+    for (const Robot& r : design_.scenario().robots) {
+      live.robots.push_back(r.name);
+    }
+    live_->Draw(width - kRightWidth, 0, kRightWidth, static_cast<float>(height),
+                live);
+  } else {
+    DrawInspector(width - kRightWidth, 0, kRightWidth,
+                  static_cast<float>(height));
+  }
   DrawStatus(kLeftWidth, 0, width - kLeftWidth - kRightWidth);
   DrawDialogs();
   if (show_help_) DrawHelp();
@@ -162,6 +176,10 @@ void StudioApp::HandleKeys() {
       RequestClose();
     } else if (typing) {
       continue;  // the text field has the keys
+    } else if (key == GLFW_KEY_F5) {
+      show_run_ = !show_run_;
+    } else if (show_run_ && live_->OnKey(key)) {
+      continue;  // arrows steer the running robot
     } else if (ctrl && key == GLFW_KEY_Z) {
       shift ? design_.Redo() : design_.Undo();
     } else if (ctrl && key == GLFW_KEY_Y) {
@@ -558,6 +576,10 @@ void StudioApp::DrawStatus(float x, float y, float w) {
           ? std::string("untitled")
           : std::filesystem::path(design_.path()).filename().string();
   ImGui::Text("%s%s", name.c_str(), design_.dirty() ? " *" : "");
+  ImGui::SameLine();
+  if (Button(show_run_ ? "Inspector (F5)" : "Run panel (F5)")) {
+    show_run_ = !show_run_;
+  }
   ImGui::SameLine();
   if (!build_error_.empty()) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "preview: %s",

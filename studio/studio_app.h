@@ -17,6 +17,7 @@
 #include "studio/design.h"
 #include "studio/file_browser.h"
 #include "studio/layout_recorder.h"
+#include "studio/live_panel.h"
 #include "studio/preview.h"
 #include "studio/recent_files.h"
 
@@ -46,6 +47,7 @@ class StudioApp {
   bool should_quit() const { return quit_; }
 
   Design& design() { return design_; }
+  LivePanel& live() { return *live_; }
   Preview& preview() { return *preview_; }
   // Why the preview could not be built from the design ("" when it was).
   const std::string& build_error() const { return build_error_; }
@@ -76,6 +78,8 @@ class StudioApp {
   AppOptions options_;
   std::unique_ptr<Preview> preview_;
   LayoutRecorder layout_;
+  std::unique_ptr<LivePanel> live_;
+  bool show_run_ = false;  // the right column shows Run instead of Inspector
   RecentFiles recent_;
   FileBrowser browser_;
   enum class BrowseFor {

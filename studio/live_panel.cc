@@ -1,0 +1,424 @@
+#include "studio/live_panel.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <utility>
+
+namespace mrsim::studio {
+namespace {
+
+const char* const kClocks[] = {"realtime", "fast", "lockstep"};
+
+const char* RequestText(LiveRequest::State s) {
+  switch (s) {
+    case LiveRequest::State::kPending:
+      return "sent";
+    case LiveRequest::State::kDone:
+      return "done";
+    case LiveRequest::State::kRefused:
+      return "refused";
+    case LiveRequest::State::kNoAnswer:
+      return "no answer";
+  }
+  return "";
+}
+
+}  // namespace
+
+LivePanel::LivePanel(std::vector<std::string> search_path,
+                     LayoutRecorder* layout)
+    : layout_(layout),
+      runner_(std::move(search_path)),
+      session_(std::make_unique<LiveSession>(LiveSessionOptions{})) {}
+
+LivePanel::~LivePanel() {
+  link_.reset();
+  runner_.Stop();
+}
+
+bool LivePanel::Button(const char* label, float width) {
+  const bool pressed = ImGui::Button(label, ImVec2(width, 0));
+  if (layout_ != nullptr && layout_->enabled()) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    layout_->Widget(label, a.x, a.y, b.x - a.x, b.y - a.y);
+  }
+  return pressed;
+}
+
+void LivePanel::Connect(const std::string& url, const std::string& prefix) {
+  link_.reset();
+  LiveSessionOptions o;
+  o.prefix = prefix;
+  o.sender = "mrsim-studio-" + std::to_string(getpid());
+  session_ = std::make_unique<LiveSession>(o);
+  link_ = std::make_unique<LiveLink>(url, session_.get());
+  followed_.clear();
+}
+
+void LivePanel::Disconnect() { link_.reset(); }
+
+void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
+  if (!link_) {
+    message_ = "not connected: Run or Attach first";
+    return;
+  }
+  try {
+    request(&outbox_);
+    link_->Publish(&outbox_);
+    message_.clear();
+  } catch (const std::exception& e) {
+    outbox_.clear();
+    message_ = e.what();
+  }
+}
+
+void LivePanel::Poll() {
+  runner_.Poll();
+  if (!link_) return;
+  try {
+    link_->Poll(0);
+  } catch (const std::exception& e) {
+    message_ = e.what();
+    link_.reset();
+    return;
+  }
+  if (followed_.empty() || session_->robot(followed_) == nullptr) {
+    const auto robots = session_->robots();
+    followed_ = robots.empty() ? "" : robots.front()->name;
+  }
+  if (layout_ != nullptr && layout_->enabled()) {
+    if (const LiveRobot* r = session_->robot(followed_)) {
+      char buf[128];
+      std::snprintf(buf, sizeof(buf), "%.17g %.17g %.17g", r->state.sim_time,
+                    r->state.com[0], r->state.com[1]);
+      layout_->State("live " + followed_, buf);
+    }
+    layout_->State("live recording", runner_.recording() ? "1" : "0");
+  }
+}
+
+bool LivePanel::OnKey(int key) {
+  if (!link_ || followed_.empty()) return false;
+  const char* motion = nullptr;
+  switch (key) {
+    case GLFW_KEY_UP:
+      motion = "forward";
+      break;
+    case GLFW_KEY_DOWN:
+      motion = "backward";
+      break;
+    case GLFW_KEY_LEFT:
+      motion = "turn-left";
+      break;
+    case GLFW_KEY_RIGHT:
+      motion = "turn-right";
+      break;
+    case GLFW_KEY_SPACE:
+      motion = "stop";
+      break;
+    default:
+      return false;
+  }
+  Send([&](StudioOutbox* out) {
+    session_->Steer(followed_, motion, strength_, WallClock::now(), out);
+  });
+  return true;
+}
+
+void LivePanel::DrawRun(const LiveDesign& design) {
+  ImGui::TextUnformatted("Run this design");
+  ImGui::SetNextItemWidth(110);
+  ImGui::Combo("clock", &clock_, kClocks, IM_ARRAYSIZE(kClocks));
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputFloat("Hz", &rate_, 0, 0, "%.0f");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputFloat("speed", &speed_, 0, 0, "%.2f");
+  if (!runner_.running()) {
+    if (Button("Run")) {
+      if (design.path.empty() || design.dirty) {
+        message_ = "save the design first (Run starts mrsim-sim on the file)";
+      } else {
+        try {
+          RunOptions o;
+          o.scenario_path = design.path;
+          o.robots = design.robots;
+          o.lcm_url = url_;
+          o.prefix = prefix_;
+          o.clock = kClocks[clock_];
+          o.rate = rate_;
+          o.speed = speed_;
+          runner_.Start(o);
+          Connect(url_, prefix_);
+          message_.clear();
+        } catch (const std::exception& e) {
+          message_ = e.what();
+        }
+      }
+    }
+  } else if (Button("Stop")) {
+    runner_.Stop();
+  }
+  ImGui::SameLine();
+  if (!link_) {
+    if (Button("Attach")) {
+      try {
+        Connect(url_, prefix_);
+      } catch (const std::exception& e) {
+        message_ = e.what();
+      }
+    }
+  } else if (Button("Detach")) {
+    Disconnect();
+  }
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("URL", &url_);
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("prefix", &prefix_);
+}
+
+void LivePanel::DrawControls() {
+  const auto& status = session_->sim_status();
+  if (status) {
+    ImGui::Text("sim %.2f s  x%.2f  %s%s", status->sim_time,
+                status->real_time_factor, status->clock.c_str(),
+                status->mode == sim_status_t::PAUSED ? "  paused" : "");
+    if (!status->waiting_for.empty()) {
+      ImGui::Text("lockstep waits for %s", status->waiting_for.c_str());
+    }
+    ImGui::Text("applied %lld  rejected %lld  malformed %lld",
+                static_cast<long long>(status->commands_applied),
+                static_cast<long long>(status->commands_rejected),
+                static_cast<long long>(status->messages_malformed));
+  } else {
+    ImGui::TextDisabled(link_ ? "waiting for the simulator..."
+                              : "not connected");
+  }
+  const bool paused = status && status->mode == sim_status_t::PAUSED;
+  if (Button(paused ? "Play" : "Pause")) {
+    Send([&](StudioOutbox* out) {
+      paused ? session_->Resume(WallClock::now(), out)
+             : session_->Pause(WallClock::now(), out);
+    });
+  }
+  ImGui::SameLine();
+  if (Button("Step")) {
+    Send([&](StudioOutbox* out) {
+      session_->Step(step_periods_, WallClock::now(), out);
+    });
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputInt("periods", &step_periods_);
+  ImGui::SameLine();
+  if (Button("Reset")) {
+    Send([&](StudioOutbox* out) { session_->Reset(WallClock::now(), out); });
+  }
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::SliderFloat("real-time factor", &speed_, 0.1f, 4.0f, "%.2f",
+                         ImGuiSliderFlags_Logarithmic) &&
+      link_) {
+    Send([&](StudioOutbox* out) {
+      session_->SetSpeed(speed_, WallClock::now(), out);
+    });
+  }
+  ImGui::SetNextItemWidth(-110);
+  ImGui::InputText("##checkpoint", &checkpoint_);
+  ImGui::SameLine();
+  if (Button("Save##ckpt")) {
+    Send([&](StudioOutbox* out) {
+      session_->SaveCheckpoint(checkpoint_, WallClock::now(), out);
+    });
+  }
+  ImGui::SameLine();
+  if (Button("Load##ckpt")) {
+    Send([&](StudioOutbox* out) {
+      session_->LoadCheckpoint(checkpoint_, WallClock::now(), out);
+    });
+  }
+  const auto& requests = session_->requests();
+  if (!requests.empty()) {
+    const LiveRequest& r = requests.back();
+    ImGui::Text("%s: %s%s%s", r.what.c_str(), RequestText(r.state),
+                r.error.empty() ? "" : " - ", r.error.c_str());
+  }
+}
+
+void LivePanel::DrawSteering() {
+  std::vector<std::string> names;
+  for (const LiveRobot* r : session_->robots()) names.push_back(r->name);
+  if (names.empty()) {
+    ImGui::TextDisabled("no robot heard yet");
+    return;
+  }
+  if (ImGui::BeginCombo("robot", followed_.c_str())) {
+    for (const std::string& n : names) {
+      if (ImGui::Selectable(n.c_str(), n == followed_)) followed_ = n;
+    }
+    ImGui::EndCombo();
+  }
+  const LiveRobot* robot = session_->robot(followed_);
+  if (robot != nullptr && robot->gait) {
+    ImGui::Text("gait %s (%s %.2f)%s", robot->gait->gait.c_str(),
+                robot->gait->motion.c_str(), robot->gait->strength,
+                robot->silent ? "  silent" : "");
+  }
+  ImGui::SetNextItemWidth(150);
+  ImGui::SliderFloat("strength", &strength_, -1.0f, 1.0f, "%.2f");
+  const char* const motions[] = {
+      "forward",       "backward",       "turn-left", "turn-right",
+      "sidewind-left", "sidewind-right", "roll",      "stop"};
+  for (int i = 0; i < IM_ARRAYSIZE(motions); ++i) {
+    if (i % 4 != 0) ImGui::SameLine();
+    if (Button(motions[i], 95)) {
+      Send([&](StudioOutbox* out) {
+        session_->Steer(followed_, motions[i], strength_, WallClock::now(),
+                        out);
+      });
+    }
+  }
+  if (ImGui::TreeNode("gait parameters")) {
+    const char* const names7[] = {"A_pitch",   "A_yaw", "phi_pitch",
+                                  "phi_yaw",   "T (s)", "offset_pitch",
+                                  "offset_yaw"};
+    bool changed = false;
+    for (int i = 0; i < 7; ++i) {
+      ImGui::SetNextItemWidth(150);
+      changed |= ImGui::DragFloat(names7[i], &parameters_[i], 0.01f);
+    }
+    if (changed) {
+      Send([&](StudioOutbox* out) {
+        session_->SetGaitParameters(
+            followed_, std::vector<double>(parameters_, parameters_ + 7),
+            WallClock::now(), out);
+      });
+    }
+    ImGui::TreePop();
+  }
+}
+
+void LivePanel::DrawRecording() {
+  ImGui::SetNextItemWidth(-110);
+  ImGui::InputText("##recdir", &record_dir_);
+  ImGui::SameLine();
+  if (!runner_.recording()) {
+    if (Button("Record")) {
+      try {
+        runner_.StartRecording(record_dir_);
+      } catch (const std::exception& e) {
+        message_ = e.what();
+      }
+    }
+  } else if (Button("Stop recording")) {
+    runner_.StopRecording();
+  }
+  for (const RecordedFile& f : runner_.RecordedFiles()) {
+    ImGui::Text("%s  %lld rows", f.path.c_str(),
+                static_cast<long long>(f.rows));
+  }
+}
+
+void LivePanel::DrawPlots(float width) {
+  const std::vector<std::string> channels = session_->Channels();
+  if (!channels.empty()) {
+    plot_channel_ =
+        std::clamp(plot_channel_, 0, static_cast<int>(channels.size()) - 1);
+    const std::vector<std::string> columns =
+        session_->Columns(channels[plot_channel_]);
+    ImGui::SetNextItemWidth(width * 0.4f);
+    if (ImGui::BeginCombo("##channel", channels[plot_channel_].c_str())) {
+      for (int i = 0; i < static_cast<int>(channels.size()); ++i) {
+        if (ImGui::Selectable(channels[i].c_str(), i == plot_channel_)) {
+          plot_channel_ = i;
+          plot_column_ = 0;
+        }
+      }
+      ImGui::EndCombo();
+    }
+    if (!columns.empty()) {
+      plot_column_ =
+          std::clamp(plot_column_, 0, static_cast<int>(columns.size()) - 1);
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(width * 0.35f);
+      if (ImGui::BeginCombo("##column", columns[plot_column_].c_str())) {
+        for (int i = 0; i < static_cast<int>(columns.size()); ++i) {
+          if (ImGui::Selectable(columns[i].c_str(), i == plot_column_)) {
+            plot_column_ = i;
+          }
+        }
+        ImGui::EndCombo();
+      }
+      ImGui::SameLine();
+      if (Button("Add plot")) {
+        session_->AddPlot(channels[plot_channel_], columns[plot_column_]);
+      }
+    }
+  }
+  std::vector<float> values;
+  const auto& plots = session_->plots();
+  for (size_t i = 0; i < plots.size(); ++i) {
+    PlotSeries& p = *plots[i];
+    values.assign(p.values().begin(), p.values().end());
+    ImGui::PushID(static_cast<int>(i));
+    const std::string label = p.column();
+    const std::string overlay =
+        values.empty() ? "" : std::to_string(values.back());
+    ImGui::PlotLines(label.c_str(), values.data(),
+                     static_cast<int>(values.size()), 0, overlay.c_str(),
+                     FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 60));
+    bool paused = p.paused();
+    if (ImGui::Checkbox("pause", &paused)) p.set_paused(paused);
+    ImGui::SameLine();
+    const bool remove = ImGui::SmallButton("remove");
+    ImGui::PopID();
+    if (remove) {
+      session_->RemovePlot(i);
+      break;
+    }
+  }
+}
+
+void LivePanel::DrawConsole(float height) {
+  ImGui::BeginChild("console", ImVec2(0, height), true);
+  for (const std::string& line : runner_.console()) {
+    ImGui::TextUnformatted(line.c_str());
+  }
+  if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) {
+    ImGui::SetScrollHereY(1.0f);
+  }
+  ImGui::EndChild();
+}
+
+void LivePanel::Draw(float x, float y, float w, float h,
+                     const LiveDesign& design) {
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowSize(ImVec2(w, h));
+  ImGui::Begin("Run", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse);
+  DrawRun(design);
+  if (!message_.empty()) {
+    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", message_.c_str());
+  }
+  if (ImGui::CollapsingHeader("Simulator", ImGuiTreeNodeFlags_DefaultOpen)) {
+    DrawControls();
+  }
+  if (ImGui::CollapsingHeader("Steering", ImGuiTreeNodeFlags_DefaultOpen)) {
+    DrawSteering();
+  }
+  if (ImGui::CollapsingHeader("Recording")) DrawRecording();
+  if (ImGui::CollapsingHeader("Plots")) DrawPlots(w);
+  if (ImGui::CollapsingHeader("Console")) DrawConsole(160);
+  ImGui::End();
+}
+
+}  // namespace mrsim::studio

@@ -1,0 +1,77 @@
+// The studio's Run panel (Dear ImGui): run the design or attach to a
+// simulation, simulator controls, steering buttons and arrow keys, gait
+// parameters, recording, live plots and the children's console. A thin
+// face over studio/live (LiveSession, LiveLink, LiveRunner): every button
+// is one LCM message or one process a script could send or start.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "studio/layout_recorder.h"
+#include "studio/live/live_link.h"
+#include "studio/live/live_runner.h"
+#include "studio/live/live_session.h"
+
+namespace mrsim::studio {
+
+// What the panel needs to know of the design.
+struct LiveDesign {
+  std::string path;  // saved file, "" before the first save
+  bool dirty = false;
+  std::vector<std::string> robots;
+};
+
+class LivePanel {
+ public:
+  // `search_path`: where mrsim-sim, mrsim-gait and mrsim-log are looked up.
+  LivePanel(std::vector<std::string> search_path, LayoutRecorder* layout);
+  ~LivePanel();
+
+  // Takes what arrived (LCM, children's output); once per frame.
+  void Poll();
+  void Draw(float x, float y, float w, float h, const LiveDesign& design);
+  // Arrow keys steer the followed robot while something runs; returns
+  // whether the key was used.
+  bool OnKey(int glfw_key);
+  bool connected() const { return link_ != nullptr; }
+  const LiveSession& session() const { return *session_; }
+  // The robot steered by keys and buttons ("" when none is heard).
+  const std::string& followed() const { return followed_; }
+
+ private:
+  void Connect(const std::string& url, const std::string& prefix);
+  void Disconnect();
+  void Send(const std::function<void(StudioOutbox*)>& request);
+  bool Button(const char* label, float width = 0);
+  void DrawRun(const LiveDesign& design);
+  void DrawControls();
+  void DrawSteering();
+  void DrawRecording();
+  void DrawPlots(float width);
+  void DrawConsole(float height);
+
+  LayoutRecorder* layout_;
+  LiveRunner runner_;
+  std::unique_ptr<LiveSession> session_;
+  std::unique_ptr<LiveLink> link_;
+  StudioOutbox outbox_;
+  std::string followed_;
+  std::string message_;
+  // Form state.
+  std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
+  std::string prefix_ = "MRSIM";
+  int clock_ = 0;  // realtime, fast, lockstep
+  float rate_ = 100;
+  float speed_ = 1;
+  int step_periods_ = 10;
+  float strength_ = 1;
+  float parameters_[7] = {1, 0, 2.5f, 0, 4, 0, 0};
+  std::string checkpoint_ = "studio.checkpoint";
+  std::string record_dir_ = "recordings";
+  int plot_channel_ = 0;
+  int plot_column_ = 0;
+};
+
+}  // namespace mrsim::studio
