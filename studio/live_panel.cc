@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <utility>
@@ -37,7 +38,12 @@ LivePanel::LivePanel(std::vector<std::string> search_path,
                      LayoutRecorder* layout)
     : layout_(layout),
       runner_(std::move(search_path)),
-      session_(std::make_unique<LiveSession>(LiveSessionOptions{})) {}
+      session_(std::make_unique<LiveSession>(LiveSessionOptions{})) {
+  // As everywhere in mrsim: the user's LCM_DEFAULT_URL is the default.
+  if (const char* url = std::getenv("LCM_DEFAULT_URL"); url && *url) {
+    url_ = url;
+  }
+}
 
 LivePanel::~LivePanel() {
   link_.reset();
@@ -102,6 +108,19 @@ void LivePanel::Poll() {
       layout_->State("live " + followed_, buf);
     }
     layout_->State("live recording", runner_.recording() ? "1" : "0");
+    if (const auto& st = session_->sim_status()) {
+      char buf[96];
+      std::snprintf(buf, sizeof(buf), "%.17g %s", st->sim_time,
+                    st->mode == sim_status_t::PAUSED ? "paused" : "running");
+      layout_->State("live status", buf);
+    }
+    if (!session_->requests().empty()) {
+      const LiveRequest& r = session_->requests().back();
+      layout_->State("live request", r.what + ": " + RequestText(r.state));
+    }
+    if (const LiveRobot* r = session_->robot(followed_); r && r->gait) {
+      layout_->State("live gait", r->gait->motion);
+    }
   }
 }
 

@@ -1,0 +1,104 @@
+// The studio's Run panel in the real window under its own Xvfb: Run starts
+// the case study, a real Up key press drives it forward, Pause stops sim
+// time and Step 10 advances it by 0.1 s.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "tests/common/child_process.h"
+#include "tests/studio/studio_test_util.h"
+
+namespace mrsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool HaveX() {
+  return fs::exists("/usr/bin/Xvfb") && fs::exists("/usr/bin/xdotool");
+}
+
+struct Live {
+  double sim_time = -1;
+  double com_x = 0;
+};
+
+Live ReadLive(const std::string& layout) {
+  Live live;
+  std::istringstream in(ReadLayout(layout)["live case_study"]);
+  in >> live.sim_time >> live.com_x;
+  return live;
+}
+
+double StatusTime(const std::string& layout) {
+  std::istringstream in(ReadLayout(layout)["live status"]);
+  double t = -1;
+  in >> t;
+  return t;
+}
+
+void Click(const std::string& layout, const std::string& widget) {
+  int x = 0, y = 0;
+  ASSERT_TRUE(
+      WaitUntil([&] { return WidgetCentre(layout, widget, &x, &y); }, 60))
+      << widget;
+  ASSERT_TRUE(ClickAt(x, y));
+}
+
+TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string dir = TempDir("studio_run_window");
+  const std::string file = dir + "/case_study.xml";
+  fs::copy_file(SourcePath("scenarios/case_study.xml"), file);
+  const std::string layout = dir + "/layout.txt";
+  XvfbDisplay xvfb(dir);
+  ASSERT_TRUE(xvfb.ok());
+  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
+  // The panel's URL defaults to LCM_DEFAULT_URL: this test's own port.
+  setenv("LCM_DEFAULT_URL", TestLcmUrl(7967).c_str(), 1);
+  ChildProcess studio(
+      {BinaryPath("studio/mrsim-studio"), "--layout-dump", layout, file},
+      dir + "/studio.log");
+  ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
+
+  ASSERT_TRUE(Xdotool({"key", "F5"}));
+  Click(layout, "Run");
+  ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout).sim_time >= 0; }, 120))
+      << studio.Output();
+
+  // Stop the robot (space), then a real Up key press sets it going.
+  ASSERT_TRUE(Xdotool({"key", "space"}));
+  ASSERT_TRUE(WaitForLayout(layout, "live gait", "stop", 60));
+  const Live before = ReadLive(layout);
+  ASSERT_TRUE(Xdotool({"key", "Up"}));
+  ASSERT_TRUE(WaitForLayout(layout, "live gait", "forward", 60));
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLive(layout).sim_time >= before.sim_time + 4; }, 120));
+  EXPECT_GT(ReadLive(layout).com_x - before.com_x, 0.02)
+      << "the centre of mass did not move +x";
+
+  // Pause: acknowledged; then Step (10 periods by default) moves sim time
+  // by exactly 0.1 s from where it stopped, and no further.
+  Click(layout, "Pause");
+  ASSERT_TRUE(WaitForLayout(layout, "live request", "pause: done", 60));
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout)["live status"].find("paused") !=
+               std::string::npos;
+      },
+      60));
+  const double paused_at = StatusTime(layout);
+  Click(layout, "Step");
+  ASSERT_TRUE(WaitForLayout(layout, "live request", "step 10: done", 60));
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLive(layout).sim_time >= paused_at + 0.1 - 1e-9; }, 60));
+  EXPECT_NEAR(ReadLive(layout).sim_time, paused_at + 0.1, 1e-9);
+
+  Click(layout, "Stop");
+  ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
+  EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
+}
+
+}  // namespace
+}  // namespace mrsim::testing
