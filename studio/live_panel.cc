@@ -1,6 +1,7 @@
 #include "studio/live_panel.h"
 
 #include <GLFW/glfw3.h>
+#include <fmt/format.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
 #include <unistd.h>
@@ -37,7 +38,8 @@ const char* RequestText(LiveRequest::State s) {
 LivePanel::LivePanel(std::vector<std::string> search_path,
                      LayoutRecorder* layout)
     : layout_(layout),
-      runner_(std::move(search_path)),
+      runner_(search_path),
+      optimise_(search_path),
       session_(std::make_unique<LiveSession>(LiveSessionOptions{})) {
   // As everywhere in mrsim: the user's LCM_DEFAULT_URL is the default.
   if (const char* url = std::getenv("LCM_DEFAULT_URL"); url && *url) {
@@ -52,11 +54,22 @@ LivePanel::~LivePanel() {
 
 bool LivePanel::Button(const char* label, float width) {
   const bool pressed = ImGui::Button(label, ImVec2(width, 0));
+  Record(label);
+  return pressed;
+}
+
+void LivePanel::Record(const std::string& name) {
   if (layout_ != nullptr && layout_->enabled()) {
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    layout_->Widget(label, a.x, a.y, b.x - a.x, b.y - a.y);
+    layout_->Widget(name, a.x, a.y, b.x - a.x, b.y - a.y);
   }
-  return pressed;
+}
+
+bool LivePanel::Header(const char* label, bool open_at_start) {
+  const bool open = ImGui::CollapsingHeader(
+      label, open_at_start ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  Record(std::string("header ") + label);
+  return open;
 }
 
 void LivePanel::Connect(const std::string& url, const std::string& prefix) {
@@ -88,6 +101,15 @@ void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
 
 void LivePanel::Poll() {
   runner_.Poll();
+  optimise_.Poll();
+  if (layout_ != nullptr && layout_->enabled()) {
+    const OptimiseProgress& p = optimise_.progress();
+    layout_->State("optimise",
+                   fmt::format("{} of {} {}", p.rows.size(), p.generations,
+                               p.running    ? "running"
+                               : p.finished ? "finished"
+                                            : "idle"));
+  }
   if (!link_) return;
   try {
     link_->Poll(0);
@@ -406,9 +428,148 @@ void LivePanel::DrawPlots(float width) {
   }
 }
 
+void LivePanel::WatchBest() {
+  const auto best = optimise_.BestGenes();
+  const LiveRobot* robot = session_->robot(followed_);
+  if (best.empty() || robot == nullptr) {
+    message_ = best.empty() ? "no generation finished yet"
+                            : "Run the design first: the best plays on it";
+    return;
+  }
+  // Gait genes the genome lacks keep what the robot runs now.
+  std::vector<double> p(7, 0.0);
+  for (int i = 0; i < 7; ++i) {
+    p[i] = robot->gait ? robot->gait->parameters[i] : parameters_[i];
+    const auto it = best.find(GaitGeneNames()[i]);
+    if (it != best.end()) p[i] = it->second;
+    parameters_[i] = static_cast<float>(p[i]);
+  }
+  Send([&](StudioOutbox* out) {
+    session_->SetGaitParameters(followed_, p, WallClock::now(), out);
+  });
+}
+
+void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
+  static const char* const kAlgorithms[] = {"ga", "sa", "pso", "cmaes",
+                                            "random"};
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("genome", &genome_path_);
+  if (Button("Load genome")) {
+    try {
+      genome_ = ReadGenomeFile(genome_path_);
+      message_.clear();
+    } catch (const std::exception& e) {
+      message_ = e.what();
+    }
+  }
+  if (!genome_.genes.empty() &&
+      ImGui::BeginTable("genes", 5,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    for (const char* h : {"gene", "on", "lower", "upper", "start"}) {
+      ImGui::TableSetupColumn(h);
+    }
+    ImGui::TableHeadersRow();
+    for (GeneSpec& g : genome_.genes) {
+      ImGui::PushID(g.name.c_str());
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(g.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Checkbox("##on", &g.enabled);
+      for (double* v : {&g.lower, &g.upper, &g.start}) {
+        ImGui::TableNextColumn();
+        ImGui::SetNextItemWidth(-1);
+        ImGui::PushID(v);
+        ImGui::InputDouble("##v", v, 0, 0, "%.3g");
+        ImGui::PopID();
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("algorithm", &algorithm_, kAlgorithms,
+               IM_ARRAYSIZE(kAlgorithms));
+  ImGui::SameLine();
+  ImGui::Checkbox("farm", &farm_);
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("generations", &generations_, 0);
+  Record("generations");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("population", &population_, 0);
+  Record("population");
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputFloat("episode s", &episode_, 0, 0, "%.1f");
+  Record("episode");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("seed", &seed_);
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("folder", &opt_dir_);
+  auto start = [&](int jump_to) {
+    try {
+      if (design.path.empty() || design.dirty) {
+        throw std::invalid_argument("save the design first");
+      }
+      if (genome_.genes.empty()) genome_ = ReadGenomeFile(genome_path_);
+      OptimiseOptions o;
+      o.scenario_path = design.path;
+      o.out_dir = opt_dir_;
+      o.genome = genome_;
+      if (!design.robots.empty()) o.genome.robot = design.robots.front();
+      o.algorithm = kAlgorithms[algorithm_];
+      o.generations = generations_;
+      o.population = population_;
+      o.seed = static_cast<unsigned>(std::max(0, seed_));
+      o.episode_s = episode_;
+      o.farm = farm_;
+      o.lcm_url = url_;
+      o.jump_to = jump_to;
+      optimise_.Start(o);
+      message_.clear();
+    } catch (const std::exception& e) {
+      message_ = e.what();
+    }
+  };
+  const OptimiseProgress& p = optimise_.progress();
+  if (!p.running) {
+    if (Button("Start optimisation")) start(-1);
+  } else if (Button("Stop optimisation")) {
+    optimise_.Stop();
+  }
+  ImGui::SameLine();
+  if (Button("Watch best")) WatchBest();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("##jump", &jump_to_);
+  ImGui::SameLine();
+  if (Button("Jump to generation")) start(std::max(0, jump_to_));
+  if (p.running || p.finished || !p.rows.empty()) {
+    const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
+    ImGui::Text(
+        "generation %zu of %d  best-so-far %.4g  %.2f evals/s  "
+        "workers %d  ETA %s%s",
+        p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
+        p.evals_per_s, p.workers, p.eta.c_str(),
+        p.finished ? (p.exit_code == 0 ? "  finished" : "  failed") : "");
+    std::vector<float> best, mean;
+    for (const GenerationRow& r : p.rows) {
+      best.push_back(static_cast<float>(r.best));
+      mean.push_back(static_cast<float>(r.mean));
+    }
+    ImGui::PlotLines("best", best.data(), static_cast<int>(best.size()), 0,
+                     nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 50));
+    ImGui::PlotLines("mean", mean.data(), static_cast<int>(mean.size()), 0,
+                     nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 50));
+  }
+}
+
 void LivePanel::DrawConsole(float height) {
   ImGui::BeginChild("console", ImVec2(0, height), true);
   for (const std::string& line : runner_.console()) {
+    ImGui::TextUnformatted(line.c_str());
+  }
+  for (const std::string& line : optimise_.console()) {
     ImGui::TextUnformatted(line.c_str());
   }
   if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) {
@@ -428,15 +589,16 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (!message_.empty()) {
     ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", message_.c_str());
   }
-  if (ImGui::CollapsingHeader("Simulator", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (Header("Simulator", true)) {
     DrawControls();
   }
-  if (ImGui::CollapsingHeader("Steering", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (Header("Steering", true)) {
     DrawSteering();
   }
-  if (ImGui::CollapsingHeader("Recording")) DrawRecording();
-  if (ImGui::CollapsingHeader("Plots")) DrawPlots(w);
-  if (ImGui::CollapsingHeader("Console")) DrawConsole(160);
+  if (Header("Recording", false)) DrawRecording();
+  if (Header("Plots", false)) DrawPlots(w);
+  if (Header("Optimise", false)) DrawOptimise(design, w);
+  if (Header("Console", false)) DrawConsole(160);
   ImGui::End();
 }
 

@@ -13,6 +13,7 @@
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
 #include "studio/live/live_session.h"
+#include "studio/live/optimise_session.h"
 
 namespace mrsim::studio {
 
@@ -45,15 +46,31 @@ class LivePanel {
   void Disconnect();
   void Send(const std::function<void(StudioOutbox*)>& request);
   bool Button(const char* label, float width = 0);
+  // Records the last item's rectangle under `name` for --layout-dump.
+  void Record(const std::string& name);
+  bool Header(const char* label, bool open_at_start);
   void DrawRun(const LiveDesign& design);
   void DrawControls();
   void DrawSteering();
   void DrawRecording();
   void DrawPlots(float width);
   void DrawConsole(float height);
+  void DrawOptimise(const LiveDesign& design, float width);
+  void WatchBest();
 
   LayoutRecorder* layout_;
   LiveRunner runner_;
+  OptimiseSession optimise_;
+  GenomeSpec genome_;
+  std::string genome_path_ = "scenarios/forward_gait.genome.xml";
+  std::string opt_dir_ = "optimise";
+  int algorithm_ = 3;  // cmaes
+  int generations_ = 10;
+  int population_ = 8;
+  int seed_ = 1;
+  float episode_ = 5;
+  bool farm_ = false;
+  int jump_to_ = 0;
   std::unique_ptr<LiveSession> session_;
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;

@@ -100,5 +100,75 @@ TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
   EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
 }
 
+// Types `text` into the field recorded as `widget` (clicked near its left
+// edge, where the text is), replacing what was there.
+void TypeInto(const std::string& layout, const std::string& widget,
+              const std::string& text) {
+  std::istringstream in(ReadLayout(layout)["widget " + widget]);
+  int x = 0, y = 0, w = 0, h = 0;
+  ASSERT_TRUE(in >> x >> y >> w >> h) << widget;
+  ASSERT_TRUE(ClickAt(x + 15, y + h / 2));
+  ASSERT_TRUE(Xdotool({"key", "ctrl+a"}));
+  ASSERT_TRUE(Xdotool({"type", text}));
+  ASSERT_TRUE(Xdotool({"key", "Return"}));
+}
+
+TEST(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string dir = TempDir("studio_optimise_window");
+  const std::string file = dir + "/case_study.xml";
+  fs::copy_file(SourcePath("scenarios/case_study.xml"), file);
+  const std::string layout = dir + "/layout.txt";
+  XvfbDisplay xvfb(dir);
+  ASSERT_TRUE(xvfb.ok());
+  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
+  setenv("LCM_DEFAULT_URL", TestLcmUrl(7968).c_str(), 1);
+  // The studio runs in `dir`: its genome and output paths are relative.
+  fs::create_directories(dir + "/scenarios");
+  fs::copy_file(SourcePath("scenarios/forward_gait.genome.xml"),
+                dir + "/scenarios/forward_gait.genome.xml");
+  ChildProcess studio(
+      {"/bin/sh", "-c",
+       "cd '" + dir + "' && exec '" + BinaryPath("studio/mrsim-studio") +
+           "' --layout-dump layout.txt case_study.xml"},
+      dir + "/studio.log");
+  ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
+  ASSERT_TRUE(Xdotool({"key", "F5"}));
+  Click(layout, "Run");
+  ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout).sim_time >= 0; }, 120))
+      << studio.Output();
+
+  // Room for the Optimise section: fold the two open ones, each fold seen
+  // in the layout before the next click (the widgets below it move).
+  auto gone = [&](const std::string& widget) {
+    return WaitUntil(
+        [&] { return ReadLayout(layout).count("widget " + widget) == 0; }, 60);
+  };
+  Click(layout, "header Simulator");
+  ASSERT_TRUE(gone("Reset"));
+  Click(layout, "header Steering");
+  ASSERT_TRUE(gone("sidewind-left"));
+  Click(layout, "header Optimise");
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLayout(layout).count("widget generations") > 0; }, 60));
+  TypeInto(layout, "generations", "2");
+  TypeInto(layout, "population", "4");
+  TypeInto(layout, "episode", "1");
+  Click(layout, "Start optimisation");
+  ASSERT_TRUE(WaitForLayout(layout, "optimise", "2 of 2 finished", 300))
+      << ReadLayout(layout)["optimise"] << "\n"
+      << studio.Output();
+  EXPECT_TRUE(fs::exists(dir + "/optimise/generations.csv"));
+
+  Click(layout, "Watch best");
+  ASSERT_TRUE(
+      WaitForLayout(layout, "live request", "case_study parameters: done", 60))
+      << ReadLayout(layout)["live request"];
+
+  Click(layout, "Stop");
+  ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
+  EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
+}
+
 }  // namespace
 }  // namespace mrsim::testing

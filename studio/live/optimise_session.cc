@@ -1,0 +1,220 @@
+#include "studio/live/optimise_session.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "common/atomic_file.h"
+#include "launcher/program_locator.h"
+
+namespace mrsim {
+namespace {
+
+constexpr size_t kConsoleLines = 500;
+
+std::vector<std::string> SplitComma(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+double Number(const std::string& cell, int line, const std::string& column) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(cell, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != cell.size() || cell.empty()) {
+    throw std::runtime_error(
+        fmt::format("generations.csv line {}: {} is '{}' (expected a number)",
+                    line, column, cell));
+  }
+  return v;
+}
+
+}  // namespace
+
+OptimiseSession::OptimiseSession(std::vector<std::string> search_path)
+    : search_path_(std::move(search_path)) {}
+
+OptimiseSession::~OptimiseSession() { Stop(); }
+
+ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
+                                  const std::string& genome_path) {
+  if (o.scenario_path.empty()) {
+    throw std::invalid_argument("optimise: save the design to a file first");
+  }
+  if (o.out_dir.empty()) throw std::invalid_argument("optimise: no folder");
+  const std::vector<std::string> algorithms = {"ga", "sa", "pso", "cmaes",
+                                               "random"};
+  if (std::find(algorithms.begin(), algorithms.end(), o.algorithm) ==
+      algorithms.end()) {
+    throw std::invalid_argument("optimise: algorithm '" + o.algorithm +
+                                "' (expected ga, sa, pso, cmaes or random)");
+  }
+  if (o.generations < 1 || o.population < 1 || !(o.episode_s > 0)) {
+    throw std::invalid_argument(fmt::format(
+        "optimise: {} generations of {} over {} s episodes (expected at "
+        "least 1 generation, 1 individual and a positive episode)",
+        o.generations, o.population, o.episode_s));
+  }
+  ProcessSpec spec;
+  spec.name = "opt";
+  spec.program = "mrsim-opt";
+  spec.required = true;
+  spec.args = {o.scenario_path,
+               "--genome",
+               genome_path,
+               "--out",
+               o.out_dir,
+               "--algorithm",
+               o.algorithm,
+               "--generations",
+               std::to_string(o.generations),
+               "--population",
+               std::to_string(o.population),
+               "--seed",
+               std::to_string(o.seed),
+               "--episode",
+               fmt::format("{:g}", o.episode_s),
+               "--gait",
+               o.base_gait};
+  if (o.farm) {
+    spec.args.push_back("--farm");
+    if (!o.lcm_url.empty())
+      spec.args.insert(spec.args.end(), {"--lcm-url", o.lcm_url});
+  }
+  if (o.jump_to >= 0) {
+    spec.args.insert(spec.args.end(), {"--jump-to", std::to_string(o.jump_to)});
+  }
+  return spec;
+}
+
+void OptimiseSession::Start(const OptimiseOptions& options) {
+  Stop();
+  options.genome.Validate("the studio's genome");
+  std::filesystem::create_directories(options.out_dir);
+  const std::string genome_path = options.out_dir + "/studio.genome.xml";
+  const ProcessSpec spec = Spec(options, genome_path);
+  WriteFileAtomically(genome_path, WriteGenomeString(options.genome));
+  options_ = options;
+  progress_ = OptimiseProgress{};
+  progress_.generations = options.generations;
+  csv_size_ = -1;
+  console_.clear();
+  group_ = std::make_unique<ProcessGroup>(
+      [this](const std::string& name, const std::string& line) {
+        Line("[" + name + "] " + line);
+      });
+  group_->Start(spec, FindProgram(spec.program, search_path_));
+  progress_.running = true;
+}
+
+void OptimiseSession::Stop() {
+  if (group_) {
+    group_->StopAll(5.0);  // mrsim-opt keeps its checkpoint: Start resumes
+    progress_.running = false;
+    group_.reset();
+  }
+}
+
+void OptimiseSession::Line(const std::string& line) {
+  console_.push_back(line);
+  if (console_.size() > kConsoleLines) console_.erase(console_.begin());
+  // "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s"
+  const auto bar = line.find(" | ");
+  if (line.find("generation ") == std::string::npos ||
+      bar == std::string::npos) {
+    return;
+  }
+  double rate = 0;
+  int workers = 0;
+  char eta[32] = {0};
+  const std::string tail = line.substr(bar + 3);
+  if (std::sscanf(tail.c_str(), "%lf evals/s | workers %d | ETA %31s", &rate,
+                  &workers, eta) == 3) {
+    progress_.evals_per_s = rate;
+    progress_.workers = workers;
+    progress_.eta = eta;
+  }
+}
+
+std::vector<GenerationRow> OptimiseSession::ParseGenerations(
+    const std::string& csv) {
+  std::vector<GenerationRow> rows;
+  std::stringstream in(csv);
+  std::string line;
+  if (!std::getline(in, line)) return rows;
+  const std::vector<std::string> header = SplitComma(line);
+  if (header.size() < 6 || header[0] != "generation") {
+    throw std::runtime_error("generations.csv: unexpected header '" + line +
+                             "'");
+  }
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = SplitComma(line);
+    if (cells.size() != header.size()) {
+      // A line still being written: stop here, read it next time.
+      break;
+    }
+    GenerationRow r;
+    r.generation = static_cast<int>(Number(cells[0], number, header[0]));
+    r.best = Number(cells[1], number, header[1]);
+    r.mean = Number(cells[2], number, header[2]);
+    r.worst = Number(cells[3], number, header[3]);
+    r.best_so_far = Number(cells[4], number, header[4]);
+    r.failed = static_cast<int>(Number(cells[5], number, header[5]));
+    for (size_t i = 6; i < cells.size(); ++i) {
+      r.genes[header[i]] = Number(cells[i], number, header[i]);
+    }
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+void OptimiseSession::Poll(int timeout_ms) {
+  if (group_) {
+    group_->Poll(timeout_ms);
+    if (progress_.running && !group_->AnyRunning()) {
+      progress_.running = false;
+      progress_.finished = true;
+      progress_.exit_code = group_->AllClean() ? 0 : 1;
+    }
+  }
+  if (options_.out_dir.empty()) return;
+  const std::string path = options_.out_dir + "/generations.csv";
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || static_cast<long long>(size) == csv_size_) return;
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  try {
+    progress_.rows = ParseGenerations(ss.str());
+    csv_size_ = static_cast<long long>(size);
+  } catch (const std::exception& e) {
+    Line(std::string("[studio] ") + e.what());
+    csv_size_ = static_cast<long long>(size);
+  }
+}
+
+std::map<std::string, double> OptimiseSession::BestGenes() const {
+  const GenerationRow* best = nullptr;
+  for (const GenerationRow& r : progress_.rows) {
+    if (best == nullptr || r.best > best->best) best = &r;
+  }
+  return best == nullptr ? std::map<std::string, double>{} : best->genes;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,92 @@
+// The studio's Optimise panel behind the buttons: writes the edited genome,
+// starts mrsim-opt (local threads or the farm) as a child process, and
+// follows its progress from the files it writes (generations.csv) and its
+// progress line (evaluations/s, workers, ETA). "Watch best" takes the best
+// genes so far from generations.csv while the run goes on.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "launcher/launch_file.h"
+#include "launcher/process_group.h"
+#include "optimizer/genome.h"
+
+namespace mrsim {
+
+struct OptimiseOptions {
+  std::string scenario_path;
+  std::string out_dir;
+  GenomeSpec genome;
+  std::string algorithm = "cmaes";  // ga | sa | pso | cmaes | random
+  int generations = 10;
+  int population = 8;
+  unsigned seed = 1;
+  double episode_s = 5;
+  std::string base_gait = "forward";
+  bool farm = false;    // mrsim-worker processes over LCM
+  std::string lcm_url;  // for the farm; empty: LCM's default
+  int jump_to = -1;     // >= 0: stop after (or replay to) generation N
+};
+
+// One line of generations.csv.
+struct GenerationRow {
+  int generation = 0;
+  double best = 0, mean = 0, worst = 0, best_so_far = 0;
+  int failed = 0;
+  std::map<std::string, double> genes;  // of the generation's best
+};
+
+struct OptimiseProgress {
+  int generations = 0;              // asked for
+  std::vector<GenerationRow> rows;  // completed, in order
+  double evals_per_s = 0;
+  int workers = 0;
+  std::string eta;
+  bool running = false;
+  bool finished = false;  // ended by itself
+  int exit_code = -1;
+};
+
+class OptimiseSession {
+ public:
+  explicit OptimiseSession(std::vector<std::string> search_path);
+  ~OptimiseSession();
+  OptimiseSession(const OptimiseSession&) = delete;
+  OptimiseSession& operator=(const OptimiseSession&) = delete;
+
+  // mrsim-opt's command line for `options` with the genome at genome_path.
+  // Throws std::invalid_argument for options no run could use.
+  static ProcessSpec Spec(const OptimiseOptions& options,
+                          const std::string& genome_path);
+
+  // Writes OUT/studio.genome.xml and starts mrsim-opt. Throws naming what
+  // is wrong (genome, options, program not found).
+  void Start(const OptimiseOptions& options);
+  void Stop();
+  // Reads new progress; once per frame (timeout_ms: how long to wait for
+  // the child's output first).
+  void Poll(int timeout_ms = 0);
+  const OptimiseProgress& progress() const { return progress_; }
+  const std::vector<std::string>& console() const { return console_; }
+  // The genes of the best individual so far (empty before generation 0).
+  std::map<std::string, double> BestGenes() const;
+  const OptimiseOptions& options() const { return options_; }
+
+  // Parses generations.csv text (header and rows); throws on a bad row.
+  static std::vector<GenerationRow> ParseGenerations(const std::string& csv);
+
+ private:
+  void Line(const std::string& line);
+
+  std::vector<std::string> search_path_;
+  OptimiseOptions options_;
+  std::unique_ptr<ProcessGroup> group_;
+  OptimiseProgress progress_;
+  std::vector<std::string> console_;
+  long long csv_size_ = -1;
+};
+
+}  // namespace mrsim
