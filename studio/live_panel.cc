@@ -14,6 +14,8 @@
 #include <functional>
 #include <utility>
 
+#include "studio/live/plot_export.h"
+
 namespace mrsim::studio {
 namespace {
 
@@ -418,6 +420,16 @@ void LivePanel::DrawPlots(float width) {
                      FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 60));
     bool paused = p.paused();
     if (ImGui::Checkbox("pause", &paused)) p.set_paused(paused);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("PNG")) {
+      try {
+        const std::string png = p.column() + ".png";
+        ExportPlotPng(p, png);
+        message_ = "wrote " + png;
+      } catch (const std::exception& e) {
+        message_ = e.what();
+      }
+    }
     ImGui::SameLine();
     const bool remove = ImGui::SmallButton("remove");
     ImGui::PopID();

@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <stdexcept>
 #include <variant>
 #include <vector>
 
 #include "mrsim/joint_command_t.hpp"
+#include "studio/live/plot_export.h"
+#include "tests/common/child_process.h"
 #include "tests/logger/test_messages.h"
 
 namespace mrsim {
@@ -241,6 +244,20 @@ TEST_F(LiveSessionTest, MalformedAndForeignMessagesAreCountedAndDropped) {
   // And the good one still gets through afterwards.
   session_.OnMessage("TEST_STATE_snake", good.data(), good.size(), now_);
   EXPECT_EQ(session_.robots().size(), 1u);
+}
+
+TEST_F(LiveSessionTest, APlotExportsAsAPngWithEveryPointItHolds) {
+  PlotSeries& p =
+      session_.AddPlot("TEST_STATE_snake", "sensor_module0.force", 100);
+  const std::string png = testing::TempDir("live_plot_export") + "/force.png";
+  EXPECT_THROW(ExportPlotPng(p, png), PlotInputError);  // nothing yet
+  for (int64_t seq = 0; seq < 30; ++seq) {
+    Hear("TEST_STATE_snake", testing::KnownRobotState(seq, 2, 1, "snake"));
+  }
+  const PlotResult r = ExportPlotPng(p, png);
+  EXPECT_EQ(r.points, 30u);
+  EXPECT_TRUE(r.lines);
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
 }
 
 }  // namespace
