@@ -37,6 +37,20 @@ class LivePanel {
   // whether the key was used.
   bool OnKey(int glfw_key);
   bool connected() const { return link_ != nullptr; }
+  // As the Attach button: hear the simulation at `url` with `prefix`.
+  // Throws std::runtime_error when LCM cannot open the URL.
+  void Attach(const std::string& url, const std::string& prefix) {
+    url_ = url;
+    prefix_ = prefix;
+    Connect(url, prefix);
+  }
+  LiveSession& mutable_session() { return *session_; }
+  // Something live is shown (a simulation heard, processes or an
+  // optimisation running): the window redraws at a steady rate.
+  bool animating() const {
+    return link_ != nullptr || runner_.running() ||
+           optimise_.progress().running;
+  }
   const LiveSession& session() const { return *session_; }
   // The robot steered by keys and buttons ("" when none is heard).
   const std::string& followed() const { return followed_; }

@@ -48,6 +48,8 @@ class StudioApp {
 
   Design& design() { return design_; }
   LivePanel& live() { return *live_; }
+  // The right column shows the Run panel (F5) instead of the Inspector.
+  void ShowRunPanel(bool show) { show_run_ = show; }
   Preview& preview() { return *preview_; }
   // Why the preview could not be built from the design ("" when it was).
   const std::string& build_error() const { return build_error_; }

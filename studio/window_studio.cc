@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "studio/frame_pacer.h"
 #include "studio/gui_setup.h"
 
 namespace mrsim::studio {
@@ -47,8 +48,16 @@ void RunWindow(StudioApp* app, int width, int height,
       });
   ImGui_ImplGlfw_InitForOpenGL(w.window, true);
   int redraws = 3;  // ImGui settles its layout over a couple of frames
+  FramePacer pacer;
   while (!app->should_quit() && !(stop && *stop)) {
-    if (redraws > 0) {
+    if (app->live().animating()) {
+      // Live: a steady frame rate, input handled while waiting.
+      for (double wait = pacer.Wait(FramePacer::Clock::now()); wait > 0;
+           wait = pacer.Wait(FramePacer::Clock::now())) {
+        glfwWaitEventsTimeout(wait);
+      }
+      glfwPollEvents();
+    } else if (redraws > 0) {
       glfwPollEvents();
       --redraws;
     } else {

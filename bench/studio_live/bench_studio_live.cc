@@ -1,0 +1,126 @@
+// Benchmarks of mrsim-studio attached to a running simulation, off-screen
+// through EGL (software GL without a GPU):
+//   BENCH studio_live_fps        full UI with the Run panel, attached to the
+//                                11-module snake at 100 Hz (realtime), two
+//                                live plots, 1280x800, frames as fast as
+//                                they come (target >= 30)
+//   BENCH studio_sim_slowdown    the simulator's real-time factor in fast
+//                                clock with the studio attached (frames
+//                                paced at 30/s as the window paces them)
+//                                over without (target >= 0.95)
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "common/subprocess.h"
+#include "studio/design.h"
+#include "studio/frame_pacer.h"
+#include "studio/headless_studio.h"
+#include "studio/studio_app.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kWidth = 1280;
+constexpr int kHeight = 800;
+const char* const kUrl = "udpm://239.255.76.67:7931?ttl=0";
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+std::vector<std::string> Sim(const std::string& clock, double duration) {
+  std::vector<std::string> argv = {MRSIM_SIM_EXE, "scenarios/snake11.xml",
+                                   "--lcm-url",   kUrl,
+                                   "--clock",     clock,
+                                   "--rate",      "100"};
+  if (duration > 0) {
+    argv.insert(argv.end(), {"--duration", std::to_string(duration)});
+  }
+  return argv;
+}
+
+// Wall seconds a fast-clock run of `sim_seconds` takes; with a studio
+// (frames drawn all along) when `studio` is given.
+double FastRun(double sim_seconds, mrsim::studio::HeadlessStudio* studio) {
+  mrsim::SpawnOptions quiet;
+  quiet.output = mrsim::SpawnOptions::Output::kNull;
+  const auto start = Clock::now();
+  mrsim::Subprocess sim(Sim("fast", sim_seconds), quiet);
+  mrsim::studio::FramePacer pacer;
+  while (sim.running()) {
+    const double wait = studio != nullptr ? pacer.Wait(Clock::now()) : 0.05;
+    if (wait > 0) {
+      sim.Wait(wait);
+    } else {
+      studio->Frame();
+    }
+  }
+  return Seconds(start);
+}
+
+}  // namespace
+
+int main() {
+  using namespace mrsim::studio;
+  AppOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.recent_store = "-";
+  StudioApp app(Design::Open("scenarios/snake11.xml"), options);
+  HeadlessStudio studio(&app, kWidth, kHeight);
+  app.ShowRunPanel(true);
+  app.live().Attach(kUrl, "MRSIM");
+  app.live().mutable_session().AddPlot("MRSIM_STATE_snake",
+                                       "module0.joint.angle");
+  app.live().mutable_session().AddPlot("MRSIM_STATE_snake", "com.x");
+
+  {
+    mrsim::SpawnOptions quiet;
+    quiet.output = mrsim::SpawnOptions::Output::kNull;
+    mrsim::Subprocess sim(Sim("realtime", 0), quiet);
+    // Until the robot is heard (at most 30 s), then 5 s of frames.
+    const auto wait = Clock::now();
+    while (app.live().session().robot("snake") == nullptr &&
+           Seconds(wait) < 30) {
+      studio.Frame();
+    }
+    if (app.live().session().robot("snake") == nullptr) {
+      std::fprintf(stderr, "bench_studio_live: no state from mrsim-sim\n");
+      return 1;
+    }
+    int frames = 0;
+    const int64_t states0 = app.live().session().robot("snake")->states;
+    const auto start = Clock::now();
+    while (Seconds(start) < 5.0) {
+      studio.Frame();
+      ++frames;
+    }
+    const double s = Seconds(start);
+    const int64_t states =
+        app.live().session().robot("snake")->states - states0;
+    std::printf("# %d frames and %lld states in %.2f s; plot points %zu\n",
+                frames, static_cast<long long>(states), s,
+                app.live().session().plots()[0]->values().size());
+    std::printf("BENCH studio_live_fps %.1f frames/s\n", frames / s);
+    sim.Stop(5);
+  }
+
+  // The same fast run alone, then with the studio drawing all along;
+  // alternated twice, the mean of each.
+  const double kSimSeconds = 20;
+  double alone = 0, attached = 0;
+  for (int round = 0; round < 2; ++round) {
+    alone += FastRun(kSimSeconds, nullptr);
+    attached += FastRun(kSimSeconds, &studio);
+  }
+  std::printf(
+      "# fast clock, %g s of sim: %.2f s wall alone, %.2f s with the "
+      "studio attached (mean of 2)\n",
+      kSimSeconds, alone / 2, attached / 2);
+  std::printf("BENCH studio_sim_slowdown %.3f x\n", alone / attached);
+  return 0;
+}
