@@ -132,6 +132,7 @@ void LivePanel::Poll() {
       layout_->State("live " + followed_, buf);
     }
     layout_->State("live recording", runner_.recording() ? "1" : "0");
+    layout_->State("live message", message_);
     if (const auto& st = session_->sim_status()) {
       char buf[96];
       std::snprintf(buf, sizeof(buf), "%.17g %s", st->sim_time,

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -155,8 +156,13 @@ TEST(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
   TypeInto(layout, "population", "4");
   TypeInto(layout, "episode", "1");
   Click(layout, "Start optimisation");
+  if (!WaitUntil([&] { return ReadLayout(layout)["optimise"] != "0 of 0 idle"; },
+                 60)) {
+    std::system(("import -window root '" + dir + "/start_failed.png'").c_str());
+  }
   ASSERT_TRUE(WaitForLayout(layout, "optimise", "2 of 2 finished", 300))
       << ReadLayout(layout)["optimise"] << "\n"
+      << ReadLayout(layout)["live message"] << "\n"
       << studio.Output();
   EXPECT_TRUE(fs::exists(dir + "/optimise/generations.csv"));
 
