@@ -116,6 +116,7 @@ void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
 
 void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
   ++counters_.messages_received;
+  ++counters_.heartbeats_received;
   if (msg.worker_id.empty() || msg.slots < 1 || msg.job_count < 0 ||
       msg.done_count < 0) {
     ++counters_.messages_malformed;

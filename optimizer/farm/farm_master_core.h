@@ -56,6 +56,7 @@ struct FarmCounters {
   long long messages_malformed = 0;
   long long chunks_sent = 0;
   long long messages_received = 0;
+  long long heartbeats_received = 0;
 };
 
 // The largest chunk whose opt_chunk_t, with LCM's header and the channel
