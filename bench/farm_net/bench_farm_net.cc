@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "common/lcm_url.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
 #include "optimizer/farm/farm_evaluator.h"
@@ -223,7 +224,10 @@ void Thousand() {
   std::vector<std::string> udp0;
   for (int k = 0; k <= processes; ++k) udp0.push_back(UdpCounters(rig, k));
   const Measure m = RunFarm(rig, problem, processes * per * 2, 2);
-  // What went where (stderr: the BENCH lines stay on stdout).
+  // What went where (stderr: the BENCH lines stay on stdout). The figure
+  // depends on the receive buffer the kernel allows (docs/scaling.md).
+  fmt::print(stderr, "farm 1000w: net.core.rmem_max {} bytes\n",
+             mrsim::KernelReceiveBufferMax());
   fmt::print(stderr,
              "farm 1000w: {:.1f} s, {} jobs sent ({} re-sent), {} results, "
              "{} heartbeats and {} messages received by the master, {} "
