@@ -15,11 +15,14 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/lcm_url.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
 #include "optimizer/farm/farm_evaluator.h"
@@ -95,7 +98,26 @@ std::string NsOf(const FarmRig& rig, int node) {
 struct Measure {
   double wall = 0, episodes = 0, cpu = 0;
   int jobs = 0;
+  mrsim::FarmCounters counters;
+  int gone = 0, requeued = 0;  // master events during the measured batches
 };
+
+// The kernel's UDP counters of a node's namespace (/proc/net/snmp is per
+// namespace): received datagrams and receive-buffer drops.
+std::string UdpCounters(const FarmRig& rig, int node) {
+  const std::string cmd =
+      "ip netns exec " + NsOf(rig, node) +
+      " awk '/^Udp:/{n++} /^Udp:/&&n==2{print \"in\", $2, \"rcvbuf_errors\", "
+      "$6}' /proc/net/snmp";
+  std::string out;
+  if (FILE* f = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (fgets(buf, sizeof buf, f)) out += buf;
+    pclose(f);
+  }
+  while (!out.empty() && out.back() == '\n') out.pop_back();
+  return out;
+}
 
 // Runs `batches` batches of `population` on a ready farm (after a warm-up
 // batch that fetches the payload).
@@ -104,11 +126,19 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   static int runs = 0;
   InNamespace in(NsOf(rig, 0));
   mrsim::FarmSettings settings;
+  Measure m;
+  bool counting = false;
+  settings.log = [&](const std::string& line) {
+    if (!counting) return;
+    if (line.find(" is gone") != std::string::npos) ++m.gone;
+    if (line.find(" re-queued") != std::string::npos) ++m.requeued;
+  };
   mrsim::FarmEvaluator farm(std::string(kUrl), mrsim::EncodeProblem(problem),
                             fmt::format("bench-{}-{}", getpid(), ++runs),
                             settings);
   farm.Evaluate(RandomBatch(problem.genome, population, 1));
-  Measure m;
+  counting = true;
+  const mrsim::FarmCounters c0 = farm.counters();
   const double before = farm.episode_seconds();
   const double cpu0 = CpuSeconds();
   const auto t0 = Clock::now();
@@ -119,6 +149,15 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   m.wall = Since(t0);
   m.cpu = CpuSeconds() - cpu0;
   m.episodes = farm.episode_seconds() - before;
+  counting = false;
+  const mrsim::FarmCounters& c = farm.counters();
+  m.counters.jobs_sent = c.jobs_sent - c0.jobs_sent;
+  m.counters.jobs_resent = c.jobs_resent - c0.jobs_resent;
+  m.counters.results_accepted = c.results_accepted - c0.results_accepted;
+  m.counters.results_ignored = c.results_ignored - c0.results_ignored;
+  m.counters.heartbeats_received =
+      c.heartbeats_received - c0.heartbeats_received;
+  m.counters.messages_received = c.messages_received - c0.messages_received;
   return m;
 }
 
@@ -174,12 +213,41 @@ void Thousand() {
   FarmRig rig(processes + 1);
   std::vector<std::unique_ptr<ChildProcess>> ws;
   for (int k = 1; k <= processes; ++k) {
-    ws.push_back(std::make_unique<ChildProcess>(rig.In(
-        k, {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
-            "--lcm-url", kUrl, "--id", fmt::format("f{}", k), "--quiet",
-            "--fake-episode", "1", "--fake-workers", std::to_string(per)})));
+    ws.push_back(std::make_unique<ChildProcess>(
+        rig.In(
+            k,
+            {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
+             "--lcm-url", kUrl, "--id", fmt::format("f{}", k), "--fake-episode",
+             "1", "--fake-workers", std::to_string(per)}),
+        fmt::format("/tmp/bench_farm_net_f{}.log", k)));
   }
+  std::vector<std::string> udp0;
+  for (int k = 0; k <= processes; ++k) udp0.push_back(UdpCounters(rig, k));
   const Measure m = RunFarm(rig, problem, processes * per * 2, 2);
+  // What went where (stderr: the BENCH lines stay on stdout). The figure
+  // depends on the receive buffer the kernel allows (docs/scaling.md).
+  fmt::print(stderr, "farm 1000w: net.core.rmem_max {} bytes\n",
+             mrsim::KernelReceiveBufferMax());
+  fmt::print(stderr,
+             "farm 1000w: {:.1f} s, {} jobs sent ({} re-sent), {} results, "
+             "{} heartbeats and {} messages received by the master, {} "
+             "workers declared gone, {} re-queues\n",
+             m.wall, m.counters.jobs_sent, m.counters.jobs_resent,
+             m.counters.results_accepted, m.counters.heartbeats_received,
+             m.counters.messages_received, m.gone, m.requeued);
+  for (int k = 0; k <= processes; ++k) {
+    fmt::print(stderr, "farm 1000w: node {} udp before [{}] after [{}]\n", k,
+               udp0[static_cast<size_t>(k)], UdpCounters(rig, k));
+  }
+  ws.clear();  // stopped: their logs end with their counters
+  for (int k = 1; k <= processes; ++k) {
+    std::ifstream log(fmt::format("/tmp/bench_farm_net_f{}.log", k));
+    std::string line, last;
+    while (std::getline(log, line)) {
+      if (line.find("stopping;") != std::string::npos) last = line;
+    }
+    fmt::print(stderr, "farm 1000w: {}\n", last);
+  }
   fmt::print("BENCH farm_master_cpu_1000w {:.3f} core\n", m.cpu / m.wall);
   fmt::print("BENCH farm_throughput_1000w {:.3f} ratio\n",
              (m.jobs / m.wall) / (processes * per / 1.0));
@@ -187,7 +255,13 @@ void Thousand() {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  // bench_farm_net [jitter|efficiency|thousand]...: only those cases.
+  const std::vector<std::string> only(argv + 1, argv + argc);
+  const auto want = [&](const std::string& name) {
+    return only.empty() ||
+           std::find(only.begin(), only.end(), name) != only.end();
+  };
   std::string why;
   if (!FarmRig::Available(&why)) {
     fmt::print("bench_farm_net: skipped: {}\n", why);
@@ -195,11 +269,11 @@ int main() {
   }
   try {
     FarmRig::CleanupStale();
-    JitterDuplicates();
+    if (want("jitter")) JitterDuplicates();
     std::fflush(stdout);
-    Efficiency();
+    if (want("efficiency")) Efficiency();
     std::fflush(stdout);
-    Thousand();
+    if (want("thousand")) Thousand();
   } catch (const std::exception& e) {
     fmt::print(stderr, "bench_farm_net: {}\n", e.what());
     return 1;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/decode.h"
 
 namespace mrsim {
@@ -27,10 +28,21 @@ std::int64_t FarmLink::WallMicros() {
 
 FarmLink::FarmLink(std::string url, const std::string& prefix,
                    Handlers handlers)
-    : url_(std::move(url)), channels_(prefix), handlers_(std::move(handlers)) {
+    : url_(LcmUrlWithReceiveBuffer(
+          url, std::min(kReceiveBuffer, KernelReceiveBufferMax()))),
+      channels_(prefix),
+      handlers_(std::move(handlers)) {
+  const std::int64_t max = KernelReceiveBufferMax();
+  if (url_ != ResolveLcmUrl(url) && max > 0 && max < kReceiveBuffer / 4) {
+    log_.push_back(fmt::format(
+        "the kernel caps receive buffers at {} KB (net.core.rmem_max): with "
+        "hundreds of workers bursts are lost and re-sent; raise it, e.g. "
+        "sysctl -w net.core.rmem_max={}",
+        max / 1024, kReceiveBuffer));
+  }
   Open();
   if (!lcm_) {
-    throw std::runtime_error("cannot open LCM '" + url_ +
+    throw std::runtime_error("cannot open LCM '" + ResolveLcmUrl(url) +
                              "' (no multicast route, or no tcpq hub? see "
                              "docs/optimizer.md)");
   }
@@ -84,8 +96,15 @@ void FarmLink::Subscribe() {
   const auto sub =
       [&](const std::string& channel, bool wanted,
           void (FarmLink::*fn)(const lcm::ReceiveBuffer*, const std::string&)) {
-        if (wanted)
-          subscriptions_.push_back(lcm_->subscribe(channel, fn, this));
+        if (!wanted) return;
+        lcm::Subscription* s = lcm_->subscribe(channel, fn, this);
+        // LCM's default keeps 30 messages per subscription waiting for
+        // handle() and silently drops the rest: a burst of results or
+        // heartbeats from hundreds of workers (or of jobs to a process of
+        // fake workers) lost most of itself there, though the kernel had
+        // delivered it and the process was idle.
+        s->setQueueCapacity(kQueueCapacity);
+        subscriptions_.push_back(s);
       };
   sub(channels_.run, bool(handlers_.run), &FarmLink::OnRun);
   sub(channels_.chunk, bool(handlers_.chunk), &FarmLink::OnChunk);

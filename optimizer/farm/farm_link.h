@@ -5,6 +5,7 @@
 // asked to re-join (a worker that lost its multicast membership).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
@@ -18,6 +19,16 @@ namespace mrsim {
 
 class FarmLink {
  public:
+  // Messages per channel LCM keeps waiting for Handle() before it drops
+  // (LCM's default is 30): several seconds of the busiest channel of a
+  // farm of thousands, a few MB at most.
+  static constexpr int kQueueCapacity = 1 << 16;
+  // Kernel receive buffer asked for on udpm/mpudpm unless the URL names one
+  // (capped at net.core.rmem_max; the kernel grants twice the request). At
+  // LCM's 208 KB default a burst of ~250 small datagrams (a generation's
+  // jobs, the results of hundreds of workers ending together) overflows it.
+  static constexpr std::int64_t kReceiveBuffer = 4 << 20;
+
   // Handlers for the channels a node listens to (unset: not subscribed).
   // Undecodable messages on a subscribed channel go to `malformed`.
   struct Handlers {
@@ -30,7 +41,8 @@ class FarmLink {
     std::function<void()> malformed;
   };
 
-  // Opens `url`; throws naming the URL when the first attempt fails.
+  // Opens `url` (with a larger receive buffer, above); throws naming the
+  // URL when the first attempt fails.
   FarmLink(std::string url, const std::string& prefix, Handlers handlers);
   // Uses a connection the caller owns (no re-connecting).
   FarmLink(lcm::LCM& borrowed, const std::string& prefix, Handlers handlers);

@@ -116,6 +116,7 @@ void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
 
 void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
   ++counters_.messages_received;
+  ++counters_.heartbeats_received;
   if (msg.worker_id.empty() || msg.slots < 1 || msg.job_count < 0 ||
       msg.done_count < 0) {
     ++counters_.messages_malformed;
@@ -347,7 +348,15 @@ void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
 }
 
 void FarmMasterCore::Dispatch(double now) {
-  while (!pending_.empty() && !room_.empty()) {
+  const double burst = std::max(1, settings_.dispatch_burst);
+  if (settings_.dispatch_rate > 0) {
+    tokens_ =
+        std::min(burst, tokens_ + (now - tokens_at_) * settings_.dispatch_rate);
+  } else {
+    tokens_ = burst;  // no pace: only the burst limit
+  }
+  tokens_at_ = now;
+  while (!pending_.empty() && !room_.empty() && tokens_ >= 1) {
     const std::int64_t id = pending_.front();
     Job* job = FindJob(id);
     if (!job || job->done || !job->pending) {
@@ -361,6 +370,7 @@ void FarmMasterCore::Dispatch(double now) {
     Worker& w = workers_.at(slot->second);
     pending_.pop_front();
     Send(id, w, now);
+    tokens_ -= 1;
   }
 }
 
@@ -374,8 +384,14 @@ FarmOutbox FarmMasterCore::Tick(double now) {
 }
 
 double FarmMasterCore::next_deadline() const {
-  return std::min(last_announce_ + settings_.announce_period,
-                  last_maintain_ + kMaintainPeriod);
+  double t = std::min(last_announce_ + settings_.announce_period,
+                      last_maintain_ + kMaintainPeriod);
+  if (tokens_ < 1 && settings_.dispatch_rate > 0 && !room_.empty() &&
+      !pending_.empty()) {
+    // Held back by the pace: go on when the next job may go out.
+    t = std::min(t, tokens_at_ + (1 - tokens_) / settings_.dispatch_rate);
+  }
+  return t;
 }
 
 }  // namespace mrsim

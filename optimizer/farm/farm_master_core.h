@@ -41,9 +41,15 @@ struct FarmSettings {
   // heartbeat_budget heartbeats a second however large the farm grows.
   double min_heartbeat_period = 0.2;
   double heartbeat_budget = 250.0;
-  double result_wait = 1.0;    // s after a heartbeat lists a job done before
-                               // its result is asked for again
-  std::function<bool()> stop;  // polled; true abandons the batch
+  double result_wait = 1.0;  // s after a heartbeat lists a job done before
+                             // its result is asked for again
+  // Jobs go out at most dispatch_burst at once and dispatch_rate a second
+  // on average: a generation of thousands in one burst overflows a
+  // receiver's socket buffer (a stock 416 KB holds ~400 small datagrams)
+  // whenever its receive thread is not scheduled for a few ms.
+  int dispatch_burst = 256;
+  double dispatch_rate = 25600;  // jobs/s (256 every 10 ms)
+  std::function<bool()> stop;    // polled; true abandons the batch
   std::function<void(const std::string&)> log;  // events (worker joined...)
 };
 
@@ -56,6 +62,7 @@ struct FarmCounters {
   long long messages_malformed = 0;
   long long chunks_sent = 0;
   long long messages_received = 0;
+  long long heartbeats_received = 0;
 };
 
 // The largest chunk whose opt_chunk_t, with LCM's header and the channel
@@ -150,6 +157,8 @@ class FarmMasterCore {
   size_t remaining_ = 0;
   double last_announce_ = -1e9;
   double last_maintain_ = -1e9;
+  double tokens_ = 0;  // jobs that may go out now (dispatch pace)
+  double tokens_at_ = -1e9;
   double slowest_episode_ = 0.0;
   double episode_seconds_ = 0.0;
   FarmCounters counters_;

@@ -102,6 +102,7 @@ WorkerCounters FarmWorker::counters() const {
     sum.messages_malformed += k.messages_malformed;
     sum.results_resent += k.results_resent;
     sum.rejoins += k.rejoins;
+    sum.heartbeats_sent += k.heartbeats_sent;
   }
   return sum;
 }

@@ -233,6 +233,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
     hb.messages_ignored = counters_.messages_ignored;
     hb.messages_malformed = counters_.messages_malformed;
     outbox_.heartbeats.push_back(std::move(hb));
+    ++counters_.heartbeats_sent;
     // The first beat comes at once; the next ones on the worker's phase.
     last_heartbeat_ =
         last_heartbeat_ < -1e8 ? now - phase_ * heartbeat_period_ : now;

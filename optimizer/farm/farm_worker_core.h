@@ -43,6 +43,7 @@ struct WorkerCounters {
   long long messages_malformed = 0;
   long long results_resent = 0;  // re-asked jobs answered from memory
   long long rejoins = 0;
+  long long heartbeats_sent = 0;
 };
 
 // One job to run: the decoded problem it belongs to and the genome.

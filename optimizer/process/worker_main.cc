@@ -66,9 +66,10 @@ int main(int argc, char** argv) {
     const mrsim::WorkerCounters c = worker.counters();
     if (!quiet) {
       fmt::print(
-          "mrsim-worker {}: stopping; {} jobs done, {} messages ignored, {} "
-          "malformed\n",
-          worker.id(), c.jobs_done, c.messages_ignored, c.messages_malformed);
+          "mrsim-worker {}: stopping; {} jobs done, {} heartbeats sent, {} "
+          "messages ignored, {} malformed\n",
+          worker.id(), c.jobs_done, c.heartbeats_sent, c.messages_ignored,
+          c.messages_malformed);
     }
     return 0;
   } catch (const std::exception& err) {

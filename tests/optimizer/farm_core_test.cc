@@ -90,6 +90,49 @@ TEST(FarmMasterCore, EveryReadyWorkerGetsAJobBeforeAnyGetsASecond) {
   for (const auto& [id, n] : per) EXPECT_EQ(n, 2) << id;
 }
 
+// A generation of thousands of jobs in one burst overflowed the receivers'
+// socket buffers (docs/scaling.md): jobs go out in bursts of at most
+// dispatch_burst, dispatch_rate a second, and the master asks to be woken
+// when the next may go.
+TEST(FarmMasterCore, ThousandsOfJobsGoOutInPacedBursts) {
+  FarmSettings settings;
+  settings.dispatch_burst = 256;
+  settings.dispatch_rate = 25600;  // 256 per 10 ms
+  FarmMasterCore m(Payload(100), "run", 1, settings);
+  for (int w = 0; w < 1000; ++w) {
+    m.OnHeartbeat(Beat(m, "w" + std::to_string(w)), 0.0);
+  }
+  m.StartBatch(Batch(2000, 0), 0.0);
+  EXPECT_EQ(m.Tick(0.0).jobs.size(), 256u);
+  EXPECT_TRUE(m.Tick(0.0).jobs.empty()) << "no more at the same instant";
+  EXPECT_NEAR(m.next_deadline(), 1.0 / 25600, 1e-9)
+      << "woken when the next job may go";
+  EXPECT_EQ(m.Tick(0.005).jobs.size(), 128u) << "half the period: half";
+  std::set<std::string> workers;
+  size_t sent = 256 + 128;
+  double t = 0.005;
+  while (sent < 2000 && t < 1.0) {
+    t = std::max(m.next_deadline(), t + 0.01);  // a slow loop: 10 ms
+    const FarmOutbox out = m.Tick(t);
+    EXPECT_LE(out.jobs.size(), 256u) << "at " << t;
+    for (const auto& j : out.jobs) workers.insert(j.worker_id);
+    sent += out.jobs.size();
+  }
+  EXPECT_EQ(sent, 2000u) << "all out within 2000 / 25600 s and a loop's lag";
+  EXPECT_LT(t, 0.1);
+  EXPECT_EQ(workers.size(), 1000u);
+}
+
+// A small generation is not held back.
+TEST(FarmMasterCore, AGenerationWithinTheBurstGoesOutAtOnce) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  for (int w = 0; w < 100; ++w) {
+    m.OnHeartbeat(Beat(m, "w" + std::to_string(w)), 0.0);
+  }
+  m.StartBatch(Batch(200, 0), 0.0);
+  EXPECT_EQ(m.Tick(0.0).jobs.size(), 200u);
+}
+
 TEST(FarmMasterCore, OneHeartbeatNotListingAJobDoesNotResendIt) {
   FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
   m.OnHeartbeat(Beat(m, "a"), 0.0);
