@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "CLI/CLI.hpp"
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
@@ -78,9 +79,9 @@ void WriteQueued(MessageQueue& queue, Recorder& recorder,
 void RunLive(const LogCommand& opt, const std::string& regex,
              Recorder& recorder, lcm::LCM& lcm, std::FILE* err) {
   if (!lcm.good()) {
-    throw std::runtime_error("cannot open LCM at '" +
-                             WithReceiveBuffer(opt.lcm_url, opt.recv_buf_size) +
-                             "'");
+    throw std::runtime_error(
+        "cannot open LCM at '" +
+        LcmUrlWithReceiveBuffer(opt.lcm_url, opt.recv_buf_size) + "'");
   }
   const size_t max_queue_bytes = static_cast<size_t>(opt.max_queue_mb) << 20;
   MessageQueue queue(max_queue_bytes, max_queue_bytes / 4);
@@ -219,20 +220,6 @@ std::string ChannelRegex(const std::string& channels) {
     start = end + 1;
   }
   return out;
-}
-
-std::string WithReceiveBuffer(const std::string& url, int64_t bytes) {
-  std::string u = url;
-  if (u.empty()) {
-    const char* env = std::getenv("LCM_DEFAULT_URL");
-    u = env != nullptr ? env : "udpm://239.255.76.67:7667?ttl=0";
-  }
-  if (u.rfind("udpm://", 0) != 0 || bytes <= 0 ||
-      u.find("recv_buf_size=") != std::string::npos) {
-    return u;
-  }
-  return u + (u.find('?') == std::string::npos ? "?" : "&") +
-         "recv_buf_size=" + std::to_string(bytes);
 }
 
 void AddLogFlags(CLI::App& app, LogCommand& opt) {

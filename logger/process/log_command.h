@@ -47,10 +47,6 @@ class LogInputError : public std::runtime_error {
 // literal names; anything else is used as a regular expression.
 std::string ChannelRegex(const std::string& channels);
 
-// The URL with a large kernel receive buffer, unless it sets one or is not
-// udpm (empty url: $LCM_DEFAULT_URL, else LCM's default).
-std::string WithReceiveBuffer(const std::string& url, int64_t bytes);
-
 // The checked parts of a command: the channel regex (whole-name match) and
 // the parsed plots. Throws LogInputError.
 struct LogPlan {

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "CLI/CLI.hpp"
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/version.h"
 #include "logger/process/log_command.h"
@@ -27,8 +28,8 @@ int main(int argc, char** argv) {
     mrsim::InstallStopHandlers();
     std::unique_ptr<lcm::LCM> lcm;
     if (command.from_log.empty()) {
-      lcm = std::make_unique<lcm::LCM>(
-          mrsim::WithReceiveBuffer(command.lcm_url, command.recv_buf_size));
+      lcm = std::make_unique<lcm::LCM>(mrsim::LcmUrlWithReceiveBuffer(
+          command.lcm_url, command.recv_buf_size));
     }
     return mrsim::RunLogCommand(command, plan, lcm.get(), stderr);
   } catch (const mrsim::LogInputError& e) {

@@ -56,17 +56,6 @@ TEST(LogCommand, ChannelListsBecomeLiteralAlternatives) {
   EXPECT_EQ(ChannelRegex("A,,B,"), "A|B");
 }
 
-TEST(LogCommand, ReceiveBufferIsAddedToUdpmUrlsThatHaveNone) {
-  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667?ttl=0", 100),
-            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=100");
-  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667", 100),
-            "udpm://239.255.76.67:7667?recv_buf_size=100");
-  EXPECT_EQ(WithReceiveBuffer("udpm://x:1?recv_buf_size=5", 100),
-            "udpm://x:1?recv_buf_size=5");
-  EXPECT_EQ(WithReceiveBuffer("file:///tmp/a.log", 100), "file:///tmp/a.log");
-  EXPECT_EQ(WithReceiveBuffer("udpm://x:1", 0), "udpm://x:1");
-}
-
 TEST(LogCommand, FlagsAndBadInputAreCheckedBeforeRecording) {
   CLI::App app;
   LogCommand c;
