@@ -14,6 +14,7 @@
 #include <functional>
 #include <utility>
 
+#include "lcmtypes/runtime/channels.h"
 #include "studio/live/plot_export.h"
 
 namespace mrsim::studio {
@@ -374,10 +375,25 @@ void LivePanel::DrawRecording() {
 void LivePanel::DrawPlots(float width) {
   const std::vector<std::string> channels = session_->Channels();
   if (!channels.empty()) {
+    if (plot_channel_ < 0) {
+      // What a user plots first: the followed robot's state.
+      const auto it = std::find(channels.begin(), channels.end(),
+                                StateChannel(session_->prefix(), followed_));
+      plot_channel_ =
+          it == channels.end() ? 0 : static_cast<int>(it - channels.begin());
+    }
     plot_channel_ =
         std::clamp(plot_channel_, 0, static_cast<int>(channels.size()) - 1);
     const std::vector<std::string> columns =
         session_->Columns(channels[plot_channel_]);
+    if (plot_column_ < 0 && !columns.empty()) {
+      for (const char* preferred : {"sensor_module0.force", "com.x"}) {
+        const auto it = std::find(columns.begin(), columns.end(), preferred);
+        if (it != columns.end() && plot_column_ < 0) {
+          plot_column_ = static_cast<int>(it - columns.begin());
+        }
+      }
+    }
     ImGui::SetNextItemWidth(width * 0.4f);
     if (ImGui::BeginCombo("##channel", channels[plot_channel_].c_str())) {
       for (int i = 0; i < static_cast<int>(channels.size()); ++i) {

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "viewer/state_pose_mapper.h"
+
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -272,6 +274,38 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
     markers.push_back({part.part, px, window_height - py});
   }
   return markers;
+}
+
+void Preview::ShowStates(const Scenario& scenario,
+                         const std::map<std::string, RobotState>& states,
+                         const std::vector<SceneObjectState>* scene) {
+  if (!physics_) return;
+  try {
+    if (!mapper_) {
+      mapper_ = std::make_unique<StatePoseMapper>(physics_->model(), scenario);
+    }
+  } catch (const std::exception&) {
+    return;  // a design the mapper cannot follow: the design pose stays
+  }
+  std::vector<const RobotState*> list(mapper_->robot_count(), nullptr);
+  for (int r = 0; r < mapper_->robot_count(); ++r) {
+    const auto it = states.find(mapper_->robot_name(r));
+    if (it != states.end() && mapper_->Check(r, it->second).empty()) {
+      list[r] = &it->second;
+    }
+  }
+  if (scene != nullptr && !mapper_->CheckScene(*scene).empty()) scene = nullptr;
+  mapper_->Apply(list, data_, scene);
+  live_ = true;
+}
+
+void Preview::ShowDesign() {
+  mapper_.reset();
+  if (live_ && physics_) {
+    mj_kinematics(physics_->model(), data_);
+    mj_camlight(physics_->model(), data_);
+  }
+  live_ = false;
 }
 
 }  // namespace mrsim::studio

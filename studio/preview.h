@@ -8,14 +8,21 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "sim_core/physics.h"
+#include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
+#include "sim_core/scene_object_state.h"
 #include "studio/part_map.h"
 #include "studio/selection.h"
+
+namespace mrsim {
+class StatePoseMapper;
+}
 
 namespace mrsim::studio {
 
@@ -62,6 +69,17 @@ class Preview {
   std::vector<PartMarker> Markers(const mjrRect& viewport,
                                   int window_height) const;
 
+  // Live view: poses the robots named in `states` (and the movable objects
+  // in `scene`, when given) as a running simulation reports them, with the
+  // viewer's StatePoseMapper. States that do not fit the design are left
+  // as built. ShowDesign returns to the design's own pose (after every
+  // rebuild too).
+  void ShowStates(const Scenario& scenario,
+                  const std::map<std::string, RobotState>& states,
+                  const std::vector<SceneObjectState>* scene);
+  void ShowDesign();
+  bool live() const { return live_; }
+
  private:
   void AddDecor();
   void DrawSky(const mjrRect& viewport);
@@ -78,6 +96,8 @@ class Preview {
   mjvCamera camera_;
   mjrContext context_;
   bool framed_ = false;
+  std::unique_ptr<StatePoseMapper> mapper_;  // for the current model
+  bool live_ = false;
   double aspect_ = 1.0;
   bool software_ = false;  // llvmpipe: no MSAA, no shadows
   bool context_made_ = false;

@@ -12,6 +12,7 @@
 
 #include "launcher/program_locator.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/sim_process/state_message.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
 #include "studio/part_colors.h"
@@ -123,10 +124,27 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   if (design_.revision() != built_revision_) {
     const auto start = std::chrono::steady_clock::now();
     build_error_ = preview_->Rebuild(design_.scenario());
+    preview_->ShowDesign();
     last_rebuild_ms_ = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - start)
                            .count();
     built_revision_ = design_.revision();
+  }
+
+  // Live: the robots and objects where the running simulation has them.
+  if (live_->connected() && !live_->session().robots().empty()) {
+    std::map<std::string, RobotState> states;
+    for (const LiveRobot* r : live_->session().robots()) {
+      if (r->states > 0) states[r->name] = FromRobotStateMessage(r->state);
+    }
+    std::vector<SceneObjectState> scene;
+    if (live_->session().scene()) {
+      scene = FromSceneStateMessage(*live_->session().scene());
+    }
+    preview_->ShowStates(design_.scenario(), states,
+                         live_->session().scene() ? &scene : nullptr);
+  } else if (preview_->live()) {
+    preview_->ShowDesign();
   }
 
   ImGui::Render();

@@ -479,7 +479,9 @@ std::vector<std::string> LiveSession::Columns(
   SplitCells(reader.row.values, &cells);
   const auto& cols = reader.flattener->columns();
   for (size_t i = 0; i < cols.size() && i < cells.size(); ++i) {
-    if (cols[i] != "time" && ParseNumber(cells[i])) numeric.push_back(cols[i]);
+    if (cols[i] != "time" && cols[i] != "seq" && ParseNumber(cells[i])) {
+      numeric.push_back(cols[i]);
+    }
   }
   return numeric;
 }

@@ -115,11 +115,13 @@ class LiveSession {
   const std::vector<std::unique_ptr<PlotSeries>>& plots() const {
     return plots_;
   }
-  // The numeric columns the last message of `channel` had (empty if none).
+  // The numeric columns the last message of `channel` had, without its
+  // time and sequence number (empty if none).
   std::vector<std::string> Columns(const std::string& channel) const;
   // Channels heard with a known type, in name order.
   std::vector<std::string> Channels() const;
 
+  const std::string& prefix() const { return options_.prefix; }
   int64_t messages() const { return messages_; }
   int64_t malformed() const { return malformed_; }
   // Messages on a channel of ours whose type is not the one it carries.

@@ -111,6 +111,7 @@ TEST_F(LiveSessionTest, PlotBufferHoldsExactlyTheValuesTheStatesCarried) {
             cols.end());
   EXPECT_NE(std::find(cols.begin(), cols.end(), "com.x"), cols.end());
   EXPECT_EQ(std::find(cols.begin(), cols.end(), "robot"), cols.end());
+  EXPECT_EQ(std::find(cols.begin(), cols.end(), "seq"), cols.end());
 }
 
 TEST_F(LiveSessionTest, PausedPlotTakesNothingAndAResetStartsItAfresh) {
