@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -628,6 +629,35 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (Header("Plots", false)) DrawPlots(w);
   if (Header("Optimise", false)) DrawOptimise(design, w);
   if (Header("Console", false)) DrawConsole(160);
+  ImGui::End();
+}
+
+void LivePanel::DrawOverlay(float x, float y) {
+  if (!link_) return;
+  const LiveRobot* robot = session_->robot(followed_);
+  const auto& status = session_->sim_status();
+  if (robot == nullptr && !status) return;
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowBgAlpha(0.55f);
+  ImGui::Begin("live overlay", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoInputs |
+                   ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoFocusOnAppearing);
+  if (status) {
+    ImGui::Text("time   %.2f s%s", status->sim_time,
+                status->mode == sim_status_t::PAUSED ? "  (paused)" : "");
+    ImGui::Text("rate   x%.2f", status->real_time_factor);
+  }
+  if (robot != nullptr && robot->states > 0) {
+    const auto& v = robot->state.com_velocity;
+    ImGui::Text("speed  %.3f m/s",
+                std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  }
+  if (robot != nullptr && robot->gait) {
+    ImGui::Text("gait   %s (%s)", robot->gait->gait.c_str(),
+                robot->gait->motion.c_str());
+  }
   ImGui::End();
 }
 

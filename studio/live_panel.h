@@ -33,6 +33,9 @@ class LivePanel {
   // Takes what arrived (LCM, children's output); once per frame.
   void Poll();
   void Draw(float x, float y, float w, float h, const LiveDesign& design);
+  // Sim time, real-time factor, speed and gait of the followed robot, in a
+  // corner of the 3-D view at (x, y); nothing when not connected.
+  void DrawOverlay(float x, float y);
   // Arrow keys steer the followed robot while something runs; returns
   // whether the key was used.
   bool OnKey(int glfw_key);

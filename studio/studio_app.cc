@@ -111,6 +111,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
                   static_cast<float>(height));
   }
   DrawStatus(kLeftWidth, 0, width - kLeftWidth - kRightWidth);
+  live_->DrawOverlay(kLeftWidth + 8, kStatusHeight + 8);
   DrawDialogs();
   if (show_help_) DrawHelp();
 

@@ -63,6 +63,8 @@ TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
       dir + "/studio.log");
   ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
 
+  const std::string front_as_designed = ReadLayout(layout)["part module 0 0"];
+  ASSERT_FALSE(front_as_designed.empty());
   ASSERT_TRUE(Xdotool({"key", "F5"}));
   Click(layout, "Run");
   ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout).sim_time >= 0; }, 120))
@@ -78,6 +80,8 @@ TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
       [&] { return ReadLive(layout).sim_time >= before.sim_time + 4; }, 120));
   EXPECT_GT(ReadLive(layout).com_x - before.com_x, 0.02)
       << "the centre of mass did not move +x";
+  // The 3-D view shows the robot where the simulation has it.
+  EXPECT_NE(ReadLayout(layout)["part module 0 0"], front_as_designed);
 
   // Pause: acknowledged; then Step (10 periods by default) moves sim time
   // by exactly 0.1 s from where it stopped, and no further.
@@ -156,8 +160,9 @@ TEST(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
   TypeInto(layout, "population", "4");
   TypeInto(layout, "episode", "1");
   Click(layout, "Start optimisation");
-  if (!WaitUntil([&] { return ReadLayout(layout)["optimise"] != "0 of 0 idle"; },
-                 60)) {
+  if (!WaitUntil(
+          [&] { return ReadLayout(layout)["optimise"] != "0 of 0 idle"; },
+          60)) {
     std::system(("import -window root '" + dir + "/start_failed.png'").c_str());
   }
   ASSERT_TRUE(WaitForLayout(layout, "optimise", "2 of 2 finished", 300))
