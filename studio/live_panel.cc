@@ -12,9 +12,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <utility>
 
+#include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/channels.h"
 #include "studio/live/plot_export.h"
 
@@ -330,6 +332,32 @@ void LivePanel::DrawSteering() {
         session_->Steer(followed_, motions[i], strength_, WallClock::now(),
                         out);
       });
+    }
+  }
+  ImGui::SetNextItemWidth(-170);
+  ImGui::InputText("##gaitfile", &gait_file_);
+  ImGui::SameLine();
+  if (Button("Load gait")) {
+    // A preset name or a gait file mrsim-gait can read (on its machine).
+    Send([&](StudioOutbox* out) {
+      session_->SetGait(followed_, gait_file_, WallClock::now(), out);
+    });
+  }
+  ImGui::SameLine();
+  if (Button("Save gait")) {
+    try {
+      if (robot == nullptr || !robot->gait) {
+        throw std::runtime_error("no gait heard yet");
+      }
+      Gait gait;
+      gait.name = std::filesystem::path(gait_file_).stem().string();
+      gait.kind = ParseGaitKind(robot->gait->kind).value_or(GaitKind::kLinear);
+      gait.parameters = GaitParameters::FromVector(std::vector<double>(
+          robot->gait->parameters, robot->gait->parameters + 7));
+      WriteGaitFile(gait, gait_file_);
+      message_ = "wrote " + gait_file_;
+    } catch (const std::exception& e) {
+      message_ = e.what();
     }
   }
   if (ImGui::TreeNode("gait parameters")) {

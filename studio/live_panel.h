@@ -103,6 +103,7 @@ class LivePanel {
   float strength_ = 1;
   float parameters_[7] = {1, 0, 2.5f, 0, 4, 0, 0};
   std::string checkpoint_ = "studio.checkpoint";
+  std::string gait_file_ = "studio.gait.xml";
   std::string record_dir_ = "recordings";
   int plot_channel_ = -1;  // -1: the followed robot's state channel
   int plot_column_ = -1;   // -1: a force sensor, else com.x

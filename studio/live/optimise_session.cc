@@ -212,6 +212,8 @@ void OptimiseSession::Poll(int timeout_ms) {
 std::map<std::string, double> OptimiseSession::BestGenes() const {
   const GenerationRow* best = nullptr;
   for (const GenerationRow& r : progress_.rows) {
+    // After a jump to generation N, the best of the first N.
+    if (options_.jump_to >= 0 && r.generation > options_.jump_to) break;
     if (best == nullptr || r.best > best->best) best = &r;
   }
   return best == nullptr ? std::map<std::string, double>{} : best->genes;

@@ -71,7 +71,8 @@ class OptimiseSession {
   void Poll(int timeout_ms = 0);
   const OptimiseProgress& progress() const { return progress_; }
   const std::vector<std::string>& console() const { return console_; }
-  // The genes of the best individual so far (empty before generation 0).
+  // The genes of the best individual so far, or of the first N
+  // generations after a jump to N (empty before generation 0).
   std::map<std::string, double> BestGenes() const;
   const OptimiseOptions& options() const { return options_; }
 

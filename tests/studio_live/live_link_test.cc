@@ -30,13 +30,17 @@ bool PollUntil(LiveLink& link, const std::function<bool()>& done,
   return true;
 }
 
-TEST(LiveLink, AttachesToARunningSimulatorAndPausesAndStepsIt) {
+TEST(LiveLink, AttachesToARunningSimulationSteersPausesAndStepsIt) {
   const std::string url = TestLcmUrl(7965);
   const std::string dir = TempDir("live_link");
   ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"),
                     SourcePath("scenarios/case_study.xml"), "--lcm-url", url,
                     "--clock", "realtime", "--rate", "100"},
                    dir + "/sim.log");
+  ChildProcess gait({BinaryPath("gait_controller/process/mrsim-gait"),
+                     "--robot", "case_study", "--scenario",
+                     SourcePath("scenarios/case_study.xml"), "--lcm-url", url},
+                    dir + "/gait.log");
   LiveSessionOptions options;
   options.sender = "studio-test";
   options.request_timeout_s = 10;  // a loaded machine answers late
@@ -49,8 +53,28 @@ TEST(LiveLink, AttachesToARunningSimulatorAndPausesAndStepsIt) {
   ASSERT_TRUE(PollUntil(
       link, [&] { return session.sim_status().has_value(); }, 30));
 
-  // Pause: acknowledged, and sim time stops.
+  // Steer: mrsim-gait (another process) acknowledges and runs it.
+  ASSERT_TRUE(PollUntil(
+      link, [&] { return session.robot("case_study")->gait.has_value(); }, 30))
+      << gait.Output();
   StudioOutbox out;
+  const int64_t turn =
+      session.Steer("case_study", "turn-left", 0.5, WallClock::now(), &out);
+  link.Publish(&out);
+  ASSERT_TRUE(PollUntil(
+      link,
+      [&] {
+        return session.request(turn)->state != LiveRequest::State::kPending;
+      },
+      30));
+  EXPECT_EQ(session.request(turn)->state, LiveRequest::State::kDone)
+      << session.request(turn)->error;
+  ASSERT_TRUE(PollUntil(
+      link,
+      [&] { return session.robot("case_study")->gait->motion == "turn-left"; },
+      30));
+
+  // Pause: acknowledged, and sim time stops.
   const int64_t pause = session.Pause(WallClock::now(), &out);
   link.Publish(&out);
   ASSERT_TRUE(PollUntil(
