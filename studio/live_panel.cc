@@ -24,6 +24,8 @@ namespace mrsim::studio {
 namespace {
 
 const char* const kClocks[] = {"realtime", "fast", "lockstep"};
+// A click in a number field selects it whole: typing replaces the value.
+constexpr ImGuiInputTextFlags kNumberFlags = ImGuiInputTextFlags_AutoSelectAll;
 
 const char* RequestText(LiveRequest::State s) {
   switch (s) {
@@ -110,6 +112,8 @@ void LivePanel::Poll() {
   optimise_.Poll();
   if (layout_ != nullptr && layout_->enabled()) {
     const OptimiseProgress& p = optimise_.progress();
+    layout_->State("optimise settings", fmt::format("{} {} {:g}", generations_,
+                                                    population_, episode_));
     layout_->State("optimise",
                    fmt::format("{} of {} {}", p.rows.size(), p.generations,
                                p.running    ? "running"
@@ -551,14 +555,14 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::SameLine();
   ImGui::Checkbox("farm", &farm_);
   ImGui::SetNextItemWidth(80);
-  ImGui::InputInt("generations", &generations_, 0);
+  ImGui::InputInt("generations", &generations_, 0, 0, kNumberFlags);
   Record("generations");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
-  ImGui::InputInt("population", &population_, 0);
+  ImGui::InputInt("population", &population_, 0, 0, kNumberFlags);
   Record("population");
   ImGui::SetNextItemWidth(80);
-  ImGui::InputFloat("episode s", &episode_, 0, 0, "%.1f");
+  ImGui::InputFloat("episode s", &episode_, 0, 0, "%.1f", kNumberFlags);
   Record("episode");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
