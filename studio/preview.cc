@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <string_view>
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include "studio/mujoco_buffer_cache.h"
 #include "studio/part_colors.h"
 
 namespace mrsim::studio {
@@ -18,9 +21,51 @@ constexpr int kExtraGeoms = 1500;  // rays, checker squares
 constexpr double kChecker = 0.2;   // m, floor squares
 constexpr int kCheckerHalf = 15;   // squares each side of the origin
 
+// Everything mjr_makeContext uploads from a model besides fonts and
+// buffers: textures, meshes, height fields, skins, the planes' grids and
+// the quality of built-in shapes. Equal keys: the context can stay.
+// A hash, not a copy: the sky alone is 4.7 MB.
+size_t UploadKey(const mjModel* m) {
+  size_t key = 0;
+  auto put = [&key](const void* data, size_t bytes) {
+    const size_t h = std::hash<std::string_view>()(
+        std::string_view(static_cast<const char*>(data), bytes));
+    key ^= h + 0x9e3779b97f4a7c15ULL + (key << 6) + (key >> 2);
+  };
+  put(&m->vis.quality, sizeof(m->vis.quality));
+  put(&m->vis.global.offwidth, sizeof(int));
+  put(&m->vis.global.offheight, sizeof(int));
+  const int counts[] = {m->ntex,      m->ntexdata,    m->nmesh,
+                        m->nmeshvert, m->nmeshface,   m->nmeshtexvert,
+                        m->nhfield,   m->nhfielddata, m->nskin};
+  put(counts, sizeof(counts));
+  put(m->tex_type, sizeof(int) * m->ntex);
+  put(m->tex_height, sizeof(int) * m->ntex);
+  put(m->tex_width, sizeof(int) * m->ntex);
+  put(m->tex_rgb, m->ntexdata);
+  put(m->mesh_vert, sizeof(float) * 3 * m->nmeshvert);
+  put(m->mesh_normal, sizeof(float) * 3 * m->nmeshvert);
+  put(m->mesh_face, sizeof(int) * 3 * m->nmeshface);
+  put(m->mesh_texcoord, sizeof(float) * 2 * m->nmeshtexvert);
+  put(m->mesh_vertadr, sizeof(int) * m->nmesh);
+  put(m->mesh_faceadr, sizeof(int) * m->nmesh);
+  put(m->hfield_size, sizeof(mjtNum) * 4 * m->nhfield);
+  put(m->hfield_nrow, sizeof(int) * m->nhfield);
+  put(m->hfield_ncol, sizeof(int) * m->nhfield);
+  put(m->hfield_data, sizeof(float) * m->nhfielddata);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_type[g] == mjGEOM_PLANE) {
+      put(m->geom_size + 3 * g, sizeof(mjtNum) * 3);
+      put(m->geom_matid + g, sizeof(int));
+    }
+  }
+  return key;
+}
+
 }  // namespace
 
 Preview::Preview(int width, int height) : width_(width), height_(height) {
+  InstallMujocoBufferCache();
   mjv_defaultScene(&scene_);
   mjv_defaultOption(&option_);
   mjv_defaultCamera(&camera_);
@@ -63,7 +108,6 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   mjv_freeScene(&scene_);
   mjv_makeScene(m, &scene_, m->ngeom + kExtraGeoms);
   // The context holds the model's meshes and textures: made again per model.
-  if (context_made_) mjr_freeContext(&context_);
   mjModel sized = *m;
   sized.vis.global.offwidth = std::max(width_, 16);
   sized.vis.global.offheight = std::max(height_, 16);
@@ -76,8 +120,25 @@ std::string Preview::Rebuild(const Scenario& scenario) {
       renderer != nullptr && (std::strstr(renderer, "llvmpipe") != nullptr ||
                               std::strstr(renderer, "softpipe") != nullptr);
   if (software_) sized.vis.quality.offsamples = 0;
-  mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
-  context_made_ = true;
+  // Uploading textures (the 512x3072 sky) and buffers again costs more
+  // than the compile on software GL: only when they changed. What the
+  // context copies from the model's size goes over by hand.
+  const size_t key = UploadKey(&sized);
+  if (context_made_ && key == upload_key_) {
+    context_.shadowClip =
+        static_cast<float>(m->stat.extent * m->vis.map.shadowclip);
+    context_.shadowScale = m->vis.map.shadowscale;
+    context_.fogStart =
+        static_cast<float>(m->stat.extent * m->vis.map.fogstart);
+    context_.fogEnd = static_cast<float>(m->stat.extent * m->vis.map.fogend);
+    for (int i = 0; i < 4; ++i) context_.fogRGBA[i] = m->vis.rgba.fog[i];
+    context_.lineWidth = m->vis.global.linewidth;
+  } else {
+    if (context_made_) mjr_freeContext(&context_);
+    mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
+    context_made_ = true;
+    upload_key_ = key;
+  }
   return "";
 }
 

@@ -38,6 +38,10 @@ class Preview {
   // returns the error ("" on success). Frames the camera on the first model.
   std::string Rebuild(const Scenario& scenario);
   bool has_model() const { return physics_ != nullptr; }
+  // The model drawn (null before the first successful Rebuild).
+  const mjModel* model() const {
+    return physics_ ? physics_->model() : nullptr;
+  }
 
   // Binds the window (or off-screen) framebuffer for drawing.
   void Bind(bool offscreen);
@@ -81,6 +85,7 @@ class Preview {
   double aspect_ = 1.0;
   bool software_ = false;  // llvmpipe: no MSAA, no shadows
   bool context_made_ = false;
+  size_t upload_key_ = 0;  // what the context holds (UploadKey)
 };
 
 }  // namespace mrsim::studio
