@@ -1,5 +1,6 @@
 #include "studio/chain_edit.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace mrsim::studio {
@@ -36,6 +37,7 @@ void CarryModule(const Module& from, Module* to) {
 }
 
 void CarrySensorModule(const SensorModule& from, SensorModule* to) {
+  to->size = from.size;
   to->mass = from.mass;
   to->material_name = from.material_name;
   if (from.force_sensor && to->force_sensor) {
@@ -158,7 +160,55 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
       if (slot.source >= 0) CarryModule(old.modules.at(slot.source), &m);
     }
   }
+  Restack(&robot);
   return robot;
+}
+
+void Restack(Robot* robot) {
+  constexpr double kTouching = 1e-9;  // m
+  if (robot->modules.empty()) return;
+  for (const Module& m : robot->modules) {
+    if (m.frames[0].is_mesh() || m.frames[1].is_mesh()) return;
+  }
+  // Front faces from the front going towards -x, relative to the first.
+  const std::vector<ChainSlot> slots = ChainOrder(*robot);
+  std::vector<double> front(slots.size());
+  double cursor = 0;
+  double hinge0 = 0;
+  for (size_t i = 0; i < slots.size(); ++i) {
+    front[i] = cursor;
+    if (slots[i].sensor) {
+      cursor -= robot->sensor_modules[slots[i].source].size.x();
+    } else {
+      const Module& m = robot->modules[slots[i].source];
+      if (slots[i].source == 0) hinge0 = cursor - m.frames[0].scale.x();
+      cursor -= m.frames[0].scale.x() + m.frames[1].scale.x();
+    }
+  }
+  const double shift = robot->modules[0].position.x() - hinge0;
+  auto place = [&](double* x, double target) {
+    if (std::abs(*x - target) > kTouching) *x = target;
+  };
+  for (size_t i = 0; i < slots.size(); ++i) {
+    const double face = front[i] + shift;
+    if (slots[i].sensor) {
+      SensorModule& sm = robot->sensor_modules[slots[i].source];
+      const double centre = face - sm.size.x() / 2;
+      const double dx = centre - sm.position.x();
+      if (std::abs(dx) <= kTouching) continue;
+      sm.position.x() = centre;
+      sm.force_lock_position.x() += dx;
+      if (sm.force_sensor) sm.force_sensor->position.x() += dx;
+      sm.distance_lock_position.x() += dx;
+      for (DistanceSensor& d : sm.distance_sensors) d.position.x() += dx;
+    } else {
+      Module& m = robot->modules[slots[i].source];
+      const double hinge = face - m.frames[0].scale.x();
+      place(&m.position.x(), hinge);
+      place(&m.frames[0].position.x(), hinge + m.frames[0].scale.x() / 2);
+      place(&m.frames[1].position.x(), hinge - m.frames[1].scale.x() / 2);
+    }
+  }
 }
 
 }  // namespace mrsim::studio

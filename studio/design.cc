@@ -389,6 +389,14 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
   } catch (const FieldError& e) {
     throw DesignError(e.what());
   }
+  // A part that grows or shrinks keeps the chain together: the parts
+  // behind it slide to stay attached.
+  const bool length =
+      (address.field == "scale" && address.sub.rfind("frames[", 0) == 0) ||
+      (address.field == "size" && address.sub.empty());
+  if (length && IsChainPart(address.part)) {
+    Restack(&next.robots.at(address.part.robot));
+  }
   // Euler angles place nothing; keep the quaternion that does in step.
   if (address.field == "rotation" && address.part.kind == PartKind::kObject) {
     SceneObject& o = next.scene_objects[address.part.index];

@@ -4,12 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 
 #include "sim_core/scenario_xml.h"
+#include "studio/chain_edit.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::studio {
@@ -204,6 +206,65 @@ TEST(StudioDesign, MoveAndRemoveKeepTheChainWhole) {
   EXPECT_EQ(r2.modules[1].mod_nr, 1);
   EXPECT_EQ(r2.modules[1].axis, Axis::kPitch);
   EXPECT_EQ(r2.sensor_modules[0].right_mod_nr, 1);
+}
+
+// Every part touches the one in front of it along x: a module's front
+// frame the previous part's back face, its back frame its own front frame.
+void ExpectChainTouches(const Robot& r) {
+  double back = NAN;  // back face of the part in front
+  auto touches = [&](double front_face, double length,
+                     const std::string& what) {
+    if (!std::isnan(back)) {
+      EXPECT_NEAR(front_face, back, 1e-12) << what;
+    }
+    back = front_face - length;
+  };
+  for (const ChainSlot& slot : ChainOrder(r)) {
+    if (slot.sensor) {
+      const SensorModule& sm = r.sensor_modules[slot.source];
+      touches(sm.position.x() + sm.size.x() / 2, sm.size.x(), sm.guid);
+    } else {
+      const Module& m = r.modules[slot.source];
+      for (const Frame& f : m.frames) {
+        touches(f.position.x() + f.scale.x() / 2, f.scale.x(), f.guid);
+      }
+      EXPECT_NEAR(m.position.x(),
+                  m.frames[1].position.x() + m.frames[1].scale.x() / 2, 1e-12);
+    }
+  }
+}
+
+TEST(StudioDesign, ScalingAFrameSlidesThePartsBehindItToStayAttached) {
+  Design d;
+  for (NextPart p : {NextPart::kPitchModule, NextPart::kYawModule,
+                     NextPart::kSensorModule, NextPart::kPitchModule}) {
+    d.AddPart(p, Where::kTail);
+  }
+  d.AddPart(NextPart::kSensorModule, Where::kFront);
+  const double hinge0 = d.scenario().robots[0].modules[0].position.x();
+  const double tail = d.scenario().robots[0].modules[2].position.x();
+  d.SetField({{PartKind::kModule, 0, 1}, "frames[0]", "scale"},
+             "0.09 0.05 0.05");
+  const Robot& r = d.scenario().robots[0];
+  ExpectChainTouches(r);
+  EXPECT_EQ(r.modules[0].position.x(), hinge0);  // in front: unmoved
+  EXPECT_NEAR(r.modules[2].position.x(), tail - 0.04, 1e-12);
+  // What sits on the sensor module behind moved with it.
+  const SensorModule& sm = r.sensor_modules[1];
+  ASSERT_TRUE(sm.force_sensor);
+  EXPECT_NEAR(sm.force_sensor->position.x(), sm.position.x(), 1e-12);
+  // A sensor module that grows, and a later structural edit, keep it too.
+  d.SetField({{PartKind::kSensorModule, 0, 1}, "", "size"}, "0.08 0.05 0.05");
+  ExpectChainTouches(d.scenario().robots[0]);
+  d.Select({PartKind::kModule, 0, 1});
+  d.AddPart(NextPart::kPitchModule);
+  ExpectChainTouches(d.scenario().robots[0]);
+  EXPECT_EQ(d.scenario().robots[0].modules[1].frames[0].scale.x(), 0.09);
+  EXPECT_EQ(d.scenario().robots[0].sensor_modules[1].size.x(), 0.08);
+  d.Undo();
+  d.Undo();
+  d.Undo();
+  EXPECT_NEAR(d.scenario().robots[0].modules[2].position.x(), tail, 1e-12);
 }
 
 TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
