@@ -15,6 +15,8 @@ struct Part {
   double center = 0;  // x of its centre, before shifting
 };
 
+}  // namespace
+
 Joint MakeLock(const std::string& guid, const std::string& left,
                const std::string& right) {
   Joint lock;
@@ -26,8 +28,6 @@ Joint MakeLock(const std::string& guid, const std::string& left,
   lock.upper_range_limit = 0.0;
   return lock;
 }
-
-}  // namespace
 
 Robot MakeChain(const ChainOptions& options) {
   if (options.modules < 1) {

@@ -60,4 +60,9 @@ struct ChainOptions {
 // [-1, modules-1] or repeated. The caller places the robot in a Scenario.
 Robot MakeChain(const ChainOptions& options);
 
+// A Lock joint holding `right` rigidly to `left` (limits 0), as the chain's
+// locks and sensor mounts are.
+Joint MakeLock(const std::string& guid, const std::string& left,
+               const std::string& right);
+
 }  // namespace mrsim

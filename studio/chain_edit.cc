@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim_core/mjcf_builder.h"
+
 namespace mrsim::studio {
 namespace {
 
@@ -40,10 +42,16 @@ void CarrySensorModule(const SensorModule& from, SensorModule* to) {
   to->size = from.size;
   to->mass = from.mass;
   to->material_name = from.material_name;
-  if (from.force_sensor && to->force_sensor) {
+  // Each sensor module keeps its own choice of plate (and its face).
+  if (!from.force_sensor) {
+    to->force_sensor.reset();
+    to->force_sensor_lock.reset();
+  } else if (to->force_sensor) {
     to->force_sensor->mass = from.force_sensor->mass;
     to->force_sensor->material_name = from.force_sensor->material_name;
     to->force_sensor->force_value = from.force_sensor->force_value;
+    to->force_sensor->sensor_position = from.force_sensor->sensor_position;
+    to->force_sensor->size = from.force_sensor->size;
   }
   // Distance sensors keep their place on the module as it moves.
   const Eigen::Vector3d shift = to->position - from.position;
@@ -59,6 +67,13 @@ void CarrySensorModule(const SensorModule& from, SensorModule* to) {
     lock.left_frame_guid = Renamed(lock.left_frame_guid, from.guid, to->guid);
     lock.right_frame_guid = Renamed(lock.right_frame_guid, from.guid, to->guid);
   }
+  PlaceMounted(to);
+}
+
+// Moves `to` onto `target` unless it is there already (so a chain laid out
+// by MakeChain keeps its exact coordinates).
+void Place(Eigen::Vector3d* to, const Eigen::Vector3d& target) {
+  if ((*to - target).norm() > 1e-9) *to = target;
 }
 
 }  // namespace
@@ -83,6 +98,28 @@ std::vector<ChainSlot> ChainOrder(const Robot& robot) {
     if (!placed[j]) slots.push_back({true, static_cast<int>(j), Axis::kPitch});
   }
   return slots;
+}
+
+void PlaceMounted(SensorModule* sm) {
+  const Eigen::Vector3d half = sm->size / 2;
+  // A point `out` beyond the centre of face `face`, in the world.
+  auto beyond = [&](int face, double out) -> Eigen::Vector3d {
+    const Eigen::Vector3d n = SensorFaceNormal(face);
+    return sm->position +
+           sm->quat_rotation * (n * (std::abs(n.dot(half)) + out));
+  };
+  if (sm->force_sensor) {
+    ForceSensor& plate = *sm->force_sensor;
+    Place(&sm->force_lock_position, beyond(plate.sensor_position, 0));
+    Place(&plate.position, beyond(plate.sensor_position, plate.size.z() / 2));
+  }
+  for (size_t k = 0; k < sm->distance_sensors.size(); ++k) {
+    DistanceSensor& d = sm->distance_sensors[k];
+    const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
+    if (k == 0)
+      Place(&sm->distance_lock_position, beyond(d.sensor_position, 0));
+    Place(&d.position, beyond(d.sensor_position, std::abs(n.dot(d.size)) / 2));
+  }
 }
 
 ChainOptions OptionsOf(const Robot& robot) {
@@ -193,14 +230,8 @@ void Restack(Robot* robot) {
     const double face = front[i] + shift;
     if (slots[i].sensor) {
       SensorModule& sm = robot->sensor_modules[slots[i].source];
-      const double centre = face - sm.size.x() / 2;
-      const double dx = centre - sm.position.x();
-      if (std::abs(dx) <= kTouching) continue;
-      sm.position.x() = centre;
-      sm.force_lock_position.x() += dx;
-      if (sm.force_sensor) sm.force_sensor->position.x() += dx;
-      sm.distance_lock_position.x() += dx;
-      for (DistanceSensor& d : sm.distance_sensors) d.position.x() += dx;
+      place(&sm.position.x(), face - sm.size.x() / 2);
+      PlaceMounted(&sm);
     } else {
       Module& m = robot->modules[slots[i].source];
       const double hinge = face - m.frames[0].scale.x();

@@ -84,6 +84,16 @@ class Design {
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);
+  // The selected sensor module gets a force plate (on its bottom face) or
+  // loses it; the chain rises onto plates or comes down when the first
+  // arrives or the last goes.
+  void SetForcePlate(bool on);
+  // A distance sensor on face `face` (0..5: bottom, left, top, right,
+  // front, back) of the selected sensor module, looking out of that face;
+  // one per face, at most six.
+  void AddDistanceSensor(int face);
+  // Removes distance sensor `k` of the selected sensor module.
+  void RemoveDistanceSensor(int k);
   // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
   void SetField(const FieldAddress& address, const std::string& text);
   // Terrain: an image (empty: flat ground), brightest-pixel height and
@@ -116,6 +126,8 @@ class Design {
   void Commit(Scenario next, const Selection& selection);
   void Changed();
   int TargetRobot() const;
+  // The selected sensor module in `next`, or throws DesignError.
+  SensorModule& SelectedSensorModule(Scenario* next) const;
 
   Scenario scenario_;
   Selection selection_;

@@ -468,6 +468,7 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
         "Select a part in the list or click it in the 3-D view to see and "
         "edit every field.");
   }
+  if (sel.kind == PartKind::kSensorModule) DrawSensorMounts(view, sel);
   for (const FieldGroup& g : groups) {
     if (!ImGui::CollapsingHeader(g.title.c_str(),
                                  ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -545,6 +546,35 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
     ImGui::PopID();
   }
   ImGui::End();
+}
+
+void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
+  static const char* kFaces[] = {"bottom", "left",  "top",
+                                 "right",  "front", "back"};
+  const SensorModule& sm =
+      view.robots.at(sel.robot).sensor_modules.at(sel.index);
+  bool plate = sm.force_sensor.has_value();
+  if (ImGui::Checkbox("force plate", &plate)) {
+    Try([&] { design_.SetForcePlate(plate); });
+  }
+  Record("force plate");
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("##face", &ray_face_, kFaces, IM_ARRAYSIZE(kFaces));
+  ImGui::SameLine();
+  if (Button("add distance sensor")) {
+    Try([&] { design_.AddDistanceSensor(ray_face_); });
+  }
+  for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
+    const int face = sm.distance_sensors[k].sensor_position;
+    ImGui::PushID(static_cast<int>(k));
+    ImGui::Text("ray %zu: %s", k, face >= 0 && face < 6 ? kFaces[face] : "?");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) {
+      Try([&] { design_.RemoveDistanceSensor(static_cast<int>(k)); });
+    }
+    ImGui::PopID();
+  }
+  ImGui::Separator();
 }
 
 void StudioApp::DrawStatus(float x, float y, float w) {

@@ -10,6 +10,8 @@
 #include <functional>
 #include <sstream>
 
+#include "sim_core/mjcf_builder.h"
+#include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/chain_edit.h"
 #include "tests/common/child_process.h"
@@ -265,6 +267,103 @@ TEST(StudioDesign, ScalingAFrameSlidesThePartsBehindItToStayAttached) {
   d.Undo();
   d.Undo();
   EXPECT_NEAR(d.scenario().robots[0].modules[2].position.x(), tail, 1e-12);
+}
+
+// Pitch, sensor, yaw, sensor, pitch: every sensor module with a plate.
+Design TwoSensorModules() {
+  Design d;
+  for (NextPart p :
+       {NextPart::kPitchModule, NextPart::kSensorModule, NextPart::kYawModule,
+        NextPart::kSensorModule, NextPart::kPitchModule}) {
+    d.AddPart(p, Where::kTail);
+  }
+  return d;
+}
+
+TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
+  Design d = TwoSensorModules();
+  ASSERT_TRUE(d.scenario().robots[0].sensor_modules[0].force_sensor);
+  ASSERT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
+  const double z = d.scenario().robots[0].modules[0].position.z();
+  d.Select({PartKind::kSensorModule, 0, 0});
+  d.SetForcePlate(false);
+  const Robot& r = d.scenario().robots[0];
+  EXPECT_FALSE(r.sensor_modules[0].force_sensor);
+  EXPECT_FALSE(r.sensor_modules[0].force_sensor_lock);
+  ASSERT_TRUE(r.sensor_modules[1].force_sensor);
+  EXPECT_EQ(r.modules[0].position.z(), z);  // still on the other plate
+  // The choice survives structural edits, and the plate changes face.
+  d.Select({PartKind::kModule, 0, 0});
+  d.AddPart(NextPart::kYawModule, Where::kFront);
+  EXPECT_FALSE(d.scenario().robots[0].sensor_modules[0].force_sensor);
+  EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
+  d.SetField(
+      {{PartKind::kSensorModule, 0, 1}, "force_sensor", "sensorPosition"}, "2");
+  const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
+  EXPECT_NEAR(sm.force_sensor->position.z(),
+              sm.position.z() + sm.size.z() / 2 + sm.force_sensor->size.z() / 2,
+              1e-12);  // on top now
+  // Without any plate the chain comes down to the ground, and back up.
+  d.Select({PartKind::kSensorModule, 0, 1});
+  d.SetForcePlate(false);
+  const double ground_z = d.scenario().robots[0].modules[0].position.z();
+  EXPECT_NEAR(ground_z, z - ForceSensor().size.z(), 1e-12);
+  d.SetForcePlate(true);
+  EXPECT_NEAR(d.scenario().robots[0].modules[0].position.z(), z, 1e-12);
+  EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor_lock);
+  EXPECT_THROW(
+      {
+        d.Select({PartKind::kModule, 0, 0});
+        d.SetForcePlate(true);
+      },
+      DesignError);
+  // Saved and read back, as the simulator would.
+  const Scenario back = ReadScenarioString(Bytes(d), "plates", "");
+  EXPECT_FALSE(back.robots[0].sensor_modules[0].force_sensor);
+  EXPECT_TRUE(back.robots[0].sensor_modules[1].force_sensor);
+}
+
+TEST(StudioDesign, DistanceSensorsGoOnAnyFaceOfASensorModule) {
+  Design d = TwoSensorModules();
+  d.Select({PartKind::kSensorModule, 0, 1});
+  for (int face : {0, 1, 2, 3, 4, 5}) d.AddDistanceSensor(face);
+  const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
+  ASSERT_EQ(sm.distance_sensors.size(), 6u);
+  ASSERT_EQ(sm.distance_sensor_locks.size(), 6u);
+  for (const DistanceSensor& ray : sm.distance_sensors) {
+    const Eigen::Vector3d n = SensorFaceNormal(ray.sensor_position);
+    EXPECT_TRUE(ray.ray_direction.isApprox(n)) << ray.guid;
+    // Just outside its face, looking out of it.
+    const double out = (ray.position - sm.position).dot(n);
+    EXPECT_NEAR(out,
+                std::abs(n.dot(sm.size)) / 2 + std::abs(n.dot(ray.size)) / 2,
+                1e-12)
+        << ray.guid;
+  }
+  EXPECT_THROW(d.AddDistanceSensor(3), DesignError);  // full
+  d.RemoveDistanceSensor(1);                          // the one on face 1
+  EXPECT_THROW(d.AddDistanceSensor(0), DesignError);  // face taken
+  // A ray moved to another face sits on it and looks out of it.
+  d.SetField({{PartKind::kSensorModule, 0, 1},
+              "distance_sensors[0]",
+              "sensorPosition"},
+             "1");
+  const SensorModule& moved = d.scenario().robots[0].sensor_modules[1];
+  EXPECT_TRUE(moved.distance_sensors[0].ray_direction.isApprox(
+      Eigen::Vector3d::UnitY()));
+  EXPECT_NEAR(moved.distance_sensors[0].position.y() - moved.position.y(),
+              moved.size.y() / 2 + moved.distance_sensors[0].size.y() / 2,
+              1e-12);
+  d.AddDistanceSensor(0);
+  EXPECT_THROW(d.SetField({{PartKind::kSensorModule, 0, 1},
+                           "distance_sensors[0]",
+                           "sensorPosition"},
+                          "9"),
+               DesignError);
+  // The simulator builds it from the file: six rays on one module.
+  const Physics physics(ReadScenarioString(Bytes(d), "rays", ""));
+  EXPECT_EQ(physics.ReadRobotState(0).sensor_modules.at(1).distances.size(),
+            6u);
 }
 
 TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
