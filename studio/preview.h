@@ -1,8 +1,8 @@
 // The studio's 3-D view: the MuJoCo model the physics builds from the
-// design (sim_core Physics, so the same BuildMjcf), drawn with MuJoCo's
-// renderer with per-kind colours, a checker floor, module numbers and
-// distance-sensor rays; orbit/pan/zoom and click-to-select as in
-// mujoco-simulate. Needs a current OpenGL context.
+// design (sim_core Physics, so the same BuildMjcf, whose look gives the
+// colours per kind of part, checker floor and sky), drawn with MuJoCo's
+// renderer with module numbers and distance-sensor rays; orbit/pan/zoom
+// and click-to-select as in mujoco-simulate. Needs a current OpenGL context.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -67,8 +67,7 @@ class Preview {
                                   int window_height) const;
 
  private:
-  void AddDecor();
-  void DrawSky(const mjrRect& viewport);
+  void AddRays();
 
   int width_;
   int height_;

@@ -10,10 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
-#include "studio/part_colors.h"
 
 namespace mrsim::studio {
 namespace {
@@ -44,9 +44,34 @@ std::string LimitsText(const FieldInfo& info) {
   return buf;
 }
 
+// The colour the preview shows a kind of part in (the MJCF look's hue).
 ImVec4 Swatch(Look look) {
-  const float* c = LookColor(look);
-  return ImVec4(c[0], c[1], c[2], 1.0f);
+  PartLook kind = PartLook::kLooseFrame;
+  switch (look) {
+    case Look::kPitchModule:
+      kind = PartLook::kPitchModule;
+      break;
+    case Look::kYawModule:
+      kind = PartLook::kYawModule;
+      break;
+    case Look::kSensorModule:
+      kind = PartLook::kSensorModule;
+      break;
+    case Look::kForcePlate:
+      kind = PartLook::kForcePlate;
+      break;
+    case Look::kDistanceSensor:
+      kind = PartLook::kDistanceSensor;
+      break;
+    case Look::kObject:
+      kind = PartLook::kSceneObject;
+      break;
+    default:
+      break;
+  }
+  const Eigen::Vector3d c = PartLookRgb(kind);
+  return ImVec4(static_cast<float>(c.x()), static_cast<float>(c.y()),
+                static_cast<float>(c.z()), 1.0f);
 }
 
 }  // namespace
