@@ -82,32 +82,12 @@ Scenario EmptyScenario() {
   return s;
 }
 
-std::vector<int> SensorsAfter(SensorPlacement placement, int modules) {
-  std::vector<int> after;
-  if (placement == SensorPlacement::kNone) return after;
-  const bool all = placement == SensorPlacement::kAll;
-  for (int i = all ? -1 : 0; i < (all ? modules : modules - 1); ++i) {
-    after.push_back(i);
-  }
-  return after;
-}
-
 Scenario MakeTemplateScenario(const TemplateOptions& options) {
-  Scenario s = EmptyScenario();
   try {
-    s.robots.push_back(MakeChain(options.chain));
+    return MakeChainScenario(options);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
-  s.scene.material_name = options.ground_material;
-  if (options.friction >= 0) {
-    ContactFriction pair;
-    pair.material1 = options.chain.material;
-    pair.material2 = options.ground_material;
-    pair.friction = options.friction;
-    s.contact_frictions.push_back(pair);
-  }
-  return s;
 }
 
 Design::Design() : scenario_(EmptyScenario()) {

@@ -34,18 +34,10 @@ struct FieldAddress {
   std::string field;
 };
 
-// The options of `mrsim-scenario new` (sim_core/scenario_tool): a chain,
-// the ground's material and an optional robot-ground friction pair.
-struct TemplateOptions {
-  ChainOptions chain;
-  std::string ground_material = "ground";
-  double friction = -1;  // < 0: no ContactFriction
-};
-// Where `mrsim-scenario new --sensors none|all|between` puts sensor
-// modules (ChainOptions::sensor_after) for a chain of `modules`.
-enum class SensorPlacement { kNone, kAll, kBetween };
-std::vector<int> SensorsAfter(SensorPlacement placement, int modules);
-// The scenario `mrsim-scenario new` writes for these options.
+// The options of `mrsim-scenario new` (sim_core/chain_builder.h).
+using TemplateOptions = ChainScenarioOptions;
+// The scenario `mrsim-scenario new` writes for these options (the same
+// MakeChainScenario); throws DesignError for impossible options.
 Scenario MakeTemplateScenario(const TemplateOptions& options);
 // No robot yet, flat ground: where a new design starts.
 Scenario EmptyScenario();
