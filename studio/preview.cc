@@ -55,8 +55,6 @@ size_t UploadKey(const mjModel* m) {
     if (m->geom_type[g] == mjGEOM_PLANE) {
       put(m->geom_size + 3 * g, sizeof(mjtNum) * 3);
       put(m->geom_matid + g, sizeof(int));
-      // An infinite plane's grid is made for the model's extent.
-      put(&m->stat.extent, sizeof(mjtNum));
     }
   }
   return key;
