@@ -15,6 +15,33 @@ struct Part {
   double center = 0;  // x of its centre, before shifting
 };
 
+}  // namespace
+
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules) {
+  std::vector<int> after;
+  if (placement == SensorPlacement::kNone) return after;
+  const bool all = placement == SensorPlacement::kAll;
+  for (int i = all ? -1 : 0; i < (all ? modules : modules - 1); ++i) {
+    after.push_back(i);
+  }
+  return after;
+}
+
+Scenario MakeChainScenario(const ChainScenarioOptions& options) {
+  Scenario s;
+  s.robots.push_back(MakeChain(options.chain));
+  s.scene.guid = "scene";
+  s.scene.material_name = options.ground_material;
+  if (options.friction >= 0) {
+    ContactFriction pair;
+    pair.material1 = options.chain.material;
+    pair.material2 = options.ground_material;
+    pair.friction = options.friction;
+    s.contact_frictions.push_back(pair);
+  }
+  return s;
+}
+
 Joint MakeLock(const std::string& guid, const std::string& left,
                const std::string& right) {
   Joint lock;
@@ -26,8 +53,6 @@ Joint MakeLock(const std::string& guid, const std::string& left,
   lock.upper_range_limit = 0.0;
   return lock;
 }
-
-}  // namespace
 
 Robot MakeChain(const ChainOptions& options) {
   if (options.modules < 1) {

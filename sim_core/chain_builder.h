@@ -60,4 +60,26 @@ struct ChainOptions {
 // [-1, modules-1] or repeated. The caller places the robot in a Scenario.
 Robot MakeChain(const ChainOptions& options);
 
+// Where `--sensors none|all|between` puts sensor modules
+// (ChainOptions::sensor_after) in a chain of `modules`: nowhere, in front
+// of module 0 and after every module, or between consecutive modules.
+enum class SensorPlacement { kNone, kAll, kBetween };
+std::vector<int> SensorsAfter(SensorPlacement placement, int modules);
+
+// What `mrsim-scenario new` makes (and the studio's "New robot from
+// template"): one chain on flat ground of `ground_material`, with a
+// robot-ground ContactFriction when friction >= 0.
+struct ChainScenarioOptions {
+  ChainOptions chain;
+  std::string ground_material = "ground";
+  double friction = -1;  // < 0: no ContactFriction
+};
+// Throws std::invalid_argument as MakeChain does.
+Scenario MakeChainScenario(const ChainScenarioOptions& options);
+
+// A Lock joint holding `right` rigidly to `left` (limits 0), as the chain's
+// locks and sensor mounts are.
+Joint MakeLock(const std::string& guid, const std::string& left,
+               const std::string& right);
+
 }  // namespace mrsim

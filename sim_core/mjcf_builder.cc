@@ -21,6 +21,30 @@
 #include "sim_core/terrain.h"
 
 namespace mrsim {
+
+// Hues far apart on the wheel so neighbours in a chain stand out: warm
+// orange pitch, blue yaw, green sensor modules, magenta plates, yellow
+// distance sensors, red scene objects, grey loose frames.
+Eigen::Vector3d PartLookRgb(PartLook kind) {
+  switch (kind) {
+    case PartLook::kPitchModule:
+      return {0.95, 0.55, 0.15};
+    case PartLook::kYawModule:
+      return {0.2, 0.45, 0.9};
+    case PartLook::kLooseFrame:
+      return {0.6, 0.6, 0.6};
+    case PartLook::kSensorModule:
+      return {0.25, 0.75, 0.3};
+    case PartLook::kForcePlate:
+      return {0.8, 0.25, 0.8};
+    case PartLook::kDistanceSensor:
+      return {1.0, 0.9, 0.2};
+    case PartLook::kSceneObject:
+      return {0.85, 0.2, 0.2};
+  }
+  return {0.5, 0.5, 0.5};
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -48,15 +72,7 @@ Quaterniond Normalized(const Quaterniond& q) {
 // ---------------------------------------------------------------- look
 
 // What a geom is, for its colour: one hue per kind, shaded per material.
-enum class PartKind {
-  kPitchModule,
-  kYawModule,
-  kLooseFrame,
-  kSensorModule,
-  kForcePlate,
-  kDistanceSensor,
-  kSceneObject,
-};
+using PartKind = PartLook;
 
 const char* KindName(PartKind kind) {
   switch (kind) {
@@ -78,29 +94,6 @@ const char* KindName(PartKind kind) {
   return "part";
 }
 
-// Hues far apart on the wheel so neighbours in a chain stand out: warm
-// orange pitch, blue yaw, green sensor modules, magenta plates, yellow
-// distance sensors, red scene objects, grey loose frames.
-Eigen::Vector3d KindRgb(PartKind kind) {
-  switch (kind) {
-    case PartKind::kPitchModule:
-      return {0.95, 0.55, 0.15};
-    case PartKind::kYawModule:
-      return {0.2, 0.45, 0.9};
-    case PartKind::kLooseFrame:
-      return {0.6, 0.6, 0.6};
-    case PartKind::kSensorModule:
-      return {0.25, 0.75, 0.3};
-    case PartKind::kForcePlate:
-      return {0.8, 0.25, 0.8};
-    case PartKind::kDistanceSensor:
-      return {1.0, 0.9, 0.2};
-    case PartKind::kSceneObject:
-      return {0.85, 0.2, 0.2};
-  }
-  return {0.5, 0.5, 0.5};
-}
-
 // The MuJoCo material of a kind and scenario material: "<kind>/<material>";
 // the material name picks a shade of the kind's colour (0.7x to 1.15x).
 std::string LookName(PartKind kind, const std::string& material) {
@@ -110,7 +103,7 @@ Eigen::Vector3d LookRgb(PartKind kind, const std::string& material) {
   uint32_t h = 2166136261u;
   for (char c : material) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
   const double shade = 0.7 + 0.45 * ((h >> 8) % 1000) / 999.0;
-  return (KindRgb(kind) * shade).cwiseMin(1.0);
+  return (PartLookRgb(kind) * shade).cwiseMin(1.0);
 }
 
 // ---------------------------------------------------------------- model

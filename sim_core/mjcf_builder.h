@@ -82,6 +82,20 @@ std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options);
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
                       MjcfInfo* info);
 
+// The kinds of part the MJCF look colours (one hue each, shaded per
+// scenario material), and their hue; for tools that show a kind's colour
+// outside the model, such as the studio's palette.
+enum class PartLook {
+  kPitchModule,
+  kYawModule,
+  kLooseFrame,
+  kSensorModule,
+  kForcePlate,
+  kDistanceSensor,
+  kSceneObject,
+};
+Eigen::Vector3d PartLookRgb(PartLook kind);
+
 // Outward normal of a sensor module face in the module's own frame (the
 // chain runs along +x, z up): 0 bottom -z, 1 left +y, 2 top +z, 3 right -y,
 // 4 front +x, 5 back -x. Force plates use 0..3, distance sensors 0..5.

@@ -1,6 +1,9 @@
 #include "studio/chain_edit.h"
 
+#include <cmath>
 #include <stdexcept>
+
+#include "sim_core/mjcf_builder.h"
 
 namespace mrsim::studio {
 namespace {
@@ -36,12 +39,19 @@ void CarryModule(const Module& from, Module* to) {
 }
 
 void CarrySensorModule(const SensorModule& from, SensorModule* to) {
+  to->size = from.size;
   to->mass = from.mass;
   to->material_name = from.material_name;
-  if (from.force_sensor && to->force_sensor) {
+  // Each sensor module keeps its own choice of plate (and its face).
+  if (!from.force_sensor) {
+    to->force_sensor.reset();
+    to->force_sensor_lock.reset();
+  } else if (to->force_sensor) {
     to->force_sensor->mass = from.force_sensor->mass;
     to->force_sensor->material_name = from.force_sensor->material_name;
     to->force_sensor->force_value = from.force_sensor->force_value;
+    to->force_sensor->sensor_position = from.force_sensor->sensor_position;
+    to->force_sensor->size = from.force_sensor->size;
   }
   // Distance sensors keep their place on the module as it moves.
   const Eigen::Vector3d shift = to->position - from.position;
@@ -57,6 +67,13 @@ void CarrySensorModule(const SensorModule& from, SensorModule* to) {
     lock.left_frame_guid = Renamed(lock.left_frame_guid, from.guid, to->guid);
     lock.right_frame_guid = Renamed(lock.right_frame_guid, from.guid, to->guid);
   }
+  PlaceMounted(to);
+}
+
+// Moves `to` onto `target` unless it is there already (so a chain laid out
+// by MakeChain keeps its exact coordinates).
+void Place(Eigen::Vector3d* to, const Eigen::Vector3d& target) {
+  if ((*to - target).norm() > 1e-9) *to = target;
 }
 
 }  // namespace
@@ -81,6 +98,28 @@ std::vector<ChainSlot> ChainOrder(const Robot& robot) {
     if (!placed[j]) slots.push_back({true, static_cast<int>(j), Axis::kPitch});
   }
   return slots;
+}
+
+void PlaceMounted(SensorModule* sm) {
+  const Eigen::Vector3d half = sm->size / 2;
+  // A point `out` beyond the centre of face `face`, in the world.
+  auto beyond = [&](int face, double out) -> Eigen::Vector3d {
+    const Eigen::Vector3d n = SensorFaceNormal(face);
+    return sm->position +
+           sm->quat_rotation * (n * (std::abs(n.dot(half)) + out));
+  };
+  if (sm->force_sensor) {
+    ForceSensor& plate = *sm->force_sensor;
+    Place(&sm->force_lock_position, beyond(plate.sensor_position, 0));
+    Place(&plate.position, beyond(plate.sensor_position, plate.size.z() / 2));
+  }
+  for (size_t k = 0; k < sm->distance_sensors.size(); ++k) {
+    DistanceSensor& d = sm->distance_sensors[k];
+    const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
+    if (k == 0)
+      Place(&sm->distance_lock_position, beyond(d.sensor_position, 0));
+    Place(&d.position, beyond(d.sensor_position, std::abs(n.dot(d.size)) / 2));
+  }
 }
 
 ChainOptions OptionsOf(const Robot& robot) {
@@ -158,7 +197,49 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
       if (slot.source >= 0) CarryModule(old.modules.at(slot.source), &m);
     }
   }
+  Restack(&robot);
   return robot;
+}
+
+void Restack(Robot* robot) {
+  constexpr double kTouching = 1e-9;  // m
+  if (robot->modules.empty()) return;
+  for (const Module& m : robot->modules) {
+    if (m.frames[0].is_mesh() || m.frames[1].is_mesh()) return;
+  }
+  // Front faces from the front going towards -x, relative to the first.
+  const std::vector<ChainSlot> slots = ChainOrder(*robot);
+  std::vector<double> front(slots.size());
+  double cursor = 0;
+  double hinge0 = 0;
+  for (size_t i = 0; i < slots.size(); ++i) {
+    front[i] = cursor;
+    if (slots[i].sensor) {
+      cursor -= robot->sensor_modules[slots[i].source].size.x();
+    } else {
+      const Module& m = robot->modules[slots[i].source];
+      if (slots[i].source == 0) hinge0 = cursor - m.frames[0].scale.x();
+      cursor -= m.frames[0].scale.x() + m.frames[1].scale.x();
+    }
+  }
+  const double shift = robot->modules[0].position.x() - hinge0;
+  auto place = [&](double* x, double target) {
+    if (std::abs(*x - target) > kTouching) *x = target;
+  };
+  for (size_t i = 0; i < slots.size(); ++i) {
+    const double face = front[i] + shift;
+    if (slots[i].sensor) {
+      SensorModule& sm = robot->sensor_modules[slots[i].source];
+      place(&sm.position.x(), face - sm.size.x() / 2);
+      PlaceMounted(&sm);
+    } else {
+      Module& m = robot->modules[slots[i].source];
+      const double hinge = face - m.frames[0].scale.x();
+      place(&m.position.x(), hinge);
+      place(&m.frames[0].position.x(), hinge + m.frames[0].scale.x() / 2);
+      place(&m.frames[1].position.x(), hinge - m.frames[1].scale.x() / 2);
+    }
+  }
 }
 
 }  // namespace mrsim::studio

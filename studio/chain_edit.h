@@ -37,4 +37,16 @@ ChainOptions OptionsOf(const Robot& robot);
 Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
                const ChainOptions& options);
 
+// Puts the force plate and distance sensors of `sm` on the centres of
+// their faces (sensorPosition) of the module as it is now, as the physics
+// mounts them; parts already there keep their exact coordinates.
+void PlaceMounted(SensorModule* sm);
+
+// Slides the parts of `robot` along the chain (x) so each touches the one
+// in front with its own length (its frames' scale, a sensor module's size),
+// module 0's hinge staying put; what is mounted on a sensor module moves
+// with it. Parts that already touch keep their exact coordinates. Robots
+// with mesh frames (length unknown here) are left as they are.
+void Restack(Robot* robot);
+
 }  // namespace mrsim::studio

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
@@ -81,32 +82,12 @@ Scenario EmptyScenario() {
   return s;
 }
 
-std::vector<int> SensorsAfter(SensorPlacement placement, int modules) {
-  std::vector<int> after;
-  if (placement == SensorPlacement::kNone) return after;
-  const bool all = placement == SensorPlacement::kAll;
-  for (int i = all ? -1 : 0; i < (all ? modules : modules - 1); ++i) {
-    after.push_back(i);
-  }
-  return after;
-}
-
 Scenario MakeTemplateScenario(const TemplateOptions& options) {
-  Scenario s = EmptyScenario();
   try {
-    s.robots.push_back(MakeChain(options.chain));
+    return MakeChainScenario(options);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
-  s.scene.material_name = options.ground_material;
-  if (options.friction >= 0) {
-    ContactFriction pair;
-    pair.material1 = options.chain.material;
-    pair.material2 = options.ground_material;
-    pair.friction = options.friction;
-    s.contact_frictions.push_back(pair);
-  }
-  return s;
 }
 
 Design::Design() : scenario_(EmptyScenario()) {
@@ -360,6 +341,99 @@ void Design::MoveSelected(int steps) {
   Commit(std::move(next), SelectionAt(slots, selection_.robot, to));
 }
 
+SensorModule& Design::SelectedSensorModule(Scenario* next) const {
+  if (selection_.kind != PartKind::kSensorModule) {
+    throw DesignError("select a sensor module first");
+  }
+  return next->robots.at(selection_.robot).sensor_modules.at(selection_.index);
+}
+
+void Design::SetForcePlate(bool on) {
+  Scenario next = scenario_;
+  SensorModule& sm = SelectedSensorModule(&next);
+  if (on == sm.force_sensor.has_value()) return;
+  Robot& robot = next.robots[selection_.robot];
+  ChainOptions options = OptionsOf(robot);  // the origin under the old lift
+  if (on) {
+    ForceSensor plate;
+    plate.material_name = sm.material_name;
+    sm.force_sensor = plate;
+  } else {
+    sm.force_sensor.reset();
+    sm.force_sensor_lock.reset();
+  }
+  options.force_sensors = false;
+  for (const SensorModule& s : robot.sensor_modules) {
+    if (s.force_sensor) options.force_sensors = true;
+  }
+  // Laid out again: plates and their locks named as MakeChain names them,
+  // the chain on its plates or on the ground.
+  try {
+    robot = Relayout(robot, ChainOrder(robot), options);
+  } catch (const std::invalid_argument& e) {
+    throw DesignError(e.what());
+  }
+  Commit(std::move(next), selection_);
+}
+
+void Design::AddDistanceSensor(int face) {
+  Scenario next = scenario_;
+  SensorModule& sm = SelectedSensorModule(&next);
+  if (face < 0 || face > 5) {
+    throw DesignError(
+        "face " + std::to_string(face) +
+        ": expected 0..5 (bottom, left, top, right, front, back)");
+  }
+  if (sm.distance_sensors.size() >= 6) {
+    throw DesignError("a sensor module carries at most six distance sensors");
+  }
+  for (const DistanceSensor& d : sm.distance_sensors) {
+    if (d.sensor_position == face) {
+      throw DesignError("face " + std::to_string(face) +
+                        " already has a distance sensor");
+    }
+  }
+  auto used = [&](const std::string& guid) {
+    for (const DistanceSensor& d : sm.distance_sensors) {
+      if (d.guid == guid) return true;
+    }
+    return false;
+  };
+  int k = 0;
+  while (used(sm.guid + "/d" + std::to_string(k))) ++k;
+  DistanceSensor ray;
+  ray.guid = sm.guid + "/d" + std::to_string(k);
+  ray.sensor_position = face;
+  ray.ray_direction = SensorFaceNormal(face);
+  sm.distance_sensors.push_back(ray);
+  sm.distance_sensor_locks.push_back(
+      MakeLock(ray.guid + "_lock", sm.guid, ray.guid));
+  PlaceMounted(&sm);
+  Commit(std::move(next), selection_);
+}
+
+void Design::RemoveDistanceSensor(int k) {
+  Scenario next = scenario_;
+  SensorModule& sm = SelectedSensorModule(&next);
+  if (k < 0 || k >= static_cast<int>(sm.distance_sensors.size())) {
+    throw DesignError("no distance sensor " + std::to_string(k));
+  }
+  const std::string guid = sm.distance_sensors[k].guid;
+  sm.distance_sensors.erase(sm.distance_sensors.begin() + k);
+  auto& locks = sm.distance_sensor_locks;
+  const auto lock =
+      std::find_if(locks.begin(), locks.end(), [&](const Joint& j) {
+        return !guid.empty() && j.right_frame_guid == guid;
+      });
+  if (lock != locks.end()) {
+    locks.erase(lock);
+  } else if (k < static_cast<int>(locks.size())) {
+    locks.erase(locks.begin() + k);
+  }
+  PlaceMounted(&sm);
+  Commit(std::move(next), selection_);
+}
+
 namespace {
 
 FieldRef FindField(Scenario& s, const FieldAddress& a) {
@@ -388,6 +462,38 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
     field.SetText(text);
   } catch (const FieldError& e) {
     throw DesignError(e.what());
+  }
+  // A part that grows or shrinks keeps the chain together: the parts
+  // behind it slide to stay attached.
+  const bool length =
+      (address.field == "scale" && address.sub.rfind("frames[", 0) == 0) ||
+      (address.field == "size" && address.sub.empty());
+  if (length && IsChainPart(address.part)) {
+    Restack(&next.robots.at(address.part.robot));
+  }
+  // A plate or ray moved to another face sits on that face; a ray that
+  // looked straight out of its old face looks out of the new one.
+  // A face out of range is left to the validator's message.
+  if (address.part.kind == PartKind::kSensorModule && !address.sub.empty()) {
+    try {
+      SensorModule& sm = next.robots.at(address.part.robot)
+                             .sensor_modules.at(address.part.index);
+      const std::string prefix = "distance_sensors[";
+      if (address.field == "sensorPosition" &&
+          address.sub.rfind(prefix, 0) == 0) {
+        const int k = std::stoi(address.sub.substr(prefix.size()));
+        const DistanceSensor& before = scenario_.robots[address.part.robot]
+                                           .sensor_modules[address.part.index]
+                                           .distance_sensors.at(k);
+        DistanceSensor& d = sm.distance_sensors.at(k);
+        if (before.ray_direction.isApprox(
+                SensorFaceNormal(before.sensor_position))) {
+          d.ray_direction = SensorFaceNormal(d.sensor_position);
+        }
+      }
+      PlaceMounted(&sm);
+    } catch (const std::out_of_range&) {
+    }
   }
   // Euler angles place nothing; keep the quaternion that does in step.
   if (address.field == "rotation" && address.part.kind == PartKind::kObject) {

@@ -34,18 +34,10 @@ struct FieldAddress {
   std::string field;
 };
 
-// The options of `mrsim-scenario new` (sim_core/scenario_tool): a chain,
-// the ground's material and an optional robot-ground friction pair.
-struct TemplateOptions {
-  ChainOptions chain;
-  std::string ground_material = "ground";
-  double friction = -1;  // < 0: no ContactFriction
-};
-// Where `mrsim-scenario new --sensors none|all|between` puts sensor
-// modules (ChainOptions::sensor_after) for a chain of `modules`.
-enum class SensorPlacement { kNone, kAll, kBetween };
-std::vector<int> SensorsAfter(SensorPlacement placement, int modules);
-// The scenario `mrsim-scenario new` writes for these options.
+// The options of `mrsim-scenario new` (sim_core/chain_builder.h).
+using TemplateOptions = ChainScenarioOptions;
+// The scenario `mrsim-scenario new` writes for these options (the same
+// MakeChainScenario); throws DesignError for impossible options.
 Scenario MakeTemplateScenario(const TemplateOptions& options);
 // No robot yet, flat ground: where a new design starts.
 Scenario EmptyScenario();
@@ -84,6 +76,16 @@ class Design {
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);
+  // The selected sensor module gets a force plate (on its bottom face) or
+  // loses it; the chain rises onto plates or comes down when the first
+  // arrives or the last goes.
+  void SetForcePlate(bool on);
+  // A distance sensor on face `face` (0..5: bottom, left, top, right,
+  // front, back) of the selected sensor module, looking out of that face;
+  // one per face, at most six.
+  void AddDistanceSensor(int face);
+  // Removes distance sensor `k` of the selected sensor module.
+  void RemoveDistanceSensor(int k);
   // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
   void SetField(const FieldAddress& address, const std::string& text);
   // Terrain: an image (empty: flat ground), brightest-pixel height and
@@ -116,6 +118,8 @@ class Design {
   void Commit(Scenario next, const Selection& selection);
   void Changed();
   int TargetRobot() const;
+  // The selected sensor module in `next`, or throws DesignError.
+  SensorModule& SelectedSensorModule(Scenario* next) const;
 
   Scenario scenario_;
   Selection selection_;

@@ -49,4 +49,11 @@ void HeadlessStudio::SavePng(const std::string& path) {
   if (!ok) throw std::runtime_error("cannot write '" + path + "'");
 }
 
+void SaveScreenshot(StudioApp* app, int width, int height,
+                    const std::string& path) {
+  HeadlessStudio headless(app, width, height);
+  for (int i = 0; i < 3; ++i) headless.Frame();
+  headless.SavePng(path);
+}
+
 }  // namespace mrsim::studio

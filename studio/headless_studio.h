@@ -32,4 +32,9 @@ class HeadlessStudio {
   GlContext gl_;
 };
 
+// mrsim-studio --screenshot: the whole window once, after the frames ImGui
+// needs to lay itself out, written to `path` (PNG).
+void SaveScreenshot(StudioApp* app, int width, int height,
+                    const std::string& path);
+
 }  // namespace mrsim::studio

@@ -6,9 +6,7 @@
 #include <iostream>
 
 #include "sim_core/scenario_xml.h"
-#include "studio/design.h"
 #include "studio/headless_studio.h"
-#include "studio/studio_app.h"
 #include "studio/window_studio.h"
 #include "viewer/live_window.h"
 
@@ -18,9 +16,10 @@ void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
+  using namespace mrsim::studio;
   CLI::App cli("mrsim-studio: design a modular robot and its scene");
   std::string scenario, screenshot;
-  mrsim::studio::AppOptions options;
+  AppOptions options;
   cli.add_option("SCENARIO", scenario, "Scenario file to open (or create)");
   cli.add_option("--screenshot", screenshot,
                  "Render the window once off-screen to this PNG and exit");
@@ -40,18 +39,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    mrsim::studio::Design design = scenario.empty()
-                                       ? mrsim::studio::Design()
-                                       : mrsim::studio::Design::Open(scenario);
-    mrsim::studio::StudioApp app(std::move(design), options);
+    StudioApp app(scenario.empty() ? Design() : Design::Open(scenario),
+                  options);
     if (!screenshot.empty()) {
-      mrsim::studio::HeadlessStudio headless(&app, options.width,
-                                             options.height);
-      for (int i = 0; i < 3; ++i) headless.Frame();  // ImGui lays out first
-      headless.SavePng(screenshot);
-      return 0;
+      SaveScreenshot(&app, options.width, options.height, screenshot);
+    } else {
+      RunWindow(&app, options.width, options.height, &g_stop);
     }
-    mrsim::studio::RunWindow(&app, options.width, options.height, &g_stop);
   } catch (const mrsim::ScenarioError& e) {
     std::cerr << "mrsim-studio: " << e.what() << "\n";
     return 2;

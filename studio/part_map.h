@@ -1,6 +1,6 @@
 // Which scenario part each geom of the compiled preview model shows, found
 // through the MJCF names (sim_core/mjcf_builder.h), so a click in the 3-D
-// view selects the part and each kind of part gets its own colour.
+// view selects the part and the selection glows.
 #pragma once
 
 #include <mujoco/mujoco.h>

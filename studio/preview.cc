@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <string_view>
 
 #include "viewer/state_pose_mapper.h"
 
@@ -11,18 +13,59 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
-#include "studio/part_colors.h"
+#include "sim_core/mjcf_builder.h"
+#include "studio/mujoco_buffer_cache.h"
 
 namespace mrsim::studio {
 namespace {
 
-constexpr int kExtraGeoms = 1500;  // rays, checker squares
-constexpr double kChecker = 0.2;   // m, floor squares
-constexpr int kCheckerHalf = 15;   // squares each side of the origin
+constexpr int kExtraGeoms = 500;  // distance-sensor rays
+
+// Everything mjr_makeContext uploads from a model besides fonts and
+// buffers: textures, meshes, height fields, skins, the planes' grids and
+// the quality of built-in shapes. Equal keys: the context can stay.
+// A hash, not a copy: the sky alone is 4.7 MB.
+size_t UploadKey(const mjModel* m) {
+  size_t key = 0;
+  auto put = [&key](const void* data, size_t bytes) {
+    const size_t h = std::hash<std::string_view>()(
+        std::string_view(static_cast<const char*>(data), bytes));
+    key ^= h + 0x9e3779b97f4a7c15ULL + (key << 6) + (key >> 2);
+  };
+  put(&m->vis.quality, sizeof(m->vis.quality));
+  put(&m->vis.global.offwidth, sizeof(int));
+  put(&m->vis.global.offheight, sizeof(int));
+  const int counts[] = {m->ntex,      m->ntexdata,    m->nmesh,
+                        m->nmeshvert, m->nmeshface,   m->nmeshtexvert,
+                        m->nhfield,   m->nhfielddata, m->nskin};
+  put(counts, sizeof(counts));
+  put(m->tex_type, sizeof(int) * m->ntex);
+  put(m->tex_height, sizeof(int) * m->ntex);
+  put(m->tex_width, sizeof(int) * m->ntex);
+  put(m->tex_rgb, m->ntexdata);
+  put(m->mesh_vert, sizeof(float) * 3 * m->nmeshvert);
+  put(m->mesh_normal, sizeof(float) * 3 * m->nmeshvert);
+  put(m->mesh_face, sizeof(int) * 3 * m->nmeshface);
+  put(m->mesh_texcoord, sizeof(float) * 2 * m->nmeshtexvert);
+  put(m->mesh_vertadr, sizeof(int) * m->nmesh);
+  put(m->mesh_faceadr, sizeof(int) * m->nmesh);
+  put(m->hfield_size, sizeof(mjtNum) * 4 * m->nhfield);
+  put(m->hfield_nrow, sizeof(int) * m->nhfield);
+  put(m->hfield_ncol, sizeof(int) * m->nhfield);
+  put(m->hfield_data, sizeof(float) * m->nhfielddata);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_type[g] == mjGEOM_PLANE) {
+      put(m->geom_size + 3 * g, sizeof(mjtNum) * 3);
+      put(m->geom_matid + g, sizeof(int));
+    }
+  }
+  return key;
+}
 
 }  // namespace
 
 Preview::Preview(int width, int height) : width_(width), height_(height) {
+  InstallMujocoBufferCache();
   mjv_defaultScene(&scene_);
   mjv_defaultOption(&option_);
   mjv_defaultCamera(&camera_);
@@ -65,7 +108,6 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   mjv_freeScene(&scene_);
   mjv_makeScene(m, &scene_, m->ngeom + kExtraGeoms);
   // The context holds the model's meshes and textures: made again per model.
-  if (context_made_) mjr_freeContext(&context_);
   mjModel sized = *m;
   sized.vis.global.offwidth = std::max(width_, 16);
   sized.vis.global.offheight = std::max(height_, 16);
@@ -78,8 +120,25 @@ std::string Preview::Rebuild(const Scenario& scenario) {
       renderer != nullptr && (std::strstr(renderer, "llvmpipe") != nullptr ||
                               std::strstr(renderer, "softpipe") != nullptr);
   if (software_) sized.vis.quality.offsamples = 0;
-  mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
-  context_made_ = true;
+  // Uploading textures (the 512x3072 sky) and buffers again costs more
+  // than the compile on software GL: only when they changed. What the
+  // context copies from the model's size goes over by hand.
+  const size_t key = UploadKey(&sized);
+  if (context_made_ && key == upload_key_) {
+    context_.shadowClip =
+        static_cast<float>(m->stat.extent * m->vis.map.shadowclip);
+    context_.shadowScale = m->vis.map.shadowscale;
+    context_.fogStart =
+        static_cast<float>(m->stat.extent * m->vis.map.fogstart);
+    context_.fogEnd = static_cast<float>(m->stat.extent * m->vis.map.fogend);
+    for (int i = 0; i < 4; ++i) context_.fogRGBA[i] = m->vis.rgba.fog[i];
+    context_.lineWidth = m->vis.global.linewidth;
+  } else {
+    if (context_made_) mjr_freeContext(&context_);
+    mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
+    context_made_ = true;
+    upload_key_ = key;
+  }
   return "";
 }
 
@@ -109,36 +168,24 @@ void Preview::FrameAll() {
   camera_.elevation = -28;
 }
 
-void Preview::AddDecor() {
-  // Checker floor: darker squares over the ground plane.
-  const float dark[4] = {0.30f, 0.33f, 0.37f, 1.0f};
-  for (int i = -kCheckerHalf; i < kCheckerHalf; ++i) {
-    for (int j = -kCheckerHalf; j < kCheckerHalf; ++j) {
-      if (((i + j) & 1) == 0 || scene_.ngeom >= scene_.maxgeom) continue;
-      const mjtNum size[3] = {kChecker / 2, kChecker / 2, 0.0005};
-      const mjtNum pos[3] = {(i + 0.5) * kChecker, (j + 0.5) * kChecker,
-                             0.0002};
-      mjvGeom* g = scene_.geoms + scene_.ngeom++;
-      mjv_initGeom(g, mjGEOM_BOX, size, pos, nullptr, dark);
-      g->category = mjCAT_DECOR;
-      g->shininess = 0;
-      g->specular = 0;
-    }
-  }
-  const mjModel* m = physics_->model();
-  const float ray_rgba[4] = {1.0f, 0.85f, 0.1f, 0.7f};
+void Preview::AddRays() {
+  // Physics casts its own rays (no MuJoCo rangefinders in its model), so
+  // the preview draws them, in the look's distance-sensor colour.
+  const Eigen::Vector3d rgb = PartLookRgb(PartLook::kDistanceSensor);
+  const float rgba[4] = {static_cast<float>(rgb.x()),
+                         static_cast<float>(rgb.y()),
+                         static_cast<float>(rgb.z()), 0.7f};
   for (const RaySite& ray : rays_) {
     if (scene_.ngeom >= scene_.maxgeom) break;
     const mjtNum* p = data_->site_xpos + 3 * ray.site;
     const mjtNum* x = data_->site_xmat + 9 * ray.site;
     mjvGeom* g = scene_.geoms + scene_.ngeom++;
-    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, ray_rgba);
+    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, rgba);
     mjv_makeConnector(g, mjGEOM_CAPSULE, 0.003, p[0], p[1], p[2],
                       p[0] + ray.length * x[0], p[1] + ray.length * x[3],
                       p[2] + ray.length * x[6]);
     g->category = mjCAT_DECOR;
   }
-  (void)m;
 }
 
 void Preview::Bind(bool offscreen) {
@@ -156,10 +203,18 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
     FrameAll();
     framed_ = true;
   }
-  DrawSky(viewport);
   const mjModel* m = physics_->model();
   mjv_updateScene(m, data_, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
-  ApplyLooks(geoms_, selected, &scene_);
+  // Colours come from the model (the MJCF look); the selection glows.
+  for (int i = 0; i < scene_.ngeom; ++i) {
+    mjvGeom& g = scene_.geoms[i];
+    if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
+        g.objid < static_cast<int>(geoms_.size()) &&
+        geoms_[g.objid].part.kind != PartKind::kNone &&
+        geoms_[g.objid].part == selected) {
+      g.emission = 0.6f;
+    }
+  }
   if (software_) scene_.flags[mjRND_SHADOW] = 0;
   for (int i = 0; i < scene_.ngeom; ++i) {
     mjvGeom& g = scene_.geoms[i];
@@ -170,33 +225,8 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
       }
     }
   }
-  AddDecor();
+  AddRays();
   mjr_render(viewport, &scene_, &context_);
-}
-
-void Preview::DrawSky(const mjrRect& v) {
-  // A gradient behind the scene: mjr_render draws over what is there.
-  glViewport(v.left, v.bottom, v.width, v.height);
-  glScissor(v.left, v.bottom, v.width, v.height);
-  glEnable(GL_SCISSOR_TEST);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glUseProgram(0);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_LIGHTING);
-  glDisable(GL_TEXTURE_2D);
-  glBegin(GL_QUADS);
-  glColor3f(0.78f, 0.86f, 0.95f);
-  glVertex2f(-1, -1);
-  glVertex2f(1, -1);
-  glColor3f(0.30f, 0.48f, 0.75f);
-  glVertex2f(1, 1);
-  glVertex2f(-1, 1);
-  glEnd();
-  glDisable(GL_SCISSOR_TEST);
 }
 
 void Preview::ReadPixels(int width, int height,

@@ -1,8 +1,8 @@
 // The studio's 3-D view: the MuJoCo model the physics builds from the
-// design (sim_core Physics, so the same BuildMjcf), drawn with MuJoCo's
-// renderer with per-kind colours, a checker floor, module numbers and
-// distance-sensor rays; orbit/pan/zoom and click-to-select as in
-// mujoco-simulate. Needs a current OpenGL context.
+// design (sim_core Physics, so the same BuildMjcf, whose look gives the
+// colours per kind of part, checker floor and sky), drawn with MuJoCo's
+// renderer with module numbers and distance-sensor rays; orbit/pan/zoom
+// and click-to-select as in mujoco-simulate. Needs a current OpenGL context.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -45,6 +45,10 @@ class Preview {
   // returns the error ("" on success). Frames the camera on the first model.
   std::string Rebuild(const Scenario& scenario);
   bool has_model() const { return physics_ != nullptr; }
+  // The model drawn (null before the first successful Rebuild).
+  const mjModel* model() const {
+    return physics_ ? physics_->model() : nullptr;
+  }
 
   // Binds the window (or off-screen) framebuffer for drawing.
   void Bind(bool offscreen);
@@ -81,8 +85,7 @@ class Preview {
   bool live() const { return live_; }
 
  private:
-  void AddDecor();
-  void DrawSky(const mjrRect& viewport);
+  void AddRays();
 
   int width_;
   int height_;
@@ -101,6 +104,7 @@ class Preview {
   double aspect_ = 1.0;
   bool software_ = false;  // llvmpipe: no MSAA, no shadows
   bool context_made_ = false;
+  size_t upload_key_ = 0;  // what the context holds (UploadKey)
 };
 
 }  // namespace mrsim::studio

@@ -11,11 +11,11 @@
 #include <filesystem>
 
 #include "launcher/program_locator.h"
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sim_process/state_message.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
-#include "studio/part_colors.h"
 
 namespace mrsim::studio {
 namespace {
@@ -46,9 +46,34 @@ std::string LimitsText(const FieldInfo& info) {
   return buf;
 }
 
+// The colour the preview shows a kind of part in (the MJCF look's hue).
 ImVec4 Swatch(Look look) {
-  const float* c = LookColor(look);
-  return ImVec4(c[0], c[1], c[2], 1.0f);
+  PartLook kind = PartLook::kLooseFrame;
+  switch (look) {
+    case Look::kPitchModule:
+      kind = PartLook::kPitchModule;
+      break;
+    case Look::kYawModule:
+      kind = PartLook::kYawModule;
+      break;
+    case Look::kSensorModule:
+      kind = PartLook::kSensorModule;
+      break;
+    case Look::kForcePlate:
+      kind = PartLook::kForcePlate;
+      break;
+    case Look::kDistanceSensor:
+      kind = PartLook::kDistanceSensor;
+      break;
+    case Look::kObject:
+      kind = PartLook::kSceneObject;
+      break;
+    default:
+      break;
+  }
+  const Eigen::Vector3d c = PartLookRgb(kind);
+  return ImVec4(static_cast<float>(c.x()), static_cast<float>(c.y()),
+                static_cast<float>(c.z()), 1.0f);
 }
 
 }  // namespace
@@ -505,6 +530,7 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
         "Select a part in the list or click it in the 3-D view to see and "
         "edit every field.");
   }
+  if (sel.kind == PartKind::kSensorModule) DrawSensorMounts(view, sel);
   for (const FieldGroup& g : groups) {
     if (!ImGui::CollapsingHeader(g.title.c_str(),
                                  ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -582,6 +608,35 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
     ImGui::PopID();
   }
   ImGui::End();
+}
+
+void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
+  static const char* kFaces[] = {"bottom", "left",  "top",
+                                 "right",  "front", "back"};
+  const SensorModule& sm =
+      view.robots.at(sel.robot).sensor_modules.at(sel.index);
+  bool plate = sm.force_sensor.has_value();
+  if (ImGui::Checkbox("force plate", &plate)) {
+    Try([&] { design_.SetForcePlate(plate); });
+  }
+  Record("force plate");
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("##face", &ray_face_, kFaces, IM_ARRAYSIZE(kFaces));
+  ImGui::SameLine();
+  if (Button("add distance sensor")) {
+    Try([&] { design_.AddDistanceSensor(ray_face_); });
+  }
+  for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
+    const int face = sm.distance_sensors[k].sensor_position;
+    ImGui::PushID(static_cast<int>(k));
+    ImGui::Text("ray %zu: %s", k, face >= 0 && face < 6 ? kFaces[face] : "?");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) {
+      Try([&] { design_.RemoveDistanceSensor(static_cast<int>(k)); });
+    }
+    ImGui::PopID();
+  }
+  ImGui::Separator();
 }
 
 void StudioApp::DrawStatus(float x, float y, float w) {

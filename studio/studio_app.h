@@ -62,6 +62,8 @@ class StudioApp {
   void DrawDesignPanel(float x, float y, float w, float h);
   void DrawInspector(float x, float y, float w, float h);
   void DrawStatus(float x, float y, float w);
+  // Force plate on/off and distance sensors of the selected sensor module.
+  void DrawSensorMounts(const Scenario& view, const Selection& sel);
   void DrawDialogs();
   void DrawHelp();
   void DrawTemplateDialog();
@@ -105,6 +107,7 @@ class StudioApp {
   TemplateOptions template_;
   int template_pattern_ = 2;  // ChainPattern
   int template_sensors_ = 0;  // SensorPlacement
+  int ray_face_ = 4;          // face for "add distance sensor": front
   bool quit_ = false;
   bool view_drag_ = false;
   std::vector<std::pair<int, int>>

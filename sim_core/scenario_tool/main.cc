@@ -50,11 +50,9 @@ std::vector<int> ParseSensors(const std::string& spec, int modules) {
   std::vector<int> after;
   if (spec.empty() || spec == "none") return after;
   if (spec == "all" || spec == "between") {
-    for (int i = spec == "all" ? -1 : 0;
-         i < (spec == "all" ? modules : modules - 1); ++i) {
-      after.push_back(i);
-    }
-    return after;
+    return mrsim::SensorsAfter(spec == "all" ? mrsim::SensorPlacement::kAll
+                                             : mrsim::SensorPlacement::kBetween,
+                               modules);
   }
   std::stringstream in(spec);
   std::string item;
@@ -227,18 +225,9 @@ int Run(int argc, char** argv) {
       }
       mrsim::Scenario s;
       try {
-        s.robots.push_back(mrsim::MakeChain(chain));
+        s = mrsim::MakeChainScenario({chain, ground, friction});
       } catch (const std::invalid_argument& e) {
         throw BadInput(e.what());
-      }
-      s.scene.guid = "scene";
-      s.scene.material_name = ground;
-      if (friction >= 0) {
-        mrsim::ContactFriction pair;
-        pair.material1 = chain.material;
-        pair.material2 = ground;
-        pair.friction = friction;
-        s.contact_frictions.push_back(pair);
       }
       // Check what we generate with the same reader users get.
       const std::string text = mrsim::WriteScenarioString(s);

@@ -4,12 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 
+#include "sim_core/mjcf_builder.h"
+#include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
+#include "studio/chain_edit.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::studio {
@@ -204,6 +208,162 @@ TEST(StudioDesign, MoveAndRemoveKeepTheChainWhole) {
   EXPECT_EQ(r2.modules[1].mod_nr, 1);
   EXPECT_EQ(r2.modules[1].axis, Axis::kPitch);
   EXPECT_EQ(r2.sensor_modules[0].right_mod_nr, 1);
+}
+
+// Every part touches the one in front of it along x: a module's front
+// frame the previous part's back face, its back frame its own front frame.
+void ExpectChainTouches(const Robot& r) {
+  double back = NAN;  // back face of the part in front
+  auto touches = [&](double front_face, double length,
+                     const std::string& what) {
+    if (!std::isnan(back)) {
+      EXPECT_NEAR(front_face, back, 1e-12) << what;
+    }
+    back = front_face - length;
+  };
+  for (const ChainSlot& slot : ChainOrder(r)) {
+    if (slot.sensor) {
+      const SensorModule& sm = r.sensor_modules[slot.source];
+      touches(sm.position.x() + sm.size.x() / 2, sm.size.x(), sm.guid);
+    } else {
+      const Module& m = r.modules[slot.source];
+      for (const Frame& f : m.frames) {
+        touches(f.position.x() + f.scale.x() / 2, f.scale.x(), f.guid);
+      }
+      EXPECT_NEAR(m.position.x(),
+                  m.frames[1].position.x() + m.frames[1].scale.x() / 2, 1e-12);
+    }
+  }
+}
+
+TEST(StudioDesign, ScalingAFrameSlidesThePartsBehindItToStayAttached) {
+  Design d;
+  for (NextPart p : {NextPart::kPitchModule, NextPart::kYawModule,
+                     NextPart::kSensorModule, NextPart::kPitchModule}) {
+    d.AddPart(p, Where::kTail);
+  }
+  d.AddPart(NextPart::kSensorModule, Where::kFront);
+  const double hinge0 = d.scenario().robots[0].modules[0].position.x();
+  const double tail = d.scenario().robots[0].modules[2].position.x();
+  d.SetField({{PartKind::kModule, 0, 1}, "frames[0]", "scale"},
+             "0.09 0.05 0.05");
+  const Robot& r = d.scenario().robots[0];
+  ExpectChainTouches(r);
+  EXPECT_EQ(r.modules[0].position.x(), hinge0);  // in front: unmoved
+  EXPECT_NEAR(r.modules[2].position.x(), tail - 0.04, 1e-12);
+  // What sits on the sensor module behind moved with it.
+  const SensorModule& sm = r.sensor_modules[1];
+  ASSERT_TRUE(sm.force_sensor);
+  EXPECT_NEAR(sm.force_sensor->position.x(), sm.position.x(), 1e-12);
+  // A sensor module that grows, and a later structural edit, keep it too.
+  d.SetField({{PartKind::kSensorModule, 0, 1}, "", "size"}, "0.08 0.05 0.05");
+  ExpectChainTouches(d.scenario().robots[0]);
+  d.Select({PartKind::kModule, 0, 1});
+  d.AddPart(NextPart::kPitchModule);
+  ExpectChainTouches(d.scenario().robots[0]);
+  EXPECT_EQ(d.scenario().robots[0].modules[1].frames[0].scale.x(), 0.09);
+  EXPECT_EQ(d.scenario().robots[0].sensor_modules[1].size.x(), 0.08);
+  d.Undo();
+  d.Undo();
+  d.Undo();
+  EXPECT_NEAR(d.scenario().robots[0].modules[2].position.x(), tail, 1e-12);
+}
+
+// Pitch, sensor, yaw, sensor, pitch: every sensor module with a plate.
+Design TwoSensorModules() {
+  Design d;
+  for (NextPart p :
+       {NextPart::kPitchModule, NextPart::kSensorModule, NextPart::kYawModule,
+        NextPart::kSensorModule, NextPart::kPitchModule}) {
+    d.AddPart(p, Where::kTail);
+  }
+  return d;
+}
+
+TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
+  Design d = TwoSensorModules();
+  ASSERT_TRUE(d.scenario().robots[0].sensor_modules[0].force_sensor);
+  ASSERT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
+  const double z = d.scenario().robots[0].modules[0].position.z();
+  d.Select({PartKind::kSensorModule, 0, 0});
+  d.SetForcePlate(false);
+  const Robot& r = d.scenario().robots[0];
+  EXPECT_FALSE(r.sensor_modules[0].force_sensor);
+  EXPECT_FALSE(r.sensor_modules[0].force_sensor_lock);
+  ASSERT_TRUE(r.sensor_modules[1].force_sensor);
+  EXPECT_EQ(r.modules[0].position.z(), z);  // still on the other plate
+  // The choice survives structural edits, and the plate changes face.
+  d.Select({PartKind::kModule, 0, 0});
+  d.AddPart(NextPart::kYawModule, Where::kFront);
+  EXPECT_FALSE(d.scenario().robots[0].sensor_modules[0].force_sensor);
+  EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
+  d.SetField(
+      {{PartKind::kSensorModule, 0, 1}, "force_sensor", "sensorPosition"}, "2");
+  const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
+  EXPECT_NEAR(sm.force_sensor->position.z(),
+              sm.position.z() + sm.size.z() / 2 + sm.force_sensor->size.z() / 2,
+              1e-12);  // on top now
+  // Without any plate the chain comes down to the ground, and back up.
+  d.Select({PartKind::kSensorModule, 0, 1});
+  d.SetForcePlate(false);
+  const double ground_z = d.scenario().robots[0].modules[0].position.z();
+  EXPECT_NEAR(ground_z, z - ForceSensor().size.z(), 1e-12);
+  d.SetForcePlate(true);
+  EXPECT_NEAR(d.scenario().robots[0].modules[0].position.z(), z, 1e-12);
+  EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor_lock);
+  EXPECT_THROW(
+      {
+        d.Select({PartKind::kModule, 0, 0});
+        d.SetForcePlate(true);
+      },
+      DesignError);
+  // Saved and read back, as the simulator would.
+  const Scenario back = ReadScenarioString(Bytes(d), "plates", "");
+  EXPECT_FALSE(back.robots[0].sensor_modules[0].force_sensor);
+  EXPECT_TRUE(back.robots[0].sensor_modules[1].force_sensor);
+}
+
+TEST(StudioDesign, DistanceSensorsGoOnAnyFaceOfASensorModule) {
+  Design d = TwoSensorModules();
+  d.Select({PartKind::kSensorModule, 0, 1});
+  for (int face : {0, 1, 2, 3, 4, 5}) d.AddDistanceSensor(face);
+  const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
+  ASSERT_EQ(sm.distance_sensors.size(), 6u);
+  ASSERT_EQ(sm.distance_sensor_locks.size(), 6u);
+  for (const DistanceSensor& ray : sm.distance_sensors) {
+    const Eigen::Vector3d n = SensorFaceNormal(ray.sensor_position);
+    EXPECT_TRUE(ray.ray_direction.isApprox(n)) << ray.guid;
+    // Just outside its face, looking out of it.
+    const double out = (ray.position - sm.position).dot(n);
+    EXPECT_NEAR(out,
+                std::abs(n.dot(sm.size)) / 2 + std::abs(n.dot(ray.size)) / 2,
+                1e-12)
+        << ray.guid;
+  }
+  EXPECT_THROW(d.AddDistanceSensor(3), DesignError);  // full
+  d.RemoveDistanceSensor(1);                          // the one on face 1
+  EXPECT_THROW(d.AddDistanceSensor(0), DesignError);  // face taken
+  // A ray moved to another face sits on it and looks out of it.
+  d.SetField({{PartKind::kSensorModule, 0, 1},
+              "distance_sensors[0]",
+              "sensorPosition"},
+             "1");
+  const SensorModule& moved = d.scenario().robots[0].sensor_modules[1];
+  EXPECT_TRUE(moved.distance_sensors[0].ray_direction.isApprox(
+      Eigen::Vector3d::UnitY()));
+  EXPECT_NEAR(moved.distance_sensors[0].position.y() - moved.position.y(),
+              moved.size.y() / 2 + moved.distance_sensors[0].size.y() / 2,
+              1e-12);
+  d.AddDistanceSensor(0);
+  EXPECT_THROW(d.SetField({{PartKind::kSensorModule, 0, 1},
+                           "distance_sensors[0]",
+                           "sensorPosition"},
+                          "9"),
+               DesignError);
+  // The simulator builds it from the file: six rays on one module.
+  const Physics physics(ReadScenarioString(Bytes(d), "rays", ""));
+  EXPECT_EQ(physics.ReadRobotState(0).sensor_modules.at(1).distances.size(),
+            6u);
 }
 
 TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
