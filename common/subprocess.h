@@ -45,6 +45,8 @@ class Subprocess {
   int Stop(double grace_s = 5.0);
   // The waitpid status once ended.
   int status() const { return status_; }
+  // CPU seconds (user + system, every thread) it used; once ended.
+  double cpu_seconds() const { return cpu_seconds_; }
 
  private:
   int ExitCode() const;
@@ -52,6 +54,7 @@ class Subprocess {
   int pid_fd_ = -1;
   int out_fd_ = -1;
   int status_ = 0;
+  double cpu_seconds_ = 0.0;
   bool reaped_ = false;
 };
 

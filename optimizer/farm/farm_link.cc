@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/decode.h"
 
 namespace mrsim {
@@ -16,12 +17,6 @@ namespace mrsim {
 double FarmLink::Now() {
   return std::chrono::duration<double>(
              std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-std::int64_t FarmLink::WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
