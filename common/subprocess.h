@@ -17,6 +17,14 @@ struct SpawnOptions {
   Output output = Output::kInherit;
   std::string output_path;  // for kFile (created or truncated)
   std::string working_dir;  // empty: the parent's
+
+  // Output to a file (created or truncated).
+  static SpawnOptions ToFile(const std::string& path) {
+    SpawnOptions options;
+    options.output = Output::kFile;
+    options.output_path = path;
+    return options;
+  }
 };
 
 class Subprocess {

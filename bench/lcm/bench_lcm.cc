@@ -57,7 +57,7 @@ class Child {
  public:
   explicit Child(const std::vector<std::string>& args,
                  const std::string& out = "/dev/null")
-      : process_(args, ToFile(out)) {}
+      : process_(args, mrsim::SpawnOptions::ToFile(out)) {}
   // Waits for it to end by itself (up to timeout_s).
   void WaitExit(double timeout_s) { process_.Wait(timeout_s); }
   void Stop() { process_.Stop(); }
@@ -65,12 +65,6 @@ class Child {
   double cpu_seconds() const { return process_.cpu_seconds(); }
 
  private:
-  static mrsim::SpawnOptions ToFile(const std::string& path) {
-    mrsim::SpawnOptions options;
-    options.output = mrsim::SpawnOptions::Output::kFile;
-    options.output_path = path;
-    return options;
-  }
   mrsim::Subprocess process_;
 };
 

@@ -41,7 +41,8 @@ const char* const kUrl =
 class Child {
  public:
   Child(const std::vector<std::string>& argv, const std::string& out_path)
-      : out_path_(out_path), process_(argv, ToFile(out_path)) {}
+      : out_path_(out_path),
+        process_(argv, mrsim::SpawnOptions::ToFile(out_path)) {}
   // Sends `sig` and waits (SIGKILL after timeout_s); returns user+system
   // CPU seconds.
   double Stop(int sig, double timeout_s) {
@@ -59,12 +60,6 @@ class Child {
   int exit_code() const { return exit_code_; }
 
  private:
-  static mrsim::SpawnOptions ToFile(const std::string& path) {
-    mrsim::SpawnOptions options;
-    options.output = mrsim::SpawnOptions::Output::kFile;
-    options.output_path = path;
-    return options;
-  }
   std::string out_path_;
   mrsim::Subprocess process_;
   int exit_code_ = -1;

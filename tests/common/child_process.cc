@@ -9,10 +9,9 @@ namespace mrsim::testing {
 namespace {
 
 SpawnOptions LogTo(const std::string& log_path) {
+  if (!log_path.empty()) return SpawnOptions::ToFile(log_path);
   SpawnOptions options;
-  options.output = log_path.empty() ? SpawnOptions::Output::kNull
-                                    : SpawnOptions::Output::kFile;
-  options.output_path = log_path;
+  options.output = SpawnOptions::Output::kNull;
   return options;
 }
 
