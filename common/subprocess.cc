@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -106,8 +107,13 @@ void Subprocess::CloseOutput() {
 bool Subprocess::running() {
   if (reaped_ || pid_ <= 0) return false;
   int status = 0;
-  if (waitpid(pid_, &status, WNOHANG) == pid_) {
+  rusage usage{};
+  if (wait4(pid_, &status, WNOHANG, &usage) == pid_) {
     status_ = status;
+    cpu_seconds_ = static_cast<double>(usage.ru_utime.tv_sec) +
+                   1e-6 * static_cast<double>(usage.ru_utime.tv_usec) +
+                   static_cast<double>(usage.ru_stime.tv_sec) +
+                   1e-6 * static_cast<double>(usage.ru_stime.tv_usec);
     reaped_ = true;
   }
   return !reaped_;

@@ -17,6 +17,14 @@ struct SpawnOptions {
   Output output = Output::kInherit;
   std::string output_path;  // for kFile (created or truncated)
   std::string working_dir;  // empty: the parent's
+
+  // Output to a file (created or truncated).
+  static SpawnOptions ToFile(const std::string& path) {
+    SpawnOptions options;
+    options.output = Output::kFile;
+    options.output_path = path;
+    return options;
+  }
 };
 
 class Subprocess {
@@ -45,6 +53,8 @@ class Subprocess {
   int Stop(double grace_s = 5.0);
   // The waitpid status once ended.
   int status() const { return status_; }
+  // CPU seconds (user + system, every thread) it used; once ended.
+  double cpu_seconds() const { return cpu_seconds_; }
 
  private:
   int ExitCode() const;
@@ -52,6 +62,7 @@ class Subprocess {
   int pid_fd_ = -1;
   int out_fd_ = -1;
   int status_ = 0;
+  double cpu_seconds_ = 0.0;
   bool reaped_ = false;
 };
 

@@ -837,6 +837,7 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   mj_resetData(m, d);
   const unsigned char* p = bytes.data() + header;
   auto get = [&p](mjtNum* dst, size_t n) {
+    if (n == 0) return;  // MuJoCo leaves empty arrays null (e.g. act)
     std::memcpy(dst, p, n * sizeof(double));
     p += n * sizeof(double);
   };

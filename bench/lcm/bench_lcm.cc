@@ -7,11 +7,6 @@
 //  (c) round trip of a state-sized robot_state_t through encode/decode and a
 //      typed handler vs a bare ping-pong of an 8-byte raw message.
 // LCM ports 7900-7909. Prints BENCH lines (bench/run).
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/time.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/subprocess.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -40,8 +36,6 @@
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sim_process/sim_server.h"
 #include "sim_core/sim_process/state_message.h"
-
-extern char** environ;
 
 namespace {
 
@@ -57,54 +51,21 @@ double Seconds(Clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
-// A child process, terminated and reaped on destruction.
+// A child process, terminated and reaped on destruction; its CPU time is
+// read once it ended.
 class Child {
  public:
   explicit Child(const std::vector<std::string>& args,
-                 const std::string& out = "/dev/null") {
-    std::vector<char*> argv;
-    for (const std::string& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) !=
-        0) {
-      pid_ = -1;
-    }
-    posix_spawn_file_actions_destroy(&actions);
-    if (pid_ < 0) throw std::runtime_error("cannot start " + args[0]);
-  }
-  ~Child() { Stop(); }
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-  bool Exited() {
-    if (pid_ < 0) return true;
-    int status = 0;
-    if (wait4(pid_, &status, WNOHANG, &usage_) == pid_) pid_ = -1;
-    return pid_ < 0;
-  }
-  void Stop() {
-    if (pid_ < 0) return;
-    kill(pid_, SIGTERM);
-    int status = 0;
-    wait4(pid_, &status, 0, &usage_);
-    pid_ = -1;
-  }
-  // CPU seconds (user + system) the child used; valid once it is reaped.
-  double cpu_seconds() const {
-    auto sec = [](const timeval& t) {
-      return static_cast<double>(t.tv_sec) +
-             1e-6 * static_cast<double>(t.tv_usec);
-    };
-    return sec(usage_.ru_utime) + sec(usage_.ru_stime);
-  }
+                 const std::string& out = "/dev/null")
+      : process_(args, mrsim::SpawnOptions::ToFile(out)) {}
+  // Waits for it to end by itself (up to timeout_s).
+  void WaitExit(double timeout_s) { process_.Wait(timeout_s); }
+  void Stop() { process_.Stop(); }
+  // CPU seconds (user + system) the child used; valid once it ended.
+  double cpu_seconds() const { return process_.cpu_seconds(); }
 
  private:
-  pid_t pid_ = -1;
-  rusage usage_{};
+  mrsim::Subprocess process_;
 };
 
 // The controller law of both loops: a travelling wave with a little
@@ -234,13 +195,6 @@ double ReadFactor(const std::string& path) {
   return std::stod(text.str().substr(at + key.size()));
 }
 
-void WaitExit(Child& child) {
-  const auto deadline = Clock::now() + std::chrono::seconds(120);
-  while (!child.Exited() && Clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
-
 // Pace of a loop: sim s per wall s (as the process reports it) and sim s
 // per CPU s of all its processes.
 struct Pace {
@@ -255,7 +209,7 @@ Pace LocalLoop(const std::string& scenario, double duration,
   {
     Child local({SelfPath(), "--inprocess", scenario, std::to_string(duration)},
                 out);
-    WaitExit(local);
+    local.WaitExit(120);
     cpu = local.cpu_seconds();
   }
   return {ReadFactor(out), duration / cpu};
@@ -274,7 +228,7 @@ Pace LcmLoop(const std::string& scenario, double duration, int port,
                "--actuation-delay", std::to_string(delay)},
               out);
     Child controller({SelfPath(), "--controller", Url(port)});
-    WaitExit(sim);
+    sim.WaitExit(120);
     controller.Stop();
     cpu = sim.cpu_seconds() + controller.cpu_seconds();
   }

@@ -5,11 +5,7 @@
 // Duration: --seconds S or $MRSIM_BENCH_LOGGER_SECONDS (default 60). The
 // files (about 1.8 GB of CSV a minute) are deleted unless
 // $MRSIM_BENCH_LOGGER_KEEP is set.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -25,9 +21,8 @@
 #include <thread>
 #include <vector>
 
+#include "common/subprocess.h"
 #include "mrsim/robot_state_t.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -41,50 +36,20 @@ const char* const kChannel = "MRSIM_STATE_bench";
 const char* const kUrl =
     "udpm://239.255.76.67:7930?ttl=0&recv_buf_size=8388608";
 
-// A child process whose CPU time we read from wait4 when it ends.
+// A recorder process, its output in a file; its CPU time is read when it
+// ends.
 class Child {
  public:
   Child(const std::vector<std::string>& argv, const std::string& out_path)
-      : out_path_(out_path) {
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, out_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&fa, 1, 2);
-    const int rc =
-        posix_spawn(&pid_, args[0], &fa, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
-  }
-  ~Child() {
-    if (!done_) {
-      kill(pid_, SIGKILL);
-      Stop(SIGKILL, 5);
-    }
-  }
-  // Sends `sig` and waits; returns user+system CPU seconds.
+      : out_path_(out_path),
+        process_(argv, mrsim::SpawnOptions::ToFile(out_path)) {}
+  // Sends `sig` and waits (SIGKILL after timeout_s); returns user+system
+  // CPU seconds.
   double Stop(int sig, double timeout_s) {
-    kill(pid_, sig);
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-    int status = 0;
-    rusage ru{};
-    while (true) {
-      const pid_t r = wait4(pid_, &status, WNOHANG, &ru);
-      if (r == pid_) break;
-      if (Clock::now() > end) {
-        kill(pid_, SIGKILL);
-        wait4(pid_, &status, 0, &ru);
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    done_ = true;
-    exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return ru.ru_utime.tv_sec + ru.ru_utime.tv_usec * 1e-6 +
-           ru.ru_stime.tv_sec + ru.ru_stime.tv_usec * 1e-6;
+    process_.Signal(sig);
+    exit_code_ = process_.Wait(timeout_s);
+    if (exit_code_ == -1) process_.Stop(0);
+    return process_.cpu_seconds();
   }
   std::string Output() const {
     std::ifstream in(out_path_);
@@ -95,10 +60,9 @@ class Child {
   int exit_code() const { return exit_code_; }
 
  private:
-  pid_t pid_ = -1;
-  bool done_ = false;
-  int exit_code_ = -1;
   std::string out_path_;
+  mrsim::Subprocess process_;
+  int exit_code_ = -1;
 };
 
 mrsim::pose_t Pose(double t, int i) {

@@ -9,8 +9,6 @@
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -25,6 +23,7 @@
 #include <vector>
 
 #include "bench/common/cpu_available.h"
+#include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
 #include "optimizer/farm/farm_evaluator.h"
@@ -34,8 +33,6 @@
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 
-extern char** environ;
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -44,34 +41,13 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// A worker process, killed and reaped on destruction.
-class Worker {
- public:
-  Worker(const std::string& url, const std::string& id) {
-    const std::string exe =
-        std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker";
-    std::vector<std::string> args = {exe,    "--lcm-url", url,
-                                     "--id", id,          "--quiet"};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, exe.c_str(), nullptr, nullptr, argv.data(),
-                    environ) != 0) {
-      throw std::runtime_error("cannot start " + exe);
-    }
-  }
-  ~Worker() {
-    kill(pid_, SIGTERM);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-  }
-  Worker(const Worker&) = delete;
-  Worker& operator=(const Worker&) = delete;
-  pid_t pid() const { return pid_; }
-
- private:
-  pid_t pid_ = -1;
-};
+// A worker process (stopped and reaped when the Subprocess goes).
+std::unique_ptr<mrsim::Subprocess> StartWorker(const std::string& url,
+                                               const std::string& id) {
+  return std::make_unique<mrsim::Subprocess>(std::vector<std::string>{
+      std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
+      "--lcm-url", url, "--id", id, "--quiet"});
+}
 
 mrsim::Problem SnakeProblem(double episode) {
   mrsim::Problem p;
@@ -127,9 +103,9 @@ FarmMeasure MeasureFarm(int workers, int port, int jobs) {
   const mrsim::Problem problem = SnakeProblem(4.0);
   lcm::LCM lcm(url);
   if (!lcm.good()) throw std::runtime_error("cannot open LCM " + url);
-  std::vector<std::unique_ptr<Worker>> pool;
+  std::vector<std::unique_ptr<mrsim::Subprocess>> pool;
   for (int w = 0; w < workers; ++w) {
-    pool.push_back(std::make_unique<Worker>(url, fmt::format("bench{}", w)));
+    pool.push_back(StartWorker(url, fmt::format("bench{}", w)));
   }
   mrsim::FarmSettings settings;
   mrsim::FarmEvaluator farm(lcm, mrsim::EncodeProblem(problem),

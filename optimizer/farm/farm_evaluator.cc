@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/wall_time.h"
+
 namespace mrsim {
 
 FarmLink::Handlers FarmEvaluator::MakeHandlers() {
@@ -25,7 +27,7 @@ FarmLink::Handlers FarmEvaluator::MakeHandlers() {
 FarmEvaluator::FarmEvaluator(const std::string& lcm_url, std::string payload,
                              std::string run_id, FarmSettings settings)
     : settings_(settings),
-      core_(std::move(payload), std::move(run_id), FarmLink::WallMicros(),
+      core_(std::move(payload), std::move(run_id), WallMicros(),
             std::move(settings)) {
   link_ = std::make_unique<FarmLink>(lcm_url, settings_.prefix, MakeHandlers());
   Step(0);
@@ -34,7 +36,7 @@ FarmEvaluator::FarmEvaluator(const std::string& lcm_url, std::string payload,
 FarmEvaluator::FarmEvaluator(lcm::LCM& lcm, std::string payload,
                              std::string run_id, FarmSettings settings)
     : settings_(settings),
-      core_(std::move(payload), std::move(run_id), FarmLink::WallMicros(),
+      core_(std::move(payload), std::move(run_id), WallMicros(),
             std::move(settings)) {
   link_ = std::make_unique<FarmLink>(lcm, settings_.prefix, MakeHandlers());
   Step(0);

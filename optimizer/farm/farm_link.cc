@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "common/lcm_url.h"
+#include "common/wall_time.h"
 #include "lcmtypes/runtime/decode.h"
 
 namespace mrsim {
@@ -17,12 +18,6 @@ namespace mrsim {
 double FarmLink::Now() {
   return std::chrono::duration<double>(
              std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-std::int64_t FarmLink::WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 

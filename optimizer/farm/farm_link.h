@@ -59,8 +59,6 @@ class FarmLink {
   bool connected() const { return lcm_ != nullptr; }
   // Seconds on a monotonic clock.
   static double Now();
-  // Wall-clock microseconds (message stamps, master start).
-  static std::int64_t WallMicros();
   std::vector<std::string> TakeLog();
 
  private:

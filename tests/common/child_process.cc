@@ -1,20 +1,17 @@
 #include "tests/common/child_process.h"
 
-#include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <thread>
+
+#include "tests/common/wait_until.h"
 
 namespace mrsim::testing {
 
 namespace {
 
 SpawnOptions LogTo(const std::string& log_path) {
+  if (!log_path.empty()) return SpawnOptions::ToFile(log_path);
   SpawnOptions options;
-  options.output = log_path.empty() ? SpawnOptions::Output::kNull
-                                    : SpawnOptions::Output::kFile;
-  options.output_path = log_path;
+  options.output = SpawnOptions::Output::kNull;
   return options;
 }
 
@@ -27,23 +24,15 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
 ChildProcess::~ChildProcess() { process_.Stop(2.0); }
 
 std::string ChildProcess::Output() const {
-  if (log_path_.empty()) return "";
-  std::ifstream in(log_path_);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return log_path_.empty() ? "" : ReadFileText(log_path_);
 }
 
 bool ChildProcess::WaitForOutput(const std::string& text, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    if (Output().find(text) != std::string::npos) return true;
-    if (!running()) return Output().find(text) != std::string::npos;
-    // Polls the log file: a check every 20 ms, the deadline decides.
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
+  // Ends early when the process does: what it printed is all there is.
+  WaitUntil(
+      [&] { return !running() || Output().find(text) != std::string::npos; },
+      timeout_s);
+  return Output().find(text) != std::string::npos;
 }
 
 std::string BinaryPath(const std::string& relative) {

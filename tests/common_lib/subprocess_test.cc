@@ -89,6 +89,17 @@ TEST(Subprocess, DestructorKillsAndReaps) {
   EXPECT_EQ(errno, ESRCH);
 }
 
+TEST(Subprocess, CpuSecondsIsWhatTheChildSpent) {
+  // The CPU time of the child, not of its wall time or of this process.
+  Subprocess busy(
+      {"/bin/sh", "-c", "i=0; while [ $i -lt 300000 ]; do i=$((i+1)); done"});
+  ASSERT_EQ(busy.Wait(60), 0);
+  Subprocess idle({"/bin/true"});
+  ASSERT_EQ(idle.Wait(60), 0);
+  EXPECT_GT(busy.cpu_seconds(), 0.05);
+  EXPECT_LT(idle.cpu_seconds(), 0.05);
+}
+
 TEST(Subprocess, MissingProgramIsNamed) {
   try {
     Subprocess p({"/no/such/program"});

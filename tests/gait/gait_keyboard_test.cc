@@ -1,13 +1,14 @@
 // RawKeyboard on a pseudo-terminal: raw mode while it lives, arrows
 // decoded, the terminal restored afterwards.
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <pty.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <stdexcept>
-#include <thread>
 
 #include "gait_controller/process/keyboard.h"
 
@@ -30,10 +31,21 @@ class PtyStdin {
     close(slave_);
     close(master_);
   }
+  // Writes to the terminal and returns once the program side can read all
+  // of it (the pty passes input on asynchronously).
   void Type(const std::string& bytes) {
     ASSERT_EQ(write(master_, bytes.data(), bytes.size()),
               static_cast<ssize_t>(bytes.size()));
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const auto end =
+        std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    int ready = 0;
+    while (ioctl(slave_, FIONREAD, &ready) == 0 &&
+           ready < static_cast<int>(bytes.size()) &&
+           std::chrono::steady_clock::now() < end) {
+      pollfd p{slave_, POLLIN, 0};
+      poll(&p, 1, 100);
+    }
+    ASSERT_EQ(ready, static_cast<int>(bytes.size()));
   }
   tcflag_t lflag() const {
     struct termios t;

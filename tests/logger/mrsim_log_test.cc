@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <charconv>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
@@ -14,6 +13,7 @@
 
 #include "mrsim/sim_status_t.hpp"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/logger/csv_reader.h"
 #include "tests/logger/test_messages.h"
 
@@ -29,39 +29,36 @@ const char* const kStateChannel = "MRSIM_STATE_snake";
 
 std::string LogExe() { return BinaryPath("logger/process/mrsim-log"); }
 
-// Waits until the process printed `text` (or stopped, or timed out).
-bool WaitForOutput(ChildProcess& p, const std::string& text,
-                   double timeout_s = 20) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    if (p.Output().find(text) != std::string::npos) return true;
-    if (!p.running()) return p.Output().find(text) != std::string::npos;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
-// Starts mrsim-log on `url` writing to `dir`; returns once it listens.
+// Starts mrsim-log on `url` writing to `dir`; returns once it has
+// subscribed (it says so after subscribing).
 std::unique_ptr<ChildProcess> StartLogger(const std::string& url,
                                           const std::string& dir,
                                           std::vector<std::string> extra = {}) {
   std::vector<std::string> argv = {LogExe(), "--lcm-url", url, "--out", dir};
   argv.insert(argv.end(), extra.begin(), extra.end());
   auto p = std::make_unique<ChildProcess>(argv, dir + ".out.txt");
-  EXPECT_TRUE(WaitForOutput(*p, "recording channels")) << p->Output();
+  EXPECT_TRUE(p->WaitForOutput("recording channels", 30)) << p->Output();
   return p;
 }
 
-// Publishes states seq = 0..count-1 (skipping `skip`) at about 2 kHz.
+// Publishes states seq = 0..count-1 (skipping `skip`) at once: mrsim-log
+// asks for a receive buffer (--recv-buf-size) that holds far more than
+// these few hundred small messages, so nothing needs pacing.
 void PublishStates(lcm::LCM& lcm, int count, int modules,
                    const std::vector<int64_t>& skip = {}) {
   for (int64_t seq = 0; seq < count; ++seq) {
     if (std::find(skip.begin(), skip.end(), seq) != skip.end()) continue;
     const robot_state_t msg = testing::KnownRobotState(seq, modules, 1);
     lcm.publish(kStateChannel, &msg);
-    std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
+}
+
+// Waits until `channel`'s CSV in `dir` holds `rows` rows (mrsim-log flushes
+// every half second), so stopping it then loses nothing in flight.
+bool WaitForRows(const std::string& dir, const std::string& channel,
+                 size_t rows, double timeout_s = 30) {
+  return testing::WaitForLines(dir + "/" + channel + ".csv", rows + 1,
+                               timeout_s);
 }
 
 double Parse(const std::string& s) {
@@ -78,7 +75,7 @@ TEST(LoggerProcess, KnownNumberOfStatesGivesThatManyRowsWithTheValuesSent) {
   ASSERT_TRUE(lcm.good());
   constexpr int kCount = 500;
   PublishStates(lcm, kCount, 4);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(WaitForRows(dir, kStateChannel, kCount)) << logger->Output();
   EXPECT_EQ(logger->Stop(10), 0) << logger->Output();
 
   const auto csv = testing::ReadCsvFile(dir + "/" + kStateChannel + ".csv");
@@ -113,18 +110,40 @@ TEST(LoggerProcess, LcmlogReplayGivesTheSameCsvAsLive) {
   ChildProcess recorder({"/usr/bin/lcm-logger", "--lcm-url=" + url, lcmlog},
                         dir + "/lcm-logger.txt");
   auto logger = StartLogger(url, live_dir);
-  // lcm-logger prints nothing when ready; give it time to subscribe.
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   lcm::LCM lcm(url);
   ASSERT_TRUE(lcm.good());
-  PublishStates(lcm, 200, 3);
+  // lcm-logger says nothing when ready, queues at most 30 messages it has
+  // not handled, and flushes only as messages come. So a probe on a channel
+  // mrsim-log does not record is repeated until it is in the file: then
+  // lcm-logger listens, and has handled everything sent before the probe
+  // (one host keeps UDP's order). States go in rounds of 20 between probes.
+  int probes = 0;
+  auto probe = [&]() {
+    const std::string name = "PROBE_" + std::to_string(probes++) + "_";
+    const uint8_t byte[1] = {0};
+    return testing::RepeatUntil(
+        [&] { lcm.publish(name, byte, sizeof byte); },
+        [&] {
+          return testing::ReadFileText(lcmlog).find(name) != std::string::npos;
+        },
+        0.02, 30);
+  };
+  ASSERT_TRUE(probe()) << recorder.Output();
+  for (int64_t seq = 0; seq < 200; ++seq) {
+    const robot_state_t msg = testing::KnownRobotState(seq, 3, 1);
+    lcm.publish(kStateChannel, &msg);
+    if (seq % 20 == 19) {
+      ASSERT_TRUE(probe()) << recorder.Output();
+    }
+  }
   sim_status_t st{};
   st.utime = 123456;
   st.seq = 0;
   st.clock = "fast";
   st.last_error = "none, really";
   lcm.publish("MRSIM_SIM_STATUS", &st);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_TRUE(probe()) << recorder.Output();
+  ASSERT_TRUE(WaitForRows(live_dir, "MRSIM_SIM_STATUS", 1)) << logger->Output();
   EXPECT_EQ(logger->Stop(10), 0) << logger->Output();
   recorder.Signal(SIGINT);
   EXPECT_EQ(recorder.Wait(10), 0);
@@ -150,15 +169,19 @@ TEST(LoggerProcess, SigtermMidRunLeavesAWholeLastLine) {
   auto logger = StartLogger(url, dir);
   lcm::LCM lcm(url);
   ASSERT_TRUE(lcm.good());
+  // A 1 kHz source, as mrsim-sim is, still sending when the signal comes.
   std::atomic<bool> stop{false};
   std::thread publisher([&] {
-    for (int64_t seq = 0; !stop; ++seq) {
-      const robot_state_t msg = testing::KnownRobotState(seq, 10, 2);
-      lcm.publish(kStateChannel, &msg);
-      std::this_thread::sleep_for(std::chrono::microseconds(1000));
-    }
+    int64_t seq = 0;
+    testing::RepeatUntil(
+        [&] {
+          const robot_state_t msg = testing::KnownRobotState(seq++, 10, 2);
+          lcm.publish(kStateChannel, &msg);
+        },
+        [&] { return stop.load(); }, 0.001, 120);
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+  // Mid-run: rows already written, more arriving.
+  EXPECT_TRUE(WaitForRows(dir, kStateChannel, 11)) << logger->Output();
   logger->Signal(SIGTERM);
   const int code = logger->Wait(10);
   stop = true;
@@ -181,7 +204,7 @@ TEST(LoggerProcess, SkippedSequenceNumbersAreReportedAsGaps) {
   lcm::LCM lcm(url);
   ASSERT_TRUE(lcm.good());
   PublishStates(lcm, 50, 2, {10, 11, 12, 30});
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(WaitForRows(dir, kStateChannel, 46)) << logger->Output();
   EXPECT_EQ(logger->Stop(10), 0);
   const std::string out = logger->Output();
   EXPECT_NE(out.find("gap: seq 10..12 missing (3 messages)"), std::string::npos)
@@ -219,9 +242,9 @@ TEST(LoggerProcess, FullDiskGivesAClearErrorAndKeepsTheOtherFiles) {
   for (int64_t seq = 0; seq < 20; ++seq) {
     const robot_state_t msg = testing::KnownRobotState(seq, 2, 0);
     lcm.publish(kStateChannel, &msg);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  // Written before the full disk fails the other file.
+  ASSERT_TRUE(WaitForRows(dir, kStateChannel, 20)) << logger->Output();
   for (int64_t seq = 0; seq < 5; ++seq) {
     const robot_state_t msg = testing::KnownRobotState(seq, 2, 0, "full");
     lcm.publish("MRSIM_STATE_full", &msg);
@@ -252,10 +275,13 @@ TEST(LoggerProcess, OtherTypesDecodeByFingerprintAndUnknownOnesAreCounted) {
   const uint8_t junk[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
   lcm.publish("FOREIGN", junk, sizeof(junk));
   lcm.publish("FOREIGN", junk, sizeof(junk));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // Sent last: once its row is written, the foreign ones were counted.
+  st.seq = 3;
+  lcm.publish("ANY_NAME_AT_ALL", &st);
+  ASSERT_TRUE(WaitForRows(dir, "ANY_NAME_AT_ALL", 4)) << logger->Output();
   EXPECT_EQ(logger->Stop(10), 0);
   const auto csv = testing::ReadCsvFile(dir + "/ANY_NAME_AT_ALL.csv");
-  ASSERT_EQ(csv.rows.size(), 3u);
+  ASSERT_EQ(csv.rows.size(), 4u);
   EXPECT_EQ(csv.rows[2][csv.Column("steps")], "200");
   EXPECT_FALSE(std::filesystem::exists(dir + "/FOREIGN.csv"));
   EXPECT_NE(logger->Output().find("FOREIGN: 2 messages of unknown type"),
@@ -277,7 +303,7 @@ TEST(LoggerProcess, WritesTheCaseStudyPlotsWhenLoggingStops) {
   lcm::LCM lcm(url);
   ASSERT_TRUE(lcm.good());
   PublishStates(lcm, 100, 2);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(WaitForRows(dir, kStateChannel, 100)) << logger->Output();
   EXPECT_EQ(logger->Stop(20), 0) << logger->Output();
   for (const std::string png : {"distance.png", "force.png"}) {
     const cv::Mat img = cv::imread(dir + "/" + png);

@@ -4,15 +4,13 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
-#include <thread>
 
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/mujoco_embedding/exploding_scenario.h"
 
 namespace mrsim {
@@ -21,27 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using testing::BinaryPath;
 using testing::ChildProcess;
+using testing::ReadFileText;
 using testing::TestLcmUrl;
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Polls a file for a text until the deadline (no sleep decides anything:
-// the loop ends as soon as the text is there).
-bool WaitForFileText(const std::string& path, const std::string& text,
-                     double seconds) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::milliseconds(static_cast<int>(seconds * 1e3));
-  while (std::chrono::steady_clock::now() < end) {
-    if (ReadAll(path).find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
+using testing::WaitForFileText;
 
 // Runs in a fresh directory, the processes' working directory.
 class ExplodingProcess : public ::testing::Test {
@@ -74,15 +54,15 @@ TEST_F(ExplodingProcess, SimulatorNamesTheErrorAndKeepsStdoutClean) {
        BinaryPath("sim_core/sim_process/mrsim-sim"), TestLcmUrl(7900)},
       dir_ + "/out.txt");
   ASSERT_TRUE(WaitForFileText(dir_ + "/err.txt", "physics unstable", 60))
-      << ReadAll(dir_ + "/err.txt");
-  const std::string err = ReadAll(dir_ + "/err.txt");
+      << ReadFileText(dir_ + "/err.txt");
+  const std::string err = ReadFileText(dir_ + "/err.txt");
   EXPECT_NE(err.find("BADQACC"), std::string::npos) << err;
   // Interactive (no --duration): paused on the error, so a user may RESET;
   // a stop request still ends it cleanly.
   EXPECT_NE(err.find("paused"), std::string::npos) << err;
   sim.Signal(SIGINT);
   EXPECT_EQ(sim.Wait(30), 0);
-  const std::string out = ReadAll(dir_ + "/out.txt");
+  const std::string out = ReadFileText(dir_ + "/out.txt");
   EXPECT_EQ(out.find(kMujocoText), std::string::npos) << out;
   EXPECT_EQ(out.find("WARNING"), std::string::npos) << out;
 }
@@ -96,12 +76,13 @@ TEST_F(ExplodingProcess, BatchSimulatorEndsWithAFailureExit) {
       dir_ + "/out.txt");
   // Nobody can RESET a batch run: it ends by itself, non-zero, and keeps
   // no checkpoint of the failed state.
-  EXPECT_EQ(sim.Wait(60), 1) << ReadAll(dir_ + "/err.txt");
-  const std::string err = ReadAll(dir_ + "/err.txt");
+  EXPECT_EQ(sim.Wait(60), 1) << ReadFileText(dir_ + "/err.txt");
+  const std::string err = ReadFileText(dir_ + "/err.txt");
   EXPECT_NE(err.find("physics unstable"), std::string::npos) << err;
   EXPECT_NE(err.find("run ended"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/end.checkpoint"));
-  EXPECT_EQ(ReadAll(dir_ + "/out.txt").find(kMujocoText), std::string::npos);
+  EXPECT_EQ(ReadFileText(dir_ + "/out.txt").find(kMujocoText),
+            std::string::npos);
 }
 
 TEST_F(ExplodingProcess, WorkerReportsFailedEpisodesAndLivesOn) {
@@ -121,7 +102,7 @@ TEST_F(ExplodingProcess, WorkerReportsFailedEpisodesAndLivesOn) {
       dir_ + "/master.log");
   ASSERT_EQ(master.Wait(120), 0) << master.Output();
   EXPECT_TRUE(worker.running()) << worker.Output();
-  const std::string evaluations = ReadAll(dir_ + "/run/evaluations.csv");
+  const std::string evaluations = ReadFileText(dir_ + "/run/evaluations.csv");
   EXPECT_NE(evaluations.find("-1000000"), std::string::npos) << evaluations;
   EXPECT_EQ(worker.Output().find(kMujocoText), std::string::npos)
       << worker.Output();

@@ -15,6 +15,7 @@
 #include "optimizer/problem_codec.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 
 namespace mrsim {
 namespace {
@@ -48,23 +49,25 @@ TEST(FarmEvaluator, IgnoresOtherRunsOtherPayloadsAndGarbage) {
     lcm::LCM other(url);
     const FarmChannels ch(kDefaultFarmPrefix);
     const unsigned char garbage[] = {1, 2, 3, 4, 5, 6, 7};
-    while (!done) {
-      for (int i = 0; i < 4; ++i) {
-        opt_result_t r{};
-        r.job_id = (1ll << 24) | i;  // the first batch's job ids
-        r.fitness = 1e9;
-        r.worker_id = "intruder";
-        r.run_id = "another-run";
-        r.scenario_hash = farm.scenario_hash();
-        other.publish(ch.result, &r);
-        r.run_id = "run-under-test";
-        r.scenario_hash = "0123456789abcdef";
-        other.publish(ch.result, &r);
-      }
-      other.publish(ch.result, garbage, sizeof garbage);
-      other.publish(ch.heartbeat, garbage, sizeof garbage);
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    // Noise every 10 ms for as long as the batch runs.
+    testing::RepeatUntil(
+        [&] {
+          for (int i = 0; i < 4; ++i) {
+            opt_result_t r{};
+            r.job_id = (1ll << 24) | i;  // the first batch's job ids
+            r.fitness = 1e9;
+            r.worker_id = "intruder";
+            r.run_id = "another-run";
+            r.scenario_hash = farm.scenario_hash();
+            other.publish(ch.result, &r);
+            r.run_id = "run-under-test";
+            r.scenario_hash = "0123456789abcdef";
+            other.publish(ch.result, &r);
+          }
+          other.publish(ch.result, garbage, sizeof garbage);
+          other.publish(ch.heartbeat, garbage, sizeof garbage);
+        },
+        [&] { return done.load(); }, 0.01, 600);
   });
   Random random(4);
   std::vector<Genome> batch;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
@@ -213,6 +214,24 @@ TEST(ScenarioTool, OriginalFileConvertsValidatesExportsAndRuns) {
               dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.output, HasSubstr("Scenario/@frame: the file says"));
+}
+
+TEST(ScenarioTool, ValidateRefusesAStaticFrameOfMassZero) {
+  const std::string dir = TempDir("validate_tool_mass");
+  ChainOptions options;
+  options.name = "r";
+  options.modules = 2;
+  Scenario s;
+  s.robots.push_back(MakeChain(options));
+  s.robots[0].modules[0].frames[0].is_static = true;
+  s.robots[0].modules[0].frames[0].mass = 0;
+  WriteScenarioFile(s, dir + "/static.xml");
+  const Result r = RunTool({"validate", dir + "/static.xml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.output, HasSubstr(dir + "/static.xml:"));
+  EXPECT_THAT(r.output,
+              HasSubstr("Scenario/robot[1]/modules/Module[1]/frames/Frame[1]/"
+                        "mass: expected a positive value, got 0"));
 }
 
 }  // namespace

@@ -22,8 +22,6 @@
 namespace mrsim {
 namespace {
 
-using testing::BinaryPath;
-using testing::ChildProcess;
 using ::testing::HasSubstr;
 using testing::SourcePath;
 using ::testing::StartsWith;
@@ -236,23 +234,6 @@ TEST(ScenarioValidate, EveryBuilderRuleIsRefusedByTheReaderBuilderAndPhysics) {
       EXPECT_THAT(LineOf(file, e.line()), HasSubstr("<" + leaf + ">"));
     }
   }
-}
-
-TEST(ScenarioValidate, ValidateCommandRefusesAStaticFrameOfMassZero) {
-  const std::string dir = TempDir("validate_tool_mass");
-  Scenario s = Base(dir);
-  s.robots[0].modules[0].frames[0].is_static = true;
-  s.robots[0].modules[0].frames[0].mass = 0;
-  WriteScenarioFile(s, dir + "/static.xml");
-  ChildProcess tool({BinaryPath("sim_core/scenario_tool/mrsim-scenario"),
-                     "validate", dir + "/static.xml"},
-                    dir + "/tool.log");
-  EXPECT_EQ(tool.Wait(60), 2);
-  EXPECT_THAT(tool.Output(), HasSubstr(dir + "/static.xml:"));
-  EXPECT_THAT(tool.Output(),
-              HasSubstr(std::string(kM1) +
-                        "/frames/Frame[1]/mass: expected a positive value, "
-                        "got 0"));
 }
 
 }  // namespace

@@ -70,17 +70,24 @@ class SimClient {
   }
 
   // STEP n and wait until the sim is paused again with n more periods done.
+  // Fails when no new state came for timeout_s: a loaded machine may make
+  // the steps slow, but they must keep coming.
   bool StepAndWait(int periods, double timeout_s = 20.0) {
     if (!status_) return false;
     const int64_t want = status_->state_seq + periods;
     if (!Control(sim_control_t::STEP, periods)) return false;
-    return WaitFor(
-        [&] {
-          return status_->state_seq >= want &&
-                 status_->mode == sim_status_t::PAUSED &&
-                 last_state_seq_ >= want;
-        },
-        timeout_s);
+    const auto done = [&] {
+      return status_->state_seq >= want &&
+             status_->mode == sim_status_t::PAUSED && last_state_seq_ >= want;
+    };
+    while (!done()) {
+      const int64_t seen = last_state_seq_;
+      if (!WaitFor([&] { return done() || last_state_seq_ > seen; },
+                   timeout_s)) {
+        return false;
+      }
+    }
+    return true;
   }
 
   const std::optional<sim_status_t>& status() const { return status_; }

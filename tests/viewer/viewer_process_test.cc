@@ -1,15 +1,15 @@
 // mrsim-view as a real process: replaying an .lcmlog, listening to a live
-// LCM stream published by the test, joining late, stopping on SIGTERM.
+// LCM stream published by the test, joining late, stopping on SIGTERM,
+// refusing bad input.
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
-#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <regex>
@@ -18,10 +18,12 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
+#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sim_process/state_message.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/camera_control.h"
 #include "viewer/frame_writer.h"
@@ -31,6 +33,7 @@
 namespace mrsim {
 namespace {
 
+namespace fs = std::filesystem;
 using testing::BinaryPath;
 using testing::ChildProcess;
 using testing::TempDir;
@@ -43,19 +46,6 @@ std::vector<unsigned char> Encode(const RobotState& state, int64_t seq) {
   std::vector<unsigned char> bytes(msg.getEncodedSize());
   msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   return bytes;
-}
-
-// Polls the child's output until it contains `text`.
-bool WaitForOutput(ChildProcess* child, const std::string& text,
-                   double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() +
-                   std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    if (child->Output().find(text) != std::string::npos) return true;
-    if (!child->running()) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
 }
 
 // "done: N frames (R rendered, first index K, ..."
@@ -181,7 +171,7 @@ TEST(ViewerProcess, LiveFrameMatchesFrameRenderedInProcess) {
                        "--max-frames",
                        "3"},
                       dir + "/viewer.log");
-  ASSERT_TRUE(WaitForOutput(&viewer, "listening", 30.0)) << viewer.Output();
+  ASSERT_TRUE(viewer.WaitForOutput("listening", 30.0)) << viewer.Output();
 
   GlContext gl;
   Physics physics(ReadScenarioFile(scenario_path));
@@ -211,18 +201,20 @@ TEST(ViewerProcess, LiveFrameMatchesFrameRenderedInProcess) {
     renderer.Render(physics.mutable_data(), camera.camera(),
                     testing::PhysicsRays(physics, state), &overlay, &image);
     expected.push_back(image);
+    // The viewer keeps a history of states (--queue), so they need no
+    // pacing: each frame shows the newest state at or before its time.
     const robot_state_t msg = ToRobotStateMessage(state, k);
     lcm.publish(StateChannel("MRSIM", "snake"), &msg);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  // One more state past frame 2's time so it is due.
+  // One more state past frame 2's time so it is due, repeated until the
+  // viewer has its three frames and stops.
   testing::DriveTo(&physics, 0.25);
   const robot_state_t last = ToRobotStateMessage(physics.ReadRobotState(0), 3);
-  for (int i = 0; i < 20 && viewer.running(); ++i) {
-    lcm.publish(StateChannel("MRSIM", "snake"), &last);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  ASSERT_EQ(viewer.Wait(30.0), 0) << viewer.Output();
+  int code = -1;
+  testing::RepeatUntil(
+      [&] { lcm.publish(StateChannel("MRSIM", "snake"), &last); },
+      [&] { return (code = viewer.Wait(0)) != -1; }, 0.1, 30.0);
+  ASSERT_EQ(code, 0) << viewer.Output();
   for (int k = 0; k < 3; ++k) {
     const std::string file = FrameWriter::PngName(frames_dir, k);
     const cv::Mat frame = cv::imread(file);
@@ -247,29 +239,28 @@ TEST(ViewerProcess, LateJoinerShowsNewestStateAndSigtermLeavesPlayableVideo) {
     lcm::LCM lcm(url);
     Physics physics(ReadScenarioFile(scenario_path));
     int64_t seq = 0;
-    while (!stop) {
-      testing::DriveTo(&physics, physics.time() + 0.02);
-      const robot_state_t msg =
-          ToRobotStateMessage(physics.ReadRobotState(0), seq++);
-      lcm.publish(StateChannel("MRSIM", "snake"), &msg);
-      sim_time = physics.time();
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    testing::RepeatUntil(
+        [&] {
+          testing::DriveTo(&physics, physics.time() + 0.02);
+          const robot_state_t msg =
+              ToRobotStateMessage(physics.ReadRobotState(0), seq++);
+          lcm.publish(StateChannel("MRSIM", "snake"), &msg);
+          sim_time = physics.time();
+        },
+        [&] { return stop.load(); }, 0.02, 300.0);
   });
-  while (sim_time < 1.0) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_TRUE(testing::WaitUntil([&] { return sim_time >= 1.0; }, 60.0));
   const double joined_at = sim_time;
   const std::string video = dir + "/late.mp4";
   ChildProcess viewer(
       {BinaryPath(kViewer), scenario_path, "--lcm-url", url, "--out", video,
        "--fps", "10", "--width", "160", "--height", "120"},
       dir + "/viewer.log");
-  const bool listening = WaitForOutput(&viewer, "listening", 30.0);
+  const bool listening = viewer.WaitForOutput("listening", 30.0);
   const double listening_at = sim_time;
-  while (listening && sim_time < listening_at + 1.0) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  // A second of simulation for it to see: ten frames at 10 fps.
+  testing::WaitUntil(
+      [&] { return !listening || sim_time >= listening_at + 1.0; }, 60.0);
   viewer.Signal(SIGTERM);
   const int code = viewer.Wait(30.0);
   stop = true;
@@ -298,26 +289,26 @@ TEST(ViewerProcess, RendersTheStreamOfTheRealSimulator) {
   const std::string scenario_path =
       testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
   const std::string video = dir + "/sim.mp4";
+  // 2 s of simulation at 10 frames/s hold at least 19 whole frames (the
+  // first state may come after 0): the viewer stops by itself after them.
+  constexpr int64_t kFrames = 19;
   ChildProcess viewer(
       {BinaryPath(kViewer), scenario_path, "--lcm-url", url, "--out", video,
-       "--fps", "10", "--width", "160", "--height", "120"},
+       "--fps", "10", "--width", "160", "--height", "120", "--max-frames",
+       std::to_string(kFrames)},
       dir + "/viewer.log");
-  ASSERT_TRUE(WaitForOutput(&viewer, "listening", 30.0)) << viewer.Output();
+  ASSERT_TRUE(viewer.WaitForOutput("listening", 30.0)) << viewer.Output();
   ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"), scenario_path,
                     "--lcm-url", url, "--clock", "realtime", "--speed", "4",
                     "--rate", "50", "--duration", "2"},
                    dir + "/sim.log");
   ASSERT_EQ(sim.Wait(60.0), 0) << sim.Output();
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  viewer.Signal(SIGINT);
   ASSERT_EQ(viewer.Wait(30.0), 0) << viewer.Output();
   int64_t frames = 0, first_index = 0, malformed = 0;
   ASSERT_TRUE(ParseSummary(viewer.Output(), &frames, &first_index, &malformed))
       << viewer.Output();
   EXPECT_EQ(malformed, 0) << viewer.Output();
-  // 2 s of simulation at 10 frames/s (the first state may come after 0).
-  EXPECT_GE(frames, 19) << viewer.Output();
-  EXPECT_LE(frames, 21) << viewer.Output();
+  EXPECT_EQ(frames, kFrames) << viewer.Output();
   cv::VideoCapture capture(video);
   ASSERT_TRUE(capture.isOpened());
   int64_t read = 0;
@@ -358,20 +349,24 @@ TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
   const std::string scenario_path =
       testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
   const std::string log = WriteMovingLog(dir, scenario_path, 25);
-  // A display number of our own; the next one if a stale server or lock
-  // holds it.
-  std::unique_ptr<ChildProcess> xvfb;
+  // -displayfd: Xvfb picks a free display and writes its number once it
+  // accepts connections.
+  const std::string xvfb_log = dir + "/xvfb.log";
+  ChildProcess xvfb({"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0",
+                     "640x480x24", "-nolisten", "tcp"},
+                    xvfb_log);
   std::string display;
-  for (int n = 7803; n < 7808 && !xvfb; ++n) {
-    display = ":" + std::to_string(n);
-    xvfb = std::make_unique<ChildProcess>(
-        std::vector<std::string>{"/usr/bin/Xvfb", display, "-screen", "0",
-                                 "640x480x24", "-nolisten", "tcp"},
-        dir + "/xvfb" + std::to_string(n) + ".log");
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    if (!xvfb->running()) xvfb.reset();
-  }
-  ASSERT_TRUE(xvfb) << "no Xvfb display could start";
+  testing::WaitUntil(
+      [&] {
+        std::smatch m;
+        const std::string out = xvfb.Output();
+        if (std::regex_search(out, m, std::regex(R"((^|\n)(\d+)\n)"))) {
+          display = ":" + m[2].str();
+        }
+        return !display.empty() || !xvfb.running();
+      },
+      60.0);
+  ASSERT_FALSE(display.empty()) << "Xvfb did not start: " << xvfb.Output();
   const std::vector<std::string> common = {
       scenario_path, "--from-log", log,   "--fps",        "10", "--width",
       "160",         "--height",   "120", "--max-frames", "4"};
@@ -434,6 +429,73 @@ TEST(ViewerProcess, BadScenarioExitsWithTwoAndNamesTheFile) {
   EXPECT_EQ(bad_robot.Wait(30.0), 2);
   EXPECT_NE(bad_robot.Output().find("nobody"), std::string::npos)
       << bad_robot.Output();
+}
+
+TEST(ViewerProcess, WindowWithoutDisplayExitsTwoAndWritesNothing) {
+  const std::string dir = TempDir("viewer_no_display");
+  const std::string scenario =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  ChildProcess viewer(
+      {"/usr/bin/env", "-u", "DISPLAY", "-u", "WAYLAND_DISPLAY",
+       BinaryPath("viewer/process/mrsim-view"), scenario, "--window", "--out",
+       dir + "/v.mp4", "--lcm-url", testing::TestLcmUrl(7840)},
+      dir + "/viewer.log");
+  EXPECT_EQ(viewer.Wait(30.0), 2);
+  EXPECT_NE(viewer.Output().find("--window: no display"), std::string::npos)
+      << viewer.Output();
+  EXPECT_FALSE(fs::exists(dir + "/v.mp4"));
+}
+
+TEST(ViewerProcess, FromLogThatIsNotALogOrOfAnotherRobotFailsWritingNothing) {
+  const std::string dir = TempDir("viewer_bad_log");
+  const std::string scenario =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  std::ofstream(dir + "/notes.txt") << "not an LCM log at all\n";
+  ChildProcess not_log(
+      {BinaryPath("viewer/process/mrsim-view"), scenario, "--from-log",
+       dir + "/notes.txt", "--out", dir + "/a.mp4"},
+      dir + "/a.log");
+  EXPECT_EQ(not_log.Wait(30.0), 2);
+  EXPECT_NE(not_log.Output().find("notes.txt: not an LCM log"),
+            std::string::npos)
+      << not_log.Output();
+  EXPECT_FALSE(fs::exists(dir + "/a.mp4"));
+
+  // A log of a robot with another number of modules: every state is
+  // malformed for this scenario.
+  ChainOptions chain;
+  chain.name = "snake";
+  chain.modules = 3;
+  Scenario other;
+  other.robots.push_back(MakeChain(chain));
+  const std::string other_dir = TempDir("viewer_bad_log_other");
+  const std::string other_path = testing::WriteTestScenario(other, other_dir);
+  Physics physics(ReadScenarioFile(other_path));
+  {
+    lcm::LogFile log(dir + "/other.lcmlog", "w");
+    for (int k = 1; k <= 5; ++k) {
+      testing::DriveTo(&physics, k * 0.05);
+      robot_state_t msg = ToRobotStateMessage(physics.ReadRobotState(0), k);
+      std::vector<unsigned char> data(msg.getEncodedSize());
+      msg.encode(data.data(), 0, static_cast<int>(data.size()));
+      lcm::LogEvent ev;
+      ev.eventnum = k;
+      ev.timestamp = k * 50000;
+      ev.channel = "MRSIM_STATE_" + other.robots[0].name;
+      ev.datalen = static_cast<int32_t>(data.size());
+      ev.data = data.data();
+      log.writeEvent(&ev);
+    }
+  }
+  ChildProcess mismatch(
+      {BinaryPath("viewer/process/mrsim-view"), scenario, "--from-log",
+       dir + "/other.lcmlog", "--out", dir + "/b.mp4"},
+      dir + "/b.log");
+  EXPECT_EQ(mismatch.Wait(30.0), 2);
+  EXPECT_NE(mismatch.Output().find("no state of the scenario's robots"),
+            std::string::npos)
+      << mismatch.Output();
+  EXPECT_FALSE(fs::exists(dir + "/b.mp4"));
 }
 
 }  // namespace

@@ -1,20 +1,15 @@
-// The frame pump and the video writer in-process; mrsim-view's bad-input
-// exits as a process.
+// The frame pump and the video writer in process.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <lcm/lcm-cpp.hpp>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
-#include "lcmtypes/runtime/channels.h"
-#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
-#include "sim_core/sim_process/state_message.h"
 #include "tests/common/child_process.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/frame_pump.h"
@@ -25,8 +20,6 @@ namespace mrsim {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::BinaryPath;
-using testing::ChildProcess;
 using testing::TempDir;
 
 std::string ReadBytes(const std::string& path) {
@@ -114,73 +107,6 @@ TEST(ViewerFramePump, StopsAtMaxFrames) {
   EXPECT_TRUE(pump.Done());
   EXPECT_EQ(pump.frames(), 2);
   EXPECT_EQ(pump.writer(), nullptr);
-}
-
-TEST(ViewerProcess, WindowWithoutDisplayExitsTwoAndWritesNothing) {
-  const std::string dir = TempDir("viewer_no_display");
-  const std::string scenario =
-      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
-  ChildProcess viewer(
-      {"/usr/bin/env", "-u", "DISPLAY", "-u", "WAYLAND_DISPLAY",
-       BinaryPath("viewer/process/mrsim-view"), scenario, "--window", "--out",
-       dir + "/v.mp4", "--lcm-url", testing::TestLcmUrl(7840)},
-      dir + "/viewer.log");
-  EXPECT_EQ(viewer.Wait(30.0), 2);
-  EXPECT_NE(viewer.Output().find("--window: no display"), std::string::npos)
-      << viewer.Output();
-  EXPECT_FALSE(fs::exists(dir + "/v.mp4"));
-}
-
-TEST(ViewerProcess, FromLogThatIsNotALogOrOfAnotherRobotFailsWritingNothing) {
-  const std::string dir = TempDir("viewer_bad_log");
-  const std::string scenario =
-      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
-  std::ofstream(dir + "/notes.txt") << "not an LCM log at all\n";
-  ChildProcess not_log(
-      {BinaryPath("viewer/process/mrsim-view"), scenario, "--from-log",
-       dir + "/notes.txt", "--out", dir + "/a.mp4"},
-      dir + "/a.log");
-  EXPECT_EQ(not_log.Wait(30.0), 2);
-  EXPECT_NE(not_log.Output().find("notes.txt: not an LCM log"),
-            std::string::npos)
-      << not_log.Output();
-  EXPECT_FALSE(fs::exists(dir + "/a.mp4"));
-
-  // A log of a robot with another number of modules: every state is
-  // malformed for this scenario.
-  ChainOptions chain;
-  chain.name = "snake";
-  chain.modules = 3;
-  Scenario other;
-  other.robots.push_back(MakeChain(chain));
-  const std::string other_dir = TempDir("viewer_bad_log_other");
-  const std::string other_path = testing::WriteTestScenario(other, other_dir);
-  Physics physics(ReadScenarioFile(other_path));
-  {
-    lcm::LogFile log(dir + "/other.lcmlog", "w");
-    for (int k = 1; k <= 5; ++k) {
-      testing::DriveTo(&physics, k * 0.05);
-      robot_state_t msg = ToRobotStateMessage(physics.ReadRobotState(0), k);
-      std::vector<unsigned char> data(msg.getEncodedSize());
-      msg.encode(data.data(), 0, static_cast<int>(data.size()));
-      lcm::LogEvent ev;
-      ev.eventnum = k;
-      ev.timestamp = k * 50000;
-      ev.channel = "MRSIM_STATE_" + other.robots[0].name;
-      ev.datalen = static_cast<int32_t>(data.size());
-      ev.data = data.data();
-      log.writeEvent(&ev);
-    }
-  }
-  ChildProcess mismatch(
-      {BinaryPath("viewer/process/mrsim-view"), scenario, "--from-log",
-       dir + "/other.lcmlog", "--out", dir + "/b.mp4"},
-      dir + "/b.log");
-  EXPECT_EQ(mismatch.Wait(30.0), 2);
-  EXPECT_NE(mismatch.Output().find("no state of the scenario's robots"),
-            std::string::npos)
-      << mismatch.Output();
-  EXPECT_FALSE(fs::exists(dir + "/b.mp4"));
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 // live or from a log); without one they stay where the scenario puts them.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
@@ -11,7 +10,6 @@
 #include <opencv2/imgproc.hpp>
 #include <regex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
@@ -21,6 +19,7 @@
 #include "sim_core/scene_object_state.h"
 #include "sim_core/sim_process/state_message.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/frame_scheduler.h"
 #include "viewer/frame_writer.h"
@@ -244,12 +243,7 @@ TEST(ViewerScene, LiveViewerDrawsTheBallWhereSceneStatesPutIt) {
                      "--max-frames",
                      "2"},
                     dir + "/viewer.log");
-  for (int i = 0;
-       i < 300 && view.Output().find("listening") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  ASSERT_NE(view.Output().find("listening"), std::string::npos)
-      << view.Output();
+  ASSERT_TRUE(view.WaitForOutput("listening", 30.0)) << view.Output();
 
   GlContext gl;
   StateViewer expected_viewer(ReadScenarioFile(scenario_path), FixedView());
@@ -273,15 +267,18 @@ TEST(ViewerScene, LiveViewerDrawsTheBallWhereSceneStatesPutIt) {
   const robot_state_t state0 = ToRobotStateMessage(s0, 0);
   lcm.publish(SceneChannel("MRSIM"), &scene0);
   lcm.publish(state_channel, &state0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // The viewer keeps a history of both streams: no pacing needed. Repeated
+  // until it has its two frames and stops.
   const scene_state_t scene1 = ToSceneStateMessage(b1, s1.time, 1);
   const robot_state_t state1 = ToRobotStateMessage(s1, 1);
-  for (int i = 0; i < 50 && view.running(); ++i) {
-    lcm.publish(SceneChannel("MRSIM"), &scene1);
-    lcm.publish(state_channel, &state1);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  ASSERT_EQ(view.Wait(30.0), 0) << view.Output();
+  int code = -1;
+  testing::RepeatUntil(
+      [&] {
+        lcm.publish(SceneChannel("MRSIM"), &scene1);
+        lcm.publish(state_channel, &state1);
+      },
+      [&] { return (code = view.Wait(0)) != -1; }, 0.1, 30.0);
+  ASSERT_EQ(code, 0) << view.Output();
   // The test repeats the last scene until the viewer stops, so a loaded
   // machine may deliver more than two before it does.
   std::smatch scenes;
