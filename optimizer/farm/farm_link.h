@@ -53,6 +53,10 @@ class FarmLink {
   // Handles what arrives within timeout_ms. A failed connection is
   // re-opened with back-off (0.1 s doubling to 5 s) meanwhile.
   void Handle(int timeout_ms);
+  // A descriptor (an eventfd) that ends Handle's wait when readable, e.g.
+  // when an episode finishes: its result goes out at once, not at the next
+  // timeout. Handle drains it. -1: none.
+  void SetWakeFd(int fd) { wake_fd_ = fd; }
   void Publish(FarmOutbox& out);
   // Closes and re-opens the connection now (re-joins multicast groups).
   void Rejoin();
@@ -84,6 +88,7 @@ class FarmLink {
   double backoff_ = 0.1;
   double next_attempt_ = 0;
   std::vector<std::string> log_;
+  int wake_fd_ = -1;
 };
 
 }  // namespace mrsim

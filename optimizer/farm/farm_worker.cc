@@ -1,8 +1,10 @@
 #include "optimizer/farm/farm_worker.h"
 
 #include <fmt/format.h>
+#include <sys/eventfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -17,15 +19,30 @@ std::string HostName() {
 
 }  // namespace
 
+FarmWorker::WakeFd::WakeFd() : fd(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {}
+
+FarmWorker::WakeFd::~WakeFd() {
+  if (fd >= 0) close(fd);
+}
+
+void FarmWorker::WakeFd::Signal() const {
+  const std::uint64_t one = 1;
+  if (fd >= 0 && write(fd, &one, sizeof(one)) < 0) {
+    // EAGAIN: the counter is already non-zero, Poll wakes anyway.
+  }
+}
+
 FarmWorker::FarmWorker(const std::string& lcm_url, WorkerSettings settings,
                        int count) {
   Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers());
+  link_->SetWakeFd(done_fd_.fd);
 }
 
 FarmWorker::FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count) {
   Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm, settings.prefix, MakeHandlers());
+  link_->SetWakeFd(done_fd_.fd);
 }
 
 void FarmWorker::Build(WorkerSettings settings, int count) {
@@ -155,12 +172,21 @@ void FarmWorker::Work() {
       pool_queue_.pop_front();
     }
     opt_result_t r = Run(item.second, item.first, 0);
-    std::lock_guard<std::mutex> lock(mutex_);
-    finished_.push_back(std::move(r));
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_.push_back(std::move(r));
+    }
+    done_fd_.Signal();
   }
 }
 
 std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
+  if (!fake_running_.empty()) {
+    // Wake for the first fake episode's end, not a whole timeout later.
+    const double until = fake_running_.begin()->first - FarmLink::Now();
+    timeout_ms =
+        std::clamp(static_cast<int>(std::ceil(until * 1000)), 0, timeout_ms);
+  }
   link_->Handle(timeout_ms);
   const double now = FarmLink::Now();
   std::vector<opt_result_t> done;

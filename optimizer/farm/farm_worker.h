@@ -61,6 +61,17 @@ class FarmWorker {
   // Fake episodes: (end time, result), sorted by end time.
   std::multimap<double, opt_result_t> fake_running_;
 
+  // Readable when an episode has finished: wakes Poll's wait (an eventfd).
+  struct WakeFd {
+    int fd = -1;
+    WakeFd();
+    ~WakeFd();
+    WakeFd(const WakeFd&) = delete;
+    WakeFd& operator=(const WakeFd&) = delete;
+    void Signal() const;
+  };
+  WakeFd done_fd_;
+
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::pair<std::string, WorkerTask>> pool_queue_;
