@@ -3,6 +3,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 namespace mrsim::studio {
@@ -29,5 +30,7 @@ void ShutDownImGui() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext();
 }
+
+void PreferOneSoftwareRenderThread() { setenv("LP_NUM_THREADS", "1", 0); }
 
 }  // namespace mrsim::studio

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <iostream>
 
+#include "lcmtypes/runtime/version.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/headless_studio.h"
 #include "studio/window_studio.h"
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cli.add_option("--layout-dump", options.layout_dump,
                  "Write widget rectangles and state here (for tests)");
-  cli.set_version_flag("--version", "mrsim-studio 0.1.0");
+  cli.set_version_flag("--version", mrsim::VersionLine("mrsim-studio"));
   CLI11_PARSE(cli, argc, argv);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

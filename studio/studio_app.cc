@@ -15,6 +15,7 @@
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sim_process/state_message.h"
 #include "studio/chain_edit.h"
+#include "studio/gui_setup.h"
 #include "studio/inspector_fields.h"
 
 namespace mrsim::studio {
@@ -85,6 +86,8 @@ StudioApp::StudioApp(Design design, const AppOptions& options)
       layout_(options.layout_dump),
       live_(std::make_unique<LivePanel>(ProgramSearchPath(""), &layout_)),
       recent_(options.recent_store) {
+  // Before any OpenGL context: every shell makes its context after this.
+  PreferOneSoftwareRenderThread();
   template_.chain.modules = 5;
   template_.chain.pattern = ChainPattern::kPitchYaw;
   if (!design_.path().empty() && std::filesystem::exists(design_.path())) {
