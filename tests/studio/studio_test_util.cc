@@ -1,10 +1,8 @@
 #include "tests/studio/studio_test_util.h"
 
-#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <thread>
 
 namespace mrsim::testing {
 
@@ -43,16 +41,6 @@ std::map<std::string, std::string> ReadLayout(const std::string& path) {
       out[line.substr(0, tab)] = line.substr(tab + 1);
   }
   return out;
-}
-
-bool WaitUntil(const std::function<bool()>& done, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return done();
 }
 
 bool WaitForLayout(const std::string& layout, const std::string& key,

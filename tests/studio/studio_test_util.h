@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 
 namespace mrsim::testing {
 
@@ -26,9 +27,6 @@ class XvfbDisplay {
 
 // The studio's --layout-dump file as key -> value.
 std::map<std::string, std::string> ReadLayout(const std::string& path);
-
-// Polls `done` until true or `timeout_s` passed.
-bool WaitUntil(const std::function<bool()>& done, double timeout_s);
 
 // Waits until the layout file has `key` equal to `value`.
 bool WaitForLayout(const std::string& layout, const std::string& key,
