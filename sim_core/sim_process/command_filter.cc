@@ -89,14 +89,12 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
   } else {
     if (lockstep) {
       // Lockstep applies an answer only to a state being waited for; each
-      // state has its own answers, so several controllers of one robot
-      // may answer in any order.
+      // state has its own answers, so several controllers of one robot,
+      // and one controller answering a re-sent state late, may answer in
+      // any order.
       const int64_t oldest =
           oldest_state_seq < 0 ? latest_state_seq : oldest_state_seq;
       if (cmd.state_seq < oldest) return CommandVerdict::kStaleSeq;
-      if (h.accepted && cmd.state_seq < h.last_state_seq) {
-        return CommandVerdict::kStaleSeq;
-      }
     } else if (cmd.state_seq < newest_state_seq_[robot]) {
       return CommandVerdict::kStaleSeq;
     }

@@ -84,6 +84,11 @@ bool SimNode::LockstepReady() const {
   return MissingControllers(seq).empty();
 }
 
+bool SimNode::AwaitingAnswers() const {
+  return lockstep() && !stopped_ && !quit_ &&
+         !(paused_ && steps_pending_ == 0) && !LockstepReady();
+}
+
 std::string SimNode::MissingControllers(int64_t seq) const {
   std::string names;
   const auto answers = answers_.find(seq);
@@ -367,10 +372,12 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
       channel.compare(0, command_prefix.size(), command_prefix) == 0
           ? channel.substr(command_prefix.size())
           : std::string();
-  const int64_t awaited = AwaitedSeq();
-  const CommandVerdict verdict =
-      filter_.Check(cmd, channel_robot, state_seq_, lockstep(),
-                    options_.controllers, awaited < 0 ? state_seq_ : awaited);
+  // Answers are kept for every state still to be awaited: with a delay,
+  // those published before the first one awaited too.
+  const int64_t oldest =
+      std::max(state_seq_ - options_.actuation_delay, epoch_seq_);
+  const CommandVerdict verdict = filter_.Check(
+      cmd, channel_robot, state_seq_, lockstep(), options_.controllers, oldest);
   switch (verdict) {
     case CommandVerdict::kAccepted:
       break;

@@ -204,7 +204,7 @@ TEST(ScenarioTool, OriginalFileConvertsValidatesExportsAndRuns) {
   EXPECT_TRUE(model) << error;
   ChildProcess sim(
       {BinaryPath("sim_core/sim_process/mrsim-sim"), native, "--lcm-url",
-       TestLcmUrl(7920), "--clock", "fast", "--duration", "1"},
+       TestLcmUrl(7921), "--clock", "fast", "--duration", "1"},
       dir + "/sim.log");
   EXPECT_EQ(sim.Wait(120), 0) << sim.Output();
   EXPECT_THAT(sim.Output(), HasSubstr("stopped (duration reached)"));

@@ -208,11 +208,43 @@ TEST(SimNode, PipelinedStepsOnePeriodAheadThenWaitsForTheOlderAnswer) {
   d.Tick();
   EXPECT_EQ(d.states_.back().seq, 1);
   EXPECT_EQ(d.node().status().rejected_seq, 0);  // ...but is kept
-  // ...the answer to state 0 does, and then state 1's releases period 2.
+  // ...the answer to state 0 does, though it came after state 1's (a
+  // controller that missed state 0 answers its re-send late); then state
+  // 1's answer, kept, releases period 2.
   d.Command(Answer(d.states_.front(), "ctl", 2));
-  EXPECT_EQ(d.node().status().rejected_seq, 1);  // older than its last
-  d.Command(Answer(d.states_.front(), "ctl", 0));
-  EXPECT_EQ(d.node().status().rejected_seq, 2);
+  EXPECT_EQ(d.node().status().rejected_seq, 0);
+  d.Tick();
+  EXPECT_EQ(d.states_.back().seq, 2);
+  d.Tick();
+  EXPECT_EQ(d.states_.back().seq, 3);
+  EXPECT_EQ(d.node().status().commands_applied, 2);
+  // An answer to a state no longer awaited is stale.
+  d.Command(Answer(d.states_.front(), "ctl", 3));
+  EXPECT_EQ(d.node().status().rejected_seq, 1);
+}
+
+TEST(SimNode, DeeperPipelineKeepsAnswersThatArriveBeforeTheyAreAwaited) {
+  // With a delay of 2 the first two periods need no answer, so the answer
+  // to state 0 may arrive when state 1 is already out; it must be kept
+  // for period 2, not dropped (which stalled the run for good).
+  Driver d(Lockstep(2));
+  const robot_state_t state0 = d.states_.back();
+  d.Tick();
+  ASSERT_EQ(d.states_.back().seq, 1);
+  d.Command(Answer(state0, "ctl", 1));
+  EXPECT_EQ(d.node().status().rejected_seq, 0);
+  d.Tick();
+  ASSERT_EQ(d.states_.back().seq, 2);
+  d.Tick();  // period 2 applies the answer to state 0
+  EXPECT_EQ(d.states_.back().seq, 3);
+  EXPECT_EQ(d.node().status().commands_applied, 1);
+}
+
+TEST(SimNode, DeeperPipelineIsTheDelayedInProcessLoopBitForBit) {
+  Driver d(Lockstep(2));
+  const robot_state_t last = DriveLockstep(d, 150);
+  EXPECT_EQ(d.node().status().commands_applied, 148);
+  ExpectSameState(InProcessRun(Snake(), 150, 2), last);
 }
 
 TEST(SimNode, LateControllerIsWaitedForResentAndNamedForAnHour) {
