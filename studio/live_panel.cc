@@ -653,7 +653,9 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::TextDisabled("waiting for generation %d...", jump_to_);
   }
   if (const std::string stall = optimise_.StallWarning(); !stall.empty()) {
-    ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%s", stall.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.6f, 0.2f, 1));
+    ImGui::TextWrapped("%s", stall.c_str());
+    ImGui::PopStyleColor();
   }
   if (p.running || p.finished || !p.rows.empty()) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();

@@ -275,10 +275,14 @@ std::string OptimiseSession::StallWarning(WallTime now) const {
   if (!progress_.running) return "";
   const auto silent = stall_.Stalled(now);
   if (!silent) return "";
+  // Workers are known from mrsim-opt's first progress line on.
+  const std::string workers = progress_lines_ > 0
+                                  ? fmt::format("workers {}", progress_.workers)
+                                  : std::string("no workers reported yet");
   return fmt::format(
-      "no progress for {:.0f} s: are workers alive? (workers {}; expected a "
-      "generation within {:.0f} s)",
-      *silent, progress_.workers, stall_.Bound());
+      "no progress for {:.0f} s: are workers alive? ({}; a generation was "
+      "expected within {:.0f} s)",
+      *silent, workers, stall_.Bound());
 }
 
 std::map<std::string, double> OptimiseSession::BestGenes() const {
