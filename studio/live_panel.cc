@@ -18,6 +18,7 @@
 
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/channels.h"
+#include "studio/live/best_replay.h"
 #include "studio/live/plot_export.h"
 
 namespace mrsim::studio {
@@ -110,6 +111,7 @@ void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
 void LivePanel::Poll() {
   runner_.Poll();
   optimise_.Poll();
+  if (const auto row = optimise_.TakeReplay()) Play(*row);
   if (layout_ != nullptr && layout_->enabled()) {
     const OptimiseProgress& p = optimise_.progress();
     layout_->State("optimise settings", fmt::format("{} {} {:g}", generations_,
@@ -119,6 +121,8 @@ void LivePanel::Poll() {
                                p.running    ? "running"
                                : p.finished ? "finished"
                                             : "idle"));
+    layout_->State("optimise watching", watching_);
+    layout_->State("optimise stall", optimise_.StallWarning());
   }
   if (!link_) return;
   try {
@@ -201,16 +205,12 @@ void LivePanel::DrawRun(const LiveDesign& design) {
         message_ = "save the design first (Run starts mrsim-sim on the file)";
       } else {
         try {
-          RunOptions o;
+          RunOptions o = FormRun();
           o.scenario_path = design.path;
           o.robots = design.robots;
-          o.lcm_url = url_;
-          o.prefix = prefix_;
-          o.clock = kClocks[clock_];
-          o.rate = rate_;
-          o.speed = speed_;
           runner_.Start(o);
           Connect(url_, prefix_);
+          EndReplay();
           message_.clear();
         } catch (const std::exception& e) {
           message_ = e.what();
@@ -219,6 +219,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
     }
   } else if (Button("Stop")) {
     runner_.Stop();
+    EndReplay();
   }
   ImGui::SameLine();
   if (!link_) {
@@ -490,25 +491,63 @@ void LivePanel::DrawPlots(float width) {
   }
 }
 
+RunOptions LivePanel::FormRun() const {
+  RunOptions o;
+  o.lcm_url = url_;
+  o.prefix = prefix_;
+  o.clock = kClocks[clock_];
+  o.rate = rate_;
+  o.speed = speed_;
+  return o;
+}
+
+void LivePanel::EndReplay() {
+  if (replay_) ++replay_revision_;
+  replay_.reset();
+  watching_.clear();
+}
+
 void LivePanel::WatchBest() {
-  const auto best = optimise_.BestGenes();
-  const LiveRobot* robot = session_->robot(followed_);
-  if (best.empty() || robot == nullptr) {
-    message_ = best.empty() ? "no generation finished yet"
-                            : "Run the design first: the best plays on it";
+  const auto best = optimise_.Best();
+  if (!best) {
+    message_ = "no generation finished yet";
     return;
   }
-  // Gait genes the genome lacks keep what the robot runs now.
-  std::vector<double> p(7, 0.0);
-  for (int i = 0; i < 7; ++i) {
-    p[i] = robot->gait ? robot->gait->parameters[i] : parameters_[i];
-    const auto it = best.find(GaitGeneNames()[i]);
-    if (it != best.end()) p[i] = it->second;
-    parameters_[i] = static_cast<float>(p[i]);
+  Play(*best);
+}
+
+void LivePanel::Play(const GenerationRow& row) {
+  try {
+    BestReplay best = MakeBestReplay(optimise_.options(), row);
+    const LiveRobot* robot = session_->robot(best.robot);
+    watching_ = fmt::format("playing generation {}'s best ({:.4g}){}",
+                            best.generation + 1, best.fitness,
+                            best.body ? ", its body and gait" : "");
+    const std::vector<double> p = best.gait.parameters.ToVector();
+    for (int i = 0; i < 7; ++i) parameters_[i] = static_cast<float>(p[i]);
+    if (!best.body && !replay_ && robot != nullptr && runner_.running()) {
+      // The design runs: the gait alone changes, the robot goes on.
+      Send([&](StudioOutbox* out) {
+        session_->SetGaitParameters(best.robot, p, WallClock::now(), out);
+      });
+      return;
+    }
+    // A new body (or nothing running): the run restarts with the best's
+    // scenario and gait, while the optimisation goes on.
+    const RunOptions o = WriteBestReplay(
+        best, optimise_.options().out_dir + "/watch", FormRun());
+    runner_.Start(o);
+    Connect(url_, prefix_);
+    if (best.body) {
+      replay_ = std::move(best);
+      ++replay_revision_;
+    } else {
+      EndReplay();
+    }
+    message_.clear();
+  } catch (const std::exception& e) {
+    message_ = e.what();
   }
-  Send([&](StudioOutbox* out) {
-    session_->SetGaitParameters(followed_, p, WallClock::now(), out);
-  });
 }
 
 void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
@@ -571,6 +610,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::InputText("folder", &opt_dir_);
   auto start = [&](int jump_to) {
     try {
+      message_.clear();
       if (design.path.empty() || design.dirty) {
         throw std::invalid_argument("save the design first");
       }
@@ -587,9 +627,11 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.episode_s = episode_;
       o.farm = farm_;
       o.lcm_url = url_;
-      o.jump_to = jump_to;
-      optimise_.Start(o);
-      message_.clear();
+      if (jump_to > 0) {
+        optimise_.Jump(jump_to, o);
+      } else {
+        optimise_.Start(o);
+      }
     } catch (const std::exception& e) {
       message_ = e.what();
     }
@@ -605,7 +647,16 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::SetNextItemWidth(80);
   ImGui::InputInt("##jump", &jump_to_);
   ImGui::SameLine();
-  if (Button("Jump to generation")) start(std::max(0, jump_to_));
+  if (Button("Jump to generation")) start(std::max(1, jump_to_));
+  if (!watching_.empty()) ImGui::TextUnformatted(watching_.c_str());
+  if (optimise_.replay_pending()) {
+    ImGui::TextDisabled("waiting for generation %d...", jump_to_);
+  }
+  if (const std::string stall = optimise_.StallWarning(); !stall.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.6f, 0.2f, 1));
+    ImGui::TextWrapped("%s", stall.c_str());
+    ImGui::PopStyleColor();
+  }
   if (p.running || p.finished || !p.rows.empty()) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
     ImGui::Text(

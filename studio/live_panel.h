@@ -6,10 +6,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "studio/layout_recorder.h"
+#include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
 #include "studio/live/live_session.h"
@@ -55,6 +57,13 @@ class LivePanel {
            optimise_.progress().running;
   }
   const LiveSession& session() const { return *session_; }
+  // The scenario the live run plays when it is not the design (the best of
+  // an optimisation with body genes), else null; its revision changes
+  // whenever it does.
+  const Scenario* live_scenario() const {
+    return replay_ ? &replay_->scenario : nullptr;
+  }
+  int live_scenario_revision() const { return replay_revision_; }
   // The robot steered by keys and buttons ("" when none is heard).
   const std::string& followed() const { return followed_; }
 
@@ -74,6 +83,12 @@ class LivePanel {
   void DrawConsole(float height);
   void DrawOptimise(const LiveDesign& design, float width);
   void WatchBest();
+  // Plays an optimisation's individual live: its gait sent to the running
+  // design, or (body genes, or nothing running) a run of its scenario.
+  void Play(const GenerationRow& row);
+  void EndReplay();
+  // The run settings of the form (clock, rate, speed, URL, prefix).
+  RunOptions FormRun() const;
 
   LayoutRecorder* layout_;
   LiveRunner runner_;
@@ -87,7 +102,10 @@ class LivePanel {
   int seed_ = 1;
   float episode_ = 5;
   bool farm_ = false;
-  int jump_to_ = 0;
+  int jump_to_ = 1;
+  std::optional<BestReplay> replay_;  // what runs, when not the design
+  int replay_revision_ = 0;
+  std::string watching_;  // "playing generation 3's best ..."
   std::unique_ptr<LiveSession> session_;
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;

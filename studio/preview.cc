@@ -14,6 +14,7 @@
 #include <GL/glext.h>
 
 #include "sim_core/mjcf_builder.h"
+#include "studio/live_rays.h"
 #include "studio/mujoco_buffer_cache.h"
 
 namespace mrsim::studio {
@@ -170,21 +171,47 @@ void Preview::FrameAll() {
 
 void Preview::AddRays() {
   // Physics casts its own rays (no MuJoCo rangefinders in its model), so
-  // the preview draws them, in the look's distance-sensor colour.
+  // the preview draws them, in the look's distance-sensor colour: designed
+  // length when editing, measured length when live (a hit brighter, with a
+  // dot where the ray ends).
   const Eigen::Vector3d rgb = PartLookRgb(PartLook::kDistanceSensor);
   const float rgba[4] = {static_cast<float>(rgb.x()),
                          static_cast<float>(rgb.y()),
                          static_cast<float>(rgb.z()), 0.7f};
+  const float miss[4] = {rgba[0], rgba[1], rgba[2], 0.35f};
+  const float hit[4] = {1.0f, 0.25f, 0.15f, 0.95f};
+  auto add = [this](const float* colour, mjtGeom type, double width,
+                    const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    if (scene_.ngeom >= scene_.maxgeom) return;
+    mjvGeom* g = scene_.geoms + scene_.ngeom++;
+    mjv_initGeom(g, type, nullptr, nullptr, nullptr, colour);
+    mjv_makeConnector(g, type, width, from.x(), from.y(), from.z(), to.x(),
+                      to.y(), to.z());
+    g->category = mjCAT_DECOR;
+  };
   for (const RaySite& ray : rays_) {
-    if (scene_.ngeom >= scene_.maxgeom) break;
+    const int robot = ray.part.robot;
+    if (live_ && robot >= 0 && robot < static_cast<int>(live_robots_.size()) &&
+        live_robots_[robot]) {
+      continue;
+    }
     const mjtNum* p = data_->site_xpos + 3 * ray.site;
     const mjtNum* x = data_->site_xmat + 9 * ray.site;
-    mjvGeom* g = scene_.geoms + scene_.ngeom++;
-    mjv_initGeom(g, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, rgba);
-    mjv_makeConnector(g, mjGEOM_CAPSULE, 0.003, p[0], p[1], p[2],
-                      p[0] + ray.length * x[0], p[1] + ray.length * x[3],
-                      p[2] + ray.length * x[6]);
-    g->category = mjCAT_DECOR;
+    const Eigen::Vector3d from(p[0], p[1], p[2]);
+    add(rgba, mjGEOM_CAPSULE, 0.003, from,
+        from + ray.length * Eigen::Vector3d(x[0], x[3], x[6]));
+  }
+  if (!live_) return;
+  for (const Ray& ray : live_rays_) {
+    if (!ray.from.allFinite() || !ray.to.allFinite()) continue;
+    add(ray.hit ? hit : miss, mjGEOM_CAPSULE, 0.003, ray.from, ray.to);
+    if (ray.hit && scene_.ngeom < scene_.maxgeom) {
+      mjvGeom* g = scene_.geoms + scene_.ngeom++;
+      const mjtNum size[3] = {0.012, 0.012, 0.012};
+      const mjtNum pos[3] = {ray.to.x(), ray.to.y(), ray.to.z()};
+      mjv_initGeom(g, mjGEOM_SPHERE, size, pos, nullptr, hit);
+      g->category = mjCAT_DECOR;
+    }
   }
 }
 
@@ -326,11 +353,16 @@ void Preview::ShowStates(const Scenario& scenario,
   }
   if (scene != nullptr && !mapper_->CheckScene(*scene).empty()) scene = nullptr;
   mapper_->Apply(list, data_, scene);
+  live_rays_ = MeasuredRays(*mapper_, list, data_);
+  live_robots_.assign(list.size(), false);
+  for (size_t r = 0; r < list.size(); ++r) live_robots_[r] = list[r] != nullptr;
   live_ = true;
 }
 
 void Preview::ShowDesign() {
   mapper_.reset();
+  live_rays_.clear();
+  live_robots_.clear();
   if (live_ && physics_) {
     mj_kinematics(physics_->model(), data_);
     mj_camlight(physics_->model(), data_);

@@ -19,6 +19,7 @@
 #include "sim_core/scene_object_state.h"
 #include "studio/part_map.h"
 #include "studio/selection.h"
+#include "viewer/renderer.h"
 
 namespace mrsim {
 class StatePoseMapper;
@@ -75,9 +76,9 @@ class Preview {
 
   // Live view: poses the robots named in `states` (and the movable objects
   // in `scene`, when given) as a running simulation reports them, with the
-  // viewer's StatePoseMapper. States that do not fit the design are left
-  // as built. ShowDesign returns to the design's own pose (after every
-  // rebuild too).
+  // viewer's StatePoseMapper, their distance rays at the measured length
+  // (MeasuredRays). States that do not fit the design are left as built.
+  // ShowDesign returns to the design's own pose (after every rebuild too).
   void ShowStates(const Scenario& scenario,
                   const std::map<std::string, RobotState>& states,
                   const std::vector<SceneObjectState>* scene);
@@ -93,6 +94,10 @@ class Preview {
   mjData* data_ = nullptr;  // owned by physics_
   std::vector<GeomPart> geoms_;
   std::vector<RaySite> rays_;
+  // Live: the measured rays, and which robots they stand for (the others
+  // keep their designed rays).
+  std::vector<Ray> live_rays_;
+  std::vector<bool> live_robots_;
   std::vector<std::pair<int, std::string>> labels_;  // geom id, text
   mjvScene scene_;
   mjvOption option_;

@@ -149,15 +149,22 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
       std::max(16, height - static_cast<int>(kStatusHeight))};
   HandleViewInput(view, kLeftWidth, kStatusHeight);
 
-  // The preview follows the design: one rebuild per change.
-  if (design_.revision() != built_revision_) {
+  // The preview follows the design: one rebuild per change. A live run of
+  // another body (an optimisation's best) shows that body instead.
+  const Scenario* replay = live_->live_scenario();
+  const Scenario& shown = replay ? *replay : design_.scenario();
+  const int shown_live = replay ? live_->live_scenario_revision() : -1;
+  if (design_.revision() != built_revision_ || shown_live != built_live_) {
     const auto start = std::chrono::steady_clock::now();
-    build_error_ = preview_->Rebuild(design_.scenario());
+    // Another body: the camera frames it (it may be twice the design).
+    if (shown_live >= 0 && shown_live != built_live_) preview_->Reframe();
+    build_error_ = preview_->Rebuild(shown);
     preview_->ShowDesign();
     last_rebuild_ms_ = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - start)
                            .count();
     built_revision_ = design_.revision();
+    built_live_ = shown_live;
   }
 
   // Live: the robots and objects where the running simulation has them.
@@ -170,7 +177,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     if (live_->session().scene()) {
       scene = FromSceneStateMessage(*live_->session().scene());
     }
-    preview_->ShowStates(design_.scenario(), states,
+    preview_->ShowStates(shown, states,
                          live_->session().scene() ? &scene : nullptr);
   } else if (preview_->live()) {
     preview_->ShowDesign();

@@ -93,6 +93,7 @@ class StudioApp {
     kHeightImage
   } browse_for_ = BrowseFor::kNone;
   long built_revision_ = -1;
+  int built_live_ = -1;  // live_scenario_revision() shown, -1: the design
   std::string build_error_;
   std::string message_;  // last refusal or error, shown in the status bar
   std::map<std::string, std::string> field_errors_;  // by field key

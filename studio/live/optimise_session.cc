@@ -99,8 +99,9 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
   return spec;
 }
 
-void OptimiseSession::Start(const OptimiseOptions& options) {
+void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
   Stop();
+  pending_replay_ = -1;
   options.genome.Validate("the studio's genome");
   std::filesystem::create_directories(options.out_dir);
   const std::string genome_path = options.out_dir + "/studio.genome.xml";
@@ -110,6 +111,8 @@ void OptimiseSession::Start(const OptimiseOptions& options) {
   progress_ = OptimiseProgress{};
   progress_.generations = options.generations;
   csv_size_ = -1;
+  progress_lines_ = 0;
+  stall_.Start(0, now);
   console_.clear();
   group_ = std::make_unique<ProcessGroup>(
       [this](const std::string& name, const std::string& line) {
@@ -145,6 +148,11 @@ void OptimiseSession::Line(const std::string& line) {
     progress_.evals_per_s = rate;
     progress_.workers = workers;
     progress_.eta = eta;
+    ++progress_lines_;
+  } else if (tail.find("from checkpoint | workers") == 0 &&
+             std::sscanf(tail.c_str(), "from checkpoint | workers %d",
+                         &workers) == 1) {
+    ++progress_lines_;  // a generation read back on resuming
   }
 }
 
@@ -183,7 +191,7 @@ std::vector<GenerationRow> OptimiseSession::ParseGenerations(
   return rows;
 }
 
-void OptimiseSession::Poll(int timeout_ms) {
+void OptimiseSession::Poll(int timeout_ms, WallTime now) {
   if (group_) {
     group_->Poll(timeout_ms);
     if (progress_.running && !group_->AnyRunning()) {
@@ -192,7 +200,19 @@ void OptimiseSession::Poll(int timeout_ms) {
       progress_.exit_code = group_->AllClean() ? 0 : 1;
     }
   }
-  if (options_.out_dir.empty()) return;
+  if (!options_.out_dir.empty()) ReadGenerations();
+  stall_.Update(std::max<long>(progress_lines_, progress_.rows.size()), now);
+  if (pending_replay_ >= 0 && Row(pending_replay_) == nullptr &&
+      !progress_.running) {
+    Line(
+        fmt::format("[studio] generation {} was not reached: nothing to "
+                    "replay",
+                    pending_replay_ + 1));
+    pending_replay_ = -1;
+  }
+}
+
+void OptimiseSession::ReadGenerations() {
   const std::string path = options_.out_dir + "/generations.csv";
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
@@ -209,14 +229,65 @@ void OptimiseSession::Poll(int timeout_ms) {
   }
 }
 
-std::map<std::string, double> OptimiseSession::BestGenes() const {
+std::optional<GenerationRow> OptimiseSession::Best() const {
   const GenerationRow* best = nullptr;
   for (const GenerationRow& r : progress_.rows) {
-    // After a jump to generation N, the best of the first N.
-    if (options_.jump_to >= 0 && r.generation > options_.jump_to) break;
+    // After a jump to N, the best of the first N (generations 0..N-1).
+    if (options_.jump_to >= 0 && r.generation >= options_.jump_to) break;
     if (best == nullptr || r.best > best->best) best = &r;
   }
-  return best == nullptr ? std::map<std::string, double>{} : best->genes;
+  if (best == nullptr) return std::nullopt;
+  return *best;
+}
+
+const GenerationRow* OptimiseSession::Row(int generation) const {
+  for (const GenerationRow& r : progress_.rows) {
+    if (r.generation == generation) return &r;
+  }
+  return nullptr;
+}
+
+void OptimiseSession::Jump(int n, OptimiseOptions options, WallTime now) {
+  if (n < 1) {
+    throw std::invalid_argument(fmt::format(
+        "jump to generation {} (expected 1 or more: generations count from "
+        "1)",
+        n));
+  }
+  if (options.out_dir == options_.out_dir && Row(n - 1) != nullptr) {
+    pending_replay_ = n - 1;  // there already: the run goes on
+    return;
+  }
+  options.jump_to = n;
+  Start(options, now);
+  pending_replay_ = n - 1;
+}
+
+std::optional<GenerationRow> OptimiseSession::TakeReplay() {
+  if (pending_replay_ < 0) return std::nullopt;
+  const GenerationRow* row = Row(pending_replay_);
+  if (row == nullptr) return std::nullopt;
+  pending_replay_ = -1;
+  return *row;
+}
+
+std::string OptimiseSession::StallWarning(WallTime now) const {
+  if (!progress_.running) return "";
+  const auto silent = stall_.Stalled(now);
+  if (!silent) return "";
+  // Workers are known from mrsim-opt's first progress line on.
+  const std::string workers = progress_lines_ > 0
+                                  ? fmt::format("workers {}", progress_.workers)
+                                  : std::string("no workers reported yet");
+  return fmt::format(
+      "no progress for {:.0f} s: are workers alive? ({}; a generation was "
+      "expected within {:.0f} s)",
+      *silent, workers, stall_.Bound());
+}
+
+std::map<std::string, double> OptimiseSession::BestGenes() const {
+  const auto best = Best();
+  return best ? best->genes : std::map<std::string, double>{};
 }
 
 }  // namespace mrsim

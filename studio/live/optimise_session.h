@@ -2,17 +2,22 @@
 // starts mrsim-opt (local threads or the farm) as a child process, and
 // follows its progress from the files it writes (generations.csv) and its
 // progress line (evaluations/s, workers, ETA). "Watch best" takes the best
-// genes so far from generations.csv while the run goes on.
+// so far from generations.csv while the run goes on; "Jump to generation"
+// hands that generation's best over once it is there; a run alive without
+// progress for too long gets a warning (StallWatch).
 #pragma once
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
+#include "lcmtypes/runtime/outbox.h"
 #include "optimizer/genome.h"
+#include "studio/live/stall_watch.h"
 
 namespace mrsim {
 
@@ -64,23 +69,45 @@ class OptimiseSession {
 
   // Writes OUT/studio.genome.xml and starts mrsim-opt. Throws naming what
   // is wrong (genome, options, program not found).
-  void Start(const OptimiseOptions& options);
+  void Start(const OptimiseOptions& options, WallTime now = WallClock::now());
   void Stop();
   // Reads new progress; once per frame (timeout_ms: how long to wait for
   // the child's output first).
-  void Poll(int timeout_ms = 0);
+  void Poll(int timeout_ms = 0, WallTime now = WallClock::now());
   const OptimiseProgress& progress() const { return progress_; }
   const std::vector<std::string>& console() const { return console_; }
-  // The genes of the best individual so far, or of the first N
-  // generations after a jump to N (empty before generation 0).
+  // The best individual so far, or of the first N generations after a
+  // jump to N (nothing before the first generation).
+  std::optional<GenerationRow> Best() const;
+  // Its genes (empty before the first generation).
   std::map<std::string, double> BestGenes() const;
+  // Generation `generation` (the first is 0) as generations.csv has it.
+  const GenerationRow* Row(int generation) const;
   const OptimiseOptions& options() const { return options_; }
+
+  // Jump to generation N (counted from 1, as "generation k of n"): when
+  // the run in options.out_dir already has it, its best is ready at once
+  // (TakeReplay) and the run goes on; otherwise mrsim-opt starts with
+  // --jump-to N (resuming from the checkpoint) and the best is ready when
+  // that generation is written. Throws as Start.
+  void Jump(int n, OptimiseOptions options, WallTime now = WallClock::now());
+  // The generation a jump asked for, once, when it is there; nothing
+  // before (or when the jump ended without reaching it: see console()).
+  std::optional<GenerationRow> TakeReplay();
+  bool replay_pending() const { return pending_replay_ >= 0; }
+
+  // "no progress for 42 s: are workers alive? (workers 2)" while mrsim-opt
+  // runs without a new generation for longer than the stall bound; empty
+  // otherwise.
+  std::string StallWarning(WallTime now = WallClock::now()) const;
+  const StallWatch& stall_watch() const { return stall_; }
 
   // Parses generations.csv text (header and rows); throws on a bad row.
   static std::vector<GenerationRow> ParseGenerations(const std::string& csv);
 
  private:
   void Line(const std::string& line);
+  void ReadGenerations();
 
   std::vector<std::string> search_path_;
   OptimiseOptions options_;
@@ -88,6 +115,9 @@ class OptimiseSession {
   OptimiseProgress progress_;
   std::vector<std::string> console_;
   long long csv_size_ = -1;
+  int progress_lines_ = 0;
+  StallWatch stall_;
+  int pending_replay_ = -1;  // generation (from 0) a jump waits for
 };
 
 }  // namespace mrsim

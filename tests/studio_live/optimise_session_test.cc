@@ -7,8 +7,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
+#include "studio/live/best_replay.h"
+#include "studio/live/live_link.h"
+#include "studio/live/live_runner.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -22,12 +26,24 @@ bool Has(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
 
+std::string Console(const OptimiseSession& session) {
+  std::string all;
+  for (const auto& line : session.console()) all += line + "\n";
+  return all;
+}
+
+bool replay_ready(OptimiseSession& session,
+                  std::optional<GenerationRow>* replay) {
+  *replay = session.TakeReplay();
+  return replay->has_value();
+}
+
 TEST(OptimiseSession, SpecIsTheMrsimOptCommandLine) {
   OptimiseOptions o;
   o.scenario_path = "snake.xml";
   o.out_dir = "out";
   o.algorithm = "ga";
-  o.generations = 3;
+  o.generations = 500;  // stopped once it is seen going on
   o.farm = true;
   o.lcm_url = "udpm://239.255.76.67:7001?ttl=0";
   const ProcessSpec spec = OptimiseSession::Spec(o, "g.xml");
@@ -83,8 +99,7 @@ TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
     session.Poll(100);
   }
   session.Poll();  // the last generations.csv
-  std::string console;
-  for (const auto& l : session.console()) console += l + "\n";
+  std::string console = Console(session);
   ASSERT_TRUE(session.progress().finished) << console;
   EXPECT_EQ(session.progress().exit_code, 0) << console;
   ASSERT_EQ(session.progress().rows.size(), 2u) << console;
@@ -94,6 +109,136 @@ TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
   ASSERT_TRUE(best.count("A_pitch")) << console;
   EXPECT_TRUE(std::filesystem::exists(o.out_dir + "/best_gait.xml"));
   EXPECT_TRUE(std::filesystem::exists(o.out_dir + "/studio.genome.xml"));
+
+  // Jump to a generation the run has: its best at once, nothing restarts.
+  session.Jump(1, o);
+  EXPECT_FALSE(session.progress().running);
+  auto replay = session.TakeReplay();
+  ASSERT_TRUE(replay.has_value());
+  EXPECT_EQ(replay->generation, 0);
+  EXPECT_EQ(replay->genes, session.progress().rows[0].genes);
+  EXPECT_FALSE(session.TakeReplay().has_value());  // handed over once
+
+  // Jump beyond it: mrsim-opt resumes from the checkpoint up to there, and
+  // that generation's best is handed over when it is written.
+  o.generations = 3;
+  session.Jump(3, o);
+  EXPECT_TRUE(session.progress().running);
+  EXPECT_FALSE(session.TakeReplay().has_value());
+  while (!replay_ready(session, &replay) &&
+         std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+  }
+  console = Console(session);
+  ASSERT_TRUE(replay.has_value()) << console;
+  EXPECT_EQ(replay->generation, 2);
+  ASSERT_NE(session.Row(2), nullptr);
+  EXPECT_EQ(replay->genes, session.Row(2)->genes);
+  // The first two generations came back from the checkpoint unchanged.
+  EXPECT_NE(console.find("from checkpoint"), std::string::npos) << console;
+}
+
+TEST(OptimiseSession, AFarmWithoutWorkersIsFlaggedAsStalled) {
+  const std::string dir = TempDir("optimise_stall");
+  OptimiseSession session(
+      {std::filesystem::path(BinaryPath("bin/mrsim-opt")).parent_path()});
+  OptimiseOptions o;
+  o.scenario_path = SourcePath("scenarios/snake11.xml");
+  o.out_dir = dir + "/run";
+  o.genome = ReadGenomeFile(SourcePath("scenarios/forward_gait.genome.xml"));
+  o.generations = 2;
+  o.population = 4;
+  o.episode_s = 1;
+  o.farm = true;  // and no mrsim-worker anywhere on this URL
+  o.lcm_url = testing::TestLcmUrl(7969);
+  const WallTime t0 = WallClock::now();
+  session.Start(o, t0);
+  session.Poll(0, AfterSeconds(t0, 20));
+  EXPECT_EQ(session.StallWarning(AfterSeconds(t0, 20)), "");
+  session.Poll(0, AfterSeconds(t0, 42));
+  ASSERT_TRUE(session.progress().running) << Console(session);
+  const std::string warning = session.StallWarning(AfterSeconds(t0, 42));
+  EXPECT_NE(warning.find("no progress for 42 s: are workers alive?"),
+            std::string::npos)
+      << warning;
+  EXPECT_NE(warning.find("no workers reported yet"), std::string::npos)
+      << warning;
+  session.Stop();
+  EXPECT_EQ(session.StallWarning(AfterSeconds(t0, 42)), "");
+}
+
+TEST(OptimiseSession, WatchingABestWithBodyGenesRunsItsBodyWhileTheRunGoesOn) {
+  const std::string dir = TempDir("optimise_watch_body");
+  const std::string bin =
+      std::filesystem::path(BinaryPath("bin/mrsim-opt")).parent_path();
+  OptimiseSession session({bin});
+  OptimiseOptions o;
+  o.scenario_path = SourcePath("scenarios/snake11.xml");
+  o.out_dir = dir + "/run";
+  o.genome = ReadGenomeFile(SourcePath("scenarios/snake_body.genome.xml"));
+  // Never the design's eleven modules: the best's body is another one.
+  GeneSpec& count = o.genome.genes[o.genome.Find("module_count")];
+  count.lower = 5;
+  count.upper = 8;
+  count.start = 6;
+  o.algorithm = "ga";
+  o.generations = 500;  // stopped once it is seen going on
+  o.population = 4;
+  o.episode_s = 1;
+  session.Start(o);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (session.progress().rows.empty() && session.progress().running &&
+         std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+  }
+  ASSERT_FALSE(session.progress().rows.empty()) << Console(session);
+  const auto row = session.Best();
+  ASSERT_TRUE(row.has_value());
+  const BestReplay best = MakeBestReplay(session.options(), *row);
+  EXPECT_TRUE(best.body);
+  const size_t modules = best.scenario.robots[0].modules.size();
+  EXPECT_EQ(static_cast<double>(modules), row->genes.at("module_count"));
+
+  const std::string url = testing::TestLcmUrl(7970);
+  LiveRunner runner({bin});
+  RunOptions form;
+  form.lcm_url = url;
+  form.paused = true;
+  runner.Start(WriteBestReplay(best, o.out_dir + "/watch", form));
+  LiveSessionOptions so;
+  so.sender = "studio-watch-test";
+  LiveSession live(so);
+  LiveLink link(url, &live);
+  auto heard = [&] {
+    const LiveRobot* r = live.robot(best.robot);
+    return r != nullptr && r->states > 0 && r->gait.has_value();
+  };
+  while (!heard() && std::chrono::steady_clock::now() < end) {
+    link.Poll(20);
+    runner.Poll();
+    session.Poll();
+  }
+  ASSERT_TRUE(heard());
+  const LiveRobot* robot = live.robot(best.robot);
+  EXPECT_EQ(static_cast<size_t>(robot->state.num_modules), modules);
+  const std::vector<double> p = best.gait.parameters.ToVector();
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_DOUBLE_EQ(robot->gait->parameters[i], p[i]) << i;
+  }
+
+  // The optimisation goes on beside the run.
+  session.Poll();
+  const size_t done = session.progress().rows.size();
+  ASSERT_TRUE(session.progress().running) << Console(session);
+  while (session.progress().rows.size() <= done &&
+         std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+    runner.Poll();
+  }
+  EXPECT_GT(session.progress().rows.size(), done) << Console(session);
+  EXPECT_TRUE(runner.running());
+  session.Stop();
+  runner.Stop();
 }
 
 }  // namespace

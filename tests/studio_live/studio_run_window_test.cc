@@ -176,10 +176,27 @@ TEST(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
       << studio.Output();
   EXPECT_TRUE(fs::exists(dir + "/optimise/generations.csv"));
 
+  auto watching = [&](const std::string& start) {
+    return WaitUntil(
+        [&] {
+          return ReadLayout(layout)["optimise watching"].rfind(start, 0) == 0;
+        },
+        60);
+  };
   Click(layout, "Watch best");
   ASSERT_TRUE(
       WaitForLayout(layout, "live request", "case_study parameters: done", 60))
       << ReadLayout(layout)["live request"];
+  EXPECT_TRUE(watching("playing generation "))
+      << ReadLayout(layout)["optimise watching"];
+
+  // Jump to generation 1 (the field's default): the run has it, so its
+  // best plays at once.
+  Click(layout, "Jump to generation");
+  EXPECT_TRUE(watching("playing generation 1's best"))
+      << ReadLayout(layout)["optimise watching"] << "\n"
+      << ReadLayout(layout)["live message"];
+  EXPECT_EQ(ReadLayout(layout)["optimise"], "2 of 2 finished");
 
   Click(layout, "Stop");
   ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));

@@ -1,0 +1,23 @@
+// The distance rays of the live view: each sensor's ray from its site,
+// along its direction, as long as the distance the running simulation
+// measured (the designed maximum when nothing is within range, as the
+// simulator reports a miss), so an obstacle ends the ray where it is.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <vector>
+
+#include "sim_core/robot_state.h"
+#include "viewer/renderer.h"
+#include "viewer/state_pose_mapper.h"
+
+namespace mrsim::studio {
+
+// The rays of every robot with a state (`states[r]` null: none for robot
+// r), in the pose of the mapper's last Apply on `data`.
+std::vector<Ray> MeasuredRays(const StatePoseMapper& mapper,
+                              const std::vector<const RobotState*>& states,
+                              const mjData* data);
+
+}  // namespace mrsim::studio
