@@ -1,8 +1,6 @@
 #include "lcmtypes/runtime/lcm_io_thread.h"
 
 #include <poll.h>
-#include <sys/eventfd.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <stdexcept>
@@ -18,9 +16,7 @@ constexpr size_t kMaxSpare = 64;
 
 }  // namespace
 
-LcmIoThread::LcmIoThread(lcm::LCM& lcm)
-    : lcm_(lcm), wake_fd_(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {
-  if (wake_fd_ < 0) throw std::runtime_error("eventfd failed");
+LcmIoThread::LcmIoThread(lcm::LCM& lcm) : lcm_(lcm) {
   thread_ = std::thread([this] { Loop(); });
 }
 
@@ -30,7 +26,6 @@ LcmIoThread::~LcmIoThread() {
   } catch (...) {
     // A destructor has nobody to report to; Stop() was the place.
   }
-  if (wake_fd_ >= 0) close(wake_fd_);
 }
 
 void LcmIoThread::Stop() {
@@ -39,7 +34,7 @@ void LcmIoThread::Stop() {
       std::lock_guard<std::mutex> lock(mutex_);
       stop_ = true;
     }
-    Wake();
+    wake_.Signal();
     thread_.join();
     if (error_) std::rethrow_exception(error_);
   }
@@ -67,21 +62,14 @@ void LcmIoThread::Queue(std::vector<Encoded>* batch) {
   }
   batch->clear();
   // A non-empty queue means the thread has been woken already.
-  if (was_empty) Wake();
-}
-
-void LcmIoThread::Wake() {
-  const uint64_t one = 1;
-  if (write(wake_fd_, &one, sizeof(one)) < 0) {
-    // EAGAIN: the counter is already non-zero, the thread wakes anyway.
-  }
+  if (was_empty) wake_.Signal();
 }
 
 void LcmIoThread::Loop() {
   std::vector<Encoded> sending;
   try {
     for (;;) {
-      pollfd fds[2] = {{lcm_.getFileno(), POLLIN, 0}, {wake_fd_, POLLIN, 0}};
+      pollfd fds[2] = {{lcm_.getFileno(), POLLIN, 0}, {wake_.fd(), POLLIN, 0}};
       const int ready = poll(fds, 2, kPollMs);
       if (ready < 0 && errno != EINTR) {
         throw std::runtime_error("poll on LCM failed");
@@ -89,12 +77,7 @@ void LcmIoThread::Loop() {
       if (ready > 0 && (fds[0].revents & POLLIN)) {
         if (lcm_.handle() != 0) throw std::runtime_error("lcm handle() failed");
       }
-      if (ready > 0 && (fds[1].revents & POLLIN)) {
-        uint64_t count = 0;
-        if (read(wake_fd_, &count, sizeof(count)) < 0) {
-          // EAGAIN: drained by a previous pass.
-        }
-      }
+      if (ready > 0 && (fds[1].revents & POLLIN)) wake_.Drain();
       bool stop = false;
       {
         std::lock_guard<std::mutex> lock(mutex_);

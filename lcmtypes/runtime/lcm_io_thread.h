@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "common/wake_fd.h"
 #include "lcmtypes/runtime/outbox.h"
 
 namespace mrsim {
@@ -51,10 +52,9 @@ class LcmIoThread {
   void Queue(std::vector<Encoded>* batch);
   std::vector<uint8_t> TakeBuffer();
   void Loop();
-  void Wake();
 
   lcm::LCM& lcm_;
-  int wake_fd_ = -1;
+  WakeFd wake_;
   mutable std::mutex mutex_;
   std::vector<Encoded> queue_;               // guarded by mutex_
   std::vector<std::vector<uint8_t>> spare_;  // guarded by mutex_
