@@ -53,6 +53,7 @@ void FarmWorkerCore::OnRun(const opt_run_t& msg, double now) {
       heartbeat_period_ =
           std::max(settings_.heartbeat_period, msg.heartbeat_period);
     }
+    copies_ = std::clamp(msg.copies, 1, 4);
     return;
   }
   // Another run: a newer master (a restart) at once, an older one only
@@ -78,6 +79,7 @@ void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
     heartbeat_period_ =
         std::max(settings_.heartbeat_period, msg.heartbeat_period);
   }
+  copies_ = std::clamp(msg.copies, 1, 4);
   for (const WorkerTask& t : queue_) queued_ids_.erase(t.job_id);
   queue_.clear();  // jobs of the old run are of no use now
   if (problem_ && problem_hash_ == hash_) {
@@ -257,6 +259,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
   }
   FarmOutbox out;
   std::swap(out, outbox_);
+  out.copies = copies_;
   return out;
 }
 

@@ -100,6 +100,7 @@ class FarmWorkerCore {
   std::int64_t run_started_ = 0;
   double last_announce_ = 0;
   double heartbeat_period_;
+  int copies_ = 1;  // of each result, as the master asks
   ChunkAssembler assembler_;
   bool fetching_ = false;
   double last_chunk_ = -1e9;  // when a new chunk last arrived

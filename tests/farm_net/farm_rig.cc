@@ -206,8 +206,8 @@ void FarmRig::CapCpu(int pid, double share) {
   fs::create_directories(dir, ec);
   if (ec) return;
   cgroups_.push_back(dir);
-  std::ofstream(dir + "/cpu.cfs_period_us") << 100000;
-  std::ofstream(dir + "/cpu.cfs_quota_us") << static_cast<int>(share * 1e5);
+  std::ofstream(dir + "/cpu.cfs_period_us") << 10000;
+  std::ofstream(dir + "/cpu.cfs_quota_us") << static_cast<int>(share * 1e4);
   std::ofstream(dir + "/cgroup.procs") << pid;
 }
 
