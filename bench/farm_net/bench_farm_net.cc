@@ -160,6 +160,8 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   m.counters.results_accepted = c.results_accepted - c0.results_accepted;
   m.counters.results_ignored = c.results_ignored - c0.results_ignored;
   m.counters.jobs_poked = c.jobs_poked - c0.jobs_poked;
+  m.counters.busiest_worker_seconds =
+      c.busiest_worker_seconds - c0.busiest_worker_seconds;
   m.counters.heartbeats_received =
       c.heartbeats_received - c0.heartbeats_received;
   m.counters.messages_received = c.messages_received - c0.messages_received;
@@ -183,12 +185,18 @@ void Efficiency() {
   const auto report = [&](const std::string& name, const Measure& m) {
     const double mean_episode = m.episodes / m.jobs;
     const double efficiency = (m.jobs / m.wall) / (workers / mean_episode);
+    // efficiency = barrier x latency: what the generation barrier allows
+    // with these episodes, and the share of that the farm reached.
+    const double busiest = m.counters.busiest_worker_seconds;
     fmt::print(stderr,
                "farm 8w {}: {} jobs in {:.2f} s, mean episode {:.3f} s, {} "
-               "sent ({} re-sent, {} asked again), {} results ignored\n",
+               "sent ({} re-sent, {} asked again), {} results ignored; "
+               "barrier bound {:.3f}, busiest worker busy {:.3f} of the "
+               "wall time\n",
                name, m.jobs, m.wall, mean_episode, m.counters.jobs_sent,
                m.counters.jobs_resent, m.counters.jobs_poked,
-               m.counters.results_ignored);
+               m.counters.results_ignored, m.episodes / (workers * busiest),
+               busiest / m.wall);
     fmt::print("BENCH {} {:.3f} ratio\n", name, efficiency);
     std::fflush(stdout);
   };

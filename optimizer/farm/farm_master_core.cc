@@ -114,7 +114,9 @@ void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
     pending_.push_back((batch_ << kJobIdShift) | static_cast<std::int64_t>(i));
   }
   remaining_ = batch.size();
+  batch_busiest_ = 0;
   for (auto& [id, w] : workers_) {
+    w.batch_seconds = 0;
     w.assigned.clear();  // the old batch's jobs are of no use now
     Reindex(w, now);
   }
@@ -233,7 +235,12 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
                            : 0.9 * typical_episode_ + 0.1 * msg.eval_seconds;
     slowest_episode_ = std::max(slowest_episode_, msg.eval_seconds);
     episode_seconds_ += msg.eval_seconds;
+    if (wit != workers_.end()) {
+      wit->second.batch_seconds += msg.eval_seconds;
+      batch_busiest_ = std::max(batch_busiest_, wit->second.batch_seconds);
+    }
   }
+  if (remaining_ == 0) counters_.busiest_worker_seconds += batch_busiest_;
 }
 
 void FarmMasterCore::OnChunkRequest(const opt_chunk_request_t& msg,

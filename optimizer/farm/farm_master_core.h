@@ -82,6 +82,12 @@ struct FarmCounters {
   long long chunks_sent = 0;
   long long messages_received = 0;
   long long heartbeats_received = 0;
+  // Sum over finished batches of the busiest worker's episode seconds in
+  // it: no dispatch can end a batch sooner (the generation barrier), so
+  // episode_seconds / (workers x this) is the most a farm of equal
+  // workers can reach with these episodes, and this / wall time what
+  // the farm's own latencies leave of it.
+  double busiest_worker_seconds = 0.0;
 };
 
 // The largest chunk whose opt_chunk_t, with LCM's header and the channel
@@ -137,6 +143,7 @@ class FarmMasterCore {
     int misses = 0;                   // jobs in a row it never listed
     double deaf_until = 0;
     double deaf_backoff = 0;
+    double batch_seconds = 0;  // its episodes' seconds in this batch
   };
   struct Job {
     bool done = false;
@@ -189,6 +196,7 @@ class FarmMasterCore {
   double tokens_at_ = -1e9;
   double slowest_episode_ = 0.0;
   double typical_episode_ = 0.0;  // moving average of the reported times
+  double batch_busiest_ = 0.0;    // the largest batch_seconds this batch
   double episode_seconds_ = 0.0;
   FarmCounters counters_;
   FarmOutbox outbox_;
