@@ -1,9 +1,11 @@
 #include "tests/farm_net/farm_rig.h"
 
 #include <fmt/format.h>
+#include <sched.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -229,6 +231,21 @@ void FarmRig::CapCpu(int pid, double share) {
   std::ofstream(dir + "/cpu.cfs_period_us") << 10000;
   std::ofstream(dir + "/cpu.cfs_quota_us") << static_cast<int>(share * 1e4);
   std::ofstream(dir + "/cgroup.procs") << pid;
+  // One CPU per capped process (round robin): the quota of a 10 ms period
+  // (2 ms at 0.2) is less than the kernel's bandwidth slice (5 ms), so a
+  // process on two CPUs lets the thread that asks first (the episode)
+  // take all of it, and its other threads (the one that handles LCM) can
+  // starve for seconds. On one CPU they share one run queue fairly.
+  const int cpus = std::max(1, static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)));
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(static_cast<int>(cgroups_.size() - 1) % cpus, &set);
+  sched_setaffinity(pid, sizeof set, &set);  // threads made later inherit it
+  for (const auto& task :
+       fs::directory_iterator(fmt::format("/proc/{}/task", pid), ec)) {
+    sched_setaffinity(std::atoi(task.path().filename().c_str()), sizeof set,
+                      &set);
+  }
 }
 
 std::int64_t FarmRig::RaiseReceiveBufferMax(std::int64_t bytes) {
