@@ -40,7 +40,8 @@ class FarmRig {
   void SetPortUp(int node, bool up);
   // Caps a process to `share` of one CPU (0.2: a fifth), in 10 ms periods
   // (a slow host, not one that runs at full speed and then stops for
-  // 80 ms as the default 100 ms period does).
+  // 80 ms as the default 100 ms period does), pinned to one CPU (round
+  // robin over the machine's).
   void CapCpu(int pid, double share);
   // Raises net.core.rmem_max to at least `bytes` for the rig's life (the
   // farm asks for 4 MB socket buffers; a stock host allows 208 KB). The
