@@ -56,6 +56,9 @@ void FarmEvaluator::Step(int timeout_ms) {
 std::vector<EvalResult> FarmEvaluator::Evaluate(
     const std::vector<Genome>& batch) {
   core_.StartBatch(batch, FarmLink::Now());
+  // The jobs go out now, not after the first wait for a message.
+  FarmOutbox first = core_.Tick(FarmLink::Now());
+  link_->Publish(first);
   double last_wait_log = FarmLink::Now();
   while (!core_.batch_done()) {
     const double wait = core_.next_deadline() - FarmLink::Now();

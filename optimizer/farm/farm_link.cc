@@ -208,18 +208,20 @@ void FarmLink::Publish(FarmOutbox& out) {
   }
   if (!lcm_) return;  // lost; the protocol asks again
   const std::int64_t stamp = WallMicros();
-  const auto send = [&](const std::string& channel, auto& list) {
+  const auto send = [&](const std::string& channel, auto& list,
+                        int copies = 1) {
     for (auto& msg : list) {
       msg.utime = stamp;
-      lcm_->publish(channel, &msg);
+      for (int c = 0; c < copies; ++c) lcm_->publish(channel, &msg);
     }
   };
   send(channels_.run, out.runs);
   send(channels_.chunk, out.chunks);
   send(channels_.chunk_request, out.chunk_requests);
   send(channels_.heartbeat, out.heartbeats);
-  send(channels_.job, out.jobs);
-  send(channels_.result, out.results);
+  const int copies = std::clamp(out.copies, 1, 4);
+  send(channels_.job, out.jobs, copies);
+  send(channels_.result, out.results, copies);
 }
 
 }  // namespace mrsim

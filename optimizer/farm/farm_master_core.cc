@@ -15,7 +15,11 @@ namespace {
 
 constexpr int kJobIdShift = 24;  // job id = batch << 24 | index
 constexpr std::int64_t kIndexMask = (std::int64_t{1} << kJobIdShift) - 1;
-constexpr double kMaintainPeriod = 0.1;  // s
+// s between checks of silence and deadlines: a tenth of a second, or half
+// a typical episode when episodes are shorter (a lost datagram is noticed
+// in episode time), but no more often than every 20 ms.
+constexpr double kMaintainPeriod = 0.1;
+constexpr double kMinMaintainPeriod = 0.02;
 // A heartbeat received this long after a job went out should list it.
 constexpr double kListGrace = 0.5;
 
@@ -53,16 +57,16 @@ void FarmMasterCore::Log(const std::string& text) const {
   if (settings_.log) settings_.log(text);
 }
 
-int FarmMasterCore::workers_ready() const {
-  int n = 0;
-  for (const auto& [id, w] : workers_) n += w.ready ? 1 : 0;
-  return n;
-}
-
 double FarmMasterCore::heartbeat_period() const {
   return std::max(settings_.min_heartbeat_period,
                   static_cast<double>(workers_.size()) /
                       std::max(1.0, settings_.heartbeat_budget));
+}
+
+int FarmMasterCore::copies() const {
+  if (settings_.copies > 0) return std::min(settings_.copies, 4);
+  return workers_.size() <= static_cast<size_t>(settings_.duplicate_up_to) ? 2
+                                                                           : 1;
 }
 
 double FarmMasterCore::worker_timeout() const {
@@ -104,11 +108,15 @@ void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
   jobs_.assign(batch.size(), Job{});
   results_.assign(batch.size(), EvalResult{});
   pending_.clear();
+  pending_count_ = batch.size();
+  dispatch_due_ = true;
   for (size_t i = 0; i < batch.size(); ++i) {
     pending_.push_back((batch_ << kJobIdShift) | static_cast<std::int64_t>(i));
   }
   remaining_ = batch.size();
+  batch_busiest_ = 0;
   for (auto& [id, w] : workers_) {
+    w.batch_seconds = 0;
     w.assigned.clear();  // the old batch's jobs are of no use now
     Reindex(w, now);
   }
@@ -138,6 +146,7 @@ void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
     std::vector<std::int64_t> lost(w.assigned.begin(), w.assigned.end());
     for (std::int64_t id : lost) Requeue(id, "its worker left the run");
   }
+  if (ready != w.ready) ready_count_ += ready ? 1 : -1;
   w.ready = ready;
   if (ready) {
     // One heartbeat's word is not enough to re-send a job: under jitter a
@@ -212,6 +221,7 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
   r.fell = msg.fell;
   r.failed = msg.failed;
   job->done = true;
+  if (job->pending) --pending_count_;
   job->pending = false;  // a stale id in pending_ is skipped
   --remaining_;
   ++counters_.results_accepted;
@@ -220,9 +230,17 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
     Reindex(owner->second, now);
   }
   if (std::isfinite(msg.eval_seconds) && msg.eval_seconds > 0) {
+    typical_episode_ = typical_episode_ <= 0
+                           ? msg.eval_seconds
+                           : 0.9 * typical_episode_ + 0.1 * msg.eval_seconds;
     slowest_episode_ = std::max(slowest_episode_, msg.eval_seconds);
     episode_seconds_ += msg.eval_seconds;
+    if (wit != workers_.end()) {
+      wit->second.batch_seconds += msg.eval_seconds;
+      batch_busiest_ = std::max(batch_busiest_, wit->second.batch_seconds);
+    }
   }
+  if (remaining_ == 0) counters_.busiest_worker_seconds += batch_busiest_;
 }
 
 void FarmMasterCore::OnChunkRequest(const opt_chunk_request_t& msg,
@@ -257,6 +275,7 @@ void FarmMasterCore::Announce(double now) {
   msg.payload_size = static_cast<std::int64_t>(payload_.size());
   msg.chunk_count = static_cast<int32_t>(chunks_.size());
   msg.chunk_size = static_cast<int32_t>(chunks_.front().size());
+  msg.copies = copies();
   outbox_.runs.push_back(std::move(msg));
   last_announce_ = now;
 }
@@ -267,6 +286,8 @@ void FarmMasterCore::Requeue(std::int64_t job_id, const char* why) {
   auto w = workers_.find(job->worker);
   if (w != workers_.end()) w->second.assigned.erase(job_id);
   job->pending = true;
+  ++pending_count_;
+  dispatch_due_ = true;
   job->unlisted = 0;
   job->done_seen = -1;
   pending_.push_front(job_id);  // stragglers first
@@ -283,6 +304,7 @@ void FarmMasterCore::Maintain(double now) {
       std::vector<std::int64_t> ids(w.assigned.begin(), w.assigned.end());
       for (std::int64_t id : ids) Requeue(id, "its worker is gone");
       if (w.room_load >= 0) room_.erase({w.room_load, w.id});
+      if (w.ready) --ready_count_;
       Log(fmt::format("worker {} is gone{}", it->first,
                       lost ? fmt::format("; {} job(s) re-queued", lost) : ""));
       it = workers_.erase(it);
@@ -305,22 +327,44 @@ void FarmMasterCore::Maintain(double now) {
     if (job.done_seen >= 0 && now - job.done_seen > settings_.result_wait) {
       // Its worker finished it but the result was lost: ask the same worker
       // again; it answers from its recent results without re-running.
-      auto w = workers_.find(job.worker);
-      if (w == workers_.end()) continue;
-      opt_job_t msg{};
-      msg.run_id = run_id_;
-      msg.scenario_hash = hash_;
-      msg.worker_id = job.worker;
-      msg.job_id = id;
-      msg.generation = static_cast<int32_t>(batch_);
-      msg.index = static_cast<int32_t>(i);
-      msg.genome = genomes_[i];
-      msg.gene_count = static_cast<int32_t>(msg.genome.size());
-      outbox_.jobs.push_back(std::move(msg));
+      if (workers_.count(job.worker) == 0) continue;
+      SendAgain(id, job);
       job.done_seen = now;
       ++counters_.results_rerequested;
+      continue;
+    }
+    if (job.poke_at > 0 && now >= job.poke_at &&
+        workers_.count(job.worker) != 0) {
+      // Lost on the way there or back, or just slow: ask again (above).
+      SendAgain(id, job);
+      job.poke_at = now + 2 * (now - job.sent);
+      ++counters_.jobs_poked;
     }
   }
+}
+
+void FarmMasterCore::SendAgain(std::int64_t job_id, Job& job) {
+  opt_job_t msg{};
+  msg.run_id = run_id_;
+  msg.scenario_hash = hash_;
+  msg.worker_id = job.worker;
+  msg.job_id = job_id;
+  msg.generation = static_cast<int32_t>(batch_);
+  msg.index = static_cast<int32_t>(job_id & kIndexMask);
+  msg.genome = genomes_[static_cast<size_t>(msg.index)];
+  msg.gene_count = static_cast<int32_t>(msg.genome.size());
+  outbox_.jobs.push_back(std::move(msg));
+}
+
+double FarmMasterCore::PokeWait(const Job& job) const {
+  if (typical_episode_ <= 0 || settings_.poke_factor <= 0) return -1;
+  return settings_.poke_margin +
+         settings_.poke_factor * typical_episode_ * job.place;
+}
+
+double FarmMasterCore::MaintainPeriod() const {
+  if (typical_episode_ <= 0) return kMaintainPeriod;
+  return std::clamp(typical_episode_ / 2, kMinMaintainPeriod, kMaintainPeriod);
 }
 
 void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
@@ -338,12 +382,16 @@ void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
   if (job.sends > 0) ++counters_.jobs_resent;
   ++counters_.jobs_sent;
   ++job.sends;
+  if (job.pending) --pending_count_;
   job.pending = false;
   job.worker = w.id;
   job.sent = now;
   job.unlisted = 0;
   job.done_seen = -1;
   w.assigned.insert(job_id);
+  job.place = static_cast<int>(w.assigned.size());
+  const double wait = PokeWait(job);
+  job.poke_at = wait > 0 ? now + wait : 0;
   Reindex(w, now);
 }
 
@@ -356,6 +404,7 @@ void FarmMasterCore::Dispatch(double now) {
     tokens_ = burst;  // no pace: only the burst limit
   }
   tokens_at_ = now;
+  dispatch_due_ = false;
   while (!pending_.empty() && !room_.empty() && tokens_ >= 1) {
     const std::int64_t id = pending_.front();
     Job* job = FindJob(id);
@@ -368,6 +417,12 @@ void FarmMasterCore::Dispatch(double now) {
     auto slot = room_.begin();
     if (slot->second == job->worker && room_.size() > 1) ++slot;
     Worker& w = workers_.at(slot->second);
+    if (slot->first >= w.slots &&
+        pending_count_ <= static_cast<size_t>(std::max(ready_count_, 1))) {
+      // Every worker is busy and no more than a round is left: each job
+      // waits here for the first worker to finish instead (the tail).
+      break;
+    }
     pending_.pop_front();
     Send(id, w, now);
     tokens_ -= 1;
@@ -376,16 +431,18 @@ void FarmMasterCore::Dispatch(double now) {
 
 FarmOutbox FarmMasterCore::Tick(double now) {
   if (now - last_announce_ >= settings_.announce_period) Announce(now);
-  if (now - last_maintain_ >= kMaintainPeriod) Maintain(now);
+  if (now - last_maintain_ >= MaintainPeriod()) Maintain(now);
   Dispatch(now);
   FarmOutbox out;
   std::swap(out, outbox_);
+  out.copies = copies();
   return out;
 }
 
 double FarmMasterCore::next_deadline() const {
+  if (dispatch_due_) return 0;  // a new batch or re-queued jobs
   double t = std::min(last_announce_ + settings_.announce_period,
-                      last_maintain_ + kMaintainPeriod);
+                      last_maintain_ + MaintainPeriod());
   if (tokens_ < 1 && settings_.dispatch_rate > 0 && !room_.empty() &&
       !pending_.empty()) {
     // Held back by the pace: go on when the next job may go out.

@@ -31,8 +31,12 @@ struct FarmSettings {
   // s without a heartbeat or result before a worker counts as gone (at least
   // five heartbeat periods plus a second).
   double worker_timeout = 2.0;
-  int extra_jobs_per_worker = 1;  // queued beyond its slots (hides latency)
-  double announce_period = 0.5;   // s
+  // Jobs queued at a busy worker beyond its slots, so its next episode
+  // starts without waiting for a round trip. Only while more than one job
+  // per ready worker is waiting: near a generation's end a job queued
+  // behind a slow episode would wait while another worker sits idle.
+  int extra_jobs_per_worker = 1;
+  double announce_period = 0.5;  // s
   // Payload bytes per chunk; 0: what fits one 1500-byte Ethernet frame
   // with the chunk's header (one IP packet: a lost fragment loses only it).
   int chunk_size = 0;
@@ -43,13 +47,27 @@ struct FarmSettings {
   double heartbeat_budget = 250.0;
   double result_wait = 1.0;  // s after a heartbeat lists a job done before
                              // its result is asked for again
+  // A job still unanswered poke_factor x the typical episode (times its
+  // place in its worker's queue) plus poke_margin s after it went out is
+  // sent again to the same worker, then after twice as long, and so on: a
+  // worker that never got it runs it, one that finished it answers from
+  // memory, one that is still at it ignores it. One lost datagram then
+  // costs a few episodes' time, not the job deadline.
+  double poke_factor = 3.0;
+  double poke_margin = 0.05;  // s
   // Jobs go out at most dispatch_burst at once and dispatch_rate a second
   // on average: a generation of thousands in one burst overflows a
   // receiver's socket buffer (a stock 416 KB holds ~400 small datagrams)
   // whenever its receive thread is not scheduled for a few ms.
   int dispatch_burst = 256;
   double dispatch_rate = 25600;  // jobs/s (256 every 10 ms)
-  std::function<bool()> stop;    // polled; true abandons the batch
+  // Each job (and, told by the announcement, each result) is sent this
+  // many times; 0: automatic, 2 while the farm has at most duplicate_up_to
+  // workers, 1 beyond (where the datagrams would cost more than a rare
+  // lost one). Receivers drop the second copy.
+  int copies = 0;
+  int duplicate_up_to = 64;
+  std::function<bool()> stop;  // polled; true abandons the batch
   std::function<void(const std::string&)> log;  // events (worker joined...)
 };
 
@@ -59,10 +77,17 @@ struct FarmCounters {
   long long results_accepted = 0;
   long long results_ignored = 0;  // late, duplicate, other run or payload
   long long results_rerequested = 0;
+  long long jobs_poked = 0;  // sent again to the same worker (poke_factor)
   long long messages_malformed = 0;
   long long chunks_sent = 0;
   long long messages_received = 0;
   long long heartbeats_received = 0;
+  // Sum over finished batches of the busiest worker's episode seconds in
+  // it: no dispatch can end a batch sooner (the generation barrier), so
+  // episode_seconds / (workers x this) is the most a farm of equal
+  // workers can reach with these episodes, and this / wall time what
+  // the farm's own latencies leave of it.
+  double busiest_worker_seconds = 0.0;
 };
 
 // The largest chunk whose opt_chunk_t, with LCM's header and the channel
@@ -95,8 +120,9 @@ class FarmMasterCore {
   double next_deadline() const;
 
   int workers_alive() const { return static_cast<int>(workers_.size()); }
-  int workers_ready() const;
+  int workers_ready() const { return ready_count_; }
   double heartbeat_period() const;
+  int copies() const;
   double worker_timeout() const;
   double JobTimeout() const;
   const std::string& scenario_hash() const { return hash_; }
@@ -117,6 +143,7 @@ class FarmMasterCore {
     int misses = 0;                   // jobs in a row it never listed
     double deaf_until = 0;
     double deaf_backoff = 0;
+    double batch_seconds = 0;  // its episodes' seconds in this batch
   };
   struct Job {
     bool done = false;
@@ -126,12 +153,17 @@ class FarmMasterCore {
     double sent = 0;
     int unlisted = 0;       // heartbeats of its worker not listing it
     double done_seen = -1;  // a heartbeat listed it done; result not here
+    int place = 1;          // jobs its worker held with it when sent
+    double poke_at = 0;     // when to send it again to the same worker
   };
 
   void Announce(double now);
   void Maintain(double now);
   void Dispatch(double now);
   void Send(std::int64_t job_id, Worker& w, double now);
+  void SendAgain(std::int64_t job_id, Job& job);
+  double PokeWait(const Job& job) const;
+  double MaintainPeriod() const;
   void Requeue(std::int64_t job_id, const char* why);
   void Reindex(Worker& w, double now);
   Job* FindJob(std::int64_t job_id);
@@ -152,6 +184,9 @@ class FarmMasterCore {
   std::vector<Genome> genomes_;
   std::vector<Job> jobs_;             // of the current batch
   std::deque<std::int64_t> pending_;  // may hold stale ids
+  size_t pending_count_ = 0;          // live ids in pending_
+  int ready_count_ = 0;               // workers holding our payload
+  bool dispatch_due_ = false;         // jobs became pending since the last Tick
   std::vector<EvalResult> results_;
   std::int64_t batch_ = 0;
   size_t remaining_ = 0;
@@ -160,6 +195,8 @@ class FarmMasterCore {
   double tokens_ = 0;  // jobs that may go out now (dispatch pace)
   double tokens_at_ = -1e9;
   double slowest_episode_ = 0.0;
+  double typical_episode_ = 0.0;  // moving average of the reported times
+  double batch_busiest_ = 0.0;    // the largest batch_seconds this batch
   double episode_seconds_ = 0.0;
   FarmCounters counters_;
   FarmOutbox outbox_;

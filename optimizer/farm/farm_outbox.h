@@ -23,6 +23,9 @@ struct FarmOutbox {
   // Re-create the connection: a worker that hears nothing any more may have
   // lost its multicast group membership (a link flap).
   bool rejoin = false;
+  // Times to publish each job and each result (opt_run_t.copies): a second
+  // copy makes one lost datagram cost nothing; receivers drop duplicates.
+  int copies = 1;
 
   bool empty() const {
     return runs.empty() && chunks.empty() && chunk_requests.empty() &&

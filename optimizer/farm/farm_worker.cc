@@ -221,6 +221,7 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
     }
     FarmOutbox out = c->Tick(now);
     rejoin = rejoin || out.rejoin;
+    all.copies = std::max(all.copies, out.copies);
     const auto move = [](auto& from, auto& to) {
       for (auto& m : from) to.push_back(std::move(m));
     };

@@ -41,18 +41,21 @@ std::vector<std::string> FarmWorkerCore::TakeLog() {
 }
 
 void FarmWorkerCore::OnRun(const opt_run_t& msg, double now) {
+  ++heard_;
   if (msg.chunk_count < 1 || msg.payload_size < 0 || msg.run_id.empty()) {
     ++counters_.messages_malformed;
     return;
   }
   if (msg.run_id == run_id_ && msg.scenario_hash == hash_) {
     last_announce_ = now;
+    heard_at_announce_ = heard_;
     heard_master_ = true;
     rejoin_backoff_ = 0;
     if (msg.heartbeat_period > 0 && msg.heartbeat_period < 3600) {
       heartbeat_period_ =
           std::max(settings_.heartbeat_period, msg.heartbeat_period);
     }
+    copies_ = std::clamp(msg.copies, 1, 4);
     return;
   }
   // Another run: a newer master (a restart) at once, an older one only
@@ -72,12 +75,14 @@ void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
   hash_ = msg.scenario_hash;
   run_started_ = msg.started;
   last_announce_ = now;
+  heard_at_announce_ = heard_;
   heard_master_ = true;
   rejoin_backoff_ = 0;
   if (msg.heartbeat_period > 0 && msg.heartbeat_period < 3600) {
     heartbeat_period_ =
         std::max(settings_.heartbeat_period, msg.heartbeat_period);
   }
+  copies_ = std::clamp(msg.copies, 1, 4);
   for (const WorkerTask& t : queue_) queued_ids_.erase(t.job_id);
   queue_.clear();  // jobs of the old run are of no use now
   if (problem_ && problem_hash_ == hash_) {
@@ -97,6 +102,7 @@ void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
 }
 
 void FarmWorkerCore::OnChunk(const opt_chunk_t& msg, double now) {
+  ++heard_;
   if (!fetching_ || msg.run_id != run_id_ || msg.scenario_hash != hash_ ||
       msg.count != assembler_.count()) {
     return;  // another run's, or one we already have: not an error
@@ -134,6 +140,7 @@ void FarmWorkerCore::OnChunk(const opt_chunk_t& msg, double now) {
 
 void FarmWorkerCore::OnJob(const opt_job_t& msg, double now) {
   (void)now;
+  ++heard_;
   if (msg.worker_id != settings_.id) return;  // someone else's job
   if (!problem_ || msg.run_id != run_id_ || msg.scenario_hash != hash_) {
     ++counters_.messages_ignored;
@@ -250,13 +257,17 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
       rejoin_backoff_ = std::min(
           30.0, std::max(settings_.rejoin_silence, rejoin_backoff_ * 2));
       ++counters_.rejoins;
-      log_.push_back(
-          fmt::format("no announcement for {:.1f} s; re-joining the LCM group",
-                      now - last_announce_));
+      // How much else arrived meanwhile tells a lost group membership
+      // (nothing) from announcements lost or not sent (other traffic).
+      log_.push_back(fmt::format(
+          "no announcement for {:.1f} s ({} other messages heard since the "
+          "last); re-joining the LCM group",
+          now - last_announce_, heard_ - heard_at_announce_));
     }
   }
   FarmOutbox out;
   std::swap(out, outbox_);
+  out.copies = copies_;
   return out;
 }
 

@@ -100,6 +100,7 @@ class FarmWorkerCore {
   std::int64_t run_started_ = 0;
   double last_announce_ = 0;
   double heartbeat_period_;
+  int copies_ = 1;  // of each result, as the master asks
   ChunkAssembler assembler_;
   bool fetching_ = false;
   double last_chunk_ = -1e9;  // when a new chunk last arrived
@@ -110,6 +111,8 @@ class FarmWorkerCore {
   double phase_;  // spreads the heartbeats of many workers
   double rejoin_backoff_ = 0, last_rejoin_ = -1e9;
   bool heard_master_ = false;
+  long long heard_ = 0;  // messages of any run or worker, for the log
+  long long heard_at_announce_ = 0;
   double last_tick_ = -1e9;
 
   std::deque<WorkerTask> queue_;

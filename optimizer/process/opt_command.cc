@@ -351,9 +351,10 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     const FarmCounters& n = farm->counters();
     fmt::print(out,
                "farm: {} jobs sent, {} re-sent, {} results accepted, {} "
-               "ignored, {} malformed messages\n",
+               "ignored (second copies included), {} malformed messages, "
+               "{} jobs asked again of their worker\n",
                n.jobs_sent, n.jobs_resent, n.results_accepted,
-               n.results_ignored, n.messages_malformed);
+               n.results_ignored, n.messages_malformed, n.jobs_poked);
   }
   std::fflush(out);
   return outcome;

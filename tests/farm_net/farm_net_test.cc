@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "common/lcm_url.h"
 #include "tests/common/child_process.h"
 #include "tests/farm_net/farm_rig.h"
 
@@ -286,6 +287,29 @@ TEST_F(FarmNet, HundredsOfFakeWorkersDriveTheRealMaster) {
             2)
       << out.substr(summary);
   EXPECT_LT(resent * 10, sent) << out.substr(summary);
+}
+
+// The farm's 1,000-worker figure needs a 4 MB socket buffer, which a
+// stock net.core.rmem_max (208 KB, one value for the machine) refuses: the
+// rig raises it for its life and puts the old value back.
+TEST_F(FarmNet, ReceiveBufferMaxIsRaisedForTheRigAndRestored) {
+  const std::int64_t before = KernelReceiveBufferMax();
+  ASSERT_GT(before, 0);
+  const std::int64_t wanted = before + 4096;  // above whatever is set now
+  {
+    FarmRig rig(1);
+    EXPECT_EQ(rig.RaiseReceiveBufferMax(wanted), before);
+    if (KernelReceiveBufferMax() == before) {
+      GTEST_SKIP() << "net.core.rmem_max is read-only here (this process is "
+                      "in a network namespace of its own and cannot reach "
+                      "the machine's); run as root outside one, as "
+                      "bench/run does";
+    }
+    EXPECT_EQ(KernelReceiveBufferMax(), wanted);
+    EXPECT_EQ(rig.RaiseReceiveBufferMax(before), wanted) << "never lowered";
+    EXPECT_EQ(KernelReceiveBufferMax(), wanted);
+  }
+  EXPECT_EQ(KernelReceiveBufferMax(), before);
 }
 
 }  // namespace

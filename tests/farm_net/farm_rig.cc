@@ -1,9 +1,11 @@
 #include "tests/farm_net/farm_rig.h"
 
 #include <fmt/format.h>
+#include <sched.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kPrefix = "farmrig";
 constexpr const char* kCgroupRoot = "/sys/fs/cgroup/cpu";
+constexpr const char* kRmemMax = "/proc/sys/net/core/rmem_max";
 
 int Run(const std::string& cmd) {
   const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
@@ -36,6 +39,22 @@ std::string Capture(const std::string& cmd) {
     pclose(f);
   }
   return out;
+}
+
+std::int64_t ReadRmemMax() {
+  std::ifstream f(kRmemMax);
+  std::int64_t bytes = 0;
+  if (!(f >> bytes) || bytes < 0) return 0;
+  return bytes;
+}
+
+// The value is the machine's, writable only from its first network
+// namespace (a test may run inside another, e.g. under netns-run).
+void WriteRmemMax(std::int64_t bytes) {
+  { std::ofstream(kRmemMax) << bytes; }
+  if (ReadRmemMax() == bytes) return;
+  Run(fmt::format("nsenter --net=/proc/1/ns/net sh -c 'echo {} > {}'", bytes,
+                  kRmemMax));
 }
 
 std::string NodeNs(const std::string& tag, int node) {
@@ -141,6 +160,9 @@ FarmRig::FarmRig(int nodes)
 }
 
 FarmRig::~FarmRig() {
+  if (rmem_set_ > 0 && ReadRmemMax() == rmem_set_) {
+    WriteRmemMax(rmem_restore_);
+  }
   for (int k = 0; k < nodes_; ++k) RemoveNs(NodeNs(tag_, k));
   RemoveNs(BridgeNs(tag_));
   for (auto it = cgroups_.rbegin(); it != cgroups_.rend(); ++it) {
@@ -206,9 +228,35 @@ void FarmRig::CapCpu(int pid, double share) {
   fs::create_directories(dir, ec);
   if (ec) return;
   cgroups_.push_back(dir);
-  std::ofstream(dir + "/cpu.cfs_period_us") << 100000;
-  std::ofstream(dir + "/cpu.cfs_quota_us") << static_cast<int>(share * 1e5);
+  std::ofstream(dir + "/cpu.cfs_period_us") << 10000;
+  std::ofstream(dir + "/cpu.cfs_quota_us") << static_cast<int>(share * 1e4);
   std::ofstream(dir + "/cgroup.procs") << pid;
+  // One CPU per capped process (round robin): the quota of a 10 ms period
+  // (2 ms at 0.2) is less than the kernel's bandwidth slice (5 ms), so a
+  // process on two CPUs lets the thread that asks first (the episode)
+  // take all of it, and its other threads (the one that handles LCM) can
+  // starve for seconds. On one CPU they share one run queue fairly.
+  const int cpus = std::max(1, static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)));
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(static_cast<int>(cgroups_.size() - 1) % cpus, &set);
+  sched_setaffinity(pid, sizeof set, &set);  // threads made later inherit it
+  for (const auto& task :
+       fs::directory_iterator(fmt::format("/proc/{}/task", pid), ec)) {
+    sched_setaffinity(std::atoi(task.path().filename().c_str()), sizeof set,
+                      &set);
+  }
+}
+
+std::int64_t FarmRig::RaiseReceiveBufferMax(std::int64_t bytes) {
+  const std::int64_t before = ReadRmemMax();
+  if (before <= 0 || before >= bytes) return before;
+  WriteRmemMax(bytes);
+  if (ReadRmemMax() == bytes) {
+    if (rmem_set_ == 0) rmem_restore_ = before;
+    rmem_set_ = bytes;
+  }
+  return before;
 }
 
 }  // namespace mrsim::testing

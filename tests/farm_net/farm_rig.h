@@ -8,6 +8,7 @@
 // next one starts (names carry the creating pid).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,19 @@ class FarmRig {
   // Sets node k's bridge port down or up (up again loses its multicast
   // group membership on the snooping bridge).
   void SetPortUp(int node, bool up);
-  // Caps a process to `share` of one CPU (0.2: a fifth).
+  // Caps a process to `share` of one CPU (0.2: a fifth), in 10 ms periods
+  // (a slow host, not one that runs at full speed and then stops for
+  // 80 ms as the default 100 ms period does), pinned to one CPU (round
+  // robin over the machine's).
   void CapCpu(int pid, double share);
+  // Raises net.core.rmem_max to at least `bytes` for the rig's life (the
+  // farm asks for 4 MB socket buffers; a stock host allows 208 KB). The
+  // value is one for the whole machine (read-only inside a namespace), so
+  // the destructor puts the old one back unless someone changed it
+  // meanwhile. Returns the value found (0: could not read it); it stays
+  // when the process cannot write it (inside a network namespace of its
+  // own, without access to the machine's).
+  std::int64_t RaiseReceiveBufferMax(std::int64_t bytes);
 
  private:
   void Nft();
@@ -48,6 +60,7 @@ class FarmRig {
   std::vector<std::string> cgroups_;
   int loss_ = 0;
   std::vector<bool> partitioned_;
+  std::int64_t rmem_restore_ = 0, rmem_set_ = 0;
 };
 
 }  // namespace mrsim::testing

@@ -166,7 +166,8 @@ class SimFarm {
       for (const auto& m : out.runs) Send(id, m);
       for (const auto& m : out.chunks) Send(id, m);
       for (const auto& m : out.jobs) {
-        if (m.worker_id == id) Send(id, m);
+        if (m.worker_id != id) continue;
+        for (int c = 0; c < out.copies; ++c) Send(id, m);
       }
     }
     for (const auto& m : out.jobs) ++jobs_to_[m.worker_id];
@@ -179,10 +180,10 @@ class SimFarm {
     for (auto& m : out.chunk_requests) Send("", m);
     for (auto& m : out.results) {
       if (n.drop_results > 0) {
-        --n.drop_results;
+        --n.drop_results;  // every copy of it
         continue;
       }
-      Send("", m);
+      for (int c = 0; c < out.copies; ++c) Send("", m);
     }
   }
 
