@@ -173,16 +173,14 @@ void FarmLink::Handle(int timeout_ms) {
     constexpr int kBurst = 256;
     int wait_ms = timeout_ms;
     for (int n = 0; n < kBurst; ++n) {
-      pollfd fds[2] = {{lcm_->getFileno(), POLLIN, 0}, {wake_fd_, POLLIN, 0}};
-      const int ready = poll(fds, wake_fd_ >= 0 ? 2 : 1, wait_ms);
+      pollfd fds[2] = {{lcm_->getFileno(), POLLIN, 0},
+                       {wake_ ? wake_->fd() : -1, POLLIN, 0}};
+      const int ready = poll(fds, wake_ ? 2 : 1, wait_ms);
       if (ready < 0 && errno != EINTR) throw std::runtime_error("poll failed");
       if (ready <= 0) break;
-      if (wake_fd_ >= 0 && (fds[1].revents & POLLIN)) {
-        std::uint64_t count = 0;
-        if (read(wake_fd_, &count, sizeof(count)) < 0) {
-          // EAGAIN: another Handle drained it first; nothing to do.
-        }
-        wait_ms = 0;  // take what LCM has too, without waiting
+      if (wake_ && (fds[1].revents & POLLIN)) {
+        wake_->Drain();  // false: another Handle drained it first
+        wait_ms = 0;     // take what LCM has too, without waiting
         if (!(fds[0].revents & POLLIN)) break;
       }
       const pollfd& pfd = fds[0];

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/wake_fd.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"
 
@@ -53,10 +54,10 @@ class FarmLink {
   // Handles what arrives within timeout_ms. A failed connection is
   // re-opened with back-off (0.1 s doubling to 5 s) meanwhile.
   void Handle(int timeout_ms);
-  // A descriptor (an eventfd) that ends Handle's wait when readable, e.g.
-  // when an episode finishes: its result goes out at once, not at the next
-  // timeout. Handle drains it. -1: none.
-  void SetWakeFd(int fd) { wake_fd_ = fd; }
+  // Ends Handle's wait when signalled, e.g. when an episode finishes: its
+  // result goes out at once, not at the next timeout. Handle drains it.
+  // Null: none. Must outlive this link.
+  void SetWake(const WakeFd* wake) { wake_ = wake; }
   void Publish(FarmOutbox& out);
   // Closes and re-opens the connection now (re-joins multicast groups).
   void Rejoin();
@@ -88,7 +89,7 @@ class FarmLink {
   double backoff_ = 0.1;
   double next_attempt_ = 0;
   std::vector<std::string> log_;
-  int wake_fd_ = -1;
+  const WakeFd* wake_ = nullptr;  // not owned
 };
 
 }  // namespace mrsim

@@ -1,7 +1,6 @@
 #include "optimizer/farm/farm_worker.h"
 
 #include <fmt/format.h>
-#include <sys/eventfd.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,30 +18,17 @@ std::string HostName() {
 
 }  // namespace
 
-FarmWorker::WakeFd::WakeFd() : fd(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {}
-
-FarmWorker::WakeFd::~WakeFd() {
-  if (fd >= 0) close(fd);
-}
-
-void FarmWorker::WakeFd::Signal() const {
-  const std::uint64_t one = 1;
-  if (fd >= 0 && write(fd, &one, sizeof(one)) < 0) {
-    // EAGAIN: the counter is already non-zero, Poll wakes anyway.
-  }
-}
-
 FarmWorker::FarmWorker(const std::string& lcm_url, WorkerSettings settings,
                        int count) {
   Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers());
-  link_->SetWakeFd(done_fd_.fd);
+  link_->SetWake(&done_fd_);
 }
 
 FarmWorker::FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count) {
   Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm, settings.prefix, MakeHandlers());
-  link_->SetWakeFd(done_fd_.fd);
+  link_->SetWake(&done_fd_);
 }
 
 void FarmWorker::Build(WorkerSettings settings, int count) {

@@ -62,14 +62,6 @@ class FarmWorker {
   std::multimap<double, opt_result_t> fake_running_;
 
   // Readable when an episode has finished: wakes Poll's wait (an eventfd).
-  struct WakeFd {
-    int fd = -1;
-    WakeFd();
-    ~WakeFd();
-    WakeFd(const WakeFd&) = delete;
-    WakeFd& operator=(const WakeFd&) = delete;
-    void Signal() const;
-  };
   WakeFd done_fd_;
 
   std::mutex mutex_;
