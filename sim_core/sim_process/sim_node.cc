@@ -84,11 +84,6 @@ bool SimNode::LockstepReady() const {
   return MissingControllers(seq).empty();
 }
 
-bool SimNode::AwaitingAnswers() const {
-  return lockstep() && !stopped_ && !quit_ &&
-         !(paused_ && steps_pending_ == 0) && !LockstepReady();
-}
-
 std::string SimNode::MissingControllers(int64_t seq) const {
   std::string names;
   const auto answers = answers_.find(seq);

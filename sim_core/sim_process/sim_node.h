@@ -78,10 +78,6 @@ class SimNode {
   int64_t states_published() const { return states_published_; }
   int64_t states_resent() const { return states_resent_; }
 
-  // True while the next period waits for controllers' answers (lockstep,
-  // running, an answer missing).
-  bool AwaitingAnswers() const;
-
   sim_status_t status() const;
   // One line for the end of a run.
   std::string Summary() const;

@@ -1,26 +1,17 @@
 // The simulator's LCM adapter: owns nothing but the wiring between one
 // lcm::LCM (borrowed from main), steady_clock and a SimNode. It decodes what
 // arrives, hands it to the node with the time, publishes what the node
-// returns and sleeps until the node's next deadline or the next message.
-// Outside strict lockstep the sending and receiving run on an LcmIoThread,
-// so the physics thread never pays for them; in strict lockstep every state
-// waits for its answer anyway, and one thread hop less is the faster loop.
+// returns and sleeps on the LCM socket until the node's next deadline.
 #pragma once
 
-#include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
-#include <mutex>
-#include <optional>
 #include <ostream>
 #include <string>
-#include <variant>
 #include <vector>
 
-#include "lcmtypes/runtime/lcm_io_thread.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "sim_core/physics.h"
@@ -48,7 +39,6 @@ class SimServer {
 
   // Runs until QUIT, the duration, or stop_requested() returns true (checked
   // at least every 50 ms). Writes --checkpoint-on-exit before returning.
-  // Throws std::runtime_error if LCM fails.
   StopReason Run(const std::function<bool()>& stop_requested);
 
   const SimNode& node() const { return node_; }
@@ -58,44 +48,24 @@ class SimServer {
   const std::string& exit_checkpoint_error() const {
     return node_.exit_checkpoint_error();
   }
-  // True when sending and receiving run on a thread of their own.
-  bool threaded_io() const;
   // The note main prints when the control period is not exactly 1/rate, or
   // empty; and the start-up line.
   std::string PeriodNote() const;
   std::string StartLine() const;
 
  private:
-  // What a handler received, kept for the node's thread.
-  struct Malformed {
-    std::string what;
-  };
-  struct Received {
-    std::string channel;
-    std::variant<joint_command_t, sim_control_t, Malformed> message;
-  };
-
   void OnCommand(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void OnControl(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void Receive(Received received);
-  // Hands what was received to the node, in arrival order.
-  void Deliver();
-  // Waits until `due` (at most 50 ms) or until something arrives.
-  void Wait(WallTime due);
   void Flush();
 
   lcm::LCM& lcm_;
   SimNode node_;
   SimOutbox outbox_;
   std::vector<lcm::Subscription*> subscriptions_;
+  // Reused for every message: no allocation per period.
+  joint_command_t command_;
+  sim_control_t control_;
   std::vector<uint8_t> buffer_;
-  std::optional<LcmIoThread> io_;  // while Run() runs, when threaded_io()
-
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::vector<Received> inbox_;    // guarded by mutex_
-  std::atomic<bool> mail_{false};  // inbox_ not empty, read without the lock
-  std::vector<Received> delivering_;
 };
 
 }  // namespace mrsim
