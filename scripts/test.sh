@@ -5,7 +5,8 @@
 #   scripts/test.sh                      everything (what CI runs)
 #   scripts/test.sh --sanitize address   ASan+UBSan build in build-asan/,
 #   scripts/test.sh --sanitize thread    TSan build in build-tsan/: the unit
-#                                        tests (ctest label "unit") only
+#                                        tests (ctest label "unit") only,
+#                                        with scripts/sanitizers/*.supp
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 sanitize=""
@@ -29,7 +30,10 @@ mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMRSIM_WERROR=ON \
   -DMRSIM_SANITIZE="$sanitize" -DMRSIM_BUILD_BENCH="$([ -z "$sanitize" ] && echo ON || echo OFF)" \
   >/dev/null
-if ! cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1; then
+# A sanitizer run builds only the unit test binaries (and what they link).
+targets=()
+[ -n "$sanitize" ] && targets=(--target mrsim_unit_tests)
+if ! cmake --build "$build" -j"$jobs" "${targets[@]}" >"$build/build.log" 2>&1; then
   grep -E -A5 'error|Error' "$build/build.log" | head -80
   echo "build failed (full log: $build/build.log)"
   exit 1
@@ -41,9 +45,12 @@ if [ -n "$sanitize" ]; then
   # Multi-process tests are left out: their programs are the same code the
   # unit tests cover, and sanitizer slow-down would only test the clock.
   ctest_args+=(-L unit)
+  # Suppressions cover third-party code only; each says why.
+  supp="$root/scripts/sanitizers"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+  export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp:print_suppressions=0"
 fi
 summary_re='tests passed, [0-9]+ tests? failed out of'
 set +e
