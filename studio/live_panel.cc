@@ -71,6 +71,8 @@ void LivePanel::Record(const std::string& name) {
   if (layout_ != nullptr && layout_->enabled()) {
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
     layout_->Widget(name, a.x, a.y, b.x - a.x, b.y - a.y);
+    // Which field takes typed text: a test types only once it is this one.
+    if (ImGui::IsItemActive()) layout_->State("active", name);
   }
 }
 

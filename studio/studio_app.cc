@@ -107,6 +107,8 @@ void StudioApp::Record(const std::string& name) {
   const ImVec2 a = ImGui::GetItemRectMin();
   const ImVec2 b = ImGui::GetItemRectMax();
   layout_.Widget(name, a.x, a.y, b.x - a.x, b.y - a.y);
+  // Which field takes typed text: a test types only once it is this one.
+  if (ImGui::IsItemActive()) layout_.State("active", name);
 }
 
 void StudioApp::Try(const std::function<void()>& edit) {
