@@ -286,6 +286,9 @@ void LivePanel::DrawControls() {
       session_->SetSpeed(speed_, WallClock::now(), out);
     });
   }
+  ImGui::SameLine();
+  ImGui::Checkbox("camera follows", &camera_follows_);
+  Record("camera follows");
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##checkpoint", &checkpoint_);
   ImGui::SameLine();

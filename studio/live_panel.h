@@ -66,6 +66,8 @@ class LivePanel {
   int live_scenario_revision() const { return replay_revision_; }
   // The robot steered by keys and buttons ("" when none is heard).
   const std::string& followed() const { return followed_; }
+  // Whether the 3-D view's camera moves with the running robots.
+  bool camera_follows() const { return camera_follows_; }
 
  private:
   void Connect(const std::string& url, const std::string& prefix);
@@ -117,6 +119,7 @@ class LivePanel {
   int clock_ = 0;  // realtime, fast, lockstep
   float rate_ = 100;
   float speed_ = 1;
+  bool camera_follows_ = true;
   int step_periods_ = 10;
   float strength_ = 1;
   float parameters_[7] = {1, 0, 2.5f, 0, 4, 0, 0};

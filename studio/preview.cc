@@ -357,10 +357,33 @@ void Preview::ShowStates(const Scenario& scenario,
   live_robots_.assign(list.size(), false);
   for (size_t r = 0; r < list.size(); ++r) live_robots_[r] = list[r] != nullptr;
   live_ = true;
+
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const RobotState* s : list) {
+    if (s != nullptr) {
+      centre += s->com;
+      ++n;
+    }
+  }
+  if (n == 0 || !tracking_) {
+    tracked_ = false;
+    return;
+  }
+  centre /= n;
+  if (tracked_) {
+    // Horizontal only: a robot that rears up does not tilt the view.
+    for (int k = 0; k < 2; ++k) {
+      camera_.lookat[k] += centre[k] - tracked_centre_[k];
+    }
+  }
+  tracked_centre_ = centre;
+  tracked_ = true;
 }
 
 void Preview::ShowDesign() {
   mapper_.reset();
+  tracked_ = false;
   live_rays_.clear();
   live_robots_.clear();
   if (live_ && physics_) {

@@ -84,6 +84,11 @@ class Preview {
                   const std::vector<SceneObjectState>* scene);
   void ShowDesign();
   bool live() const { return live_; }
+  // Live: the camera moves with the robots' mean centre of mass, as
+  // simulate's tracking camera does, keeping the user's orbit, pan and zoom
+  // (a fast robot otherwise leaves the view within seconds).
+  void SetTracking(bool on) { tracking_ = on; }
+  const mjvCamera& camera() const { return camera_; }
 
  private:
   void AddRays();
@@ -106,6 +111,9 @@ class Preview {
   bool framed_ = false;
   std::unique_ptr<StatePoseMapper> mapper_;  // for the current model
   bool live_ = false;
+  bool tracking_ = true;
+  bool tracked_ = false;  // tracked_centre_ holds the last frame's centre
+  Eigen::Vector3d tracked_centre_ = Eigen::Vector3d::Zero();
   double aspect_ = 1.0;
   bool software_ = false;  // llvmpipe: no MSAA, no shadows
   bool context_made_ = false;

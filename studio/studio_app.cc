@@ -179,6 +179,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     if (live_->session().scene()) {
       scene = FromSceneStateMessage(*live_->session().scene());
     }
+    preview_->SetTracking(live_->camera_follows());
     preview_->ShowStates(shown, states,
                          live_->session().scene() ? &scene : nullptr);
   } else if (preview_->live()) {

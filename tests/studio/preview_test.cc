@@ -115,5 +115,42 @@ TEST(StudioPreview, RebuiltInPlaceDrawsLikeAFreshWindow) {
   EXPECT_LT(differ, opened.size() / 200) << "of " << opened.size() << " bytes";
 }
 
+TEST(StudioPreview, LiveCameraMovesWithTheRobotUnlessTurnedOff) {
+  TemplateOptions options;
+  options.chain.modules = 5;
+  Design design;
+  design.ApplyTemplate(options);
+  StudioApp app(std::move(design), Options());
+  HeadlessStudio studio(&app, kWidth, kHeight);
+  studio.Frame();
+  Preview& preview = app.preview();
+  const Scenario& scenario = app.design().scenario();
+  const std::string name = scenario.robots[0].name;
+  // A state of the design as the simulator reports it, then the same robot
+  // carried 0.7 m along x and 0.2 m along y.
+  const Physics physics(scenario);
+  RobotState at_start = physics.ReadRobotState(0);
+  RobotState moved = at_start;
+  const Eigen::Vector3d shift(0.7, 0.2, 0.0);
+  moved.com += shift;
+  for (auto& pose : moved.modules) pose.position += shift;
+  for (auto& pose : moved.frames) pose.position += shift;
+
+  preview.ShowStates(scenario, {{name, at_start}}, nullptr);
+  const mjvCamera before = preview.camera();
+  preview.ShowStates(scenario, {{name, moved}}, nullptr);
+  EXPECT_NEAR(preview.camera().lookat[0] - before.lookat[0], 0.7, 1e-9);
+  EXPECT_NEAR(preview.camera().lookat[1] - before.lookat[1], 0.2, 1e-9);
+  EXPECT_EQ(preview.camera().lookat[2], before.lookat[2]);
+  EXPECT_EQ(preview.camera().distance, before.distance);
+
+  // Turned off, the camera stays where the user left it.
+  preview.SetTracking(false);
+  const mjvCamera held = preview.camera();
+  preview.ShowStates(scenario, {{name, at_start}}, nullptr);
+  EXPECT_EQ(preview.camera().lookat[0], held.lookat[0]);
+  EXPECT_EQ(preview.camera().lookat[1], held.lookat[1]);
+}
+
 }  // namespace
 }  // namespace mrsim::studio
