@@ -344,10 +344,14 @@ void FarmMasterCore::Maintain(double now) {
 }
 
 void FarmMasterCore::SendAgain(std::int64_t job_id, Job& job) {
+  QueueJob(job_id, job.worker);
+}
+
+void FarmMasterCore::QueueJob(std::int64_t job_id, const std::string& worker) {
   opt_job_t msg{};
   msg.run_id = run_id_;
   msg.scenario_hash = hash_;
-  msg.worker_id = job.worker;
+  msg.worker_id = worker;
   msg.job_id = job_id;
   msg.generation = static_cast<int32_t>(batch_);
   msg.index = static_cast<int32_t>(job_id & kIndexMask);
@@ -369,16 +373,7 @@ double FarmMasterCore::MaintainPeriod() const {
 
 void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
   Job& job = jobs_[static_cast<size_t>(job_id & kIndexMask)];
-  opt_job_t msg{};
-  msg.run_id = run_id_;
-  msg.scenario_hash = hash_;
-  msg.worker_id = w.id;
-  msg.job_id = job_id;
-  msg.generation = static_cast<int32_t>(batch_);
-  msg.index = static_cast<int32_t>(job_id & kIndexMask);
-  msg.genome = genomes_[static_cast<size_t>(msg.index)];
-  msg.gene_count = static_cast<int32_t>(msg.genome.size());
-  outbox_.jobs.push_back(std::move(msg));
+  QueueJob(job_id, w.id);
   if (job.sends > 0) ++counters_.jobs_resent;
   ++counters_.jobs_sent;
   ++job.sends;

@@ -162,6 +162,8 @@ class FarmMasterCore {
   void Dispatch(double now);
   void Send(std::int64_t job_id, Worker& w, double now);
   void SendAgain(std::int64_t job_id, Job& job);
+  // The job message for `worker`, into the outbox (no bookkeeping).
+  void QueueJob(std::int64_t job_id, const std::string& worker);
   double PokeWait(const Job& job) const;
   double MaintainPeriod() const;
   void Requeue(std::int64_t job_id, const char* why);

@@ -209,9 +209,17 @@ TEST_F(FarmNet, MasterRestartEqualsLocal) {
   auto second = Master(rig, kUdpm, dir, "second");
   ASSERT_EQ(second->Wait(180), 0) << second->Output();
   EXPECT_NE(second->Output().find("from checkpoint"), std::string::npos);
-  // Workers took the new run at once (not after 3 s of silence).
-  EXPECT_NE(ws[0]->Output().find("already here"), std::string::npos)
-      << ws[0]->Output();
+  // Workers took the new run at once (not after 3 s of silence). Any one
+  // of them shows it: on this bridge a worker is now and then deaf for ~2 s
+  // (docs/scaling.md), and the others may finish the run meanwhile.
+  std::string outputs;
+  bool switched = false;
+  for (const auto& w : ws) {
+    switched =
+        switched || w->Output().find("already here") != std::string::npos;
+    outputs += w->Output();
+  }
+  EXPECT_TRUE(switched) << outputs;
   ExpectSameResult(local, dir);
 }
 
