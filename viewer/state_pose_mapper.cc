@@ -341,27 +341,28 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
     QuatTo(pose[b].q, d->xquat + 4 * b);
     mju_quat2Mat(d->xmat + 9 * b, d->xquat + 4 * b);
   }
-  mjtNum quat[4];
-  mjtNum vec[3];
+  // Geoms, sites and inertial frames sit at fixed offsets in their body,
+  // placed as mj_kinematics places them.
+  const auto place = [d](int b, const mjtNum* local_pos,
+                         const mjtNum* local_quat, mjtNum* pos, mjtNum* mat) {
+    mjtNum quat[4];
+    mjtNum vec[3];
+    mju_mulMatVec(vec, d->xmat + 9 * b, local_pos, 3, 3);
+    mju_add3(pos, d->xpos + 3 * b, vec);
+    mju_mulQuat(quat, d->xquat + 4 * b, local_quat);
+    mju_quat2Mat(mat, quat);
+  };
   for (int g = 0; g < m->ngeom; ++g) {
-    const int b = m->geom_bodyid[g];
-    mju_mulMatVec(vec, d->xmat + 9 * b, m->geom_pos + 3 * g, 3, 3);
-    mju_add3(d->geom_xpos + 3 * g, d->xpos + 3 * b, vec);
-    mju_mulQuat(quat, d->xquat + 4 * b, m->geom_quat + 4 * g);
-    mju_quat2Mat(d->geom_xmat + 9 * g, quat);
+    place(m->geom_bodyid[g], m->geom_pos + 3 * g, m->geom_quat + 4 * g,
+          d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
   }
   for (int s = 0; s < m->nsite; ++s) {
-    const int b = m->site_bodyid[s];
-    mju_mulMatVec(vec, d->xmat + 9 * b, m->site_pos + 3 * s, 3, 3);
-    mju_add3(d->site_xpos + 3 * s, d->xpos + 3 * b, vec);
-    mju_mulQuat(quat, d->xquat + 4 * b, m->site_quat + 4 * s);
-    mju_quat2Mat(d->site_xmat + 9 * s, quat);
+    place(m->site_bodyid[s], m->site_pos + 3 * s, m->site_quat + 4 * s,
+          d->site_xpos + 3 * s, d->site_xmat + 9 * s);
   }
   for (int b = 0; b < m->nbody; ++b) {
-    mju_mulMatVec(vec, d->xmat + 9 * b, m->body_ipos + 3 * b, 3, 3);
-    mju_add3(d->xipos + 3 * b, d->xpos + 3 * b, vec);
-    mju_mulQuat(quat, d->xquat + 4 * b, m->body_iquat + 4 * b);
-    mju_quat2Mat(d->ximat + 9 * b, quat);
+    place(b, m->body_ipos + 3 * b, m->body_iquat + 4 * b, d->xipos + 3 * b,
+          d->ximat + 9 * b);
   }
   // Lights and model cameras follow their bodies as in mj_forward.
   mj_camlight(m, d);

@@ -47,15 +47,7 @@ void FarmWorkerCore::OnRun(const opt_run_t& msg, double now) {
     return;
   }
   if (msg.run_id == run_id_ && msg.scenario_hash == hash_) {
-    last_announce_ = now;
-    heard_at_announce_ = heard_;
-    heard_master_ = true;
-    rejoin_backoff_ = 0;
-    if (msg.heartbeat_period > 0 && msg.heartbeat_period < 3600) {
-      heartbeat_period_ =
-          std::max(settings_.heartbeat_period, msg.heartbeat_period);
-    }
-    copies_ = std::clamp(msg.copies, 1, 4);
+    TakeAnnouncement(msg, now);
     return;
   }
   // Another run: a newer master (a restart) at once, an older one only
@@ -70,10 +62,9 @@ void FarmWorkerCore::OnRun(const opt_run_t& msg, double now) {
   Follow(msg, now);
 }
 
-void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
-  run_id_ = msg.run_id;
-  hash_ = msg.scenario_hash;
-  run_started_ = msg.started;
+// What every announcement of the followed run tells: the master is there,
+// and how often to heartbeat and how many copies to send.
+void FarmWorkerCore::TakeAnnouncement(const opt_run_t& msg, double now) {
   last_announce_ = now;
   heard_at_announce_ = heard_;
   heard_master_ = true;
@@ -83,6 +74,13 @@ void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
         std::max(settings_.heartbeat_period, msg.heartbeat_period);
   }
   copies_ = std::clamp(msg.copies, 1, 4);
+}
+
+void FarmWorkerCore::Follow(const opt_run_t& msg, double now) {
+  run_id_ = msg.run_id;
+  hash_ = msg.scenario_hash;
+  run_started_ = msg.started;
+  TakeAnnouncement(msg, now);
   for (const WorkerTask& t : queue_) queued_ids_.erase(t.job_id);
   queue_.clear();  // jobs of the old run are of no use now
   if (problem_ && problem_hash_ == hash_) {

@@ -89,6 +89,7 @@ class FarmWorkerCore {
 
  private:
   void Follow(const opt_run_t& msg, double now);
+  void TakeAnnouncement(const opt_run_t& msg, double now);
   void RequestMissing(double now);
 
   WorkerSettings settings_;

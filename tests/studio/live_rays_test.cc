@@ -4,37 +4,17 @@
 
 #include <gtest/gtest.h>
 
-#include "sim_core/chain_builder.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/physics.h"
+#include "tests/viewer/viewer_test_util.h"
 
 namespace mrsim::studio {
 namespace {
 
-// A four-module snake with a front distance sensor looking at a wall.
-Scenario SnakeFacingAWall() {
-  ChainOptions chain;
-  chain.name = "snake";
-  chain.modules = 4;
-  chain.sensor_after = {-1};
-  chain.front_distance_sensor = true;
-  Scenario scenario;
-  scenario.robots.push_back(MakeChain(chain));
-  SceneObject wall;
-  wall.guid = "wall";
-  wall.shape = PrimitiveShape::kBox;
-  wall.size = Eigen::Vector3d(0.1, 0.4, 0.2);
-  wall.position = Eigen::Vector3d(0.4, 0.0, 0.1);
-  wall.is_static = true;
-  wall.mass = 1.0;
-  scenario.scene_objects.push_back(wall);
-  return scenario;
-}
-
 class StudioLiveRays : public ::testing::Test {
  protected:
   StudioLiveRays()
-      : scenario_(SnakeFacingAWall()),
+      : scenario_(mrsim::testing::ViewerTestScenario()),
         sim_(scenario_),
         view_(scenario_),
         mapper_(view_.model(), scenario_),
@@ -70,7 +50,7 @@ TEST_F(StudioLiveRays, AReadingGivesARayOfThatLengthFromItsSiteAlongIt) {
                          .sensor_modules[0]
                          .distance_sensors[0]
                          .max_ray_distance;
-  // The wall is in front: the simulator measured less than the maximum.
+  // The box is in front: the simulator measured less than the maximum.
   const double measured = state.sensor_modules[0].distances[0];
   EXPECT_LT(measured, max);
   for (const double reading : {measured, 0.125}) {

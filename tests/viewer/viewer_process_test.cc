@@ -144,47 +144,19 @@ TEST(ViewerProcess, LiveFrameMatchesFrameRenderedInProcess) {
   const std::string url = TestLcmUrl(7801);
   const std::string scenario_path =
       testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
-  ChildProcess viewer({BinaryPath(kViewer),
-                       scenario_path,
-                       "--lcm-url",
-                       url,
-                       "--frames-dir",
-                       frames_dir,
-                       "--fps",
-                       "10",
-                       "--width",
-                       "320",
-                       "--height",
-                       "240",
-                       "--camera",
-                       "fixed",
-                       "--lookat",
-                       "0.1,0,0.05",
-                       "--distance",
-                       "0.9",
-                       "--azimuth",
-                       "120",
-                       "--elevation",
-                       "-30",
-                       "--overlay",
-                       "test wave",
-                       "--max-frames",
-                       "3"},
-                      dir + "/viewer.log");
+  std::vector<std::string> args = {
+      BinaryPath(kViewer), scenario_path, "--lcm-url",    url,
+      "--frames-dir",      frames_dir,    "--fps",        "10",
+      "--overlay",         "test wave",   "--max-frames", "3"};
+  for (const std::string& f : testing::FixedViewFlags()) args.push_back(f);
+  ChildProcess viewer(args, dir + "/viewer.log");
   ASSERT_TRUE(viewer.WaitForOutput("listening", 30.0)) << viewer.Output();
 
   GlContext gl;
   Physics physics(ReadScenarioFile(scenario_path));
-  // mrsim-view's default render settings (1024 shadow map).
-  RenderQuality quality;
-  quality.shadow_size = 1024;
-  Renderer renderer(physics.model(), 320, 240, quality);
-  CameraSettings settings;
-  settings.mode = CameraMode::kFixed;
-  settings.lookat = Eigen::Vector3d(0.1, 0, 0.05);
-  settings.distance = 0.9;
-  settings.azimuth = 120;
-  settings.elevation = -30;
+  const ViewerOptions view = testing::FixedView();
+  Renderer renderer(physics.model(), view.width, view.height, view.quality);
+  const CameraSettings settings = view.camera;
   CameraControl camera(settings);
 
   lcm::LCM lcm(url);

@@ -50,20 +50,6 @@ Scenario BallScenario() {
   return s;
 }
 
-ViewerOptions FixedView() {
-  ViewerOptions options;
-  options.width = 320;
-  options.height = 240;
-  options.camera.mode = CameraMode::kFixed;
-  options.camera.lookat = Eigen::Vector3d(0.1, 0.0, 0.05);
-  options.camera.distance = 0.9;
-  options.camera.azimuth = 120;
-  options.camera.elevation = -30;
-  options.overlay = false;
-  options.quality.shadow_size = 1024;  // mrsim-view's default
-  return options;
-}
-
 std::vector<SceneObjectState> BallAt(const Eigen::Vector3d& p) {
   SceneObjectState s;
   s.index = kBall;
@@ -82,7 +68,7 @@ TEST(ViewerScene, BallBodyTakesTheScenePoseAndTheFrameShowsIt) {
   const Scenario scenario = BallScenario();
   Physics physics(scenario);
   const RobotState state = physics.ReadRobotState(0);
-  StateViewer viewer(scenario, FixedView());
+  StateViewer viewer(scenario, testing::FixedView());
   const int ball = BallBody(viewer.model());
   ASSERT_GT(ball, 0);
 
@@ -217,36 +203,24 @@ TEST(ViewerScene, LiveViewerDrawsTheBallWhereSceneStatesPutIt) {
   const std::string url = TestLcmUrl(7861);
   const Scenario scenario = BallScenario();
   const std::string scenario_path = testing::WriteTestScenario(scenario, dir);
-  ChildProcess view({BinaryPath("viewer/process/mrsim-view"),
-                     scenario_path,
-                     "--lcm-url",
-                     url,
-                     "--frames-dir",
-                     frames_dir,
-                     "--fps",
-                     "10",
-                     "--width",
-                     "320",
-                     "--height",
-                     "240",
-                     "--camera",
-                     "fixed",
-                     "--lookat",
-                     "0.1,0,0.05",
-                     "--distance",
-                     "0.9",
-                     "--azimuth",
-                     "120",
-                     "--elevation",
-                     "-30",
-                     "--no-overlay",
-                     "--max-frames",
-                     "2"},
-                    dir + "/viewer.log");
+  std::vector<std::string> args = {BinaryPath("viewer/process/mrsim-view"),
+                                   scenario_path,
+                                   "--lcm-url",
+                                   url,
+                                   "--frames-dir",
+                                   frames_dir,
+                                   "--fps",
+                                   "10",
+                                   "--no-overlay",
+                                   "--max-frames",
+                                   "2"};
+  for (const std::string& f : testing::FixedViewFlags()) args.push_back(f);
+  ChildProcess view(args, dir + "/viewer.log");
   ASSERT_TRUE(view.WaitForOutput("listening", 30.0)) << view.Output();
 
   GlContext gl;
-  StateViewer expected_viewer(ReadScenarioFile(scenario_path), FixedView());
+  StateViewer expected_viewer(ReadScenarioFile(scenario_path),
+                              testing::FixedView());
   Physics physics(ReadScenarioFile(scenario_path));
   const RobotState s0 = physics.ReadRobotState(0);
   testing::DriveTo(&physics, 0.1);

@@ -1,5 +1,7 @@
 #include "tests/viewer/viewer_test_util.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -35,6 +37,33 @@ std::string WriteTestScenario(const Scenario& scenario,
   const std::string path = dir + "/scenario.xml";
   WriteScenarioFile(scenario, path);
   return path;
+}
+
+ViewerOptions FixedView() {
+  ViewerOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.camera.mode = CameraMode::kFixed;
+  options.camera.lookat = Eigen::Vector3d(0.1, 0.0, 0.05);
+  options.camera.distance = 0.9;
+  options.camera.azimuth = 120;
+  options.camera.elevation = -30;
+  options.overlay = false;
+  options.quality.shadow_size = 1024;  // mrsim-view's default
+  return options;
+}
+
+std::vector<std::string> FixedViewFlags() {
+  const ViewerOptions v = FixedView();
+  const auto number = [](double x) { return fmt::format("{}", x); };
+  const Eigen::Vector3d& at = v.camera.lookat;
+  return {"--width",     std::to_string(v.width),
+          "--height",    std::to_string(v.height),
+          "--camera",    "fixed",
+          "--lookat",    fmt::format("{},{},{}", at.x(), at.y(), at.z()),
+          "--distance",  number(v.camera.distance),
+          "--azimuth",   number(v.camera.azimuth),
+          "--elevation", number(v.camera.elevation)};
 }
 
 void DriveTo(Physics* physics, double time) {

@@ -10,6 +10,7 @@
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
 #include "viewer/renderer.h"
+#include "viewer/state_viewer.h"
 
 namespace mrsim::testing {
 
@@ -18,6 +19,13 @@ namespace mrsim::testing {
 Scenario ViewerTestScenario();
 // Writes the scenario to dir/scenario.xml and returns the path.
 std::string WriteTestScenario(const Scenario& scenario, const std::string& dir);
+
+// The view the viewer tests compare frames in: a fixed camera on the snake
+// and box, 320x240, no overlay, mrsim-view's default shadow map.
+ViewerOptions FixedView();
+// mrsim-view's flags for the same view (size, camera), so a live viewer's
+// frames can be compared with frames rendered in process.
+std::vector<std::string> FixedViewFlags();
 
 // Steps the physics with a travelling wave on the joints until `time`.
 void DriveTo(Physics* physics, double time);
