@@ -32,6 +32,24 @@ std::string Console(const OptimiseSession& session) {
   return all;
 }
 
+// Where mrsim-opt and the other programs were built.
+std::string Programs() {
+  return std::filesystem::path(BinaryPath("bin/mrsim-opt"))
+      .parent_path()
+      .string();
+}
+
+// A small run on the 11-module snake, as the window sets it up.
+OptimiseOptions SnakeRun(const std::string& dir, const std::string& genome) {
+  OptimiseOptions o;
+  o.scenario_path = SourcePath("scenarios/snake11.xml");
+  o.out_dir = dir + "/run";
+  o.genome = ReadGenomeFile(SourcePath("scenarios/" + genome));
+  o.population = 4;
+  o.episode_s = 1;
+  return o;
+}
+
 bool replay_ready(OptimiseSession& session,
                   std::optional<GenerationRow>* replay) {
   *replay = session.TakeReplay();
@@ -82,16 +100,10 @@ TEST(OptimiseSession, ReadsGenerationsAndStopsAtAHalfWrittenLine) {
 
 TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
   const std::string dir = TempDir("optimise_session");
-  OptimiseSession session(
-      {std::filesystem::path(BinaryPath("bin/mrsim-opt")).parent_path()});
-  OptimiseOptions o;
-  o.scenario_path = SourcePath("scenarios/snake11.xml");
-  o.out_dir = dir + "/run";
-  o.genome = ReadGenomeFile(SourcePath("scenarios/forward_gait.genome.xml"));
+  OptimiseSession session({Programs()});
+  OptimiseOptions o = SnakeRun(dir, "forward_gait.genome.xml");
   o.algorithm = "cmaes";
   o.generations = 2;
-  o.population = 4;
-  o.episode_s = 1;
   session.Start(o);
   const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   while (!session.progress().finished &&
@@ -140,15 +152,9 @@ TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
 
 TEST(OptimiseSession, AFarmWithoutWorkersIsFlaggedAsStalled) {
   const std::string dir = TempDir("optimise_stall");
-  OptimiseSession session(
-      {std::filesystem::path(BinaryPath("bin/mrsim-opt")).parent_path()});
-  OptimiseOptions o;
-  o.scenario_path = SourcePath("scenarios/snake11.xml");
-  o.out_dir = dir + "/run";
-  o.genome = ReadGenomeFile(SourcePath("scenarios/forward_gait.genome.xml"));
+  OptimiseSession session({Programs()});
+  OptimiseOptions o = SnakeRun(dir, "forward_gait.genome.xml");
   o.generations = 2;
-  o.population = 4;
-  o.episode_s = 1;
   o.farm = true;  // and no mrsim-worker anywhere on this URL
   o.lcm_url = testing::TestLcmUrl(7969);
   const WallTime t0 = WallClock::now();
@@ -169,13 +175,9 @@ TEST(OptimiseSession, AFarmWithoutWorkersIsFlaggedAsStalled) {
 
 TEST(OptimiseSession, WatchingABestWithBodyGenesRunsItsBodyWhileTheRunGoesOn) {
   const std::string dir = TempDir("optimise_watch_body");
-  const std::string bin =
-      std::filesystem::path(BinaryPath("bin/mrsim-opt")).parent_path();
+  const std::string bin = Programs();
   OptimiseSession session({bin});
-  OptimiseOptions o;
-  o.scenario_path = SourcePath("scenarios/snake11.xml");
-  o.out_dir = dir + "/run";
-  o.genome = ReadGenomeFile(SourcePath("scenarios/snake_body.genome.xml"));
+  OptimiseOptions o = SnakeRun(dir, "snake_body.genome.xml");
   // Never the design's eleven modules: the best's body is another one.
   GeneSpec& count = o.genome.genes[o.genome.Find("module_count")];
   count.lower = 5;
@@ -183,8 +185,6 @@ TEST(OptimiseSession, WatchingABestWithBodyGenesRunsItsBodyWhileTheRunGoesOn) {
   count.start = 6;
   o.algorithm = "ga";
   o.generations = 500;  // stopped once it is seen going on
-  o.population = 4;
-  o.episode_s = 1;
   session.Start(o);
   const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   while (session.progress().rows.empty() && session.progress().running &&

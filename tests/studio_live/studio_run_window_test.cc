@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 #include "tests/common/child_process.h"
@@ -47,28 +48,50 @@ void Click(const std::string& layout, const std::string& widget) {
   ASSERT_TRUE(ClickAt(x, y));
 }
 
-TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
-  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
-  const std::string dir = TempDir("studio_run_window");
-  const std::string file = dir + "/case_study.xml";
-  fs::copy_file(SourcePath("scenarios/case_study.xml"), file);
-  const std::string layout = dir + "/layout.txt";
-  XvfbDisplay xvfb(dir);
-  ASSERT_TRUE(xvfb.ok());
-  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
-  // The panel's URL defaults to LCM_DEFAULT_URL: this test's own port.
-  setenv("LCM_DEFAULT_URL", TestLcmUrl(7967).c_str(), 1);
-  ChildProcess studio(
-      {BinaryPath("studio/mrsim-studio"), "--layout-dump", layout, file},
-      dir + "/studio.log");
-  ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
+// The studio on a copy of the case study in its own directory, display,
+// settings and LCM port, started from that directory (the Optimise
+// panel's paths are relative to it) and running: Run pressed, states heard.
+class StudioRun : public ::testing::Test {
+ protected:
+  void OpenAndRun(const std::string& name, int port) {
+    dir_ = TempDir(name);
+    layout_ = dir_ + "/layout.txt";
+    fs::copy_file(SourcePath("scenarios/case_study.xml"),
+                  dir_ + "/case_study.xml");
+    // The Optimise panel's default genome, relative to where it runs.
+    fs::create_directories(dir_ + "/scenarios");
+    fs::copy_file(SourcePath("scenarios/forward_gait.genome.xml"),
+                  dir_ + "/scenarios/forward_gait.genome.xml");
+    xvfb_ = std::make_unique<XvfbDisplay>(dir_);
+    ASSERT_TRUE(xvfb_->ok());
+    setenv("XDG_CONFIG_HOME", dir_.c_str(), 1);
+    // The panel's URL defaults to LCM_DEFAULT_URL: this test's own port.
+    setenv("LCM_DEFAULT_URL", TestLcmUrl(port).c_str(), 1);
+    studio_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{
+            "/bin/sh", "-c",
+            "cd '" + dir_ + "' && exec '" + BinaryPath("studio/mrsim-studio") +
+                "' --layout-dump layout.txt case_study.xml"},
+        dir_ + "/studio.log");
+    ASSERT_TRUE(WaitForLayout(layout_, "revision", "0")) << studio_->Output();
+    front_as_designed_ = ReadLayout(layout_)["part module 0 0"];
+    ASSERT_FALSE(front_as_designed_.empty());
+    ASSERT_TRUE(Xdotool({"key", "F5"}));
+    Click(layout_, "Run");
+    ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout_).sim_time >= 0; }, 120))
+        << studio_->Output();
+  }
 
-  const std::string front_as_designed = ReadLayout(layout)["part module 0 0"];
-  ASSERT_FALSE(front_as_designed.empty());
-  ASSERT_TRUE(Xdotool({"key", "F5"}));
-  Click(layout, "Run");
-  ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout).sim_time >= 0; }, 120))
-      << studio.Output();
+  std::string dir_, layout_, front_as_designed_;
+  std::unique_ptr<XvfbDisplay> xvfb_;
+  std::unique_ptr<ChildProcess> studio_;
+};
+
+TEST_F(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(OpenAndRun("studio_run_window", 7967));
+  const std::string& layout = layout_;
+  ChildProcess& studio = *studio_;
 
   // Stop the robot (space), then a real Up key press sets it going.
   ASSERT_TRUE(Xdotool({"key", "space"}));
@@ -81,7 +104,7 @@ TEST(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
   EXPECT_GT(ReadLive(layout).com_x - before.com_x, 0.02)
       << "the centre of mass did not move +x";
   // The 3-D view shows the robot where the simulation has it.
-  EXPECT_NE(ReadLayout(layout)["part module 0 0"], front_as_designed);
+  EXPECT_NE(ReadLayout(layout)["part module 0 0"], front_as_designed_);
 
   // Pause: acknowledged; then Step (10 periods by default) moves sim time
   // by exactly 0.1 s from where it stopped, and no further.
@@ -121,30 +144,12 @@ void TypeInto(const std::string& layout, const std::string& widget,
   ASSERT_TRUE(Xdotool({"type", text}));
 }
 
-TEST(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
+TEST_F(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
   if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
-  const std::string dir = TempDir("studio_optimise_window");
-  const std::string file = dir + "/case_study.xml";
-  fs::copy_file(SourcePath("scenarios/case_study.xml"), file);
-  const std::string layout = dir + "/layout.txt";
-  XvfbDisplay xvfb(dir);
-  ASSERT_TRUE(xvfb.ok());
-  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
-  setenv("LCM_DEFAULT_URL", TestLcmUrl(7968).c_str(), 1);
-  // The studio runs in `dir`: its genome and output paths are relative.
-  fs::create_directories(dir + "/scenarios");
-  fs::copy_file(SourcePath("scenarios/forward_gait.genome.xml"),
-                dir + "/scenarios/forward_gait.genome.xml");
-  ChildProcess studio(
-      {"/bin/sh", "-c",
-       "cd '" + dir + "' && exec '" + BinaryPath("studio/mrsim-studio") +
-           "' --layout-dump layout.txt case_study.xml"},
-      dir + "/studio.log");
-  ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
-  ASSERT_TRUE(Xdotool({"key", "F5"}));
-  Click(layout, "Run");
-  ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout).sim_time >= 0; }, 120))
-      << studio.Output();
+  ASSERT_NO_FATAL_FAILURE(OpenAndRun("studio_optimise_window", 7968));
+  const std::string& dir = dir_;
+  const std::string& layout = layout_;
+  ChildProcess& studio = *studio_;
 
   // Room for the Optimise section: fold the two open ones, each fold seen
   // in the layout before the next click (the widgets below it move).
