@@ -110,13 +110,19 @@ RelayCounters DelayRelay::counters() const {
 
 void DelayRelay::Loop() {
   std::vector<pollfd> fds;
+  std::vector<int> polled;  // index into ends_ of fds[i + 1]
   for (;;) {
     double wait = -1;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (stop_) return;
       fds.assign(1, pollfd{wake_.fd(), POLLIN, 0});
-      for (const End& e : ends_) fds.push_back(pollfd{e.fd, POLLIN, 0});
+      polled.clear();
+      for (size_t i = 0; i < ends_.size(); ++i) {
+        if (ends_[i].dead) continue;
+        fds.push_back(pollfd{ends_[i].fd, POLLIN, 0});
+        polled.push_back(static_cast<int>(i));
+      }
       if (!queue_.empty()) wait = std::max(0.0, queue_.front().due - Now());
     }
     timespec ts{};
@@ -133,7 +139,12 @@ void DelayRelay::Loop() {
     if (fds[0].revents != 0) wake_.Drain();
     const double now = Now();
     for (size_t i = 1; i < fds.size(); ++i) {
-      if (fds[i].revents & POLLIN) ReadEnd(static_cast<int>(i - 1), now);
+      const int end = polled[i - 1];
+      if (fds[i].revents & (POLLERR | POLLHUP | POLLNVAL)) {
+        ends_[static_cast<size_t>(end)].dead = true;  // else poll spins
+      } else if (fds[i].revents & POLLIN) {
+        ReadEnd(end, now);
+      }
     }
     SendDue(Now());
   }

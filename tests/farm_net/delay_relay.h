@@ -59,6 +59,7 @@ class DelayRelay {
     long long read_seq = 0;   // frames read from this end
     long long sent_seq = -1;  // highest read_seq of the ones sent on
     LinkDelay delay;
+    bool dead = false;  // its device went away (its namespace was deleted)
   };
   struct Frame {
     double due = 0;

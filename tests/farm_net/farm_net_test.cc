@@ -270,6 +270,11 @@ TEST(DelayRelay, EveryFrameArrivesLateWithinTheJitterAndSomeOvertake) {
     highest = std::max(highest, seq);
   }
   std::sort(delays.begin(), delays.end());
+  std::fprintf(stderr,
+               "%d datagrams: delay min %.2f median %.2f max %.2f ms, %d "
+               "overtook\n",
+               kCount, 1e3 * delays.front(), 1e3 * delays[delays.size() / 2],
+               1e3 * delays.back(), overtaken);
   EXPECT_GE(delays.front(), 0.015) << "sooner than delay - jitter";
   // Uniform over 15..25 ms: the spread shows (a scheduler late under
   // load only adds to the top); the median is near 20 ms (loose: load).
