@@ -7,6 +7,9 @@
 //   farm_loss5_slowdown      wall time with 5% frame loss over without
 //   farm_jitter_duplicates   fraction of episodes run twice, 20 ms +-5 ms
 //                            (simulated network: the kernel has no netem)
+//   farm_net_jitter_duplicates  the same on the rig: real workers whose
+//                            ports delay every frame 20 ms +-5 ms through
+//                            the rig's user-space relay (delay_relay.h)
 //   farm_master_cpu_1000w    the master's share of a core, 1,000 fake
 //                            workers, 1 s episodes
 //   farm_throughput_1000w    evaluations/s over 1,000 / 1 s
@@ -18,8 +21,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -100,7 +105,8 @@ struct Measure {
   double wall = 0, episodes = 0, cpu = 0;
   int jobs = 0;
   mrsim::FarmCounters counters;
-  int gone = 0, requeued = 0;  // master events during the measured batches
+  long long accepted_total = 0;  // results, the warm-up batch included
+  int gone = 0, requeued = 0;    // master events during the measured batches
 };
 
 // The kernel's UDP counters of a node's namespace (/proc/net/snmp is per
@@ -165,6 +171,7 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   m.counters.heartbeats_received =
       c.heartbeats_received - c0.heartbeats_received;
   m.counters.messages_received = c.messages_received - c0.messages_received;
+  m.accepted_total = c.results_accepted;
   return m;
 }
 
@@ -240,6 +247,49 @@ void JitterDuplicates() {
   }
   fmt::print("BENCH farm_jitter_duplicates {:.4f} fraction\n",
              static_cast<double>(farm.episodes_run() - jobs) / jobs);
+  std::fflush(stdout);
+
+  // The same on real processes: 8 workers at 0.2 CPU, every worker's port
+  // 20 ms +- 5 ms, each frame on its own draw. Episodes run = the workers'
+  // "jobs done" (printed when they stop), against the results the master
+  // accepted (each job once).
+  const int workers = 8;
+  mrsim::testing::RigOptions options;
+  options.delays.assign(workers + 1, mrsim::testing::LinkDelay{0.020, 0.005});
+  options.delays[0] = {};  // the master's port
+  options.seed = 14;
+  FarmRig rig(workers + 1, options);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= workers; ++k) {
+    ws.push_back(std::make_unique<ChildProcess>(
+        rig.In(k, {std::string(MRSIM_BINARY_DIR) +
+                       "/optimizer/process/mrsim-worker",
+                   "--lcm-url", kUrl, "--id", fmt::format("w{}", k)}),
+        fmt::format("/tmp/bench_farm_net_jitter_w{}.log", k)));
+    rig.CapCpu(ws.back()->pid(), 0.2);
+  }
+  const Measure m = RunFarm(rig, SnakeProblem(1.0), 16, 12);
+  long long ran = 0;
+  for (auto& w : ws) {
+    w->Stop();
+    const std::string out = w->Output();
+    const size_t at = out.rfind("stopping; ");
+    if (at == std::string::npos) {
+      throw std::runtime_error("a worker did not say how many jobs it did: " +
+                               out);
+    }
+    ran += std::atoll(out.c_str() + at + 10);
+  }
+  const mrsim::testing::RelayCounters relay = rig.relay_counters();
+  fmt::print(stderr,
+             "farm 8w jitter: {} results accepted, {} episodes run, {} "
+             "re-sent, {} asked again; relay {} frames, {} overtook, {} "
+             "overflowed\n",
+             m.accepted_total, ran, m.counters.jobs_resent,
+             m.counters.jobs_poked, relay.frames, relay.reordered,
+             relay.overflowed);
+  fmt::print("BENCH farm_net_jitter_duplicates {:.4f} fraction\n",
+             static_cast<double>(ran - m.accepted_total) / m.accepted_total);
 }
 
 void Thousand() {

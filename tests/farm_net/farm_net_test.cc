@@ -2,11 +2,22 @@
 // and workers each in its own network namespace behind a snooping bridge,
 // workers capped to 0.2 CPU, real mrsim-opt and mrsim-worker. Each case
 // must end byte for byte like the local run of the same seed.
+#include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sched.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -22,6 +33,8 @@ namespace {
 using testing::BinaryPath;
 using testing::ChildProcess;
 using testing::FarmRig;
+using testing::LinkDelay;
+using testing::RigOptions;
 using testing::SourcePath;
 using testing::TempDir;
 
@@ -71,6 +84,39 @@ void ExpectSameResult(const std::string& a, const std::string& b) {
   }
 }
 
+// The count after `label` in the last line of `out` that holds it ("farm:
+// 24 jobs sent, 0 re-sent, 24 results accepted", "results accepted"), or
+// -1.
+long long CountBefore(const std::string& out, const std::string& label) {
+  const size_t at = out.rfind(label);
+  if (at == std::string::npos) return -1;
+  size_t start = at;
+  while (start > 0 && out[start - 1] == ' ') --start;
+  while (start > 0 && std::isdigit(static_cast<unsigned char>(out[start - 1])))
+    --start;
+  return std::atoll(out.c_str() + start);
+}
+
+double Seconds() {
+  return std::chrono::duration<double>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// A UDP socket of node k's namespace (made on a thread that enters it:
+// setns moves only the calling thread; the socket stays in it).
+int UdpSocketIn(const FarmRig& rig, int node) {
+  int fd = -1;
+  std::thread([&] {
+    const std::string ns = rig.In(node, {}).back();  // ".. ip netns exec <ns>"
+    const int ns_fd = open(("/var/run/netns/" + ns).c_str(), O_RDONLY);
+    if (ns_fd < 0) return;
+    if (setns(ns_fd, CLONE_NEWNET) == 0) fd = socket(AF_INET, SOCK_DGRAM, 0);
+    close(ns_fd);
+  }).join();
+  return fd;
+}
+
 class FarmNet : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -80,9 +126,10 @@ class FarmNet : public ::testing::Test {
   }
 
   // The local run of the same seed, the reference every case must equal.
-  std::string Local(const std::string& name) {
+  std::string Local(const std::string& name,
+                    const std::string& population = "6") {
     const std::string dir = TempDir(name + "_local");
-    ChildProcess p(With(OptArgs(dir), {"--workers", "local:2"}),
+    ChildProcess p(With(OptArgs(dir, population), {"--workers", "local:2"}),
                    dir + "/log.txt");
     EXPECT_EQ(p.Wait(120), 0) << p.Output();
     return dir;
@@ -106,9 +153,10 @@ class FarmNet : public ::testing::Test {
 
   std::unique_ptr<ChildProcess> Master(FarmRig& rig, const std::string& url,
                                        const std::string& dir,
-                                       const std::string& log = "master") {
+                                       const std::string& log = "master",
+                                       const std::string& population = "6") {
     return std::make_unique<ChildProcess>(
-        rig.In(0, With(OptArgs(dir),
+        rig.In(0, With(OptArgs(dir, population),
                        {"--farm", "--lcm-url", url, "--worker-timeout", "2"})),
         dir + "/" + log + ".log");
   }
@@ -149,6 +197,95 @@ class FarmNet : public ::testing::Test {
   }
 };
 
+// The relay alone: datagrams from node 0 to node 1, whose link has 20 ms
+// +- 5 ms, all arrive, none sooner than 15 ms, spread by the jitter and
+// out of order.
+TEST(DelayRelay, EveryFrameArrivesLateWithinTheJitterAndSomeOvertake) {
+  std::string why;
+  if (!FarmRig::DelayAvailable(&why)) GTEST_SKIP() << why;
+  FarmRig::CleanupStale();
+  RigOptions options;
+  options.delays = {LinkDelay{}, LinkDelay{0.020, 0.005}};
+  options.seed = 14;
+  FarmRig rig(2, options);
+  const int tx = UdpSocketIn(rig, 0), rx = UdpSocketIn(rig, 1);
+  ASSERT_GE(tx, 0);
+  ASSERT_GE(rx, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(7799);
+  inet_pton(AF_INET, rig.Address(1).c_str(), &to.sin_addr);
+  sockaddr_in any = to;
+  any.sin_addr.s_addr = htonl(INADDR_ANY);
+  ASSERT_EQ(bind(rx, reinterpret_cast<sockaddr*>(&any), sizeof any), 0);
+  const auto send = [&](int seq) {
+    char buf[64];
+    const int n = std::snprintf(buf, sizeof buf, "%d %.9f", seq, Seconds());
+    sendto(tx, buf, static_cast<size_t>(n), 0, reinterpret_cast<sockaddr*>(&to),
+           sizeof to);
+  };
+  // What arrives within `timeout_s`: (seq, delay) pairs.
+  const auto receive = [&](double timeout_s, size_t want) {
+    std::vector<std::pair<int, double>> got;
+    const double end = Seconds() + timeout_s;
+    while (got.size() < want && Seconds() < end) {
+      pollfd p{rx, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      char buf[64] = {};
+      if (recv(rx, buf, sizeof buf - 1, 0) <= 0) continue;
+      const double now = Seconds();
+      int seq = 0;
+      double sent = 0;
+      if (std::sscanf(buf, "%d %lf", &seq, &sent) == 2) {
+        got.emplace_back(seq, now - sent);
+      }
+    }
+    return got;
+  };
+  // The first datagram waits for ARP (itself delayed): until one is back.
+  bool warm = false;
+  for (int i = 0; i < 40 && !warm; ++i) {
+    send(-1);
+    warm = !receive(0.25, 1).empty();
+  }
+  ASSERT_TRUE(warm) << "nothing crossed the relay";
+  receive(0.1, 100);  // late warm-up copies
+  constexpr int kCount = 300;
+  std::thread sender([&] {
+    for (int i = 0; i < kCount; ++i) {
+      send(i);
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+  });
+  const auto got = receive(20, kCount);
+  sender.join();
+  close(tx);
+  close(rx);
+  ASSERT_EQ(got.size(), static_cast<size_t>(kCount));
+  std::vector<double> delays;
+  int overtaken = 0, highest = -1;
+  for (const auto& [seq, delay] : got) {
+    delays.push_back(delay);
+    if (seq < highest) ++overtaken;
+    highest = std::max(highest, seq);
+  }
+  std::sort(delays.begin(), delays.end());
+  std::fprintf(stderr,
+               "%d datagrams: delay min %.2f median %.2f max %.2f ms, %d "
+               "overtook\n",
+               kCount, 1e3 * delays.front(), 1e3 * delays[delays.size() / 2],
+               1e3 * delays.back(), overtaken);
+  EXPECT_GE(delays.front(), 0.015) << "sooner than delay - jitter";
+  // Uniform over 15..25 ms: the spread shows (a scheduler late under
+  // load only adds to the top); the median is near 20 ms (loose: load).
+  EXPECT_GE(delays.back() - delays.front(), 0.006);
+  EXPECT_LT(delays[delays.size() / 2], 0.060);
+  EXPECT_GT(overtaken, 0) << "frames 0.5 ms apart with +-5 ms never reorder?";
+  const testing::RelayCounters c = rig.relay_counters();
+  EXPECT_EQ(c.overflowed, 0);
+  EXPECT_GT(c.reordered, 0);
+}
+
 TEST_F(FarmNet, CleanUdpmEqualsLocal) { RunCase("fn_clean", kUdpm, 4); }
 
 TEST_F(FarmNet, FivePercentLossEqualsLocal) {
@@ -168,6 +305,52 @@ TEST_F(FarmNet, KillThreeAddTwoEqualsLocal) {
             EXPECT_TRUE(master.WaitForOutput("worker w5 is ready", 60))
                 << master.Output();
           });
+}
+
+// The issue's 20 ms +- 5 ms on real processes (the kernel has no netem:
+// the rig's DelayRelay delays every worker's port, each frame on its own
+// draw, so a heartbeat may overtake the result sent before it). The
+// result equals the local run, and no episode ran twice: the episodes the
+// workers ran add up to the results the master accepted.
+TEST_F(FarmNet, JitterEqualsLocalAndRunsNoEpisodeTwice) {
+  std::string why;
+  if (!FarmRig::DelayAvailable(&why)) GTEST_SKIP() << why;
+  // More episodes than the other cases: more results for a heartbeat to
+  // overtake.
+  const std::string population = "16";
+  const std::string local = Local("fn_jitter", population);
+  const std::string dir = TempDir("fn_jitter");
+  constexpr int kWorkers = 4;
+  RigOptions options;
+  options.delays.assign(kWorkers + 1, LinkDelay{0.020, 0.005});
+  options.delays[0] = LinkDelay{};  // the master's port: a plain veth
+  options.seed = 14;
+  FarmRig rig(kWorkers + 1, options);
+  std::vector<std::unique_ptr<ChildProcess>> ws;
+  for (int k = 1; k <= kWorkers; ++k) ws.push_back(Worker(rig, k, kUdpm, dir));
+  auto master = Master(rig, kUdpm, dir, "master", population);
+  ASSERT_EQ(master->Wait(180), 0) << master->Output();
+  ExpectSameResult(local, dir);
+  const long long accepted = CountBefore(master->Output(), " results accepted");
+  ASSERT_GT(accepted, 0) << master->Output();
+  long long ran = 0;
+  std::string outputs;
+  for (auto& w : ws) {
+    EXPECT_EQ(w->Stop(), 0);
+    const std::string out = w->Output();
+    const long long done = CountBefore(out, " jobs done");
+    EXPECT_GE(done, 0) << out;
+    ran += std::max(0LL, done);
+    outputs += out;
+  }
+  EXPECT_EQ(ran, accepted) << master->Output() << outputs;
+  const testing::RelayCounters c = rig.relay_counters();
+  EXPECT_GT(c.frames, 0);
+  EXPECT_GT(c.reordered, 0) << "no frame overtook another: no jitter?";
+  std::fprintf(stderr,
+               "relay: %lld frames, %lld overtook, %lld overflowed, %lld "
+               "refused; workers ran %lld episodes for %lld results\n",
+               c.frames, c.reordered, c.overflowed, c.refused, ran, accepted);
 }
 
 TEST_F(FarmNet, PartitionedWorkerEqualsLocal) {

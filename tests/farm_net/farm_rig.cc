@@ -125,7 +125,16 @@ void FarmRig::CleanupStale() {
   }
 }
 
-FarmRig::FarmRig(int nodes)
+bool FarmRig::DelayAvailable(std::string* why) {
+  if (!Available(why)) return false;
+  if (access("/dev/net/tun", R_OK | W_OK) != 0) {
+    *why = "no /dev/net/tun: delayed links need TAP devices";
+    return false;
+  }
+  return true;
+}
+
+FarmRig::FarmRig(int nodes, const RigOptions& options)
     : tag_(fmt::format("{}{}x{}", kPrefix, getpid(),
                        std::rand() % 100000)),  // unique within the process
       nodes_(nodes),
@@ -142,9 +151,17 @@ FarmRig::FarmRig(int nodes)
     for (int k = 0; k < nodes_; ++k) {
       const std::string ns = NodeNs(tag_, k);
       Must("ip netns add " + ns);
-      Must(
-          fmt::format("ip -n {} link add p{} type veth peer name eth0 netns {}",
-                      br, k, ns));
+      const LinkDelay delay = static_cast<size_t>(k) < options.delays.size()
+                                  ? options.delays[static_cast<size_t>(k)]
+                                  : LinkDelay{};
+      if (delay.on()) {
+        if (!relay_) relay_ = std::make_unique<DelayRelay>(options.seed);
+        relay_->AddLink(br, fmt::format("p{}", k), ns, "eth0", delay);
+      } else {
+        Must(fmt::format(
+            "ip -n {} link add p{} type veth peer name eth0 netns {}", br, k,
+            ns));
+      }
       Must(fmt::format("ip -n {} link set p{} master br0 up", br, k));
       Must("ip -n " + ns + " link set lo up");
       Must(fmt::format("ip -n {} addr add {}/24 dev eth0", ns, Address(k)));
@@ -153,6 +170,7 @@ FarmRig::FarmRig(int nodes)
     }
     Nft();
   } catch (...) {
+    relay_.reset();
     for (int k = 0; k < nodes_; ++k) RemoveNs(NodeNs(tag_, k));
     RemoveNs(br);
     throw;
@@ -163,6 +181,8 @@ FarmRig::~FarmRig() {
   if (rmem_set_ > 0 && ReadRmemMax() == rmem_set_) {
     WriteRmemMax(rmem_restore_);
   }
+  // Its TAP devices go with it, before their namespaces do.
+  relay_.reset();
   for (int k = 0; k < nodes_; ++k) RemoveNs(NodeNs(tag_, k));
   RemoveNs(BridgeNs(tag_));
   for (auto it = cgroups_.rbegin(); it != cgroups_.rend(); ++it) {
@@ -246,6 +266,10 @@ void FarmRig::CapCpu(int pid, double share) {
     sched_setaffinity(std::atoi(task.path().filename().c_str()), sizeof set,
                       &set);
   }
+}
+
+RelayCounters FarmRig::relay_counters() const {
+  return relay_ ? relay_->counters() : RelayCounters{};
 }
 
 std::int64_t FarmRig::RaiseReceiveBufferMax(std::int64_t bytes) {

@@ -5,25 +5,41 @@
 // workers can be capped to a share of a CPU (cgroup v1). Needs root: use
 // FarmRig::Available() and GTEST_SKIP otherwise. Everything is torn down
 // by the destructor, and rigs left by a crashed test are removed when the
-// next one starts (names carry the creating pid).
+// next one starts (names carry the creating pid). Delay and jitter (no
+// netem in this kernel) come from a user-space relay (delay_relay.h) on
+// the links of the nodes that ask for them.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "tests/farm_net/delay_relay.h"
+
 namespace mrsim::testing {
+
+struct RigOptions {
+  // Delay and jitter on node k's link to the bridge (both ways), by node;
+  // nodes past the end or with no delay get a plain veth pair. A delayed
+  // link is a pair of TAP devices, eth0 in the node and p<k> on the bridge,
+  // joined by the rig's DelayRelay.
+  std::vector<LinkDelay> delays;
+  std::uint64_t seed = 1;  // of the relay's per-frame draws
+};
 
 class FarmRig {
  public:
   // True when namespaces can be made here; otherwise `why` says why not.
   static bool Available(std::string* why);
+  // True when delayed links can be made too (TAP devices).
+  static bool DelayAvailable(std::string* why);
   // Removes farmrig* namespaces and cgroups whose creating process is gone.
   static void CleanupStale();
 
   // `nodes` namespaces: node 0 is the master's (10.77.0.1), node k a
   // worker's (10.77.0.k+1). Throws naming the command that failed.
-  explicit FarmRig(int nodes);
+  explicit FarmRig(int nodes, const RigOptions& options = {});
   ~FarmRig();
   FarmRig(const FarmRig&) = delete;
   FarmRig& operator=(const FarmRig&) = delete;
@@ -51,6 +67,8 @@ class FarmRig {
   // when the process cannot write it (inside a network namespace of its
   // own, without access to the machine's).
   std::int64_t RaiseReceiveBufferMax(std::int64_t bytes);
+  // What the delay relay did so far (zeros without delayed links).
+  RelayCounters relay_counters() const;
 
  private:
   void Nft();
@@ -61,6 +79,7 @@ class FarmRig {
   int loss_ = 0;
   std::vector<bool> partitioned_;
   std::int64_t rmem_restore_ = 0, rmem_set_ = 0;
+  std::unique_ptr<DelayRelay> relay_;  // closed before the namespaces go
 };
 
 }  // namespace mrsim::testing
