@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <sched.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -175,6 +176,39 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   return m;
 }
 
+// The most any dispatcher could reach on `workers` equal workers with the
+// episodes of these batches, from each genome's own cost (CPU seconds of
+// its episode here, best of 3): a generation takes at least its longest
+// episode and at least its total over the workers. Below 1 when the
+// genomes' costs differ (a robot curled on itself has more contacts to
+// solve than one lying flat), whatever the network and the farm do.
+double GenomeBound(const mrsim::Problem& problem, int population, int batches,
+                   int workers) {
+  const auto thread_cpu = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+  };
+  double work = 0, span = 0;
+  for (int b = 0; b < batches; ++b) {
+    double sum = 0, longest = 0;
+    for (const mrsim::Genome& g :
+         RandomBatch(problem.genome, population, 2 + b)) {
+      double best = 1e9;
+      for (int r = 0; r < 3; ++r) {
+        const double t0 = thread_cpu();
+        mrsim::RunEpisode(problem, g);
+        best = std::min(best, thread_cpu() - t0);
+      }
+      sum += best;
+      longest = std::max(longest, best);
+    }
+    work += sum;
+    span += std::max(longest, sum / workers);
+  }
+  return work / (workers * span);
+}
+
 void Efficiency() {
   const int workers = 8;
   // Episodes of 1 simulated second take ~0.01 s of CPU, ~0.05 s at 0.2 of
@@ -209,9 +243,13 @@ void Efficiency() {
   };
   const mrsim::Problem problem = SnakeProblem(1.0);
   for (int population : {8, 16}) {
-    report(population == 8 ? "farm_net_efficiency_8w_pop8"
-                           : "farm_net_efficiency_8w",
-           RunFarm(rig, problem, population, kBatches));
+    const std::string name = population == 8 ? "farm_net_efficiency_8w_pop8"
+                                             : "farm_net_efficiency_8w";
+    report(name, RunFarm(rig, problem, population, kBatches));
+    // The ceiling the genomes themselves set (the same batches).
+    fmt::print("BENCH {}_genome_bound {:.3f} ratio\n", name,
+               GenomeBound(problem, population, kBatches, workers));
+    std::fflush(stdout);
   }
   // The setting the target was set in: ~1 s episodes (then 1 simulated s
   // at 0.2 CPU; now 20 simulated s).
