@@ -56,4 +56,17 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 // genome of the wrong size or a robot not in the scenario throws.
 EvalResult RunEpisode(const Problem& problem, const Genome& genome);
 
+// Episodes keep the simulations they built (a few, shared by all threads)
+// and reset one for the next episode of the same body, which is bit for
+// bit a fresh one. This frees them: the next episode builds afresh.
+void ReleaseEpisodePhysics();
+
+// Builds and keeps the simulation of the problem's start genome, so that a
+// first episode of that body does not pay the build (a worker does it
+// while it waits for its first job). Never throws: a problem that cannot
+// be built fails in its episodes as before.
+void PrepareEpisode(const Problem& problem);
+// How many simulations episodes (and PrepareEpisode) have built so far.
+long long EpisodePhysicsBuilt();
+
 }  // namespace mrsim

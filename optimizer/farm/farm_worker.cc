@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "optimizer/episode.h"
+
 namespace mrsim {
 namespace {
 
@@ -152,8 +154,17 @@ void FarmWorker::Work() {
     std::pair<std::string, WorkerTask> item;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return quit_ || !pool_queue_.empty(); });
+      wake_.wait(lock, [&] {
+        return quit_ || !pool_queue_.empty() || !warm_queue_.empty();
+      });
       if (quit_) return;
+      if (pool_queue_.empty()) {
+        const std::shared_ptr<const Problem> problem = warm_queue_.front();
+        warm_queue_.pop_front();
+        lock.unlock();
+        PrepareEpisode(*problem);
+        continue;
+      }
       item = std::move(pool_queue_.front());
       pool_queue_.pop_front();
     }
@@ -216,6 +227,14 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
     move(out.results, all.results);
     for (const std::string& line : c->TakeLog()) {
       log_.push_back(cores_.size() > 1 ? c->id() + ": " + line : line);
+    }
+  }
+  if (fake_episode_ <= 0 && cores_.front()->problem() != warmed_) {
+    warmed_ = cores_.front()->problem();
+    if (warmed_) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      warm_queue_.push_back(warmed_);
+      wake_.notify_one();
     }
   }
   all.rejoin = rejoin;

@@ -67,6 +67,11 @@ class FarmWorker {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::pair<std::string, WorkerTask>> pool_queue_;
+  // Problems whose simulation a pool thread builds while no job waits, so
+  // the run's first episode on this worker does not pay the build (about
+  // a 4 s episode: on a slow host the whole first generation waited).
+  std::deque<std::shared_ptr<const Problem>> warm_queue_;
+  std::shared_ptr<const Problem> warmed_;  // the last one queued
   std::vector<opt_result_t> finished_;
   bool quit_ = false;
   std::vector<std::thread> threads_;

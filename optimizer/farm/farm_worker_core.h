@@ -83,6 +83,7 @@ class FarmWorkerCore {
   const std::string& id() const { return settings_.id; }
   const std::string& run_id() const { return run_id_; }
   bool ready() const { return problem_ != nullptr; }
+  const std::shared_ptr<const Problem>& problem() const { return problem_; }
   int held() const { return static_cast<int>(queue_.size() + running_.size()); }
   double heartbeat_period() const { return heartbeat_period_; }
   const WorkerCounters& counters() const { return counters_; }

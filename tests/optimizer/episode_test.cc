@@ -47,9 +47,10 @@ TEST(OptimizerEpisode, SameGenomeGivesTheSameFitnessBitForBit) {
   EXPECT_NE(RunEpisode(problem, other).fitness, a.fitness);
 }
 
-// Episodes reuse a thread's Physics (reset) when the body is unchanged; an
-// episode after others must equal one in a fresh thread, bit for bit, on
-// scenes with terrain, sensor modules and force sensors too.
+// Episodes reuse a kept Physics (reset) when the body is unchanged, in
+// whichever thread; an episode after others, in another thread, must
+// equal one on a freshly built Physics, bit for bit, on scenes with
+// terrain, sensor modules and force sensors too.
 TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
   for (const char* path : {"scenarios/case_study.xml", "scenarios/terrain.xml",
                            "scenarios/snake11.xml"}) {
@@ -68,9 +69,12 @@ TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
     });
     one.join();
     for (size_t i = 0; i < genomes.size(); ++i) {
-      EvalResult fresh;
-      std::thread t([&] { fresh = RunEpisode(problem, genomes[i]); });
+      EvalResult reused;
+      std::thread t([&] { reused = RunEpisode(problem, genomes[i]); });
       t.join();
+      EXPECT_EQ(in_turn[i].fitness, reused.fitness) << path << " " << i;
+      ReleaseEpisodePhysics();
+      const EvalResult fresh = RunEpisode(problem, genomes[i]);
       EXPECT_EQ(in_turn[i].fitness, fresh.fitness) << path << " " << i;
       EXPECT_EQ(in_turn[i].energy, fresh.energy) << path << " " << i;
       EXPECT_EQ(in_turn[i].drift, fresh.drift) << path << " " << i;
@@ -78,6 +82,24 @@ TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
     }
     EXPECT_NE(in_turn[0].fitness, in_turn[1].fitness) << path;
   }
+}
+
+// A farm worker runs one episode at a time on whichever of its threads
+// takes the job, and builds the run's simulation while it waits for the
+// first: no episode of the same body builds it again, in any thread.
+TEST(OptimizerEpisode, APreparedSimulationServesEveryThreadsFirstEpisode) {
+  const Problem problem = SnakeProblem(0.2);
+  ReleaseEpisodePhysics();
+  const long long before = EpisodePhysicsBuilt();
+  PrepareEpisode(problem);
+  EXPECT_EQ(EpisodePhysicsBuilt(), before + 1);
+  Random random(5);
+  for (int i = 0; i < 3; ++i) {
+    const Genome g = problem.genome.RandomGenome(random);  // gait genes
+    std::thread t([&] { EXPECT_FALSE(RunEpisode(problem, g).failed); });
+    t.join();
+  }
+  EXPECT_EQ(EpisodePhysicsBuilt(), before + 1);
 }
 
 TEST(OptimizerEpisode, ForwardPresetScoresPositiveForwardDistance) {
