@@ -1,6 +1,10 @@
 #include "tests/common/child_process.h"
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <filesystem>
+#include <string>
 
 #include "tests/common/wait_until.h"
 
@@ -45,7 +49,14 @@ std::string SourcePath(const std::string& relative) {
 
 std::string TempDir(const std::string& name) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(MRSIM_BINARY_DIR) / "test_tmp" / name;
+  // ctest runs each test of a file as its own process, in parallel: a
+  // folder per test keeps one test from clearing another's files.
+  const ::testing::TestInfo* test =
+      ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string owner =
+      test ? std::string(test->test_suite_name()) + "." + test->name()
+           : "pid" + std::to_string(::getpid());
+  const fs::path dir = fs::path(MRSIM_BINARY_DIR) / "test_tmp" / name / owner;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();

@@ -12,7 +12,9 @@ namespace mrsim {
 namespace {
 
 std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir("launch_file") + "/" + name;
+  // One folder for the test: a second file must not clear the first.
+  static const std::string dir = testing::TempDir("launch_file");
+  const std::string path = dir + "/" + name;
   std::ofstream(path) << text;
   return path;
 }
