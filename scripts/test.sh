@@ -79,7 +79,8 @@ rc=${PIPESTATUS[0]}
 set -e
 
 # The ASan+UBSan stage: after a passing suite, within the time budget.
-budget=$(( ${MRSIM_TEST_BUDGET_MIN:-23} * 60 ))
+budget_min="${MRSIM_TEST_BUDGET_MIN:-23}"
+budget=$(( budget_min * 60 ))
 left=$(( budget - SECONDS ))
 if [ -z "$sanitize" ] && [ "$stage" = 1 ] && [ "$rc" = 0 ]; then
   if [ "$left" -ge 540 ]; then
@@ -101,7 +102,7 @@ if [ -z "$sanitize" ] && [ "$stage" = 1 ] && [ "$rc" = 0 ]; then
       rc=1
     fi
   else
-    echo "ASan+UBSan: skipped, $(( left / 60 )) of ${MRSIM_TEST_BUDGET_MIN:-23} min left" \
+    echo "ASan+UBSan: skipped, $(( left / 60 )) of $budget_min min left" \
       "(run scripts/test.sh --sanitize address)"
   fi
 fi

@@ -12,7 +12,8 @@ namespace mrsim {
 namespace {
 
 std::string WriteFile(const std::string& name, const std::string& text) {
-  // One folder for the test: a second file must not clear the first.
+  // One folder per process (ctest runs one test in each): a second file
+  // must not clear the first.
   static const std::string dir = testing::TempDir("launch_file");
   const std::string path = dir + "/" + name;
   std::ofstream(path) << text;
