@@ -3,6 +3,7 @@
 // thread while it waits.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -72,7 +73,46 @@ class SimClient {
   // STEP n and wait until the sim is paused again with n more periods done.
   // Fails when no new state came for timeout_s: a loaded machine may make
   // the steps slow, but they must keep coming.
+  //
+  // Steps at most kStepBurst periods per request: a lockstep burst of 60
+  // states and their 60 answers outgrows the test's socket buffer when a
+  // loaded machine leaves the test unscheduled, and the state that ends a
+  // STEP is published once (seen: a test waiting 20 s for the state the
+  // kernel dropped).
   bool StepAndWait(int periods, double timeout_s = 20.0) {
+    constexpr int kStepBurst = 10;
+    for (int done = 0; done < periods; done += kStepBurst) {
+      if (!StepBurst(std::min(kStepBurst, periods - done), timeout_s)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  const std::optional<sim_status_t>& status() const { return status_; }
+  // What the newest status says, for a failure message.
+  std::string Describe() const {
+    if (!status_) return "no status heard";
+    const sim_status_t& s = *status_;
+    return "status: mode " + std::to_string(s.mode) + ", state_seq " +
+           std::to_string(s.state_seq) + ", states published " +
+           std::to_string(s.states_published) + ", commands applied " +
+           std::to_string(s.commands_applied) + ", rejected " +
+           std::to_string(s.commands_rejected) + " (seq " +
+           std::to_string(s.rejected_seq) + ", sender " +
+           std::to_string(s.rejected_sender) + "), dropped " +
+           std::to_string(s.messages_dropped) + ", waiting for '" +
+           s.waiting_for + "', last state heard " +
+           std::to_string(last_state_seq_) + ", states heard " +
+           std::to_string(states_received_);
+  }
+  // Newest state of each robot, by robot name.
+  const std::map<std::string, robot_state_t>& states() const { return states_; }
+  int64_t last_state_seq() const { return last_state_seq_; }
+  int states_received() const { return states_received_; }
+
+ private:
+  bool StepBurst(int periods, double timeout_s) {
     if (!status_) return false;
     const int64_t want = status_->state_seq + periods;
     if (!Control(sim_control_t::STEP, periods)) return false;
@@ -90,13 +130,6 @@ class SimClient {
     return true;
   }
 
-  const std::optional<sim_status_t>& status() const { return status_; }
-  // Newest state of each robot, by robot name.
-  const std::map<std::string, robot_state_t>& states() const { return states_; }
-  int64_t last_state_seq() const { return last_state_seq_; }
-  int states_received() const { return states_received_; }
-
- private:
   void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     sim_status_t s;
     if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0) {
