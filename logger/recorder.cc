@@ -19,6 +19,10 @@ namespace {
 
 // Warnings per channel before further ones are only counted.
 constexpr int kMaxReports = 50;
+// Rows remembered for the re-send check. A pipelined lockstep simulator
+// re-sends the states it awaits (up to actuation delay + 1) and its
+// controllers re-answer them; eight covers every delay mrsim-sim takes.
+constexpr size_t kRecentRows = 8;
 
 int64_t Fingerprint(const uint8_t* data) {
   uint64_t v = 0;
@@ -138,6 +142,7 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
   }
   if (ch.row.has_seq) {
     ch.stats.has_seq = true;
+    if (IsRepeat(ch)) return;
     const SeqTracker::Event e = ch.seq.Add(ch.row.seq);
     if (e.missing > 0) {
       Report(ch, ch.stats.channel + ": gap: seq " +
@@ -157,6 +162,30 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
   }
   ch.writer->WriteLine(ch.row.values);
   ++ch.stats.rows;
+  if (ch.row.has_seq) Remember(ch);
+}
+
+bool Recorder::IsRepeat(Channel& ch) {
+  // Same seq, same row: the publisher sent it again. A restarted
+  // publisher's seq goes back too, but its rows differ (or it went back
+  // further than the last few rows), so they are written and reported.
+  for (const auto& [seq, values] : ch.recent) {
+    if (seq == ch.row.seq && values == ch.row.values) {
+      ++ch.stats.repeats;
+      return true;
+    }
+  }
+  return false;
+}
+
+void Recorder::Remember(Channel& ch) {
+  if (ch.recent.size() < kRecentRows) {
+    ch.recent.emplace_back(ch.row.seq, ch.row.values);
+    return;
+  }
+  ch.recent[ch.recent_next].first = ch.row.seq;
+  ch.recent[ch.recent_next].second.assign(ch.row.values);
+  ch.recent_next = (ch.recent_next + 1) % kRecentRows;
 }
 
 void Recorder::OpenPart(Channel& ch) {
@@ -235,6 +264,7 @@ std::string Recorder::Summary() const {
       os << ", seq " << s.first_seq << ".." << s.last_seq << ", " << s.gaps
          << " gaps (" << s.missing << " missing)";
       if (s.back_jumps > 0) os << ", " << s.back_jumps << " seq jumps back";
+      if (s.repeats > 0) os << ", " << s.repeats << " re-sends skipped";
     }
     if (s.malformed > 0) os << ", " << s.malformed << " malformed";
     if (s.unknown_type + s.other_type > 0) {

@@ -1,7 +1,9 @@
 // Writes every message it is given to one CSV per channel (DIR/<channel>.csv)
 // and keeps per-channel counts: messages, rows, malformed and unknown-type
-// messages, and sequence gaps. Live logging and .lcmlog replay both feed it,
-// so both give the same bytes.
+// messages, sequence gaps, and re-sends (the same row under a seq just
+// written, as when a lockstep simulator re-sends a state its controller has
+// not answered: written once). Live logging and .lcmlog
+// replay both feed it, so both give the same bytes.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "logger/csv_writer.h"
@@ -30,6 +33,7 @@ struct ChannelStats {
   int64_t gaps = 0;
   int64_t missing = 0;
   int64_t back_jumps = 0;
+  int64_t repeats = 0;  // re-sends skipped (see Recorder)
   bool has_seq = false;
   int64_t first_seq = 0;
   int64_t last_seq = 0;
@@ -76,9 +80,16 @@ class Recorder {
     SeqTracker seq;
     FlatRow row;
     int reports = 0;
+    // The last rows written with their seq, a ring (strings keep their
+    // capacity, so the check allocates nothing once warm).
+    std::vector<std::pair<int64_t, std::string>> recent;
+    size_t recent_next = 0;
   };
 
   void Record(Channel& ch, const uint8_t* data, size_t size);
+  // True (and counted) when ch.row is one of ch.recent again.
+  bool IsRepeat(Channel& ch);
+  void Remember(Channel& ch);
   void OpenPart(Channel& ch);
   void Report(Channel& ch, const std::string& text);
 

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
-#include "optimizer/hash.h"
+#include "common/hash.h"
 
 namespace mrsim {
 namespace {

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/hash.h"
 #include "sim_core/contact_model.h"
 #include "sim_core/embedded_mesh.h"
 #include "sim_core/scenario_validate.h"
@@ -246,8 +247,7 @@ std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
     } catch (const std::exception& e) {
       throw std::runtime_error(what + ": " + e.what());
     }
-    size_t h = 1469598103934665603ull;
-    for (unsigned char c : mesh.bytes) h = (h ^ c) * 1099511628211ull;
+    const uint64_t h = Fnv1a64(mesh.bytes.data(), mesh.bytes.size());
     std::string file = fmt::format("mrsim-mesh-{:016x}-{}", h, mesh.file_name);
     const std::string key = file + "|" + Vec(scale);
     auto it = mesh_names_.find(key);
@@ -753,8 +753,7 @@ void Builder::AddTerrain() {
                 bytes + size);
           },
           &png, image.cols, image.rows, 1, grey.data(), image.cols);
-      size_t h = 1469598103934665603ull;
-      for (unsigned char c : png) h = (h ^ c) * 1099511628211ull;
+      const uint64_t h = Fnv1a64(png.data(), png.size());
       const fs::path dir =
           !options_.asset_dir.empty()  ? fs::path(options_.asset_dir)
           : !options_.file_dir.empty() ? fs::path(options_.file_dir)

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/hash.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/payload_chunks.h"
-#include "optimizer/hash.h"
 
 namespace mrsim {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "optimizer/hash.h"
+#include "common/hash.h"
 #include "optimizer/problem_codec.h"
 
 namespace mrsim {

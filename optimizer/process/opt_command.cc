@@ -13,10 +13,10 @@
 #include <thread>
 #include <vector>
 
+#include "common/hash.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
 #include "optimizer/farm/farm_evaluator.h"
-#include "optimizer/hash.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/problem_codec.h"
 #include "sim_core/scenario_xml.h"

@@ -1,5 +1,5 @@
-// FNV-1a 64: a stable content hash for scenario payloads and checkpoint
-// fingerprints (not for security).
+// FNV-1a 64: a stable content hash (scenario payloads, checkpoint
+// fingerprints, exported asset names); not for security.
 #pragma once
 
 #include <cstdint>
