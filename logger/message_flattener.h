@@ -18,8 +18,10 @@ struct FlatRow {
 class MessageFlattener {
  public:
   virtual ~MessageFlattener() = default;
-  // Decodes one whole message (fingerprint included). Returns false when
-  // the bytes are not a well-formed message of this type; never throws.
+  // Decodes one whole message (fingerprint included) into row, replacing
+  // its values (whatever they held before; the recorder hands back other
+  // rows' buffers). Returns false when the bytes are not a well-formed
+  // message of this type; never throws.
   virtual bool Flatten(const uint8_t* data, size_t size, FlatRow* row) = 0;
   virtual std::string type_name() const = 0;
 

@@ -179,12 +179,15 @@ bool Recorder::IsRepeat(Channel& ch) {
 }
 
 void Recorder::Remember(Channel& ch) {
+  // Swapped, not copied: the flatteners clear the row before they write,
+  // so the evicted string's buffer serves the next message.
   if (ch.recent.size() < kRecentRows) {
-    ch.recent.emplace_back(ch.row.seq, ch.row.values);
+    ch.recent.emplace_back(ch.row.seq, std::string());
+    ch.recent.back().second.swap(ch.row.values);
     return;
   }
   ch.recent[ch.recent_next].first = ch.row.seq;
-  ch.recent[ch.recent_next].second.assign(ch.row.values);
+  ch.recent[ch.recent_next].second.swap(ch.row.values);
   ch.recent_next = (ch.recent_next + 1) % kRecentRows;
 }
 

@@ -80,8 +80,7 @@ class Recorder {
     SeqTracker seq;
     FlatRow row;
     int reports = 0;
-    // The last rows written with their seq, a ring (strings keep their
-    // capacity, so the check allocates nothing once warm).
+    // The last rows written with their seq, a ring.
     std::vector<std::pair<int64_t, std::string>> recent;
     size_t recent_next = 0;
   };
