@@ -1,5 +1,6 @@
 #include "studio/live/plot_series.h"
 
+#include <cmath>
 #include <utility>
 
 namespace mrsim {
@@ -11,7 +12,10 @@ PlotSeries::PlotSeries(std::string channel, std::string column, double window_s)
 
 void PlotSeries::Add(double t, double value) {
   if (paused_) return;
-  if (!times_.empty() && t < times_.back()) Clear();
+  if (!times_.empty() && t <= times_.back()) {
+    if (IsResend(t, value)) return;
+    Clear();
+  }
   times_.push_back(t);
   values_.push_back(value);
   ++received_;
@@ -19,6 +23,22 @@ void PlotSeries::Add(double t, double value) {
     times_.pop_front();
     values_.pop_front();
   }
+}
+
+bool PlotSeries::IsResend(double t, double value) const {
+  // A lockstep simulator re-sends the states it awaits (pipelined: the
+  // older one first), so a re-send can be a few samples back.
+  constexpr size_t kDepth = 8;
+  for (size_t k = 0; k < kDepth && k < times_.size(); ++k) {
+    const size_t i = times_.size() - 1 - k;
+    if (times_[i] < t) return false;
+    const double v = values_[i];
+    if (times_[i] == t &&
+        (v == value || (std::isnan(v) && std::isnan(value)))) {
+      return true;
+    }
+  }
+  return false;
 }
 
 void PlotSeries::Clear() {

@@ -14,8 +14,10 @@ class PlotSeries {
   PlotSeries(std::string channel, std::string column, double window_s);
 
   // A point at message time t (s). Points older than the newest minus the
-  // window are dropped; a paused plot takes none. A time earlier than the
-  // newest (a reset or a loaded checkpoint) starts the plot afresh.
+  // window are dropped; a paused plot takes none. A point the plot already
+  // holds (same time, same value: a re-sent state) is ignored; any other
+  // time not after the newest (a reset or a loaded checkpoint) starts the
+  // plot afresh.
   void Add(double t, double value);
   void Clear();
 
@@ -30,6 +32,8 @@ class PlotSeries {
   int64_t received() const { return received_; }
 
  private:
+  bool IsResend(double t, double value) const;
+
   std::string channel_;
   std::string column_;
   double window_s_;

@@ -127,6 +127,27 @@ TEST_F(LiveSessionTest, PausedPlotTakesNothingAndAResetStartsItAfresh) {
   EXPECT_EQ(p.times()[0], 17e-6);
 }
 
+// A stalled pipelined lockstep sim re-sends the two states it awaits, older
+// first: the curve keeps its history and gets no second point.
+TEST_F(LiveSessionTest, PlotIgnoresResentStatesAndStillClearsOnAReset) {
+  PlotSeries& p = session_.AddPlot("TEST_STATE_snake", "com.x", 10);
+  for (int64_t seq : {0, 1, 2, 3, 2, 3, 2, 3, 4}) {
+    Hear("TEST_STATE_snake", testing::KnownRobotState(seq, 2, 0, "snake"));
+  }
+  ASSERT_EQ(p.values().size(), 5u);
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(
+        p.times()[i],
+        testing::KnownRobotState(static_cast<int64_t>(i), 2, 0).utime / 1e6);
+  }
+  // A new run back at the time of state 2, moving differently.
+  robot_state_t other = testing::KnownRobotState(2, 2, 0, "snake");
+  other.com[0] += 0.25;
+  Hear("TEST_STATE_snake", other);
+  ASSERT_EQ(p.values().size(), 1u);
+  EXPECT_EQ(p.values()[0], other.com[0]);
+}
+
 TEST_F(LiveSessionTest, SimRequestsAreAnsweredOnlyByTheirOwnSenderAndSeq) {
   const int64_t pause = session_.Pause(now_, &out_);
   const int64_t step = session_.Step(10, now_, &out_);
