@@ -262,7 +262,10 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
     controller_->Reset();
     have_last_ = false;
   }
-  if (rate_ > 0 && state.seq == last_skipped_seq_) {
+  // Only lockstep waits for an answer; a paused sim re-sends its newest
+  // state whatever its clock, and that one may have been skipped.
+  const bool may_be_lockstep = sim_clock_.empty() || sim_clock_ == "lockstep";
+  if (rate_ > 0 && state.seq == last_skipped_seq_ && may_be_lockstep) {
     Log(
         fmt::format("the simulator sent state seq {} again after it was "
                     "skipped (lockstep at more than --rate {} Hz): answering "
@@ -314,6 +317,7 @@ void GaitNode::OnSimControl(const sim_control_t& request) {
 
 void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
+  sim_clock_ = status.clock;
   const auto it = requests_.find({status.control_sender, status.control_seq});
   if (it == requests_.end()) return;
   const sim_control_t request = it->second;

@@ -137,6 +137,7 @@ class GaitNode {
 
   double rate_ = 0;  // options_.rate until lockstep shows it must be 0
   int64_t last_skipped_seq_ = -1;
+  std::string sim_clock_;  // from the sim's status; empty until heard
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;

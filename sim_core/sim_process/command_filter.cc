@@ -5,6 +5,14 @@
 #include <stdexcept>
 
 namespace mrsim {
+namespace {
+
+// Accepted commands remembered per sender: a controller answers every state
+// the simulator re-sends, and a pipelined simulator re-sends the two it
+// awaits; mrsim-gait keeps its last eight answers.
+constexpr size_t kRecentCommands = 8;
+
+}  // namespace
 
 const char* ToString(CommandVerdict verdict) {
   switch (verdict) {
@@ -20,6 +28,8 @@ const char* ToString(CommandVerdict verdict) {
       return "stale sequence number";
     case CommandVerdict::kNotController:
       return "sender is not a lockstep controller";
+    case CommandVerdict::kRepeat:
+      return "repeat of an accepted command";
   }
   return "?";
 }
@@ -63,6 +73,12 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
     h.last_seen_seq = cmd.seq;
   }
   h.seen = true;
+  for (const joint_command_t& c : h.recent) {
+    if (c.seq == cmd.seq && c.state_seq == cmd.state_seq &&
+        c.target == cmd.target) {
+      return CommandVerdict::kRepeat;
+    }
+  }
 
   if (lockstep && std::find(controllers.begin(), controllers.end(),
                             cmd.sender) == controllers.end()) {
@@ -108,6 +124,8 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
   h.accepted = true;
   h.last_state_seq = cmd.state_seq;
   h.last_seq = cmd.seq;
+  h.recent.push_back(cmd);
+  if (h.recent.size() > kRecentCommands) h.recent.pop_front();
   return CommandVerdict::kAccepted;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <utility>
@@ -20,6 +21,8 @@ enum class CommandVerdict {
   kUnknownRobot,     // robot not in the scenario, or not the channel's robot
   kStaleSeq,         // answers an older state, repeats a seq, or a bad seq
   kNotController,    // lockstep: sender not among --controllers
+  kRepeat,  // a command this sender had accepted, again (its answer to a
+            // re-sent state): not an error, and it moves nothing again
 };
 const char* ToString(CommandVerdict verdict);
 
@@ -58,6 +61,8 @@ class CommandFilter {
     int64_t last_state_seq = -1;
     int64_t last_seq = -1;
     bool accepted = false;
+    // The last commands accepted, to tell a repeat from a stale command.
+    std::deque<joint_command_t> recent;
   };
 
   std::vector<std::string> robots_;

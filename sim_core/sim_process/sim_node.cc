@@ -115,13 +115,15 @@ WallTime SimNode::Tick(WallTime now, SimOutbox* out) {
     Finish(StopReason::kDuration, now, out);
     return now;
   }
+  const bool idle_paused = paused_ && steps_pending_ == 0;
   WallTime status_due = AfterSeconds(last_status_, kStatusInterval);
   if (now >= status_due) {
     PublishStatus(now, out);
+    if (idle_paused) ResendNewestStates(out);
     status_due = AfterSeconds(now, kStatusInterval);
   }
   const WallTime idle = std::min(status_due, AfterSeconds(now, kIdleInterval));
-  if (paused_ && steps_pending_ == 0) return idle;
+  if (idle_paused) return idle;
 
   switch (options_.clock) {
     case ClockMode::kLockstep:
@@ -230,26 +232,49 @@ void SimNode::RunPeriod(WallTime now, SimOutbox* out) {
   PublishStates(now, out);
 }
 
+void SimNode::ResendNewestStates(SimOutbox* out) {
+  if (!options_.publish_state || state_seq_ < 0) return;
+  if (lockstep()) {
+    for (const Published& p : recent_) {
+      for (const auto& [channel, msg] : p.messages) out->Add(channel, msg);
+      ++states_resent_;
+    }
+    return;
+  }
+  // Realtime and fast keep no copy of what they sent (one per period would
+  // cost more than this): paused physics still reads as the newest state.
+  for (auto& [channel, msg] : ReadStates().messages) {
+    out->Add(std::move(channel), std::move(msg));
+  }
+  ++states_resent_;
+}
+
+SimNode::Published SimNode::ReadStates() const {
+  Published published{state_seq_, {}};
+  // Scene first: a viewer draws a frame once a robot state reaches its
+  // time, so the scene of that period must already be there.
+  const std::vector<SceneObjectState> scene = ReadSceneObjects(*physics_);
+  if (!scene.empty()) {
+    published.messages.emplace_back(
+        SceneChannel(options_.prefix),
+        ToSceneStateMessage(scene, physics_->time(), state_seq_));
+  }
+  for (int r = 0; r < physics_->robot_count(); ++r) {
+    const std::string& name = physics_->robot_name(r);
+    robot_state_t msg =
+        ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);
+    SetLockStates(physics_->LockStates(name), &msg);
+    published.messages.emplace_back(StateChannel(options_.prefix, name),
+                                    std::move(msg));
+  }
+  return published;
+}
+
 void SimNode::PublishStates(WallTime now, SimOutbox* out) {
   ++state_seq_;
   Published published{state_seq_, {}};
   if (options_.publish_state) {
-    // Scene first: a viewer draws a frame once a robot state reaches its
-    // time, so the scene of that period must already be there.
-    const std::vector<SceneObjectState> scene = ReadSceneObjects(*physics_);
-    if (!scene.empty()) {
-      published.messages.emplace_back(
-          SceneChannel(options_.prefix),
-          ToSceneStateMessage(scene, physics_->time(), state_seq_));
-    }
-    for (int r = 0; r < physics_->robot_count(); ++r) {
-      const std::string& name = physics_->robot_name(r);
-      robot_state_t msg =
-          ToRobotStateMessage(physics_->ReadRobotState(r), state_seq_);
-      SetLockStates(physics_->LockStates(name), &msg);
-      published.messages.emplace_back(StateChannel(options_.prefix, name),
-                                      std::move(msg));
-    }
+    published = ReadStates();
     ++states_published_;
   }
   if (lockstep()) {
@@ -387,6 +412,9 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
       return;
     case CommandVerdict::kStaleSeq:
       ++rejected_seq_;
+      return;
+    case CommandVerdict::kRepeat:
+      ++repeated_commands_;
       return;
     case CommandVerdict::kNotController:
       ++rejected_sender_;
@@ -570,12 +598,15 @@ std::string SimNode::Summary() const {
       << s.sim_time << " s after " << s.steps << " steps; states published "
       << states_published_;
   if (states_resent_ > 0) out << " (re-sent " << states_resent_ << ")";
-  out << "; commands applied " << s.commands_applied << ", rejected "
-      << s.commands_rejected << " (joint count " << s.rejected_joint_count
-      << ", value " << s.rejected_value << ", robot " << s.rejected_robot
-      << ", seq " << s.rejected_seq << ", sender " << s.rejected_sender
-      << "), malformed " << s.messages_malformed << ", dropped "
-      << s.messages_dropped;
+  out << "; commands applied " << s.commands_applied;
+  if (repeated_commands_ > 0) {
+    out << " (" << repeated_commands_ << " repeats ignored)";
+  }
+  out << ", rejected " << s.commands_rejected << " (joint count "
+      << s.rejected_joint_count << ", value " << s.rejected_value << ", robot "
+      << s.rejected_robot << ", seq " << s.rejected_seq << ", sender "
+      << s.rejected_sender << "), malformed " << s.messages_malformed
+      << ", dropped " << s.messages_dropped;
   if (ran_period_) {
     // Whole-run pace, from the first period to the last (startup and the
     // wait for the first lockstep answer excluded).

@@ -33,6 +33,7 @@ class SimNode {
  public:
   // While a lockstep period waits, its state is sent again this often (wall
   // s) so a controller that started late or lost the packet still gets it.
+  // Paused, the newest state goes again with each status.
   static constexpr double kRepublishInterval = 0.25;
   static constexpr double kStatusInterval = 0.5;  // wall s, about 2 Hz
   // Realtime: a period later than this is not caught up with a burst.
@@ -74,7 +75,8 @@ class SimNode {
     return exit_checkpoint_error_;
   }
   // State publications (one per control period and after reset/load;
-  // re-sends while waiting counted apart). Zero with --no-state.
+  // re-sends, while waiting or paused, counted apart). Zero with
+  // --no-state.
   int64_t states_published() const { return states_published_; }
   int64_t states_resent() const { return states_resent_; }
 
@@ -103,6 +105,11 @@ class SimNode {
   WallTime CheckLockstepWait(WallTime now, SimOutbox* out);
   void RunPeriod(WallTime now, SimOutbox* out);
   void PublishStates(WallTime now, SimOutbox* out);
+  // The newest state of every robot (and the scene) under state_seq_.
+  Published ReadStates() const;
+  // Paused, with each status: what a viewer that joined late, or lost the
+  // state that ended a STEP, needs (lockstep: the states still awaited).
+  void ResendNewestStates(SimOutbox* out);
   void PublishStatus(WallTime now, SimOutbox* out);
   void Restarted(WallTime now, SimOutbox* out);
   void Reanchor(WallTime now);
@@ -156,6 +163,7 @@ class SimNode {
   int64_t rejected_robot_ = 0;
   int64_t rejected_seq_ = 0;
   int64_t rejected_sender_ = 0;
+  int64_t repeated_commands_ = 0;  // CommandVerdict::kRepeat
   int64_t malformed_ = 0;
   int64_t superseded_ = 0;
   int64_t control_gaps_ = 0;

@@ -141,6 +141,29 @@ TEST_F(GaitNodeTest, SkippedStateSentAgainSwitchesToEveryState) {
   EXPECT_TRUE(noted);
 }
 
+// A paused realtime sim re-sends its newest state, which --rate may have
+// skipped: that is no lockstep, and the rate still holds.
+TEST_F(GaitNodeTest, ASkippedStateAPausedRealtimeSimSendsAgainStaysSkipped) {
+  auto node = Make(50.0);
+  sim_status_t status{};
+  status.clock = "realtime";
+  status.mode = sim_status_t::PAUSED;
+  node->OnSimStatus(status, now_, &out_);
+  Collect();
+  Send(*node, State(0, 0.0));
+  Send(*node, State(1, 0.01));  // skipped at 50 Hz
+  Send(*node, State(1, 0.01));  // sent again while paused
+  Send(*node, State(1, 0.01));
+  EXPECT_EQ(got_.size(), 1u);
+  Send(*node, State(2, 0.02));
+  Send(*node, State(3, 0.03));  // still 50 Hz
+  ASSERT_EQ(got_.size(), 2u);
+  EXPECT_EQ(got_.back().state_seq, 2);
+  for (const auto& line : node->TakeLog()) {
+    EXPECT_EQ(line.find("answering every state"), std::string::npos) << line;
+  }
+}
+
 TEST_F(GaitNodeTest, ForeignAndMalformedStatesAreCountedNotAnswered) {
   auto node = Make();
   robot_state_t other = State(0, 0);

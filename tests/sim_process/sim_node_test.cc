@@ -334,6 +334,71 @@ TEST(SimNode, PauseStepResumeAndRefusals) {
   EXPECT_EQ(d.statuses_.back().mode, int8_t{sim_status_t::STOPPING});
 }
 
+std::vector<uint8_t> Encoded(const robot_state_t& msg) {
+  std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
+  msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+// A viewer started after the sim paused, or one that lost the state that
+// ended a STEP, still gets the robot: the newest state goes again with each
+// status, byte for byte what was published.
+TEST(SimNode, PausedSendsTheNewestStateAgainWithEachStatus) {
+  SimOptions o;
+  o.clock = ClockMode::kRealtime;
+  o.paused = true;
+  Driver d(o);
+  ASSERT_EQ(d.states_.size(), 1u);
+  const std::vector<uint8_t> first = Encoded(d.states_[0]);
+  d.RunUntil([] { return false; }, 2.0);
+  EXPECT_GE(d.states_.size(), 4u);
+  EXPECT_LE(d.states_.size(), 6u);
+  for (const robot_state_t& s : d.states_) EXPECT_EQ(Encoded(s), first);
+
+  EXPECT_TRUE(d.Control(sim_control_t::STEP, 3).control_ok);
+  d.RunUntil([&] { return d.node().status().state_seq == 3; }, 1.0);
+  ASSERT_EQ(d.states_.back().seq, 3);
+  const std::vector<uint8_t> third = Encoded(d.states_.back());
+  const size_t before = d.states_.size();
+  d.RunUntil([] { return false; }, 2.0);
+  ASSERT_GE(d.states_.size(), before + 3);
+  for (size_t i = before; i < d.states_.size(); ++i) {
+    EXPECT_EQ(Encoded(d.states_[i]), third) << i;
+  }
+  EXPECT_EQ(d.node().states_published(), 4);
+  EXPECT_EQ(d.node().states_resent(),
+            static_cast<int64_t>(d.states_.size()) - 4);
+}
+
+// Lockstep, paused: the state awaited goes again, and a controller that
+// answers each copy with its same command gets no rejection for it.
+TEST(SimNode, PausedLockstepResendsTheAwaitedStateAndTakesRepeatedAnswers) {
+  SimOptions o = Lockstep(0);
+  o.paused = true;
+  Driver d(o);
+  ASSERT_EQ(d.states_.size(), 1u);
+  const joint_command_t answer = Answer(d.states_[0], "ctl", 1);
+  size_t answered = 0;
+  d.RunUntil(
+      [&] {
+        for (; answered < d.states_.size(); ++answered) d.Command(answer);
+        return false;
+      },
+      2.0);
+  EXPECT_GE(d.states_.size(), 4u);
+  for (const robot_state_t& s : d.states_) EXPECT_EQ(s.seq, 0);
+  EXPECT_EQ(d.node().status().commands_rejected, 0);
+  EXPECT_EQ(d.node().status().messages_dropped, 0);
+  EXPECT_NE(d.node().Summary().find(std::to_string(d.states_.size() - 1) +
+                                    " repeats ignored"),
+            std::string::npos)
+      << d.node().Summary();
+  // The answer taken while paused drives the first period.
+  EXPECT_TRUE(d.Control(sim_control_t::STEP, 1).control_ok);
+  d.RunUntil([&] { return d.node().status().state_seq == 1; }, 1.0);
+  EXPECT_EQ(d.node().status().commands_applied, 1);
+}
+
 TEST(SimNode, RealtimePacesPeriodsAndDoesNotBurstAfterALag) {
   SimOptions o;
   o.clock = ClockMode::kRealtime;
@@ -395,11 +460,15 @@ TEST(SimNode, EveryRejectIsCountedExactlyAndMovesNothing) {
   EXPECT_EQ(s.commands_rejected, 6);
   EXPECT_EQ(s.messages_malformed, 1);
   EXPECT_EQ(s.messages_dropped, 0);
-  // A good one, repeated: the repeat is stale, the first applies.
+  // A good one, repeated: the first applies, the repeat is ignored and is
+  // no rejection (a controller answering a re-sent state sends it again).
   const joint_command_t good = cmd("snake", ok, 0);
   d.Command(good);
   d.Command(good);
-  EXPECT_EQ(d.node().status().rejected_seq, 2);
+  EXPECT_EQ(d.node().status().rejected_seq, 1);
+  EXPECT_EQ(d.node().status().commands_rejected, 6);
+  EXPECT_NE(d.node().Summary().find("(1 repeats ignored)"), std::string::npos)
+      << d.node().Summary();
   // Two more valid ones before the period: the first is replaced (dropped).
   d.Command(cmd("snake", ok, -1));
   seq += 5;  // five commands this sender numbered but never sent

@@ -317,15 +317,17 @@ TEST(SimProcess, BadAndForeignMessagesAreCountedAndIgnored) {
       ToRobotStateMessage(reference.ReadRobotState(0), 5);
   ExpectSameBody(client.states().at(robot), expected);
 
-  // A good command still gets through; repeating it is stale.
+  // A good command still gets through, once; a stale one (an older
+  // state) does not. The STEP after them is handled after them.
   const int64_t now_seq = client.status()->state_seq;
   auto good = command(robot, zeros, now_seq);
   lcm.publish(channel, &good);
   lcm.publish(channel, &good);
-  ASSERT_TRUE(
-      client.WaitFor([&] { return client.status()->rejected_seq == 2; }, 5.0));
-  ASSERT_TRUE(client.StepAndWait(1));
+  auto stale = command(robot, zeros, now_seq - 1);
+  lcm.publish(channel, &stale);
+  ASSERT_TRUE(client.StepAndWait(1)) << client.Describe();
   EXPECT_EQ(client.status()->commands_applied, 1);
+  EXPECT_EQ(client.status()->rejected_seq, 2) << client.Describe();
   EXPECT_EQ(sim.Stop(5.0), 0);
 }
 
@@ -372,6 +374,13 @@ TEST(SimProcess, EveryRobotHasItsOwnChannels) {
   for (const auto& j : r.joints) EXPECT_GT(j.angle, 0.2);
   for (const auto& j : l.joints) EXPECT_LT(std::abs(j.angle), 0.05);
   EXPECT_EQ(client.status()->commands_applied, 1);
+
+  // A viewer that joins the paused sim gets both robots where they are.
+  SimClient late(TestLcmUrl(port));
+  ASSERT_TRUE(late.WaitFor([&] { return late.states().size() == 2; }, 10))
+      << late.Describe();
+  EXPECT_EQ(late.states().at("left").seq, 20);
+  EXPECT_EQ(late.states().at("right").joints[0].angle, r.joints[0].angle);
   EXPECT_EQ(sim.Stop(5.0), 0);
 }
 

@@ -108,8 +108,11 @@ TEST(SimProcessCommandFilter, ChecksRobotCountValuesAndSequence) {
             CommandVerdict::kBadValue);
   EXPECT_EQ(filter.Check(Command(5, 0, ok), "worm", 0, false, none),
             CommandVerdict::kUnknownRobot);  // channel says another robot
-  // Same state, same seq again: a duplicate.
+  // The accepted command again (a controller answering a re-sent state):
+  // a repeat, not an error. Same numbers with other targets: stale.
   EXPECT_EQ(filter.Check(Command(1, 0, ok), "snake", 0, false, none),
+            CommandVerdict::kRepeat);
+  EXPECT_EQ(filter.Check(Command(1, 0, {0, 0, 0.5}), "snake", 0, false, none),
             CommandVerdict::kStaleSeq);
   EXPECT_EQ(filter.Check(Command(6, 2, ok), "snake", 2, false, none),
             CommandVerdict::kAccepted);
