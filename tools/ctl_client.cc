@@ -46,10 +46,13 @@ class Listener {
     const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
     while (Clock::now() < end) {
       HandleFor(lcm_, 20);
-      for (const Message& m : fresh_) {
-        if (pred(m)) {
-          fresh_.clear();
-          return m;
+      for (size_t i = 0; i < fresh_.size(); ++i) {
+        if (pred(fresh_[i])) {
+          Message found = std::move(fresh_[i]);
+          // What came after it is for the next call (a STEP's end may
+          // arrive with its acknowledgement).
+          fresh_.erase(fresh_.begin(), fresh_.begin() + i + 1);
+          return found;
         }
       }
       fresh_.clear();
@@ -67,7 +70,10 @@ class Listener {
   std::vector<Message> fresh_;
 };
 
-std::string Describe(const sim_status_t& s) {
+// with_error: the simulator's last error, which stays in its status after
+// the request that caused it (shown by `status` and with a refusal, not
+// after a later request that succeeded).
+std::string Describe(const sim_status_t& s, bool with_error = true) {
   const char* mode = s.mode == sim_status_t::PAUSED     ? "paused"
                      : s.mode == sim_status_t::STOPPING ? "stopping"
                                                         : "running";
@@ -78,7 +84,9 @@ std::string Describe(const sim_status_t& s) {
       s.commands_applied, s.commands_rejected, s.messages_malformed,
       s.messages_dropped);
   if (!s.waiting_for.empty()) text += "; waiting for " + s.waiting_for;
-  if (!s.last_error.empty()) text += "; last error: " + s.last_error;
+  if (with_error && !s.last_error.empty()) {
+    text += "; last error: " + s.last_error;
+  }
   return text;
 }
 
@@ -126,9 +134,30 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
         words[0], o.timeout);
     return 1;
   }
-  out << words[0] << ": " << (ack->control_ok ? "done" : "refused") << "\n"
-      << Describe(*ack) << "\n";
-  return ack->control_ok ? 0 : 1;
+  if (!ack->control_ok) {
+    out << words[0] << ": refused\n" << Describe(*ack) << "\n";
+    return 1;
+  }
+  if (request.command == sim_control_t::STEP) {
+    // Acknowledged when taken; done when the periods ran and it paused.
+    const int64_t want = ack->state_seq + request.steps;
+    const auto stepped = status.Next(
+        [&](const sim_status_t& s) {
+          return s.mode == sim_status_t::PAUSED && s.state_seq >= want;
+        },
+        o.timeout);
+    if (!stepped) {
+      out << fmt::format(
+          "step: started; {} periods not done after {:.1f} s (`mrsim-ctl "
+          "status` shows how far it got)\n",
+          request.steps, o.timeout);
+      return 0;
+    }
+    out << "step: done\n" << Describe(*stepped, false) << "\n";
+    return 0;
+  }
+  out << words[0] << ": done\n" << Describe(*ack, false) << "\n";
+  return 0;
 }
 
 int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,

@@ -98,17 +98,15 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
     return std::make_pair(code, p.Output());
   };
 
-  // Paused: ten control periods of 10 ms, then still paused.
+  // Paused: ten control periods of 10 ms, then still paused; mrsim-ctl
+  // says so once they ran.
   const auto [step_code, step_out] = ctl({"step", "10"}, "step");
   ASSERT_EQ(step_code, 0) << step_out << sim.Output();
-  // The answer comes when the request is taken; the periods run after it.
-  std::string status_out;
-  for (int i = 0; i < 20; ++i) {
-    const auto [status_code, out] = ctl({"status"}, "status");
-    ASSERT_EQ(status_code, 0) << out;
-    status_out = out;
-    if (status_out.find("paused") != std::string::npos) break;
-  }
+  EXPECT_NE(step_out.find("step: done"), std::string::npos) << step_out;
+  EXPECT_NEAR(SimTime(step_out), 0.1, 1e-9) << step_out;
+  EXPECT_NE(step_out.find("paused"), std::string::npos) << step_out;
+  const auto [status_code, status_out] = ctl({"status"}, "status");
+  ASSERT_EQ(status_code, 0) << status_out;
   EXPECT_NEAR(SimTime(status_out), 0.1, 1e-9) << status_out;
   // Every mrsim-ctl run is its own sender: nothing counts as lost.
   EXPECT_NE(status_out.find("dropped 0"), std::string::npos) << status_out;
@@ -131,7 +129,16 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
       ctl({"detach", "snake", "snake/lock99"}, "nolock");
   EXPECT_EQ(nolock_code, 1) << nolock_out;
   EXPECT_NE(nolock_out.find("refused"), std::string::npos) << nolock_out;
+  // The sim's whole error, first characters too (they were once read from
+  // freed memory).
+  EXPECT_NE(nolock_out.find("last error: DETACH: "), std::string::npos)
+      << nolock_out;
   EXPECT_NE(nolock_out.find("snake/lock99"), std::string::npos) << nolock_out;
+  // A later request that succeeds does not repeat that old error.
+  const auto [again_code, again_out] =
+      ctl({"attach", "snake", "snake/lock3"}, "again");
+  EXPECT_EQ(again_code, 0) << again_out;
+  EXPECT_EQ(again_out.find("last error"), std::string::npos) << again_out;
 
   const auto [bad_code, bad_out] = ctl({"warp", "9"}, "bad");
   EXPECT_EQ(bad_code, 2);
