@@ -1,5 +1,6 @@
 #include "viewer/frame_scheduler.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,14 @@ int64_t FrameScheduler::FirstIndexAtOrAfter(int64_t utime) const {
   return k;
 }
 
+bool FrameScheduler::Superseded(int64_t older, int64_t newer) const {
+  if (!started_) return false;
+  // The frames still to come that would show `older` are those whose time
+  // is in [older, newer): none, and no frame ever shows it.
+  const int64_t k = std::max(next_index_, FirstIndexAtOrAfter(older));
+  return FrameUtime(k) >= newer;
+}
+
 bool FrameScheduler::Push(int robot, int64_t utime, RobotState state) {
   if (robot < 0 || robot >= static_cast<int>(robots_.size())) return false;
   std::deque<Entry>& h = robots_[robot];
@@ -46,6 +55,7 @@ bool FrameScheduler::Push(int robot, int64_t utime, RobotState state) {
   if (!h.empty() && utime == h.back().utime) {
     h.back().state = std::move(state);  // a resend replaces
   } else {
+    if (!h.empty() && Superseded(h.back().utime, utime)) h.pop_back();
     h.push_back(Entry{utime, std::move(state)});
   }
   while (h.size() > history_) h.pop_front();
@@ -67,6 +77,9 @@ bool FrameScheduler::PushScene(int64_t utime,
   if (!scene_.empty() && utime == scene_.back().utime) {
     scene_.back().objects = std::move(objects);  // a resend replaces
   } else {
+    if (!scene_.empty() && Superseded(scene_.back().utime, utime)) {
+      scene_.pop_back();
+    }
     scene_.push_back(SceneEntry{utime, std::move(objects)});
   }
   while (scene_.size() > history_) scene_.pop_front();

@@ -2,7 +2,10 @@
 // steps of 1/fps: frame k (time k/fps) shows, for every robot, the newest
 // state at or before that time, and is due once any state reaches it. A
 // viewer that joins late starts at the first frame time after its first
-// state; lost states just mean a frame repeats the newest one.
+// state; lost states just mean a frame repeats the newest one. It keeps
+// only states a frame still to come will show (one per frame at most), so
+// a viewer that renders slower than the simulation runs writes every frame
+// with its own state once it catches up, up to `history` frames behind.
 #pragma once
 
 #include <cstdint>
@@ -62,6 +65,9 @@ class FrameScheduler {
     std::vector<SceneObjectState> objects;
   };
   int64_t FirstIndexAtOrAfter(int64_t utime) const;
+  // True when a state at `older` is shown by no frame still to come once
+  // one at `newer` arrived.
+  bool Superseded(int64_t older, int64_t newer) const;
 
   double fps_;
   size_t history_;

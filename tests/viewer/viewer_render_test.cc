@@ -295,6 +295,28 @@ TEST(ViewerFrameScheduler, BusyViewerKeepsTheNewestStatesOnly) {
   EXPECT_EQ(shown.back(), 1000000);
 }
 
+// A recording viewer that renders slower than the simulation runs: the
+// states arrive long before their frames render, yet every frame shows the
+// state of its own time (the demo video once ran ahead, then froze).
+TEST(ViewerFrameScheduler, SlowViewerStillShowsEachFrameItsOwnState) {
+  FrameScheduler scheduler(30.0, 1, 64);  // 64 frames may wait
+  FrameScheduler::Frame frame;
+  // Two seconds of 100 Hz states (200 of them, more than 64) before any
+  // frame renders.
+  for (int64_t u = 0; u <= 2000000; u += 10000) {
+    ASSERT_TRUE(scheduler.Push(0, u, StateAt(u * 1e-6)));
+  }
+  std::vector<int64_t> shown;
+  while (scheduler.NextFrame(&frame)) {
+    // The newest 10 ms state at or before k / 30 s.
+    const int64_t t = scheduler.FrameUtime(frame.index);
+    EXPECT_EQ(frame.key[0], t / 10000 * 10000) << frame.index;
+    shown.push_back(frame.key[0]);
+  }
+  ASSERT_EQ(shown.size(), 61u);  // frames 0..60
+  EXPECT_EQ(shown.back(), 2000000);
+}
+
 TEST(ViewerFrameScheduler, SimulatorResetRestartsTheSchedule) {
   FrameScheduler scheduler(10.0, 1);
   FrameScheduler::Frame frame;

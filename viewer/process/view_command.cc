@@ -23,8 +23,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Listens on its own thread so the socket is always drained while frames
-// render: the scheduler keeps the newest --queue states per robot and drops
-// older ones, instead of LCM dropping the newest while we are busy.
+// render: the scheduler keeps what frames still to render need (up to
+// --queue per robot), instead of LCM dropping states while we are busy.
 class Receiver {
  public:
   Receiver(lcm::LCM* lcm, StateInbox* inbox, std::mutex* mutex)
@@ -177,10 +177,8 @@ int RunView(const ViewOptions& opt, lcm::LCM* lcm, std::FILE* err) {
   StateViewer viewer(scenario, opt.viewer);
   if (window) window->SetCamera(viewer.camera());
 
-  // Only the newest --queue states per robot are kept: a slow viewer drops
-  // old ones and shows the newest.
   FrameScheduler scheduler(opt.fps, viewer.robot_count(),
-                           static_cast<size_t>(opt.queue));
+                           static_cast<size_t>(opt.QueueOrDefault()));
   std::mutex mutex;
   StateInbox inbox(viewer, opt.prefix, &scheduler);
   FramePump::WriterFactory make_writer;

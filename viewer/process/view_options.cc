@@ -105,10 +105,12 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
                  "Stop after this many frames (0: no limit)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--queue", o->queue,
-                 "Newest states kept per robot while frames render; older "
-                 "ones are dropped")
-      ->capture_default_str()
-      ->check(CLI::Range(2, 1000));
+                 "Frames a slow viewer may fall behind the simulation: states "
+                 "kept per robot for frames not rendered yet, one per frame; "
+                 "beyond, the oldest are dropped and their frames show a "
+                 "later state (default: 3600 when writing frames, 8 for a "
+                 "window alone, which shows the newest)")
+      ->check(CLI::Range(2, 1000000));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

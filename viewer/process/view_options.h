@@ -18,8 +18,17 @@ struct ViewOptions {
   double fps = 30.0;
   bool window = false;
   int64_t max_frames = 0;  // 0: until stopped or the log ends
-  int queue = 8;           // newest states kept per robot (older ones drop)
-  ViewerOptions viewer;    // quality.shadow_size defaults to 1024 here
+  // States kept per robot for frames not rendered yet (at most one per
+  // frame); 0: kRecordingQueue when writing frames, kWindowQueue for a
+  // window alone, which should show the newest.
+  int queue = 0;
+  static constexpr int kRecordingQueue = 3600;  // 2 min behind at 30 fps
+  static constexpr int kWindowQueue = 8;
+  int QueueOrDefault() const {
+    if (queue > 0) return queue;
+    return out.empty() && frames_dir.empty() ? kWindowQueue : kRecordingQueue;
+  }
+  ViewerOptions viewer;  // quality.shadow_size defaults to 1024 here
 
   ViewOptions() { viewer.quality.shadow_size = kDefaultShadowSize; }
   // MuJoCo's 4096 shadow map makes software rendering several times slower
