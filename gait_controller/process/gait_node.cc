@@ -318,6 +318,10 @@ void GaitNode::OnSimControl(const sim_control_t& request) {
 void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
   sim_clock_ = status.clock;
+  if (status.mode == sim_status_t::STOPPING && !sim_stopped_) {
+    sim_stopped_ = true;
+    if (options_.exit_with_sim) Log("the simulator stopped (--exit-with-sim)");
+  }
   const auto it = requests_.find({status.control_sender, status.control_seq});
   if (it == requests_.end()) return;
   const sim_control_t request = it->second;

@@ -42,6 +42,9 @@ struct GaitNodeOptions {
   // (0: answer every state). If the simulator sends a skipped state again
   // (lockstep waiting for it), the node answers it and every state after.
   double rate = 100.0;
+  // Stop (done()) once the simulator says it is stopping: a batch run's
+  // controller ends with it.
+  bool exit_with_sim = false;
   GaitControllerOptions controller;
 };
 
@@ -94,6 +97,8 @@ class GaitNode {
   // <prefix>_SIM_CONTROL and <prefix>_SIM_STATUS.
   void OnSimControl(const sim_control_t& request);
   void OnSimStatus(const sim_status_t& status, WallTime now, GaitOutbox* out);
+  // With exit_with_sim: the simulator stopped, so should this node.
+  bool done() const { return options_.exit_with_sim && sim_stopped_; }
   // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
   // checkpoint when the first state comes. Throws std::runtime_error
   // naming the file when it cannot be read.
@@ -138,6 +143,7 @@ class GaitNode {
   double rate_ = 0;  // options_.rate until lockstep shows it must be 0
   int64_t last_skipped_seq_ = -1;
   std::string sim_clock_;  // from the sim's status; empty until heard
+  bool sim_stopped_ = false;
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;

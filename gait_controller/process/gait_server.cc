@@ -105,7 +105,7 @@ void GaitServer::Run(const std::function<bool()>& stop_requested,
   node_.Start(WallClock::now(), &outbox_);
   Flush();
   bool quit = false;
-  while (!quit && !stop_requested() && node_.error().empty()) {
+  while (!quit && !stop_requested() && node_.error().empty() && !node_.done()) {
     const WallTime due = node_.Tick(WallClock::now(), &outbox_);
     Flush();
     const double wait = SecondsBetween(WallClock::now(), due);

@@ -164,6 +164,26 @@ TEST_F(GaitNodeTest, ASkippedStateAPausedRealtimeSimSendsAgainStaysSkipped) {
   }
 }
 
+TEST_F(GaitNodeTest, ExitWithSimEndsTheNodeWhenTheSimulatorStops) {
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.sender = "g";
+  for (bool exit_with_sim : {false, true}) {
+    o.exit_with_sim = exit_with_sim;
+    GaitNode node(
+        o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
+        *FindGaitPreset("forward"), now_);
+    sim_status_t status{};
+    status.clock = "lockstep";
+    status.mode = sim_status_t::RUNNING;
+    node.OnSimStatus(status, now_, &out_);
+    EXPECT_FALSE(node.done());
+    status.mode = sim_status_t::STOPPING;
+    node.OnSimStatus(status, now_, &out_);
+    EXPECT_EQ(node.done(), exit_with_sim);
+  }
+}
+
 TEST_F(GaitNodeTest, ForeignAndMalformedStatesAreCountedNotAnswered) {
   auto node = Make();
   robot_state_t other = State(0, 0);

@@ -84,7 +84,7 @@ TEST(GaitProcess, LockstepOverLcmGivesTheInProcessTrajectory) {
 
   ChildProcess gait(
       {BinaryPath(kGait), "--robot", "snake", "--scenario", scenario, "--gait",
-       "turn-sharp", "--lcm-url", url, "--name", "g"},
+       "turn-sharp", "--lcm-url", url, "--name", "g", "--exit-with-sim"},
       dir + "/gait.log");
   ChildProcess sim({BinaryPath(kSim), scenario, "--lcm-url", url, "--clock",
                     "lockstep", "--controllers", "g", "--duration", "3",
@@ -92,8 +92,10 @@ TEST(GaitProcess, LockstepOverLcmGivesTheInProcessTrajectory) {
                    dir + "/sim.log");
   Pump(lcm, 60, [&] { return !sim.running(); });
   ASSERT_EQ(sim.Wait(5), 0) << sim.Output();
-  Pump(lcm, 0.3);
-  EXPECT_EQ(gait.Stop(5), 0) << gait.Output();
+  // --exit-with-sim: the controller ends with the run, by itself.
+  EXPECT_EQ(gait.Wait(20), 0) << gait.Output();
+  EXPECT_NE(gait.Output().find("the simulator stopped"), std::string::npos)
+      << gait.Output();
   EXPECT_NE(gait.Output().find("answered 301 states"), std::string::npos)
       << gait.Output();
 
