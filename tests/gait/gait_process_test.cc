@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
@@ -247,6 +248,21 @@ TEST(GaitProcess, LuaControllerExampleDrivesTheSimulator) {
   const double moved = rec.states[400].com[0] - rec.states[0].com[0];
   EXPECT_GT(moved, 0.03) << lua.Output();
   EXPECT_LT(std::abs(rec.states[400].com[1] - rec.states[0].com[1]), 0.01);
+}
+
+// Ctrl-C with no simulator sending states: liblcm-lua would wait for a
+// message forever; the example still stops, and says how.
+TEST(GaitProcess, LuaControllerExampleStopsOnCtrlCWithNoSimulator) {
+  const std::string dir = TempDir("gait_process_lua_stop");
+  setenv("MRSIM_LUA_TYPES", (dir + "/lua_types").c_str(), 1);
+  ChildProcess lua({testing::SourcePath("examples/lua_controller/run.sh"),
+                    "--robot", "snake", "--lcm-url", TestLcmUrl(7655)},
+                   dir + "/lua.log");
+  unsetenv("MRSIM_LUA_TYPES");
+  ASSERT_TRUE(lua.WaitForOutput("caterpillar.lua: lua on", 30)) << lua.Output();
+  lua.Signal(SIGINT);
+  EXPECT_EQ(lua.Wait(20), 130) << lua.Output();
+  EXPECT_NE(lua.Output().find("stopped"), std::string::npos) << lua.Output();
 }
 
 // A checkpoint taken while mrsim-gait drives the robot (mid-way through a
