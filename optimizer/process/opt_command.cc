@@ -341,12 +341,14 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   }
   const EvalResult& b = result.best_result;
   fmt::print(out,
-             "best fitness {} (generation {}, individual {}): distance "
+             "best fitness {} in generation {} of {} ("
+             "generation {}, index {} in evaluations.csv): distance "
              "{:.4f} m, speed {:.4f} m/s, energy {:.4g} J, drift {:.4f} m, "
              "fell {:.2f}\nbest genome:{}\nwrote {}/best_gait.xml, "
              "best_scenario.xml, best_genome.xml, replay.launch\n",
-             b.fitness, result.best_generation, result.best_index, b.distance,
-             b.speed, b.energy, b.drift, b.fell, genes, outcome.best_dir);
+             b.fitness, result.best_generation + 1, result.generations_done,
+             result.best_generation, result.best_index, b.distance, b.speed,
+             b.energy, b.drift, b.fell, genes, outcome.best_dir);
   if (const auto* farm = dynamic_cast<const FarmEvaluator*>(&evaluator)) {
     const FarmCounters& n = farm->counters();
     fmt::print(out,
