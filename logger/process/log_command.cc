@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <thread>
@@ -296,12 +297,22 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, lcm::LCM* lcm,
   recorder_options.report = [err](const std::string& text) {
     std::fprintf(err, "mrsim-log: %s\n", text.c_str());
   };
+  const bool out_dir_existed = std::filesystem::exists(opt.out_dir);
   Recorder recorder(registry, recorder_options);
   if (opt.from_log.empty()) {
     if (lcm == nullptr) throw std::logic_error("live logging needs an LCM");
     RunLive(opt, plan.regex, recorder, *lcm, err);
   } else {
-    RunFromLog(opt, plan.regex, recorder, err);
+    try {
+      RunFromLog(opt, plan.regex, recorder, err);
+    } catch (const LogInputError&) {
+      // Bad input writes nothing: not even the folder made for it.
+      std::error_code ec;
+      if (!out_dir_existed && std::filesystem::is_empty(opt.out_dir, ec)) {
+        std::filesystem::remove(opt.out_dir, ec);
+      }
+      throw;
+    }
   }
   // Files that did not fail keep everything, even after another failed.
   try {
