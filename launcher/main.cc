@@ -12,6 +12,7 @@
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
 #include "launcher/program_locator.h"
+#include "launcher/shell_quote.h"
 #include "lcmtypes/runtime/stop_signal.h"
 
 namespace {
@@ -56,7 +57,7 @@ int Launch(const std::string& argv0, const std::string& file,
     for (const auto& [spec, path] : plan) {
       std::cout << spec.name << (spec.required ? " (required)" : "") << ": "
                 << path;
-      for (const auto& a : spec.args) std::cout << " " << a;
+      for (const auto& a : spec.args) std::cout << " " << mrsim::ShellQuote(a);
       std::cout << "\n";
     }
     return 0;

@@ -331,8 +331,8 @@ void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
   try {
     if (request.command == sim_control_t::SAVE_CHECKPOINT) {
       WriteCheckpoint(path, status.sim_time);
-      Log(fmt::format("saved the gait at sim time {} s to {}", status.sim_time,
-                      path));
+      Log(fmt::format("saved the gait at sim time {:.3f} s to {}",
+                      status.sim_time, path));
     } else if (controller_) {
       Restore(request.path);
       PublishStatus(now, out);

@@ -180,9 +180,13 @@ int WritePlots(const std::vector<LogPlotSpec>& plots, const Recorder& recorder,
       status = 2;
       continue;
     }
-    const std::string out = spec.out.front() == '/'
-                                ? spec.out
-                                : recorder.out_dir() + "/" + spec.out;
+    // Lexically normal: "out/csv/../front.png" is printed as "out/front.png".
+    const std::string out =
+        spec.out.front() == '/'
+            ? spec.out
+            : (std::filesystem::path(recorder.out_dir()) / spec.out)
+                  .lexically_normal()
+                  .string();
     try {
       PlotCsvToPng(csv, spec.options, out);
       std::fprintf(err, "mrsim-log: wrote plot %s\n", out.c_str());
