@@ -41,6 +41,8 @@ void WriteOutput(const std::string& text, const std::string& path) {
     return;
   }
   mrsim::WriteFileAtomically(path, text);
+  // Said on stderr, so a script reading stdout is not disturbed.
+  std::cerr << "mrsim-scenario: wrote " << path << "\n";
 }
 
 // "none", "all" (in front of module 0 and after every module), "between"

@@ -132,6 +132,7 @@ TEST(ScenarioTool, NewWritesAChainThatValidates) {
                "--name", "worm", "-o", out},
               dir);
   ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote " + out), std::string::npos) << r.output;
   const Scenario s = ReadScenarioFile(out);
   ASSERT_EQ(s.robots.size(), 1u);
   EXPECT_EQ(s.robots[0].name, "worm");
