@@ -562,7 +562,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::InputText("genome", &genome_path_);
   if (Button("Load genome")) {
     try {
-      genome_ = ReadGenomeFile(genome_path_);
+      genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
       message_.clear();
     } catch (const std::exception& e) {
       message_ = e.what();
@@ -619,7 +619,9 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       if (design.path.empty() || design.dirty) {
         throw std::invalid_argument("save the design first");
       }
-      if (genome_.genes.empty()) genome_ = ReadGenomeFile(genome_path_);
+      if (genome_.genes.empty()) {
+        genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
+      }
       OptimiseOptions o;
       o.scenario_path = design.path;
       o.out_dir = opt_dir_;
@@ -705,7 +707,11 @@ void LivePanel::Draw(float x, float y, float w, float h,
                    ImGuiWindowFlags_NoCollapse);
   DrawRun(design);
   if (!message_.empty()) {
-    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", message_.c_str());
+    // Wrapped: an error names a path and what is wrong, often wider than
+    // the panel.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.5f, 0.4f, 1));
+    ImGui::TextWrapped("%s", message_.c_str());
+    ImGui::PopStyleColor();
   }
   if (Header("Simulator", true)) {
     DrawControls();

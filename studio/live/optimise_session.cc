@@ -290,4 +290,22 @@ std::map<std::string, double> OptimiseSession::BestGenes() const {
   return best ? best->genes : std::map<std::string, double>{};
 }
 
+std::string GenomePathFor(const std::string& genome_path,
+                          const std::string& design_path) {
+  namespace fs = std::filesystem;
+  const fs::path genome(genome_path);
+  std::error_code ec;
+  if (genome.empty() || genome.is_absolute() || fs::exists(genome, ec) ||
+      design_path.empty()) {
+    return genome_path;
+  }
+  const fs::path beside = fs::path(design_path).parent_path() / genome;
+  if (fs::exists(beside, ec)) return beside.string();
+  // The default names its folder (scenarios/...): try the file name too.
+  const fs::path named =
+      fs::path(design_path).parent_path() / genome.filename();
+  if (fs::exists(named, ec)) return named.string();
+  return genome_path;  // the error names what the user typed
+}
+
 }  // namespace mrsim

@@ -120,4 +120,11 @@ class OptimiseSession {
   int pending_replay_ = -1;  // generation (from 0) a jump waits for
 };
 
+// The genome file to read for the path typed in the panel: a relative path
+// that does not exist from the working folder is looked for beside the
+// design (the studio started elsewhere than the repository still finds
+// scenarios/forward_gait.genome.xml next to scenarios/case_study.xml).
+std::string GenomePathFor(const std::string& genome_path,
+                          const std::string& design_path);
+
 }  // namespace mrsim
