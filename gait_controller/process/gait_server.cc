@@ -100,7 +100,9 @@ void GaitServer::OnSimStatus(const lcm::ReceiveBuffer* rbuf,
 
 void GaitServer::Run(const std::function<bool()>& stop_requested,
                      RawKeyboard* keys, std::ostream& log) {
-  const char* eol = keys ? "\r\n" : "\n";
+  // RawKeyboard leaves output processing on: the terminal still turns
+  // '\n' into "\r\n".
+  const char* eol = "\n";
   if (keys) log << "mrsim-gait: " << KeyHelp() << eol;
   node_.Start(WallClock::now(), &outbox_);
   Flush();
