@@ -261,8 +261,16 @@ TEST(GaitProcess, LuaControllerExampleStopsOnCtrlCWithNoSimulator) {
   unsetenv("MRSIM_LUA_TYPES");
   ASSERT_TRUE(lua.WaitForOutput("caterpillar.lua: lua on", 30)) << lua.Output();
   lua.Signal(SIGINT);
-  EXPECT_EQ(lua.Wait(20), 130) << lua.Output();
-  EXPECT_NE(lua.Output().find("stopped"), std::string::npos) << lua.Output();
+  // Usually the interrupt finds it waiting for a message: terminated, 130.
+  // One that lands while Lua code runs ends it cleanly, with its summary.
+  const int code = lua.Wait(20);
+  const std::string out = lua.Output();
+  if (code == 0) {
+    EXPECT_NE(out.find("answered 0 states"), std::string::npos) << out;
+  } else {
+    EXPECT_EQ(code, 130) << out;
+    EXPECT_NE(out.find("stopped"), std::string::npos) << out;
+  }
 }
 
 // A checkpoint taken while mrsim-gait drives the robot (mid-way through a
