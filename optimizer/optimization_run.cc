@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/atomic_file.h"
 #include "common/hash.h"
@@ -149,6 +150,11 @@ RunResult RunOptimization(const GenomeSpec& spec,
                           BatchEvaluator& evaluator,
                           const RunOptions& options) {
   using Clock = std::chrono::steady_clock;
+  if (options.stop_after == 0) {
+    // Nothing run has no best to write.
+    throw std::invalid_argument(
+        "stop after generation 0: generations are counted from 1");
+  }
   std::unique_ptr<Algorithm> algorithm = MakeAlgorithm(spec, settings);
   const int planned = options.stop_after >= 0
                           ? std::min(options.stop_after, options.generations)

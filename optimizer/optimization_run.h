@@ -31,8 +31,9 @@ struct GenerationReport {
 
 struct RunOptions {
   int generations = 10;
-  // Stop after this many generations (--jump-to); < 0: all. When the
-  // checkpoint already holds more, nothing in out_dir is rewritten.
+  // Stop after this many generations (--jump-to); < 0: all; 0 is refused
+  // (std::invalid_argument). When the checkpoint already holds more,
+  // nothing in out_dir is rewritten.
   int stop_after = -1;
   // Output directory for checkpoint.txt, generations.csv, evaluations.csv;
   // empty: no files and no resume.

@@ -182,8 +182,9 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "Farm: payload bytes per chunk (1..60000)")
       ->capture_default_str();
   app.add_option("--jump-to", c.jump_to,
-                 "Stop after generation N (replayed from the checkpoint "
-                 "when it has them)");
+                 "Stop after generation N, 1..--generations (replayed from "
+                 "the checkpoint when it has them)")
+      ->check(CLI::Range(1, 100000000));
   app.add_flag("--replay", c.replay,
                "Afterwards show the best in mrsim-sim + mrsim-gait + "
                "mrsim-view (via mrsim launch)");
@@ -198,6 +199,12 @@ OptSetup PrepareOpt(const OptCommand& c) {
     a.include_start = !c.no_start;
     a.Validate();
     if (c.generations < 1) throw OptInputError("--generations must be >= 1");
+    if (c.jump_to > c.generations) {
+      throw OptInputError("--jump-to " + std::to_string(c.jump_to) +
+                          ": beyond the run's --generations " +
+                          std::to_string(c.generations) +
+                          " (raise --generations to run further)");
+    }
     if (!c.farm) {
       if (c.workers.rfind("local:", 0) != 0) {
         throw OptInputError("--workers: expected local:K, got '" + c.workers +

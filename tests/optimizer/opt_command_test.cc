@@ -88,6 +88,15 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
       message({"--algorithm", "cmaes", "--population", "1"}).find("CMA-ES"),
       std::string::npos);
   EXPECT_NE(message({"--algorithm", "nope"}).find("nope"), std::string::npos);
+  // --jump-to counts from 1 and stays within the run (0 once crashed).
+  EXPECT_NE(message({"--generations", "3", "--jump-to", "4"})
+                .find("--jump-to 4: beyond the run's --generations 3"),
+            std::string::npos);
+  for (const char* bad : {"0", "-3"}) {
+    EXPECT_THROW(Parse(With(SnakeArgs(out), {"--jump-to", bad})),
+                 CLI::ValidationError)
+        << bad;
+  }
   const std::string bad_genome = out + "/bad.genome.xml";
   std::ofstream(bad_genome)
       << "<genome><gene name=\"T\" lower=\"1\"/></genome>";

@@ -96,6 +96,10 @@ TEST(OptimizerRun, JumpToReplaysWithoutTouchingTheFiles) {
   EXPECT_FALSE(jump.wrote_files);
   EXPECT_LE(jump.best_generation, 2);
   EXPECT_EQ(before, ReadAll(options.out_dir + "/evaluations.csv"));
+  // Generation 0 is no generation (it once crashed writing a best).
+  options.stop_after = 0;
+  EXPECT_THROW(RunOptimization(spec, settings, none, options),
+               std::invalid_argument);
 }
 
 }  // namespace
