@@ -348,9 +348,12 @@ void GaitNode::Resume(const std::string& checkpoint) {
   const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
   std::ifstream in(path);
   if (!in) {
-    throw std::runtime_error("--resume: cannot read " + path +
-                             " (mrsim-gait writes it when the simulator "
-                             "saves that checkpoint)");
+    throw std::runtime_error(
+        "--resume: cannot read " + path +
+        " (mrsim-gait writes it when the simulator saves that checkpoint on "
+        "request, e.g. mrsim-ctl save; --checkpoint-on-exit saves the "
+        "simulator only: start mrsim-gait without --resume and the gait "
+        "starts from rest)");
   }
   resume_path_ = checkpoint;
 }
