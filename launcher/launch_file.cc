@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <set>
 
 namespace mrsim {
@@ -53,11 +54,32 @@ bool ParseBool(const char* text, bool fallback, const std::string& where,
                     ": expected true or false, got '" + s + "'");
 }
 
+// A misspelled attribute would otherwise be ignored without a word
+// (requried="true" left a process optional).
+void CheckAttributes(const tinyxml2::XMLElement* e,
+                     std::initializer_list<const char*> allowed,
+                     const std::string& where) {
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr;
+       a = a->Next()) {
+    bool known = false;
+    std::string list;
+    for (const char* name : allowed) {
+      known = known || std::string(a->Name()) == name;
+      list += (list.empty() ? "" : ", ") + std::string(name);
+    }
+    if (!known) {
+      throw LaunchError(where + "unknown attribute '" + a->Name() + "' on <" +
+                        e->Name() + ">: expected " + list);
+    }
+  }
+}
+
 // <hub port="7667"/>: LCM's TCP hub, for networks without multicast;
 // clients then use tcpq://HOST:PORT as their LCM URL.
 ProcessSpec HubProcess(const tinyxml2::XMLElement* e,
                        const std::map<std::string, std::string>& vars,
                        const std::string& where) {
+  CheckAttributes(e, {"name", "port", "jar", "enabled"}, where);
   ProcessSpec spec;
   spec.line = e->GetLineNum();
   spec.name = e->Attribute("name") ? e->Attribute("name") : "hub";
@@ -130,6 +152,7 @@ LaunchFile ReadLaunchFile(const std::string& path,
                       "expected a <launch> root element");
   }
 
+  CheckAttributes(root, {"name"}, Where(path, root->GetLineNum()));
   LaunchFile file;
   file.path = path;
   file.name = root->Attribute("name") ? root->Attribute("name")
@@ -142,6 +165,7 @@ LaunchFile ReadLaunchFile(const std::string& path,
   for (const auto* e = root->FirstChildElement("arg"); e != nullptr;
        e = e->NextSiblingElement("arg")) {
     const std::string where = Where(path, e->GetLineNum());
+    CheckAttributes(e, {"name", "default", "env"}, where);
     const char* name = e->Attribute("name");
     if (name == nullptr || *name == '\0') {
       throw LaunchError(where + "<arg> needs a name attribute");
@@ -190,6 +214,8 @@ LaunchFile ReadLaunchFile(const std::string& path,
       throw LaunchError(where + "unexpected <" + tag +
                         ">: expected <arg>, <hub> or <process>");
     }
+    CheckAttributes(
+        e, {"name", "program", "args", "required", "enabled", "delay"}, where);
     ProcessSpec spec;
     spec.line = e->GetLineNum();
     const char* name = e->Attribute("name");

@@ -149,6 +149,23 @@ TEST(LaunchFile, ErrorsNameFileLineAndProblem) {
   const std::string ok = WriteFile(
       "e.launch", R"(<launch><process name="a" program="true"/></launch>)");
   EXPECT_THROW(ReadLaunchFile(ok, {{"undeclared", "1"}}), LaunchError);
+  // A misspelled attribute is an error, not silently ignored.
+  for (const auto& [name, text] :
+       std::vector<std::pair<std::string, std::string>>{
+           {"f.launch",
+            "<launch>\n<process name=\"a\" program=\"true\" "
+            "requried=\"true\"/>\n</launch>"},
+           {"g.launch",
+            "<launch>\n<arg name=\"d\" defualt=\"1\"/>\n</launch>"}}) {
+    try {
+      ReadLaunchFile(WriteFile(name, text), {});
+      ADD_FAILURE() << name << ": no error";
+    } catch (const LaunchError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(name + ":2: unknown attribute"), std::string::npos)
+          << what;
+    }
+  }
 }
 
 TEST(LaunchFile, SplitArgsHonoursQuotes) {
