@@ -31,6 +31,13 @@ using tinyxml2::XMLElement;
 
 // Element and attribute names without a namespace prefix ("xsi:nil" ->
 // "nil"): readers ignore namespaces.
+// No frame attribute, and the namespaces .NET's XmlSerializer writes: a
+// file of the original MRSim (mrsim itself always writes frame=).
+bool RootLooksOriginal(const tinyxml2::XMLElement* root) {
+  return root->Attribute("frame") == nullptr &&
+         root->Attribute("xmlns:xsi") != nullptr;
+}
+
 std::string LocalName(const char* name) {
   const char* colon = std::strrchr(name, ':');
   return colon ? std::string(colon + 1) : std::string(name);
@@ -580,6 +587,17 @@ Scenario Reader::Read(const std::string& xml) {
                "'");
     }
   }
+  if (!said && !options_.frame && RootLooksOriginal(root)) {
+    // What the original MRSim (Unity, .NET's XmlSerializer) wrote: read as
+    // native it would be a robot ten or a hundred times too big, lying on
+    // its side, and validate fine.
+    Fail(root, kRoot + "/@frame",
+         "no frame attribute, and the .NET namespaces of a file the original "
+         "MRSim wrote (Unity's Y-up frame, usually centimetres): convert it "
+         "with `mrsim-scenario convert --from unity-y-up FILE NATIVE.xml "
+         "--scale 0.01`, or add frame=\"z-up\" to <Scenario> if it is "
+         "already Z-up in metres");
+  }
   if (said && options_.frame && *said != *options_.frame) {
     Fail(root, kRoot + "/@frame",
          fmt::format("the file says frame=\"{}\" but it was read as {}",
@@ -685,6 +703,14 @@ Scenario ReadScenarioString(const std::string& xml, const std::string& name,
                             const std::string& base_dir,
                             const ScenarioReadOptions& options) {
   return Reader(name, base_dir, options).Read(xml);
+}
+
+bool IsOriginalMrsimFile(const std::string& path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return false;
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  return root != nullptr && LocalName(root->Name()) == "Scenario" &&
+         RootLooksOriginal(root);
 }
 
 Scenario ReadScenarioFile(const std::string& path,

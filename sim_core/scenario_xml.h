@@ -25,6 +25,14 @@ struct ScenarioReadOptions {
   double length_scale = 1.0;
 };
 
+// What the original MRSim wrote (its .NET namespaces and no frame
+// attribute): Unity's Y-up frame in centimetres, read with
+// kOriginalMrsimReadOptions. Reading one without options is an error
+// saying so. False for a file that does not parse.
+bool IsOriginalMrsimFile(const std::string& path);
+inline const ScenarioReadOptions kOriginalMrsimReadOptions{
+    FrameConvention::kUnityYUp, 0.01};
+
 // Reads and validates a file; relative mesh/image paths resolve against the
 // file's directory. Throws ScenarioError ("file:line: path: what"); nothing
 // half-loads.

@@ -97,7 +97,19 @@ Design::Design() : scenario_(EmptyScenario()) {
 Design Design::Open(const std::string& path) {
   Design design;
   design.path_ = path;
-  if (std::filesystem::exists(path)) {
+  if (std::filesystem::exists(path) && IsOriginalMrsimFile(path)) {
+    // The original's own file: converted on open, saved beside it in the
+    // native frame, so the original stays as it was.
+    design.scenario_ = ReadScenarioFile(path, kOriginalMrsimReadOptions);
+    const std::filesystem::path p(path);
+    design.path_ =
+        (p.parent_path() / (p.stem().string() + ".native.xml")).string();
+    design.dirty_ = true;  // saved_text_ stays empty: nothing native yet
+    design.note_ =
+        "an original MRSim file (Unity, cm), converted: Save "
+        "writes " +
+        std::filesystem::path(design.path_).filename().string();
+  } else if (std::filesystem::exists(path)) {
     design.scenario_ = ReadScenarioFile(path);
     design.saved_text_ = WriteScenarioString(design.scenario_);
   } else {

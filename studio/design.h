@@ -54,6 +54,9 @@ class Design {
   const std::string& path() const { return path_; }
   // Unsaved changes since the last open or save.
   bool dirty() const { return dirty_; }
+  // What opening did that the user should know (an original MRSim file
+  // converted, and where it saves); empty otherwise.
+  const std::string& note() const { return note_; }
   // Grows by one on every change of the scenario (the preview rebuilds).
   long revision() const { return revision_; }
 
@@ -125,6 +128,7 @@ class Design {
   Selection selection_;
   std::string path_;
   std::string saved_text_;
+  std::string note_;
   bool dirty_ = false;
   long revision_ = 0;
   std::vector<Snapshot> undo_;

@@ -90,6 +90,7 @@ StudioApp::StudioApp(Design design, const AppOptions& options)
   PreferOneSoftwareRenderThread();
   template_.chain.modules = 5;
   template_.chain.pattern = ChainPattern::kPitchYaw;
+  message_ = design_.note();
   if (!design_.path().empty() && std::filesystem::exists(design_.path())) {
     recent_.Add(design_.path());
   }
@@ -334,7 +335,7 @@ void StudioApp::OpenFile(const std::string& path) {
     design_ = Design::Open(path);
     built_revision_ = -1;
     recent_.Add(path);
-    message_.clear();
+    message_ = design_.note();
     preview_->Reframe();
   } catch (const std::exception& e) {
     message_ = e.what();
@@ -671,8 +672,11 @@ void StudioApp::DrawStatus(float x, float y, float w) {
   if (!build_error_.empty()) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "preview: %s",
                        build_error_.c_str());
+    // One line is often too short for an error naming a file and field.
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", build_error_.c_str());
   } else if (!message_.empty()) {
     ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", message_.c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", message_.c_str());
   } else {
     ImGui::TextDisabled(
         "drag: orbit  right-drag: pan  wheel: zoom  "

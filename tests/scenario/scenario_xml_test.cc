@@ -31,7 +31,7 @@ const char* const kExamples[] = {"snake11.xml", "case_study.xml",
 
 // A small valid file using every kind of robot part; tests break one thing.
 const char kTemplate[] = R"(<?xml version="1.0" encoding="utf-8"?>
-<Scenario xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns:xsd="http://www.w3.org/2001/XMLSchema">
+<Scenario xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns:xsd="http://www.w3.org/2001/XMLSchema" frame="z-up">
   <robot>
     <name>r</name>
     <modules xmlns="Assembly">
@@ -331,7 +331,7 @@ TEST(ScenarioXml, WrongRootOrFrameAttributeIsRejected) {
               StartsWith("t.xml:2: Scene: expected the root element "
                          "<Scenario>"));
   const std::string xml =
-      Replace(kTemplate, "<Scenario ", "<Scenario frame=\"y-up\" ");
+      Replace(kTemplate, "frame=\"z-up\"", "frame=\"y-up\"");
   EXPECT_THAT(ErrorOf(xml), StartsWith("t.xml:2: Scenario/@frame: expected "
                                        "frame=\"z-up\" or "
                                        "frame=\"unity-y-up\""));
@@ -663,7 +663,7 @@ TEST(ScenarioXml, MissingFileNamesThePath) {
 // template's frame f0 with a pose.
 std::string UnityTemplate(const std::string& pose) {
   std::string xml =
-      Replace(kTemplate, "<Scenario ", "<Scenario frame=\"unity-y-up\" ");
+      Replace(kTemplate, "frame=\"z-up\"", "frame=\"unity-y-up\"");
   return Replace(xml, "<Frame><guid>f0</guid>",
                  "<Frame><guid>f0</guid>" + pose);
 }
@@ -748,6 +748,24 @@ Scenario ReadOriginal() {
   options.frame = FrameConvention::kUnityYUp;
   options.length_scale = 0.01;
   return ReadScenarioFile(SourcePath("scenarios/mrsim_original.xml"), options);
+}
+
+// Read as native, an original file validated fine and was a robot a
+// hundred times too big on its side; now it is refused with the way out.
+TEST(ScenarioOriginal, ReadWithoutConvertingIsRefusedSayingHow) {
+  const std::string path = SourcePath("scenarios/mrsim_original.xml");
+  EXPECT_TRUE(IsOriginalMrsimFile(path));
+  EXPECT_FALSE(IsOriginalMrsimFile(SourcePath("scenarios/case_study.xml")));
+  try {
+    ReadScenarioFile(path);
+    ADD_FAILURE() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("mrsim_original.xml:2: Scenario/@frame"));
+    EXPECT_THAT(e.what(), HasSubstr("convert --from unity-y-up"));
+  }
+  const Scenario s = ReadScenarioFile(path, kOriginalMrsimReadOptions);
+  const Scenario same = ReadOriginal();
+  EXPECT_EQ(WriteScenarioString(s), WriteScenarioString(same));
 }
 
 bool Near(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

@@ -375,8 +375,18 @@ TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
       continue;
     }
     Design d = Design::Open(path);
-    EXPECT_FALSE(d.dirty()) << path;
     EXPECT_FALSE(d.scenario().robots.empty()) << path;
+    if (IsOriginalMrsimFile(path)) {
+      // Converted on open; saving writes a native file beside it.
+      EXPECT_TRUE(d.dirty()) << path;
+      EXPECT_NE(d.path().find(".native.xml"), std::string::npos) << d.path();
+      EXPECT_NE(d.note().find("original MRSim"), std::string::npos) << d.note();
+      // Metres: the original's 10 cm frames are 0.1 m, not 10 m.
+      EXPECT_LT(d.scenario().robots[0].modules[0].frames[0].scale.x(), 1.0);
+    } else {
+      EXPECT_FALSE(d.dirty()) << path;
+      EXPECT_TRUE(d.note().empty()) << path;
+    }
   }
 }
 
