@@ -48,7 +48,13 @@ int Launch(const std::string& argv0, const std::string& file,
   std::vector<std::pair<mrsim::ProcessSpec, std::string>> plan;
   for (const auto& p : launch.processes) {
     if (!p.enabled) continue;
-    plan.emplace_back(p, mrsim::FindProgram(p.program, search));
+    try {
+      plan.emplace_back(p, mrsim::FindProgram(p.program, search));
+    } catch (const std::runtime_error& e) {
+      // A typo in the file: bad input, named where it is.
+      throw mrsim::LaunchError(file + ":" + std::to_string(p.line) +
+                               ": process '" + p.name + "': " + e.what());
+    }
   }
   if (plan.empty())
     throw mrsim::LaunchError(file + ": every process is left out");

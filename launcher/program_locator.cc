@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -26,7 +27,15 @@ std::vector<std::string> ProgramSearchPath(const std::string& argv0) {
       if (!dir.empty()) dirs.push_back(dir);
     }
   }
-  return dirs;
+  // Once each (build/bin is often both beside us and on PATH), in order.
+  std::vector<std::string> unique;
+  for (const std::string& d : dirs) {
+    const std::string normal = fs::path(d).lexically_normal().string();
+    if (std::find(unique.begin(), unique.end(), normal) == unique.end()) {
+      unique.push_back(normal);
+    }
+  }
+  return unique;
 }
 
 std::string FindProgram(const std::string& program,

@@ -119,8 +119,15 @@ TEST(Launcher, UnknownProgramStartsNothingAndExitsTwo) {
 </launch>)");
   ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
                      dir + "/out.txt");
-  EXPECT_NE(mrsim.Wait(30), 0);
-  EXPECT_NE(mrsim.Output().find("mrsim-no-such-program"), std::string::npos);
+  EXPECT_EQ(mrsim.Wait(30), 2);
+  // Named where the file says it, each folder looked in once.
+  const std::string out = mrsim.Output();
+  EXPECT_NE(out.find("test.launch:3: process 'b': cannot find program "
+                     "'mrsim-no-such-program'"),
+            std::string::npos)
+      << out;
+  const std::string bin = "\n  " + BinaryPath("bin") + "\n";
+  EXPECT_EQ(out.find(bin), out.rfind(bin)) << out;
   EXPECT_FALSE(std::ifstream(dir + "/started").good());
 }
 
