@@ -31,6 +31,25 @@ using tinyxml2::XMLElement;
 
 // Element and attribute names without a namespace prefix ("xsi:nil" ->
 // "nil"): readers ignore namespaces.
+// tinyxml2's own text ("Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14
+// (0xe) ...") in words, for the errors a hand edit makes.
+std::string XmlErrorText(const tinyxml2::XMLDocument& doc) {
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      return "an element is closed by another name, or not closed";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return "an element is cut short or not closed";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      return "a malformed or repeated attribute";
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      return "text that is not XML (a stray '<' or '&'?)";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+      return "the file is empty";
+    default:
+      return doc.ErrorStr() ? doc.ErrorStr() : doc.ErrorName();
+  }
+}
+
 // No frame attribute, and the namespaces .NET's XmlSerializer writes: a
 // file of the original MRSim (mrsim itself always writes frame=).
 bool RootLooksOriginal(const tinyxml2::XMLElement* root) {
@@ -560,9 +579,8 @@ Scenario Reader::Read(const std::string& xml) {
   const std::string& file = source_.file;
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : doc.ErrorName();
     throw ScenarioError(fmt::format("{}:{}: Scenario: malformed XML: {}", file,
-                                    doc.ErrorLineNum(), detail));
+                                    doc.ErrorLineNum(), XmlErrorText(doc)));
   }
   const XMLElement* root = doc.RootElement();
   if (!root) {

@@ -323,6 +323,8 @@ TEST(ScenarioXml, MalformedXmlNamesTheLine) {
   const std::string xml = Replace(kTemplate, "</joint>", "</jont>");
   EXPECT_THAT(ErrorOf(xml), StartsWith(At(xml, "</jont>") + "Scenario: "
                                                             "malformed XML"));
+  // In words, not tinyxml2's error enum.
+  EXPECT_THAT(ErrorOf(xml), HasSubstr("closed by another name"));
   EXPECT_THAT(ErrorOf("<Scenario><robot>"), HasSubstr("malformed XML"));
 }
 
