@@ -169,7 +169,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "local:K (K threads; 0 = one per core)")
       ->capture_default_str();
   app.add_flag("--farm", c.farm, "Evaluate on mrsim-worker processes over LCM");
-  app.add_option("--lcm-url", c.lcm_url, "LCM URL for --farm");
+  app.add_option("--lcm-url", c.lcm_url,
+                 "LCM URL of the farm (--farm) and of the --replay");
   app.add_option("--prefix", c.prefix, "Farm channel prefix")
       ->capture_default_str();
   app.add_option("--job-timeout", c.job_timeout,
