@@ -29,8 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-// Element and attribute names without a namespace prefix ("xsi:nil" ->
-// "nil"): readers ignore namespaces.
 // tinyxml2's own text ("Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14
 // (0xe) ...") in words, for the errors a hand edit makes.
 std::string XmlErrorText(const tinyxml2::XMLDocument& doc) {
@@ -57,6 +55,8 @@ bool RootLooksOriginal(const tinyxml2::XMLElement* root) {
          root->Attribute("xmlns:xsi") != nullptr;
 }
 
+// Element and attribute names without a namespace prefix ("xsi:nil" ->
+// "nil"): readers ignore namespaces.
 std::string LocalName(const char* name) {
   const char* colon = std::strrchr(name, ':');
   return colon ? std::string(colon + 1) : std::string(name);

@@ -97,7 +97,8 @@ Design::Design() : scenario_(EmptyScenario()) {
 Design Design::Open(const std::string& path) {
   Design design;
   design.path_ = path;
-  if (std::filesystem::exists(path) && IsOriginalMrsimFile(path)) {
+  const bool exists = std::filesystem::exists(path);
+  if (exists && IsOriginalMrsimFile(path)) {
     // The original's own file: converted on open, saved beside it in the
     // native frame, so the original stays as it was.
     design.scenario_ = ReadScenarioFile(path, kOriginalMrsimReadOptions);
@@ -109,7 +110,7 @@ Design Design::Open(const std::string& path) {
         "an original MRSim file (Unity, cm), converted: Save "
         "writes " +
         std::filesystem::path(design.path_).filename().string();
-  } else if (std::filesystem::exists(path)) {
+  } else if (exists) {
     design.scenario_ = ReadScenarioFile(path);
     design.saved_text_ = WriteScenarioString(design.scenario_);
   } else {

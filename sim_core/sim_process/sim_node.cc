@@ -149,11 +149,7 @@ WallTime SimNode::Tick(WallTime now, SimOutbox* out) {
 WallTime SimNode::CheckLockstepWait(WallTime now, SimOutbox* out) {
   WallTime republish = AfterSeconds(last_republish_, kRepublishInterval);
   if (now >= republish) {
-    // Every state still awaited, oldest first (pipelined: two of them).
-    for (const Published& p : recent_) {
-      for (const auto& [channel, msg] : p.messages) out->Add(channel, msg);
-      ++states_resent_;
-    }
+    ResendAwaitedStates(out);
     last_republish_ = now;
     republish = AfterSeconds(now, kRepublishInterval);
   }
@@ -232,13 +228,18 @@ void SimNode::RunPeriod(WallTime now, SimOutbox* out) {
   PublishStates(now, out);
 }
 
+void SimNode::ResendAwaitedStates(SimOutbox* out) {
+  // Every state still awaited, oldest first (pipelined: two of them).
+  for (const Published& p : recent_) {
+    for (const auto& [channel, msg] : p.messages) out->Add(channel, msg);
+    ++states_resent_;
+  }
+}
+
 void SimNode::ResendNewestStates(SimOutbox* out) {
   if (!options_.publish_state || state_seq_ < 0) return;
   if (lockstep()) {
-    for (const Published& p : recent_) {
-      for (const auto& [channel, msg] : p.messages) out->Add(channel, msg);
-      ++states_resent_;
-    }
+    ResendAwaitedStates(out);
     return;
   }
   // Realtime and fast keep no copy of what they sent (one per period would

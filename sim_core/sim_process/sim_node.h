@@ -110,6 +110,8 @@ class SimNode {
   // Paused, with each status: what a viewer that joined late, or lost the
   // state that ended a STEP, needs (lockstep: the states still awaited).
   void ResendNewestStates(SimOutbox* out);
+  // Lockstep: the states whose answers are still awaited, again.
+  void ResendAwaitedStates(SimOutbox* out);
   void PublishStatus(WallTime now, SimOutbox* out);
   void Restarted(WallTime now, SimOutbox* out);
   void Reanchor(WallTime now);

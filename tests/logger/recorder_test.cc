@@ -23,6 +23,11 @@ std::vector<uint8_t> Encode(const robot_state_t& msg) {
   return buf;
 }
 
+void Send(Recorder& rec, const std::string& channel, const robot_state_t& msg) {
+  const auto b = Encode(msg);
+  rec.OnMessage(channel, b.data(), b.size());
+}
+
 struct Capture {
   std::vector<std::string> lines;
   RecorderOptions Options(const std::string& dir) {
@@ -111,8 +116,7 @@ TEST(LoggerRecorder, ResentMessagesAreWrittenOnceAndNotToldAsJumpsBack) {
   {
     Recorder rec(registry, cap.Options(dir));
     for (int64_t seq : {0, 0, 0, 1, 2, 1, 2, 3, 2, 3, 4}) {
-      const auto b = Encode(testing::KnownRobotState(seq, 3, 1));
-      rec.OnMessage("MRSIM_STATE_a", b.data(), b.size());
+      Send(rec, "MRSIM_STATE_a", testing::KnownRobotState(seq, 3, 1));
     }
     rec.Flush();
     const auto stats = rec.Stats();
@@ -143,14 +147,12 @@ TEST(LoggerRecorder, ARestartedPublishersRowsAreWrittenAndTold) {
   Capture cap;
   Recorder rec(registry, cap.Options(dir));
   for (int64_t seq : {0, 1, 2}) {
-    const auto b = Encode(testing::KnownRobotState(seq, 3, 1));
-    rec.OnMessage("S", b.data(), b.size());
+    Send(rec, "S", testing::KnownRobotState(seq, 3, 1));
   }
   for (int64_t seq : {0, 1}) {
     robot_state_t m = testing::KnownRobotState(seq, 3, 1);
     m.joints[0].angle += 0.5;  // the new run moved differently
-    const auto b = Encode(m);
-    rec.OnMessage("S", b.data(), b.size());
+    Send(rec, "S", m);
   }
   rec.Flush();
   const auto stats = rec.Stats();
