@@ -733,10 +733,14 @@ bool IsOriginalMrsimFile(const std::string& path) {
 
 Scenario ReadScenarioFile(const std::string& path,
                           const ScenarioReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
   std::error_code ec;
-  if (!in || fs::is_directory(path, ec)) {
-    throw ScenarioError(path + ":0: Scenario: cannot open the file (" +
+  if (fs::is_directory(path, ec)) {
+    throw ScenarioError(path + ": is a folder, not a scenario file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    // No line: there is no file to point into.
+    throw ScenarioError(path + ": cannot open the file (" +
                         std::strerror(errno) + ")");
   }
   std::ostringstream bytes;

@@ -656,8 +656,17 @@ TEST(ScenarioXml, MissingFileNamesThePath) {
     ReadScenarioFile("/nonexistent/dir/s.xml");
     FAIL() << "loaded a missing file";
   } catch (const ScenarioError& e) {
-    EXPECT_THAT(e.what(), StartsWith("/nonexistent/dir/s.xml:0: Scenario: "
-                                     "cannot open"));
+    EXPECT_THAT(e.what(), StartsWith("/nonexistent/dir/s.xml: cannot open "
+                                     "the file (No such file"));
+  }
+}
+
+TEST(ScenarioXml, AFolderGivenAsTheFileIsNamedAsOne) {
+  try {
+    ReadScenarioFile(::testing::TempDir());
+    FAIL() << "loaded a folder";
+  } catch (const ScenarioError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is a folder, not a scenario file"));
   }
 }
 

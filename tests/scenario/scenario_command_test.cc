@@ -1,0 +1,85 @@
+// mrsim-scenario's work in process: each subcommand's flags and what it
+// writes (scenario_tool_test.cc runs the real program).
+#include "sim_core/scenario_tool/scenario_command.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim_core/scenario_xml.h"
+
+namespace mrsim {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The command the given arguments (after the program name) make.
+ScenarioCommand Parse(std::vector<std::string> args) {
+  CLI::App app;
+  ScenarioCommand command;
+  AddScenarioFlags(app, command);
+  args.insert(args.begin(), "mrsim-scenario");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  return command;
+}
+
+std::string ErrorOf(const ScenarioCommand& command) {
+  std::ostringstream out, info;
+  try {
+    RunScenarioCommand(command, out, info);
+  } catch (const ScenarioInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioCommand, NewWritesTheChainItsFlagsDescribe) {
+  const ScenarioCommand command =
+      Parse({"new", "--modules", "4", "--pattern", "yaw", "--sensors=-1,2",
+             "--name", "worm"});
+  EXPECT_EQ(command.action, ScenarioAction::kNew);
+  std::ostringstream out, info;
+  RunScenarioCommand(command, out, info);
+  const Scenario s = ReadScenarioString(out.str(), "out", ".");
+  ASSERT_EQ(s.robots.size(), 1u);
+  EXPECT_EQ(s.robots[0].name, "worm");
+  EXPECT_EQ(s.robots[0].modules.size(), 4u);
+  EXPECT_EQ(s.robots[0].sensor_modules.size(), 2u);
+  EXPECT_EQ(info.str(), "");  // stdout only: nothing said about a file
+}
+
+TEST(ScenarioCommand, EachSubcommandSetsItsAction) {
+  EXPECT_EQ(Parse({"validate", "a.xml"}).action, ScenarioAction::kValidate);
+  EXPECT_EQ(Parse({"info", "a.xml"}).action, ScenarioAction::kInfo);
+  EXPECT_EQ(Parse({"schema"}).action, ScenarioAction::kSchema);
+  EXPECT_EQ(Parse({"export-mjcf", "a.xml"}).action, ScenarioAction::kExport);
+  const ScenarioCommand convert =
+      Parse({"convert", "in.xml", "out.xml", "--scale", "0.01"});
+  EXPECT_EQ(convert.action, ScenarioAction::kConvert);
+  EXPECT_EQ(convert.file, "in.xml");
+  EXPECT_EQ(convert.out_path, "out.xml");
+  EXPECT_DOUBLE_EQ(convert.scale, 0.01);
+}
+
+TEST(ScenarioCommand, BadInputNamesTheFlagOrFile) {
+  ScenarioCommand sensors = Parse({"new", "--sensors", "front"});
+  EXPECT_THAT(ErrorOf(sensors), HasSubstr("--sensors: expected none, all, "
+                                          "between or a comma list"));
+  ScenarioCommand scale =
+      Parse({"convert", "in.xml", "out.xml", "--scale", "0"});
+  EXPECT_THAT(ErrorOf(scale), HasSubstr("--scale: expected a positive"));
+  ScenarioCommand missing = Parse({"validate", "/nonexistent/s.xml"});
+  EXPECT_THAT(ErrorOf(missing),
+              HasSubstr("/nonexistent/s.xml: cannot open the file"));
+  ScenarioCommand modules = Parse({"new", "--modules", "0"});
+  EXPECT_THAT(ErrorOf(modules), HasSubstr("modules"));
+}
+
+}  // namespace
+}  // namespace mrsim
