@@ -44,7 +44,8 @@ ChainOptions ChainOptionsOf(const Robot& robot) {
   for (const SensorModule& sm : robot.sensor_modules) {
     o.force_sensors = o.force_sensors || sm.force_sensor.has_value();
     o.front_distance_sensor =
-        o.front_distance_sensor || !sm.distance_sensors.empty();
+        o.front_distance_sensor ||
+        (sm.left_mod_nr == -1 && !sm.distance_sensors.empty());
     o.sensor_after.push_back(sm.left_mod_nr);
   }
   const double lift = o.force_sensors ? ForceSensor().size.z() : 0.0;
@@ -127,6 +128,11 @@ Scenario ApplyBodyGenes(const Scenario& scenario, const GenomeSpec& spec,
       if (seen.insert(a).second) kept.push_back(a);
     }
     o.sensor_after = kept;
+    // A forward ray looks out only from a sensor module in front of module
+    // 0: behind a module it would read 0, so the rebuilt robot has none.
+    if (std::find(kept.begin(), kept.end(), -1) == kept.end()) {
+      o.front_distance_sensor = false;
+    }
     robot = MakeChain(o);
   }
   double value = 0;

@@ -82,6 +82,21 @@ Robot MakeChain(const ChainOptions& options) {
     }
   }
 
+  // The ray starts on the front face: behind a module it would start
+  // inside that module and read about 0 (the validator refuses it too).
+  if (options.front_distance_sensor && !sensors.count(-1)) {
+    throw std::invalid_argument(
+        sensors.empty()
+            ? "MakeChain: a front distance sensor needs a sensor module to "
+              "carry it, in front of module 0 (sensor after -1; mrsim-scenario "
+              "new --sensors=-1 or all)"
+            : "MakeChain: a front distance sensor needs a sensor module in "
+              "front of module 0 (sensor after -1; mrsim-scenario new "
+              "--sensors=-1 or all): on the sensor module after module " +
+                  std::to_string(*sensors.begin()) +
+                  " it would face that module and read about 0");
+  }
+
   const Eigen::Vector3d& fs = options.frame_size;
   const ForceSensor plate_defaults;
   const double lift = options.force_sensors ? plate_defaults.size.z() : 0.0;

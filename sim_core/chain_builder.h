@@ -56,8 +56,9 @@ struct ChainOptions {
 };
 
 // Builds the chain described above. Throws std::invalid_argument on
-// modules < 1, non-positive sizes or masses, or a sensor_after entry outside
-// [-1, modules-1] or repeated. The caller places the robot in a Scenario.
+// modules < 1, non-positive sizes or masses, a sensor_after entry outside
+// [-1, modules-1] or repeated, or front_distance_sensor without a sensor
+// module in front of module 0. The caller places the robot in a Scenario.
 Robot MakeChain(const ChainOptions& options);
 
 // Where `--sensors none|all|between` puts sensor modules

@@ -236,7 +236,10 @@ class Validator {
     joints_.push_back({&j, path_, robot_, scope});
   }
 
-  void Before(const SensorModule&) { in_sensor_module_ = true; }
+  void Before(const SensorModule& sm) {
+    in_sensor_module_ = true;
+    sensor_module_ = &sm;
+  }
   void After(const SensorModule& sm, bool) {
     in_sensor_module_ = false;
     AddGuid(sm.guid, true);
@@ -259,7 +262,12 @@ class Validator {
   // optional and need not be unique.
   void After(const ForceSensor& f, bool) { sensors_[robot_].insert(f.guid); }
   void Before(const DistanceSensor&) {}
-  void After(const DistanceSensor& d, bool) { sensors_[robot_].insert(d.guid); }
+  void After(const DistanceSensor& d, bool) {
+    sensors_[robot_].insert(d.guid);
+    if (robot_ >= 0 && sensor_module_ != nullptr) {
+      CheckRayStartsOutside(*sensor_module_, d);
+    }
+  }
 
   void Before(const Scene&) {}
   void After(const Scene& scene, bool) {
@@ -464,10 +472,60 @@ class Validator {
     }
   }
 
+  // A ray that starts inside another of the robot's boxes hits it at once
+  // and reads about 0 for the whole run: a face turned to a neighbour (the
+  // front face of a sensor module behind module 0, say). Checked at the
+  // pose in the file, against box frames and sensor modules.
+  void CheckRayStartsOutside(const SensorModule& sm, const DistanceSensor& d) {
+    // Faces and sizes out of range are told on their own.
+    if (d.sensor_position < 0 || d.sensor_position > 5) return;
+    if (!(sm.size.minCoeff() > 0) || !sm.position.allFinite()) return;
+    const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
+    Eigen::Vector3d dir = d.ray_direction;
+    if (!(dir.norm() > 0) || !dir.allFinite()) dir = n;
+    const Eigen::Quaterniond q = sm.quat_rotation.normalized();
+    // 1 mm along the ray from the face centre, as the physics casts it.
+    const Eigen::Vector3d probe =
+        sm.position +
+        q * (n * std::abs(n.dot(sm.size / 2)) + 1e-3 * dir.normalized());
+    const auto inside = [&probe](const Eigen::Vector3d& centre,
+                                 const Eigen::Quaterniond& rotation,
+                                 const Eigen::Vector3d& size) {
+      const Eigen::Vector3d local =
+          rotation.normalized().conjugate() * (probe - centre);
+      return (local.cwiseAbs().array() < size.array() / 2).all();
+    };
+    std::string hit;
+    const Robot& r = s_.robots[robot_];
+    for (const Module& m : r.modules) {
+      for (const Frame& f : m.frames) {
+        if (!f.is_mesh() && inside(f.position, f.quat_rotation, f.scale)) {
+          hit = f.guid;
+        }
+      }
+    }
+    for (const SensorModule& other : r.sensor_modules) {
+      if (&other != &sm &&
+          inside(other.position, other.quat_rotation, other.size)) {
+        hit = other.guid;
+      }
+    }
+    if (hit.empty()) return;
+    static constexpr const char* kFaces[] = {"bottom", "left",  "top",
+                                             "right",  "front", "back"};
+    Fail(path_ + "/sensorPosition",
+         fmt::format("the ray of face {} ({}) starts inside '{}', so it would "
+                     "read about 0 the whole run; put the sensor on a face "
+                     "that looks out (for a sensor looking ahead: a sensor "
+                     "module in front of module 0)",
+                     d.sensor_position, kFaces[d.sensor_position], hit));
+  }
+
   const Scenario& s_;
   const ScenarioSource* source_;
   std::string path_;
   int robot_ = -1;  // index of the robot being walked; -1: loose parts
+  const SensorModule* sensor_module_ = nullptr;  // the one being walked
   bool in_sensor_module_ = false;
   std::map<std::string, std::string> guids_;  // guid -> path of its <guid>
   std::map<std::string, std::string> robot_names_;

@@ -147,6 +147,28 @@ TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
   EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
 }
 
+TEST(OptimizerBodyGenes, MovingTheFrontSensorModuleBackDropsItsForwardRay) {
+  Problem problem = SnakeProblem(0.5);
+  ChainOptions front;
+  front.sensor_after = {-1};
+  front.front_distance_sensor = true;
+  problem.scenario.robots[0] = MakeChain(front);
+  problem.genome = ReadGenomeString(R"(<genome>
+  <gene name="sensor_after" lower="-1" upper="10" start="-1"/>
+</genome>)",
+                                    "sensor genome");
+  const Scenario kept = ApplyBodyGenes(problem.scenario, problem.genome,
+                                       problem.genome.StartGenome());
+  EXPECT_EQ(kept.robots[0].sensor_modules[0].distance_sensors.size(), 1u);
+  // Behind module 3 the ray would start inside it and read 0.
+  const Scenario moved =
+      ApplyBodyGenes(problem.scenario, problem.genome, Genome{3});
+  ASSERT_EQ(moved.robots[0].sensor_modules.size(), 1u);
+  EXPECT_EQ(moved.robots[0].sensor_modules[0].left_mod_nr, 3);
+  EXPECT_TRUE(moved.robots[0].sensor_modules[0].distance_sensors.empty());
+  EXPECT_FALSE(RunEpisode(problem, Genome{3}).failed);
+}
+
 TEST(OptimizerBodyGenes, RebuildAtStartValuesKeepsTheExampleRobots) {
   for (const char* file :
        {"scenarios/snake11.xml", "scenarios/case_study.xml"}) {

@@ -2,6 +2,7 @@
 // gait and other components rely on.
 #include "sim_core/chain_builder.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <map>
@@ -14,6 +15,8 @@
 
 namespace mrsim {
 namespace {
+
+using ::testing::HasSubstr;
 
 constexpr double kEps = 1e-12;
 
@@ -181,6 +184,25 @@ TEST(ChainBuilder, RejectsBadOptions) {
   o = ChainOptions();
   o.frame_size.y() = -1;
   EXPECT_THROW(MakeChain(o), std::invalid_argument);
+}
+
+TEST(ChainBuilder, AFrontDistanceSensorNeedsASensorModuleInFront) {
+  ChainOptions o;
+  o.front_distance_sensor = true;
+  o.sensor_after = {2, 5};
+  try {
+    MakeChain(o);
+    FAIL() << "a ray facing module 2 was built";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("after module 2 it would face that "
+                                    "module and read about 0"));
+  }
+  o.sensor_after = {};
+  EXPECT_THROW(MakeChain(o), std::invalid_argument);
+  o.sensor_after = {5, -1};
+  const Robot r = MakeChain(o);
+  ASSERT_EQ(r.sensor_modules.front().distance_sensors.size(), 1u);
+  EXPECT_EQ(r.sensor_modules.front().left_mod_nr, -1);
 }
 
 TEST(ChainBuilder, GeneratedChainsPassValidation) {

@@ -110,6 +110,16 @@ std::vector<Rule> BuilderRules() {
        },
        sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
        "expected 0..5"},
+      {"distance sensor facing a module",
+       [](Scenario& s) {
+         // The back face of the front sensor module touches module 0.
+         DistanceSensor& d = s.robots[0].sensor_modules[0].distance_sensors[0];
+         d.sensor_position = 5;
+         d.ray_direction = -Eigen::Vector3d::UnitX();
+       },
+       sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
+       "the ray of face 5 (back) starts inside 'r/m0/f0', so it would read "
+       "about 0"},
       {"sensor module mass",
        [](Scenario& s) { s.robots[0].sensor_modules[0].mass = 0; },
        sm1 + "/mass", "expected a positive value"},

@@ -2,6 +2,7 @@
 // validator, and equality with what `mrsim-scenario new` writes.
 #include "studio/design.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +19,8 @@
 
 namespace mrsim::studio {
 namespace {
+
+using ::testing::HasSubstr;
 
 using mrsim::testing::BinaryPath;
 using mrsim::testing::ChildProcess;
@@ -323,13 +326,23 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
   EXPECT_TRUE(back.robots[0].sensor_modules[1].force_sensor);
 }
 
-TEST(StudioDesign, DistanceSensorsGoOnAnyFaceOfASensorModule) {
+TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
   Design d = TwoSensorModules();
   d.Select({PartKind::kSensorModule, 0, 1});
-  for (int face : {0, 1, 2, 3, 4, 5}) d.AddDistanceSensor(face);
+  for (int face : {0, 1, 2, 3}) d.AddDistanceSensor(face);
+  // Between two modules, front and back touch them: a ray there starts
+  // inside a module and would read 0.
+  for (int face : {4, 5}) {
+    try {
+      d.AddDistanceSensor(face);
+      ADD_FAILURE() << "a ray on face " << face << " was added";
+    } catch (const DesignError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("starts inside 'snake/m"));
+    }
+  }
   const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
-  ASSERT_EQ(sm.distance_sensors.size(), 6u);
-  ASSERT_EQ(sm.distance_sensor_locks.size(), 6u);
+  ASSERT_EQ(sm.distance_sensors.size(), 4u);
+  ASSERT_EQ(sm.distance_sensor_locks.size(), 4u);
   for (const DistanceSensor& ray : sm.distance_sensors) {
     const Eigen::Vector3d n = SensorFaceNormal(ray.sensor_position);
     EXPECT_TRUE(ray.ray_direction.isApprox(n)) << ray.guid;
@@ -340,9 +353,8 @@ TEST(StudioDesign, DistanceSensorsGoOnAnyFaceOfASensorModule) {
                 1e-12)
         << ray.guid;
   }
-  EXPECT_THROW(d.AddDistanceSensor(3), DesignError);  // full
+  EXPECT_THROW(d.AddDistanceSensor(3), DesignError);  // face taken
   d.RemoveDistanceSensor(1);                          // the one on face 1
-  EXPECT_THROW(d.AddDistanceSensor(0), DesignError);  // face taken
   // A ray moved to another face sits on it and looks out of it.
   d.SetField({{PartKind::kSensorModule, 0, 1},
               "distance_sensors[0]",
@@ -355,15 +367,29 @@ TEST(StudioDesign, DistanceSensorsGoOnAnyFaceOfASensorModule) {
               moved.size.y() / 2 + moved.distance_sensors[0].size.y() / 2,
               1e-12);
   d.AddDistanceSensor(0);
-  EXPECT_THROW(d.SetField({{PartKind::kSensorModule, 0, 1},
-                           "distance_sensors[0]",
-                           "sensorPosition"},
-                          "9"),
-               DesignError);
-  // The simulator builds it from the file: six rays on one module.
+  for (const char* face : {"9", "4"}) {
+    EXPECT_THROW(d.SetField({{PartKind::kSensorModule, 0, 1},
+                             "distance_sensors[0]",
+                             "sensorPosition"},
+                            face),
+                 DesignError)
+        << face;
+  }
+  // The simulator builds it from the file: four rays on one module.
   const Physics physics(ReadScenarioString(Bytes(d), "rays", ""));
   EXPECT_EQ(physics.ReadRobotState(0).sensor_modules.at(1).distances.size(),
-            6u);
+            4u);
+}
+
+TEST(StudioDesign, ASensorModuleAtTheTailLooksOutOfItsBack) {
+  Design d;
+  d.AddPart(NextPart::kPitchModule, Where::kTail);
+  d.AddPart(NextPart::kSensorModule, Where::kTail);
+  d.Select({PartKind::kSensorModule, 0, 0});
+  d.AddDistanceSensor(5);
+  EXPECT_THROW(d.AddDistanceSensor(4), DesignError);  // module 0 is there
+  EXPECT_EQ(d.scenario().robots[0].sensor_modules[0].distance_sensors.size(),
+            1u);
 }
 
 TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
