@@ -1,0 +1,121 @@
+#include "launcher/launch_command.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <map>
+#include <stdexcept>
+
+#include "launcher/process_group.h"
+#include "launcher/program_locator.h"
+#include "launcher/shell_quote.h"
+
+namespace mrsim {
+
+void AddLaunchFlags(CLI::App& launch, LaunchCommand& c) {
+  launch.add_option("file", c.file, "Launch file (XML)")->required();
+  launch.add_option("--set", c.sets, "Override an <arg>: NAME=VALUE");
+  launch.add_option("--without", c.without, "Leave a process out (by name)");
+  launch.add_flag("--dry-run", c.dry_run,
+                  "Print the resolved commands and start nothing");
+}
+
+LaunchPlan PlanLaunch(const std::string& argv0, const LaunchCommand& c) {
+  std::map<std::string, std::string> overrides;
+  for (const auto& s : c.sets) {
+    const size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw LaunchError("--set " + s + ": expected NAME=VALUE");
+    }
+    overrides[s.substr(0, eq)] = s.substr(eq + 1);
+  }
+  LaunchFile launch = ReadLaunchFile(c.file, overrides);
+  for (const auto& name : c.without) {
+    bool found = false;
+    for (auto& p : launch.processes) {
+      if (p.name == name) {
+        p.enabled = false;
+        found = true;
+      }
+    }
+    if (!found) {
+      throw LaunchError(c.file + ": --without " + name +
+                        ": no process of that name");
+    }
+  }
+  const auto search = ProgramSearchPath(argv0);
+  LaunchPlan plan;
+  plan.name = launch.name;
+  for (const auto& p : launch.processes) {
+    if (!p.enabled) continue;
+    try {
+      plan.processes.emplace_back(p, FindProgram(p.program, search));
+    } catch (const std::runtime_error& e) {
+      // A typo in the file: bad input, named where it is.
+      throw LaunchError(c.file + ":" + std::to_string(p.line) + ": process '" +
+                        p.name + "': " + e.what());
+    }
+  }
+  if (plan.processes.empty()) {
+    throw LaunchError(c.file + ": every process is left out");
+  }
+  return plan;
+}
+
+void PrintPlan(const LaunchPlan& plan, std::ostream& out) {
+  for (const auto& [spec, path] : plan.processes) {
+    out << spec.name << (spec.required ? " (required)" : "") << ": " << path;
+    for (const auto& a : spec.args) out << " " << ShellQuote(a);
+    out << "\n";
+  }
+}
+
+int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
+              std::FILE* out) {
+  ProcessGroup group(out);
+  group.Say("launch " + plan.name + ": " +
+            std::to_string(plan.processes.size()) +
+            " processes; Ctrl-C stops them all");
+  std::string ended;
+  for (const auto& [spec, path] : plan.processes) {
+    const auto start = std::chrono::steady_clock::now();
+    while (spec.delay_s > 0 && !stop() && ended.empty() &&
+           std::chrono::steady_clock::now() - start <
+               std::chrono::duration<double>(spec.delay_s)) {
+      ended = group.Poll(20);
+    }
+    if (stop() || !ended.empty()) break;
+    group.Start(spec, path);
+  }
+  while (ended.empty() && !stop() && group.AnyRunning()) {
+    ended = group.Poll(100);
+  }
+  if (stop()) {
+    group.Say("stop requested, stopping every process");
+  } else if (!ended.empty()) {
+    group.Say(ended + " ended, stopping the others");
+  }
+  group.StopAll(10.0);
+  group.Say("all stopped:\n" + group.Summary());
+  return group.AllClean() ? 0 : 1;
+}
+
+void ExecTool(const std::string& argv0, const std::string& tool,
+              std::vector<std::string> args) {
+  std::string path;
+  try {
+    path = FindProgram("mrsim-" + tool, ProgramSearchPath(argv0));
+  } catch (const std::runtime_error& e) {
+    // A mistyped tool is bad input, like a mistyped flag.
+    throw LaunchError("no tool '" + tool + "': " + e.what());
+  }
+  args.insert(args.begin(), path);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(path.c_str(), argv.data());
+  throw std::runtime_error("cannot run " + path);
+}
+
+}  // namespace mrsim

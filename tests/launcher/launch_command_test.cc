@@ -1,0 +1,102 @@
+// `mrsim launch`'s work in process: the plan made from a launch file and
+// the flags, and running it (launcher_process_test.cc runs the program).
+#include "launcher/launch_command.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  static const std::string dir = testing::TempDir("launch_command");
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char kTwo[] = R"(<launch name="two">
+  <process name="first" program="/bin/sh" required="true" args="-c 'exit 0'"/>
+  <process name="second" program="/bin/sleep" args="30 'a b'"/>
+</launch>)";
+
+std::string ErrorOf(const LaunchCommand& command) {
+  try {
+    PlanLaunch("mrsim", command);
+  } catch (const LaunchError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LaunchCommand, PlanFindsEveryProgramAndPrintsLinesAShellReadsBack) {
+  LaunchCommand command;
+  command.file = WriteFile("two.launch", kTwo);
+  const LaunchPlan plan = PlanLaunch("mrsim", command);
+  EXPECT_EQ(plan.name, "two");
+  ASSERT_EQ(plan.processes.size(), 2u);
+  EXPECT_EQ(plan.processes[1].second, "/bin/sleep");
+  std::ostringstream out;
+  PrintPlan(plan, out);
+  EXPECT_EQ(out.str(),
+            "first (required): /bin/sh -c 'exit 0'\n"
+            "second: /bin/sleep 30 'a b'\n");
+}
+
+TEST(LaunchCommand, BadInputNamesTheFlagOrTheFileAndLine) {
+  LaunchCommand command;
+  command.file = WriteFile("typo.launch", R"(<launch name="t">
+  <process name="ok" program="/bin/true"/>
+  <process name="typo" program="mrsim-no-such-program"/>
+</launch>)");
+  EXPECT_THAT(ErrorOf(command),
+              HasSubstr(command.file + ":3: process 'typo': "));
+  command.file = WriteFile("two.launch", kTwo);
+  command.sets = {"=4"};
+  EXPECT_THAT(ErrorOf(command), HasSubstr("--set =4: expected NAME=VALUE"));
+  command.sets = {};
+  command.without = {"third"};
+  EXPECT_THAT(ErrorOf(command),
+              HasSubstr("--without third: no process of that name"));
+  command.without = {"first", "second"};
+  EXPECT_THAT(ErrorOf(command), HasSubstr("every process is left out"));
+}
+
+TEST(LaunchCommand, AnUnknownToolIsBadInputNamingIt) {
+  try {
+    ExecTool("mrsim", "no-such-tool", {});
+    FAIL() << "ExecTool returned";
+  } catch (const LaunchError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no tool 'no-such-tool': cannot find "
+                                    "program 'mrsim-no-such-tool'"));
+  }
+}
+
+TEST(LaunchCommand, AStopBeforeTheFirstStartStartsNothing) {
+  LaunchCommand command;
+  command.file = WriteFile("two.launch", kTwo);
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(RunLaunch(
+                PlanLaunch("mrsim", command), [] { return true; }, out),
+            0);
+  std::rewind(out);
+  std::string text;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, out)) text += buf;
+  std::fclose(out);
+  EXPECT_THAT(text, HasSubstr("stop requested"));
+  EXPECT_THAT(text, ::testing::Not(HasSubstr("first: ")));
+}
+
+}  // namespace
+}  // namespace mrsim
