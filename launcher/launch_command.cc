@@ -98,7 +98,9 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
   }
   group.StopAll(10.0);
   group.Say("all stopped:\n" + group.Summary());
-  return group.AllClean() ? 0 : 1;
+  // A terminal's Ctrl-C reaches the children too, and one may end before
+  // StopAll signals it.
+  return group.AllClean(stop()) ? 0 : 1;
 }
 
 void ExecTool(const std::string& argv0, const std::string& tool,

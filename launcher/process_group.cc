@@ -179,14 +179,18 @@ bool ProcessGroup::AnyRunning() const {
                      [](const Child& c) { return c.running; });
 }
 
-bool ProcessGroup::AllClean() const {
+bool ProcessGroup::AllClean(bool interrupted) const {
+  const auto stop_signal = [](int sig) {
+    return sig == SIGINT || sig == SIGTERM;
+  };
   for (const auto& c : children_) {
     if (c.running) return false;
-    const bool exit_ok = WIFEXITED(c.status) && WEXITSTATUS(c.status) == 0;
-    const bool our_signal =
-        c.stopped_by_us && WIFSIGNALED(c.status) &&
-        (WTERMSIG(c.status) == SIGINT || WTERMSIG(c.status) == SIGTERM);
-    if (!exit_ok && !our_signal) return false;
+    const bool exited = WIFEXITED(c.status);
+    if (exited && WEXITSTATUS(c.status) == 0) continue;
+    const bool stopped =
+        (WIFSIGNALED(c.status) && stop_signal(WTERMSIG(c.status))) ||
+        (exited && stop_signal(WEXITSTATUS(c.status) - 128));
+    if (!stopped || !(c.stopped_by_us || interrupted)) return false;
   }
   return true;
 }

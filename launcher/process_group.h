@@ -41,8 +41,11 @@ class ProcessGroup {
   void StopAll(double grace_s);
 
   bool AnyRunning() const;
-  // True when every process ended with exit code 0 or by our stop signal.
-  bool AllClean() const;
+  // True when every process ended with exit code 0, or was stopped: ended
+  // by SIGINT or SIGTERM, or exited 128 + that signal (mrsim-opt does when
+  // it leaves a run unfinished), after StopAll signalled it or, with
+  // `interrupted`, after the user's Ctrl-C reached the whole group.
+  bool AllClean(bool interrupted = false) const;
   // One line per process: name, how it ended.
   std::string Summary() const;
   // Prints a line prefixed with the launcher's own name.

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <memory>
 
 #include "lcmtypes/runtime/stop_signal.h"
@@ -34,7 +35,10 @@ int main(int argc, char** argv) {
         });
     const mrsim::OptOutcome outcome =
         mrsim::RunOpt(command, setup, *evaluator, stdout, stderr);
-    if (outcome.stopped || !command.replay) return 0;
+    // Unfinished: 128 + the signal, as a shell reports it, so a script can
+    // tell it from a finished run.
+    if (outcome.stopped) return 128 + std::max(mrsim::StopSignal(), SIGINT);
+    if (!command.replay) return 0;
     evaluator.reset();
     const std::string launcher = mrsim::FindLauncher();
     fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);

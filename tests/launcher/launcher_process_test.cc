@@ -90,6 +90,32 @@ TEST(Launcher, InterruptStopsEveryProcessCleanly) {
   EXPECT_TRUE(std::ifstream(marker + ".b").good()) << mrsim.Output();
 }
 
+// mrsim-opt exits 130 when a stop leaves its run unfinished.
+TEST(Launcher, AProcessSayingItWasInterruptedStillStopsCleanly) {
+  const std::string dir = TempDir("launcher_exit130");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="opt" program="/bin/sh"
+           args="-c 'trap &quot;exit 130&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  ASSERT_TRUE(mrsim.WaitForOutput("armed", 30)) << mrsim.Output();
+  mrsim.Signal(SIGINT);
+  EXPECT_EQ(mrsim.Wait(30), 0) << mrsim.Output();
+  EXPECT_NE(mrsim.Output().find("exited with code 130"), std::string::npos)
+      << mrsim.Output();
+}
+
+TEST(Launcher, AnExit130NobodyAskedForIsAFailure) {
+  const std::string dir = TempDir("launcher_own130");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="opt" program="/bin/sh" required="true" args="-c 'exit 130'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(30), 1) << mrsim.Output();
+}
+
 TEST(Launcher, ReportsAProcessThatDies) {
   const std::string dir = TempDir("launcher_dies");
   // main ends only once the launcher has reaped crasher (kill -0 succeeds
