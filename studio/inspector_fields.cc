@@ -1,5 +1,11 @@
 #include "studio/inspector_fields.h"
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
 namespace mrsim::studio {
 
 std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
@@ -91,6 +97,36 @@ const char* ToString(PartKind kind) {
       return "settings";
   }
   return "?";
+}
+
+std::string ShortNumbers(const std::string& text) {
+  const auto numeric = [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '.' ||
+           c == '-' || c == '+' || c == 'e' || c == 'E';
+  };
+  std::string out;
+  size_t i = 0;
+  while (i < text.size()) {
+    if (!numeric(text[i])) {
+      out += text[i++];
+      continue;
+    }
+    size_t j = i;
+    while (j < text.size() && numeric(text[j])) ++j;
+    const std::string token = text.substr(i, j - i);
+    char* end = nullptr;
+    const double value = std::strtod(token.c_str(), &end);
+    char buf[32];
+    if (end == token.c_str() + token.size() && std::isfinite(value) &&
+        std::snprintf(buf, sizeof buf, "%.10g", value) > 0 &&
+        std::strlen(buf) < token.size()) {
+      out += buf;
+    } else {
+      out += token;
+    }
+    i = j;
+  }
+  return out;
 }
 
 }  // namespace mrsim::studio

@@ -22,4 +22,9 @@ struct FieldGroup {
 std::vector<FieldGroup> InspectorFields(Scenario& scenario,
                                         const Selection& selection);
 
+// A field's text as the inspector shows it: every number with at most 10
+// significant digits, so 0.009 x 3 reads 0.027, not 0.027000000000000003.
+// The design keeps the exact value until the field is edited.
+std::string ShortNumbers(const std::string& text);
+
 }  // namespace mrsim::studio

@@ -566,7 +566,11 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
       }
       ImGui::SameLine(w * 0.5f);
       ImGui::SetNextItemWidth(-1);
-      const std::string current = f.GetText();
+      const bool numbers = f.type() == FieldType::kNumber ||
+                           f.type() == FieldType::kVector ||
+                           f.type() == FieldType::kQuaternion;
+      const std::string current =
+          numbers ? ShortNumbers(f.GetText()) : f.GetText();
       if (f.type() == FieldType::kBool) {
         bool on = current == "true";
         if (ImGui::Checkbox("##v", &on)) {

@@ -1,6 +1,7 @@
 // The studio's editing model without a window: commands, undo/redo, the
 // validator, and equality with what `mrsim-scenario new` writes.
 #include "studio/design.h"
+#include "studio/inspector_fields.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -390,6 +391,14 @@ TEST(StudioDesign, ASensorModuleAtTheTailLooksOutOfItsBack) {
   EXPECT_THROW(d.AddDistanceSensor(4), DesignError);  // module 0 is there
   EXPECT_EQ(d.scenario().robots[0].sensor_modules[0].distance_sensors.size(),
             1u);
+}
+
+TEST(StudioInspector, ShowsComputedNumbersShortAndLeavesTheRestAlone) {
+  EXPECT_EQ(ShortNumbers("0.027000000000000003"), "0.027");
+  EXPECT_EQ(ShortNumbers("-0.24500000000000005 0 0.025"), "-0.245 0 0.025");
+  EXPECT_EQ(ShortNumbers("1e-05"), "1e-05");
+  EXPECT_EQ(ShortNumbers("0.1234567890123"), "0.123456789");
+  EXPECT_EQ(ShortNumbers("12"), "12");
 }
 
 TEST(StudioDesign, OpensEveryScenarioInTheScenariosFolder) {
