@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -92,11 +93,6 @@ PlotOptions::Style ParsePlotStyle(const std::string& text) {
 
 PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
                       cv::Mat* image) {
-  if (options.width < 200 || options.height < 150) {
-    throw PlotInputError("plot size " + std::to_string(options.width) + "x" +
-                         std::to_string(options.height) +
-                         " is too small (at least 200x150)");
-  }
   if (options.y.empty()) throw PlotInputError("no y column to plot");
   auto column = [&data](const std::string& name) -> const std::vector<double>& {
     for (size_t i = 0; i < data.names.size(); ++i) {
@@ -104,14 +100,30 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
     }
     throw PlotInputError("no column '" + name + "' in the plot data");
   };
-  const std::vector<double>& xs = column(options.x);
+  std::vector<PlotCurve> series;
+  for (const std::string& y : options.y) {
+    series.push_back({y, column(options.x), column(y)});
+  }
+  return RenderCurves(series, options, image);
+}
+
+PlotResult RenderCurves(const std::vector<PlotCurve>& series,
+                        const PlotOptions& options, cv::Mat* image) {
+  if (options.width < 200 || options.height < 150) {
+    throw PlotInputError("plot size " + std::to_string(options.width) + "x" +
+                         std::to_string(options.height) +
+                         " is too small (at least 200x150)");
+  }
+  if (series.empty() || options.y.empty()) {
+    throw PlotInputError("no y column to plot");
+  }
 
   PlotResult r;
   double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
   bool monotonic = true;
-  double prev_x = -INFINITY;
-  for (const std::string& name : options.y) {
-    const std::vector<double>& ys = column(name);
+  for (const PlotCurve& c : series) {
+    const std::vector<double>& xs = c.x;
+    const std::vector<double>& ys = c.y;
     size_t finite = 0;
     for (size_t i = 0; i < ys.size() && i < xs.size(); ++i) {
       if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
@@ -122,15 +134,16 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
       yhi = std::max(yhi, ys[i]);
     }
     if (finite == 0) {
-      throw PlotInputError("column '" + name + "' against '" + options.x +
+      throw PlotInputError("column '" + c.name + "' against '" + options.x +
                            "' has no finite values to plot");
     }
     r.points += finite;
-  }
-  for (double x : xs) {
-    if (!std::isfinite(x)) continue;
-    if (x < prev_x) monotonic = false;
-    prev_x = x;
+    double prev_x = -INFINITY;
+    for (double x : xs) {
+      if (!std::isfinite(x)) continue;
+      if (x < prev_x) monotonic = false;
+      prev_x = x;
+    }
   }
   r.lines = options.style == PlotOptions::Style::kLines ||
             (options.style == PlotOptions::Style::kAuto && monotonic);
@@ -220,12 +233,13 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
   // Data, clipped to the plot area.
   cv::Mat plot_area = img(a);
   const cv::Point offset(a.x, a.y);
-  for (size_t k = 0; k < options.y.size(); ++k) {
+  for (size_t k = 0; k < series.size(); ++k) {
     const cv::Scalar color =
         kPalette[k % (sizeof(kPalette) / sizeof(kPalette[0]))];
     r.colors.push_back(color);
-    r.legend.push_back(options.y[k]);
-    const std::vector<double>& ys = column(options.y[k]);
+    r.legend.push_back(series[k].name);
+    const std::vector<double>& xs = series[k].x;
+    const std::vector<double>& ys = series[k].y;
     std::vector<cv::Point> run;
     auto flush = [&] {
       if (run.size() > 1) {
@@ -309,22 +323,9 @@ PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
   return r;
 }
 
-PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
-                        const std::string& png_path) {
-  std::vector<std::string> wanted = {options.x};
-  for (const std::string& y : options.y) {
-    if (std::find(wanted.begin(), wanted.end(), y) == wanted.end()) {
-      wanted.push_back(y);
-    }
-  }
-  const CsvColumns data = ReadCsvColumns(csv_path, wanted);
-  cv::Mat image;
-  PlotResult r;
-  try {
-    r = RenderPlot(data, options, &image);
-  } catch (const PlotInputError& e) {
-    throw PlotInputError(csv_path + ": " + e.what());
-  }
+namespace {
+
+void WritePng(const cv::Mat& image, const std::string& png_path) {
   bool ok = false;
   try {
     ok = cv::imwrite(png_path, image);
@@ -336,7 +337,103 @@ PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
                              " (is the folder there and writable, and the "
                              "name ending in .png?)");
   }
+}
+
+std::vector<std::string> WantedColumns(const PlotOptions& options) {
+  std::vector<std::string> wanted = {options.x};
+  for (const std::string& y : options.y) {
+    if (std::find(wanted.begin(), wanted.end(), y) == wanted.end()) {
+      wanted.push_back(y);
+    }
+  }
+  return wanted;
+}
+
+}  // namespace
+
+PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
+                        const std::string& png_path) {
+  const CsvColumns data = ReadCsvColumns(csv_path, WantedColumns(options));
+  cv::Mat image;
+  PlotResult r;
+  try {
+    r = RenderPlot(data, options, &image);
+  } catch (const PlotInputError& e) {
+    throw PlotInputError(csv_path + ": " + e.what());
+  }
+  WritePng(image, png_path);
   return r;
+}
+
+PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
+                         const PlotOptions& options,
+                         const std::string& png_path) {
+  if (csv_paths.size() == 1) {
+    return PlotCsvToPng(csv_paths[0], options, png_path);
+  }
+  const std::vector<std::string> names = DistinctNames(csv_paths);
+  std::vector<PlotCurve> series;
+  for (size_t f = 0; f < csv_paths.size(); ++f) {
+    const CsvColumns data =
+        ReadCsvColumns(csv_paths[f], WantedColumns(options));
+    // ReadCsvColumns returns the wanted columns in order: x first.
+    for (const std::string& y : options.y) {
+      const size_t i = static_cast<size_t>(
+          std::find(data.names.begin(), data.names.end(), y) -
+          data.names.begin());
+      series.push_back(
+          {names[f] + ": " + y, data.values.front(), data.values.at(i)});
+    }
+  }
+  cv::Mat image;
+  // An error names the curve, and so the file.
+  const PlotResult r = RenderCurves(series, options, &image);
+  WritePng(image, png_path);
+  return r;
+}
+
+std::vector<std::string> DistinctNames(const std::vector<std::string>& paths) {
+  std::vector<std::vector<std::string>> parts;
+  for (const std::string& p : paths) {
+    std::vector<std::string> c;
+    for (const auto& e : std::filesystem::path(p).lexically_normal()) {
+      c.push_back(e.string());
+    }
+    if (!c.empty() && c.back().size() > 4 &&
+        c.back().compare(c.back().size() - 4, 4, ".csv") == 0) {
+      c.back().resize(c.back().size() - 4);
+    }
+    parts.push_back(c);
+  }
+  size_t shortest = parts.front().size();
+  for (const auto& c : parts) shortest = std::min(shortest, c.size());
+  const auto all_share = [&](auto component_of) {
+    for (const auto& c : parts) {
+      if (component_of(c) != component_of(parts.front())) return false;
+    }
+    return true;
+  };
+  size_t head = 0, tail = 0;
+  while (head + tail < shortest &&
+         all_share([&](const auto& c) { return c[head]; })) {
+    ++head;
+  }
+  while (head + tail < shortest &&
+         all_share([&](const auto& c) { return c[c.size() - 1 - tail]; })) {
+    ++tail;
+  }
+  std::vector<std::string> names;
+  for (const auto& c : parts) {
+    std::string name;
+    for (size_t i = head; i + tail < c.size(); ++i) {
+      name += (name.empty() ? "" : "/") + c[i];
+    }
+    if (name.empty()) {  // a path inside another's folders: all of it
+      for (const std::string& e : c) name += (name.empty() ? "" : "/") + e;
+    }
+    names.push_back(name);
+  }
+  return names;
 }
 
 }  // namespace mrsim

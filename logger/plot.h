@@ -54,11 +54,33 @@ struct PlotResult {
 PlotResult RenderPlot(const CsvColumns& data, const PlotOptions& options,
                       cv::Mat* image);
 
+// One curve: its legend entry and its points.
+struct PlotCurve {
+  std::string name;
+  std::vector<double> x, y;
+};
+// Draws curves that need not share their x values (e.g. the same column of
+// several runs); options.x and options.y name the axes and the default
+// title. Throws PlotInputError as RenderPlot does.
+PlotResult RenderCurves(const std::vector<PlotCurve>& curves,
+                        const PlotOptions& options, cv::Mat* image);
+
 // Reads the needed columns of `csv_path`, draws them and writes `png_path`.
 // Throws PlotInputError for bad input, std::runtime_error naming the PNG
 // when it cannot be written.
 PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
                         const std::string& png_path);
+// The same over several CSVs (runs to compare) on one chart: each y column
+// of each file is a curve, named by what tells the files apart ("run1:
+// fitness_best" for out/run1/generations.csv and out/run2/...).
+PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
+                         const PlotOptions& options,
+                         const std::string& png_path);
+
+// What tells each path apart from the others: the path components they do
+// not all share, without a .csv ending ("run1", "run2"); the whole path
+// when nothing is left.
+std::vector<std::string> DistinctNames(const std::vector<std::string>& paths);
 
 // Tick positions 1, 2 or 5 times a power of ten covering [lo, hi].
 PlotAxis NiceAxis(double lo, double hi, int max_ticks = 8);

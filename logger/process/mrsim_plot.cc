@@ -13,11 +13,14 @@ int main(int argc, char** argv) {
       "column, as a PNG with axes, ticks, units, legend and title."};
   app.set_version_flag("--version",
                        std::string("mrsim-plot ") + mrsim::kVersion);
-  std::string csv;
+  std::vector<std::string> csvs;
   std::string out;
   std::string style = "auto";
   mrsim::PlotOptions options;
-  app.add_option("csv", csv, "CSV file written by mrsim-log")->required();
+  app.add_option("csv", csvs,
+                 "CSV file(s) written by mrsim-log or mrsim-opt; several "
+                 "draw each y column of each on one chart")
+      ->required();
   app.add_option("--x", options.x, "column on the x axis")
       ->capture_default_str();
   app.add_option("--y", options.y, "column(s) on the y axis (repeatable)")
@@ -43,7 +46,7 @@ int main(int argc, char** argv) {
   }
   try {
     options.style = mrsim::ParsePlotStyle(style);
-    const mrsim::PlotResult r = mrsim::PlotCsvToPng(csv, options, out);
+    const mrsim::PlotResult r = mrsim::PlotCsvsToPng(csvs, options, out);
     std::printf(
         "mrsim-plot: wrote %s: %zu points, x %s in [%g, %g], y in "
         "[%g, %g]\n",

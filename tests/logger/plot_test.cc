@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -204,6 +205,49 @@ TEST(Plot, CsvToPngWritesADecodableImage) {
   EXPECT_LE(r.y.min, 4.0);
   EXPECT_GE(r.y.max, 6.0);
   EXPECT_GT(ColorExtent(img, r.area, r.colors[0]).area(), 1000);
+}
+
+TEST(Plot, SeveralCsvsDrawOneCurveEachNamedByTheirRun) {
+  const std::string dir = testing::TempDir("plot_runs");
+  std::vector<std::string> csvs;
+  for (int run = 1; run <= 2; ++run) {
+    const std::string folder = dir + "/run" + std::to_string(run);
+    std::filesystem::create_directories(folder);
+    csvs.push_back(folder + "/generations.csv");
+    std::ofstream out(csvs.back());
+    out << "generation,best_so_far\n";
+    // Run 2 is longer and better: the axes cover both.
+    for (int g = 0; g < 10 * run; ++g) out << g << "," << run * 0.1 * g << "\n";
+  }
+  PlotOptions opt;
+  opt.x = "generation";
+  opt.y = {"best_so_far"};
+  const PlotResult r = PlotCsvsToPng(csvs, opt, dir + "/best.png");
+  EXPECT_EQ(r.legend, (std::vector<std::string>{"run1: best_so_far",
+                                                "run2: best_so_far"}));
+  EXPECT_EQ(r.points, 30u);
+  EXPECT_GE(r.x.max, 19.0);
+  EXPECT_GE(r.y.max, 3.8);
+  const cv::Mat img = cv::imread(dir + "/best.png");
+  ASSERT_FALSE(img.empty());
+  // Below the legend (top right), which shows both colours.
+  const cv::Rect curves(r.area.x, r.area.y + 70, r.area.width,
+                        r.area.height - 70);
+  const cv::Rect one = ColorExtent(img, curves, r.colors[0]);
+  const cv::Rect two = ColorExtent(img, curves, r.colors[1]);
+  // Run 1 ends near the middle of x (generation 9 of 19); run 2 goes on
+  // towards the right end.
+  EXPECT_LT(one.x + one.width, r.area.x + r.area.width * 0.6);
+  EXPECT_GT(two.x + two.width, r.area.x + r.area.width * 0.8);
+}
+
+TEST(Plot, DistinctNamesKeepWhatTellsThePathsApart) {
+  EXPECT_EQ(DistinctNames({"out/run1/csv/S.csv", "out/run2/csv/S.csv"}),
+            (std::vector<std::string>{"run1", "run2"}));
+  EXPECT_EQ(DistinctNames({"a.csv", "./b.csv"}),
+            (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(DistinctNames({"a.csv", "run/a.csv"}),
+            (std::vector<std::string>{"a", "run"}));
 }
 
 TEST(Plot, MissingColumnIsNamedWithTheColumnsThatExist) {
