@@ -88,6 +88,9 @@ std::string Preview::Rebuild(const Scenario& scenario) {
     return e.what();
   }
   const mjModel* m = physics->model();
+  if (physics_ && physics_->model()->nbody != m->nbody && !camera_moved_) {
+    framed_ = false;
+  }
   physics_ = std::move(physics);
   data_ = physics_->mutable_data();
   // Poses only: the preview draws the initial state, no dynamics needed.
@@ -167,6 +170,7 @@ void Preview::FrameAll() {
   camera_.distance = 0.58 * extent / fit + 0.1;
   camera_.azimuth = 100;  // the chain (along x) runs across the view
   camera_.elevation = -28;
+  camera_moved_ = false;
 }
 
 void Preview::AddRays() {
@@ -264,6 +268,7 @@ void Preview::ReadPixels(int width, int height,
 }
 
 void Preview::Orbit(double dx, double dy) {
+  camera_moved_ = true;
   if (physics_) {
     mjv_moveCamera(physics_->model(), mjMOUSE_ROTATE_V, dx, dy, &scene_,
                    &camera_);
@@ -271,6 +276,7 @@ void Preview::Orbit(double dx, double dy) {
 }
 
 void Preview::Pan(double dx, double dy) {
+  camera_moved_ = true;
   if (physics_) {
     mjv_moveCamera(physics_->model(), mjMOUSE_MOVE_V, dx, dy, &scene_,
                    &camera_);
@@ -278,6 +284,7 @@ void Preview::Pan(double dx, double dy) {
 }
 
 void Preview::Zoom(double amount) {
+  camera_moved_ = true;
   if (physics_) {
     mjv_moveCamera(physics_->model(), mjMOUSE_ZOOM, 0, amount, &scene_,
                    &camera_);

@@ -43,7 +43,9 @@ class Preview {
   Preview& operator=(const Preview&) = delete;
 
   // Builds the model of `scenario`; on failure keeps the previous model and
-  // returns the error ("" on success). Frames the camera on the first model.
+  // returns the error ("" on success). Frames the camera on the first model,
+  // and again when parts come or go until the user moves the camera (a
+  // robot growing module by module stays in view).
   std::string Rebuild(const Scenario& scenario);
   bool has_model() const { return physics_ != nullptr; }
   // The model drawn (null before the first successful Rebuild).
@@ -109,6 +111,7 @@ class Preview {
   mjvCamera camera_;
   mjrContext context_;
   bool framed_ = false;
+  bool camera_moved_ = false;  // by the user since the last FrameAll
   std::unique_ptr<StatePoseMapper> mapper_;  // for the current model
   bool live_ = false;
   bool tracking_ = true;

@@ -683,7 +683,7 @@ void StudioApp::DrawStatus(float x, float y, float w) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", message_.c_str());
   } else {
     ImGui::TextDisabled(
-        "drag: orbit  right-drag: pan  wheel: zoom  "
+        "drag: orbit  right-drag: pan  wheel: zoom  F: frame all  "
         "click: select  F1: help");
   }
   ImGui::End();

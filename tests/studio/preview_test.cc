@@ -115,6 +115,29 @@ TEST(StudioPreview, RebuiltInPlaceDrawsLikeAFreshWindow) {
   EXPECT_LT(differ, opened.size() / 200) << "of " << opened.size() << " bytes";
 }
 
+TEST(StudioPreview, CameraFramesTheGrowingRobotUntilTheUserMovesIt) {
+  Design design;
+  design.AddPart(NextPart::kPitchModule, Where::kTail);
+  StudioApp app(std::move(design), Options());
+  HeadlessStudio studio(&app, kWidth, kHeight);
+  studio.Frame();
+  Preview& preview = app.preview();
+  const double one_module = preview.camera().distance;
+  for (int k = 0; k < 8; ++k) {
+    app.design().AddPart(NextPart::kPitchModule, Where::kTail);
+  }
+  studio.Frame();
+  const double nine_modules = preview.camera().distance;
+  EXPECT_GT(nine_modules, one_module * 1.5);
+  // Once the user zooms, the camera is theirs: a new part leaves it alone.
+  preview.Zoom(0.1);
+  const mjvCamera held = preview.camera();
+  app.design().AddPart(NextPart::kPitchModule, Where::kTail);
+  studio.Frame();
+  EXPECT_EQ(preview.camera().distance, held.distance);
+  EXPECT_EQ(preview.camera().lookat[0], held.lookat[0]);
+}
+
 TEST(StudioPreview, LiveCameraMovesWithTheRobotUnlessTurnedOff) {
   TemplateOptions options;
   options.chain.modules = 5;
