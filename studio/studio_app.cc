@@ -682,9 +682,14 @@ void StudioApp::DrawStatus(float x, float y, float w) {
     ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", message_.c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", message_.c_str());
   } else {
-    ImGui::TextDisabled(
-        "drag: orbit  right-drag: pan  wheel: zoom  F: frame all  "
-        "click: select  F1: help");
+    // What fits beside the file name in the narrowest layout; the rest on
+    // hover.
+    ImGui::TextDisabled("drag: orbit  right-drag: pan  wheel: zoom  F: frame");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "drag: orbit, right-drag (or shift+drag): pan, wheel: zoom\n"
+          "F: frame the whole scene, click: select a part\nF1: help");
+    }
   }
   ImGui::End();
 }
