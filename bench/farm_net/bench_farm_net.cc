@@ -5,6 +5,7 @@
 //   farm_net_efficiency_8w   evaluations/s over workers / mean episode time
 //                            (also _pop8, and _long: ~1 s episodes)
 //   farm_loss5_slowdown      wall time with 5% frame loss over without
+//                            (median of three alternating pairs)
 //   farm_jitter_duplicates   fraction of episodes run twice, 20 ms +-5 ms
 //                            (simulated network: the kernel has no netem)
 //   farm_net_jitter_duplicates  the same on the rig: real workers whose
@@ -255,18 +256,26 @@ void Efficiency() {
   // at 0.2 CPU; now 20 simulated s).
   const mrsim::Problem long_problem = SnakeProblem(20.0);
   report("farm_net_efficiency_8w_long", RunFarm(rig, long_problem, 16, 3));
-  const Measure clean = RunFarm(rig, problem, 16, kBatches);
-  rig.SetLoss(5);
-  const Measure lossy = RunFarm(rig, problem, 16, kBatches);
-  rig.SetLoss(0);
-  fmt::print(stderr,
-             "farm 8w loss: clean {:.2f} s for {:.2f} episode-s; 5% loss "
-             "{:.2f} s for {:.2f} episode-s ({} re-sent, {} asked again)\n",
-             clean.wall, clean.episodes, lossy.wall, lossy.episodes,
-             lossy.counters.jobs_resent, lossy.counters.jobs_poked);
-  // Per episode-second, so slower or faster episodes do not count.
-  fmt::print("BENCH farm_loss5_slowdown {:.3f} ratio\n",
-             (lossy.wall / lossy.episodes) / (clean.wall / clean.episodes));
+  // Clean and lossy alternately, the median of three pairs: one pair's
+  // runs last ~2 s each, and on a shared machine two clean runs already
+  // differ by 10%, the size of the effect measured.
+  std::vector<double> slowdowns;
+  for (int pair = 0; pair < 3; ++pair) {
+    const Measure clean = RunFarm(rig, problem, 16, kBatches);
+    rig.SetLoss(5);
+    const Measure lossy = RunFarm(rig, problem, 16, kBatches);
+    rig.SetLoss(0);
+    fmt::print(stderr,
+               "farm 8w loss: clean {:.2f} s for {:.2f} episode-s; 5% loss "
+               "{:.2f} s for {:.2f} episode-s ({} re-sent, {} asked again)\n",
+               clean.wall, clean.episodes, lossy.wall, lossy.episodes,
+               lossy.counters.jobs_resent, lossy.counters.jobs_poked);
+    // Per episode-second, so slower or faster episodes do not count.
+    slowdowns.push_back((lossy.wall / lossy.episodes) /
+                        (clean.wall / clean.episodes));
+  }
+  std::sort(slowdowns.begin(), slowdowns.end());
+  fmt::print("BENCH farm_loss5_slowdown {:.3f} ratio\n", slowdowns[1]);
 }
 
 void JitterDuplicates() {

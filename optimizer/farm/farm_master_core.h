@@ -53,8 +53,8 @@ struct FarmSettings {
   // worker that never got it runs it, one that finished it answers from
   // memory, one that is still at it ignores it. One lost datagram then
   // costs a few episodes' time, not the job deadline.
-  double poke_factor = 3.0;
-  double poke_margin = 0.05;  // s
+  double poke_factor = 2.0;
+  double poke_margin = 0.03;  // s
   // Jobs go out at most dispatch_burst at once and dispatch_rate a second
   // on average: a generation of thousands in one burst overflows a
   // receiver's socket buffer (a stock 416 KB holds ~400 small datagrams)
@@ -151,10 +151,12 @@ class FarmMasterCore {
     std::string worker;   // latest assignee
     int sends = 0;
     double sent = 0;
-    int unlisted = 0;       // heartbeats of its worker not listing it
-    double done_seen = -1;  // a heartbeat listed it done; result not here
-    int place = 1;          // jobs its worker held with it when sent
-    double poke_at = 0;     // when to send it again to the same worker
+    int unlisted = 0;        // heartbeats of its worker not listing it
+    double done_seen = -1;   // a heartbeat listed it done; result not here
+    int place = 1;           // jobs its worker held with it when sent
+    double poke_at = 0;      // when to send it again to the same worker
+    std::int64_t order = 0;  // when it went out, among every send
+    int overtaken = 0;       // results of its worker's later jobs since
   };
 
   void Announce(double now);
@@ -162,6 +164,7 @@ class FarmMasterCore {
   void Dispatch(double now);
   void Send(std::int64_t job_id, Worker& w, double now);
   void SendAgain(std::int64_t job_id, Job& job);
+  void Overtaken(Worker& w, const Job& answered, double now);
   // The job message for `worker`, into the outbox (no bookkeeping).
   void QueueJob(std::int64_t job_id, const std::string& worker);
   double PokeWait(const Job& job) const;
@@ -194,7 +197,8 @@ class FarmMasterCore {
   size_t remaining_ = 0;
   double last_announce_ = -1e9;
   double last_maintain_ = -1e9;
-  double tokens_ = 0;  // jobs that may go out now (dispatch pace)
+  std::int64_t send_order_ = 0;  // Job::order of the latest send
+  double tokens_ = 0;            // jobs that may go out now (dispatch pace)
   double tokens_at_ = -1e9;
   double slowest_episode_ = 0.0;
   double typical_episode_ = 0.0;  // moving average of the reported times

@@ -230,6 +230,43 @@ TEST(FarmMasterCore, AnOverdueJobIsAskedAgainOfItsWorkerWithinEpisodes) {
   EXPECT_TRUE(m.batch_done());
 }
 
+// A worker runs its jobs in order: the result of its second job says the
+// first was lost (on the way there, or its result on the way back).
+TEST(FarmMasterCore, AJobOvertakenByItsWorkersNextIsAskedAgainAtOnce) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.StartBatch(Batch(4, 0), 0.0);
+  std::vector<opt_job_t> jobs = m.Tick(0.0).jobs;
+  ASSERT_EQ(jobs.size(), 2u);  // one to run, one queued
+  // Typical episode 50 ms, learnt from a first answer.
+  m.OnResult(Answer(m, jobs[0], 0.05), 0.05);
+  std::vector<opt_job_t> next = m.Tick(0.05).jobs;
+  ASSERT_EQ(next.size(), 1u);
+  // jobs[1] (queued at "a") or its result is lost; "a" runs next[0].
+  m.OnResult(Answer(m, next[0], 0.05), 0.15);
+  std::vector<opt_job_t> out = m.Tick(0.15).jobs;
+  std::vector<std::int64_t> ids;
+  for (const auto& j : out) ids.push_back(j.job_id);
+  EXPECT_NE(std::find(ids.begin(), ids.end(), jobs[1].job_id), ids.end())
+      << "not asked again when overtaken";
+  EXPECT_EQ(m.counters().jobs_poked, 1);
+  EXPECT_EQ(m.counters().jobs_resent, 0) << "the same worker, not another";
+  // In order, nothing is asked twice.
+  FarmMasterCore n(Payload(100), "run", 1, FarmSettings{});
+  n.OnHeartbeat(Beat(n, "a"), 0.0);
+  n.StartBatch(Batch(4, 0), 0.0);
+  std::vector<opt_job_t> held = n.Tick(0.0).jobs;
+  double t = 0.0;
+  while (!n.batch_done() && !held.empty()) {
+    t += 0.05;
+    n.OnResult(Answer(n, held.front(), 0.05), t);
+    held.erase(held.begin());
+    for (const auto& j : n.Tick(t).jobs) held.push_back(j);
+  }
+  EXPECT_TRUE(n.batch_done());
+  EXPECT_EQ(n.counters().jobs_poked, 0);
+}
+
 // Copies of each job and result on a small farm (a lost frame costs
 // nothing), one on a large farm (where the datagrams would cost more).
 TEST(FarmMasterCore, SmallFarmsSendTwoCopiesAndTellTheirWorkers) {
