@@ -325,6 +325,11 @@ void FarmMasterCore::Maintain(double now) {
       Requeue(id, "no answer by its deadline");
       continue;
     }
+    if (job.poke_at <= 0) {
+      // Sent before any episode time was known (a run's first jobs).
+      const double wait = PokeWait(job);
+      if (wait > 0) job.poke_at = job.sent + wait;
+    }
     if (job.done_seen >= 0 && now - job.done_seen > settings_.result_wait) {
       // Its worker finished it but the result was lost: ask the same worker
       // again; it answers from its recent results without re-running.
