@@ -180,7 +180,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "Farm: s without heartbeat before a worker counts as gone")
       ->capture_default_str();
   app.add_option("--chunk-size", c.chunk_size,
-                 "Farm: payload bytes per chunk (1..60000)")
+                 "Farm: payload bytes per chunk, 1..60000; 0: what fits one "
+                 "Ethernet frame (a lost frame then loses one chunk only)")
       ->capture_default_str();
   app.add_option("--jump-to", c.jump_to,
                  "Stop after generation N, 1..--generations (replayed from "

@@ -33,7 +33,7 @@ struct OptCommand {
   std::string prefix = "MRSIM_OPT";
   double job_timeout = 0.0;
   double worker_timeout = 2.0;
-  int chunk_size = 48000;
+  int chunk_size = 0;  // 0: one Ethernet frame (FarmSettings)
   int generations = 20;
   int jump_to = -1;
   bool no_start = false;

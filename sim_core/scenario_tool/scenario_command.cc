@@ -170,8 +170,8 @@ void AddScenarioFlags(CLI::App& app, ScenarioCommand& c) {
   make->add_flag("--force-sensors", chain.force_sensors,
                  "A force sensor under each sensor module");
   make->add_flag("--front-distance-sensor", chain.front_distance_sensor,
-                 "A distance sensor on the front of the frontmost sensor "
-                 "module");
+                 "A distance sensor looking ahead from the sensor module in "
+                 "front of module 0 (needs --sensors=-1,... or all)");
   make->add_option("--name", chain.name, "Robot name")->capture_default_str();
   make->add_option("--module-mass", chain.module_mass, "kg per module")
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "optimizer/farm/farm_master_core.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -64,6 +65,14 @@ TEST(OptCommand, FlagsFillTheCommand) {
   EXPECT_TRUE(c.no_start);
   EXPECT_EQ(c.jump_to, 4);
   EXPECT_EQ(c.out_dir, "out");
+}
+
+// Under loss a chunk of many IP fragments is lost whole whenever one of
+// them is: without --chunk-size the farm sends one-frame chunks.
+TEST(OptCommand, FarmPayloadChunksFitOneFrameUnlessAsked) {
+  EXPECT_EQ(Parse(With(SnakeArgs("out"), {"--farm"})).chunk_size, 0);
+  FarmMasterCore master(std::string(100000, 'x'), "run", 1, FarmSettings{});
+  EXPECT_GT(master.chunk_count(), 70);  // ~1,370 bytes each
 }
 
 TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
