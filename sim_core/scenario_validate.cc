@@ -472,10 +472,11 @@ class Validator {
     }
   }
 
-  // A ray that starts inside another of the robot's boxes hits it at once
-  // and reads about 0 for the whole run: a face turned to a neighbour (the
-  // front face of a sensor module behind module 0, say). Checked at the
-  // pose in the file, against box frames and sensor modules.
+  // A ray that meets another of the robot's boxes where it leaves its own
+  // module hits it at once and reads about 0 for the whole run: a face
+  // turned to a neighbour (the front face of a sensor module behind module
+  // 0, say), or a ray looking back through its module into the next.
+  // Checked at the pose in the file, against box frames and sensor modules.
   void CheckRayStartsOutside(const SensorModule& sm, const DistanceSensor& d) {
     // Faces and sizes out of range are told on their own.
     if (d.sensor_position < 0 || d.sensor_position > 5) return;
@@ -483,11 +484,24 @@ class Validator {
     const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
     Eigen::Vector3d dir = d.ray_direction;
     if (!(dir.norm() > 0) || !dir.allFinite()) dir = n;
-    const Eigen::Quaterniond q = sm.quat_rotation.normalized();
-    // 1 mm along the ray from the face centre, as the physics casts it.
+    static constexpr const char* kFaces[] = {"bottom", "left",  "top",
+                                             "right",  "front", "back"};
+    // Where the ray leaves its own module (which it skips): at once through
+    // its face, or, looking back through the module, out of another face.
+    const Eigen::Vector3d half = sm.size / 2;
+    const Eigen::Vector3d from = n * std::abs(n.dot(half));
+    const Eigen::Vector3d along = dir.normalized();
+    double leave = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      if (std::abs(along[i]) < 1e-12) continue;
+      const double wall = along[i] > 0 ? half[i] : -half[i];
+      leave = std::min(leave, (wall - from[i]) / along[i]);
+    }
+    if (!std::isfinite(leave)) leave = 0;
+    // 1 mm beyond, as the physics casts it.
     const Eigen::Vector3d probe =
-        sm.position +
-        q * (n * std::abs(n.dot(sm.size / 2)) + 1e-3 * dir.normalized());
+        sm.position + sm.quat_rotation.normalized() *
+                          (from + (std::max(leave, 0.0) + 1e-3) * along);
     const auto inside = [&probe](const Eigen::Vector3d& centre,
                                  const Eigen::Quaterniond& rotation,
                                  const Eigen::Vector3d& size) {
@@ -511,14 +525,15 @@ class Validator {
       }
     }
     if (hit.empty()) return;
-    static constexpr const char* kFaces[] = {"bottom", "left",  "top",
-                                             "right",  "front", "back"};
     Fail(path_ + "/sensorPosition",
-         fmt::format("the ray of face {} ({}) starts inside '{}', so it would "
-                     "read about 0 the whole run; put the sensor on a face "
-                     "that looks out (for a sensor looking ahead: a sensor "
-                     "module in front of module 0)",
-                     d.sensor_position, kFaces[d.sensor_position], hit));
+         fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
+                     "sensor module, so it would read about 0 the whole run; "
+                     "put the sensor on a face that looks out{}",
+                     d.sensor_position, kFaces[d.sensor_position], hit,
+                     d.sensor_position == 4 ? " (for a sensor looking ahead: "
+                                              "a sensor module in front of "
+                                              "module 0)"
+                                            : ""));
   }
 
   const Scenario& s_;

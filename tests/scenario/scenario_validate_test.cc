@@ -118,8 +118,18 @@ std::vector<Rule> BuilderRules() {
          d.ray_direction = -Eigen::Vector3d::UnitX();
        },
        sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
-       "the ray of face 5 (back) starts inside 'r/m0/f0', so it would read "
-       "about 0"},
+       "the ray of face 5 (back) runs into 'r/m0/f0' as it leaves its sensor "
+       "module, so it would read about 0"},
+      {"distance sensor looking back through its module into another",
+       [](Scenario& s) {
+         // Face 4 (front) looking back: through the sensor module (which
+         // the ray skips) straight into module 0 behind it.
+         s.robots[0].sensor_modules[0].distance_sensors[0].ray_direction =
+             -Eigen::Vector3d::UnitX();
+       },
+       sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
+       "the ray of face 4 (front) runs into 'r/m0/f0' as it leaves its "
+       "sensor module"},
       {"sensor module mass",
        [](Scenario& s) { s.robots[0].sensor_modules[0].mass = 0; },
        sm1 + "/mass", "expected a positive value"},

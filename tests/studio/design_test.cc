@@ -338,7 +338,7 @@ TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
       d.AddDistanceSensor(face);
       ADD_FAILURE() << "a ray on face " << face << " was added";
     } catch (const DesignError& e) {
-      EXPECT_THAT(e.what(), HasSubstr("starts inside 'snake/m"));
+      EXPECT_THAT(e.what(), HasSubstr("runs into 'snake/m"));
     }
   }
   const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
