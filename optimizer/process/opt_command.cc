@@ -324,10 +324,16 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   } catch (const CheckpointError& e) {
     throw OptInputError(e.what());
   } catch (const EvaluationInterrupted&) {
-    fmt::print(err,
-               "mrsim-opt: stopped; completed generations are in {}/"
-               "checkpoint.txt, run the same command to continue\n",
-               c.out_dir);
+    if (std::filesystem::exists(c.out_dir + "/checkpoint.txt")) {
+      fmt::print(err,
+                 "mrsim-opt: stopped; completed generations are in {}/"
+                 "checkpoint.txt, run the same command to continue\n",
+                 c.out_dir);
+    } else {
+      fmt::print(err,
+                 "mrsim-opt: stopped before the first generation completed; "
+                 "nothing to continue from, the same command starts again\n");
+    }
     outcome.stopped = true;
     return outcome;
   }

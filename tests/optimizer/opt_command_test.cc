@@ -115,6 +115,51 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
             std::string::npos);
 }
 
+// Stops after `batches` batches, as Ctrl-C does.
+class StoppingEvaluator : public BatchEvaluator {
+ public:
+  StoppingEvaluator(BatchEvaluator& inner, int batches)
+      : inner_(inner), left_(batches) {}
+  std::vector<EvalResult> Evaluate(const std::vector<Genome>& batch) override {
+    if (left_-- == 0) throw EvaluationInterrupted("stopped");
+    return inner_.Evaluate(batch);
+  }
+
+ private:
+  BatchEvaluator& inner_;
+  int left_;
+};
+
+TEST(OptCommand, AStopSaysWhetherThereIsAnythingToContinueFrom) {
+  for (int batches : {0, 2}) {
+    const std::string out =
+        testing::TempDir("opt_command_stop") + "/" + std::to_string(batches);
+    const OptCommand c = Parse(
+        With(SnakeArgs(out), {"--population", "3", "--generations", "4",
+                              "--episode", "0.2", "--workers", "local:1"}));
+    const OptSetup setup = PrepareOpt(c);
+    auto evaluator = MakeOptEvaluator(c, setup, nullptr, nullptr);
+    StoppingEvaluator stopping(*evaluator, batches);
+    std::FILE* text = std::tmpfile();
+    std::FILE* notes = std::tmpfile();
+    EXPECT_TRUE(RunOpt(c, setup, stopping, text, notes).stopped);
+    const std::string said = Contents(notes);
+    if (batches == 0) {
+      EXPECT_NE(said.find("stopped before the first generation completed"),
+                std::string::npos)
+          << said;
+      EXPECT_FALSE(fs::exists(out + "/checkpoint.txt"));
+    } else {
+      EXPECT_NE(said.find("run the same command to continue"),
+                std::string::npos)
+          << said;
+      EXPECT_TRUE(fs::exists(out + "/checkpoint.txt"));
+    }
+    std::fclose(text);
+    std::fclose(notes);
+  }
+}
+
 TEST(OptCommand, RunWritesTheBestAndAProgressLinePerGeneration) {
   const std::string out = testing::TempDir("opt_command_run");
   const OptCommand c =
