@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/xml_error_text.h"
 #include "gait_controller/gait_presets.h"
 #include "sim_core/xml_writer.h"
 
@@ -58,7 +59,7 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
   XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     Fail(source, doc.ErrorLineNum(),
-         fmt::format("malformed XML: {}", doc.ErrorStr()));
+         fmt::format("malformed XML: {}", XmlErrorText(doc)));
   }
   const XMLElement* root = doc.RootElement();
   if (!root || std::string(root->Name()) != "gait") {

@@ -8,6 +8,8 @@
 #include <initializer_list>
 #include <set>
 
+#include "common/xml_error_text.h"
+
 namespace mrsim {
 namespace {
 
@@ -141,10 +143,15 @@ LaunchFile ReadLaunchFile(const std::string& path,
                           const std::map<std::string, std::string>& overrides) {
   namespace fs = std::filesystem;
   tinyxml2::XMLDocument doc;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    throw LaunchError(path + ": is a folder, not a launch file");
+  }
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
     const int line = doc.ErrorLineNum();
-    throw LaunchError(Where(path, line) + "cannot read launch file: " +
-                      (doc.ErrorStr() ? doc.ErrorStr() : "unknown error"));
+    // No line to point at when the file could not be read at all.
+    throw LaunchError((line > 0 ? Where(path, line) : path + ": ") +
+                      "cannot read the launch file: " + XmlErrorText(doc));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (root == nullptr || std::string(root->Name()) != "launch") {

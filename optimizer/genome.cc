@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "common/xml_error_text.h"
 #include "sim_core/xml_writer.h"
 
 namespace mrsim {
@@ -141,7 +142,7 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw GenomeError(fmt::format("{}:{}: not well-formed XML: {}", name,
-                                  doc.ErrorLineNum(), doc.ErrorStr()));
+                                  doc.ErrorLineNum(), XmlErrorText(doc)));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (!root || std::string(root->Name()) != "genome") {

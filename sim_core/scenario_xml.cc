@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/xml_error_text.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
 
@@ -28,25 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
-
-// tinyxml2's own text ("Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14
-// (0xe) ...") in words, for the errors a hand edit makes.
-std::string XmlErrorText(const tinyxml2::XMLDocument& doc) {
-  switch (doc.ErrorID()) {
-    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
-      return "an element is closed by another name, or not closed";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
-      return "an element is cut short or not closed";
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
-      return "a malformed or repeated attribute";
-    case tinyxml2::XML_ERROR_PARSING_TEXT:
-      return "text that is not XML (a stray '<' or '&'?)";
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
-      return "the file is empty";
-    default:
-      return doc.ErrorStr() ? doc.ErrorStr() : doc.ErrorName();
-  }
-}
 
 // No frame attribute, and the namespaces .NET's XmlSerializer writes: a
 // file of the original MRSim (mrsim itself always writes frame=).

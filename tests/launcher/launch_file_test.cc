@@ -168,6 +168,30 @@ TEST(LaunchFile, ErrorsNameFileLineAndProblem) {
   }
 }
 
+std::string ErrorOf(const std::string& path) {
+  try {
+    ReadLaunchFile(path, {});
+  } catch (const LaunchError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LaunchFile, AnUnreadableFileIsSaidInWords) {
+  const std::string missing = WriteFile("x.launch", "") + ".missing";
+  EXPECT_EQ(ErrorOf(missing),
+            missing + ": cannot read the launch file: no such file");
+  const std::string folder = testing::TempDir("launch_file_folder");
+  EXPECT_EQ(ErrorOf(folder), folder + ": is a folder, not a launch file");
+  const std::string broken =
+      WriteFile("broken.launch", "<launch>\n<process name=\"a\">\n</launch>\n");
+  EXPECT_NE(ErrorOf(broken).find(
+                "cannot read the launch file: an element is closed by "
+                "another name, or not closed"),
+            std::string::npos)
+      << ErrorOf(broken);
+}
+
 TEST(LaunchFile, SplitArgsHonoursQuotes) {
   EXPECT_EQ(SplitArgs("a  'b c' \"d\"e"),
             (std::vector<std::string>{"a", "b c", "de"}));
