@@ -18,8 +18,8 @@ int main(int argc, char** argv) {
     CLI::App app{
         "mrsim: modular robot simulator front door.\n"
         "  mrsim launch FILE    start the processes of a launch file\n"
-        "  mrsim TOOL ARGS...   run mrsim-TOOL (scenario, sim, gait, "
-        "opt, worker, log, plot, view)"};
+        "  mrsim TOOL ARGS...   run mrsim-TOOL: scenario, studio, sim, "
+        "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary"};
     app.set_version_flag("--version", std::string("mrsim ") + mrsim::kVersion);
     app.require_subcommand(1);
     mrsim::LaunchCommand command;

@@ -5,10 +5,31 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
 namespace mrsim {
+namespace {
+
+// Levenshtein distance, for "did you mean".
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1,
+                         diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
 
 std::vector<std::string> ProgramSearchPath(const std::string& argv0) {
   namespace fs = std::filesystem;
@@ -48,11 +69,45 @@ std::string FindProgram(const std::string& program,
     const std::string candidate = dir + "/" + program;
     if (access(candidate.c_str(), X_OK) == 0) return candidate;
   }
+  const std::string prefix = "mrsim-";
+  const std::vector<std::string> tools = ListTools(search_path);
+  if (program.rfind(prefix, 0) == 0 && !tools.empty()) {
+    // A typo: say what there is rather than every folder on PATH.
+    const std::string tool = program.substr(prefix.size());
+    std::string nearest, list;
+    size_t best = 3;  // at most two edits away
+    for (const std::string& t : tools) {
+      list += (list.empty() ? "" : ", ") + t;
+      const size_t d = EditDistance(tool, t);
+      if (d < best) best = d, nearest = t;
+    }
+    throw std::runtime_error(
+        "cannot find program '" + program + "'" +
+        (nearest.empty() ? "" : " (did you mean '" + prefix + nearest + "'?)") +
+        "; the mrsim programs are " + prefix + "{" + list + "}");
+  }
   std::string tried;
   for (const auto& dir : search_path) tried += "\n  " + dir;
   throw std::runtime_error("cannot find program '" + program +
                            "'; looked in:" + tried +
                            "\n(build it, or add its directory to PATH)");
+}
+
+std::vector<std::string> ListTools(
+    const std::vector<std::string>& search_path) {
+  namespace fs = std::filesystem;
+  std::set<std::string> tools;
+  for (const std::string& dir : search_path) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("mrsim-", 0) == 0 && name.size() > 6 &&
+          access(entry.path().c_str(), X_OK) == 0) {
+        tools.insert(name.substr(6));
+      }
+    }
+  }
+  return {tools.begin(), tools.end()};
 }
 
 }  // namespace mrsim

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "launcher/program_locator.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -78,6 +80,25 @@ TEST(LaunchCommand, AnUnknownToolIsBadInputNamingIt) {
   } catch (const LaunchError& e) {
     EXPECT_THAT(e.what(), HasSubstr("no tool 'no-such-tool': cannot find "
                                     "program 'mrsim-no-such-tool'"));
+  }
+}
+
+TEST(ProgramLocator, AMistypedProgramNamesTheNearestAndTheOthers) {
+  const std::string dir = testing::TempDir("program_locator");
+  for (const char* name : {"mrsim-gait", "mrsim-sim", "other"}) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << "#!/bin/sh\n";
+    std::filesystem::permissions(path, std::filesystem::perms::owner_all);
+  }
+  EXPECT_EQ(ListTools({dir}), (std::vector<std::string>{"gait", "sim"}));
+  EXPECT_EQ(FindProgram("mrsim-gait", {dir}), dir + "/mrsim-gait");
+  try {
+    FindProgram("mrsim-gaitt", {dir});
+    FAIL() << "found a program that is not there";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot find program 'mrsim-gaitt' (did you mean "
+              "'mrsim-gait'?); the mrsim programs are mrsim-{gait, sim}");
   }
 }
 
