@@ -29,6 +29,26 @@ void WriteOutput(const std::string& text, const std::string& path,
   info << "mrsim-scenario: wrote " << path << "\n";
 }
 
+// MakeChain's refusal ("MakeChain: modules must be at least 1, got 0")
+// named by the flag that set the option ("--modules: ...").
+std::string FlagNamed(const std::string& message) {
+  static const std::pair<const char*, const char*> kFlags[] = {
+      {"modules", "--modules"},
+      {"sensor module", "--sensors"},
+      {"two sensor modules", "--sensors"},
+      {"a front distance sensor", "--front-distance-sensor"},
+      {"frame_size", "--frame-size"},
+      {"module_mass", "--module-mass"},
+      {"joint_limit", "--joint-limit"}};
+  const std::string prefix = "MakeChain: ";
+  std::string text =
+      message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+  for (const auto& [starts, flag] : kFlags) {
+    if (text.rfind(starts, 0) == 0) return std::string(flag) + ": " + text;
+  }
+  return text;
+}
+
 FrameConvention FrameNamed(const std::string& name) {
   return name == "unity-y-up" ? FrameConvention::kUnityYUp
                               : FrameConvention::kZUp;
@@ -97,7 +117,7 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       try {
         s = MakeChainScenario({chain, c.ground, c.friction});
       } catch (const std::invalid_argument& e) {
-        throw ScenarioInputError(e.what());
+        throw ScenarioInputError(FlagNamed(e.what()));
       }
       // Check what we generate with the same reader users get.
       const std::string text = WriteScenarioString(s);

@@ -77,8 +77,14 @@ TEST(ScenarioCommand, BadInputNamesTheFlagOrFile) {
   ScenarioCommand missing = Parse({"validate", "/nonexistent/s.xml"});
   EXPECT_THAT(ErrorOf(missing),
               HasSubstr("/nonexistent/s.xml: cannot open the file"));
-  ScenarioCommand modules = Parse({"new", "--modules", "0"});
-  EXPECT_THAT(ErrorOf(modules), HasSubstr("modules"));
+  EXPECT_EQ(ErrorOf(Parse({"new", "--modules", "0"})),
+            "--modules: modules must be at least 1, got 0");
+  EXPECT_EQ(ErrorOf(Parse({"new", "--sensors", "99"})),
+            "--sensors: sensor module after module 99 is outside [-1, 10]");
+  EXPECT_THAT(
+      ErrorOf(Parse({"new", "--sensors", "2", "--front-distance-sensor"})),
+      HasSubstr("--front-distance-sensor: a front distance sensor "
+                "needs a sensor module in front of module 0"));
 }
 
 }  // namespace
