@@ -1,8 +1,11 @@
 #include "logger/csv_columns.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -90,8 +93,15 @@ std::vector<std::string> SplitCsvRecord(const std::string& record) {
 
 CsvColumns ReadCsvColumns(const std::string& path,
                           const std::vector<std::string>& wanted) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw PlotInputError(path + ": is a folder, not a CSV file");
+  }
   std::ifstream in(path);
-  if (!in) throw PlotInputError("cannot read CSV file " + path);
+  if (!in) {
+    throw PlotInputError(path + ": cannot open the file (" +
+                         std::strerror(errno) + ")");
+  }
   std::string record;
   int line = 0;
   if (!ReadRecord(in, &record, &line)) {

@@ -326,6 +326,12 @@ PlotResult RenderCurves(const std::vector<PlotCurve>& series,
 namespace {
 
 void WritePng(const cv::Mat& image, const std::string& png_path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(png_path, ec)) {
+    throw PlotInputError(png_path +
+                         ": is a folder; expected a PNG file name (-o "
+                         "FOLDER/chart.png)");
+  }
   bool ok = false;
   try {
     ok = cv::imwrite(png_path, image);

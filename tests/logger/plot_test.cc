@@ -250,6 +250,26 @@ TEST(Plot, DistinctNamesKeepWhatTellsThePathsApart) {
             (std::vector<std::string>{"a", "run"}));
 }
 
+TEST(Plot, AFolderGivenForTheCsvOrThePngIsSaidToBeOne) {
+  const std::string dir = testing::TempDir("plot_folders");
+  const std::string csv = dir + "/a.csv";
+  { std::ofstream(csv) << "time,v\n0,1\n1,2\n"; }
+  PlotOptions opt;
+  opt.y = {"v"};
+  const auto error = [&](const std::string& in, const std::string& out) {
+    try {
+      PlotCsvToPng(in, opt, out);
+    } catch (const PlotInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(dir, dir + "/a.png"), dir + ": is a folder, not a CSV file");
+  EXPECT_EQ(error(csv, dir), dir +
+                                 ": is a folder; expected a PNG file name (-o "
+                                 "FOLDER/chart.png)");
+}
+
 TEST(Plot, MissingColumnIsNamedWithTheColumnsThatExist) {
   const std::string dir = testing::TempDir("plot_missing");
   const std::string csv = dir + "/a.csv";
