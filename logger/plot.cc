@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -56,7 +57,7 @@ cv::Size TextSize(const std::string& text, double scale, int thickness) {
 
 }  // namespace
 
-PlotAxis NiceAxis(double lo, double hi, int max_ticks) {
+PlotAxis NiceAxis(double lo, double hi, int max_ticks, bool integers) {
   PlotAxis axis;
   axis.data_min = lo;
   axis.data_max = hi;
@@ -66,6 +67,7 @@ PlotAxis NiceAxis(double lo, double hi, int max_ticks) {
     hi += pad;
   }
   double step = NiceStep((hi - lo) / std::max(2, max_ticks - 1));
+  if (integers) step = std::max(step, 1.0);
   axis.min = std::floor(lo / step) * step;
   axis.max = std::ceil(hi / step) * step;
   while ((axis.max - axis.min) / step > max_ticks) {
@@ -145,6 +147,13 @@ PlotResult RenderCurves(const std::vector<PlotCurve>& series,
       prev_x = x;
     }
   }
+  // Whole numbers only on x (generations, counts): whole-number ticks.
+  bool integer_x = true;
+  for (const PlotCurve& c : series) {
+    for (double x : c.x) {
+      if (std::isfinite(x) && x != std::floor(x)) integer_x = false;
+    }
+  }
   r.lines = options.style == PlotOptions::Style::kLines ||
             (options.style == PlotOptions::Style::kAuto && monotonic);
 
@@ -179,7 +188,7 @@ PlotResult RenderCurves(const std::vector<PlotCurve>& series,
   const int bottom = 64;
   int right = 24;
   for (int max_ticks = 9; max_ticks >= 2; --max_ticks) {
-    r.x = NiceAxis(xlo, xhi, max_ticks);
+    r.x = NiceAxis(xlo, xhi, max_ticks, integer_x);
     int widest = 0;
     for (const std::string& t : r.x.tick_labels) {
       widest = std::max(widest, TextSize(t, 0.45, 1).width);
@@ -293,15 +302,51 @@ PlotResult RenderCurves(const std::vector<PlotCurve>& series,
                 kFont, 0.7, kBlack, 2, cv::LINE_AA);
   }
 
-  // Legend in the top right corner of the plot area.
+  // Legend in the corner of the plot area that hides the fewest points
+  // (top right when none is better): a rising curve ends top right.
   int legend_w = 0;
   for (const std::string& name : r.legend) {
     legend_w = std::max(legend_w, TextSize(name, 0.45, 1).width);
   }
   legend_w += 50;
   const int row_h = 20;
-  const cv::Rect box(a.x + a.width - legend_w - 8, a.y + 8, legend_w,
-                     row_h * static_cast<int>(r.legend.size()) + 8);
+  const int legend_h = row_h * static_cast<int>(r.legend.size()) + 8;
+  const int right_x = a.x + a.width - legend_w - 8;
+  const int bottom_y = a.y + a.height - legend_h - 8;
+  cv::Rect box(right_x, a.y + 8, legend_w, legend_h);
+  size_t fewest = SIZE_MAX;
+  for (const cv::Point& corner :
+       {cv::Point(right_x, a.y + 8), cv::Point(a.x + 8, a.y + 8),
+        cv::Point(right_x, bottom_y), cv::Point(a.x + 8, bottom_y)}) {
+    const cv::Rect candidate(corner.x, corner.y, legend_w, legend_h);
+    // Points, and with lines every few pixels along each segment.
+    size_t hidden = 0;
+    for (const PlotCurve& c : series) {
+      cv::Point2d last;
+      bool have_last = false;
+      for (size_t i = 0; i < c.x.size() && i < c.y.size(); ++i) {
+        if (!std::isfinite(c.x[i]) || !std::isfinite(c.y[i])) {
+          have_last = false;
+          continue;
+        }
+        const cv::Point2d p(px(c.x[i]), py(c.y[i]));
+        const int steps =
+            r.lines && have_last
+                ? std::max(1, static_cast<int>(cv::norm(p - last) / 4))
+                : 1;
+        for (int k = 1; k <= steps; ++k) {
+          const cv::Point2d q = have_last && r.lines
+                                    ? last + (p - last) * (double(k) / steps)
+                                    : p;
+          if (candidate.contains(cv::Point(q))) ++hidden;
+        }
+        last = p;
+        have_last = true;
+      }
+    }
+    if (hidden < fewest) fewest = hidden, box = candidate;
+  }
+  r.legend_box = box;
   if (box.x > a.x) {
     cv::rectangle(img, box, kWhite, cv::FILLED);
     cv::rectangle(img, box, kBlack, 1);

@@ -43,6 +43,7 @@ struct PlotResult {
   PlotAxis y;
   cv::Rect area;  // the plot area in pixels (inside the axes)
   std::vector<std::string> legend;
+  cv::Rect legend_box;  // in pixels; the corner hiding the fewest points
   std::vector<cv::Scalar> colors;  // BGR, one per y column
   std::string title;
   size_t points = 0;  // finite (x, y) pairs drawn
@@ -82,8 +83,10 @@ PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
 // when nothing is left.
 std::vector<std::string> DistinctNames(const std::vector<std::string>& paths);
 
-// Tick positions 1, 2 or 5 times a power of ten covering [lo, hi].
-PlotAxis NiceAxis(double lo, double hi, int max_ticks = 8);
+// Tick positions 1, 2 or 5 times a power of ten covering [lo, hi]; at
+// least 1 apart when `integers` (a generation or a count has no 0.5).
+PlotAxis NiceAxis(double lo, double hi, int max_ticks = 8,
+                  bool integers = false);
 
 // Parses "auto", "lines" or "points".
 PlotOptions::Style ParsePlotStyle(const std::string& text);

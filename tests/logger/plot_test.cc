@@ -241,6 +241,32 @@ TEST(Plot, SeveralCsvsDrawOneCurveEachNamedByTheirRun) {
   EXPECT_GT(two.x + two.width, r.area.x + r.area.width * 0.8);
 }
 
+TEST(Plot, TheLegendGoesWhereItHidesNoCurve) {
+  // A line rising to the top right corner, where the legend used to sit.
+  PlotCurve rising{"rising", {0, 1, 2}, {0, 1, 2}};
+  PlotOptions opt;
+  opt.x = "x";
+  opt.y = {"rising"};
+  cv::Mat img;
+  const PlotResult r = RenderCurves({rising}, opt, &img);
+  // The first free corner: top left (the line runs bottom left to top
+  // right).
+  EXPECT_LT(r.legend_box.x, r.area.x + r.area.width / 2);
+  EXPECT_LT(r.legend_box.y, r.area.y + r.area.height / 2);
+  // A falling line leaves the top right free: the legend stays there.
+  PlotCurve falling{"rising", {0, 1, 2}, {2, 1, 0}};
+  const PlotResult f = RenderCurves({falling}, opt, &img);
+  EXPECT_GT(f.legend_box.x, f.area.x + f.area.width / 2);
+  EXPECT_LT(f.legend_box.y, f.area.y + f.area.height / 2);
+}
+
+TEST(Plot, WholeNumbersOnXGetWholeNumberTicks) {
+  const PlotAxis fine = NiceAxis(0, 2, 8);
+  EXPECT_EQ(fine.tick_labels[1], "0.5");
+  const PlotAxis whole = NiceAxis(0, 2, 8, true);
+  EXPECT_EQ(whole.tick_labels, (std::vector<std::string>{"0", "1", "2"}));
+}
+
 TEST(Plot, DistinctNamesKeepWhatTellsThePathsApart) {
   EXPECT_EQ(DistinctNames({"out/run1/csv/S.csv", "out/run2/csv/S.csv"}),
             (std::vector<std::string>{"run1", "run2"}));
