@@ -561,8 +561,12 @@ Scenario Reader::Read(const std::string& xml) {
   const std::string& file = source_.file;
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw ScenarioError(fmt::format("{}:{}: Scenario: malformed XML: {}", file,
-                                    doc.ErrorLineNum(), XmlErrorText(doc)));
+    // An empty file has no line to point at.
+    const int line = doc.ErrorLineNum();
+    throw ScenarioError(line > 0
+                            ? fmt::format("{}:{}: Scenario: malformed XML: {}",
+                                          file, line, XmlErrorText(doc))
+                            : fmt::format("{}: {}", file, XmlErrorText(doc)));
   }
   const XMLElement* root = doc.RootElement();
   if (!root) {

@@ -60,14 +60,19 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       throw ScenarioInputError("no subcommand given");
     case ScenarioAction::kValidate: {
       const Scenario s = ReadScenarioFile(c.file);
-      out << fmt::format("{}: ok ({} robots, {} scene objects)\n", c.file,
-                         s.robots.size(), s.scene_objects.size());
+      const auto count = [](size_t n, const char* what) {
+        return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s");
+      };
+      out << fmt::format("{}: ok ({}, {})\n", c.file,
+                         count(s.robots.size(), "robot"),
+                         count(s.scene_objects.size(), "scene object"));
       return;
     }
-    case ScenarioAction::kInfo:
-      out << "file: " << c.file << "\n"
-          << SummarizeScenario(ReadScenarioFile(c.file));
+    case ScenarioAction::kInfo: {
+      const std::string summary = SummarizeScenario(ReadScenarioFile(c.file));
+      out << "file: " << c.file << "\n" << summary;
       return;
+    }
     case ScenarioAction::kSchema:
       out << SchemaMarkdown();
       return;
@@ -99,6 +104,12 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       if (!c.from_frame.empty()) read.frame = FrameNamed(c.from_frame);
       read.length_scale = c.scale;
       const Scenario s = ReadScenarioFile(c.file, read);
+      if (c.scale == 1.0 && IsOriginalMrsimFile(c.file)) {
+        info << "mrsim-scenario: note: " << c.file
+             << " was written by the original MRSim, whose lengths are "
+                "usually centimetres; without --scale 0.01 they stay as "
+                "they are\n";
+      }
       WriteOutput(WriteScenarioString(s, FrameNamed(c.to_frame)), c.out_path,
                   out, info);
       return;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
 
 namespace mrsim {
 namespace {
@@ -65,6 +66,23 @@ TEST(ScenarioCommand, EachSubcommandSetsItsAction) {
   EXPECT_EQ(convert.file, "in.xml");
   EXPECT_EQ(convert.out_path, "out.xml");
   EXPECT_DOUBLE_EQ(convert.scale, 0.01);
+}
+
+TEST(ScenarioCommand,
+     ConvertingAnOriginalFileUnscaledSaysLengthsStayAsTheyAre) {
+  const std::string original =
+      testing::SourcePath("scenarios/mrsim_original.xml");
+  const std::string out =
+      testing::TempDir("scenario_command_convert") + "/a.xml";
+  for (const char* scale : {"1", "0.01"}) {
+    std::ostringstream text, info;
+    RunScenarioCommand(Parse({"convert", "--from", "unity-y-up", original, out,
+                              "--scale", scale}),
+                       text, info);
+    EXPECT_EQ(info.str().find("without --scale 0.01") != std::string::npos,
+              std::string(scale) == "1")
+        << info.str();
+  }
 }
 
 TEST(ScenarioCommand, BadInputNamesTheFlagOrFile) {

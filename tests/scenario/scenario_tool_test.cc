@@ -196,7 +196,7 @@ TEST(ScenarioTool, OriginalFileConvertsValidatesExportsAndRuns) {
   EXPECT_THAT(ReadText(native), HasSubstr("frame=\"z-up\""));
   r = RunTool({"validate", native}, dir);
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("ok (1 robots, 2 scene objects)"));
+  EXPECT_THAT(r.output, HasSubstr("ok (1 robot, 2 scene objects)"));
   r = RunTool({"export-mjcf", native, "-o", dir + "/native.mjcf.xml"}, dir);
   ASSERT_EQ(r.code, 0) << r.output;
   char error[1000] = {0};
