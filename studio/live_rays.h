@@ -20,4 +20,10 @@ std::vector<Ray> MeasuredRays(const StatePoseMapper& mapper,
                               const std::vector<const RobotState*>& states,
                               const mjData* data);
 
+// The ray of the distance sensor at `site` in the pose of `data` (after
+// mj_kinematics), as the simulator casts it: from the site along its x
+// axis, skipping the sensor module and its force plate, to the first thing
+// within `length`. The design view draws these.
+Ray CastSiteRay(const mjModel* m, const mjData* d, int site, double length);
+
 }  // namespace mrsim::studio

@@ -175,9 +175,9 @@ void Preview::FrameAll() {
 
 void Preview::AddRays() {
   // Physics casts its own rays (no MuJoCo rangefinders in its model), so
-  // the preview draws them, in the look's distance-sensor colour: designed
-  // length when editing, measured length when live (a hit brighter, with a
-  // dot where the ray ends).
+  // the preview draws them, in the look's distance-sensor colour: when
+  // editing as far as the simulator would read at the start, when live as
+  // far as it measured (a hit brighter, with a dot where the ray ends).
   const Eigen::Vector3d rgb = PartLookRgb(PartLook::kDistanceSensor);
   const float rgba[4] = {static_cast<float>(rgb.x()),
                          static_cast<float>(rgb.y()),
@@ -193,20 +193,17 @@ void Preview::AddRays() {
                       to.y(), to.z());
     g->category = mjCAT_DECOR;
   };
+  std::vector<Ray> rays = live_ ? live_rays_ : std::vector<Ray>();
   for (const RaySite& ray : rays_) {
     const int robot = ray.part.robot;
     if (live_ && robot >= 0 && robot < static_cast<int>(live_robots_.size()) &&
         live_robots_[robot]) {
       continue;
     }
-    const mjtNum* p = data_->site_xpos + 3 * ray.site;
-    const mjtNum* x = data_->site_xmat + 9 * ray.site;
-    const Eigen::Vector3d from(p[0], p[1], p[2]);
-    add(rgba, mjGEOM_CAPSULE, 0.003, from,
-        from + ray.length * Eigen::Vector3d(x[0], x[3], x[6]));
+    // As the simulator would read it in this pose: to what it hits first.
+    rays.push_back(CastSiteRay(physics_->model(), data_, ray.site, ray.length));
   }
-  if (!live_) return;
-  for (const Ray& ray : live_rays_) {
+  for (const Ray& ray : rays) {
     if (!ray.from.allFinite() || !ray.to.allFinite()) continue;
     add(ray.hit ? hit : miss, mjGEOM_CAPSULE, 0.003, ray.from, ray.to);
     if (ray.hit && scene_.ngeom < scene_.maxgeom) {

@@ -41,6 +41,27 @@ class StudioLiveRays : public ::testing::Test {
   int site_;
 };
 
+// The design view draws each ray as far as the simulator would read it in
+// the design's pose (it ran the full range past the ball).
+TEST_F(StudioLiveRays, ADesignRayEndsWhereTheSimulatorWouldRead) {
+  ASSERT_GE(site_, 0);
+  mj_kinematics(view_.model(), view_.mutable_data());
+  const double max = scenario_.robots[0]
+                         .sensor_modules[0]
+                         .distance_sensors[0]
+                         .max_ray_distance;
+  const Ray ray = CastSiteRay(view_.model(), view_.data(), site_, max);
+  const double reading = sim_.ReadRobotState(0).sensor_modules[0].distances[0];
+  ASSERT_LT(reading, max);  // the box is in front
+  EXPECT_TRUE(ray.hit);
+  EXPECT_NEAR((ray.to - ray.from).norm(), reading, 1e-9);
+  EXPECT_TRUE(ray.from.isApprox(SitePosition()));
+  // Nothing within a short range: the full length, no hit.
+  const Ray short_ray = CastSiteRay(view_.model(), view_.data(), site_, 0.01);
+  EXPECT_FALSE(short_ray.hit);
+  EXPECT_NEAR((short_ray.to - short_ray.from).norm(), 0.01, 1e-12);
+}
+
 TEST_F(StudioLiveRays, AReadingGivesARayOfThatLengthFromItsSiteAlongIt) {
   ASSERT_GE(site_, 0);
   RobotState state = sim_.ReadRobotState(0);
