@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "sim_core/distance_ray.h"
 #include "sim_core/fluid_forces.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/mujoco_handlers.h"
@@ -643,32 +644,9 @@ RobotState Physics::ReadRobotState(int robot) const {
       sm.force = mju_norm3(impl_->scratch->sensordata + si.force_adr);
     }
     for (size_t k = 0; k < si.sites.size(); ++k) {
-      const int site = si.sites[k];
-      const double range = si.max_distance[k];
-      mjtNum point[3], dir[3];
-      mju_copy3(point, d->site_xpos + 3 * site);
-      const mjtNum* x = d->site_xmat + 9 * site;
-      dir[0] = x[0];  // the site's x axis is the ray
-      dir[1] = x[3];
-      dir[2] = x[6];
-      double travelled = 0;
-      double reading = range;
-      // The ray skips its own module (bodyexclude) and its own plate.
-      for (int attempt = 0; attempt < 4; ++attempt) {
-        int geom = -1;
-        const mjtNum dist =
-            mj_ray(m, d, point, dir, nullptr, 1, si.body, &geom);
-        if (dist < 0 || geom < 0) break;
-        if (m->geom_bodyid[geom] != si.plate) {
-          reading = std::min(range, travelled + dist);
-          break;
-        }
-        const double step = dist + 1e-6;
-        travelled += step;
-        for (int i = 0; i < 3; ++i) point[i] += step * dir[i];
-        if (travelled >= range) break;
-      }
-      sm.distances.push_back(reading);
+      sm.distances.push_back(
+          CastDistanceRay(m, d, si.sites[k], si.plate, si.max_distance[k])
+              .distance);
       sm.distance_faces.push_back(si.faces[k]);
     }
     state.sensor_modules.push_back(std::move(sm));

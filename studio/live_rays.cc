@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sim_core/distance_ray.h"
+
 namespace mrsim::studio {
 
 std::vector<Ray> MeasuredRays(const StatePoseMapper& mapper,
@@ -17,35 +19,20 @@ std::vector<Ray> MeasuredRays(const StatePoseMapper& mapper,
   return rays;
 }
 
-// A distance sensor's ray from its site along the site's x axis, as
-// Physics casts it: skipping the sensor module's own body and its force
-// plate (a child body), up to `length`.
 Ray CastSiteRay(const mjModel* m, const mjData* d, int site, double length) {
+  // The sensor module's force plate is its child body (sim_core's MJCF).
   const int body = m->site_bodyid[site];
-  mjtNum point[3], dir[3];
-  mju_copy3(point, d->site_xpos + 3 * site);
-  const mjtNum* x = d->site_xmat + 9 * site;
-  dir[0] = x[0];
-  dir[1] = x[3];
-  dir[2] = x[6];
-  Ray ray;
-  ray.from = Eigen::Vector3d(point[0], point[1], point[2]);
-  const Eigen::Vector3d along(dir[0], dir[1], dir[2]);
-  double travelled = 0;
-  for (int attempt = 0; attempt < 4 && travelled < length; ++attempt) {
-    int geom = -1;
-    const mjtNum dist = mj_ray(m, d, point, dir, nullptr, 1, body, &geom);
-    if (dist < 0 || geom < 0 || travelled + dist > length) break;
-    if (m->body_parentid[m->geom_bodyid[geom]] != body) {
-      ray.hit = true;
-      ray.to = ray.from + (travelled + dist) * along;
-      return ray;
-    }
-    const double step = dist + 1e-6;  // through the plate
-    travelled += step;
-    for (int i = 0; i < 3; ++i) point[i] += step * dir[i];
+  int plate = -1;
+  for (int b = 1; b < m->nbody && plate < 0; ++b) {
+    if (m->body_parentid[b] == body) plate = b;
   }
-  ray.to = ray.from + length * along;
+  const DistanceRay cast = CastDistanceRay(m, d, site, plate, length);
+  const mjtNum* p = d->site_xpos + 3 * site;
+  const mjtNum* x = d->site_xmat + 9 * site;
+  Ray ray;
+  ray.from = Eigen::Vector3d(p[0], p[1], p[2]);
+  ray.to = ray.from + cast.distance * Eigen::Vector3d(x[0], x[3], x[6]);
+  ray.hit = cast.hit;
   return ray;
 }
 
