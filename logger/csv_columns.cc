@@ -32,7 +32,8 @@ bool ReadRecord(std::istream& in, std::string* record, int* line) {
   return any;
 }
 
-double ParseNumber(const std::string& cell) {
+// NaN for an empty cell or one that is not a number (`*bad` set).
+double ParseNumber(const std::string& cell, bool* bad) {
   double v = std::numeric_limits<double>::quiet_NaN();
   if (cell.empty()) return v;
   const char* begin = cell.data();
@@ -40,6 +41,7 @@ double ParseNumber(const std::string& cell) {
   if (*begin == '+') ++begin;
   const auto r = std::from_chars(begin, end, v);
   if (r.ec != std::errc() || r.ptr != end) {
+    *bad = true;
     return std::numeric_limits<double>::quiet_NaN();
   }
   return v;
@@ -121,6 +123,16 @@ CsvColumns ReadCsvColumns(const std::string& path,
     index.push_back(static_cast<size_t>(it - header.begin()));
   }
   std::vector<size_t> cells_at;
+  // Left out of the plot, counted so the user hears of them.
+  const auto parse = [&](const std::string& cell, size_t k) {
+    bool bad = false;
+    const double v = ParseNumber(cell, &bad);
+    if (bad && out.not_numbers++ == 0) {
+      out.first_not_number = path + ":" + std::to_string(line) + ": column '" +
+                             wanted[k] + "': '" + cell + "'";
+    }
+    return v;
+  };
   while (ReadRecord(in, &record, &line)) {
     if (record.empty()) continue;
     if (record.find('"') == std::string::npos) {
@@ -141,7 +153,7 @@ CsvColumns ReadCsvColumns(const std::string& path,
       for (size_t k = 0; k < index.size(); ++k) {
         const size_t b = cells_at[index[k]];
         const size_t e = cells_at[index[k] + 1] - 1;
-        out.values[k].push_back(ParseNumber(record.substr(b, e - b)));
+        out.values[k].push_back(parse(record.substr(b, e - b), k));
       }
       ++out.rows;
       continue;
@@ -153,7 +165,7 @@ CsvColumns ReadCsvColumns(const std::string& path,
                            std::to_string(cells.size()));
     }
     for (size_t k = 0; k < index.size(); ++k) {
-      out.values[k].push_back(ParseNumber(cells[index[k]]));
+      out.values[k].push_back(parse(cells[index[k]], k));
     }
     ++out.rows;
   }

@@ -19,6 +19,8 @@ struct CsvColumns {
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;  // values[i] is column names[i]
   size_t rows = 0;
+  size_t not_numbers = 0;        // cells neither empty nor a number
+  std::string first_not_number;  // "FILE:LINE: column 'c': 'text'"
 };
 
 // Reads the columns `wanted` (in that order) of the CSV at `path`. Cells

@@ -1,5 +1,7 @@
 #include "logger/plot.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -412,6 +414,8 @@ PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
   } catch (const PlotInputError& e) {
     throw PlotInputError(csv_path + ": " + e.what());
   }
+  r.not_numbers = data.not_numbers;
+  r.first_not_number = data.first_not_number;
   WritePng(image, png_path);
   return r;
 }
@@ -424,9 +428,13 @@ PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
   }
   const std::vector<std::string> names = DistinctNames(csv_paths);
   std::vector<PlotCurve> series;
+  size_t not_numbers = 0;
+  std::string first_not_number;
   for (size_t f = 0; f < csv_paths.size(); ++f) {
     const CsvColumns data =
         ReadCsvColumns(csv_paths[f], WantedColumns(options));
+    if (not_numbers == 0) first_not_number = data.first_not_number;
+    not_numbers += data.not_numbers;
     // ReadCsvColumns returns the wanted columns in order: x first.
     for (const std::string& y : options.y) {
       const size_t i = static_cast<size_t>(
@@ -438,9 +446,27 @@ PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
   }
   cv::Mat image;
   // An error names the curve, and so the file.
-  const PlotResult r = RenderCurves(series, options, &image);
+  PlotResult r = RenderCurves(series, options, &image);
+  r.not_numbers = not_numbers;
+  r.first_not_number = first_not_number;
   WritePng(image, png_path);
   return r;
+}
+
+std::string PlotSummary(const PlotResult& r, const PlotOptions& options,
+                        const std::string& png_path) {
+  std::string text = fmt::format(
+      "mrsim-plot: wrote {}: {} points, x {} in [{:g}, {:g}], y in [{:g}, "
+      "{:g}]\n",
+      png_path, r.points, options.x, r.x.data_min, r.x.data_max, r.y.data_min,
+      r.y.data_max);
+  if (r.not_numbers > 0) {
+    text += fmt::format(
+        "mrsim-plot: note: {} cell{} not a number, left out (first: {})\n",
+        r.not_numbers, r.not_numbers == 1 ? " is" : "s are",
+        r.first_not_number);
+  }
+  return text;
 }
 
 std::vector<std::string> DistinctNames(const std::vector<std::string>& paths) {

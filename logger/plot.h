@@ -46,7 +46,9 @@ struct PlotResult {
   cv::Rect legend_box;  // in pixels; the corner hiding the fewest points
   std::vector<cv::Scalar> colors;  // BGR, one per y column
   std::string title;
-  size_t points = 0;  // finite (x, y) pairs drawn
+  size_t points = 0;             // finite (x, y) pairs drawn
+  size_t not_numbers = 0;        // CSV cells left out: not numbers
+  std::string first_not_number;  // "FILE:LINE: column 'c': 'text'"
   bool lines = true;
 };
 
@@ -77,6 +79,11 @@ PlotResult PlotCsvToPng(const std::string& csv_path, const PlotOptions& options,
 PlotResult PlotCsvsToPng(const std::vector<std::string>& csv_paths,
                          const PlotOptions& options,
                          const std::string& png_path);
+
+// What mrsim-plot says after writing `png_path`: points and ranges, and a
+// second line about cells that were not numbers when there were any.
+std::string PlotSummary(const PlotResult& result, const PlotOptions& options,
+                        const std::string& png_path);
 
 // What tells each path apart from the others: the path components they do
 // not all share, without a .csv ending ("run1", "run2"); the whole path

@@ -47,11 +47,7 @@ int main(int argc, char** argv) {
   try {
     options.style = mrsim::ParsePlotStyle(style);
     const mrsim::PlotResult r = mrsim::PlotCsvsToPng(csvs, options, out);
-    std::printf(
-        "mrsim-plot: wrote %s: %zu points, x %s in [%g, %g], y in "
-        "[%g, %g]\n",
-        out.c_str(), r.points, options.x.c_str(), r.x.data_min, r.x.data_max,
-        r.y.data_min, r.y.data_max);
+    std::fputs(mrsim::PlotSummary(r, options, out).c_str(), stdout);
     return 0;
   } catch (const mrsim::PlotInputError& e) {
     std::fprintf(stderr, "mrsim-plot: %s\n", e.what());

@@ -296,6 +296,23 @@ TEST(Plot, AFolderGivenForTheCsvOrThePngIsSaidToBeOne) {
                                  "FOLDER/chart.png)");
 }
 
+TEST(Plot, CellsThatAreNotNumbersAreLeftOutAndTold) {
+  const std::string dir = testing::TempDir("plot_not_numbers");
+  const std::string csv = dir + "/a.csv";
+  { std::ofstream(csv) << "time,v\n0,1\n1,abc\n2,\n3,4\n"; }
+  PlotOptions opt;
+  opt.y = {"v"};
+  const PlotResult r = PlotCsvToPng(csv, opt, dir + "/a.png");
+  EXPECT_EQ(r.points, 2u);
+  EXPECT_EQ(r.not_numbers, 1u) << "an empty cell is a missing value";
+  EXPECT_EQ(r.first_not_number, csv + ":3: column 'v': 'abc'");
+  EXPECT_NE(PlotSummary(r, opt, "a.png")
+                .find("note: 1 cell is not a number, left out (first: " + csv +
+                      ":3:"),
+            std::string::npos)
+      << PlotSummary(r, opt, "a.png");
+}
+
 TEST(Plot, MissingColumnIsNamedWithTheColumnsThatExist) {
   const std::string dir = testing::TempDir("plot_missing");
   const std::string csv = dir + "/a.csv";
