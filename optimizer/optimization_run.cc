@@ -51,8 +51,35 @@ double ParseDouble(const std::string& token, const std::string& where) {
   return v;
 }
 
+// "population=8 (this run: 6), seed=1 (this run: 2)": the settings lines
+// recorded in a checkpoint that differ from this run's; empty when none
+// differ or none were recorded (an older checkpoint).
+std::string SettingsDiff(const std::vector<std::string>& recorded,
+                         const std::string& now) {
+  std::map<std::string, std::string> mine;
+  std::istringstream lines(now);
+  for (std::string l; std::getline(lines, l);) {
+    const size_t eq = l.find('=');
+    if (eq != std::string::npos) mine[l.substr(0, eq)] = l.substr(eq + 1);
+  }
+  std::string diff;
+  for (const std::string& l : recorded) {
+    const size_t eq = l.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = l.substr(0, eq), value = l.substr(eq + 1);
+    const auto it = mine.find(key);
+    const std::string here = it == mine.end() ? "unset" : it->second;
+    if (here != value) {
+      diff += fmt::format("{}{}={} (this run: {})", diff.empty() ? "" : ", ",
+                          key, value, here);
+    }
+  }
+  return diff;
+}
+
 std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
-                                               const std::string& fingerprint) {
+                                               const std::string& fingerprint,
+                                               const std::string& settings) {
   std::ifstream in(path);
   std::vector<RecordedGeneration> gens;
   if (!in) return gens;
@@ -65,20 +92,28 @@ std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
   }
   ++line_no;
   bool ended = false;
+  std::vector<std::string> recorded_settings;
   while (std::getline(in, line)) {
     ++line_no;
     std::istringstream words(line);
     std::string key;
     words >> key;
-    if (key == "fingerprint") {
+    if (key == "setting") {
+      std::string value;
+      words >> value;
+      recorded_settings.push_back(value);
+    } else if (key == "fingerprint") {
       std::string value;
       words >> value;
       if (value != fingerprint) {
+        const std::string diff = SettingsDiff(recorded_settings, settings);
         throw CheckpointError(fmt::format(
-            "{}: the checkpoint was made with other settings, scenario or "
-            "genome (fingerprint {}, this run {}); use another --out "
-            "directory or remove it",
-            path, value, fingerprint));
+            "{}: the checkpoint was made with {} (fingerprint {}, this run "
+            "{}); use the same, another --out directory, or remove it",
+            path,
+            diff.empty() ? "another scenario, genome or episode settings"
+                         : "other settings: " + diff,
+            value, fingerprint));
       }
     } else if (key == "gen") {
       int index = -1;
@@ -121,9 +156,17 @@ std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
 }
 
 void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
+                     const std::string& settings,
                      const std::vector<RecordedGeneration>& gens) {
-  std::string text =
-      fmt::format("{}\nfingerprint {}\n", kCheckpointMagic, fingerprint);
+  std::string text = kCheckpointMagic + std::string("\n");
+  // Each setting in words, so a refusal can say which one changed.
+  std::istringstream lines(settings);
+  for (std::string l; std::getline(lines, l);) {
+    if (!l.empty() && l.find(' ') == std::string::npos) {
+      text += "setting " + l + "\n";
+    }
+  }
+  text += fmt::format("fingerprint {}\n", fingerprint);
   for (size_t k = 0; k < gens.size(); ++k) {
     text += fmt::format("gen {} {} {}\n", k, gens[k].results.size(),
                         gens[k].genomes_hash);
@@ -166,7 +209,10 @@ RunResult RunOptimization(const GenomeSpec& spec,
   const bool use_files = !options.out_dir.empty();
   const std::string checkpoint_path = options.out_dir + "/checkpoint.txt";
   std::vector<RecordedGeneration> recorded;
-  if (use_files) recorded = ReadCheckpoint(checkpoint_path, fingerprint);
+  if (use_files) {
+    recorded =
+        ReadCheckpoint(checkpoint_path, fingerprint, settings.Describe());
+  }
 
   RunResult result;
   result.wrote_files =
@@ -276,7 +322,10 @@ RunResult RunOptimization(const GenomeSpec& spec,
       }
       std::fflush(gens_csv.get());
       std::fflush(evals_csv.get());
-      if (!replay) WriteCheckpoint(checkpoint_path, fingerprint, recorded);
+      if (!replay) {
+        WriteCheckpoint(checkpoint_path, fingerprint, settings.Describe(),
+                        recorded);
+      }
     }
 
     if (options.progress) {

@@ -75,7 +75,31 @@ TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
   CountingEvaluator e;
   RunOptimization(spec, settings, e, options);
   settings.seed = 2;
-  EXPECT_THROW(RunOptimization(spec, settings, e, options), CheckpointError);
+  settings.population = 6;
+  try {
+    RunOptimization(spec, settings, e, options);
+    FAIL() << "a checkpoint of other settings was continued";
+  } catch (const CheckpointError& err) {
+    // It says which settings changed.
+    EXPECT_NE(
+        std::string(err.what())
+            .find("other settings: population=4 (this run: 6), seed=1 (this "
+                  "run: 2)"),
+        std::string::npos)
+        << err.what();
+  }
+  // Same settings, another genome: said as such.
+  settings.seed = 1;
+  settings.population = 4;
+  try {
+    RunOptimization(TestFunctionSpec(3, -2, 2, 0), settings, e, options);
+    FAIL() << "a checkpoint of another genome was continued";
+  } catch (const CheckpointError& err) {
+    EXPECT_NE(std::string(err.what())
+                  .find("another scenario, genome or episode settings"),
+              std::string::npos)
+        << err.what();
+  }
 }
 
 TEST(OptimizerRun, JumpToReplaysWithoutTouchingTheFiles) {
