@@ -16,6 +16,15 @@ int main(int argc, char** argv) {
                        std::string("mrsim-scenario ") + mrsim::kVersion);
   mrsim::ScenarioCommand command;
   mrsim::AddScenarioFlags(app, command);
+  const auto known = app.get_subcommands([&](const CLI::App* sub) {
+    return argc > 1 && sub->get_name() == argv[1];
+  });
+  if (argc > 1 && argv[1][0] != '-' && known.empty()) {
+    std::cerr << "error: unknown subcommand '" << argv[1]
+              << "'; expected validate, info, schema, export-mjcf, convert "
+                 "or new (--help)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -79,7 +79,9 @@ TEST(ScenarioTool, ValidateExitsTwoWithTheErrorOnABadFile) {
 TEST(ScenarioTool, BadCommandLineExitsTwo) {
   const std::string dir = TempDir("tool_bad_args");
   EXPECT_EQ(RunTool({}, dir).code, 2);
-  EXPECT_EQ(RunTool({"frobnicate"}, dir).code, 2);
+  const auto unknown = RunTool({"frobnicate"}, dir);
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_THAT(unknown.output, HasSubstr("unknown subcommand 'frobnicate'"));
   EXPECT_EQ(RunTool({"new", "--pattern", "roll"}, dir).code, 2);
   EXPECT_EQ(RunTool({"new", "--modules", "0"}, dir).code, 2);
   EXPECT_EQ(RunTool({"new", "--sensors", "x,y"}, dir).code, 2);
