@@ -60,12 +60,9 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       throw ScenarioInputError("no subcommand given");
     case ScenarioAction::kValidate: {
       const Scenario s = ReadScenarioFile(c.file);
-      const auto count = [](size_t n, const char* what) {
-        return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s");
-      };
       out << fmt::format("{}: ok ({}, {})\n", c.file,
-                         count(s.robots.size(), "robot"),
-                         count(s.scene_objects.size(), "scene object"));
+                         Counted(s.robots.size(), "robot"),
+                         Counted(s.scene_objects.size(), "scene object"));
       return;
     }
     case ScenarioAction::kInfo: {

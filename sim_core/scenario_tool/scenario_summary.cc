@@ -8,6 +8,8 @@
 
 namespace mrsim {
 
+namespace {}  // namespace
+
 double RobotMass(const Robot& robot) {
   double mass = 0;
   for (const Module& m : robot.modules) {
@@ -31,11 +33,13 @@ std::string SummarizeScenario(const Scenario& s) {
       distance += static_cast<int>(sm.distance_sensors.size());
     }
     out += fmt::format(
-        "  {}: {} modules ({} pitch, {} yaw), {} hinge joints, {} locks, "
-        "{} sensor modules, {} force sensors, {} distance sensors, "
-        "mass {:.4g} kg\n",
-        r.name, r.modules.size(), pitch, yaw, r.modules.size(), r.locks.size(),
-        r.sensor_modules.size(), force, distance, RobotMass(r));
+        "  {}: {} ({} pitch, {} yaw), {}, {}, {}, {}, {}, mass {:.4g} kg\n",
+        r.name, Counted(r.modules.size(), "module"), pitch, yaw,
+        Counted(r.modules.size(), "hinge joint"),
+        Counted(r.locks.size(), "lock"),
+        Counted(r.sensor_modules.size(), "sensor module"),
+        Counted(force, "force sensor"), Counted(distance, "distance sensor"),
+        RobotMass(r));
   }
   std::map<std::string, int> shapes;
   for (const SceneObject& o : s.scene_objects) {
@@ -71,14 +75,19 @@ std::string SummarizeScenario(const Scenario& s) {
   out += fmt::format("fluid regions: {}\n", s.fluid_regions.size());
   if (!s.loose_frames.empty() || !s.loose_joints.empty() ||
       !s.loose_sensor_modules.empty()) {
-    out += fmt::format("loose parts: {} frames, {} joints, {} sensor modules\n",
-                       s.loose_frames.size(), s.loose_joints.size(),
-                       s.loose_sensor_modules.size());
+    out += fmt::format("loose parts: {}, {}, {}\n",
+                       Counted(s.loose_frames.size(), "frame"),
+                       Counted(s.loose_joints.size(), "joint"),
+                       Counted(s.loose_sensor_modules.size(), "sensor module"));
   }
   out += fmt::format("settings: timestep {} s, gravity ({}, {}, {})\n",
                      s.settings.timestep, s.settings.gravity.x(),
                      s.settings.gravity.y(), s.settings.gravity.z());
   return out;
+}
+
+std::string Counted(size_t n, const char* what) {
+  return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s");
 }
 
 }  // namespace mrsim

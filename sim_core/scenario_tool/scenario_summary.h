@@ -15,4 +15,7 @@ double RobotMass(const Robot& robot);
 // report its size.
 std::string SummarizeScenario(const Scenario& scenario);
 
+// "1 module", "3 modules".
+std::string Counted(size_t n, const char* what);
+
 }  // namespace mrsim

@@ -99,7 +99,7 @@ TEST(ScenarioTool, InfoReportsRobotsSensorsMassObjectsAndTerrain) {
   EXPECT_THAT(study.output,
               HasSubstr("case_study: 5 modules (3 pitch, 2 yaw)"));
   EXPECT_THAT(study.output, HasSubstr("6 sensor modules, 6 force sensors, 1 "
-                                      "distance sensors"));
+                                      "distance sensor,"));
   EXPECT_THAT(study.output, HasSubstr("mass 0.831 kg"));
   EXPECT_THAT(study.output, HasSubstr("scene objects: 1 (1 Sphere)"));
   EXPECT_THAT(study.output, HasSubstr("terrain: flat ground"));
