@@ -265,7 +265,7 @@ class Validator {
   void After(const DistanceSensor& d, bool) {
     sensors_[robot_].insert(d.guid);
     if (robot_ >= 0 && sensor_module_ != nullptr) {
-      CheckRayStartsOutside(*sensor_module_, d);
+      CheckRayLeavesClearOfTheRobot(*sensor_module_, d);
     }
   }
 
@@ -477,7 +477,8 @@ class Validator {
   // turned to a neighbour (the front face of a sensor module behind module
   // 0, say), or a ray looking back through its module into the next.
   // Checked at the pose in the file, against box frames and sensor modules.
-  void CheckRayStartsOutside(const SensorModule& sm, const DistanceSensor& d) {
+  void CheckRayLeavesClearOfTheRobot(const SensorModule& sm,
+                                     const DistanceSensor& d) {
     // Faces and sizes out of range are told on their own.
     if (d.sensor_position < 0 || d.sensor_position > 5) return;
     if (!(sm.size.minCoeff() > 0) || !sm.position.allFinite()) return;
