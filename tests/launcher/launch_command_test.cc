@@ -28,7 +28,7 @@ std::string WriteFile(const std::string& name, const std::string& text) {
 
 const char kTwo[] = R"(<launch name="two">
   <process name="first" program="/bin/sh" required="true" args="-c 'exit 0'"/>
-  <process name="second" program="/bin/sleep" args="30 'a b'"/>
+  <process name="second" program="/bin/echo" args="30 'a b'"/>
 </launch>)";
 
 std::string ErrorOf(const LaunchCommand& command) {
@@ -46,12 +46,12 @@ TEST(LaunchCommand, PlanFindsEveryProgramAndPrintsLinesAShellReadsBack) {
   const LaunchPlan plan = PlanLaunch("mrsim", command);
   EXPECT_EQ(plan.name, "two");
   ASSERT_EQ(plan.processes.size(), 2u);
-  EXPECT_EQ(plan.processes[1].second, "/bin/sleep");
+  EXPECT_EQ(plan.processes[1].second, "/bin/echo");
   std::ostringstream out;
   PrintPlan(plan, out);
   EXPECT_EQ(out.str(),
             "first (required): /bin/sh -c 'exit 0'\n"
-            "second: /bin/sleep 30 'a b'\n");
+            "second: /bin/echo 30 'a b'\n");
 }
 
 TEST(LaunchCommand, BadInputNamesTheFlagOrTheFileAndLine) {

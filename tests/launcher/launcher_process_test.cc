@@ -95,7 +95,7 @@ TEST(Launcher, AProcessSayingItWasInterruptedStillStopsCleanly) {
   const std::string dir = TempDir("launcher_exit130");
   const std::string launch = WriteLaunch(dir, R"(<launch>
   <process name="opt" program="/bin/sh"
-           args="-c 'trap &quot;exit 130&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
+           args="-c 'tail -f /dev/null &amp; t=$!; trap &quot;kill $t; wait $t; exit 130&quot; INT TERM; echo armed; wait $t'"/>
 </launch>)");
   ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
                      dir + "/out.txt");
