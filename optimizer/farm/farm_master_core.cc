@@ -342,9 +342,7 @@ void FarmMasterCore::Maintain(double now) {
     if (job.poke_at > 0 && now >= job.poke_at &&
         workers_.count(job.worker) != 0) {
       // Lost on the way there or back, or just slow: ask again (above).
-      SendAgain(id, job);
-      job.poke_at = now + 2 * (now - job.sent);
-      ++counters_.jobs_poked;
+      Poke(id, job, now);
     }
   }
 }
@@ -360,10 +358,7 @@ void FarmMasterCore::Overtaken(Worker& w, const Job& answered, double now) {
     Job* j = FindJob(id);
     if (!j || j->done || j->worker != w.id) continue;
     if (j->order < answered.order) {
-      if (++j->overtaken != w.slots) continue;
-      SendAgain(id, *j);
-      j->poke_at = now + 2 * (now - j->sent);
-      ++counters_.jobs_poked;
+      if (++j->overtaken == w.slots) Poke(id, *j, now);
     } else if (j->place > 1) {
       --j->place;
       const double wait = PokeWait(*j);
@@ -372,6 +367,13 @@ void FarmMasterCore::Overtaken(Worker& w, const Job& answered, double now) {
       }
     }
   }
+}
+
+// Asks the same worker again; the next time after twice as long.
+void FarmMasterCore::Poke(std::int64_t job_id, Job& job, double now) {
+  SendAgain(job_id, job);
+  job.poke_at = now + 2 * (now - job.sent);
+  ++counters_.jobs_poked;
 }
 
 void FarmMasterCore::SendAgain(std::int64_t job_id, Job& job) {

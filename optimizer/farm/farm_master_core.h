@@ -164,6 +164,7 @@ class FarmMasterCore {
   void Dispatch(double now);
   void Send(std::int64_t job_id, Worker& w, double now);
   void SendAgain(std::int64_t job_id, Job& job);
+  void Poke(std::int64_t job_id, Job& job, double now);
   void Overtaken(Worker& w, const Job& answered, double now);
   // The job message for `worker`, into the outbox (no bookkeeping).
   void QueueJob(std::int64_t job_id, const std::string& worker);
