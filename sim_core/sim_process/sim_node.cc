@@ -17,6 +17,7 @@ namespace {
 // Control requests remembered per sender for gap counting; beyond this the
 // oldest senders are forgotten (every mrsim-ctl run is a sender of its own).
 constexpr size_t kMaxControlSenders = 1000;
+constexpr size_t kMaxNamedRefusedSenders = 4;
 
 std::vector<std::string> RobotNames(const Physics& physics) {
   std::vector<std::string> names;
@@ -167,6 +168,21 @@ WallTime SimNode::CheckLockstepWait(WallTime now, SimOutbox* out) {
   line << "mrsim-sim: lockstep: state seq " << seq << " (t=" << physics_->time()
        << " s) has waited " << waited << " s for controller(s) " << waiting_for_
        << "; still waiting";
+  if (!refused_senders_.empty()) {
+    line << "; commands from ";
+    const char* sep = "";
+    for (const std::string& sender : refused_senders_) {
+      line << sep << "'" << sender << "'";
+      sep = ", ";
+    }
+    line << " are refused: not among --controllers (";
+    sep = "";
+    for (const std::string& c : options_.controllers) {
+      line << sep << c;
+      sep = ",";
+    }
+    line << ")";
+  }
   log_ << line.str() << std::endl;
   PublishStatus(now, out);
   return std::min(republish,
@@ -419,6 +435,9 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
       return;
     case CommandVerdict::kNotController:
       ++rejected_sender_;
+      if (refused_senders_.size() < kMaxNamedRefusedSenders) {
+        refused_senders_.insert(cmd.sender);
+      }
       return;
   }
   const int r = filter_.robot_index(cmd.robot);

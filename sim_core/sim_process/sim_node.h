@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -165,6 +166,10 @@ class SimNode {
   int64_t rejected_robot_ = 0;
   int64_t rejected_seq_ = 0;
   int64_t rejected_sender_ = 0;
+  // Senders refused for not being among --controllers (a few), named in
+  // the lockstep wait warning: a misnamed controller otherwise looks like
+  // a silent one.
+  std::set<std::string> refused_senders_;
   int64_t repeated_commands_ = 0;  // CommandVerdict::kRepeat
   int64_t malformed_ = 0;
   int64_t superseded_ = 0;

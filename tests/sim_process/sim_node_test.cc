@@ -276,6 +276,21 @@ TEST(SimNode, LateControllerIsWaitedForResentAndNamedForAnHour) {
   EXPECT_EQ(d.node().status().messages_dropped, 1);  // "a" was replaced
 }
 
+// A controller started under another name than --controllers lists is
+// refused; the wait warning says so instead of only "still waiting".
+TEST(SimNode, LockstepWaitNamesARefusedSender) {
+  SimOptions o = Lockstep();
+  o.controllers = {"gait"};
+  Driver d(o);
+  d.Command(Answer(d.states_.back(), "gait-snake", 1));
+  d.RunUntil([] { return false; }, 2.1);
+  EXPECT_EQ(d.node().status().state_seq, 0);
+  EXPECT_NE(d.log().find("commands from 'gait-snake' are refused: not among "
+                         "--controllers (gait)"),
+            std::string::npos)
+      << d.log();
+}
+
 TEST(SimNode, LastListedControllerWinsWhateverTheOrder) {
   SimOptions o = Lockstep();
   o.controllers = {"first", "second"};
