@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -121,9 +122,13 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       if (c.origin.size() == 3) {
         chain.origin = Eigen::Vector3d(c.origin[0], c.origin[1], c.origin[2]);
       }
+      if (c.friction && !(std::isfinite(*c.friction) && *c.friction >= 0)) {
+        throw ScenarioInputError(fmt::format(
+            "--friction: expected a number >= 0, got {}", *c.friction));
+      }
       Scenario s;
       try {
-        s = MakeChainScenario({chain, c.ground, c.friction});
+        s = MakeChainScenario({chain, c.ground, c.friction.value_or(-1)});
       } catch (const std::invalid_argument& e) {
         throw ScenarioInputError(FlagNamed(e.what()));
       }

@@ -2,6 +2,7 @@
 // does with the files named. main only parses and reports.
 #pragma once
 
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -40,8 +41,8 @@ struct ScenarioCommand {
   std::string sensors = "none";
   std::string ground = "ground";
   double frame_size = ChainOptions{}.frame_size.x();
-  std::vector<double> origin;  // empty or X Y Z
-  double friction = -1;        // < 0: no ContactFriction
+  std::vector<double> origin;      // empty or X Y Z
+  std::optional<double> friction;  // unset: no ContactFriction
 };
 
 // Registers the subcommands and their flags on `app`, writing into

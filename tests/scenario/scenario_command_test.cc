@@ -103,6 +103,19 @@ TEST(ScenarioCommand, BadInputNamesTheFlagOrFile) {
       ErrorOf(Parse({"new", "--sensors", "2", "--front-distance-sensor"})),
       HasSubstr("--front-distance-sensor: a front distance sensor "
                 "needs a sensor module in front of module 0"));
+  // A friction that is not a friction is refused, not silently left out.
+  EXPECT_EQ(ErrorOf(Parse({"new", "--friction", "-1"})),
+            "--friction: expected a number >= 0, got -1");
+  EXPECT_THAT(ErrorOf(Parse({"new", "--friction", "nan"})),
+              HasSubstr("--friction: expected a number >= 0"));
+}
+
+TEST(ScenarioCommand, NewWithFrictionZeroWritesTheFrictionPair) {
+  std::ostringstream out, info;
+  RunScenarioCommand(Parse({"new", "--friction", "0"}), out, info);
+  const Scenario s = ReadScenarioString(out.str(), "out", ".");
+  ASSERT_EQ(s.contact_frictions.size(), 1u);
+  EXPECT_EQ(s.contact_frictions[0].friction, 0.0);
 }
 
 }  // namespace
