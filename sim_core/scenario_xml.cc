@@ -731,9 +731,22 @@ Scenario ReadScenarioFile(const std::string& path,
   }
   std::ostringstream bytes;
   bytes << in.rdbuf();
+  // The files mrsim writes beside scenarios, given in their place: say so
+  // rather than what the XML parser makes of them.
+  const std::string text = bytes.str();
+  if (text.rfind("mrsim-checkpoint ", 0) == 0) {
+    throw ScenarioError(path +
+                        ": is an mrsim-sim checkpoint, not a scenario; load "
+                        "it with --load-checkpoint beside its scenario");
+  }
+  if (text.rfind("mrsim-opt-checkpoint ", 0) == 0) {
+    throw ScenarioError(path +
+                        ": is an mrsim-opt checkpoint, not a scenario; the "
+                        "same mrsim-opt command again continues its run");
+  }
   std::string dir = fs::path(path).parent_path().string();
   if (dir.empty()) dir = ".";
-  return ReadScenarioString(bytes.str(), path, dir, options);
+  return ReadScenarioString(text, path, dir, options);
 }
 
 std::string WriteScenarioString(const Scenario& scenario,

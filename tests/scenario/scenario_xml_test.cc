@@ -15,6 +15,8 @@
 
 #include "sim_core/base64.h"
 #include "sim_core/chain_builder.h"
+#include "sim_core/checkpoint.h"
+#include "sim_core/physics.h"
 #include "sim_core/scenario.h"
 #include "tests/common/child_process.h"
 
@@ -667,6 +669,24 @@ TEST(ScenarioXml, AFolderGivenAsTheFileIsNamedAsOne) {
     FAIL() << "loaded a folder";
   } catch (const ScenarioError& e) {
     EXPECT_THAT(e.what(), HasSubstr("is a folder, not a scenario file"));
+  }
+}
+
+// The checkpoint beside a scenario is a plausible wrong argument: it is
+// named as what it is, with how to use it, not parsed as broken XML.
+TEST(ScenarioXml, ACheckpointGivenAsTheScenarioIsNamedAsOne) {
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(ChainOptions{}));
+  const std::string path = ::testing::TempDir() + "/run.checkpoint";
+  SaveCheckpoint(path, Physics(scenario));
+  try {
+    ReadScenarioFile(path);
+    FAIL() << "loaded a checkpoint as a scenario";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path +
+                  ": is an mrsim-sim checkpoint, not a scenario; load it "
+                  "with --load-checkpoint beside its scenario");
   }
 }
 
