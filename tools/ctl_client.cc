@@ -101,7 +101,10 @@ std::string Describe(const gait_status_t& s) {
 
 int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
                   const CtlOptions& o, std::ostream& out, std::ostream& err) {
-  const bool status_only = words.size() == 1 && words[0] == "status";
+  const bool status_only = !words.empty() && words[0] == "status";
+  if (status_only && words.size() != 1) {
+    throw std::invalid_argument("'status' takes no argument");
+  }
   sim_control_t request{};
   if (!status_only) request = ParseSimControl(words);
   Listener<sim_status_t> status(lcm, SimStatusChannel(o.prefix));
@@ -147,11 +150,11 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
         },
         o.timeout);
     if (!stepped) {
-      out << fmt::format(
-          "step: started; {} periods not done after {:.1f} s (`mrsim-ctl "
-          "status` shows how far it got)\n",
+      err << fmt::format(
+          "mrsim-ctl: step: started; {} periods not done after {:.1f} s "
+          "(`mrsim-ctl status` shows how far it got)\n",
           request.steps, o.timeout);
-      return 0;
+      return 1;
     }
     out << "step: done\n" << Describe(*stepped, false) << "\n";
     return 0;

@@ -143,6 +143,10 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
   const auto [bad_code, bad_out] = ctl({"warp", "9"}, "bad");
   EXPECT_EQ(bad_code, 2);
   EXPECT_NE(bad_out.find("unknown command 'warp'"), std::string::npos);
+  const auto [extra_code, extra_out] = ctl({"status", "now"}, "extra");
+  EXPECT_EQ(extra_code, 2);
+  EXPECT_NE(extra_out.find("'status' takes no argument"), std::string::npos)
+      << extra_out;
 
   const auto [quit_code, quit_out] = ctl({"quit"}, "quit");
   EXPECT_EQ(quit_code, 0) << quit_out;
@@ -156,6 +160,23 @@ TEST(MrsimCtl, NoSimulatorIsReportedNotAwaitedForever) {
                  dir + "/ctl.log");
   EXPECT_EQ(p.Wait(30), 1);
   EXPECT_NE(p.Output().find("no answer"), std::string::npos) << p.Output();
+}
+
+// A step the simulator took but could not finish (lockstep with its
+// controller missing) is not reported as done.
+TEST(MrsimCtl, AStepThatCannotFinishFails) {
+  const std::string dir = TempDir("mrsim_ctl_stuck");
+  const std::string url = TestLcmUrl(7883);
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"),
+                    SourcePath("scenarios/snake11.xml"), "--lcm-url", url,
+                    "--clock", "lockstep", "--controllers", "nobody"},
+                   dir + "/sim.log");
+  ChildProcess p({BinaryPath("tools/mrsim-ctl"), "--lcm-url", url, "--timeout",
+                  "5", "step", "5"},
+                 dir + "/ctl.log");
+  EXPECT_EQ(p.Wait(60), 1) << p.Output();
+  EXPECT_NE(p.Output().find("5 periods not done"), std::string::npos)
+      << p.Output();
 }
 
 // mrsim-ctl gait waits for mrsim-gait's heartbeat, sends once and reports
