@@ -315,16 +315,11 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
   const Vector3d half = sm.size / 2;
   if (sm.force_sensor) {
     const ForceSensor& fsr = *sm.force_sensor;
-    const Vector3d n = SensorFaceNormal(fsr.sensor_position);
-    const double h = std::abs(n.dot(half));
-    // The plate lies flat on the face: its thickness (size.z) along n.
-    const Quaterniond local_q =
-        Quaterniond::FromTwoVectors(Vector3d::UnitZ(), n);
-    const Vector3d local_p = n * (h + fsr.size.z() / 2);
+    const PlatePose local = ForcePlatePose(sm);
     const BodySpec& parent = bodies_[body];
-    const int plate =
-        AddBody(mjcf_names::PlateBody(robot_name, index),
-                parent.pos + parent.quat * local_p, parent.quat * local_q);
+    const int plate = AddBody(mjcf_names::PlateBody(robot_name, index),
+                              parent.pos + parent.quat * local.position,
+                              parent.quat * local.rotation);
     bodies_[plate].parent = body;
     bodies_[body].children.push_back(plate);
     GeomSpec g;
@@ -1157,6 +1152,14 @@ Eigen::Vector3d SensorFaceNormal(int sensor_position) {
       throw std::out_of_range("sensorPosition must be 0..5, got " +
                               std::to_string(sensor_position));
   }
+}
+
+PlatePose ForcePlatePose(const SensorModule& sm) {
+  const ForceSensor& plate = *sm.force_sensor;
+  const Vector3d n = SensorFaceNormal(plate.sensor_position);
+  const double h = std::abs(n.dot(sm.size / 2));
+  return {n * (h + plate.size.z() / 2),
+          Quaterniond::FromTwoVectors(Vector3d::UnitZ(), n)};
 }
 
 namespace mjcf_names {

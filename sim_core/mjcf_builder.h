@@ -102,6 +102,16 @@ Eigen::Vector3d PartLookRgb(PartLook kind);
 // Throws std::out_of_range for anything else.
 Eigen::Vector3d SensorFaceNormal(int sensor_position);
 
+// Where the physics puts a sensor module's force plate, in the module's
+// own frame: flat on its face (sensorPosition), outside the module, its
+// thickness (size.z) along the face normal. The plate's own position in
+// the file is not used. Throws std::out_of_range as SensorFaceNormal.
+struct PlatePose {
+  Eigen::Vector3d position;
+  Eigen::Quaterniond rotation;
+};
+PlatePose ForcePlatePose(const SensorModule& sm);
+
 // The MJCF names of every part. `robot` is Robot::name (or "robot<i>" when
 // empty), indices are positions in the scenario's lists.
 namespace mjcf_names {

@@ -201,6 +201,10 @@ class Validator {
   void After(const Frame& f, bool) {
     AddGuid(f.guid, true);
     if (f.is_mesh()) CheckMesh(f);
+    if (robot_ >= 0 && !f.is_mesh()) {
+      CheckAboveTheGround(f.position, f.quat_rotation, f.scale,
+                          path_ + "/position", "");
+    }
   }
 
   void Before(const Joint&) {}
@@ -244,6 +248,19 @@ class Validator {
     in_sensor_module_ = false;
     AddGuid(sm.guid, true);
     if (robot_ < 0) return;
+    CheckAboveTheGround(sm.position, sm.quat_rotation, sm.size,
+                        path_ + "/position", "");
+    if (sm.force_sensor && sm.force_sensor->sensor_position >= 0 &&
+        sm.force_sensor->sensor_position <= 3) {
+      const PlatePose plate = ForcePlatePose(sm);
+      const Eigen::Quaterniond q = sm.quat_rotation.normalized();
+      CheckAboveTheGround(sm.position + q * plate.position, q * plate.rotation,
+                          sm.force_sensor->size, path_ + "/position",
+                          "its force plate (which the physics puts outside "
+                          "the module, on face " +
+                              std::to_string(sm.force_sensor->sensor_position) +
+                              ") ");
+    }
     for (const auto& [field, nr] :
          {std::make_pair("leftMod_Nr", sm.left_mod_nr),
           std::make_pair("rightMod_Nr", sm.right_mod_nr)}) {
@@ -471,6 +488,33 @@ class Validator {
       }
     }
   }
+
+  // A robot part that starts inside the ground (the plane, or the height
+  // field's base) is thrown out of it at the first step: the robot jumps
+  // or flies off before any controller acts. Checked for boxes at the pose
+  // in the file, 1 mm of slack.
+  void CheckAboveTheGround(const Eigen::Vector3d& centre,
+                           const Eigen::Quaterniond& rotation,
+                           const Eigen::Vector3d& size, const std::string& path,
+                           const std::string& what) const {
+    if (!centre.allFinite() || !size.allFinite()) return;
+    const Eigen::Matrix3d r = rotation.normalized().toRotationMatrix();
+    // Half the box's extent along world z.
+    const double reach =
+        (r.row(2).cwiseAbs().transpose().array() * (size / 2).array().abs())
+            .sum();
+    const double ground = s_.scene.position.z();
+    const double depth = ground - (centre.z() - reach);
+    if (!(depth > kGroundSlack)) return;
+    Fail(path, fmt::format("{}starts {:.1f} mm below the ground (its lowest "
+                           "point at z = {:.4g} m, the ground at z = {:.4g} "
+                           "m), so the physics would throw the robot out of "
+                           "the ground at the first step; raise the robot "
+                           "(every part's z) by at least {:.1f} mm",
+                           what, depth * 1e3, centre.z() - reach, ground,
+                           depth * 1e3));
+  }
+  static constexpr double kGroundSlack = 1e-3;
 
   // A ray that meets another of the robot's boxes where it leaves its own
   // module hits it at once and reads about 0 for the whole run: a face

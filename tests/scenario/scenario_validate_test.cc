@@ -89,6 +89,19 @@ std::vector<Rule> BuilderRules() {
       {"box scale not positive",
        [](Scenario& s) { s.robots[0].modules[0].frames[1].scale.y() = 0; },
        m1 + "/frames/Frame[2]/scale", "expected positive x, y, z"},
+      {"robot part in the ground",
+       [](Scenario& s) {
+         s.robots[0].modules[0].frames[1].position.z() = s.scene.position.z();
+       },
+       m1 + "/frames/Frame[2]/position", "mm below the ground"},
+      {"force plate in the ground",
+       [](Scenario& s) {
+         // The ground 0.5 mm under the module bottoms: only the 2 mm plate
+         // (outside its module, under it) reaches 1.5 mm into it.
+         const SensorModule& sm = s.robots[0].sensor_modules[0];
+         s.scene.position.z() = sm.position.z() - sm.size.z() / 2 - 0.0005;
+       },
+       sm1 + "/position", "its force plate"},
       {"force plate face",
        [](Scenario& s) {
          s.robots[0].sensor_modules[0].force_sensor->sensor_position = 4;

@@ -63,7 +63,7 @@ const char kTemplate[] = R"(<?xml version="1.0" encoding="utf-8"?>
       <Joint><guid>l0</guid><leftFrameGuid>f1</leftFrameGuid><rightFrameGuid>s0</rightFrameGuid><type>Lock</type></Joint>
     </locks>
   </robot>
-  <scene><guid>scene</guid></scene>
+  <scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</z></position></scene>
   <sceneObjects xmlns="Assembly">
     <SceneObject><guid>ball</guid><shape>Sphere</shape><mass>0.2</mass></SceneObject>
   </sceneObjects>
@@ -185,7 +185,7 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   }());
   s.robots.push_back(second);
   s.scene.guid = "ground";
-  s.scene.position = Eigen::Vector3d(-1, -2, 0.125);
+  s.scene.position = Eigen::Vector3d(-1, -2, -0.125);
   s.scene.material_name = "dirt";
   s.scene.height = 0.3;
   s.scene.meters_per_pixel = 0.02;
@@ -597,13 +597,16 @@ TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
 TEST(ScenarioXml, UnreadableImageIsRejected) {
   const std::string dir = TempDir("scenario_bad_image");
   std::ofstream(dir + "/noise.png") << "this is not a png";
-  const std::string kScene = "<scene><guid>scene</guid></scene>";
+  const std::string kScene =
+      "<scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</z></"
+      "position></scene>";
   for (const char* image : {"missing.png", "noise.png", "base64:AAAA"}) {
     SCOPED_TRACE(image);
     const std::string xml =
         Replace(kTemplate, kScene,
-                std::string("<scene><guid>scene</guid><height_Image>") + image +
-                    "</height_Image></scene>");
+                std::string("<scene><guid>scene</guid><position><x>0</x><y>0</"
+                            "y><z>-0.1</z></position><height_Image>") +
+                    image + "</height_Image></scene>");
     EXPECT_THAT(ErrorOf(xml, dir),
                 StartsWith(At(xml, "<height_Image>") +
                            "Scenario/scene/height_Image: cannot read the "
@@ -618,9 +621,12 @@ TEST(ScenarioXml, EmbeddedBase64ImageLoadsAndRoundTrips) {
   const std::string encoded =
       Base64Encode(std::vector<unsigned char>(bytes.begin(), bytes.end()));
   const std::string xml =
-      Replace(kTemplate, "<scene><guid>scene</guid></scene>",
-              "<scene><guid>scene</guid><height_Image>base64:" + encoded +
-                  "</height_Image><height>0.2</height></scene>");
+      Replace(kTemplate,
+              "<scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</z></"
+              "position></scene>",
+              "<scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</z></"
+              "position><height_Image>base64:" +
+                  encoded + "</height_Image><height>0.2</height></scene>");
   const Scenario s = ReadScenarioString(xml, "t.xml", "/nonexistent");
   EXPECT_EQ(s.scene.height_image, "base64:" + encoded);
   const std::string written = WriteScenarioString(s);
@@ -695,6 +701,9 @@ TEST(ScenarioXml, ACheckpointGivenAsTheScenarioIsNamedAsOne) {
 std::string UnityTemplate(const std::string& pose) {
   std::string xml =
       Replace(kTemplate, "frame=\"z-up\"", "frame=\"unity-y-up\"");
+  // The lowered ground: Unity's up is y.
+  xml = Replace(xml, "<x>0</x><y>0</y><z>-0.1</z>",
+                "<x>0</x><y>-0.1</y><z>0</z>");
   return Replace(xml, "<Frame><guid>f0</guid>",
                  "<Frame><guid>f0</guid>" + pose);
 }
@@ -813,7 +822,8 @@ TEST(ScenarioOriginal, FileTheOriginalWroteLoadsWithItsMeaning) {
   // <scale>10</scale>: a uniform 10 cm box; Unity y (up) is our z.
   EXPECT_TRUE(
       Near(r.modules[0].frames[0].scale, Eigen::Vector3d::Constant(0.1)));
-  EXPECT_TRUE(Near(r.modules[1].position, Eigen::Vector3d(-0.2, 0, 0.05)));
+  // Lifted 5 mm onto the force plate under the sensor module.
+  EXPECT_TRUE(Near(r.modules[1].position, Eigen::Vector3d(-0.2, 0, 0.055)));
   // The three placeholder locks became locks between neighbouring modules'
   // nearest frames.
   ASSERT_EQ(r.locks.size(), 3u);
@@ -872,8 +882,11 @@ TEST(ScenarioOriginal, EachOddityOfTheOriginalIsReadWithItsMeaning) {
                 "</leftFrameGuid><rightFrameGuid>fs0</rightFrameGuid><type>"
                 "Lock</type></forceSensorLock>",
                 "<forceSensorLock>" + placeholder + "</forceSensorLock>");
-  xml = Replace(xml, "<scene><guid>scene</guid></scene>",
-                "<scene><guid>scene</guid><vertices /><triangles />"
+  xml = Replace(xml,
+                "<scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</"
+                "z></position></scene>",
+                "<scene><guid>scene</guid><position><x>0</x><y>0</y><z>-0.1</"
+                "z></position><vertices /><triangles />"
                 "</scene>");
   // A real lock without <type> and with max_vel 0, as the original wrote.
   xml = Replace(xml, "<rightFrameGuid>s0</rightFrameGuid><type>Lock</type>",
