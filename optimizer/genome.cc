@@ -137,6 +137,18 @@ bool ReadBool(const tinyxml2::XMLElement* e, const char* attribute,
 
 }  // namespace
 
+GenomeSpec ForwardGaitGenome() {
+  GenomeSpec spec;
+  spec.genes = {{"A_pitch", 0, 1.57, 1, true, false},
+                {"A_yaw", 0, 1.57, 0, false, false},
+                {"phi_pitch", 0, 3.14, 2.5, true, false},
+                {"phi_yaw", 0, 3.14, 0, false, false},
+                {"T", 1, 6, 4, true, false},
+                {"offset_pitch", -0.3, 0.3, 0, true, false},
+                {"offset_yaw", -0.3, 0.3, 0, false, false}};
+  return spec;
+}
+
 GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
                             bool allow_any_name) {
   tinyxml2::XMLDocument doc;

@@ -68,6 +68,11 @@ struct GenomeSpec {
   void Validate(const std::string& source) const;
 };
 
+// The forward gait genome a new user starts from (the genes of
+// scenarios/forward_gait.genome.xml): pitch amplitude, phase lag, period
+// and offset free; the yaw genes fixed at 0.
+GenomeSpec ForwardGaitGenome();
+
 // Reads and validates a genome file. Unknown gene names are an error unless
 // allow_any_name (test functions use their own names).
 GenomeSpec ReadGenomeFile(const std::string& path, bool allow_any_name = false);

@@ -16,7 +16,13 @@ void FileBrowser::Open(const std::string& title, const std::string& dir,
                        const std::string& extension, bool save) {
   title_ = title;
   std::error_code ec;
-  dir_ = fs::absolute(dir.empty() ? "." : dir, ec).lexically_normal().string();
+  // A folder that is gone (or never was, like ./scenarios outside the
+  // source tree) opens its nearest existing parent instead of an error.
+  fs::path start = fs::absolute(dir.empty() ? "." : dir, ec).lexically_normal();
+  while (!fs::is_directory(start, ec) && start.has_relative_path()) {
+    start = start.parent_path();
+  }
+  dir_ = start.string();
   extension_ = extension;
   save_ = save;
   name_.clear();
@@ -27,6 +33,7 @@ void FileBrowser::Open(const std::string& title, const std::string& dir,
 }
 
 void FileBrowser::List() {
+  error_.clear();
   dirs_.clear();
   files_.clear();
   std::error_code ec;

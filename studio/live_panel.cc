@@ -49,6 +49,8 @@ LivePanel::LivePanel(std::vector<std::string> search_path,
     : layout_(layout),
       runner_(search_path),
       optimise_(search_path),
+      // Ready to start with: a design anywhere, no genome file needed.
+      genome_(ForwardGaitGenome()),
       session_(std::make_unique<LiveSession>(LiveSessionOptions{})) {
   // As everywhere in mrsim: the user's LCM_DEFAULT_URL is the default.
   if (const char* url = std::getenv("LCM_DEFAULT_URL"); url && *url) {

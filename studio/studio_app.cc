@@ -245,7 +245,7 @@ void StudioApp::HandleKeys() {
     } else if (ctrl && key == GLFW_KEY_S) {
       if (shift) {
         browse_for_ = BrowseFor::kSaveAs;
-        browser_.Open("Save scenario as", "scenarios", ".xml", true);
+        browser_.Open("Save scenario as", StartFolder(), ".xml", true);
       } else {
         SaveFile();
       }
@@ -310,12 +310,7 @@ void StudioApp::RunPending() {
       break;
     case Pending::kOpen:
       browse_for_ = BrowseFor::kOpen;
-      browser_.Open(
-          "Open scenario",
-          design_.path().empty()
-              ? "scenarios"
-              : std::filesystem::path(design_.path()).parent_path().string(),
-          ".xml", false);
+      browser_.Open("Open scenario", StartFolder(), ".xml", false);
       break;
     case Pending::kTemplate:
       show_template_ = true;
@@ -342,10 +337,18 @@ void StudioApp::OpenFile(const std::string& path) {
   }
 }
 
+std::string StudioApp::StartFolder() const {
+  if (!design_.path().empty()) {
+    return std::filesystem::path(design_.path()).parent_path().string();
+  }
+  std::error_code ec;
+  return std::filesystem::is_directory("scenarios", ec) ? "scenarios" : ".";
+}
+
 void StudioApp::SaveFile() {
   if (design_.path().empty()) {
     browse_for_ = BrowseFor::kSaveAs;
-    browser_.Open("Save scenario as", "scenarios", ".xml", true);
+    browser_.Open("Save scenario as", StartFolder(), ".xml", true);
     return;
   }
   try {
@@ -370,7 +373,7 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
   ImGui::SameLine();
   if (Button("Save As", third / 1.5f + 4)) {
     browse_for_ = BrowseFor::kSaveAs;
-    browser_.Open("Save scenario as", "scenarios", ".xml", true);
+    browser_.Open("Save scenario as", StartFolder(), ".xml", true);
   }
   if (Button("Undo", third)) design_.Undo();
   ImGui::SameLine();
@@ -502,7 +505,7 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
   ImGui::SameLine();
   if (Button("height image...", third)) {
     browse_for_ = BrowseFor::kHeightImage;
-    browser_.Open("Height image (grey PNG)", "scenarios", ".png", false);
+    browser_.Open("Height image (grey PNG)", StartFolder(), ".png", false);
   }
   if (Button("water", third)) Try([&] { design_.AddFluid(FluidKind::kWater); });
   ImGui::SameLine();

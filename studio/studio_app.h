@@ -77,6 +77,9 @@ class StudioApp {
   void Try(const std::function<void()>& edit);
   void OpenFile(const std::string& path);
   void SaveFile();
+  // Where file dialogs open: beside the design, else ./scenarios when
+  // there is one (the source tree), else the current folder.
+  std::string StartFolder() const;
 
   Design design_;
   AppOptions options_;

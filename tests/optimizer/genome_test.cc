@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/common/child_process.h"
+
 namespace mrsim {
 namespace {
 
@@ -22,6 +24,16 @@ TEST(OptimizerGenome, ReadsGenesWithLimitsToggleAndStart) {
             3u);
   EXPECT_EQ(WriteGenomeString(ReadGenomeString(WriteGenomeString(spec), "x")),
             WriteGenomeString(spec));
+}
+
+// The studio starts from the built-in genome, the CLI examples from the
+// file: the same genes, limits and starts.
+TEST(OptimizerGenome, BuiltInForwardGaitIsTheExampleFile) {
+  GenomeSpec file =
+      ReadGenomeFile(testing::SourcePath("scenarios/forward_gait.genome.xml"));
+  file.robot.clear();  // the file names the example's robot
+  EXPECT_EQ(WriteGenomeString(ForwardGaitGenome()), WriteGenomeString(file));
+  EXPECT_NO_THROW(ForwardGaitGenome().Validate("built-in"));
 }
 
 TEST(OptimizerGenome, BadFileNamesLineAndField) {
