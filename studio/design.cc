@@ -141,6 +141,9 @@ int Design::TargetRobot() const {
 void Design::Commit(Scenario next, const Selection& selection) {
   try {
     ValidateScenario(next);
+  } catch (const ScenarioError& e) {
+    // What is wrong, without the XML path: the student clicked the part.
+    throw DesignError(e.message().empty() ? e.what() : e.message());
   } catch (const std::exception& e) {
     throw DesignError(e.what());
   }
@@ -391,38 +394,57 @@ void Design::SetForcePlate(bool on) {
 
 void Design::AddDistanceSensor(int face) {
   Scenario next = scenario_;
-  SensorModule& sm = SelectedSensorModule(&next);
+  AddRay(&SelectedSensorModule(&next), face);
+  Commit(std::move(next), selection_);
+}
+
+std::vector<int> Design::OpenRayFaces() const {
+  std::vector<int> faces;
+  if (selection_.kind != PartKind::kSensorModule) return faces;
+  for (int face = 0; face < 6; ++face) {
+    Scenario next = scenario_;
+    try {
+      AddRay(&SelectedSensorModule(&next), face);
+      ValidateScenario(next);
+      faces.push_back(face);
+    } catch (const std::exception&) {
+      // taken, full, or looking into the robot
+    }
+  }
+  return faces;
+}
+
+void Design::AddRay(SensorModule* sm, int face) {
   if (face < 0 || face > 5) {
     throw DesignError(
         "face " + std::to_string(face) +
         ": expected 0..5 (bottom, left, top, right, front, back)");
   }
-  if (sm.distance_sensors.size() >= 6) {
+  if (sm->distance_sensors.size() >= 6) {
     throw DesignError("a sensor module carries at most six distance sensors");
   }
-  for (const DistanceSensor& d : sm.distance_sensors) {
+  for (const DistanceSensor& d : sm->distance_sensors) {
     if (d.sensor_position == face) {
       throw DesignError("face " + std::to_string(face) +
                         " already has a distance sensor");
     }
   }
   auto used = [&](const std::string& guid) {
-    for (const DistanceSensor& d : sm.distance_sensors) {
+    for (const DistanceSensor& d : sm->distance_sensors) {
       if (d.guid == guid) return true;
     }
     return false;
   };
   int k = 0;
-  while (used(sm.guid + "/d" + std::to_string(k))) ++k;
+  while (used(sm->guid + "/d" + std::to_string(k))) ++k;
   DistanceSensor ray;
-  ray.guid = sm.guid + "/d" + std::to_string(k);
+  ray.guid = sm->guid + "/d" + std::to_string(k);
   ray.sensor_position = face;
   ray.ray_direction = SensorFaceNormal(face);
-  sm.distance_sensors.push_back(ray);
-  sm.distance_sensor_locks.push_back(
-      MakeLock(ray.guid + "_lock", sm.guid, ray.guid));
-  PlaceMounted(&sm);
-  Commit(std::move(next), selection_);
+  sm->distance_sensors.push_back(ray);
+  sm->distance_sensor_locks.push_back(
+      MakeLock(ray.guid + "_lock", sm->guid, ray.guid));
+  PlaceMounted(sm);
 }
 
 void Design::RemoveDistanceSensor(int k) {

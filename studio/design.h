@@ -87,6 +87,9 @@ class Design {
   // front, back) of the selected sensor module, looking out of that face;
   // one per face, at most six.
   void AddDistanceSensor(int face);
+  // The faces AddDistanceSensor would take on the selected sensor module
+  // (free, and looking out of the robot), for the face picker's default.
+  std::vector<int> OpenRayFaces() const;
   // Removes distance sensor `k` of the selected sensor module.
   void RemoveDistanceSensor(int k);
   // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
@@ -123,6 +126,8 @@ class Design {
   int TargetRobot() const;
   // The selected sensor module in `next`, or throws DesignError.
   SensorModule& SelectedSensorModule(Scenario* next) const;
+  // Mounts a ray on `face` of `sm`, or throws DesignError (not validated).
+  static void AddRay(SensorModule* sm, int face);
 
   Scenario scenario_;
   Selection selection_;

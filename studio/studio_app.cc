@@ -29,6 +29,16 @@ constexpr ImGuiWindowFlags kPanelFlags =
     ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
     ImGuiWindowFlags_NoBringToFrontOnFocus;
 
+// A tooltip for a message too long for its line, wrapped to a readable
+// width instead of running off the window.
+void WrappedTooltip(const std::string& text) {
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
+}
+
 std::string Key(const Selection& s, const std::string& sub,
                 const std::string& field) {
   return std::string(ToString(s.kind)) + " " + std::to_string(s.robot) + " " +
@@ -90,7 +100,7 @@ StudioApp::StudioApp(Design design, const AppOptions& options)
   PreferOneSoftwareRenderThread();
   template_.chain.modules = 5;
   template_.chain.pattern = ChainPattern::kPitchYaw;
-  message_ = design_.note();
+  Note(design_.note());
   if (!design_.path().empty() && std::filesystem::exists(design_.path())) {
     recent_.Add(design_.path());
   }
@@ -116,9 +126,23 @@ void StudioApp::Try(const std::function<void()>& edit) {
   try {
     edit();
     message_.clear();
+  } catch (const ScenarioError& e) {
+    // The design's own words, without the XML path of the part: the
+    // inspector already shows which part is selected.
+    Refuse(e.message().empty() ? e.what() : e.message());
   } catch (const std::exception& e) {
-    message_ = e.what();
+    Refuse(e.what());
   }
+}
+
+void StudioApp::Note(const std::string& text) {
+  message_ = text;
+  message_is_error_ = false;
+}
+
+void StudioApp::Refuse(const std::string& text) {
+  message_ = text;
+  message_is_error_ = true;
 }
 
 void StudioApp::Frame(int width, int height, bool offscreen) {
@@ -330,10 +354,10 @@ void StudioApp::OpenFile(const std::string& path) {
     design_ = Design::Open(path);
     built_revision_ = -1;
     recent_.Add(path);
-    message_ = design_.note();
+    Note(design_.note());
     preview_->Reframe();
   } catch (const std::exception& e) {
-    message_ = e.what();
+    Refuse(e.what());
   }
 }
 
@@ -354,9 +378,9 @@ void StudioApp::SaveFile() {
   try {
     design_.Save();
     recent_.Add(design_.path());
-    message_ = "saved " + design_.path();
+    Note("saved " + design_.path());
   } catch (const std::exception& e) {
-    message_ = e.what();
+    Refuse(e.what());
   }
 }
 
@@ -641,6 +665,19 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
     Try([&] { design_.SetForcePlate(plate); });
   }
   Record("force plate");
+  if (design_.revision() != ray_face_revision_ ||
+      !(sel == ray_face_selection_)) {
+    ray_face_revision_ = design_.revision();
+    ray_face_selection_ = sel;
+    const std::vector<int> open = design_.OpenRayFaces();
+    // Front first (a sensor looking ahead), else the first face open.
+    if (!open.empty() &&
+        std::find(open.begin(), open.end(), ray_face_) == open.end()) {
+      ray_face_ = std::find(open.begin(), open.end(), 4) != open.end()
+                      ? 4
+                      : open.front();
+    }
+  }
   ImGui::SetNextItemWidth(90);
   ImGui::Combo("##face", &ray_face_, kFaces, IM_ARRAYSIZE(kFaces));
   ImGui::SameLine();
@@ -680,10 +717,14 @@ void StudioApp::DrawStatus(float x, float y, float w) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "preview: %s",
                        build_error_.c_str());
     // One line is often too short for an error naming a file and field.
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", build_error_.c_str());
+    if (ImGui::IsItemHovered()) WrappedTooltip(build_error_);
   } else if (!message_.empty()) {
-    ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", message_.c_str());
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", message_.c_str());
+    if (message_is_error_) {
+      ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", message_.c_str());
+    } else {
+      ImGui::TextUnformatted(message_.c_str());
+    }
+    if (ImGui::IsItemHovered()) WrappedTooltip(message_);
   } else {
     // What fits beside the file name in the narrowest layout; the rest on
     // hover.
@@ -708,10 +749,10 @@ void StudioApp::DrawDialogs() {
         try {
           design_.SaveAs(chosen);
           recent_.Add(chosen);
-          message_ = "saved " + chosen;
+          Note("saved " + chosen);
           if (pending_ != Pending::kNone) RunPending();
         } catch (const std::exception& e) {
-          message_ = e.what();
+          Refuse(e.what());
         }
         break;
       case BrowseFor::kHeightImage:
@@ -808,7 +849,12 @@ void StudioApp::DrawTemplateDialog() {
   ImGui::InputText("ground material", &template_.ground_material);
   ImGui::InputDouble("friction (<0: none)", &template_.friction, 0, 0, "%.4g");
   if (!message_.empty()) {
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", message_.c_str());
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored(message_is_error_
+                           ? ImVec4(1, 0.4f, 0.4f, 1)
+                           : ImGui::GetStyleColorVec4(ImGuiCol_Text),
+                       "%s", message_.c_str());
+    ImGui::PopTextWrapPos();
   }
   if (Button("Create", 120)) {
     c.pattern = static_cast<ChainPattern>(template_pattern_);
@@ -825,7 +871,7 @@ void StudioApp::DrawTemplateDialog() {
       ImGui::CloseCurrentPopup();
       preview_->Reframe();
     } catch (const std::exception& e) {
-      message_ = e.what();
+      Refuse(e.what());
     }
   }
   ImGui::SameLine();

@@ -77,6 +77,8 @@ class StudioApp {
   void Try(const std::function<void()>& edit);
   void OpenFile(const std::string& path);
   void SaveFile();
+  void Note(const std::string& text);
+  void Refuse(const std::string& text);
   // Where file dialogs open: beside the design, else ./scenarios when
   // there is one (the source tree), else the current folder.
   std::string StartFolder() const;
@@ -98,7 +100,8 @@ class StudioApp {
   long built_revision_ = -1;
   int built_live_ = -1;  // live_scenario_revision() shown, -1: the design
   std::string build_error_;
-  std::string message_;  // last refusal or error, shown in the status bar
+  std::string message_;  // last note, refusal or error, in the status bar
+  bool message_is_error_ = false;  // red, else a plain note ("saved ...")
   std::map<std::string, std::string> field_errors_;  // by field key
   std::map<std::string, std::string> field_edits_;   // text being typed
   Where where_ = Where::kAfterSelection;
@@ -112,6 +115,10 @@ class StudioApp {
   int template_pattern_ = 2;  // ChainPattern
   int template_sensors_ = 0;  // SensorPlacement
   int ray_face_ = 4;          // face for "add distance sensor": front
+  // The design revision and selection ray_face_ was last defaulted for:
+  // it moves to a face that would be accepted when they change.
+  long ray_face_revision_ = -1;
+  Selection ray_face_selection_;
   bool quit_ = false;
   bool view_drag_ = false;
   std::vector<std::pair<int, int>>

@@ -330,7 +330,10 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
 TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
   Design d = TwoSensorModules();
   d.Select({PartKind::kSensorModule, 0, 1});
+  // What the face picker offers first: the faces that will be taken.
+  EXPECT_EQ(d.OpenRayFaces(), (std::vector<int>{0, 1, 2, 3}));
   for (int face : {0, 1, 2, 3}) d.AddDistanceSensor(face);
+  EXPECT_TRUE(d.OpenRayFaces().empty());
   // Between two modules, front and back touch them: a ray there starts
   // inside a module and would read 0.
   for (int face : {4, 5}) {
