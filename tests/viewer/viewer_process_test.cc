@@ -255,6 +255,28 @@ TEST(ViewerProcess, LateJoinerShowsNewestStateAndSigtermLeavesPlayableVideo) {
   EXPECT_EQ(read, frames);
 }
 
+// Asked for a video with no simulator on the network: stopped, it says
+// nothing was written and why, and fails (a launch or script must not
+// take the missing video for a success).
+TEST(ViewerProcess, NoStateHeardIsNothingWrittenAndAFailure) {
+  const std::string dir = TempDir("viewer_no_state");
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  const std::string video = dir + "/none.mp4";
+  ChildProcess viewer(
+      {BinaryPath(kViewer), scenario_path, "--lcm-url", TestLcmUrl(7805),
+       "--out", video, "--width", "160", "--height", "120"},
+      dir + "/viewer.log");
+  ASSERT_TRUE(viewer.WaitForOutput("listening", 30.0)) << viewer.Output();
+  viewer.Signal(SIGINT);
+  EXPECT_EQ(viewer.Wait(30.0), 1) << viewer.Output();
+  EXPECT_NE(viewer.Output().find(
+                "nothing written: no state arrived on MRSIM_STATE_snake"),
+            std::string::npos)
+      << viewer.Output();
+  EXPECT_FALSE(std::filesystem::exists(video));
+}
+
 TEST(ViewerProcess, RendersTheStreamOfTheRealSimulator) {
   const std::string dir = TempDir("viewer_with_sim");
   const std::string url = TestLcmUrl(7804);

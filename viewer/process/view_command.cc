@@ -246,6 +246,18 @@ int RunView(const ViewOptions& opt, lcm::LCM* lcm, std::FILE* err) {
   if (pump.writer() != nullptr) {
     std::fprintf(err, "mrsim-view: wrote %s (%s)\n",
                  pump.writer()->path().c_str(), pump.writer()->codec().c_str());
+  } else if (make_writer && pump.frames() == 0 && opt.from_log.empty()) {
+    // Asked for a video or frames and got none: say so, and fail, so a
+    // script or a launch does not take the missing file for a success.
+    std::string channels;
+    for (const auto& entry : inbox.channels()) {
+      channels += (channels.empty() ? "" : ", ") + entry.first;
+    }
+    std::fprintf(err,
+                 "mrsim-view: nothing written: no state arrived on %s (is "
+                 "mrsim-sim running, with the same --lcm-url and --prefix?)\n",
+                 channels.c_str());
+    return 1;
   }
   return 0;
 }

@@ -86,8 +86,8 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
   app.add_flag("--window", o->window,
                "Also show a live window when a display exists");
   app.add_option("--overlay", o->viewer.gait,
-                 "Gait name shown in the overlay (default: from the gait "
-                 "commands on <prefix>_GAIT_<robot>)");
+                 "Gait name shown in the overlay (default: what mrsim-gait "
+                 "reports running, else the latest gait command)");
   bool no_overlay = false;
   bool no_rays = false;
   app.add_flag("--no-overlay", no_overlay, "No text overlay");
