@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/cli_exit.h"
 #include "common/version.h"
 #include "launcher/launch_command.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-      return app.exit(e) == 0 ? 0 : 2;
+      return mrsim::CliParseExit(app, e);
     }
     const mrsim::LaunchPlan plan = mrsim::PlanLaunch(argv[0], command);
     if (command.dry_run) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/cli_exit.h"
 #include "common/version.h"
 #include "launcher/run_summary.h"
 #include "sim_core/checkpoint.h"
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-      return app.exit(e) == 0 ? 0 : 2;
+      return mrsim::CliParseExit(app, e);
     }
     const mrsim::Physics start(mrsim::ReadScenarioFile(scenario_path));
     const auto end = mrsim::LoadCheckpoint(checkpoint_path);

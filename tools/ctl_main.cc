@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/version.h"
 #include "tools/ctl_client.h"
 #include "tools/gait_command_request.h"
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     options.sender = "mrsim-ctl-" + std::to_string(getpid());

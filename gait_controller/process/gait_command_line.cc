@@ -3,6 +3,7 @@
 #include "gait_controller/gait_file.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/process/joint_axes_spec.h"
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/version.h"
 
 namespace mrsim {
@@ -73,6 +74,13 @@ void GaitCommandLine::Finish(bool stdin_is_terminal) {
   } catch (const std::exception& e) {
     throw UsageError(e.what());
   }
+}
+
+std::string GaitCommandLine::StartLine() const {
+  return "mrsim-gait: robot " + options.robot + ", sender " + options.sender +
+         ", gait " + initial.name + ", listening on " +
+         StateChannel(options.prefix, options.robot) + " and " +
+         GaitChannel(options.prefix, options.robot);
 }
 
 }  // namespace mrsim

@@ -37,6 +37,8 @@ struct GaitCommandLine {
   // Resolves the gait and the joint axes, checks the flags (stdin must be a
   // terminal for --keyboard). Throws UsageError naming the flag.
   void Finish(bool stdin_is_terminal);
+  // "mrsim-gait: robot R, sender S, gait G, listening on ... and ...".
+  std::string StartLine() const;
 };
 
 }  // namespace mrsim

@@ -7,9 +7,9 @@
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
 
+#include "common/cli_exit.h"
 #include "gait_controller/process/gait_command_line.h"
 #include "gait_controller/process/gait_server.h"
-#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/stop_signal.h"
 
 int main(int argc, char** argv) {
@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     flags.Finish(isatty(STDIN_FILENO));
@@ -33,11 +33,7 @@ int main(int argc, char** argv) {
     }
     mrsim::GaitServer server(lcm, flags.options, flags.axes_for, flags.initial);
     if (!flags.resume.empty()) server.node().Resume(flags.resume);
-    const mrsim::GaitNodeOptions& o = flags.options;
-    std::cerr << "mrsim-gait: robot " << o.robot << ", sender " << o.sender
-              << ", gait " << flags.initial.name << ", listening on "
-              << mrsim::StateChannel(o.prefix, o.robot) << " and "
-              << mrsim::GaitChannel(o.prefix, o.robot) << std::endl;
+    std::cerr << flags.StartLine() << std::endl;
     {
       std::unique_ptr<mrsim::RawKeyboard> keys;
       if (flags.keyboard) keys = std::make_unique<mrsim::RawKeyboard>();

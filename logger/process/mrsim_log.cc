@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "CLI/CLI.hpp"
+#include "common/cli_exit.h"
 #include "common/lcm_url.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/version.h"
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     const mrsim::LogPlan plan = mrsim::PlanLog(command);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "common/cli_exit.h"
 #include "common/version.h"
 #include "logger/plot.h"
 
@@ -14,8 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version",
                        std::string("mrsim-plot ") + mrsim::kVersion);
   std::vector<std::string> csvs;
-  std::string out;
-  std::string style = "auto";
+  std::string out, style = "auto";
   mrsim::PlotOptions options;
   app.add_option("csv", csvs,
                  "CSV file(s) written by mrsim-log or mrsim-opt; several "
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     options.style = mrsim::ParsePlotStyle(style);

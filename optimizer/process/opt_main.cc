@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/opt_command.h"
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& err) {
-    return app.exit(err) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, err);
   }
   try {
     mrsim::InstallStopHandlers();

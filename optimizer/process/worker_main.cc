@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/worker_command.h"
@@ -17,8 +18,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& err) {
-    const int code = app.exit(err);
-    return code == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, err);
   }
   try {
     mrsim::CheckWorkerCommand(command);

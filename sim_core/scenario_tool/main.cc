@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "common/cli_exit.h"
 #include "common/version.h"
 #include "sim_core/scenario_tool/scenario_command.h"
 
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     mrsim::RunScenarioCommand(command, std::cout, std::cerr);

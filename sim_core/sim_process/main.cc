@@ -3,6 +3,7 @@
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "sim_core/sim_process/sim_server.h"
@@ -14,7 +15,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   try {
     flags.Finish();

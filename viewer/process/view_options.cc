@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/version.h"
 
 namespace mrsim {
@@ -114,8 +115,7 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return mrsim::CliParseExit(app, e);
   }
   if (!lookat.empty() && !ParseVector(lookat, &o->viewer.camera.lookat)) {
     std::fprintf(stderr,
