@@ -192,6 +192,12 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome) {
     result = EvalResult{};
     result.failed = true;
     result.fitness = kFailedFitness;
+  } catch (const ScenarioError&) {
+    // A body the validator refuses (the genome's limits allowed it): a
+    // failed individual, the same in one process and on every worker.
+    result = EvalResult{};
+    result.failed = true;
+    result.fitness = kFailedFitness;
   }
   return result;
 }

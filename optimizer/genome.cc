@@ -5,10 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "common/xml_error_text.h"
+#include "gait_controller/gait_parameters.h"
 #include "sim_core/xml_writer.h"
 
 namespace mrsim {
@@ -72,6 +76,27 @@ void GenomeSpec::Check(const Genome& genome) const {
   }
 }
 
+std::optional<GeneRange> GeneRangeOf(const std::string& name) {
+  const double inf = std::numeric_limits<double>::infinity();
+  static const std::map<std::string, GeneRange> kRanges = {
+      {"A_pitch", {0, kMaxGaitAmplitude, false}},
+      {"A_yaw", {0, kMaxGaitAmplitude, false}},
+      {"phi_pitch", {-kMaxGaitPhase, kMaxGaitPhase, false}},
+      {"phi_yaw", {-kMaxGaitPhase, kMaxGaitPhase, false}},
+      {"T", {kMinGaitPeriod, kMaxGaitPeriod, false}},
+      {"offset_pitch", {-kMaxGaitOffset, kMaxGaitOffset, false}},
+      {"offset_yaw", {-kMaxGaitOffset, kMaxGaitOffset, false}},
+      {"module_count", {1, inf, false}},
+      {"module_mass", {0, inf, true}},
+      {"module_scale", {0, inf, true}},
+      {"joint_kp", {0, inf, false}},
+      {"joint_max_vel", {0, inf, true}},
+      {"sensor_after", {-1, inf, false}}};
+  const auto it = kRanges.find(name);
+  if (it == kRanges.end()) return std::nullopt;
+  return it->second;
+}
+
 void GenomeSpec::Validate(const std::string& source) const {
   if (genes.empty()) throw GenomeError(source + ": the genome has no genes");
   std::set<std::string> seen;
@@ -90,6 +115,30 @@ void GenomeSpec::Validate(const std::string& source) const {
     if (g.enabled && (g.start < g.lower || g.start > g.upper)) {
       throw GenomeError(where + fmt::format(": start {} is outside [{}, {}]",
                                             g.start, g.lower, g.upper));
+    }
+    // Values the simulator or the gait would refuse, refused here, naming
+    // the gene, rather than as failed individuals mid-run.
+    if (const std::optional<GeneRange> range = GeneRangeOf(g.name)) {
+      const auto outside = [&](double v) {
+        return v < range->min || (range->min_exclusive && v == range->min) ||
+               v > range->max;
+      };
+      const std::string can_take = fmt::format(
+          "{} {}{}", range->min_exclusive ? ">" : ">=", range->min,
+          std::isfinite(range->max) ? fmt::format(" and <= {:.4g}", range->max)
+                                    : "");
+      const std::vector<std::pair<const char*, double>> checked =
+          g.enabled
+              ? std::vector<std::pair<const char*, double>>{{"lower", g.lower},
+                                                            {"upper", g.upper}}
+              : std::vector<std::pair<const char*, double>>{{"start", g.start}};
+      for (const auto& [what, v] : checked) {
+        if (outside(v)) {
+          throw GenomeError(where + fmt::format(": {} {} is outside what {} "
+                                                "can take ({})",
+                                                what, v, g.name, can_take));
+        }
+      }
     }
     if (g.integer && (std::ceil(g.lower) > std::floor(g.upper) ||
                       std::round(g.start) != g.start)) {
@@ -187,6 +236,17 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
       for (const auto& n : body) known += " " + n;
       throw GenomeError(fmt::format("{}: unknown gene '{}'; known genes:{}",
                                     where, gene.name, known));
+    }
+    for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a;
+         a = a->Next()) {
+      static const std::set<std::string> kAttributes = {
+          "name", "lower", "upper", "start", "enabled", "integer"};
+      if (!kAttributes.count(a->Name())) {
+        throw GenomeError(fmt::format(
+            "{}: unknown attribute '{}' (expected name, lower, upper, start, "
+            "enabled, integer)",
+            where, a->Name()));
+      }
     }
     gene.lower = ReadNumber(e, "lower", where, true, 0);
     gene.upper = ReadNumber(e, "upper", where, true, 0);

@@ -2,6 +2,7 @@
 // start value, read from a genome description file (docs/optimizer.md).
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +25,15 @@ inline const std::vector<std::string>& BodyGeneNames() {
       "joint_kp",     "joint_max_vel", "sensor_after"};
   return names;
 }
+// What a known gene can take at all (the gait's and the simulator's own
+// limits); nullopt for names it does not know (test functions).
+struct GeneRange {
+  double min;
+  double max;
+  bool min_exclusive;  // min itself is not allowed (a mass, a scale)
+};
+std::optional<GeneRange> GeneRangeOf(const std::string& name);
+
 // Body genes that only take whole numbers.
 bool IsIntegerGene(const std::string& name);
 

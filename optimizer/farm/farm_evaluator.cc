@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/wall_time.h"
 
@@ -65,6 +66,9 @@ std::vector<EvalResult> FarmEvaluator::Evaluate(
     Step(std::clamp(static_cast<int>(std::ceil(wait * 1000)), 0, 50));
     if (settings_.stop && settings_.stop()) {
       throw EvaluationInterrupted("farm evaluation interrupted");
+    }
+    if (!core_.failure().empty()) {
+      throw std::runtime_error("farm: " + core_.failure());
     }
     const double now = FarmLink::Now();
     if (now - last_wait_log > 5.0 && core_.workers_ready() == 0) {

@@ -104,6 +104,7 @@ void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
     throw std::invalid_argument("farm: batch too large");
   }
   ++batch_;
+  failure_.clear();
   genomes_ = batch;
   jobs_.assign(batch.size(), Job{});
   results_.assign(batch.size(), EvalResult{});
@@ -200,6 +201,13 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
     return;
   }
   if (!msg.error.empty()) {
+    if (++job->errors >= kMaxJobErrors) {
+      if (failure_.empty()) {
+        failure_ = fmt::format("workers could not run job {} ({} times): {}",
+                               msg.job_id, job->errors, msg.error);
+      }
+      return;
+    }
     Log(fmt::format("worker {} could not run job {}: {}", msg.worker_id,
                     msg.job_id, msg.error));
     if (!job->pending) Requeue(msg.job_id, "error");

@@ -106,6 +106,11 @@ class FarmMasterCore {
   // Starts a batch (the previous one's late answers are ignored from now).
   void StartBatch(const std::vector<Genome>& batch, double now);
   bool batch_done() const { return remaining_ == 0; }
+  // Why the batch cannot finish ("" while it can): a job that
+  // kMaxJobErrors answers said could not be run. The same genome fails
+  // the same way on every worker, so asking again would loop forever.
+  const std::string& failure() const { return failure_; }
+  static constexpr int kMaxJobErrors = 3;
   const std::vector<EvalResult>& results() const { return results_; }
 
   void OnHeartbeat(const opt_heartbeat_t& msg, double now);
@@ -157,6 +162,7 @@ class FarmMasterCore {
     double poke_at = 0;      // when to send it again to the same worker
     std::int64_t order = 0;  // when it went out, among every send
     int overtaken = 0;       // results of its worker's later jobs since
+    int errors = 0;          // workers that answered they could not run it
   };
 
   void Announce(double now);
@@ -178,6 +184,7 @@ class FarmMasterCore {
   std::string payload_;
   std::string run_id_;
   std::string hash_;
+  std::string failure_;
   std::int64_t started_;
   FarmSettings settings_;
   std::vector<std::string> chunks_;

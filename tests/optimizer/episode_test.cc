@@ -147,6 +147,19 @@ TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
   EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
 }
 
+// A body the validator refuses is a failed individual, not an error that
+// stops the run (locally) or that every worker reports (on a farm).
+TEST(OptimizerEpisode, ABodyTheSimulatorRefusesIsAFailedIndividual) {
+  Problem problem = SnakeProblem(0.2);
+  GenomeSpec spec;  // built in code: no file limits to stop it
+  spec.genes = {{"joint_kp", -5, 1, 0.5, true, false}};
+  problem.genome = spec;
+  const EvalResult r = RunEpisode(problem, Genome{-4});
+  EXPECT_TRUE(r.failed);
+  EXPECT_EQ(r.fitness, kFailedFitness);
+  EXPECT_FALSE(RunEpisode(problem, Genome{0.5}).failed);
+}
+
 TEST(OptimizerBodyGenes, MovingTheFrontSensorModuleBackDropsItsForwardRay) {
   Problem problem = SnakeProblem(0.5);
   ChainOptions front;

@@ -443,6 +443,36 @@ TEST(FarmMasterCore, LateDuplicateAndForeignResultsAreIgnored) {
   EXPECT_FALSE(m.batch_done());
 }
 
+// A job the workers say they cannot run fails the same way on each: it is
+// tried again a few times (a worker may have lacked something), then the
+// batch fails with the workers' reason instead of looping forever.
+TEST(FarmMasterCore, AJobNoWorkerCanRunFailsTheBatchWithTheReason) {
+  FarmMasterCore m(Payload(100), "run", 1, FarmSettings{});
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.StartBatch(Batch(1, 0), 0.0);
+  opt_result_t r{};
+  r.run_id = "run";
+  r.scenario_hash = m.scenario_hash();
+  r.worker_id = "a";
+  r.error = "Kp: expected a value >= 0, got -4";
+  double now = 0.0;
+  for (int k = 0; k < FarmMasterCore::kMaxJobErrors; ++k) {
+    EXPECT_EQ(m.failure(), "");
+    const FarmOutbox out = m.Tick(now);
+    ASSERT_FALSE(out.jobs.empty()) << "not sent again after error " << k;
+    r.job_id = out.jobs.front().job_id;
+    m.OnResult(r, now += 0.1);
+    m.OnHeartbeat(Beat(m, "a"), now);
+  }
+  EXPECT_FALSE(m.batch_done());
+  EXPECT_NE(m.failure().find("could not run job"), std::string::npos);
+  EXPECT_NE(m.failure().find("Kp: expected a value >= 0"), std::string::npos)
+      << m.failure();
+  // A new batch starts clean.
+  m.StartBatch(Batch(1, 1), now);
+  EXPECT_EQ(m.failure(), "");
+}
+
 TEST(FarmMasterCore, DefaultChunkFitsOneEthernetFrame) {
   FarmMasterCore m(Payload(50000), "some-host-12345-1700000000", 1,
                    FarmSettings{});

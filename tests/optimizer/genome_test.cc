@@ -36,6 +36,44 @@ TEST(OptimizerGenome, BuiltInForwardGaitIsTheExampleFile) {
   EXPECT_NO_THROW(ForwardGaitGenome().Validate("built-in"));
 }
 
+// Limits no individual could live with are refused at once, naming the
+// gene and line, not found out as failures in the middle of the run.
+TEST(OptimizerGenome, LimitsTheSimulatorWouldRefuseAreNamed) {
+  const auto error = [](const std::string& gene) {
+    try {
+      ReadGenomeString("<genome>\n" + gene + "\n</genome>", "g.xml");
+    } catch (const GenomeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(
+      error(R"(<gene name="joint_kp" lower="-5" upper="1" start="0.5"/>)"),
+      "g.xml:2: gene 'joint_kp': lower -5 is outside what joint_kp can "
+      "take (>= 0)");
+  EXPECT_NE(
+      error(R"(<gene name="module_scale" lower="0" upper="2" start="1"/>)")
+          .find("lower 0 is outside what module_scale can take (> 0)"),
+      std::string::npos);
+  EXPECT_NE(error(R"(<gene name="T" lower="0" upper="2" start="1"/>)")
+                .find("lower 0 is outside what T can take"),
+            std::string::npos);
+  EXPECT_NE(
+      error(R"(<gene name="module_count" lower="0" upper="3" start="2"/>)")
+          .find("module_count"),
+      std::string::npos);
+  // A disabled gene only ever takes its start.
+  EXPECT_EQ(
+      error(
+          R"(<gene name="joint_kp" lower="-5" upper="1" start="0.5" enabled="false"/>)"),
+      "accepted");
+  // A misspelt attribute is not silently ignored.
+  EXPECT_EQ(
+      error(R"(<gene name="T" lower="1" upper="2" start="1" enable="false"/>)"),
+      "g.xml:2: unknown attribute 'enable' (expected name, lower, upper, "
+      "start, enabled, integer)");
+}
+
 TEST(OptimizerGenome, BadFileNamesLineAndField) {
   try {
     ReadGenomeString(
