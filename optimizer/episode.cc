@@ -141,7 +141,8 @@ void PrepareEpisode(const Problem& problem) {
   }
 }
 
-EvalResult RunEpisode(const Problem& problem, const Genome& genome) {
+EvalResult RunEpisode(const Problem& problem, const Genome& genome,
+                      const std::function<bool()>& stop) {
   if (genome.size() != problem.genome.genes.size()) {
     throw GenomeError("genome has the wrong number of values");
   }
@@ -161,6 +162,7 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome) {
     int period = 0;
     auto observer = [&](const Physics& p, const std::vector<double>&) {
       if (period++ % 10 != 0) return;
+      if (stop && stop()) throw EvaluationInterrupted("episode interrupted");
       const RobotState state = p.ReadRobotState(robot);
       Eigen::Vector3d up = Eigen::Vector3d::Zero();
       for (const Pose& m : state.modules) {

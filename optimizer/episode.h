@@ -4,9 +4,11 @@
 // bit, in any thread or process of the same build.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "gait_controller/gait.h"
+#include "optimizer/batch_evaluator.h"
 #include "optimizer/eval_result.h"
 #include "optimizer/genome.h"
 #include "sim_core/scenario.h"
@@ -51,10 +53,14 @@ struct Problem {
 // The gait an individual runs: the base gait with the gait genes applied.
 Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 
-// Runs the episode. An unstable simulation or gait values the controller
-// refuses give failed = true and kFailedFitness, never an exception; a
-// genome of the wrong size or a robot not in the scenario throws.
-EvalResult RunEpisode(const Problem& problem, const Genome& genome);
+// Runs the episode. An unstable simulation, gait values the controller
+// refuses or a body the validator refuses give failed = true and
+// kFailedFitness, never an exception; a genome of the wrong size or a
+// robot not in the scenario throws. `stop` (optional) is polled every ten
+// control periods: when it returns true the episode is abandoned with
+// EvaluationInterrupted, so Ctrl-C does not wait for a long episode.
+EvalResult RunEpisode(const Problem& problem, const Genome& genome,
+                      const std::function<bool()>& stop = {});
 
 // Episodes keep the simulations they built (a few, shared by all threads)
 // and reset one for the next episode of the same body, which is bit for

@@ -31,6 +31,11 @@ FarmEvaluator::FarmEvaluator(const std::string& lcm_url, std::string payload,
       core_(std::move(payload), std::move(run_id), WallMicros(),
             std::move(settings)) {
   link_ = std::make_unique<FarmLink>(lcm_url, settings_.prefix, MakeHandlers());
+  worker_hint_ =
+      fmt::format("; start one with: mrsim-worker --lcm-url '{}'{}", lcm_url,
+                  settings_.prefix == FarmSettings().prefix
+                      ? ""
+                      : " --prefix " + settings_.prefix);
   Step(0);
 }
 
@@ -74,8 +79,8 @@ std::vector<EvalResult> FarmEvaluator::Evaluate(
     if (now - last_wait_log > 5.0 && core_.workers_ready() == 0) {
       if (settings_.log) {
         settings_.log(
-            fmt::format("waiting for workers on {}_* ({} heard, none ready)",
-                        settings_.prefix, core_.workers_alive()));
+            fmt::format("waiting for workers on {}_* ({} heard, none ready){}",
+                        settings_.prefix, core_.workers_alive(), worker_hint_));
       }
       last_wait_log = now;
     }

@@ -45,6 +45,9 @@ class FarmEvaluator : public BatchEvaluator {
   FarmSettings settings_;
   FarmMasterCore core_;
   std::unique_ptr<FarmLink> link_;
+  // How to start a worker for this farm, for the "waiting" line ("" when
+  // the LCM instance came from the caller).
+  std::string worker_hint_;
 };
 
 }  // namespace mrsim

@@ -63,6 +63,7 @@ void FarmWorker::Build(WorkerSettings settings, int count) {
 }
 
 FarmWorker::~FarmWorker() {
+  abandon_ = true;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     quit_ = true;
@@ -113,7 +114,8 @@ WorkerCounters FarmWorker::counters() const {
 }
 
 opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
-                             double fake_episode) {
+                             double fake_episode,
+                             const std::function<bool()>& stop) {
   opt_result_t r{};
   r.run_id = task.run_id;
   r.scenario_hash = task.hash;
@@ -132,7 +134,7 @@ opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
   const auto t0 = std::chrono::steady_clock::now();
   try {
     task.problem->genome.Check(task.genome);
-    const EvalResult e = RunEpisode(*task.problem, task.genome);
+    const EvalResult e = RunEpisode(*task.problem, task.genome, stop);
     r.fitness = e.fitness;
     r.distance = e.distance;
     r.speed = e.speed;
@@ -168,7 +170,8 @@ void FarmWorker::Work() {
       item = std::move(pool_queue_.front());
       pool_queue_.pop_front();
     }
-    opt_result_t r = Run(item.second, item.first, 0);
+    opt_result_t r =
+        Run(item.second, item.first, 0, [this] { return abandon_.load(); });
     {
       std::lock_guard<std::mutex> lock(mutex_);
       finished_.push_back(std::move(r));

@@ -4,8 +4,10 @@
 // the episodes the cores hand out.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
@@ -28,7 +30,7 @@ class FarmWorker {
   FarmWorker(const std::string& lcm_url, WorkerSettings settings,
              int count = 1);
   FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count = 1);
-  ~FarmWorker();  // finishes the running episodes, drops queued jobs
+  ~FarmWorker();  // abandons the running episodes, drops queued jobs
   FarmWorker(const FarmWorker&) = delete;
   FarmWorker& operator=(const FarmWorker&) = delete;
 
@@ -45,7 +47,8 @@ class FarmWorker {
   FarmWorkerCore* Find(const std::string& id);
   void Work();
   static opt_result_t Run(const WorkerTask& task, const std::string& worker,
-                          double fake_episode);
+                          double fake_episode,
+                          const std::function<bool()>& stop = {});
 
   std::string id_;
   double fake_episode_ = 0;
@@ -74,6 +77,9 @@ class FarmWorker {
   std::shared_ptr<const Problem> warmed_;  // the last one queued
   std::vector<opt_result_t> finished_;
   bool quit_ = false;
+  // Set on destruction: running episodes are abandoned (their results
+  // would never be sent), so a stopped worker exits at once.
+  std::atomic<bool> abandon_{false};
   std::vector<std::thread> threads_;
 };
 

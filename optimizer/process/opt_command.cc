@@ -264,9 +264,12 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     std::function<void(const std::string&)> log) {
   if (!c.farm) {
     const Problem& problem = setup.problem;
+    // Episodes poll the stop too: Ctrl-C does not wait for a long one.
     return std::make_unique<LocalEvaluator>(
-        [&problem](const Genome& g) { return RunEpisode(problem, g); },
-        setup.threads, std::move(stop));
+        [&problem, stop](const Genome& g) {
+          return RunEpisode(problem, g, stop);
+        },
+        setup.threads, stop);
   }
   FarmSettings settings;
   settings.prefix = c.prefix;
@@ -317,6 +320,19 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     fmt::print(out, "{}\n", FormatProgress(r));
     std::fflush(out);
   };
+  if (!c.quiet) {
+    // Said at once: the first progress line comes only after a generation.
+    fmt::print(err,
+               "mrsim-opt: {}, {} generation{} of {}, {} s episodes, {}; "
+               "writing {}\n",
+               a.algorithm, c.generations, c.generations == 1 ? "" : "s",
+               a.population, setup.problem.episode.duration,
+               c.farm ? "on the farm"
+                      : fmt::format("{} thread{}", setup.threads,
+                                    setup.threads == 1 ? "" : "s"),
+               c.out_dir);
+    std::fflush(err);
+  }
   OptOutcome outcome;
   try {
     outcome.result =

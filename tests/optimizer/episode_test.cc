@@ -160,6 +160,16 @@ TEST(OptimizerEpisode, ABodyTheSimulatorRefusesIsAFailedIndividual) {
   EXPECT_FALSE(RunEpisode(problem, Genome{0.5}).failed);
 }
 
+// Ctrl-C during a long episode: the episode is abandoned, not finished.
+TEST(OptimizerEpisode, AStopAbandonsALongEpisode) {
+  const Problem problem = SnakeProblem(1e6);  // would take days
+  int polls = 0;
+  EXPECT_THROW(RunEpisode(problem, problem.genome.StartGenome(),
+                          [&polls] { return ++polls >= 3; }),
+               EvaluationInterrupted);
+  EXPECT_EQ(polls, 3);
+}
+
 TEST(OptimizerBodyGenes, MovingTheFrontSensorModuleBackDropsItsForwardRay) {
   Problem problem = SnakeProblem(0.5);
   ChainOptions front;

@@ -135,6 +135,21 @@ TEST(OptimizerProcess, SigintStopsCleanlyKeepingCompletedGenerations) {
   EXPECT_NE(ReadAll(dir + "/checkpoint.txt").find("gen 0 "), std::string::npos);
 }
 
+// Episodes far longer than anyone waits: Ctrl-C stops them, it does not
+// wait for them to end.
+TEST(OptimizerProcess, SigintCutsLongEpisodesShort) {
+  const std::string dir = TempDir("opt_sigint_long");
+  std::vector<std::string> args = OptArgs(dir + "/out");
+  args[13] = "100000";  // --episode
+  ChildProcess p(args, dir + "/log.txt");
+  ASSERT_TRUE(p.WaitForOutput("100000 s episodes", 60)) << p.Output();
+  p.Signal(SIGINT);
+  EXPECT_EQ(p.Wait(60), 128 + SIGINT) << p.Output();
+  EXPECT_NE(p.Output().find("stopped before the first generation"),
+            std::string::npos)
+      << p.Output();
+}
+
 TEST(OptimizerProcess, BadInputExitsWithTwoNamingTheProblem) {
   const std::string dir = TempDir("opt_bad_input");
   {
