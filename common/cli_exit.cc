@@ -25,7 +25,8 @@ size_t EditDistance(const std::string& a, const std::string& b) {
 
 void CollectNames(const CLI::App& app, std::vector<std::string>* names) {
   for (const CLI::Option* option : app.get_options()) {
-    for (const std::string& l : option->get_lnames()) names->push_back("--" + l);
+    for (const std::string& l : option->get_lnames())
+      names->push_back("--" + l);
     for (const std::string& s : option->get_snames()) names->push_back("-" + s);
   }
   for (const CLI::App* sub : app.get_subcommands({})) {

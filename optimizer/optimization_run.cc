@@ -236,6 +236,8 @@ RunResult RunOptimization(const GenomeSpec& spec,
   double evaluated_seconds = 0;
   int evaluated_generations = 0;
   long long evaluated_count = 0;
+  double first_seconds = 0;  // the first evaluated generation's
+  long long first_count = 0;
   for (int gen = 0; gen < planned; ++gen) {
     const std::vector<Genome> batch = algorithm->Ask();
     std::vector<EvalResult> results;
@@ -298,8 +300,13 @@ RunResult RunOptimization(const GenomeSpec& spec,
     if (replay) {
       ++result.generations_replayed;
     } else {
-      evaluated_seconds +=
+      const double seconds =
           std::chrono::duration<double>(Clock::now() - t0).count();
+      if (evaluated_generations == 0) {
+        first_seconds = seconds;
+        first_count = evaluated_count;
+      }
+      evaluated_seconds += seconds;
       ++evaluated_generations;
       recorded.push_back({HashGenomes(batch), results});
     }
@@ -335,14 +342,22 @@ RunResult RunOptimization(const GenomeSpec& spec,
       report.best = best;
       report.mean = mean;
       report.best_so_far = result.best_result.fitness;
+      report.failed = failed;
       report.evaluations = result.evaluations;
-      report.evals_per_second =
-          evaluated_seconds > 0 ? evaluated_count / evaluated_seconds : 0.0;
+      // Past the first generation, the pace leaves out its start-up.
+      const bool steady = evaluated_generations > 1;
+      const double seconds =
+          steady ? evaluated_seconds - first_seconds : evaluated_seconds;
+      const double count = static_cast<double>(
+          steady ? evaluated_count - first_count : evaluated_count);
+      const int generations =
+          steady ? evaluated_generations - 1 : evaluated_generations;
+      report.evals_per_second = seconds > 0 ? count / seconds : 0.0;
       report.workers = evaluator.workers_alive();
       report.eta_seconds =
-          evaluated_generations > 0
-              ? evaluated_seconds / evaluated_generations * (planned - gen - 1)
-              : 0.0;
+          generations > 0 ? seconds / generations * (planned - gen - 1)
+          : gen + 1 == planned ? 0.0
+                               : -1.0;
       report.replayed = replay;
       options.progress(report);
     }

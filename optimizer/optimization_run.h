@@ -22,10 +22,13 @@ struct GenerationReport {
   double best = 0.0;    // of this generation
   double mean = 0.0;
   double best_so_far = 0.0;
+  int failed = 0;  // failed individuals of this generation (in the mean)
   long long evaluations = 0;  // total so far, cached ones included
+  // Both from the evaluated generations after the first, once there are
+  // any (the first also waits for workers and builds simulations).
   double evals_per_second = 0.0;
   int workers = 0;
-  double eta_seconds = 0.0;
+  double eta_seconds = 0.0;  // < 0: not known yet (only replayed so far)
   bool replayed = false;  // taken from the checkpoint, not evaluated
 };
 

@@ -20,17 +20,19 @@ std::string HostName() {
 
 }  // namespace
 
+// The link first: a bad URL throws before any pool thread exists (a
+// constructor that throws leaves running threads to std::terminate).
 FarmWorker::FarmWorker(const std::string& lcm_url, WorkerSettings settings,
                        int count) {
-  Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers());
   link_->SetWake(&done_fd_);
+  Build(settings, count);
 }
 
 FarmWorker::FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count) {
-  Build(settings, count);
   link_ = std::make_unique<FarmLink>(lcm, settings.prefix, MakeHandlers());
   link_->SetWake(&done_fd_);
+  Build(settings, count);
 }
 
 void FarmWorker::Build(WorkerSettings settings, int count) {

@@ -207,7 +207,28 @@ OptSetup PrepareOpt(const OptCommand& c) {
                           std::to_string(c.generations) +
                           " (raise --generations to run further)");
     }
-    if (!c.farm) {
+    if (c.farm) {
+      // Farm settings a run would otherwise take in silence.
+      if (c.workers != OptCommand().workers) {
+        throw OptInputError("--workers " + c.workers +
+                            ": the farm's workers are mrsim-worker processes; "
+                            "give --workers without --farm, or start "
+                            "mrsim-worker --threads K on each host");
+      }
+      if (c.chunk_size < 0 || c.chunk_size > 60000) {
+        throw OptInputError("--chunk-size: expected 0 (one Ethernet frame) or "
+                            "1..60000, got " + std::to_string(c.chunk_size));
+      }
+      if (!(c.worker_timeout > 0) || !std::isfinite(c.worker_timeout)) {
+        throw OptInputError("--worker-timeout: expected a number of seconds > "
+                            "0, got " + fmt::format("{}", c.worker_timeout));
+      }
+      if (!(c.job_timeout >= 0) || !std::isfinite(c.job_timeout)) {
+        throw OptInputError("--job-timeout: expected seconds >= 0 (0: "
+                            "automatic), got " +
+                            fmt::format("{}", c.job_timeout));
+      }
+    } else {
       if (c.workers.rfind("local:", 0) != 0) {
         throw OptInputError("--workers: expected local:K, got '" + c.workers +
                             "' (use --farm for worker processes)");
@@ -298,9 +319,10 @@ std::string FormatDuration(double s) {
 
 std::string FormatProgress(const GenerationReport& r) {
   return fmt::format(
-      "generation {} of {}: best {:.6g} mean {:.6g} best-so-far {:.6g} | "
+      "generation {} of {}: best {:.6g} mean {:.6g} best-so-far {:.6g}{} | "
       "{} | workers {} | ETA {}",
       r.generation, r.generations, r.best, r.mean, r.best_so_far,
+      r.failed > 0 ? fmt::format(" failed {}", r.failed) : "",
       r.replayed ? std::string("from checkpoint")
                  : fmt::format("{:.2f} evals/s", r.evals_per_second),
       r.workers, FormatDuration(r.eta_seconds));

@@ -97,6 +97,17 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
       message({"--algorithm", "cmaes", "--population", "1"}).find("CMA-ES"),
       std::string::npos);
   EXPECT_NE(message({"--algorithm", "nope"}).find("nope"), std::string::npos);
+  // Farm settings out of range, or one the farm would ignore.
+  EXPECT_NE(message({"--farm", "--chunk-size", "70000"})
+                .find("--chunk-size: expected 0 (one Ethernet frame) or "
+                      "1..60000, got 70000"),
+            std::string::npos);
+  EXPECT_NE(message({"--farm", "--worker-timeout", "-1"})
+                .find("--worker-timeout"),
+            std::string::npos);
+  EXPECT_NE(message({"--farm", "--workers", "local:2"})
+                .find("mrsim-worker --threads"),
+            std::string::npos);
   // --jump-to counts from 1 and stays within the run (0 once crashed).
   EXPECT_NE(message({"--generations", "3", "--jump-to", "4"})
                 .find("--jump-to 4: beyond the run's --generations 3"),
@@ -227,8 +238,15 @@ TEST(OptCommand, ProgressAndDurationsReadWell) {
   EXPECT_EQ(FormatProgress(r),
             "generation 3 of 20: best 0.41 mean 0.2 best-so-far 0.45 | 5.20 "
             "evals/s | workers 2 | ETA 1m12s");
+  // Failed individuals pull the mean down: the line says how many.
+  r.failed = 2;
+  EXPECT_NE(FormatProgress(r).find("best-so-far 0.45 failed 2 | "),
+            std::string::npos)
+      << FormatProgress(r);
   r.replayed = true;
+  r.eta_seconds = -1;  // only replayed so far: no pace yet
   EXPECT_NE(FormatProgress(r).find("from checkpoint"), std::string::npos);
+  EXPECT_NE(FormatProgress(r).find("ETA ?"), std::string::npos);
 }
 
 }  // namespace
