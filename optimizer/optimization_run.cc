@@ -206,12 +206,19 @@ RunResult RunOptimization(const GenomeSpec& spec,
       HashHex(Fnv1a64(WriteGenomeString(spec) + "\n" + settings.Describe() +
                       "\n" + options.fingerprint));
 
+  // Every setting in words, the genes' limits too, for refusals that say
+  // what differs.
+  std::string described = settings.Describe();
+  for (const GeneSpec& g : spec.genes) {
+    described += fmt::format("gene.{}={}:{}:{}:{}\n", g.name, g.lower, g.upper,
+                             g.start, g.enabled ? "on" : "off");
+  }
+  described += options.described;
   const bool use_files = !options.out_dir.empty();
   const std::string checkpoint_path = options.out_dir + "/checkpoint.txt";
   std::vector<RecordedGeneration> recorded;
   if (use_files) {
-    recorded =
-        ReadCheckpoint(checkpoint_path, fingerprint, settings.Describe());
+    recorded = ReadCheckpoint(checkpoint_path, fingerprint, described);
   }
 
   RunResult result;
@@ -330,8 +337,7 @@ RunResult RunOptimization(const GenomeSpec& spec,
       std::fflush(gens_csv.get());
       std::fflush(evals_csv.get());
       if (!replay) {
-        WriteCheckpoint(checkpoint_path, fingerprint, settings.Describe(),
-                        recorded);
+        WriteCheckpoint(checkpoint_path, fingerprint, described, recorded);
       }
     }
 
@@ -354,10 +360,10 @@ RunResult RunOptimization(const GenomeSpec& spec,
           steady ? evaluated_generations - 1 : evaluated_generations;
       report.evals_per_second = seconds > 0 ? count / seconds : 0.0;
       report.workers = evaluator.workers_alive();
-      report.eta_seconds =
-          generations > 0 ? seconds / generations * (planned - gen - 1)
-          : gen + 1 == planned ? 0.0
-                               : -1.0;
+      report.eta_seconds = generations > 0
+                               ? seconds / generations * (planned - gen - 1)
+                           : gen + 1 == planned ? 0.0
+                                                : -1.0;
       report.replayed = replay;
       options.progress(report);
     }

@@ -29,7 +29,7 @@ struct GenerationReport {
   double evals_per_second = 0.0;
   int workers = 0;
   double eta_seconds = 0.0;  // < 0: not known yet (only replayed so far)
-  bool replayed = false;  // taken from the checkpoint, not evaluated
+  bool replayed = false;     // taken from the checkpoint, not evaluated
 };
 
 struct RunOptions {
@@ -44,6 +44,9 @@ struct RunOptions {
   // Identifies the problem (scenario, episode settings); a checkpoint made
   // for another problem or other settings is refused.
   std::string fingerprint;
+  // What the fingerprint covers, in "key=value" lines (episode settings):
+  // recorded in the checkpoint so a refusal names what changed.
+  std::string described;
   std::function<void(const GenerationReport&)> progress;
 };
 

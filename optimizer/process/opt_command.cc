@@ -216,17 +216,22 @@ OptSetup PrepareOpt(const OptCommand& c) {
                             "mrsim-worker --threads K on each host");
       }
       if (c.chunk_size < 0 || c.chunk_size > 60000) {
-        throw OptInputError("--chunk-size: expected 0 (one Ethernet frame) or "
-                            "1..60000, got " + std::to_string(c.chunk_size));
+        throw OptInputError(
+            "--chunk-size: expected 0 (one Ethernet frame) or "
+            "1..60000, got " +
+            std::to_string(c.chunk_size));
       }
       if (!(c.worker_timeout > 0) || !std::isfinite(c.worker_timeout)) {
-        throw OptInputError("--worker-timeout: expected a number of seconds > "
-                            "0, got " + fmt::format("{}", c.worker_timeout));
+        throw OptInputError(
+            "--worker-timeout: expected a number of seconds > "
+            "0, got " +
+            fmt::format("{}", c.worker_timeout));
       }
       if (!(c.job_timeout >= 0) || !std::isfinite(c.job_timeout)) {
-        throw OptInputError("--job-timeout: expected seconds >= 0 (0: "
-                            "automatic), got " +
-                            fmt::format("{}", c.job_timeout));
+        throw OptInputError(
+            "--job-timeout: expected seconds >= 0 (0: "
+            "automatic), got " +
+            fmt::format("{}", c.job_timeout));
       }
     } else {
       if (c.workers.rfind("local:", 0) != 0) {
@@ -337,6 +342,13 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   options.stop_after = c.jump_to;
   options.out_dir = c.out_dir;
   options.fingerprint = setup.hash;
+  const EpisodeSettings& e = setup.problem.episode;
+  options.described = fmt::format(
+      "episode={}\ncontrol_period={}\ngait={}\ndistance_mode={}\n"
+      "w_distance={}\nw_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
+      e.duration, e.control_period, e.base_gait.name, e.fitness.distance_mode,
+      e.fitness.w_distance, e.fitness.w_speed, e.fitness.w_energy,
+      e.fitness.w_drift, e.fitness.w_fall);
   options.progress = [&](const GenerationReport& r) {
     if (c.quiet) return;
     fmt::print(out, "{}\n", FormatProgress(r));

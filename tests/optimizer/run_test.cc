@@ -88,12 +88,39 @@ TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
         std::string::npos)
         << err.what();
   }
-  // Same settings, another genome: said as such.
+  // Same settings, other gene limits: the gene is named.
   settings.seed = 1;
   settings.population = 4;
   try {
     RunOptimization(TestFunctionSpec(3, -2, 2, 0), settings, e, options);
     FAIL() << "a checkpoint of another genome was continued";
+  } catch (const CheckpointError& err) {
+    EXPECT_NE(std::string(err.what()).find("=-1:1:0:on (this run: -2:2:0:on)"),
+              std::string::npos)
+        << err.what();
+  }
+  // Episode settings the caller describes are named too.
+  options.out_dir = testing::TempDir("optimizer_run_refused_episode");
+  options.fingerprint = "episode 1 s";
+  options.described = "episode=1\n";
+  RunOptimization(spec, settings, e, options);
+  options.fingerprint = "episode 2 s";
+  options.described = "episode=2\n";
+  try {
+    RunOptimization(spec, settings, e, options);
+    FAIL() << "a checkpoint of other episodes was continued";
+  } catch (const CheckpointError& err) {
+    EXPECT_NE(
+        std::string(err.what()).find("other settings: episode=1 (this run: 2)"),
+        std::string::npos)
+        << err.what();
+  }
+  // What no line describes is said as such.
+  options.fingerprint = "another scenario";
+  options.described = "episode=1\n";
+  try {
+    RunOptimization(spec, settings, e, options);
+    FAIL() << "a checkpoint of another scenario was continued";
   } catch (const CheckpointError& err) {
     EXPECT_NE(std::string(err.what())
                   .find("another scenario, genome or episode settings"),
