@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "sim_core/mjcf_builder.h"
@@ -16,6 +17,12 @@ Eigen::Vector3d BodyPosition(const Physics& physics, const std::string& name) {
   return Eigen::Vector3d(p[0], p[1], p[2]);
 }
 
+// To the printed millimetre, without a minus on a zero ("-0.000").
+double Millimetres(double metres) {
+  const double rounded = std::round(metres * 1000) / 1000;
+  return rounded == 0 ? 0.0 : rounded;
+}
+
 }  // namespace
 
 RunSummary SummarizeRun(const Physics& start, const Physics& end) {
@@ -23,7 +30,9 @@ RunSummary SummarizeRun(const Physics& start, const Physics& end) {
       start.scenario().scene_objects.size() !=
           end.scenario().scene_objects.size()) {
     throw std::invalid_argument(
-        "start and end of the run come from different scenarios");
+        "not the end of a run of this scenario (its robots or scene "
+        "objects differ); give the scenario the run started from, then its "
+        "checkpoint");
   }
   RunSummary summary;
   summary.sim_time = end.time();
@@ -47,14 +56,16 @@ std::string FormatRunSummary(const RunSummary& summary) {
   const char* sep = " ";
   for (const auto& r : summary.robots) {
     const Eigen::Vector3d d = r.end - r.start;
-    line += fmt::format("{}{} moved {:.3f} m (dx {:+.3f}, dy {:+.3f})", sep,
-                        r.name, r.distance(), d.x(), d.y());
+    line +=
+        fmt::format("{}{} moved {:.3f} m (dx {:+.3f}, dy {:+.3f})", sep, r.name,
+                    r.distance(), Millimetres(d.x()), Millimetres(d.y()));
     sep = "; ";
   }
   for (const auto& o : summary.objects) {
     const Eigen::Vector3d d = o.end - o.start;
     line += fmt::format("{}{} displaced {:.3f} m (dx {:+.3f}, dy {:+.3f})", sep,
-                        o.name, o.distance(), d.x(), d.y());
+                        o.name, o.distance(), Millimetres(d.x()),
+                        Millimetres(d.y()));
   }
   return line;
 }

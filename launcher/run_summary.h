@@ -23,11 +23,12 @@ struct RunSummary {
   std::vector<Displacement> objects;  // movable scene objects only
 };
 
-// `start` and `end` must be built from the same scenario.
+// `start` and `end` must be built from the same scenario; otherwise throws
+// std::invalid_argument saying so.
 RunSummary SummarizeRun(const Physics& start, const Physics& end);
 
-// One line: "20.0 s: case_study moved 0.412 m (+x 0.40 m); object0 (ball)
-// moved 0.153 m".
+// One line: "20.0 s: case_study moved 0.540 m (dx +0.537, dy +0.000);
+// object0 displaced 0.317 m (dx +0.317, dy +0.000)".
 std::string FormatRunSummary(const RunSummary& summary);
 
 }  // namespace mrsim

@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   } catch (const mrsim::CheckpointError& e) {
     std::fprintf(stderr, "mrsim-summary: %s\n", e.what());
     return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "mrsim-summary: %s: %s\n", argv[argc - 1], e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrsim-summary: %s\n", e.what());
     return 1;

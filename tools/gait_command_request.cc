@@ -1,5 +1,7 @@
 #include "tools/gait_command_request.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -20,8 +22,8 @@ double Number(const std::vector<std::string>& words, size_t i,
   }
   if (v < lo || v > hi) {
     throw std::invalid_argument(
-        what + ": expected a number in [" + std::to_string(lo).substr(0, 4) +
-        ", " + std::to_string(hi).substr(0, 4) + "], got '" + words[i] + "'");
+        fmt::format("{}: expected a number in [{:g}, {:g}], got '{}'", what, lo,
+                    hi, words[i]));
   }
   return v;
 }

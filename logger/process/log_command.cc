@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -256,7 +257,15 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
   app.add_option("--max-queue-mb", opt.max_queue_mb,
                  "messages received but not yet written, at most (MB)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            const double mb = std::strtod(text.c_str(), &end);
+            return *end == '\0' && mb > 0 && std::isfinite(mb)
+                       ? std::string()
+                       : "expected a number of MB > 0, got " + text;
+          },
+          "MB > 0"));
   app.add_flag("--quiet", opt.quiet, "no progress lines");
 }
 
