@@ -109,6 +109,14 @@ CsvColumns ReadCsvColumns(const std::string& path,
   if (!ReadRecord(in, &record, &line)) {
     throw PlotInputError(path + ": empty file, expected a header line");
   }
+  // An XML file (a scenario, a genome) or anything else that is not a
+  // table: named as such, not searched for columns.
+  if (record.rfind("<?xml", 0) == 0 || record.rfind("<", 0) == 0 ||
+      record.rfind("\x89PNG", 0) == 0) {
+    throw PlotInputError(path +
+                         ": not a CSV file (expected a header line of "
+                         "column names, as mrsim-log and mrsim-opt write)");
+  }
   const std::vector<std::string> header = SplitCsvRecord(record);
   CsvColumns out;
   out.names = wanted;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -378,6 +379,14 @@ void WritePng(const cv::Mat& image, const std::string& png_path) {
     throw PlotInputError(png_path +
                          ": is a folder; expected a PNG file name (-o "
                          "FOLDER/chart.png)");
+  }
+  std::string extension = std::filesystem::path(png_path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(c));
+  if (extension != ".png") {
+    throw PlotInputError(
+        png_path + ": expected a file name ending in .png (e.g. " +
+        std::filesystem::path(png_path).replace_extension(".png").string() +
+        ")");
   }
   bool ok = false;
   try {

@@ -294,6 +294,16 @@ TEST(Plot, AFolderGivenForTheCsvOrThePngIsSaidToBeOne) {
   EXPECT_EQ(error(csv, dir), dir +
                                  ": is a folder; expected a PNG file name (-o "
                                  "FOLDER/chart.png)");
+  // Other wrong files: a PNG name without .png, a scenario for the CSV.
+  EXPECT_EQ(error(csv, dir + "/chart"),
+            dir + "/chart: expected a file name ending in .png (e.g. " + dir +
+                "/chart.png)");
+  const std::string xml = dir + "/worm.xml";
+  { std::ofstream(xml) << "<?xml version=\"1.0\"?>\n<Scenario/>\n"; }
+  EXPECT_EQ(error(xml, dir + "/a.png"),
+            xml +
+                ": not a CSV file (expected a header line of column names, "
+                "as mrsim-log and mrsim-opt write)");
 }
 
 TEST(Plot, CellsThatAreNotNumbersAreLeftOutAndTold) {
