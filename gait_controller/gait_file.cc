@@ -210,10 +210,12 @@ Gait ResolveGait(const std::string& spec) {
     }
   }
   std::string dirs;
-  for (const std::string& d : GaitSearchPath()) dirs += " " + d;
+  for (const std::string& d : GaitSearchPath()) {
+    dirs += (dirs.empty() ? "" : ", ") + d;
+  }
   throw GaitFileError(fmt::format(
       "unknown gait '{}': not a preset ({}), not a gait file, and no {}.xml "
-      "in the gait search path (MRSIM_GAIT_PATH, ./gaits):{}",
+      "in the gait search path ({}; MRSIM_GAIT_PATH adds folders)",
       spec, GaitPresetNames(), spec, dirs));
 }
 

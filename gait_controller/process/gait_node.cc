@@ -12,6 +12,7 @@
 #include "gait_controller/process/gait_command_apply.h"
 #include "gait_controller/process/motion_fit.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/usage_error.h"
 
 namespace mrsim {
 
@@ -348,7 +349,7 @@ void GaitNode::Resume(const std::string& checkpoint) {
   const std::string path = GaitCheckpointPath(checkpoint, options_.robot);
   std::ifstream in(path);
   if (!in) {
-    throw std::runtime_error(
+    throw UsageError(
         "--resume: cannot read " + path +
         " (mrsim-gait writes it when the simulator saves that checkpoint on "
         "request, e.g. mrsim-ctl save; --checkpoint-on-exit saves the "

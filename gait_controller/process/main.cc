@@ -39,12 +39,11 @@ int main(int argc, char** argv) {
       if (flags.keyboard) keys = std::make_unique<mrsim::RawKeyboard>();
       server.Run([] { return mrsim::StopRequested(); }, keys.get(), std::cerr);
     }  // the terminal back to normal before the summary
+    // The error first: it is why the run ended.
+    const std::string& error = server.node().error();
+    if (!error.empty()) std::cerr << "mrsim-gait: " << error << "\n";
     std::cerr << "mrsim-gait: " << server.node().Summary() << std::endl;
-    if (!server.node().error().empty()) {
-      std::cerr << "mrsim-gait: " << server.node().error() << "\n";
-      return 2;
-    }
-    return 0;
+    return error.empty() ? 0 : 2;
   } catch (const mrsim::UsageError& e) {
     std::cerr << "mrsim-gait: " << e.what() << "\n";
     return 2;
