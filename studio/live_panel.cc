@@ -100,6 +100,7 @@ void LivePanel::Disconnect() { link_.reset(); }
 void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
   if (!link_) {
     message_ = "not connected: Run or Attach first";
+    message_is_note_ = false;
     return;
   }
   try {
@@ -109,6 +110,7 @@ void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
   } catch (const std::exception& e) {
     outbox_.clear();
     message_ = e.what();
+    message_is_note_ = false;
   }
 }
 
@@ -133,6 +135,7 @@ void LivePanel::Poll() {
     link_->Poll(0);
   } catch (const std::exception& e) {
     message_ = e.what();
+    message_is_note_ = false;
     link_.reset();
     return;
   }
@@ -207,6 +210,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
     if (Button("Run")) {
       if (design.path.empty() || design.dirty) {
         message_ = "save the design first (Run starts mrsim-sim on the file)";
+        message_is_note_ = false;
       } else {
         try {
           RunOptions o = FormRun();
@@ -218,6 +222,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           message_.clear();
         } catch (const std::exception& e) {
           message_ = e.what();
+          message_is_note_ = false;
         }
       }
     }
@@ -232,6 +237,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
         Connect(url_, prefix_);
       } catch (const std::exception& e) {
         message_ = e.what();
+        message_is_note_ = false;
       }
     }
   } else if (Button("Detach")) {
@@ -368,8 +374,10 @@ void LivePanel::DrawSteering() {
           robot->gait->parameters, robot->gait->parameters + 7));
       WriteGaitFile(gait, gait_file_);
       message_ = "wrote " + gait_file_;
+      message_is_note_ = true;
     } catch (const std::exception& e) {
       message_ = e.what();
+      message_is_note_ = false;
     }
   }
   if (ImGui::TreeNode("gait parameters")) {
@@ -402,6 +410,7 @@ void LivePanel::DrawRecording() {
         runner_.StartRecording(record_dir_);
       } catch (const std::exception& e) {
         message_ = e.what();
+        message_is_note_ = false;
       }
     }
   } else if (Button("Stop recording")) {
@@ -450,13 +459,25 @@ void LivePanel::DrawPlots(float width) {
           std::clamp(plot_column_, 0, static_cast<int>(columns.size()) - 1);
       ImGui::SameLine();
       ImGui::SetNextItemWidth(width * 0.35f);
-      if (ImGui::BeginCombo("##column", columns[plot_column_].c_str())) {
+      if (ImGui::BeginCombo("##column", columns[plot_column_].c_str(),
+                            ImGuiComboFlags_HeightLarge)) {
+        // Hundreds of columns: typing part of a name narrows the list.
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+        ImGui::InputTextWithHint("##filter", "type to filter (force, angle)",
+                                 &column_filter_);
         for (int i = 0; i < static_cast<int>(columns.size()); ++i) {
+          if (!column_filter_.empty() &&
+              columns[i].find(column_filter_) == std::string::npos) {
+            continue;
+          }
           if (ImGui::Selectable(columns[i].c_str(), i == plot_column_)) {
             plot_column_ = i;
           }
         }
         ImGui::EndCombo();
+      }
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%s", columns[plot_column_].c_str());
       }
       ImGui::SameLine();
       if (Button("Add plot")) {
@@ -470,12 +491,17 @@ void LivePanel::DrawPlots(float width) {
     PlotSeries& p = *plots[i];
     values.assign(p.values().begin(), p.values().end());
     ImGui::PushID(static_cast<int>(i));
-    const std::string label = p.column();
-    const std::string overlay =
-        values.empty() ? "" : std::to_string(values.back());
-    ImGui::PlotLines(label.c_str(), values.data(),
-                     static_cast<int>(values.size()), 0, overlay.c_str(),
-                     FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 60));
+    // The name above the curve (beside it, it was cut off); on it the
+    // newest value and the range shown.
+    ImGui::TextUnformatted(p.column().c_str());
+    char overlay[96] = "";
+    if (!values.empty()) {
+      const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+      std::snprintf(overlay, sizeof(overlay), "now %.4g  (%.4g .. %.4g)",
+                    values.back(), *lo, *hi);
+    }
+    ImGui::PlotLines("##curve", values.data(), static_cast<int>(values.size()),
+                     0, overlay, FLT_MAX, FLT_MAX, ImVec2(width * 0.95f, 60));
     bool paused = p.paused();
     if (ImGui::Checkbox("pause", &paused)) p.set_paused(paused);
     ImGui::SameLine();
@@ -484,8 +510,10 @@ void LivePanel::DrawPlots(float width) {
         const std::string png = p.column() + ".png";
         ExportPlotPng(p, png);
         message_ = "wrote " + png;
+        message_is_note_ = true;
       } catch (const std::exception& e) {
         message_ = e.what();
+        message_is_note_ = false;
       }
     }
     ImGui::SameLine();
@@ -518,6 +546,7 @@ void LivePanel::WatchBest() {
   const auto best = optimise_.Best();
   if (!best) {
     message_ = "no generation finished yet";
+    message_is_note_ = false;
     return;
   }
   Play(*best);
@@ -554,6 +583,7 @@ void LivePanel::Play(const GenerationRow& row) {
     message_.clear();
   } catch (const std::exception& e) {
     message_ = e.what();
+    message_is_note_ = false;
   }
 }
 
@@ -568,6 +598,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       message_.clear();
     } catch (const std::exception& e) {
       message_ = e.what();
+      message_is_note_ = false;
     }
   }
   if (!genome_.genes.empty() &&
@@ -643,6 +674,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       }
     } catch (const std::exception& e) {
       message_ = e.what();
+      message_is_note_ = false;
     }
   };
   const OptimiseProgress& p = optimise_.progress();
@@ -668,21 +700,30 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   }
   if (p.running || p.finished || !p.rows.empty()) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
-    ImGui::Text(
-        "generation %zu of %d  best-so-far %.4g  %.2f evals/s  "
-        "workers %d  ETA %s%s",
+    // Wrapped, state first: the panel is narrower than the whole line.
+    ImGui::TextWrapped(
+        "%sgeneration %zu of %d, best so far %.4g, %.2f evals/s, %d "
+        "worker%s, ETA %s",
+        p.finished ? (p.exit_code == 0 ? "finished: " : "failed: ") : "",
         p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
-        p.evals_per_s, p.workers, p.eta.c_str(),
-        p.finished ? (p.exit_code == 0 ? "  finished" : "  failed") : "");
-    std::vector<float> best, mean;
-    for (const GenerationRow& r : p.rows) {
-      best.push_back(static_cast<float>(r.best));
-      mean.push_back(static_cast<float>(r.mean));
-    }
-    ImGui::PlotLines("best", best.data(), static_cast<int>(best.size()), 0,
-                     nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 50));
-    ImGui::PlotLines("mean", mean.data(), static_cast<int>(mean.size()), 0,
-                     nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.7f, 50));
+        p.evals_per_s, p.workers, p.workers == 1 ? "" : "s", p.eta.c_str());
+    // Best so far (it only rises) and each generation's mean, each with
+    // its range written on it: the curves have no axes.
+    const auto curve = [&](const char* label, auto value) {
+      std::vector<float> v;
+      for (const GenerationRow& r : p.rows) {
+        v.push_back(static_cast<float>(value(r)));
+      }
+      char range[64] = "";
+      if (!v.empty()) {
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        std::snprintf(range, sizeof(range), "%.4g .. %.4g", *lo, *hi);
+      }
+      ImGui::PlotLines(label, v.data(), static_cast<int>(v.size()), 0, range,
+                       FLT_MAX, FLT_MAX, ImVec2(width * 0.62f, 50));
+    };
+    curve("best so far", [](const GenerationRow& r) { return r.best_so_far; });
+    curve("mean", [](const GenerationRow& r) { return r.mean; });
   }
 }
 
@@ -711,7 +752,10 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (!message_.empty()) {
     // Wrapped: an error names a path and what is wrong, often wider than
     // the panel.
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.5f, 0.4f, 1));
+    ImGui::PushStyleColor(ImGuiCol_Text,
+                          message_is_note_
+                              ? ImGui::GetStyleColorVec4(ImGuiCol_Text)
+                              : ImVec4(1, 0.5f, 0.4f, 1));
     ImGui::TextWrapped("%s", message_.c_str());
     ImGui::PopStyleColor();
   }

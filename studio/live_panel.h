@@ -113,6 +113,7 @@ class LivePanel {
   StudioOutbox outbox_;
   std::string followed_;
   std::string message_;
+  bool message_is_note_ = false;  // "wrote ...": not an error
   // Form state.
   std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
   std::string prefix_ = "MRSIM";
@@ -126,8 +127,9 @@ class LivePanel {
   std::string checkpoint_ = "studio.checkpoint";
   std::string gait_file_ = "studio.gait.xml";
   std::string record_dir_ = "recordings";
-  int plot_channel_ = -1;  // -1: the followed robot's state channel
-  int plot_column_ = -1;   // -1: a force sensor, else com.x
+  int plot_channel_ = -1;      // -1: the followed robot's state channel
+  std::string column_filter_;  // typed in the column list
+  int plot_column_ = -1;       // -1: a force sensor, else com.x
 };
 
 }  // namespace mrsim::studio
