@@ -18,6 +18,7 @@
 
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/channels.h"
+#include "sim_core/scenario_xml.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/plot_export.h"
 
@@ -95,7 +96,13 @@ void LivePanel::Connect(const std::string& url, const std::string& prefix) {
   followed_.clear();
 }
 
-void LivePanel::Disconnect() { link_.reset(); }
+void LivePanel::Disconnect() {
+  link_.reset();
+  if (running_) {
+    running_.reset();
+    ++replay_revision_;
+  }
+}
 
 void LivePanel::Send(const std::function<void(StudioOutbox*)>& request) {
   if (!link_) {
@@ -219,6 +226,8 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           runner_.Start(o);
           Connect(url_, prefix_);
           EndReplay();
+          running_ = ReadScenarioFile(design.path);
+          ++replay_revision_;
           message_.clear();
         } catch (const std::exception& e) {
           message_ = e.what();
@@ -227,8 +236,11 @@ void LivePanel::DrawRun(const LiveDesign& design) {
       }
     }
   } else if (Button("Stop")) {
+    // Back to the design: the view, the camera and the simulator section
+    // leave the stopped run (its last pose and counters would look live).
     runner_.Stop();
     EndReplay();
+    Disconnect();
   }
   ImGui::SameLine();
   if (!link_) {
@@ -250,7 +262,9 @@ void LivePanel::DrawRun(const LiveDesign& design) {
 }
 
 void LivePanel::DrawControls() {
-  const auto& status = session_->sim_status();
+  // Detached or stopped: the last run's figures would read as live ones.
+  const std::optional<sim_status_t> none;
+  const auto& status = link_ ? session_->sim_status() : none;
   if (status) {
     ImGui::Text("sim %.2f s  x%.2f  %s%s", status->sim_time,
                 status->real_time_factor, status->clock.c_str(),
@@ -321,7 +335,9 @@ void LivePanel::DrawControls() {
 
 void LivePanel::DrawSteering() {
   std::vector<std::string> names;
-  for (const LiveRobot* r : session_->robots()) names.push_back(r->name);
+  if (link_) {
+    for (const LiveRobot* r : session_->robots()) names.push_back(r->name);
+  }
   if (names.empty()) {
     ImGui::TextDisabled("no robot heard yet");
     return;

@@ -57,11 +57,13 @@ class LivePanel {
            optimise_.progress().running;
   }
   const LiveSession& session() const { return *session_; }
-  // The scenario the live run plays when it is not the design (the best of
-  // an optimisation with body genes), else null; its revision changes
-  // whenever it does.
+  // The scenario the live run plays: the best of an optimisation with body
+  // genes, or the design as it was saved when Run started (edits made
+  // while it runs wait for the next Run); null when nothing runs. Its
+  // revision changes whenever it does.
   const Scenario* live_scenario() const {
-    return replay_ ? &replay_->scenario : nullptr;
+    if (replay_) return &replay_->scenario;
+    return running_ ? &*running_ : nullptr;
   }
   int live_scenario_revision() const { return replay_revision_; }
   // The robot steered by keys and buttons ("" when none is heard).
@@ -107,7 +109,8 @@ class LivePanel {
   int jump_to_ = 1;
   std::optional<BestReplay> replay_;  // what runs, when not the design
   int replay_revision_ = 0;
-  std::string watching_;  // "playing generation 3's best ..."
+  std::optional<Scenario> running_;  // what Run started
+  std::string watching_;             // "playing generation 3's best ..."
   std::unique_ptr<LiveSession> session_;
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;

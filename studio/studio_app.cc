@@ -183,8 +183,9 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   const int shown_live = replay ? live_->live_scenario_revision() : -1;
   if (design_.revision() != built_revision_ || shown_live != built_live_) {
     const auto start = std::chrono::steady_clock::now();
-    // Another body: the camera frames it (it may be twice the design).
-    if (shown_live >= 0 && shown_live != built_live_) preview_->Reframe();
+    // Another body, or back to the design after a run: the camera frames
+    // it (a body may be twice the design; a followed run left it far off).
+    if (shown_live != built_live_) preview_->Reframe();
     build_error_ = preview_->Rebuild(shown);
     preview_->ShowDesign();
     last_rebuild_ms_ = std::chrono::duration<double, std::milli>(
