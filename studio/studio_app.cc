@@ -444,8 +444,13 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
     if (&p != &parts[2]) ImGui::SameLine();
   }
 
-  // The chain, front to back.
+  // The chain, front to back. Rows are written in their part's colour, so
+  // the selection is marked in grey: ImGui's blue would hide a blue yaw
+  // row.
   ImGui::BeginChild("parts", ImVec2(0, h * 0.28f), true);
+  ImGui::PushStyleColor(ImGuiCol_Header, ImVec4(0.32f, 0.33f, 0.36f, 1));
+  ImGui::PushStyleColor(ImGuiCol_HeaderHovered, ImVec4(0.25f, 0.26f, 0.28f, 1));
+  ImGui::PushStyleColor(ImGuiCol_HeaderActive, ImVec4(0.40f, 0.41f, 0.44f, 1));
   const Scenario& s = design_.scenario();
   for (int r = 0; r < static_cast<int>(s.robots.size()); ++r) {
     const Robot& robot = s.robots[r];
@@ -484,6 +489,7 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
   if (s.robots.empty()) {
     ImGui::TextWrapped("No robot yet: add a pitch or yaw module.");
   }
+  ImGui::PopStyleColor(3);
   ImGui::EndChild();
   if (Button("Move to front", third)) Try([&] { design_.MoveSelected(-1); });
   ImGui::SameLine();
