@@ -359,9 +359,14 @@ void LivePanel::DrawSteering() {
   const char* const motions[] = {
       "forward",       "backward",       "turn-left", "turn-right",
       "sidewind-left", "sidewind-right", "roll",      "stop"};
+  // Four to a row, as wide as the panel allows (fixed widths ran past its
+  // edge beside the scroll bar).
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  const float button =
+      std::floor((ImGui::GetContentRegionAvail().x - 3 * spacing) / 4);
   for (int i = 0; i < IM_ARRAYSIZE(motions); ++i) {
     if (i % 4 != 0) ImGui::SameLine();
-    if (Button(motions[i], 95)) {
+    if (Button(motions[i], button)) {
       Send([&](StudioOutbox* out) {
         session_->Steer(followed_, motions[i], strength_, WallClock::now(),
                         out);
