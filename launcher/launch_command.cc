@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/edit_distance.h"
 #include "launcher/process_group.h"
 #include "launcher/program_locator.h"
 #include "launcher/shell_quote.h"
@@ -109,7 +110,12 @@ void ExecTool(const std::string& argv0, const std::string& tool,
   try {
     path = FindProgram("mrsim-" + tool, ProgramSearchPath(argv0));
   } catch (const std::runtime_error& e) {
-    // A mistyped tool is bad input, like a mistyped flag.
+    // A mistyped tool is bad input, like a mistyped flag; "lanch" is most
+    // likely the subcommand.
+    if (EditDistance(tool, "launch") <= 2) {
+      throw LaunchError("no tool '" + tool +
+                        "' (did you mean 'mrsim launch FILE'?)");
+    }
     throw LaunchError("no tool '" + tool + "': " + e.what());
   }
   args.insert(args.begin(), path);

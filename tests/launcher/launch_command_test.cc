@@ -81,6 +81,14 @@ TEST(LaunchCommand, AnUnknownToolIsBadInputNamingIt) {
     EXPECT_THAT(e.what(), HasSubstr("no tool 'no-such-tool': cannot find "
                                     "program 'mrsim-no-such-tool'"));
   }
+  // The subcommand mistyped is pointed to, not the list of tools.
+  try {
+    ExecTool("mrsim", "lanch", {});
+    FAIL() << "ExecTool returned";
+  } catch (const LaunchError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "no tool 'lanch' (did you mean 'mrsim launch FILE'?)");
+  }
 }
 
 TEST(ProgramLocator, AMistypedProgramNamesTheNearestAndTheOthers) {
