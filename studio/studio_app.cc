@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "launcher/program_locator.h"
@@ -605,7 +606,35 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
                            f.type() == FieldType::kQuaternion;
       const std::string current =
           numbers ? ShortNumbers(f.GetText()) : f.GetText();
-      if (f.type() == FieldType::kBool) {
+      const std::string field = info.xml;
+      if (field == "sensorPosition") {
+        // A face by its name; the limits say which faces (plates 0..3).
+        static const char* const kFaceNames[] = {"bottom", "left",  "top",
+                                                 "right",  "front", "back"};
+        const int face = std::atoi(current.c_str());
+        const int last = std::isfinite(info.limits.max)
+                             ? std::min(5, static_cast<int>(info.limits.max))
+                             : 5;
+        const std::string shown =
+            current + (face >= 0 && face <= 5
+                           ? std::string(" ") + kFaceNames[face]
+                           : std::string());
+        if (ImGui::BeginCombo("##v", shown.c_str())) {
+          for (int k = 0; k <= last; ++k) {
+            const std::string item = std::to_string(k) + " " + kFaceNames[k];
+            if (ImGui::Selectable(item.c_str(), k == face)) {
+              Try([&] { design_.SetField(address, std::to_string(k)); });
+            }
+          }
+          ImGui::EndCombo();
+        }
+      } else if (field == "guid" || field == "leftMod_Nr" ||
+                 field == "rightMod_Nr" || field == "forceValue" ||
+                 field == "leftFrameGuid" || field == "rightFrameGuid") {
+        // Kept by the chain editor (names, neighbours, the joints' ends) or
+        // written by a run (forceValue): shown, not edited here.
+        ImGui::TextDisabled("%s", current.c_str());
+      } else if (f.type() == FieldType::kBool) {
         bool on = current == "true";
         if (ImGui::Checkbox("##v", &on)) {
           Try([&] { design_.SetField(address, on ? "true" : "false"); });
