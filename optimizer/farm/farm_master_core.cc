@@ -144,6 +144,15 @@ void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
   if (!ready && w.ready) {
     // It follows another run now (or lost the payload): nothing it holds
     // of ours will be answered.
+    if (!msg.run_id.empty() && msg.run_id != run_id_ && !warned_other_run_) {
+      // Workers follow the newest master on a prefix: a second mrsim-opt
+      // there takes them all. Said once.
+      warned_other_run_ = true;
+      Log(fmt::format(
+          "worker {} left for another run ({}) on {}_*: another mrsim-opt "
+          "uses this prefix; give each run its own --prefix (workers too)",
+          w.id, msg.run_id, settings_.prefix));
+    }
     std::vector<std::int64_t> lost(w.assigned.begin(), w.assigned.end());
     for (std::int64_t id : lost) Requeue(id, "its worker left the run");
   }

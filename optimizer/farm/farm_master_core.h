@@ -185,6 +185,7 @@ class FarmMasterCore {
   std::string run_id_;
   std::string hash_;
   std::string failure_;
+  bool warned_other_run_ = false;  // another master on our prefix, said
   std::int64_t started_;
   FarmSettings settings_;
   std::vector<std::string> chunks_;

@@ -473,6 +473,28 @@ TEST(FarmMasterCore, AJobNoWorkerCanRunFailsTheBatchWithTheReason) {
   EXPECT_EQ(m.failure(), "");
 }
 
+// Workers follow the newest master on a prefix: the older one is told why
+// its workers left, once.
+TEST(FarmMasterCore, WorkersTakenByAnotherRunOnThePrefixAreExplained) {
+  std::vector<std::string> log;
+  FarmSettings settings;
+  settings.log = [&log](const std::string& line) { log.push_back(line); };
+  FarmMasterCore m(Payload(100), "run", 1, settings);
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.OnHeartbeat(Beat(m, "b"), 0.0);
+  EXPECT_EQ(m.workers_ready(), 2);
+  for (const char* id : {"a", "b"}) {
+    opt_heartbeat_t other = Beat(m, id);
+    other.run_id = "newer";
+    m.OnHeartbeat(other, 0.1);
+  }
+  EXPECT_EQ(m.workers_ready(), 0);
+  const auto said = std::count_if(log.begin(), log.end(), [](const auto& l) {
+    return l.find("another mrsim-opt uses this prefix") != std::string::npos;
+  });
+  EXPECT_EQ(said, 1);
+}
+
 TEST(FarmMasterCore, DefaultChunkFitsOneEthernetFrame) {
   FarmMasterCore m(Payload(50000), "some-host-12345-1700000000", 1,
                    FarmSettings{});
