@@ -95,6 +95,10 @@ struct FieldInfo {
   bool required = false;  // must appear in a file
   Geometry geometry = Geometry::kNone;
   bool uniform_scalar = false;  // a vector may be written as one number
+  // Names or links a robot's parts (guids, joint ends, neighbours) or
+  // records a reading: the tools keep it, so the studio shows it without
+  // offering to edit it.
+  bool kept = false;
 };
 
 // How many of a child part there are.

@@ -61,8 +61,15 @@ void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
 
 template <typename V>
 void Describe(V& v, Frame& f) {
-  static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id joints refer to", true};
+  static const FieldInfo kGuid{"guid",
+                               "guid",
+                               "",
+                               L::NonEmpty(),
+                               "Unique id joints refer to",
+                               true,
+                               Geometry::kNone,
+                               false,
+                               true};
   static const FieldInfo kShape{
       "shape", "shape", "", L::NonEmpty(),
       "Box, or a mesh file (.obj or .stl) relative to the scenario file"};
@@ -95,19 +102,26 @@ void Describe(V& v, Frame& f) {
 template <typename V>
 void Describe(V& v, Joint& j) {
   static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id of the joint", true};
+      "guid", "guid",          "",    L::NonEmpty(), "Unique id of the joint",
+      true,   Geometry::kNone, false, true};
   static const FieldInfo kLeft{
       "leftFrameGuid",
       "left_frame_guid",
       "",
       L::NonEmpty(),
       "guid of the first part joined (a frame or sensor module)",
+      true,
+      Geometry::kNone,
+      false,
       true};
   static const FieldInfo kRight{"rightFrameGuid",
                                 "right_frame_guid",
                                 "",
                                 L::NonEmpty(),
                                 "guid of the second part joined",
+                                true,
+                                Geometry::kNone,
+                                false,
                                 true};
   static const FieldInfo kType{
       "type",
@@ -181,11 +195,24 @@ void Describe(V& v, Module& m) {
 template <typename V>
 void Describe(V& v, ForceSensor& s) {
   static const FieldInfo kGuid{
-      "guid", "guid", "", L::Any(),
-      "Id the plate's lock may name (optional; nothing else refers to it)"};
-  static const FieldInfo kForce{
-      "forceValue", "force_value", "N", L::Any(),
-      "Last reading the original saved; not an input"};
+      "guid",
+      "guid",
+      "",
+      L::Any(),
+      "Id the plate's lock may name (optional; nothing else refers to it)",
+      false,
+      Geometry::kNone,
+      false,
+      true};
+  static const FieldInfo kForce{"forceValue",
+                                "force_value",
+                                "N",
+                                L::Any(),
+                                "Last reading the original saved; not an input",
+                                false,
+                                Geometry::kNone,
+                                false,
+                                true};
   static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
                                L::Range(0, 3, "bottom, left, top, right"),
                                "Face of the sensor module the plate is on"};
@@ -223,8 +250,15 @@ void Describe(V& v, ForceSensor& s) {
 template <typename V>
 void Describe(V& v, DistanceSensor& s) {
   static const FieldInfo kGuid{
-      "guid", "guid", "", L::Any(),
-      "Id the sensor's lock may name (optional; nothing else refers to it)"};
+      "guid",
+      "guid",
+      "",
+      L::Any(),
+      "Id the sensor's lock may name (optional; nothing else refers to it)",
+      false,
+      Geometry::kNone,
+      false,
+      true};
   static const FieldInfo kFace{
       "sensorPosition", "sensor_position", "",
       L::Range(0, 5, "bottom, left, top, right, front, back"),
@@ -270,15 +304,35 @@ void Describe(V& v, DistanceSensor& s) {
 
 template <typename V>
 void Describe(V& v, SensorModule& s) {
-  static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id of the sensor module",
-      true};
+  static const FieldInfo kGuid{"guid",
+                               "guid",
+                               "",
+                               L::NonEmpty(),
+                               "Unique id of the sensor module",
+                               true,
+                               Geometry::kNone,
+                               false,
+                               true};
   static const FieldInfo kLeft{
-      "leftMod_Nr", "left_mod_nr", "", L::AtLeast(-1),
-      "mod_Nr of the module on one side; -1: chain end"};
+      "leftMod_Nr",
+      "left_mod_nr",
+      "",
+      L::AtLeast(-1),
+      "mod_Nr of the module on one side; -1: chain end",
+      false,
+      Geometry::kNone,
+      false,
+      true};
   static const FieldInfo kRight{
-      "rightMod_Nr", "right_mod_nr", "", L::AtLeast(-1),
-      "mod_Nr of the module on the other side; -1: chain end"};
+      "rightMod_Nr",
+      "right_mod_nr",
+      "",
+      L::AtLeast(-1),
+      "mod_Nr of the module on the other side; -1: chain end",
+      false,
+      Geometry::kNone,
+      false,
+      true};
   static const ChildInfo kForce{"forceSensor", "", "force_sensor",
                                 "At most one force plate"};
   static const ChildInfo kForceLock = [] {

@@ -10,6 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "launcher/program_locator.h"
 #include "sim_core/mjcf_builder.h"
@@ -606,33 +609,31 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
                            f.type() == FieldType::kQuaternion;
       const std::string current =
           numbers ? ShortNumbers(f.GetText()) : f.GetText();
-      const std::string field = info.xml;
-      if (field == "sensorPosition") {
-        // A face by its name; the limits say which faces (plates 0..3).
-        static const char* const kFaceNames[] = {"bottom", "left",  "top",
-                                                 "right",  "front", "back"};
-        const int face = std::atoi(current.c_str());
-        const int last = std::isfinite(info.limits.max)
-                             ? std::min(5, static_cast<int>(info.limits.max))
-                             : 5;
-        const std::string shown =
-            current + (face >= 0 && face <= 5
-                           ? std::string(" ") + kFaceNames[face]
-                           : std::string());
-        if (ImGui::BeginCombo("##v", shown.c_str())) {
-          for (int k = 0; k <= last; ++k) {
-            const std::string item = std::to_string(k) + " " + kFaceNames[k];
-            if (ImGui::Selectable(item.c_str(), k == face)) {
+      if (*info.limits.meaning) {
+        // An integer range whose values have names (a face): picked by
+        // name, from the schema's own list.
+        std::vector<std::string> names;
+        std::stringstream meaning(info.limits.meaning);
+        for (std::string n; std::getline(meaning, n, ',');) {
+          names.push_back(n.substr(n.find_first_not_of(' ')));
+        }
+        const int value = std::atoi(current.c_str());
+        const auto name_of = [&](int k) {
+          const int i = k - static_cast<int>(info.limits.min);
+          return std::to_string(k) +
+                 (i >= 0 && i < static_cast<int>(names.size()) ? " " + names[i]
+                                                               : "");
+        };
+        if (ImGui::BeginCombo("##v", name_of(value).c_str())) {
+          for (int k = static_cast<int>(info.limits.min);
+               k <= static_cast<int>(info.limits.max); ++k) {
+            if (ImGui::Selectable(name_of(k).c_str(), k == value)) {
               Try([&] { design_.SetField(address, std::to_string(k)); });
             }
           }
           ImGui::EndCombo();
         }
-      } else if (field == "guid" || field == "leftMod_Nr" ||
-                 field == "rightMod_Nr" || field == "forceValue" ||
-                 field == "leftFrameGuid" || field == "rightFrameGuid") {
-        // Kept by the chain editor (names, neighbours, the joints' ends) or
-        // written by a run (forceValue): shown, not edited here.
+      } else if (info.kept) {
         ImGui::TextDisabled("%s", current.c_str());
       } else if (f.type() == FieldType::kBool) {
         bool on = current == "true";

@@ -102,9 +102,9 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
                 .find("--chunk-size: expected 0 (one Ethernet frame) or "
                       "1..60000, got 70000"),
             std::string::npos);
-  EXPECT_NE(message({"--farm", "--worker-timeout", "-1"})
-                .find("--worker-timeout"),
-            std::string::npos);
+  EXPECT_NE(
+      message({"--farm", "--worker-timeout", "-1"}).find("--worker-timeout"),
+      std::string::npos);
   EXPECT_NE(message({"--farm", "--workers", "local:2"})
                 .find("mrsim-worker --threads"),
             std::string::npos);
