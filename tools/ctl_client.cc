@@ -60,15 +60,38 @@ class Listener {
     return std::nullopt;
   }
 
+  // Messages on the channel that did not decode as Message (another
+  // version of mrsim, or another program on the same channel).
+  int undecodable() const { return undecodable_; }
+
  private:
-  void On(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    Message m;
-    if (DecodeMessage(rbuf, &m)) fresh_.push_back(std::move(m));
+  // Called from LCM's C code: nothing may escape.
+  void On(const lcm::ReceiveBuffer* rbuf, const std::string&) noexcept {
+    try {
+      Message m;
+      if (DecodeMessage(rbuf, &m)) {
+        fresh_.push_back(std::move(m));
+      } else {
+        ++undecodable_;
+      }
+    } catch (...) {
+      ++undecodable_;
+    }
   }
   lcm::LCM& lcm_;
   lcm::Subscription* sub_ = nullptr;
   std::vector<Message> fresh_;
+  int undecodable_ = 0;
 };
+
+// Why nothing answered may be that something else did: say so.
+std::string UndecodableNote(int count, const std::string& channel) {
+  if (count == 0) return "";
+  return fmt::format(
+      "mrsim-ctl: {} message(s) on {} could not be read (another program on "
+      "that channel, or another version of mrsim?)\n",
+      count, channel);
+}
 
 // with_error: the simulator's last error, which stays in its status after
 // the request that caused it (shown by `status` and with a refusal, not
@@ -115,6 +138,7 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
         "mrsim-ctl: no answer from a simulator on {} within {:.1f} s (is "
         "mrsim-sim running with the same --lcm-url and --prefix?)\n",
         SimStatusChannel(o.prefix), o.timeout);
+    err << UndecodableNote(status.undecodable(), SimStatusChannel(o.prefix));
     return 1;
   }
   if (status_only) {
@@ -178,6 +202,7 @@ int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,
         "s (robot name misspelled, or mrsim-gait not running with the same "
         "--lcm-url and --prefix?)\n",
         c.robot, channel, o.timeout);
+    err << UndecodableNote(status.undecodable(), channel);
     return 1;
   }
   c.utime = NowMicros();

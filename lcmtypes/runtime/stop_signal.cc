@@ -5,9 +5,12 @@
 namespace mrsim {
 namespace {
 
-volatile std::sig_atomic_t g_stop_signal = 0;
+// Atomic, not volatile sig_atomic_t: worker and receiver threads read it
+// too, and a lock-free atomic is safe in a signal handler.
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
-extern "C" void OnStopSignal(int sig) { g_stop_signal = sig; }
+extern "C" void OnStopSignal(int sig) { g_stop_signal.store(sig); }
 
 }  // namespace
 
@@ -21,7 +24,7 @@ void InstallStopHandlers() {
   std::signal(SIGPIPE, SIG_IGN);
 }
 
-bool StopRequested() { return g_stop_signal != 0; }
-int StopSignal() { return g_stop_signal; }
+bool StopRequested() { return g_stop_signal.load() != 0; }
+int StopSignal() { return g_stop_signal.load(); }
 
 }  // namespace mrsim

@@ -1,16 +1,22 @@
 // mrsim-ctl against a real mrsim-sim over loopback multicast.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
 #include <optional>
 #include <regex>
+#include <sstream>
+#include <thread>
+#include <vector>
 
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_status_t.hpp"
 #include "tests/common/child_process.h"
+#include "tools/ctl_client.h"
 #include "tools/gait_command_request.h"
 #include "tools/sim_control_request.h"
 
@@ -160,6 +166,37 @@ TEST(MrsimCtl, NoSimulatorIsReportedNotAwaitedForever) {
                  dir + "/ctl.log");
   EXPECT_EQ(p.Wait(30), 1);
   EXPECT_NE(p.Output().find("no answer"), std::string::npos) << p.Output();
+}
+
+// Something that is not a simulator talking on the status channel (another
+// program, another mrsim version) is named when nothing answers, and does
+// not crash mrsim-ctl.
+TEST(MrsimCtl, UnreadableMessagesOnTheStatusChannelAreNamed) {
+  const std::string url = TestLcmUrl(7884);
+  lcm::LCM talker(url);
+  ASSERT_TRUE(talker.good());
+  std::atomic<bool> done{false};
+  std::thread noise([&] {
+    // An absurd array length: lcm-gen's decode would try to allocate it.
+    const std::vector<std::uint8_t> junk(64, 0xff);
+    while (!done) {
+      talker.publish(SimStatusChannel("MRSIM"), junk.data(),
+                     static_cast<unsigned>(junk.size()));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  lcm::LCM lcm(url);
+  CtlOptions options;
+  options.timeout = 1.0;
+  options.sender = "ctl-test";
+  std::ostringstream out, err;
+  const int code = RunCtl(lcm, {"pause"}, options, out, err);
+  done = true;
+  noise.join();
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(err.str().find("no answer"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("could not be read"), std::string::npos)
+      << err.str();
 }
 
 // A step the simulator took but could not finish (lockstep with its
