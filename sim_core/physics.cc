@@ -6,13 +6,13 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 
 #include "sim_core/distance_ray.h"
 #include "sim_core/fluid_forces.h"
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/model_compiler.h"
 #include "sim_core/mujoco_handlers.h"
 #include "sim_core/scenario_validate.h"
 #include "sim_core/terrain.h"
@@ -51,44 +51,6 @@ const char* WarningName(int w) {
     default:
       return "unknown";
   }
-}
-
-MjModelPtr CompileMjcf(
-    const std::string& xml,
-    const std::vector<std::pair<std::string, std::vector<unsigned char>>>&
-        files) {
-  InstallMujocoHandlers();  // before any MuJoCo call: never print or exit
-  // MuJoCo 2.2's XML parser and compiler keep global state: one at a time,
-  // so Physics objects can be built from several threads.
-  static std::mutex compile_mutex;
-  std::lock_guard<std::mutex> lock(compile_mutex);
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* kName = "mrsim_scenario.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) !=
-      0) {
-    throw std::runtime_error("cannot create the in-memory MJCF file");
-  }
-  const int index = mj_findFileVFS(vfs.get(), kName);
-  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
-  for (const auto& [name, bytes] : files) {
-    if (mj_findFileVFS(vfs.get(), name.c_str()) >= 0) continue;
-    if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(),
-                            static_cast<int>(bytes.size())) != 0) {
-      mj_deleteVFS(vfs.get());
-      throw std::runtime_error("cannot hold the mesh '" + name + "' in memory");
-    }
-    const int f = mj_findFileVFS(vfs.get(), name.c_str());
-    std::memcpy(vfs->filedata[f], bytes.data(), bytes.size());
-  }
-  char error[1024] = {0};
-  MjModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof(error)));
-  mj_deleteVFS(vfs.get());
-  if (!model) {
-    throw std::runtime_error(
-        std::string("MuJoCo cannot compile the scenario: ") + error);
-  }
-  return model;
 }
 
 Pose BodyPose(const mjData* d, int body) {
@@ -221,20 +183,11 @@ void Physics::Impl::Build() {
   std::vector<std::vector<double>> old_targets;
   for (const RobotIndex& r : robots) old_targets.push_back(r.targets);
   MjcfOptions options;
-  options.hfield_data_after_compile = true;
   options.rangefinders = false;
-  options.assets_in_memory = true;
   options.weld_locks = runtime_welds;
   MjcfInfo info;
-  const std::string xml = BuildMjcf(scenario, options, &info);
-  model = CompileMjcf(xml, info.memory_files);
+  model = CompileScenarioModel(scenario, options, &info);
   mjModel* m = model.get();
-  if (!scenario.scene.height_image.empty() && m->nhfield > 0) {
-    const std::vector<float> heights =
-        HeightFieldData(LoadTerrainImage(scenario.scene, scenario.base_dir));
-    std::copy(heights.begin(), heights.end(),
-              m->hfield_data + m->hfield_adr[0]);
-  }
   robots.clear();
   Index(info);
   if (old_targets.size() == robots.size()) {

@@ -10,19 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "sim_core/mujoco_ptr.h"
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
 
 namespace mrsim {
-
-struct MjModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct MjDataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
-using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
 
 // Thrown when the simulation becomes unstable (NaN, MuJoCo warning).
 class PhysicsError : public std::runtime_error {

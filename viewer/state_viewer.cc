@@ -3,39 +3,16 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/mujoco_handlers.h"
+#include "sim_core/model_compiler.h"
 
 namespace mrsim {
-
-MjModelPtr CompileMjcf(const std::string& mjcf, const std::string& name) {
-  InstallMujocoHandlers();  // MuJoCo never prints, logs to a file or exits
-  // An in-memory file: the MJCF names meshes and height fields by absolute
-  // path, so nothing needs writing to disk.
-  mjVFS vfs;
-  mj_defaultVFS(&vfs);
-  const char* file = "mrsim_view.xml";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(mjcf.size())) != 0) {
-    throw std::runtime_error(name + ": cannot hold the MJCF in memory");
-  }
-  const int i = mj_findFileVFS(&vfs, file);
-  std::memcpy(vfs.filedata[i], mjcf.data(), mjcf.size());
-  char error[1024] = "";
-  mjModel* model = mj_loadXML(file, &vfs, error, sizeof(error));
-  mj_deleteVFS(&vfs);
-  if (model == nullptr) {
-    throw std::runtime_error(name +
-                             ": MuJoCo cannot compile the model: " + error);
-  }
-  return MjModelPtr(model);
-}
 
 StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
     : options_(options), camera_(options.camera) {
   if (scenario.robots.empty()) {
     throw std::runtime_error("viewer: the scenario has no robot to show");
   }
-  model_ = CompileMjcf(BuildMjcf(scenario), "scenario");
+  model_ = CompileScenarioModel(scenario, MjcfOptions{});
   data_.reset(mj_makeData(model_.get()));
   if (data_ == nullptr) throw std::runtime_error("viewer: mj_makeData failed");
   mj_resetData(model_.get(), data_.get());

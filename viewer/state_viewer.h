@@ -80,8 +80,4 @@ class StateViewer {
   bool has_overlay_ = false;
 };
 
-// Compiles MJCF text into a model. Throws std::runtime_error with MuJoCo's
-// message, prefixed by `name`.
-MjModelPtr CompileMjcf(const std::string& mjcf, const std::string& name);
-
 }  // namespace mrsim
