@@ -576,6 +576,13 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
   ImGui::Begin("Inspector", nullptr, kPanelFlags);
   Scenario view = design_.scenario();
   const Selection sel = design_.selection();
+  if (design_.revision() != fields_revision_ || sel != fields_selection_) {
+    // What was refused belongs to the design and part it was typed for.
+    field_errors_.clear();
+    field_edits_.clear();
+    fields_revision_ = design_.revision();
+    fields_selection_ = sel;
+  }
   const std::vector<FieldGroup> groups = InspectorFields(view, sel);
   if (groups.empty()) {
     ImGui::TextWrapped(
@@ -666,15 +673,18 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
           }
         }
         if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
+          // Refused: the field shows the design's value again, so what is
+          // on screen is what is saved and run.
+          field_edits_.erase(key);
           try {
             design_.SetField(address, text);
             field_errors_.erase(key);
-            field_edits_.erase(key);
           } catch (const std::exception& e) {
-            field_errors_[key] = e.what();
+            field_errors_[key] =
+                "not applied, still " + current + ": " + e.what();
           }
-        } else if (!active && field_errors_.count(key) == 0) {
-          field_edits_.erase(key);
+        } else if (!active && field_edits_.erase(key) > 0) {
+          field_errors_.erase(key);  // typing abandoned (Escape)
         }
       }
       Record("field " + g.sub + "/" + info.xml);

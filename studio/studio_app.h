@@ -104,6 +104,8 @@ class StudioApp {
   bool message_is_error_ = false;  // red, else a plain note ("saved ...")
   std::map<std::string, std::string> field_errors_;  // by field key
   std::map<std::string, std::string> field_edits_;   // text being typed
+  long fields_revision_ = -1;  // the design the two maps above are for
+  Selection fields_selection_;
   Where where_ = Where::kAfterSelection;
   Pending pending_ = Pending::kNone;
   std::string pending_path_;

@@ -43,7 +43,14 @@ Renderer::Renderer(const mjModel* model, int width, int height,
   if (quality.shadow_size > 0) {
     sized.vis.quality.shadowsize = quality.shadow_size;
   }
-  mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
+  try {
+    // MuJoCo errors throw (mujoco_handlers.h); the scene is ours to free.
+    mjr_makeContext(&sized, &context_, mjFONTSCALE_150);
+  } catch (...) {
+    mjr_freeContext(&context_);
+    mjv_freeScene(&scene_);
+    throw;
+  }
   if (context_.offWidth < width || context_.offHeight < height) {
     // Read the size before freeing: mjr_freeContext zeroes the context.
     const int got_width = context_.offWidth;
