@@ -719,15 +719,33 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::TextWrapped("%s", stall.c_str());
     ImGui::PopStyleColor();
   }
-  if (p.running || p.finished || !p.rows.empty()) {
+  if (p.finished && p.exit_code != 0 && !p.failure.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.35f, 1));
+    ImGui::TextWrapped("failed: %s", p.failure.c_str());
+    ImGui::PopStyleColor();
+    if (p.failure.find("checkpoint") != std::string::npos) {
+      ImGui::TextWrapped(
+          "The folder holds a run with other settings: type another folder "
+          "above to start a new run there, or set the old settings back to "
+          "continue it.");
+    }
+  }
+  if (p.running || p.finished || p.stopped || !p.rows.empty()) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
-    // Wrapped, state first: the panel is narrower than the whole line.
-    ImGui::TextWrapped(
-        "%sgeneration %zu of %d, best so far %.4g, %.2f evals/s, %d "
-        "worker%s, ETA %s",
-        p.finished ? (p.exit_code == 0 ? "finished: " : "failed: ") : "",
-        p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
-        p.evals_per_s, p.workers, p.workers == 1 ? "" : "s", p.eta.c_str());
+    if (p.running) {
+      // Wrapped: the panel is narrower than the whole line.
+      ImGui::TextWrapped(
+          "generation %zu of %d, best so far %.4g, %.2f evals/s, %d "
+          "worker%s, ETA %s",
+          p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
+          p.evals_per_s, p.workers, p.workers == 1 ? "" : "s", p.eta.c_str());
+    } else {
+      ImGui::TextWrapped(
+          "%s after generation %zu of %d, best so far %.4g%s",
+          p.stopped ? "stopped" : (p.exit_code == 0 ? "finished" : "failed"),
+          p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
+          p.stopped ? " (Start continues from there)" : "");
+    }
     // Best so far (it only rises) and each generation's mean, each with
     // its range written on it: the curves have no axes.
     const auto curve = [&](const char* label, auto value) {

@@ -114,8 +114,12 @@ void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
   progress_lines_ = 0;
   stall_.Start(0, now);
   console_.clear();
+  last_line_.clear();
   group_ = std::make_unique<ProcessGroup>(
       [this](const std::string& name, const std::string& line) {
+        // The group's own lines ("opt exited with code 2") come as
+        // "launch"; the reason is mrsim-opt's.
+        if (name != "launch") last_line_ = line;
         Line("[" + name + "] " + line);
       });
   group_->Start(spec, FindProgram(spec.program, search_path_));
@@ -125,6 +129,7 @@ void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
 void OptimiseSession::Stop() {
   if (group_) {
     group_->StopAll(5.0);  // mrsim-opt keeps its checkpoint: Start resumes
+    progress_.stopped = progress_.running;
     progress_.running = false;
     group_.reset();
   }
@@ -198,6 +203,13 @@ void OptimiseSession::Poll(int timeout_ms, WallTime now) {
       progress_.running = false;
       progress_.finished = true;
       progress_.exit_code = group_->AllClean() ? 0 : 1;
+      if (progress_.exit_code != 0) {
+        // "mrsim-opt: o/checkpoint.txt: ...": the words after its name.
+        const std::string kName = "mrsim-opt: ";
+        progress_.failure = last_line_.rfind(kName, 0) == 0
+                                ? last_line_.substr(kName.size())
+                                : last_line_;
+      }
     }
   }
   if (!options_.out_dir.empty()) ReadGenerations();

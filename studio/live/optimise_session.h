@@ -52,7 +52,10 @@ struct OptimiseProgress {
   std::string eta;
   bool running = false;
   bool finished = false;  // ended by itself
+  bool stopped = false;   // ended by Stop (the checkpoint keeps it)
   int exit_code = -1;
+  // Why a finished run failed: mrsim-opt's last words.
+  std::string failure;
 };
 
 class OptimiseSession {
@@ -118,6 +121,7 @@ class OptimiseSession {
   int progress_lines_ = 0;
   StallWatch stall_;
   int pending_replay_ = -1;  // generation (from 0) a jump waits for
+  std::string last_line_;    // mrsim-opt's, for OptimiseProgress::failure
 };
 
 // The genome file to read for the path typed in the panel: a relative path

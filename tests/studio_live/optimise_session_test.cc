@@ -148,6 +148,26 @@ TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
   EXPECT_EQ(replay->genes, session.Row(2)->genes);
   // The first two generations came back from the checkpoint unchanged.
   EXPECT_NE(console.find("from checkpoint"), std::string::npos) << console;
+
+  // Other settings in the same folder: the run fails, and the panel has
+  // mrsim-opt's reason, not only its exit code.
+  while (session.progress().running && std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+  }
+  o.population = 5;
+  session.Start(o);
+  while (!session.progress().finished &&
+         std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+  }
+  ASSERT_TRUE(session.progress().finished) << Console(session);
+  EXPECT_NE(session.progress().exit_code, 0);
+  EXPECT_NE(session.progress().failure.find(
+                "made with other settings: population=4 (this run: 5)"),
+            std::string::npos)
+      << session.progress().failure;
+  EXPECT_EQ(session.progress().failure.find("mrsim-opt:"), std::string::npos)
+      << session.progress().failure;
 }
 
 TEST(OptimiseSession, AFarmWithoutWorkersIsFlaggedAsStalled) {
@@ -171,6 +191,9 @@ TEST(OptimiseSession, AFarmWithoutWorkersIsFlaggedAsStalled) {
       << warning;
   session.Stop();
   EXPECT_EQ(session.StallWarning(AfterSeconds(t0, 42)), "");
+  // Stopped, not finished or failed: the panel says so.
+  EXPECT_TRUE(session.progress().stopped);
+  EXPECT_FALSE(session.progress().finished);
 }
 
 TEST(OptimiseSession, WatchingABestWithBodyGenesRunsItsBodyWhileTheRunGoesOn) {
