@@ -1,9 +1,14 @@
 #include "launcher/launch_command.h"
 
+#include <arpa/inet.h>
+#include <fmt/format.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 
@@ -64,6 +69,26 @@ LaunchPlan PlanLaunch(const std::string& argv0, const LaunchCommand& c) {
   return plan;
 }
 
+namespace {
+
+// A JVM starting the hub on a busy 2-core machine takes a few seconds.
+constexpr std::chrono::seconds kReadyPortTimeout{30};
+
+bool TcpPortAccepts(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return false;
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool ok = connect(fd, reinterpret_cast<const sockaddr*>(&address),
+                          sizeof(address)) == 0;
+  close(fd);
+  return ok;
+}
+
+}  // namespace
+
 void PrintPlan(const LaunchPlan& plan, std::ostream& out) {
   for (const auto& [spec, path] : plan.processes) {
     out << spec.name << (spec.required ? " (required)" : "") << ": " << path;
@@ -88,6 +113,20 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
     }
     if (stop() || !ended.empty()) break;
     group.Start(spec, path);
+    if (spec.ready_port > 0) {
+      const auto deadline =
+          std::chrono::steady_clock::now() + kReadyPortTimeout;
+      while (!stop() && ended.empty() && !TcpPortAccepts(spec.ready_port)) {
+        if (std::chrono::steady_clock::now() > deadline) {
+          ended = fmt::format(
+              "{} (not accepting connections on port {} after "
+              "{} s)",
+              spec.name, spec.ready_port, kReadyPortTimeout.count());
+          break;
+        }
+        ended = group.Poll(50);
+      }
+    }
   }
   while (ended.empty() && !stop() && group.AnyRunning()) {
     ended = group.Poll(100);

@@ -32,7 +32,10 @@ struct ProcessSpec {
   bool required = false;          // when it exits, the whole launch stops
   bool enabled = true;            // enabled="false" or --without leaves it out
   double delay_s = 0.0;           // start this long after the previous process
-  int line = 0;                   // where it was declared, for messages
+  // > 0: the processes after it start only once this TCP port on this host
+  // accepts connections (a hub: LCM's tcpq clients do not retry).
+  int ready_port = 0;
+  int line = 0;  // where it was declared, for messages
 };
 
 struct LaunchFile {

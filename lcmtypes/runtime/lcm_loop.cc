@@ -23,7 +23,13 @@ int HandleFor(lcm::LCM& lcm, int timeout_ms) {
   int wait_ms = timeout_ms;
   // Drain what is queued so one slow consumer does not fall behind.
   while (Readable(fd, wait_ms)) {
-    if (lcm.handle() != 0) throw std::runtime_error("lcm handle() failed");
+    errno = 0;
+    if (lcm.handle() != 0) {
+      // A signal in the middle of a tcpq read (Ctrl-C) is not a broken
+      // link: the caller's loop sees the stop flag next.
+      if (errno == EINTR) break;
+      throw std::runtime_error("lcm handle() failed");
+    }
     ++handled;
     wait_ms = 0;
   }

@@ -4,6 +4,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -125,6 +128,74 @@ TEST(LaunchCommand, AStopBeforeTheFirstStartStartsNothing) {
   std::fclose(out);
   EXPECT_THAT(text, HasSubstr("stop requested"));
   EXPECT_THAT(text, ::testing::Not(HasSubstr("first: ")));
+}
+
+// What RunLaunch printed to `out` (a tmpfile), which it closes.
+std::string TextOf(std::FILE* out) {
+  std::rewind(out);
+  std::string text;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, out)) text += buf;
+  std::fclose(out);
+  return text;
+}
+
+// A free TCP port on this host (closed again: a small race with other
+// programs, none with other tests, which pick theirs the same way).
+int FreeTcpPort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a));
+  socklen_t size = sizeof(a);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &size);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
+// A hub that takes a while to listen (a JVM starting): the clients after
+// it start only once it accepts connections, since LCM's tcpq does not
+// retry a refused first connection.
+TEST(LaunchCommand, ProcessesAfterAHubStartOnceItListens) {
+  const int port = FreeTcpPort();
+  ASSERT_GT(port, 0);
+  LaunchPlan plan;
+  plan.name = "hub-first";
+  ProcessSpec hub;
+  hub.name = "hub";
+  hub.program = "python3";
+  hub.args = {"-c",
+              "import socket, time\n"
+              "time.sleep(1)\n"
+              "s = socket.socket()\n"
+              "s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)\n"
+              "s.bind(('127.0.0.1', " +
+                  std::to_string(port) +
+                  "))\n"
+                  "s.listen()\n"
+                  "time.sleep(120)\n"};
+  hub.ready_port = port;
+  ProcessSpec client;
+  client.name = "client";
+  client.program = "python3";
+  client.required = true;
+  client.args = {"-c",
+                 "import socket\n"
+                 "socket.create_connection(('127.0.0.1', " +
+                     std::to_string(port) +
+                     "))\n"
+                     "print('connected')\n"};
+  const std::string python = FindProgram("python3", ProgramSearchPath("mrsim"));
+  plan.processes = {{hub, python}, {client, python}};
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  const int code = RunLaunch(
+      plan, [] { return false; }, out);
+  const std::string text = TextOf(out);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_THAT(text, HasSubstr("connected")) << text;
+  EXPECT_THAT(text, ::testing::Not(HasSubstr("refused"))) << text;
 }
 
 }  // namespace

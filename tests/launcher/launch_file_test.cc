@@ -112,6 +112,7 @@ TEST(LaunchFile, HubRunsLcmTcpService) {
             (std::vector<std::string>{"-cp", "/usr/share/java/lcm.jar",
                                       "lcm.lcm.TCPService", "7903"}));
   EXPECT_FALSE(hub.required);
+  EXPECT_EQ(hub.ready_port, 7903);  // what comes after waits for it
   const std::string bad = WriteFile("bad_hub.launch", R"(<launch>
   <hub port="seventy"/>
   <process name="p" program="/bin/true"/>
