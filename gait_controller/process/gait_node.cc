@@ -39,6 +39,7 @@ GaitNode::GaitNode(GaitNodeOptions options,
     : options_(std::move(options)),
       axes_for_(std::move(axes_for)),
       initial_(std::move(initial)),
+      started_(now),
       last_status_(now) {
   if (!(options_.rate >= 0) || !std::isfinite(options_.rate)) {
     throw std::invalid_argument("--rate must be >= 0");
@@ -102,6 +103,23 @@ void GaitNode::PublishStatus(WallTime now, GaitOutbox* out) {
 void GaitNode::Start(WallTime now, GaitOutbox* out) { PublishStatus(now, out); }
 
 WallTime GaitNode::Tick(WallTime now, GaitOutbox* out) {
+  if (!sim_heard_ && !warned_no_simulator_ &&
+      SecondsBetween(started_, now) >= kNoSimulatorWarning) {
+    warned_no_simulator_ = true;
+    Log(fmt::format(
+        "warning: nothing from a simulator after {:.0f} s on {} or {} (is "
+        "mrsim-sim running, with the same --lcm-url and --prefix?)",
+        kNoSimulatorWarning, StateChannel(options_.prefix, options_.robot),
+        SimStatusChannel(options_.prefix)));
+  }
+  if (options_.exit_with_sim && sim_heard_ && !sim_stopped_ &&
+      SecondsBetween(*sim_heard_, now) >= kSimulatorSilence) {
+    sim_stopped_ = true;
+    Log(fmt::format(
+        "the simulator has been silent for {:.0f} s (--exit-with-sim): "
+        "stopping",
+        kSimulatorSilence));
+  }
   WallTime due = AfterSeconds(last_status_, kHeartbeatInterval);
   if (now >= due) {
     PublishStatus(now, out);
@@ -185,6 +203,7 @@ void GaitNode::OnMalformedGait(WallTime now, GaitOutbox* out) {
 
 void GaitNode::OnState(const robot_state_t& state, WallTime now,
                        GaitOutbox* out) {
+  sim_heard_ = now;
   const bool had_controller = controller_ != nullptr;
   try {
     HandleState(state, out);
@@ -318,6 +337,7 @@ void GaitNode::OnSimControl(const sim_control_t& request) {
 
 void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
+  sim_heard_ = now;
   sim_clock_ = status.clock;
   if (status.mode == sim_status_t::STOPPING && !sim_stopped_) {
     sim_stopped_ = true;

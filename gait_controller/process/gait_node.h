@@ -61,6 +61,13 @@ struct GaitNodeCounters {
 class GaitNode {
  public:
   static constexpr double kHeartbeatInterval = 1.0;  // wall s
+  // Nothing from the simulator this long after starting: the prefix or
+  // the LCM URL is probably wrong, said once (wall s).
+  static constexpr double kNoSimulatorWarning = 5.0;
+  // With exit_with_sim, a simulator silent this long is gone (killed, or
+  // its host lost) and the node stops; it sends a status every 0.5 s even
+  // when paused (wall s).
+  static constexpr double kSimulatorSilence = 5.0;
   // Answers kept for states the simulator may send again (pipelined
   // lockstep re-sends the two states it waits for).
   static constexpr size_t kRecentAnswers = 8;
@@ -97,7 +104,8 @@ class GaitNode {
   // <prefix>_SIM_CONTROL and <prefix>_SIM_STATUS.
   void OnSimControl(const sim_control_t& request);
   void OnSimStatus(const sim_status_t& status, WallTime now, GaitOutbox* out);
-  // With exit_with_sim: the simulator stopped, so should this node.
+  // With exit_with_sim: the simulator stopped (or went silent for
+  // kSimulatorSilence), so should this node.
   bool done() const { return options_.exit_with_sim && sim_stopped_; }
   // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
   // checkpoint when the first state comes. Throws std::runtime_error
@@ -144,6 +152,9 @@ class GaitNode {
   int64_t last_skipped_seq_ = -1;
   std::string sim_clock_;  // from the sim's status; empty until heard
   bool sim_stopped_ = false;
+  WallTime started_;
+  std::optional<WallTime> sim_heard_;  // the last state or status
+  bool warned_no_simulator_ = false;
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;

@@ -184,6 +184,60 @@ TEST_F(GaitNodeTest, ExitWithSimEndsTheNodeWhenTheSimulatorStops) {
   }
 }
 
+// A simulator killed (or its host lost) sends no STOPPING: with
+// --exit-with-sim the node stops after kSimulatorSilence without a word
+// from it, and not before.
+TEST_F(GaitNodeTest, ExitWithSimEndsTheNodeWhenTheSimulatorGoesSilent) {
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.sender = "g";
+  o.exit_with_sim = true;
+  GaitNode node(
+      o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
+      *FindGaitPreset("forward"), now_);
+  // Not before it heard a simulator at all: that is a warning instead.
+  node.Tick(AfterSeconds(now_, 60), &out_);
+  EXPECT_FALSE(node.done());
+  const double silence = GaitNode::kSimulatorSilence;
+  node.OnState(State(0, 0.0), AfterSeconds(now_, 60), &out_);
+  node.Tick(AfterSeconds(now_, 60 + silence - 1), &out_);
+  EXPECT_FALSE(node.done());
+  sim_status_t status{};
+  status.mode = sim_status_t::PAUSED;  // paused still says so twice a second
+  node.OnSimStatus(status, AfterSeconds(now_, 60 + silence - 1), &out_);
+  node.Tick(AfterSeconds(now_, 60 + 2 * silence - 2), &out_);
+  EXPECT_FALSE(node.done());
+  node.Tick(AfterSeconds(now_, 60 + 2 * silence - 1), &out_);
+  EXPECT_TRUE(node.done());
+  std::string log;
+  for (const auto& line : node.TakeLog()) log += line + "\n";
+  EXPECT_NE(log.find("silent for 5 s"), std::string::npos) << log;
+}
+
+// A wrong --prefix or --lcm-url: said once, naming the channels listened
+// to, instead of waiting in silence.
+TEST_F(GaitNodeTest, NothingFromASimulatorIsSaidOnceNamingTheChannels) {
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.prefix = "MRSM";
+  o.sender = "g";
+  GaitNode node(
+      o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
+      *FindGaitPreset("forward"), now_);
+  node.Tick(AfterSeconds(now_, GaitNode::kNoSimulatorWarning - 1), &out_);
+  EXPECT_TRUE(node.TakeLog().empty());
+  node.Tick(AfterSeconds(now_, GaitNode::kNoSimulatorWarning), &out_);
+  const auto log = node.TakeLog();
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_NE(log[0].find("nothing from a simulator after 5 s on "
+                        "MRSM_STATE_snake or MRSM_SIM_STATUS"),
+            std::string::npos)
+      << log[0];
+  node.Tick(AfterSeconds(now_, 60), &out_);
+  EXPECT_TRUE(node.TakeLog().empty());
+  EXPECT_FALSE(node.done());
+}
+
 TEST_F(GaitNodeTest, ForeignAndMalformedStatesAreCountedNotAnswered) {
   auto node = Make();
   robot_state_t other = State(0, 0);
