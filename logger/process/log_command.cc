@@ -338,6 +338,15 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, lcm::LCM* lcm,
     std::fprintf(err, "mrsim-log: error: %s\n", recorder.error().c_str());
     return 1;
   }
+  if (opt.from_log.empty() && recorder.messages() == 0) {
+    // Most often a --prefix or --lcm-url that is not the simulator's.
+    std::fprintf(err,
+                 "mrsim-log: nothing recorded: no message on channels "
+                 "matching '%s' (is mrsim-sim running, with the same "
+                 "--lcm-url and --prefix?)\n",
+                 plan.regex.c_str());
+    return 1;
+  }
   return WritePlots(plan.plots, recorder, err);
 }
 

@@ -197,6 +197,22 @@ TEST(LoggerProcess, SigtermMidRunLeavesAWholeLastLine) {
   }
 }
 
+// A wrong --prefix (or --lcm-url) records nothing: said, and not a success.
+TEST(LoggerProcess, NothingRecordedIsSaidAndFails) {
+  const std::string url = TestLcmUrl(7759);
+  const std::string dir = TempDir("logger_nothing");
+  auto logger = StartLogger(url, dir, {"--prefix", "MRSM"});
+  lcm::LCM lcm(url);
+  ASSERT_TRUE(lcm.good());
+  PublishStates(lcm, 5, 2);  // on MRSIM_STATE_snake, not MRSM_
+  logger->Signal(SIGINT);
+  EXPECT_EQ(logger->Wait(30), 1) << logger->Output();
+  EXPECT_NE(logger->Output().find("nothing recorded: no message on channels "
+                                  "matching 'MRSM_.*'"),
+            std::string::npos)
+      << logger->Output();
+}
+
 TEST(LoggerProcess, SkippedSequenceNumbersAreReportedAsGaps) {
   const std::string url = TestLcmUrl(7753);
   const std::string dir = TempDir("logger_gaps");
