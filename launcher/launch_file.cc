@@ -78,6 +78,8 @@ void CheckAttributes(const tinyxml2::XMLElement* e,
 
 // <hub port="7667"/>: LCM's TCP hub, for networks without multicast;
 // clients then use tcpq://HOST:PORT as their LCM URL.
+constexpr double kMaxDelay = 3600;
+
 ProcessSpec HubProcess(const tinyxml2::XMLElement* e,
                        const std::map<std::string, std::string>& vars,
                        const std::string& where) {
@@ -256,13 +258,18 @@ LaunchFile ReadLaunchFile(const std::string& path,
             ? Substitute(e->Attribute("enabled"), file.variables, where).c_str()
             : nullptr,
         true, where, "enabled");
-    if (e->Attribute("delay") != nullptr &&
-        (e->QueryDoubleAttribute("delay", &spec.delay_s) !=
-             tinyxml2::XML_SUCCESS ||
-         spec.delay_s < 0)) {
-      throw LaunchError(where +
-                        "attribute delay: expected seconds >= 0, got '" +
-                        e->Attribute("delay") + "'");
+    if (const char* delay = e->Attribute("delay")) {
+      // The whole text ("1.0s" and "1,0" are not 1) and a wait a launch
+      // can mean (an hour at most).
+      char* end = nullptr;
+      spec.delay_s = std::strtod(delay, &end);
+      if (end == delay || *end != '\0' || !(spec.delay_s >= 0) ||
+          spec.delay_s > kMaxDelay) {
+        throw LaunchError(where + "process '" + spec.name +
+                          "': attribute delay: expected seconds from 0 to " +
+                          std::to_string(static_cast<int>(kMaxDelay)) +
+                          ", got '" + delay + "'");
+      }
     }
     file.processes.push_back(std::move(spec));
   }

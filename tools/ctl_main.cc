@@ -33,8 +33,9 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.timeout,
                  "Seconds to wait for the other side's heartbeat and answer")
       ->capture_default_str();
+  // Options may come after the command too (`status --prefix X`); a
+  // negative number stays a word (`direction -1 0`).
   app.add_option("command", words, "The command and its arguments")->required();
-  app.positionals_at_end();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -167,6 +167,24 @@ TEST(LaunchFile, ErrorsNameFileLineAndProblem) {
           << what;
     }
   }
+  // A delay is the whole text, in seconds a launch can mean.
+  for (const char* delay : {"1.0s", "1,0", "nan", "1e9", "-1", "abc", ""}) {
+    const std::string path =
+        WriteFile("h.launch", std::string("<launch>\n<process name=\"a\" "
+                                          "program=\"true\" delay=\"") +
+                                  delay + "\"/>\n</launch>");
+    try {
+      ReadLaunchFile(path, {});
+      ADD_FAILURE() << "delay '" << delay << "': no error";
+    } catch (const LaunchError& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    "h.launch:2: process 'a': attribute delay: "
+                    "expected seconds from 0 to 3600, got '" +
+                    std::string(delay) + "'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 std::string ErrorOf(const std::string& path) {

@@ -161,11 +161,15 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
 
 TEST(MrsimCtl, NoSimulatorIsReportedNotAwaitedForever) {
   const std::string dir = TempDir("mrsim_ctl_alone");
+  // Options after the command count too, as with every other program.
   ChildProcess p({BinaryPath("tools/mrsim-ctl"), "--lcm-url", TestLcmUrl(7881),
-                  "--timeout", "0.5", "pause"},
+                  "pause", "--timeout", "0.5", "--prefix", "OTHER"},
                  dir + "/ctl.log");
   EXPECT_EQ(p.Wait(30), 1);
-  EXPECT_NE(p.Output().find("no answer"), std::string::npos) << p.Output();
+  EXPECT_NE(p.Output().find("no answer from a simulator on OTHER_SIM_STATUS "
+                            "within 0.5 s"),
+            std::string::npos)
+      << p.Output();
 }
 
 // Something that is not a simulator talking on the status channel (another
