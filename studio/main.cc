@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(cli, argc, argv);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  std::signal(SIGPIPE, SIG_IGN);  // a tcpq hub gone must not kill the window
   if (screenshot.empty() && !mrsim::LiveWindow::DisplayAvailable()) {
     std::cerr << "mrsim-studio: no display (DISPLAY is not set); run it on a "
                  "desktop, under xvfb-run, or use --screenshot OUT.png\n";

@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "gait_controller/process/gait_command_apply.h"
 #include "gait_controller/process/motion_fit.h"
 #include "lcmtypes/runtime/channels.h"
@@ -395,20 +397,14 @@ void GaitNode::WriteCheckpoint(const std::string& path, double sim_time) const {
         "written",
         sim_time, path));
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream file(tmp, std::ios::trunc);
-    file << kCheckpointTag << "\n"
-         << "robot " << options_.robot << "\n"
-         << "sim_time " << Hex(sim_time) << "\n"
-         << "have_last " << (snap->have_last ? 1 : 0) << "\n"
-         << "last_time " << Hex(snap->last_time) << "\n"
-         << snap->controller.SaveState() << "\n";
-    if (!file.flush()) throw std::runtime_error("cannot write " + tmp);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    throw std::runtime_error("cannot rename " + tmp + " to " + path);
-  }
+  std::ostringstream text;
+  text << kCheckpointTag << "\n"
+       << "robot " << options_.robot << "\n"
+       << "sim_time " << Hex(sim_time) << "\n"
+       << "have_last " << (snap->have_last ? 1 : 0) << "\n"
+       << "last_time " << Hex(snap->last_time) << "\n"
+       << snap->controller.SaveState() << "\n";
+  WriteFileAtomically(path, text.str());
 }
 
 void GaitNode::Restore(const std::string& checkpoint) {
@@ -436,13 +432,25 @@ void GaitNode::Restore(const std::string& checkpoint) {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(path + ": " + e.what());
   }
+  // The whole text: a damaged file must not restore 0 in silence.
+  const auto time_of = [&](const std::string& text, const char* key) {
+    char* end = nullptr;
+    const double t = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(t)) {
+      throw std::runtime_error(path + ": " + key + ": expected a time, got '" +
+                               text + "'");
+    }
+    return t;
+  };
+  const double saved_time = time_of(time_text, "sim_time");
+  const double last_time = time_of(last_text, "last_time");
   *controller_ = std::move(restored);
   have_last_ = have_last != 0;
-  last_time_ = std::strtod(last_text.c_str(), nullptr);
+  last_time_ = last_time;
   recent_.clear();
   snapshots_.clear();
-  Log(fmt::format("restored the gait saved at sim time {} s from {}",
-                  std::strtod(time_text.c_str(), nullptr), path));
+  Log(fmt::format("restored the gait saved at sim time {:.3f} s from {}",
+                  saved_time, path));
 }
 
 std::string GaitNode::Summary() const {

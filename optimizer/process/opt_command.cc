@@ -8,11 +8,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <random>
+#include <sstream>
 #include <thread>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "common/hash.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
@@ -45,7 +46,7 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
                        const std::string& scenario, const std::string& gait,
                        const std::string& robot, double duration,
                        const std::string& lcm_url) {
-  std::ofstream out(path);
+  std::ostringstream out;
   out << "<!-- Written by mrsim-opt: the best individual in the simulator, "
          "its gait\n     controller and the viewer (video in "
          "${out}/replay.mp4; --set view=--window\n     for a window).\n"
@@ -69,7 +70,7 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
       << "           args=\"" << scenario
       << " --lcm-url ${lcm_url} --clock realtime --duration ${duration}\"/>\n"
       << "</launch>\n";
-  if (!out) throw std::runtime_error(path + ": cannot write");
+  WriteFileAtomically(path, out.str());
 }
 
 // The best individual's gait, scenario, genome and replay launch file.
@@ -85,11 +86,7 @@ void WriteBestFiles(const OptCommand& c, const Problem& problem,
   for (int i = 0; i < best_spec.size(); ++i) {
     best_spec.genes[i].start = result.best[i];
   }
-  {
-    std::ofstream out(dir + "/best_genome.xml");
-    out << WriteGenomeString(best_spec);
-    if (!out) throw std::runtime_error(dir + "/best_genome.xml: cannot write");
-  }
+  WriteFileAtomically(dir + "/best_genome.xml", WriteGenomeString(best_spec));
   const std::string robot =
       body.robots[GenomeRobotIndex(body, problem.genome)].name;
   WriteReplayLaunch(launch, fs::absolute(dir).string(),

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/process/gait_command_apply.h"
@@ -509,6 +510,23 @@ TEST(GaitNodeCheckpoint, AFreshNodeResumesTheSavedGaitBitForBit) {
 
   GaitNode c(o, axes, *FindGaitPreset("forward"), now);
   EXPECT_THROW(c.Resume(dir + "/none.ckpt"), std::runtime_error);
+
+  // A damaged time is named, not restored as 0.
+  const std::string saved = GaitCheckpointPath(checkpoint, "snake");
+  std::stringstream text;
+  text << std::ifstream(saved).rdbuf();
+  std::string damaged = text.str();
+  const size_t at = damaged.find("sim_time ") + 9;
+  damaged.replace(at, damaged.find('\n', at) - at, "0x1.0pq");
+  std::ofstream(saved) << damaged;
+  GaitNode d(o, axes, *FindGaitPreset("forward"), now);
+  d.Resume(checkpoint);
+  d.OnState(State(0, 1.0, 6), now, &out);
+  std::string log;
+  for (const auto& line : d.TakeLog()) log += line + "\n";
+  EXPECT_NE(log.find("sim_time: expected a time, got '0x1.0pq'"),
+            std::string::npos)
+      << log;
 }
 
 }  // namespace
