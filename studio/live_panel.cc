@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <functional>
@@ -428,7 +429,8 @@ void LivePanel::DrawRecording() {
   if (!runner_.recording()) {
     if (Button("Record")) {
       try {
-        runner_.StartRecording(record_dir_);
+        runner_.StartRecording(
+            NewRecordingFolder(record_dir_, std::time(nullptr)));
       } catch (const std::exception& e) {
         message_ = e.what();
         message_is_note_ = false;
@@ -437,8 +439,18 @@ void LivePanel::DrawRecording() {
   } else if (Button("Stop recording")) {
     runner_.StopRecording();
   }
+  if (!runner_.record_dir().empty()) {
+    // In full: a student looks for it in a file manager.
+    std::error_code ec;
+    const std::string folder =
+        std::filesystem::absolute(runner_.record_dir(), ec).string();
+    ImGui::TextWrapped("%s %s",
+                       runner_.recording() ? "recording to" : "recorded in",
+                       folder.c_str());
+  }
   for (const RecordedFile& f : runner_.RecordedFiles()) {
-    ImGui::Text("%s  %lld rows", f.path.c_str(),
+    ImGui::Text("  %s  %lld rows",
+                std::filesystem::path(f.path).filename().string().c_str(),
                 static_cast<long long>(f.rows));
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -168,6 +169,19 @@ std::vector<RecordedFile> LiveRunner::RecordedFiles() const {
 void LiveRunner::Poll() {
   if (run_) run_->Poll(0);
   if (record_) record_->Poll(0);
+}
+
+std::string NewRecordingFolder(const std::string& base, std::time_t now) {
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y-%m-%d_%H-%M-%S", &local);
+  const std::string first = (base.empty() ? "." : base) + "/" + stamp;
+  std::string folder = first;
+  for (int k = 2; std::filesystem::exists(folder); ++k) {
+    folder = first + "_" + std::to_string(k);
+  }
+  return folder;
 }
 
 }  // namespace mrsim

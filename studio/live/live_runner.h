@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ctime>
 #include <deque>
 #include <memory>
 #include <string>
@@ -55,6 +56,8 @@ class LiveRunner {
   void Stop();
   bool running() const;
 
+  // Records every channel of the run into out_dir (see
+  // NewRecordingFolder for a folder of its own per recording).
   void StartRecording(const std::string& out_dir);
   void StopRecording();
   bool recording() const;
@@ -79,5 +82,10 @@ class LiveRunner {
   std::string record_dir_;
   std::deque<std::string> console_;
 };
+
+// A folder of its own for one recording under `base`, named by the local
+// time it starts ("base/2026-11-26_14-05-09", then "..._2" if taken), so
+// a new recording never overwrites the last. Nothing is created.
+std::string NewRecordingFolder(const std::string& base, std::time_t now);
 
 }  // namespace mrsim

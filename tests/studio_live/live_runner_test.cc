@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -146,6 +147,28 @@ TEST(LiveRunner, RunsTheCaseStudyAndRecordsEveryStateOfTwoSeconds) {
   runner.Stop();
   EXPECT_FALSE(runner.running());
   EXPECT_NE(Console(runner).find("[launch] sim"), std::string::npos);
+}
+
+// Each Record gets a folder of its own: a second recording never
+// overwrites the first.
+TEST(LiveRunner, EveryRecordingGetsAFolderOfItsOwn) {
+  const std::string base = TempDir("recording_folders");
+  std::tm t{};
+  t.tm_year = 2026 - 1900;
+  t.tm_mon = 10;
+  t.tm_mday = 26;
+  t.tm_hour = 14;
+  t.tm_min = 5;
+  t.tm_sec = 9;
+  t.tm_isdst = -1;
+  const std::time_t when = std::mktime(&t);
+  const std::string first = NewRecordingFolder(base, when);
+  EXPECT_EQ(first, base + "/2026-11-26_14-05-09");
+  EXPECT_FALSE(std::filesystem::exists(first));  // nothing created
+  std::filesystem::create_directories(first);
+  EXPECT_EQ(NewRecordingFolder(base, when), first + "_2");
+  std::filesystem::create_directories(first + "_2");
+  EXPECT_EQ(NewRecordingFolder(base, when), first + "_3");
 }
 
 }  // namespace
