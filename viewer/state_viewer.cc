@@ -21,8 +21,13 @@ StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
   if (!options.follow_robot.empty()) {
     follow_ = mapper_->robot_index(options.follow_robot);
     if (follow_ < 0) {
+      std::string names;
+      for (const Robot& r : scenario.robots) {
+        names += (names.empty() ? "" : ", ") + r.name;
+      }
       throw std::invalid_argument("viewer: --robot '" + options.follow_robot +
-                                  "' is not a robot of the scenario");
+                                  "' is not a robot of the scenario (it has " +
+                                  names + ")");
     }
   }
   renderer_ = std::make_unique<Renderer>(model_.get(), options.width,

@@ -80,7 +80,10 @@ TEST(SimProcessTools, LcmSpyLauncherDecodesOurTypes) {
     GTEST_SKIP() << "types jar not built (no JDK at configure time)";
   }
   const std::string dir = TempDir("sim_spy");
+  // Without a display lcm-spy scans the types, then stops (the launcher
+  // itself would stop first, saying there is no display, unless asked).
   unsetenv("DISPLAY");
+  setenv("MRSIM_SPY_HEADLESS", "1", 1);
   const int ours = SpyTypeCount({launcher, "--lcm-url", TestLcmUrl(7607)},
                                 dir + "/ours.out");
   const int stock =

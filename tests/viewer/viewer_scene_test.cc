@@ -119,6 +119,24 @@ TEST(ViewerScene, BallBodyTakesTheScenePoseAndTheFrameShowsIt) {
   EXPECT_LT(testing::MeanAbsDiff(built, back), 0.05);
 }
 
+// A misspelled --robot lists the robots there are.
+TEST(ViewerScene, AnUnknownRobotToFollowNamesTheRobots) {
+  GlContext gl;
+  ViewerOptions options = testing::FixedView();
+  options.follow_robot = "snek";
+  const Scenario scenario = BallScenario();
+  try {
+    StateViewer viewer(scenario, options);
+    FAIL() << "followed a robot that is not there";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "--robot 'snek' is not a robot of the scenario (it has " +
+                  scenario.robots[0].name + ")"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ViewerScene, SchedulerShowsTheNewestSceneAtOrBeforeEachFrame) {
   FrameScheduler scheduler(10.0, 1);  // frames every 100 ms
   FrameScheduler::Frame frame;
