@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
     mrsim::AddLaunchFlags(
         *app.add_subcommand("launch", "Start the processes of a launch file"),
         command);
+    if (argc == 1) {  // what there is, rather than "subcommand required"
+      std::cerr << app.help();
+      return 2;
+    }
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

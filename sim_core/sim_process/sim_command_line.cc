@@ -1,5 +1,7 @@
 #include "sim_core/sim_process/sim_command_line.h"
 
+#include <fmt/format.h>
+
 #include "lcmtypes/runtime/version.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/scenario_xml.h"
@@ -62,6 +64,16 @@ std::unique_ptr<Physics> SimCommandLine::LoadPhysics() const {
     if (!load_checkpoint.empty()) physics = LoadCheckpoint(load_checkpoint);
   } catch (const CheckpointError& e) {
     throw UsageError(std::string("--load-checkpoint: ") + e.what());
+  }
+  if (physics && options.duration > 0 &&
+      options.duration <= physics->time() + 0.5 * physics->timestep()) {
+    // --duration is a sim time, counted from 0, not from the checkpoint.
+    throw UsageError(fmt::format(
+        "--duration {} ends before the checkpoint's sim time {:.3f} s: "
+        "nothing would run (--duration is the sim time to stop at; e.g. "
+        "--duration {:g} runs {:g} s more)",
+        options.duration, physics->time(), physics->time() + options.duration,
+        options.duration));
   }
   if (scenario_path.empty()) return physics;
   try {

@@ -1,14 +1,20 @@
 // The pure parts of the sim bridge: state messages and the command rules.
 #include <gtest/gtest.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/chain_builder.h"
+#include "sim_core/checkpoint.h"
 #include "sim_core/physics.h"
 #include "sim_core/sim_process/command_filter.h"
+#include "sim_core/sim_process/sim_command_line.h"
 #include "sim_core/sim_process/state_message.h"
+#include "tests/common/child_process.h"
 
 namespace mrsim {
 namespace {
@@ -139,6 +145,43 @@ TEST(SimProcessCommandFilter, LockstepTakesOnlyNamedAnswersToTheCurrentState) {
             CommandVerdict::kStaleSeq);
   EXPECT_EQ(filter.Check(Command(3, 4, {0, 0}), "snake", 4, true, controllers),
             CommandVerdict::kAccepted);
+}
+
+// --duration is the sim time to stop at: one the checkpoint is already
+// past would end the run at once, in silence.
+TEST(SimCommandLine, ADurationTheCheckpointIsPastIsRefused) {
+  const std::string dir = testing::TempDir("sim_duration_checkpoint");
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(ChainOptions{}));
+  Physics physics(scenario);
+  physics.Step(500);
+  const std::string checkpoint = dir + "/run.checkpoint";
+  SaveCheckpoint(checkpoint, physics);
+  const auto parse = [&](std::vector<std::string> args) {
+    CLI::App app;
+    SimCommandLine line;
+    line.AddFlags(app);
+    args.insert(args.begin(), "mrsim-sim");
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    line.Finish();
+    return line.LoadPhysics();
+  };
+  const double t = physics.time();
+  try {
+    parse({"--load-checkpoint", checkpoint, "--duration", "0.5"});
+    FAIL() << "ran nothing in silence";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "--duration 0.5 ends before the checkpoint's sim time"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NEAR(parse({"--load-checkpoint", checkpoint, "--duration",
+                     std::to_string(t + 1)})
+                  ->time(),
+              t, 1e-12);
 }
 
 }  // namespace
