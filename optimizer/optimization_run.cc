@@ -269,8 +269,12 @@ RunResult RunOptimization(const GenomeSpec& spec,
           todo.push_back(g);
         }
       }
-      std::vector<EvalResult> fresh =
-          todo.empty() ? std::vector<EvalResult>{} : evaluator.Evaluate(todo);
+      std::vector<EvalResult> fresh;
+      try {
+        if (!todo.empty()) fresh = evaluator.Evaluate(todo);
+      } catch (const EvaluationInterrupted&) {
+        throw OptimizationInterrupted(result);
+      }
       if (fresh.size() != todo.size()) {
         throw std::runtime_error("evaluator returned the wrong count");
       }

@@ -8,6 +8,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "optimizer/algorithm.h"
@@ -61,12 +62,26 @@ struct RunResult {
   bool wrote_files = false;
 };
 
+// A stop in the middle of a run: what the completed generations found
+// (partial.generations_done may be 0: nothing completed).
+class OptimizationInterrupted : public EvaluationInterrupted {
+ public:
+  explicit OptimizationInterrupted(RunResult partial)
+      : EvaluationInterrupted("optimisation interrupted"),
+        partial_(std::move(partial)) {}
+  const RunResult& partial() const { return partial_; }
+
+ private:
+  RunResult partial_;
+};
+
 // A run checkpoint that cannot be used (other settings, corrupt) throws
 // mrsim::CheckpointError (sim_core/checkpoint.h), the one error type for
 // every checkpoint file mrsim reads.
 
-// Throws CheckpointError, EvaluationInterrupted (stop requested; the
-// checkpoint holds every completed generation) or what the evaluator throws.
+// Throws CheckpointError, OptimizationInterrupted (stop requested; the
+// checkpoint holds every completed generation, the exception their best)
+// or what the evaluator throws.
 RunResult RunOptimization(const GenomeSpec& spec,
                           const AlgorithmSettings& settings,
                           BatchEvaluator& evaluator, const RunOptions& options);

@@ -757,6 +757,15 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
           p.stopped ? "stopped" : (p.exit_code == 0 ? "finished" : "failed"),
           p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
           p.stopped ? " (Start continues from there)" : "");
+      // mrsim-opt writes the best so far on a stop too.
+      std::error_code ec;
+      const std::filesystem::path best =
+          std::filesystem::path(optimise_.options().out_dir) / "best_gait.xml";
+      if (!p.rows.empty() && std::filesystem::exists(best, ec)) {
+        ImGui::TextWrapped(
+            "best gait: %s",
+            std::filesystem::absolute(best, ec).string().c_str());
+      }
     }
     // Best so far (it only rises) and each generation's mean, each with
     // its range written on it: the curves have no axes.

@@ -370,8 +370,24 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
         RunOptimization(setup.problem.genome, a, evaluator, options);
   } catch (const CheckpointError& e) {
     throw OptInputError(e.what());
-  } catch (const EvaluationInterrupted&) {
-    if (std::filesystem::exists(c.out_dir + "/checkpoint.txt")) {
+  } catch (const OptimizationInterrupted& stopped) {
+    const RunResult& partial = stopped.partial();
+    if (partial.generations_done > 0 && partial.wrote_files) {
+      // What the completed generations found, to take away now; the run
+      // itself continues from the checkpoint.
+      outcome.result = partial;
+      outcome.best_dir = c.out_dir;
+      outcome.launch = c.out_dir + "/replay.launch";
+      WriteBestFiles(c, setup.problem, partial, c.out_dir, outcome.launch);
+      fmt::print(err,
+                 "mrsim-opt: stopped after generation {} of {}; best so far "
+                 "{} (generation {}) written to {}/best_gait.xml, "
+                 "best_scenario.xml, best_genome.xml, replay.launch; run the "
+                 "same command to continue\n",
+                 partial.generations_done, c.generations,
+                 partial.best_result.fitness, partial.best_generation + 1,
+                 c.out_dir);
+    } else if (std::filesystem::exists(c.out_dir + "/checkpoint.txt")) {
       fmt::print(err,
                  "mrsim-opt: stopped; completed generations are in {}/"
                  "checkpoint.txt, run the same command to continue\n",

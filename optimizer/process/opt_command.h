@@ -74,7 +74,9 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
 
 // What a run left.
 struct OptOutcome {
-  bool stopped = false;  // SIGINT/SIGTERM: the checkpoint holds the rest
+  // SIGINT/SIGTERM: the checkpoint holds the rest; result and the best
+  // files are the completed generations' (when there are any).
+  bool stopped = false;
   RunResult result;
   std::string best_dir;  // out_dir, or out_dir/jump-N for an older jump
   std::string launch;    // best_dir/replay.launch

@@ -133,6 +133,10 @@ TEST(OptimizerProcess, SigintStopsCleanlyKeepingCompletedGenerations) {
             std::string::npos)
       << p.Output();
   EXPECT_NE(ReadAll(dir + "/checkpoint.txt").find("gen 0 "), std::string::npos);
+  // The completed generations' best, to take away now.
+  EXPECT_NE(p.Output().find("best so far"), std::string::npos) << p.Output();
+  EXPECT_NE(ReadAll(dir + "/best_gait.xml").find("<gait"), std::string::npos);
+  EXPECT_NE(ReadAll(dir + "/replay.launch").find("<launch"), std::string::npos);
 }
 
 // Episodes far longer than anyone waits: Ctrl-C stops them, it does not
