@@ -92,7 +92,19 @@ void LivePanel::Connect(const std::string& url, const std::string& prefix) {
   LiveSessionOptions o;
   o.prefix = prefix;
   o.sender = "mrsim-studio-" + std::to_string(getpid());
-  session_ = std::make_unique<LiveSession>(o);
+  // The plots the user chose stay from run to run (under the new prefix).
+  auto fresh = std::make_unique<LiveSession>(o);
+  const std::string old_prefix = session_->prefix() + "_";
+  for (const auto& plot : session_->plots()) {
+    std::string channel = plot->channel();
+    if (channel.rfind(old_prefix, 0) == 0) {
+      channel = prefix + "_" + channel.substr(old_prefix.size());
+    }
+    fresh->AddPlot(channel, plot->column(), plot->window_s());
+  }
+  session_ = std::move(fresh);
+  plot_channel_ = -1;  // the pickers start again on the followed robot
+  plot_column_ = -1;
   link_ = std::make_unique<LiveLink>(url, session_.get());
   followed_.clear();
 }
@@ -137,6 +149,10 @@ void LivePanel::Poll() {
                                             : "idle"));
     layout_->State("optimise watching", watching_);
     layout_->State("optimise stall", optimise_.StallWarning());
+    std::string busy;
+    for (const std::string& b : InProgress())
+      busy += (busy.empty() ? "" : ", ") + b;
+    layout_->State("live busy", busy.empty() ? "idle" : busy);
   }
   if (!link_) return;
   try {

@@ -56,6 +56,15 @@ class LivePanel {
     return link_ != nullptr || runner_.running() ||
            optimise_.progress().running;
   }
+  // What quitting would cut off, in words ("a run", "a recording", "an
+  // optimisation"); empty when nothing is going on.
+  std::vector<std::string> InProgress() const {
+    std::vector<std::string> busy;
+    if (runner_.running()) busy.push_back("a run");
+    if (runner_.recording()) busy.push_back("a recording");
+    if (optimise_.progress().running) busy.push_back("an optimisation");
+    return busy;
+  }
   const LiveSession& session() const { return *session_; }
   // The scenario the live run plays: the best of an optimisation with body
   // genes, or the design as it was saved when Run started (edits made

@@ -5,6 +5,8 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -236,6 +238,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     layout_.State("path", design_.path());
     layout_.State("revision", std::to_string(built_revision_));
     layout_.State("modal", ask_unsaved_ && unsaved_shown_ ? "unsaved"
+                           : busy_quit_shown_             ? "busy"
                            : browser_.is_open()           ? "file"
                            : show_template_               ? "template"
                                                           : "none");
@@ -352,7 +355,30 @@ void StudioApp::RunPending() {
   }
 }
 
-void StudioApp::RequestClose() { Guard(Pending::kQuit); }
+void StudioApp::RequestClose() {
+  const std::vector<std::string> busy = live_->InProgress();
+  if (busy.empty()) {
+    Guard(Pending::kQuit);
+    return;
+  }
+  std::string words;
+  for (size_t i = 0; i < busy.size(); ++i) {
+    words += (i == 0 ? "" : i + 1 == busy.size() ? " and " : ", ") + busy[i];
+  }
+  words[0] = static_cast<char>(std::toupper(words[0]));
+  const bool one = busy.size() == 1;
+  ask_busy_quit_ = words + (one ? " is" : " are") +
+                   " going on. Quitting stops " + (one ? "it." : "them.");
+  const auto has = [&](const char* what) {
+    return std::find(busy.begin(), busy.end(), what) != busy.end();
+  };
+  if (has("a recording")) ask_busy_quit_ += " The recorded files are kept.";
+  if (has("an optimisation")) {
+    ask_busy_quit_ +=
+        " The optimisation continues from its last generation when started "
+        "again.";
+  }
+}
 
 void StudioApp::OpenFile(const std::string& path) {
   try {
@@ -863,6 +889,34 @@ void StudioApp::DrawDialogs() {
     ImGui::EndPopup();
   }
   if (show_template_) DrawTemplateDialog();
+  DrawBusyQuitDialog();
+}
+
+void StudioApp::DrawBusyQuitDialog() {
+  if (ask_busy_quit_.empty()) return;
+  ImGui::OpenPopup("Quit while running?");
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 210, display.y / 2 - 60));
+  ImGui::SetNextWindowSize(ImVec2(420, 0));
+  if (!ImGui::BeginPopupModal(
+          "Quit while running?", nullptr,
+          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    return;
+  }
+  busy_quit_shown_ = !ImGui::IsWindowAppearing();
+  ImGui::TextWrapped("%s", ask_busy_quit_.c_str());
+  const bool quit = ImGui::Button("Stop and quit", ImVec2(190, 0));
+  Record("busy Quit");
+  ImGui::SameLine();
+  const bool cancel = ImGui::Button("Cancel", ImVec2(190, 0));
+  Record("busy Cancel");
+  if (quit || cancel) {
+    ask_busy_quit_.clear();
+    busy_quit_shown_ = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+  if (quit) Guard(Pending::kQuit);  // unsaved changes are asked next
 }
 
 void StudioApp::DrawTemplateDialog() {
@@ -947,7 +1001,7 @@ void StudioApp::DrawHelp() {
       {"Ctrl+Z / Ctrl+Y", "undo / redo"},
       {"Ctrl+N / Ctrl+O", "new / open"},
       {"Ctrl+S / Ctrl+Shift+S", "save / save as"},
-      {"Ctrl+Q", "quit (asks when unsaved)"},
+      {"Ctrl+Q", "quit (asks when unsaved or running)"},
       {"F1", "this help"},
   };
   for (const auto& r : rows) {

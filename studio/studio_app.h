@@ -67,6 +67,7 @@ class StudioApp {
   void DrawDialogs();
   void DrawHelp();
   void DrawTemplateDialog();
+  void DrawBusyQuitDialog();
   void HandleViewInput(const mjrRect& view, float top_left_x, float top_left_y);
   void HandleKeys();
   bool Button(const char* label, float width = 0);
@@ -122,6 +123,9 @@ class StudioApp {
   long ray_face_revision_ = -1;
   Selection ray_face_selection_;
   bool quit_ = false;
+  // Quitting would stop what the Run panel has going: asked first.
+  std::string ask_busy_quit_;  // the question, "" when not asking
+  bool busy_quit_shown_ = false;
   bool view_drag_ = false;
   std::vector<std::pair<int, int>>
       keys_;  // key, mods  // a drag that started in the 3-D view
