@@ -627,6 +627,12 @@ std::string SimNode::Summary() const {
       << s.rejected_robot << ", seq " << s.rejected_seq << ", sender "
       << s.rejected_sender << "), malformed " << s.messages_malformed
       << ", dropped " << s.messages_dropped;
+  if (s.messages_dropped > 0) {
+    // A newer command taking an older one's place is not a loss: a
+    // controller faster than the simulator (or a burst) does it.
+    out << " (" << filter_.seq_gaps() + control_gaps_ << " never arrived, "
+        << superseded_ << " replaced by a newer one before use)";
+  }
   if (ran_period_) {
     // Whole-run pace, from the first period to the last (startup and the
     // wait for the first lockstep answer excluded).

@@ -493,6 +493,11 @@ TEST(SimNode, EveryRejectIsCountedExactlyAndMovesNothing) {
   const sim_status_t after = d.node().status();
   EXPECT_EQ(after.commands_applied, 1);
   EXPECT_EQ(after.messages_dropped, 2 + 5);
+  // The summary tells a loss from a newer command taking an older's place.
+  EXPECT_NE(d.node().Summary().find(
+                "dropped 7 (5 never arrived, 2 replaced by a newer one"),
+            std::string::npos)
+      << d.node().Summary();
 
   // Lockstep: a sender not listed, and an answer to an older state.
   Driver l(Lockstep());
