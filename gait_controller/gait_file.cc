@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +86,8 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
   const auto& names = GaitParameterNames();
   std::array<std::optional<double>, GaitParameters::kVectorSize> seven;
   std::array<int, GaitParameters::kVectorSize> lines{};
+  int lag_line = 0;
+  std::vector<int> override_lines;
   for (const XMLElement* e = root->FirstChildElement(); e;
        e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
@@ -105,11 +108,13 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
       o.phase = OptionalAttribute(source, e, "phase");
       o.offset = OptionalAttribute(source, e, "offset");
       gait.parameters.overrides.push_back(o);
+      override_lines.push_back(line);
       continue;
     }
     if (tag == "pitch_yaw_lag") {
       gait.parameters.pitch_yaw_lag =
           ParseNumber(source, line, "gait/" + tag, e->GetText());
+      lag_line = line;
       continue;
     }
     bool known = false;
@@ -143,7 +148,24 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
   try {
     ValidateGaitParameters(gait.parameters);
   } catch (const std::invalid_argument& e) {
-    Fail(source, root->GetLineNum(), e.what());
+    // "gait parameter T: ..." or "gait parameter joint override 2 ...":
+    // the line of the element that holds the value.
+    const std::string what = e.what();
+    const std::string kPrefix = "gait parameter ";
+    int line = root->GetLineNum();
+    if (what.rfind(kPrefix, 0) == 0) {
+      const std::string rest = what.substr(kPrefix.size());
+      for (size_t n = 0; n < names.size(); ++n) {
+        if (rest.rfind(std::string(names[n]) + ":", 0) == 0) line = lines[n];
+      }
+      if (rest.rfind("pitch_yaw_lag:", 0) == 0 && lag_line > 0) line = lag_line;
+      int k = -1;
+      if (std::sscanf(rest.c_str(), "joint override %d", &k) == 1 && k >= 0 &&
+          k < static_cast<int>(override_lines.size())) {
+        line = override_lines[k];
+      }
+    }
+    Fail(source, line, what);
   }
   return gait;
 }

@@ -94,6 +94,15 @@ TEST(GaitFile, BadFilesNameLineAndField) {
   neg.replace(neg.find("<T>4</T>"), 8, "<T>-1</T>");
   e = ErrorOf(head + neg + "</gait>");
   EXPECT_NE(e.find("gait parameter T"), std::string::npos) << e;
+  // Out of range names the line of the element holding the value.
+  std::string lines = seven;
+  lines.replace(lines.find("<T>4</T>"), 8, "\n\n<T>0.01</T>\n");
+  e = ErrorOf(head + lines + "</gait>");
+  EXPECT_NE(e.find("bad.xml:5: gait parameter T:"), std::string::npos) << e;
+  e = ErrorOf(head + seven + "\n<joint index=\"1\" amplitude=\"9\"/>\n</gait>");
+  EXPECT_NE(e.find("bad.xml:5: gait parameter joint override 0"),
+            std::string::npos)
+      << e;
 
   EXPECT_THROW(ReadGaitFile("/nonexistent/gait.xml"), GaitFileError);
 }
