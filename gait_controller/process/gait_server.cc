@@ -73,7 +73,13 @@ void GaitServer::OnGait(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     }
     Flush();
   } catch (...) {
-    node_.OnMalformedState();
+    // Counted as a rejected command, and said so in the status the sender
+    // waits for.
+    try {
+      node_.OnMalformedGait(WallClock::now(), &outbox_);
+      Flush();
+    } catch (...) {
+    }
   }
 }
 
