@@ -61,11 +61,7 @@ std::string ChannelFileStem(const std::string& channel) {
 Recorder::Recorder(const LcmTypeRegistry& registry, RecorderOptions options)
     : registry_(registry), options_(std::move(options)) {
   namespace fs = std::filesystem;
-  if (!options_.report) {
-    options_.report = [](const std::string& s) {
-      std::fprintf(stderr, "mrsim-log: %s\n", s.c_str());
-    };
-  }
+  if (!options_.report) options_.report = [](const std::string&) {};
   std::error_code ec;
   fs::create_directories(options_.out_dir, ec);
   if (ec || !fs::is_directory(options_.out_dir)) {

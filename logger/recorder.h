@@ -42,7 +42,8 @@ struct ChannelStats {
 
 struct RecorderOptions {
   std::string out_dir = ".";
-  // Receives warnings (gaps, unknown types, new file parts); default stderr.
+  // Receives warnings (gaps, unknown types, new file parts); unset: none
+  // (the library never prints; mrsim-log prints them).
   std::function<void(const std::string&)> report;
 };
 
