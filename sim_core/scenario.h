@@ -174,6 +174,10 @@ struct FluidRegion {
   double density = 1000.0;                             // kg/m^3
   double viscosity = 0.0009;                           // Pa s
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // flow/wind m/s
+
+  // Water's density and viscosity are the defaults above; air's:
+  static constexpr double kAirDensity = 1.2;       // kg/m^3
+  static constexpr double kAirViscosity = 1.8e-5;  // Pa s
 };
 
 // Physics settings that are not part of the robot.

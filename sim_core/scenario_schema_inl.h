@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "sim_core/scenario_schema.h"
+#include "sim_core/sensor_face.h"
 
 namespace mrsim {
 namespace schema {
@@ -214,7 +215,7 @@ void Describe(V& v, ForceSensor& s) {
                                 false,
                                 true};
   static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
-                               L::Range(0, 3, "bottom, left, top, right"),
+                               L::Range(0, 3, kForcePlateFaceList),
                                "Face of the sensor module the plate is on"};
   static const FieldInfo kPosition{
       "position", "position",      "m", L::Any(), "Position of the plate",
@@ -259,10 +260,9 @@ void Describe(V& v, DistanceSensor& s) {
       Geometry::kNone,
       false,
       true};
-  static const FieldInfo kFace{
-      "sensorPosition", "sensor_position", "",
-      L::Range(0, 5, "bottom, left, top, right, front, back"),
-      "Face of the sensor module the ray starts from"};
+  static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
+                               L::Range(0, 5, kSensorFaceList),
+                               "Face of the sensor module the ray starts from"};
   static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
                                "Mass of the sensor"};
   static const FieldInfo kSize{

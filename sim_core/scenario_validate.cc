@@ -529,8 +529,6 @@ class Validator {
     const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
     Eigen::Vector3d dir = d.ray_direction;
     if (!(dir.norm() > 0) || !dir.allFinite()) dir = n;
-    static constexpr const char* kFaces[] = {"bottom", "left",  "top",
-                                             "right",  "front", "back"};
     // Where the ray leaves its own module (which it skips): at once through
     // its face, or, looking back through the module, out of another face.
     const Eigen::Vector3d half = sm.size / 2;
@@ -570,15 +568,16 @@ class Validator {
       }
     }
     if (hit.empty()) return;
-    Fail(path_ + "/sensorPosition",
-         fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
-                     "sensor module, so it would read about 0 the whole run; "
-                     "put the sensor on a face that looks out{}",
-                     d.sensor_position, kFaces[d.sensor_position], hit,
-                     d.sensor_position == 4 ? " (for a sensor looking ahead: "
-                                              "a sensor module in front of "
-                                              "module 0)"
-                                            : ""));
+    Fail(
+        path_ + "/sensorPosition",
+        fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
+                    "sensor module, so it would read about 0 the whole run; "
+                    "put the sensor on a face that looks out{}",
+                    d.sensor_position, kSensorFaceNames[d.sensor_position], hit,
+                    d.sensor_position == 4 ? " (for a sensor looking ahead: "
+                                             "a sensor module in front of "
+                                             "module 0)"
+                                           : ""));
   }
 
   const Scenario& s_;

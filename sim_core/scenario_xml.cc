@@ -423,10 +423,12 @@ void AfterRead(const ReadVisitor&, P*) {}
 void AfterRead(const ReadVisitor& v, FluidRegion* r) {
   const FluidRegion water;
   if (!v.Has("density")) {
-    r->density = r->kind == FluidKind::kWater ? water.density : 1.2;
+    r->density =
+        r->kind == FluidKind::kWater ? water.density : FluidRegion::kAirDensity;
   }
   if (!v.Has("viscosity")) {
-    r->viscosity = r->kind == FluidKind::kWater ? water.viscosity : 1.8e-5;
+    r->viscosity = r->kind == FluidKind::kWater ? water.viscosity
+                                                : FluidRegion::kAirViscosity;
   }
 }
 

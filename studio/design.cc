@@ -6,6 +6,7 @@
 
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/sensor_face.h"
 #include "studio/chain_edit.h"
 #include "studio/inspector_fields.h"
 #include "studio/schema.h"
@@ -262,8 +263,8 @@ void Design::AddFluid(FluidKind kind) {
     f.size = Eigen::Vector3d(1.0, 1.0, 0.2);
     f.position = Eigen::Vector3d(front + 0.8, 0, 0.1);
   } else {
-    f.density = 1.2;
-    f.viscosity = 1.8e-5;
+    f.density = FluidRegion::kAirDensity;
+    f.viscosity = FluidRegion::kAirViscosity;
     f.size = Eigen::Vector3d(2.0, 2.0, 1.0);
     f.position = Eigen::Vector3d(0, 0, 0.5);
   }
@@ -416,9 +417,8 @@ std::vector<int> Design::OpenRayFaces() const {
 
 void Design::AddRay(SensorModule* sm, int face) {
   if (face < 0 || face > 5) {
-    throw DesignError(
-        "face " + std::to_string(face) +
-        ": expected 0..5 (bottom, left, top, right, front, back)");
+    throw DesignError("face " + std::to_string(face) + ": expected 0..5 (" +
+                      std::string(kSensorFaceList) + ")");
   }
   if (sm->distance_sensors.size() >= 6) {
     throw DesignError("a sensor module carries at most six distance sensors");

@@ -19,6 +19,7 @@
 #include "launcher/program_locator.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/sensor_face.h"
 #include "sim_core/sim_process/state_message.h"
 #include "studio/chain_edit.h"
 #include "studio/gui_setup.h"
@@ -729,8 +730,6 @@ void StudioApp::DrawInspector(float x, float y, float w, float h) {
 }
 
 void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
-  static const char* kFaces[] = {"bottom", "left",  "top",
-                                 "right",  "front", "back"};
   const SensorModule& sm =
       view.robots.at(sel.robot).sensor_modules.at(sel.index);
   bool plate = sm.force_sensor.has_value();
@@ -752,7 +751,8 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
     }
   }
   ImGui::SetNextItemWidth(90);
-  ImGui::Combo("##face", &ray_face_, kFaces, IM_ARRAYSIZE(kFaces));
+  ImGui::Combo("##face", &ray_face_, kSensorFaceNames.data(),
+               static_cast<int>(kSensorFaceNames.size()));
   ImGui::SameLine();
   if (Button("add distance sensor")) {
     Try([&] { design_.AddDistanceSensor(ray_face_); });
@@ -760,7 +760,8 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
   for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
     const int face = sm.distance_sensors[k].sensor_position;
     ImGui::PushID(static_cast<int>(k));
-    ImGui::Text("ray %zu: %s", k, face >= 0 && face < 6 ? kFaces[face] : "?");
+    ImGui::Text("ray %zu: %s", k,
+                face >= 0 && face < 6 ? kSensorFaceNames[face] : "?");
     ImGui::SameLine();
     if (ImGui::SmallButton("remove")) {
       Try([&] { design_.RemoveDistanceSensor(static_cast<int>(k)); });

@@ -2,6 +2,7 @@
 // in and out with the schema's messages, units, limits, defaults) and what
 // frame and unit conversion take from it.
 #include "sim_core/scenario_schema.h"
+#include "sim_core/sensor_face.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -205,6 +206,17 @@ TEST(ScenarioSchema, ScaleLengthsScalesLengthsButNotGravityOrMasses) {
   EXPECT_EQ(scaled.scene.meters_per_pixel, 100 * s.scene.meters_per_pixel);
   EXPECT_EQ(scaled.fluid_regions[0].velocity, Eigen::Vector3d(10, 0, 0));
   EXPECT_EQ(scaled.fluid_regions[0].density, water.density);
+}
+
+// The faces' names are one list: the schema's value names are it.
+TEST(ScenarioSchema, FaceNamesAreTheOneListOfSensorFaces) {
+  std::string all;
+  for (const char* name : kSensorFaceNames) {
+    all += (all.empty() ? "" : ", ") + std::string(name);
+  }
+  EXPECT_EQ(all, kSensorFaceList);
+  EXPECT_EQ(all.rfind(kForcePlateFaceList, 0), 0u);
+  EXPECT_EQ(std::string(kForcePlateFaceList), "bottom, left, top, right");
 }
 
 }  // namespace
