@@ -142,6 +142,43 @@ void StudioApp::Try(const std::function<void()>& edit) {
   }
 }
 
+void StudioApp::Try(const std::string& action,
+                    const std::function<void()>& edit) {
+  Try(edit);
+  if (message_is_error_ && !message_.empty()) {
+    refused_action_ = action;
+    refused_why_ = message_;
+  }
+}
+
+void StudioApp::DrawRefusalDialog() {
+  if (refused_action_.empty()) return;
+  ImGui::OpenPopup("Not done");
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 230, display.y / 3));
+  ImGui::SetNextWindowSize(ImVec2(460, 0));
+  if (!ImGui::BeginPopupModal(
+          "Not done", nullptr,
+          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    return;
+  }
+  refused_shown_ = !ImGui::IsWindowAppearing();
+  ImGui::TextWrapped("Could not %s:", refused_action_.c_str());
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.75f, 0.3f, 1));
+  ImGui::TextWrapped("%s", refused_why_.c_str());
+  ImGui::PopStyleColor();
+  const bool ok = ImGui::Button("OK", ImVec2(120, 0)) ||
+                  ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
+                  ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
+  Record("refused OK");
+  if (ok) {
+    refused_action_.clear();
+    refused_shown_ = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
 void StudioApp::Note(const std::string& text) {
   message_ = text;
   message_is_error_ = false;
@@ -240,6 +277,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     layout_.State("revision", std::to_string(built_revision_));
     layout_.State("modal", ask_unsaved_ && unsaved_shown_ ? "unsaved"
                            : busy_quit_shown_             ? "busy"
+                           : refused_shown_               ? "refused"
                            : browser_.is_open()           ? "file"
                            : show_template_               ? "template"
                                                           : "none");
@@ -287,7 +325,7 @@ void StudioApp::HandleKeys() {
     } else if (ctrl && key == GLFW_KEY_N) {
       Guard(Pending::kNew);
     } else if (key == GLFW_KEY_DELETE) {
-      Try([&] { design_.RemoveSelected(); });
+      Try("remove the part", [&] { design_.RemoveSelected(); });
     } else if (key == GLFW_KEY_F1) {
       show_help_ = !show_help_;
     } else if (!ctrl && key == GLFW_KEY_F) {
@@ -470,7 +508,10 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
   for (const auto& p : parts) {
     ImGui::PushStyleColor(ImGuiCol_Button, Swatch(p.look));
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 1));
-    if (Button(p.label, third)) Try([&] { design_.AddPart(p.part, where_); });
+    if (Button(p.label, third)) {
+      Try(std::string("add the ") + p.label,
+          [&] { design_.AddPart(p.part, where_); });
+    }
     ImGui::PopStyleColor(2);
     if (&p != &parts[2]) ImGui::SameLine();
   }
@@ -522,11 +563,17 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
   }
   ImGui::PopStyleColor(3);
   ImGui::EndChild();
-  if (Button("Move to front", third)) Try([&] { design_.MoveSelected(-1); });
+  if (Button("Move to front", third)) {
+    Try("move the part to the front", [&] { design_.MoveSelected(-1); });
+  }
   ImGui::SameLine();
-  if (Button("Move to back", third)) Try([&] { design_.MoveSelected(1); });
+  if (Button("Move to back", third)) {
+    Try("move the part to the back", [&] { design_.MoveSelected(1); });
+  }
   ImGui::SameLine();
-  if (Button("Remove", third)) Try([&] { design_.RemoveSelected(); });
+  if (Button("Remove", third)) {
+    Try("remove the part", [&] { design_.RemoveSelected(); });
+  }
 
   ImGui::Separator();
   ImGui::TextUnformatted("Add object (in front of the robot)");
@@ -540,7 +587,9 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
                  {"ramp", ObjectKind::kRamp}};
   const float fifth = (w - 40) / 5;
   for (const auto& o : objects) {
-    if (Button(o.label, fifth)) Try([&] { design_.AddObject(o.kind); });
+    if (Button(o.label, fifth)) {
+      Try(std::string("add a ") + o.label, [&] { design_.AddObject(o.kind); });
+    }
     if (&o != &objects[4]) ImGui::SameLine();
   }
   for (int i = 0; i < static_cast<int>(s.scene_objects.size()); ++i) {
@@ -569,11 +618,17 @@ void StudioApp::DrawDesignPanel(float x, float y, float w, float h) {
     browse_for_ = BrowseFor::kHeightImage;
     browser_.Open("Height image (grey PNG)", StartFolder(), ".png", false);
   }
-  if (Button("water", third)) Try([&] { design_.AddFluid(FluidKind::kWater); });
+  if (Button("water", third)) {
+    Try("add water", [&] { design_.AddFluid(FluidKind::kWater); });
+  }
   ImGui::SameLine();
-  if (Button("air", third)) Try([&] { design_.AddFluid(FluidKind::kAir); });
+  if (Button("air", third)) {
+    Try("add air", [&] { design_.AddFluid(FluidKind::kAir); });
+  }
   ImGui::SameLine();
-  if (Button("contact pair", third)) Try([&] { design_.AddContact(); });
+  if (Button("contact pair", third)) {
+    Try("add a contact pair", [&] { design_.AddContact(); });
+  }
   for (int i = 0; i < static_cast<int>(s.fluid_regions.size()); ++i) {
     const Selection sel{PartKind::kFluid, 0, i};
     if (ImGui::Selectable(("  " + s.fluid_regions[i].guid).c_str(),
@@ -734,7 +789,8 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
       view.robots.at(sel.robot).sensor_modules.at(sel.index);
   bool plate = sm.force_sensor.has_value();
   if (ImGui::Checkbox("force plate", &plate)) {
-    Try([&] { design_.SetForcePlate(plate); });
+    Try(plate ? "add the force plate" : "remove the force plate",
+        [&] { design_.SetForcePlate(plate); });
   }
   Record("force plate");
   if (design_.revision() != ray_face_revision_ ||
@@ -755,7 +811,8 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
                static_cast<int>(kSensorFaceNames.size()));
   ImGui::SameLine();
   if (Button("add distance sensor")) {
-    Try([&] { design_.AddDistanceSensor(ray_face_); });
+    Try("add the distance sensor",
+        [&] { design_.AddDistanceSensor(ray_face_); });
   }
   for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
     const int face = sm.distance_sensors[k].sensor_position;
@@ -891,6 +948,7 @@ void StudioApp::DrawDialogs() {
   }
   if (show_template_) DrawTemplateDialog();
   DrawBusyQuitDialog();
+  DrawRefusalDialog();
 }
 
 void StudioApp::DrawBusyQuitDialog() {

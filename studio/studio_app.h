@@ -76,6 +76,10 @@ class StudioApp {
   void Guard(Pending action);
   void RunPending();
   void Try(const std::function<void()>& edit);
+  // A button's action ("add the yaw module"): a refusal also opens a
+  // dialog saying what was not done and why, so it cannot go unseen.
+  void Try(const std::string& action, const std::function<void()>& edit);
+  void DrawRefusalDialog();
   void OpenFile(const std::string& path);
   void SaveFile();
   void Note(const std::string& text);
@@ -126,6 +130,9 @@ class StudioApp {
   // Quitting would stop what the Run panel has going: asked first.
   std::string ask_busy_quit_;  // the question, "" when not asking
   bool busy_quit_shown_ = false;
+  std::string refused_action_;  // the action a dialog says was not done
+  std::string refused_why_;
+  bool refused_shown_ = false;
   bool view_drag_ = false;
   std::vector<std::pair<int, int>>
       keys_;  // key, mods  // a drag that started in the 3-D view

@@ -100,10 +100,24 @@ TEST_F(StudioWindowTest, ClosingWithUnsavedChangesAsksFirst) {
   Start("studio_window_close", file);
   ClickAndWait("box", 1);
   ASSERT_TRUE(WaitForLayout(layout_, "dirty", "1"));
+  // A refused button action says so in a dialog, not only in the top bar:
+  // the box is selected, and removing module 0 would leave two sensor
+  // modules side by side.
+  int x = 0, y = 0;
+  std::istringstream front(ReadLayout(layout_)["part module 0 0"]);
+  ASSERT_TRUE(front >> x >> y);
+  ASSERT_TRUE(ClickAt(x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "module 0 0"));
+  ASSERT_TRUE(WidgetCentre(layout_, "Remove", &x, &y));
+  ASSERT_TRUE(ClickAt(x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "modal", "refused"))
+      << ReadLayout(layout_)["message"];
+  ASSERT_TRUE(WidgetCentre(layout_, "refused OK", &x, &y));
+  ASSERT_TRUE(ClickAt(x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "modal", "none"));
   ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
   ASSERT_TRUE(WaitForLayout(layout_, "modal", "unsaved"));
   EXPECT_TRUE(studio_->running()) << "quit without asking";
-  int x = 0, y = 0;
   ASSERT_TRUE(WidgetCentre(layout_, "unsaved Discard", &x, &y));
   ASSERT_TRUE(ClickAt(x, y));
   EXPECT_EQ(studio_->Wait(90), 0) << studio_->Output();
