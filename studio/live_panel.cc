@@ -381,6 +381,9 @@ void LivePanel::DrawSteering() {
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
   const float button =
       std::floor((ImGui::GetContentRegionAvail().x - 3 * spacing) / 4);
+  // Narrow padding: "sidewind-right" is the widest name and must fit.
+  ImGui::PushStyleVar(ImGuiStyleVar_FramePadding,
+                      ImVec2(1, ImGui::GetStyle().FramePadding.y));
   for (int i = 0; i < IM_ARRAYSIZE(motions); ++i) {
     if (i % 4 != 0) ImGui::SameLine();
     if (Button(motions[i], button)) {
@@ -390,6 +393,7 @@ void LivePanel::DrawSteering() {
       });
     }
   }
+  ImGui::PopStyleVar();
   ImGui::SetNextItemWidth(-170);
   ImGui::InputText("##gaitfile", &gait_file_);
   ImGui::SameLine();
