@@ -28,6 +28,16 @@
 namespace mrsim::studio {
 namespace {
 
+// A dialog of fixed size (height 0: as its text needs), centred across
+// the window at height `top`: where a modal is expected, never dragged off.
+bool BeginFixedModal(const char* title, float width, float height, float top) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - width / 2, top));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  return ImGui::BeginPopupModal(
+      title, nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+}
+
 constexpr float kLeftWidth = 330;
 constexpr float kRightWidth = 400;
 constexpr float kStatusHeight = 30;
@@ -154,12 +164,7 @@ void StudioApp::Try(const std::string& action,
 void StudioApp::DrawRefusalDialog() {
   if (refused_action_.empty()) return;
   ImGui::OpenPopup("Not done");
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 230, display.y / 3));
-  ImGui::SetNextWindowSize(ImVec2(460, 0));
-  if (!ImGui::BeginPopupModal(
-          "Not done", nullptr,
-          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+  if (!BeginFixedModal("Not done", 460, 0, ImGui::GetIO().DisplaySize.y / 3)) {
     return;
   }
   refused_shown_ = !ImGui::IsWindowAppearing();
@@ -901,12 +906,8 @@ void StudioApp::DrawDialogs() {
   if (ask_unsaved_) {
     ImGui::OpenPopup("Unsaved changes");
   }
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 180, display.y / 2 - 45));
-  ImGui::SetNextWindowSize(ImVec2(360, 90));
-  if (ImGui::BeginPopupModal(
-          "Unsaved changes", nullptr,
-          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+  if (BeginFixedModal("Unsaved changes", 360, 90,
+                      ImGui::GetIO().DisplaySize.y / 2 - 45)) {
     // Reported (for tests) once it takes clicks: not on its first frame.
     unsaved_shown_ = !ImGui::IsWindowAppearing();
     ImGui::TextWrapped("The design has unsaved changes. Save them first?");
@@ -954,12 +955,8 @@ void StudioApp::DrawDialogs() {
 void StudioApp::DrawBusyQuitDialog() {
   if (ask_busy_quit_.empty()) return;
   ImGui::OpenPopup("Quit while running?");
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 210, display.y / 2 - 60));
-  ImGui::SetNextWindowSize(ImVec2(420, 0));
-  if (!ImGui::BeginPopupModal(
-          "Quit while running?", nullptr,
-          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+  if (!BeginFixedModal("Quit while running?", 420, 0,
+                       ImGui::GetIO().DisplaySize.y / 2 - 60)) {
     return;
   }
   busy_quit_shown_ = !ImGui::IsWindowAppearing();
@@ -980,12 +977,8 @@ void StudioApp::DrawBusyQuitDialog() {
 
 void StudioApp::DrawTemplateDialog() {
   ImGui::OpenPopup("New robot from template");
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x / 2 - 230, display.y / 2 - 240));
-  ImGui::SetNextWindowSize(ImVec2(460, 480));
-  if (!ImGui::BeginPopupModal(
-          "New robot from template", nullptr,
-          ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+  if (!BeginFixedModal("New robot from template", 460, 480,
+                       ImGui::GetIO().DisplaySize.y / 2 - 240)) {
     return;
   }
   ChainOptions& c = template_.chain;
