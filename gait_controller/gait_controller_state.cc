@@ -1,11 +1,11 @@
 // GaitController::SaveState / LoadState: the controller's evolving state as
 // whitespace-separated tokens (doubles as hex floats, strings
 // length-prefixed), version-tagged.
-#include <cstdio>
-#include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "common/exact_number.h"
 #include "gait_controller/gait_controller.h"
 
 namespace mrsim {
@@ -15,11 +15,7 @@ constexpr const char* kTag = "mrsim-gait-controller-state-1";
 
 class Writer {
  public:
-  void Double(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%a", v);
-    out_ << buf << ' ';
-  }
+  void Double(double v) { out_ << ExactNumber(v) << ' '; }
   void Int(long long v) { out_ << v << ' '; }
   void Text(const std::string& s) { out_ << s.size() << ':' << s << ' '; }
   void Optional(const std::optional<double>& v) {
@@ -43,13 +39,7 @@ class Reader {
     if (!(in_ >> t)) throw std::invalid_argument("gait state: truncated");
     return t;
   }
-  double Double() {
-    const std::string t = Token();
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (*end != '\0') throw std::invalid_argument("gait state: bad number");
-    return v;
-  }
+  double Double() { return Number(Token()); }
   long long Int() {
     const std::string t = Token();
     char* end = nullptr;
@@ -77,15 +67,17 @@ class Reader {
     if (in_.peek() == '-') {
       const std::string t = Token();
       if (t == "-") return std::nullopt;
-      char* end = nullptr;
-      const double v = std::strtod(t.c_str(), &end);
-      if (*end != '\0') throw std::invalid_argument("gait state: bad number");
-      return v;
+      return Number(t);
     }
     return Double();
   }
 
  private:
+  static double Number(const std::string& t) {
+    const std::optional<double> v = ParseWholeNumber(t);
+    if (!v) throw std::invalid_argument("gait state: bad number");
+    return *v;
+  }
   std::istringstream in_;
 };
 

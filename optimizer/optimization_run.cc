@@ -9,10 +9,12 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
+#include "common/exact_number.h"
 #include "common/hash.h"
 
 namespace mrsim {
@@ -40,15 +42,12 @@ std::string HashGenomes(const std::vector<Genome>& genomes) {
   return HashHex(h);
 }
 
-std::string Hex(double v) { return fmt::format("{:a}", v); }
-
 double ParseDouble(const std::string& token, const std::string& where) {
-  char* end = nullptr;
-  const double v = std::strtod(token.c_str(), &end);
-  if (end == token.c_str() || *end != '\0') {
+  const std::optional<double> parsed = ParseWholeNumber(token);
+  if (!parsed) {
     throw CheckpointError(where + ": expected a number, got '" + token + "'");
   }
-  return v;
+  return *parsed;
 }
 
 // "population=8 (this run: 6), seed=1 (this run: 2)": the settings lines
@@ -171,9 +170,10 @@ void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
     text += fmt::format("gen {} {} {}\n", k, gens[k].results.size(),
                         gens[k].genomes_hash);
     for (const EvalResult& e : gens[k].results) {
-      text += fmt::format("r {} {} {} {} {} {} {}\n", Hex(e.fitness),
-                          Hex(e.distance), Hex(e.speed), Hex(e.energy),
-                          Hex(e.drift), Hex(e.fell), e.failed ? 1 : 0);
+      text += fmt::format("r {} {} {} {} {} {} {}\n", ExactNumber(e.fitness),
+                          ExactNumber(e.distance), ExactNumber(e.speed),
+                          ExactNumber(e.energy), ExactNumber(e.drift),
+                          ExactNumber(e.fell), e.failed ? 1 : 0);
     }
   }
   text += "end\n";

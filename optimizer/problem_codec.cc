@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "common/exact_number.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
 #include "sim_core/base64.h"
@@ -47,13 +49,12 @@ EpisodeSettings DecodeEpisode(const std::string& text,
     if (it == kv.end()) {
       throw ProblemError(source + ": episode settings lack " + key);
     }
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0') {
+    const std::optional<double> v = ParseWholeNumber(it->second);
+    if (!v) {
       throw ProblemError(source + ": episode setting " + key +
                          ": expected a number");
     }
-    return v;
+    return *v;
   };
   EpisodeSettings e;
   e.duration = number("duration");

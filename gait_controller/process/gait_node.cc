@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
+#include "common/exact_number.h"
 #include "gait_controller/process/gait_command_apply.h"
 #include "gait_controller/process/motion_fit.h"
 #include "lcmtypes/runtime/channels.h"
@@ -25,7 +27,6 @@ constexpr size_t kMaxSnapshots = 256;
 constexpr size_t kMaxRequests = 64;
 constexpr const char* kCheckpointTag = "mrsim-gait-checkpoint-1";
 
-std::string Hex(double v) { return fmt::format("{:a}", v); }
 constexpr size_t kMaxLogLines = 1000;
 
 }  // namespace
@@ -400,9 +401,9 @@ void GaitNode::WriteCheckpoint(const std::string& path, double sim_time) const {
   std::ostringstream text;
   text << kCheckpointTag << "\n"
        << "robot " << options_.robot << "\n"
-       << "sim_time " << Hex(sim_time) << "\n"
+       << "sim_time " << ExactNumber(sim_time) << "\n"
        << "have_last " << (snap->have_last ? 1 : 0) << "\n"
-       << "last_time " << Hex(snap->last_time) << "\n"
+       << "last_time " << ExactNumber(snap->last_time) << "\n"
        << snap->controller.SaveState() << "\n";
   WriteFileAtomically(path, text.str());
 }
@@ -434,13 +435,12 @@ void GaitNode::Restore(const std::string& checkpoint) {
   }
   // The whole text: a damaged file must not restore 0 in silence.
   const auto time_of = [&](const std::string& text, const char* key) {
-    char* end = nullptr;
-    const double t = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(t)) {
+    const std::optional<double> t = ParseWholeNumber(text);
+    if (!t || !std::isfinite(*t)) {
       throw std::runtime_error(path + ": " + key + ": expected a time, got '" +
                                text + "'");
     }
-    return t;
+    return *t;
   };
   const double saved_time = time_of(time_text, "sim_time");
   const double last_time = time_of(last_text, "last_time");
