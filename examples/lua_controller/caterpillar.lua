@@ -115,8 +115,18 @@ end)
 io.stderr:write(string.format('caterpillar.lua: %s on %s -> %s\n',
                               options.name, state_channel, command_channel))
 -- Ctrl-C raises an error in the interpreter; catch it to end cleanly.
+-- A simulator that ends (or is killed) sends nothing more: once states
+-- have come, 5 s without one ends the controller too.
 local ok, err = pcall(function()
-  while not done do lc:timedhandle(0.1) end
+  local quiet = 0
+  while not done do
+    if lc:timedhandle(0.1) then quiet = 0 else quiet = quiet + 1 end
+    if sent > 0 and quiet >= 50 then
+      io.stderr:write('caterpillar.lua: no state for 5 s: the simulator ' ..
+                      'has stopped\n')
+      done = true
+    end
+  end
 end)
 if not ok and not tostring(err):match('interrupted') then
   io.stderr:write('caterpillar.lua: ' .. tostring(err) .. '\n')

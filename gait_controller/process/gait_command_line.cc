@@ -36,8 +36,10 @@ void GaitCommandLine::AddFlags(CLI::App& app) {
                  "Continue the gait saved beside this simulator checkpoint "
                  "(CHECKPOINT.gait-ROBOT; use with mrsim-sim "
                  "--load-checkpoint CHECKPOINT)");
-  app.add_flag("--exit-with-sim", options.exit_with_sim,
-               "Exit when the simulator stops (a --duration run ends, QUIT)");
+  app.add_flag(
+      "--exit-with-sim", options.exit_with_sim,
+      "Exit when the simulator stops (a --duration run ends, QUIT) or has "
+      "been silent for 5 s");
   app.add_flag("--keyboard", keyboard,
                "Steer from the keyboard (stdin must be a terminal)");
 }
