@@ -544,17 +544,16 @@ void LivePanel::DrawPlots(float width) {
     PlotSeries& p = *plots[i];
     values.assign(p.values().begin(), p.values().end());
     ImGui::PushID(static_cast<int>(i));
-    // The name above the curve (beside it, it was cut off); on it the
-    // newest value and the range shown.
+    // The name and the numbers above the curve (written on it they hid
+    // it): the newest value, and the range the curve spans, top to bottom.
     ImGui::TextUnformatted(p.column().c_str());
-    char overlay[96] = "";
     if (!values.empty()) {
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-      std::snprintf(overlay, sizeof(overlay), "now %.4g  (%.4g .. %.4g)",
-                    values.back(), *lo, *hi);
+      ImGui::TextDisabled("now %.4g   curve from %.4g to %.4g", values.back(),
+                          *lo, *hi);
     }
     ImGui::PlotLines("##curve", values.data(), static_cast<int>(values.size()),
-                     0, overlay, FLT_MAX, FLT_MAX, ImVec2(width * 0.95f, 60));
+                     0, nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.95f, 90));
     bool paused = p.paused();
     if (ImGui::Checkbox("pause", &paused)) p.set_paused(paused);
     ImGui::SameLine();
@@ -569,7 +568,9 @@ void LivePanel::DrawPlots(float width) {
         message_is_note_ = false;
       }
     }
-    ImGui::SameLine();
+    // Away from PNG: a slip of the mouse should not lose the plot.
+    ImGui::SameLine(width * 0.95f - ImGui::CalcTextSize("remove").x -
+                    2 * ImGui::GetStyle().FramePadding.x);
     const bool remove = ImGui::SmallButton("remove");
     ImGui::PopID();
     if (remove) {
@@ -808,7 +809,9 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
 }
 
 void LivePanel::DrawConsole(float height) {
-  ImGui::BeginChild("console", ImVec2(0, height), true);
+  // Long lines scroll sideways rather than being cut off.
+  ImGui::BeginChild("console", ImVec2(0, height), true,
+                    ImGuiWindowFlags_HorizontalScrollbar);
   for (const std::string& line : runner_.console()) {
     ImGui::TextUnformatted(line.c_str());
   }
@@ -848,7 +851,7 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (Header("Recording", false)) DrawRecording();
   if (Header("Plots", false)) DrawPlots(w);
   if (Header("Optimise", false)) DrawOptimise(design, w);
-  if (Header("Console", false)) DrawConsole(160);
+  if (Header("Console", false)) DrawConsole(240);
   ImGui::End();
 }
 

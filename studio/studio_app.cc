@@ -1054,6 +1054,10 @@ void StudioApp::DrawHelp() {
       {"Ctrl+N / Ctrl+O", "new / open"},
       {"Ctrl+S / Ctrl+Shift+S", "save / save as"},
       {"Ctrl+Q", "quit (asks when unsaved or running)"},
+      {"F5", "Run panel / inspector"},
+      {"Up / Down", "while running: forward / backward"},
+      {"Left / Right", "while running: turn"},
+      {"Space", "while running: stop the robot"},
       {"F1", "this help"},
   };
   for (const auto& r : rows) {
