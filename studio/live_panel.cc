@@ -231,19 +231,25 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   ImGui::SetNextItemWidth(70);
   ImGui::InputFloat("speed", &speed_, 0, 0, "%.2f");
   if (!runner_.running()) {
-    if (Button("Run")) {
-      if (design.path.empty() || design.dirty) {
-        message_ = "save the design first (Run starts mrsim-sim on the file)";
+    // mrsim-sim runs the file: what is on screen is saved first.
+    const bool saved = !design.path.empty() && !design.dirty;
+    if (Button(saved ? "Run" : "Save and Run")) {
+      const std::string path =
+          saved ? design.path : (design.save ? design.save() : "");
+      if (path.empty()) {
+        message_ =
+            "the design is not saved yet: choose where to save it, then "
+            "press Run";
         message_is_note_ = false;
       } else {
         try {
           RunOptions o = FormRun();
-          o.scenario_path = design.path;
+          o.scenario_path = path;
           o.robots = design.robots;
           runner_.Start(o);
           Connect(url_, prefix_);
           EndReplay();
-          running_ = ReadScenarioFile(design.path);
+          running_ = ReadScenarioFile(path);
           ++replay_revision_;
           message_.clear();
         } catch (const std::exception& e) {

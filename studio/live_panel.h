@@ -5,6 +5,7 @@
 // is one LCM message or one process a script could send or start.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,9 @@ struct LiveDesign {
   std::string path;  // saved file, "" before the first save
   bool dirty = false;
   std::vector<std::string> robots;
+  // Saves the design as Save does; returns its path once saved, "" when
+  // it is not (Save As asks where first, or saving failed).
+  std::function<std::string()> save;
 };
 
 class LivePanel {

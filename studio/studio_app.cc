@@ -208,6 +208,10 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     for (const Robot& r : design_.scenario().robots) {
       live.robots.push_back(r.name);
     }
+    live.save = [this] {
+      SaveFile();
+      return design_.dirty() ? std::string() : design_.path();
+    };
     live_->Draw(width - kRightWidth, 0, kRightWidth, static_cast<float>(height),
                 live);
   } else {
