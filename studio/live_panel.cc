@@ -565,7 +565,15 @@ void LivePanel::DrawPlots(float width) {
     ImGui::SameLine();
     if (ImGui::SmallButton("PNG")) {
       try {
-        const std::string png = p.column() + ".png";
+        // Beside the recordings, named in full: a student looks for it
+        // in a file manager.
+        std::filesystem::create_directories(record_dir_.empty() ? "."
+                                                                : record_dir_);
+        const std::string png =
+            std::filesystem::absolute(
+                (record_dir_.empty() ? std::string(".") : record_dir_) + "/" +
+                p.column() + ".png")
+                .string();
         ExportPlotPng(p, png);
         message_ = "wrote " + png;
         message_is_note_ = true;
@@ -764,9 +772,16 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::PopStyleColor();
     if (p.failure.find("checkpoint") != std::string::npos) {
       ImGui::TextWrapped(
-          "The folder holds a run with other settings: type another folder "
-          "above to start a new run there, or set the old settings back to "
-          "continue it.");
+          "The folder holds a run with other settings: start a new run in "
+          "a new folder, or set the old settings back to continue it.");
+      if (Button("Start in a new folder")) {
+        // "optimise" -> "optimise-2", "optimise-3", ...: the first free.
+        const std::string base = opt_dir_;
+        for (int k = 2; std::filesystem::exists(opt_dir_); ++k) {
+          opt_dir_ = base + "-" + std::to_string(k);
+        }
+        start(-1);
+      }
     }
   }
   if (p.running || p.finished || p.stopped || !p.rows.empty()) {
