@@ -31,6 +31,11 @@ LogPlotSpec ParseLogPlotSpec(const std::string& text) {
   LogPlotSpec spec;
   spec.channel = fields[0];
   if (spec.channel.empty()) throw fail("no channel");
+  if (spec.channel.find('=') != std::string::npos) {
+    // "y=com.x" alone: the channel was left out, not the column.
+    throw fail("no channel before '" + spec.channel +
+               "' (e.g. MRSIM_STATE_snake:" + spec.channel + ")");
+  }
   for (size_t i = 1; i < fields.size(); ++i) {
     const std::string& f = fields[i];
     const size_t eq = f.find('=');

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
@@ -263,16 +264,11 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
 }
 
 GenomeSpec ReadGenomeFile(const std::string& path, bool allow_any_name) {
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw GenomeError(path + ": cannot open the genome file");
-  std::string text;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
-    text.append(buffer, n);
-  }
-  std::fclose(f);
-  return ReadGenomeString(text, path, allow_any_name);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw GenomeError(path + ": cannot open the genome file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ReadGenomeString(text.str(), path, allow_any_name);
 }
 
 std::string WriteGenomeString(const GenomeSpec& spec) {

@@ -1,6 +1,8 @@
 // mrsim-opt as library code: its flags, the checks of its input, the run
 // generation by generation with progress lines, and the files describing the
-// best individual. main only owns the LCM for --farm and starts the replay.
+// best individual. For --farm the evaluator opens its own LCM connection
+// (FarmLink), the one exception to "main owns the LCM": after a tcpq hub
+// restart it must open a new one, which a borrowed connection cannot.
 #pragma once
 
 #include <cstdio>

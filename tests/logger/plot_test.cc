@@ -371,6 +371,15 @@ TEST(Plot, LogPlotSpecErrorsSayWhatWasExpected) {
           << e.what();
     }
   }
+  // The channel left out is named as such, not as a missing column.
+  try {
+    ParseLogPlotSpec("y=com.x");
+    ADD_FAILURE() << "accepted";
+  } catch (const PlotInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no channel before 'y=com.x'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
