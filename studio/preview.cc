@@ -233,14 +233,29 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
   }
   const mjModel* m = physics_->model();
   mjv_updateScene(m, data_, &option_, nullptr, &camera_, mjCAT_ALL, &scene_);
-  // Colours come from the model (the MJCF look); the selection glows.
-  for (int i = 0; i < scene_.ngeom; ++i) {
+  // Colours come from the model (the MJCF look). The selection keeps its
+  // colour (a brighter orange read as a yellow distance sensor) inside a
+  // translucent white shell a little larger than the part.
+  const int drawn = scene_.ngeom;
+  for (int i = 0; i < drawn; ++i) {
     mjvGeom& g = scene_.geoms[i];
     if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
         g.objid < static_cast<int>(geoms_.size()) &&
         geoms_[g.objid].part.kind != PartKind::kNone &&
         geoms_[g.objid].part == selected) {
-      g.emission = 0.6f;
+      g.emission = 0.15f;
+      if (scene_.ngeom < scene_.maxgeom) {
+        mjvGeom& shell = scene_.geoms[scene_.ngeom++];
+        shell = g;
+        for (float& size : shell.size) size = size * 1.12f + 0.003f;
+        shell.rgba[0] = shell.rgba[1] = shell.rgba[2] = 1.0f;
+        shell.rgba[3] = 0.25f;
+        shell.emission = 0.2f;
+        shell.label[0] = '\0';
+        shell.objtype = mjOBJ_UNKNOWN;  // not picked, not labelled
+        shell.objid = -1;
+        shell.segid = scene_.ngeom - 1;
+      }
     }
   }
   if (software_) scene_.flags[mjRND_SHADOW] = 0;
