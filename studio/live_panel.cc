@@ -103,6 +103,7 @@ void LivePanel::Connect(const std::string& url, const std::string& prefix) {
     fresh->AddPlot(channel, plot->column(), plot->window_s());
   }
   session_ = std::move(fresh);
+  png_note_ = {};      // its plot is gone
   plot_channel_ = -1;  // the pickers start again on the followed robot
   plot_column_ = -1;
   link_ = std::make_unique<LiveLink>(url, session_.get());
@@ -575,18 +576,24 @@ void LivePanel::DrawPlots(float width) {
                 p.column() + ".png")
                 .string();
         ExportPlotPng(p, png);
-        message_ = "wrote " + png;
-        message_is_note_ = true;
+        png_note_ = {&p, "wrote " + png};
       } catch (const std::exception& e) {
-        message_ = e.what();
-        message_is_note_ = false;
+        png_note_ = {&p, e.what()};
       }
     }
     // Away from PNG: a slip of the mouse should not lose the plot.
     ImGui::SameLine(width * 0.95f - ImGui::CalcTextSize("remove").x -
                     2 * ImGui::GetStyle().FramePadding.x);
     const bool remove = ImGui::SmallButton("remove");
+    // What the PNG button did, under its plot (at the top of the panel it
+    // moved every button down a line).
+    if (png_note_.first == &p) {
+      ImGui::PushTextWrapPos(width * 0.95f);
+      ImGui::TextDisabled("%s", png_note_.second.c_str());
+      ImGui::PopTextWrapPos();
+    }
     ImGui::PopID();
+    if (remove && png_note_.first == &p) png_note_ = {};
     if (remove) {
       session_->RemovePlot(i);
       break;
@@ -766,25 +773,40 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::TextWrapped("%s", stall.c_str());
     ImGui::PopStyleColor();
   }
-  if (p.finished && p.exit_code != 0 && !p.failure.empty()) {
+  // "...: the checkpoint was made with other settings: population=8 (this
+  // run: 6) (fingerprint ...); use the same, ...": the settings that
+  // differ, in the panel's words; the whole line is in the console.
+  const std::string kOther = "made with other settings: ";
+  const size_t other = p.failure.find(kOther);
+  const bool other_settings = p.finished && other != std::string::npos;
+  if (other_settings) {
+    std::string differ = p.failure.substr(other + kOther.size());
+    differ = differ.substr(0, differ.find(" (fingerprint"));
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.35f, 1));
+    ImGui::TextWrapped(
+        "Not started: the folder '%s' holds a run made with other settings "
+        "(%s).",
+        optimise_.options().out_dir.c_str(), differ.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextWrapped(
+        "Start a new run in a new folder, or set those settings back to "
+        "continue the old one.");
+    if (Button("Start in a new folder")) {
+      // "optimise" -> "optimise-2", "optimise-3", ...: the first free.
+      const std::string base = opt_dir_;
+      for (int k = 2; std::filesystem::exists(opt_dir_); ++k) {
+        opt_dir_ = base + "-" + std::to_string(k);
+      }
+      start(-1);
+    }
+  } else if (p.finished && p.exit_code != 0 && !p.failure.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.35f, 1));
     ImGui::TextWrapped("failed: %s", p.failure.c_str());
     ImGui::PopStyleColor();
-    if (p.failure.find("checkpoint") != std::string::npos) {
-      ImGui::TextWrapped(
-          "The folder holds a run with other settings: start a new run in "
-          "a new folder, or set the old settings back to continue it.");
-      if (Button("Start in a new folder")) {
-        // "optimise" -> "optimise-2", "optimise-3", ...: the first free.
-        const std::string base = opt_dir_;
-        for (int k = 2; std::filesystem::exists(opt_dir_); ++k) {
-          opt_dir_ = base + "-" + std::to_string(k);
-        }
-        start(-1);
-      }
-    }
   }
-  if (p.running || p.finished || p.stopped || !p.rows.empty()) {
+  if (other_settings) {
+    // The rows on show are the old run's: not this one's progress.
+  } else if (p.running || p.finished || p.stopped || !p.rows.empty()) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
     if (p.running) {
       // Wrapped: the panel is narrower than the whole line.

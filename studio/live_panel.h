@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "studio/layout_recorder.h"
@@ -113,6 +114,8 @@ class LivePanel {
   GenomeSpec genome_;
   std::string genome_path_ = "scenarios/forward_gait.genome.xml";
   std::string opt_dir_ = "optimise";
+  // The last PNG export's outcome, shown under the plot it is for.
+  std::pair<const PlotSeries*, std::string> png_note_;
   int algorithm_ = 3;  // cmaes
   int generations_ = 10;
   int population_ = 8;
