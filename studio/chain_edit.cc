@@ -155,6 +155,7 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
   chain.pattern = ChainPattern::kPitch;
   chain.sensor_after.clear();
   bool previous_sensor = false;
+  int previous_source = -1;
   bool old_rays = false;
   for (const SensorModule& sm : old.sensor_modules) {
     if (!sm.distance_sensors.empty()) old_rays = true;
@@ -162,10 +163,14 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
   for (const ChainSlot& slot : slots) {
     if (slot.sensor) {
       if (previous_sensor) {
+        // Named as the chain list names them (S0, S1, ...).
         throw std::invalid_argument(
-            "two sensor modules next to each other: put a module between "
-            "them");
+            "sensor modules S" + std::to_string(previous_source) + " and S" +
+            std::to_string(slot.source) +
+            " would be next to each other: put a module between them, or "
+            "remove one of them first");
       }
+      previous_source = slot.source;
       chain.sensor_after.push_back(chain.modules - 1);
     } else {
       ++chain.modules;

@@ -145,6 +145,20 @@ TEST(StudioDesign, RefusesTwoSensorModulesSideBySide) {
   const std::string before = Bytes(d);
   EXPECT_THROW(d.AddPart(NextPart::kSensorModule), DesignError);
   EXPECT_EQ(Bytes(d), before);
+
+  // Removing the module between two sensor modules names them as the
+  // chain list does.
+  Design e = Design::Open(testing::SourcePath("scenarios/case_study.xml"));
+  e.Select({PartKind::kModule, 0, 0});
+  try {
+    e.RemoveSelected();
+    FAIL() << "removed module 0";
+  } catch (const DesignError& error) {
+    EXPECT_NE(std::string(error.what()).find(
+                  "sensor modules S0 and S1 would be next to each other"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(StudioDesign, PartByPartEqualsScenarioNew) {
