@@ -2,7 +2,6 @@
 // in and out with the schema's messages, units, limits, defaults) and what
 // frame and unit conversion take from it.
 #include "sim_core/scenario_schema.h"
-#include "sim_core/sensor_face.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,6 +12,7 @@
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/sensor_face.h"
 
 namespace mrsim {
 namespace {

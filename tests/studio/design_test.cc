@@ -154,8 +154,8 @@ TEST(StudioDesign, RefusesTwoSensorModulesSideBySide) {
     e.RemoveSelected();
     FAIL() << "removed module 0";
   } catch (const DesignError& error) {
-    EXPECT_NE(std::string(error.what()).find(
-                  "sensor modules S0 and S1 would be next to each other"),
+    EXPECT_NE(std::string(error.what())
+                  .find("sensor modules S0 and S1 would be next to each other"),
               std::string::npos)
         << error.what();
   }
