@@ -342,6 +342,24 @@ void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
   sim_heard_ = now;
   sim_clock_ = status.clock;
+  if (!status.waiting_for.empty() && !warned_other_name_) {
+    // A lockstep simulator waiting for controllers by name, and this one
+    // is not among them: most often a --name that is not the one in the
+    // simulator's --controllers (its answers are refused, and it only sees
+    // the same state again, "repeated"). Say so, once.
+    std::vector<std::string> names;
+    std::stringstream list(status.waiting_for);
+    for (std::string n; std::getline(list, n, ',');) names.push_back(n);
+    if (std::find(names.begin(), names.end(), options_.sender) == names.end()) {
+      warned_other_name_ = true;
+      Log(fmt::format(
+          "warning: the simulator is waiting for controller(s) '{}', not "
+          "for this one ('{}'); if that name is meant to be this "
+          "controller, start it with --name {}, or mrsim-sim with "
+          "--controllers {}",
+          status.waiting_for, options_.sender, names.front(), options_.sender));
+    }
+  }
   if (status.mode == sim_status_t::STOPPING && !sim_stopped_) {
     sim_stopped_ = true;
     if (options_.exit_with_sim) Log("the simulator stopped (--exit-with-sim)");

@@ -155,6 +155,7 @@ class GaitNode {
   WallTime started_;
   std::optional<WallTime> sim_heard_;  // the last state or status
   bool warned_no_simulator_ = false;
+  bool warned_other_name_ = false;
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;
   double last_time_ = 0;

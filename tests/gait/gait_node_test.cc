@@ -215,6 +215,32 @@ TEST_F(GaitNodeTest, ExitWithSimEndsTheNodeWhenTheSimulatorGoesSilent) {
   EXPECT_NE(log.find("silent for 5 s"), std::string::npos) << log;
 }
 
+// Lockstep under another name: the simulator's status says whom it waits
+// for, and the node says how to match, once.
+TEST_F(GaitNodeTest, ASimulatorWaitingForAnotherNameIsExplainedOnce) {
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.sender = "gait-snake";
+  GaitNode node(
+      o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
+      *FindGaitPreset("forward"), now_);
+  sim_status_t status{};
+  status.clock = "lockstep";
+  status.waiting_for = "gait-snake";  // us: nothing to say
+  node.OnSimStatus(status, now_, &out_);
+  EXPECT_TRUE(node.TakeLog().empty());
+  status.waiting_for = "gait";
+  node.OnSimStatus(status, now_, &out_);
+  node.OnSimStatus(status, now_, &out_);
+  const auto log = node.TakeLog();
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_NE(log[0].find("waiting for controller(s) 'gait', not for this one "
+                        "('gait-snake')"),
+            std::string::npos)
+      << log[0];
+  EXPECT_NE(log[0].find("--name gait"), std::string::npos) << log[0];
+}
+
 // A wrong --prefix or --lcm-url: said once, naming the channels listened
 // to, instead of waiting in silence.
 TEST_F(GaitNodeTest, NothingFromASimulatorIsSaidOnceNamingTheChannels) {
