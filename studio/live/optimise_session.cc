@@ -12,18 +12,12 @@
 
 #include "common/atomic_file.h"
 #include "launcher/program_locator.h"
+#include "logger/csv_columns.h"
 
 namespace mrsim {
 namespace {
 
 constexpr size_t kConsoleLines = 500;
-
-std::vector<std::string> SplitComma(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-  return cells;
-}
 
 double Number(const std::string& cell, int line, const std::string& column) {
   size_t used = 0;
@@ -167,7 +161,7 @@ std::vector<GenerationRow> OptimiseSession::ParseGenerations(
   std::stringstream in(csv);
   std::string line;
   if (!std::getline(in, line)) return rows;
-  const std::vector<std::string> header = SplitComma(line);
+  const std::vector<std::string> header = SplitCsvRecord(line);
   if (header.size() < 6 || header[0] != "generation") {
     throw std::runtime_error("generations.csv: unexpected header '" + line +
                              "'");
@@ -176,7 +170,7 @@ std::vector<GenerationRow> OptimiseSession::ParseGenerations(
   while (std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
-    const std::vector<std::string> cells = SplitComma(line);
+    const std::vector<std::string> cells = SplitCsvRecord(line);
     if (cells.size() != header.size()) {
       // A line still being written: stop here, read it next time.
       break;
