@@ -11,6 +11,7 @@
 
 #include "CLI/CLI.hpp"
 #include "common/lcm_url.h"
+#include "lcmtypes/runtime/channel_pattern.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
@@ -216,12 +217,7 @@ std::string ChannelRegex(const std::string& channels) {
     std::string name = channels.substr(start, end - start);
     if (!name.empty()) {
       if (!out.empty()) out += "|";
-      for (char c : name) {
-        if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) {
-          out += '\\';
-        }
-        out += c;
-      }
+      out += LiteralChannelPattern(name);
     }
     start = end + 1;
   }

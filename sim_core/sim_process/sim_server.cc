@@ -1,28 +1,18 @@
 #include "sim_core/sim_process/sim_server.h"
 
-#include <glib.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/wall_time.h"
+#include "lcmtypes/runtime/channel_pattern.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 
 namespace mrsim {
-namespace {
-
-std::string EscapeRegex(const std::string& text) {
-  std::unique_ptr<gchar, decltype(&g_free)> escaped(
-      g_regex_escape_string(text.c_str(), static_cast<gint>(text.size())),
-      &g_free);
-  return escaped.get();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
                      SimOptions options, std::ostream& log)
@@ -30,7 +20,7 @@ SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
       node_(std::move(physics), std::move(options), log, WallClock::now()) {
   const std::string& prefix = node_.options().prefix;
   lcm::Subscription* commands =
-      lcm_.subscribe(EscapeRegex(CommandChannel(prefix, "")) + ".*",
+      lcm_.subscribe(LiteralChannelPattern(CommandChannel(prefix, "")) + ".*",
                      &SimServer::OnCommand, this);
   lcm::Subscription* control =
       lcm_.subscribe(SimControlChannel(prefix), &SimServer::OnControl, this);
