@@ -16,6 +16,7 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_status_t.hpp"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tools/ctl_client.h"
 #include "tools/gait_command_request.h"
 #include "tools/sim_control_request.h"
@@ -181,13 +182,15 @@ TEST(MrsimCtl, UnreadableMessagesOnTheStatusChannelAreNamed) {
   ASSERT_TRUE(talker.good());
   std::atomic<bool> done{false};
   std::thread noise([&] {
-    // An absurd array length: lcm-gen's decode would try to allocate it.
+    // Bytes that are not a sim_status_t, from a stand-in source with a
+    // steady rate until mrsim-ctl has given up.
     const std::vector<std::uint8_t> junk(64, 0xff);
-    while (!done) {
-      talker.publish(SimStatusChannel("MRSIM"), junk.data(),
-                     static_cast<unsigned>(junk.size()));
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    testing::RepeatUntil(
+        [&] {
+          talker.publish(SimStatusChannel("MRSIM"), junk.data(),
+                         static_cast<unsigned>(junk.size()));
+        },
+        [&] { return done.load(); }, 0.02, 60);
   });
   lcm::LCM lcm(url);
   CtlOptions options;
