@@ -568,13 +568,11 @@ void LivePanel::DrawPlots(float width) {
       try {
         // Beside the recordings, named in full: a student looks for it
         // in a file manager.
-        std::filesystem::create_directories(record_dir_.empty() ? "."
-                                                                : record_dir_);
+        const std::filesystem::path folder =
+            record_dir_.empty() ? "." : record_dir_;
+        std::filesystem::create_directories(folder);
         const std::string png =
-            std::filesystem::absolute(
-                (record_dir_.empty() ? std::string(".") : record_dir_) + "/" +
-                p.column() + ".png")
-                .string();
+            std::filesystem::absolute(folder / (p.column() + ".png")).string();
         ExportPlotPng(p, png);
         png_note_ = {&p, "wrote " + png};
       } catch (const std::exception& e) {
@@ -804,9 +802,9 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::TextWrapped("failed: %s", p.failure.c_str());
     ImGui::PopStyleColor();
   }
-  if (other_settings) {
-    // The rows on show are the old run's: not this one's progress.
-  } else if (p.running || p.finished || p.stopped || !p.rows.empty()) {
+  // With other settings the rows on show are the old run's, not progress.
+  if (!other_settings &&
+      (p.running || p.finished || p.stopped || !p.rows.empty())) {
     const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
     if (p.running) {
       // Wrapped: the panel is narrower than the whole line.

@@ -827,7 +827,9 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
     const int face = sm.distance_sensors[k].sensor_position;
     ImGui::PushID(static_cast<int>(k));
     ImGui::Text("ray %zu: %s", k,
-                face >= 0 && face < 6 ? kSensorFaceNames[face] : "?");
+                face >= 0 && face < static_cast<int>(kSensorFaceNames.size())
+                    ? kSensorFaceNames[face]
+                    : "?");
     ImGui::SameLine();
     if (ImGui::SmallButton("remove")) {
       Try([&] { design_.RemoveDistanceSensor(static_cast<int>(k)); });
