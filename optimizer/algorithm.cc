@@ -20,6 +20,9 @@ void AlgorithmSettings::Validate() const {
          "'");
   }
   if (population < 1) fail("population must be at least 1");
+  if (islands < 1 || islands > kMaxIslands) {
+    fail(fmt::format("islands must be in [1, {}]", kMaxIslands));
+  }
   if (selection != "tournament" && selection != "truncation") {
     fail("selection: expected tournament or truncation, got '" + selection +
          "'");
@@ -56,6 +59,8 @@ std::string AlgorithmSettings::Describe() const {
   std::string s =
       fmt::format("algorithm={}\npopulation={}\nseed={}\ninclude_start={}\n",
                   algorithm, population, seed, include_start);
+  // Not written when 1, so runs from before islands keep their checkpoints.
+  if (islands != 1) s += fmt::format("islands={}\n", islands);
   if (algorithm == "ga") {
     s += fmt::format(
         "selection={}\ntournament_size={}\ntruncation_fraction={}\n"
@@ -72,6 +77,17 @@ std::string AlgorithmSettings::Describe() const {
     s += fmt::format("cmaes_sigma={}\n", cmaes_sigma);
   }
   return s;
+}
+
+std::uint64_t IslandSeed(std::uint64_t seed, int island) {
+  if (island == 0) return seed;
+  // SplitMix64's step: island seeds far from seed + 1, seed + 2 (another
+  // run's island 0).
+  std::uint64_t z =
+      seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned>(island);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
 }
 
 std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,

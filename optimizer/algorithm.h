@@ -16,10 +16,17 @@
 namespace mrsim {
 
 struct AlgorithmSettings {
+  static constexpr int kMaxIslands = 16;
   std::string algorithm = "ga";  // ga | sa | pso | cmaes | random
   int population = 16;
   std::uint64_t seed = 1;
   bool include_start = true;  // generation 0 holds the start genome
+  // Independent populations whose generations take turns (generation k is
+  // island k % islands's): each island's next generation is asked while
+  // the others' are evaluated, so a farm never waits for a generation's
+  // slowest episode. Island 0 is the run with `seed`; the others have
+  // seeds of their own. 1: one population, every generation waits.
+  int islands = 1;
 
   // Genetic algorithm.
   std::string selection = "tournament";  // tournament | truncation
@@ -58,6 +65,9 @@ class Algorithm {
   // Throws std::invalid_argument when the count does not match Ask.
   virtual void Tell(const std::vector<EvalResult>& results) = 0;
 };
+
+// The seed of island `island` (island 0: `seed` itself).
+std::uint64_t IslandSeed(std::uint64_t seed, int island);
 
 // The algorithm named by settings.algorithm.
 std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -198,7 +200,14 @@ RunResult RunOptimization(const GenomeSpec& spec,
     throw std::invalid_argument(
         "stop after generation 0: generations are counted from 1");
   }
-  std::unique_ptr<Algorithm> algorithm = MakeAlgorithm(spec, settings);
+  settings.Validate();
+  const int islands = settings.islands;
+  std::vector<std::unique_ptr<Algorithm>> algorithms;
+  for (int i = 0; i < islands; ++i) {
+    AlgorithmSettings island = settings;
+    island.seed = IslandSeed(settings.seed, i);
+    algorithms.push_back(MakeAlgorithm(spec, island));
+  }
   const int planned = options.stop_after >= 0
                           ? std::min(options.stop_after, options.generations)
                           : options.generations;
@@ -240,53 +249,84 @@ RunResult RunOptimization(const GenomeSpec& spec,
   }
 
   std::map<Genome, EvalResult> cache;  // results are a function of the genome
-  double evaluated_seconds = 0;
-  int evaluated_generations = 0;
-  long long evaluated_count = 0;
-  double first_seconds = 0;  // the first evaluated generation's
-  long long first_count = 0;
-  for (int gen = 0; gen < planned; ++gen) {
-    const std::vector<Genome> batch = algorithm->Ask();
-    std::vector<EvalResult> results;
-    const bool replay = gen < static_cast<int>(recorded.size());
-    const auto t0 = Clock::now();
-    if (replay) {
-      if (recorded[gen].genomes_hash != HashGenomes(batch) ||
-          recorded[gen].results.size() != batch.size()) {
+  // Generations asked but not told yet, oldest first: with islands, the
+  // next island's generation is on the evaluator while one is told.
+  struct Asked {
+    std::vector<Genome> batch;
+    std::vector<Genome> todo;  // submitted to the evaluator
+    bool replay = false;
+  };
+  std::deque<Asked> asked;
+  std::set<Genome> in_flight;  // submitted, not collected
+  auto ask = [&](int gen) {
+    Asked a;
+    a.batch = algorithms[static_cast<size_t>(gen % islands)]->Ask();
+    a.replay = gen < static_cast<int>(recorded.size());
+    if (a.replay) {
+      if (recorded[gen].genomes_hash != HashGenomes(a.batch) ||
+          recorded[gen].results.size() != a.batch.size()) {
         throw CheckpointError(fmt::format(
             "{}: generation {} does not match what this program generates; "
             "use another --out directory",
             checkpoint_path, gen));
       }
-      results = recorded[gen].results;
     } else {
-      std::vector<Genome> todo;
-      std::map<Genome, size_t> todo_index;
-      for (const Genome& g : batch) {
+      for (const Genome& g : a.batch) {
         spec.Check(g);
-        if (!cache.count(g) && !todo_index.count(g)) {
-          todo_index[g] = todo.size();
-          todo.push_back(g);
-        }
+        if (!cache.count(g) && in_flight.insert(g).second) a.todo.push_back(g);
       }
-      std::vector<EvalResult> fresh;
+      if (!a.todo.empty()) evaluator.Submit(a.todo);
+    }
+    asked.push_back(std::move(a));
+  };
+  double evaluated_seconds = 0;
+  int evaluated_generations = 0;
+  long long evaluated_count = 0;
+  double first_seconds = 0;  // the first evaluated generation's
+  long long first_count = 0;
+  auto t0 = Clock::now();  // since the last generation was told
+  try {
+    for (int gen = 0; gen < std::min(islands, planned); ++gen) ask(gen);
+  } catch (const EvaluationInterrupted&) {
+    throw OptimizationInterrupted(result);
+  }
+  for (int gen = 0; gen < planned; ++gen) {
+    Asked a = std::move(asked.front());
+    asked.pop_front();
+    const std::vector<Genome>& batch = a.batch;
+    const bool replay = a.replay;
+    std::vector<EvalResult> results;
+    if (replay) {
+      results = recorded[gen].results;
+      for (size_t i = 0; i < batch.size(); ++i) cache[batch[i]] = results[i];
+    } else {
+      if (!a.todo.empty()) {
+        std::vector<EvalResult> fresh;
+        try {
+          fresh = evaluator.Collect();
+        } catch (const EvaluationInterrupted&) {
+          throw OptimizationInterrupted(result);
+        }
+        if (fresh.size() != a.todo.size()) {
+          throw std::runtime_error("evaluator returned the wrong count");
+        }
+        for (size_t i = 0; i < a.todo.size(); ++i) {
+          cache[a.todo[i]] = fresh[i];
+          in_flight.erase(a.todo[i]);
+        }
+        evaluated_count += static_cast<long long>(a.todo.size());
+      }
+      // A genome another generation in flight holds was collected with it.
+      for (const Genome& g : batch) results.push_back(cache.at(g));
+    }
+    algorithms[static_cast<size_t>(gen % islands)]->Tell(results);
+    if (gen + islands < planned) {
       try {
-        if (!todo.empty()) fresh = evaluator.Evaluate(todo);
+        ask(gen + islands);  // on its way before the files are written
       } catch (const EvaluationInterrupted&) {
         throw OptimizationInterrupted(result);
       }
-      if (fresh.size() != todo.size()) {
-        throw std::runtime_error("evaluator returned the wrong count");
-      }
-      for (size_t i = 0; i < todo.size(); ++i) cache[todo[i]] = fresh[i];
-      evaluated_count += static_cast<long long>(todo.size());
     }
-    if (!replay) {
-      for (const Genome& g : batch) results.push_back(cache.at(g));
-    } else {
-      for (size_t i = 0; i < batch.size(); ++i) cache[batch[i]] = results[i];
-    }
-    algorithm->Tell(results);
 
     double best = -INFINITY, worst = INFINITY, sum = 0;
     int best_i = 0, failed = 0;
@@ -310,9 +350,11 @@ RunResult RunOptimization(const GenomeSpec& spec,
     result.generations_done = gen + 1;
     if (replay) {
       ++result.generations_replayed;
+      t0 = Clock::now();
     } else {
-      const double seconds =
-          std::chrono::duration<double>(Clock::now() - t0).count();
+      const auto now = Clock::now();
+      const double seconds = std::chrono::duration<double>(now - t0).count();
+      t0 = now;
       if (evaluated_generations == 0) {
         first_seconds = seconds;
         first_count = evaluated_count;

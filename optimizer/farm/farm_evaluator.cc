@@ -61,12 +61,27 @@ void FarmEvaluator::Step(int timeout_ms) {
 
 std::vector<EvalResult> FarmEvaluator::Evaluate(
     const std::vector<Genome>& batch) {
-  core_.StartBatch(batch, FarmLink::Now());
+  if (!in_flight_.empty()) {
+    throw std::logic_error("FarmEvaluator: Evaluate with batches in flight");
+  }
+  Submit(batch);
+  return Collect();
+}
+
+void FarmEvaluator::Submit(std::vector<Genome> batch) {
+  in_flight_.push_back(core_.OpenBatch(batch, FarmLink::Now()));
   // The jobs go out now, not after the first wait for a message.
   FarmOutbox first = core_.Tick(FarmLink::Now());
   link_->Publish(first);
+}
+
+std::vector<EvalResult> FarmEvaluator::Collect() {
+  if (in_flight_.empty()) {
+    throw std::logic_error("FarmEvaluator: Collect with nothing submitted");
+  }
+  const std::int64_t id = in_flight_.front();
   double last_wait_log = FarmLink::Now();
-  while (!core_.batch_done()) {
+  while (!core_.batch_done(id)) {
     const double wait = core_.next_deadline() - FarmLink::Now();
     Step(std::clamp(static_cast<int>(std::ceil(wait * 1000)), 0, 50));
     if (settings_.stop && settings_.stop()) {
@@ -85,7 +100,10 @@ std::vector<EvalResult> FarmEvaluator::Evaluate(
       last_wait_log = now;
     }
   }
-  return core_.results();
+  std::vector<EvalResult> results = core_.results(id);
+  core_.CloseBatch(id, FarmLink::Now());
+  in_flight_.pop_front();
+  return results;
 }
 
 }  // namespace mrsim

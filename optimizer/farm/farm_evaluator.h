@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
@@ -32,6 +33,8 @@ class FarmEvaluator : public BatchEvaluator {
   FarmEvaluator& operator=(const FarmEvaluator&) = delete;
 
   std::vector<EvalResult> Evaluate(const std::vector<Genome>& batch) override;
+  void Submit(std::vector<Genome> batch) override;
+  std::vector<EvalResult> Collect() override;
   int workers_alive() const override { return core_.workers_alive(); }
 
   const std::string& scenario_hash() const { return core_.scenario_hash(); }
@@ -44,6 +47,7 @@ class FarmEvaluator : public BatchEvaluator {
 
   FarmSettings settings_;
   FarmMasterCore core_;
+  std::deque<std::int64_t> in_flight_;  // submitted batch ids, oldest first
   std::unique_ptr<FarmLink> link_;
   // How to start a worker for this farm, for the "waiting" line ("" when
   // the LCM instance came from the caller).

@@ -80,12 +80,22 @@ double FarmMasterCore::JobTimeout() const {
 }
 
 FarmMasterCore::Job* FarmMasterCore::FindJob(std::int64_t job_id) {
-  if ((job_id >> kJobIdShift) != batch_) return nullptr;
+  auto it = batches_.find(job_id >> kJobIdShift);
+  if (it == batches_.end()) return nullptr;
   const std::int64_t index = job_id & kIndexMask;
-  if (index < 0 || index >= static_cast<std::int64_t>(jobs_.size())) {
+  std::vector<Job>& jobs = it->second.jobs;
+  if (index < 0 || index >= static_cast<std::int64_t>(jobs.size())) {
     return nullptr;
   }
-  return &jobs_[static_cast<size_t>(index)];
+  return &jobs[static_cast<size_t>(index)];
+}
+
+const FarmMasterCore::Batch& FarmMasterCore::OpenAt(std::int64_t id) const {
+  auto it = batches_.find(id);
+  if (it == batches_.end()) {
+    throw std::out_of_range(fmt::format("farm: no open batch {}", id));
+  }
+  return it->second;
 }
 
 void FarmMasterCore::Reindex(Worker& w, double now) {
@@ -100,26 +110,50 @@ void FarmMasterCore::Reindex(Worker& w, double now) {
 }
 
 void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
+  while (!batches_.empty()) CloseBatch(batches_.begin()->first, now);
+  OpenBatch(batch, now);
+}
+
+std::int64_t FarmMasterCore::OpenBatch(const std::vector<Genome>& batch,
+                                       double now) {
   if (batch.size() >= (size_t{1} << kJobIdShift)) {
     throw std::invalid_argument("farm: batch too large");
   }
-  ++batch_;
+  const std::int64_t id = ++batch_;
+  Batch& b = batches_[id];
+  b.genomes = batch;
+  b.jobs.assign(batch.size(), Job{});
+  b.results.assign(batch.size(), EvalResult{});
+  b.remaining = batch.size();
   failure_.clear();
-  genomes_ = batch;
-  jobs_.assign(batch.size(), Job{});
-  results_.assign(batch.size(), EvalResult{});
-  pending_.clear();
-  pending_count_ = batch.size();
+  pending_count_ += batch.size();
   dispatch_due_ = true;
   for (size_t i = 0; i < batch.size(); ++i) {
-    pending_.push_back((batch_ << kJobIdShift) | static_cast<std::int64_t>(i));
+    pending_.push_back((id << kJobIdShift) | static_cast<std::int64_t>(i));
   }
-  remaining_ = batch.size();
-  batch_busiest_ = 0;
-  for (auto& [id, w] : workers_) {
-    w.batch_seconds = 0;
-    w.assigned.clear();  // the old batch's jobs are of no use now
-    Reindex(w, now);
+  for (auto& [wid, w] : workers_) Reindex(w, now);
+  return id;
+}
+
+void FarmMasterCore::CloseBatch(std::int64_t id, double now) {
+  auto it = batches_.find(id);
+  if (it == batches_.end()) return;
+  for (const Job& job : it->second.jobs) {
+    if (job.pending) --pending_count_;
+  }
+  batches_.erase(it);
+  // Its jobs are of no use now: the workers holding them have room again.
+  for (auto& [wid, w] : workers_) {
+    bool freed = false;
+    for (auto j = w.assigned.begin(); j != w.assigned.end();) {
+      if ((*j >> kJobIdShift) == id) {
+        j = w.assigned.erase(j);
+        freed = true;
+      } else {
+        ++j;
+      }
+    }
+    if (freed) Reindex(w, now);
   }
 }
 
@@ -229,7 +263,8 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
       return;
     }
   }
-  EvalResult& r = results_[static_cast<size_t>(msg.job_id & kIndexMask)];
+  Batch& batch = batches_.at(msg.job_id >> kJobIdShift);
+  EvalResult& r = batch.results[static_cast<size_t>(msg.job_id & kIndexMask)];
   r.fitness = msg.fitness;
   r.distance = msg.distance;
   r.speed = msg.speed;
@@ -240,7 +275,7 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
   job->done = true;
   if (job->pending) --pending_count_;
   job->pending = false;  // a stale id in pending_ is skipped
-  --remaining_;
+  --batch.remaining;
   ++counters_.results_accepted;
   auto owner = workers_.find(job->worker);
   if (owner != workers_.end() && owner->second.assigned.erase(msg.job_id)) {
@@ -253,12 +288,11 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
                            : 0.9 * typical_episode_ + 0.1 * msg.eval_seconds;
     slowest_episode_ = std::max(slowest_episode_, msg.eval_seconds);
     episode_seconds_ += msg.eval_seconds;
-    if (wit != workers_.end()) {
-      wit->second.batch_seconds += msg.eval_seconds;
-      batch_busiest_ = std::max(batch_busiest_, wit->second.batch_seconds);
-    }
+    double& seconds = batch.worker_seconds[msg.worker_id];
+    seconds += msg.eval_seconds;
+    batch.busiest = std::max(batch.busiest, seconds);
   }
-  if (remaining_ == 0) counters_.busiest_worker_seconds += batch_busiest_;
+  if (batch.remaining == 0) counters_.busiest_worker_seconds += batch.busiest;
 }
 
 void FarmMasterCore::OnChunkRequest(const opt_chunk_request_t& msg,
@@ -334,33 +368,41 @@ void FarmMasterCore::Maintain(double now) {
     ++it;
   }
   const double timeout = JobTimeout();
-  for (size_t i = 0; i < jobs_.size(); ++i) {
-    Job& job = jobs_[i];
-    if (job.done || job.pending) continue;
-    const std::int64_t id = (batch_ << kJobIdShift) | static_cast<int64_t>(i);
-    if (now - job.sent > timeout) {
-      Requeue(id, "no answer by its deadline");
-      continue;
+  for (auto& [batch_id, batch] : batches_) {
+    for (size_t i = 0; i < batch.jobs.size(); ++i) {
+      Job& job = batch.jobs[i];
+      if (job.done || job.pending) continue;
+      const std::int64_t id =
+          (batch_id << kJobIdShift) | static_cast<int64_t>(i);
+      MaintainJob(id, job, timeout, now);
     }
-    if (job.poke_at <= 0) {
-      // Sent before any episode time was known (a run's first jobs).
-      const double wait = PokeWait(job);
-      if (wait > 0) job.poke_at = job.sent + wait;
-    }
-    if (job.done_seen >= 0 && now - job.done_seen > settings_.result_wait) {
-      // Its worker finished it but the result was lost: ask the same worker
-      // again; it answers from its recent results without re-running.
-      if (workers_.count(job.worker) == 0) continue;
-      SendAgain(id, job);
-      job.done_seen = now;
-      ++counters_.results_rerequested;
-      continue;
-    }
-    if (job.poke_at > 0 && now >= job.poke_at &&
-        workers_.count(job.worker) != 0) {
-      // Lost on the way there or back, or just slow: ask again (above).
-      Poke(id, job, now);
-    }
+  }
+}
+
+void FarmMasterCore::MaintainJob(std::int64_t id, Job& job, double timeout,
+                                 double now) {
+  if (now - job.sent > timeout) {
+    Requeue(id, "no answer by its deadline");
+    return;
+  }
+  if (job.poke_at <= 0) {
+    // Sent before any episode time was known (a run's first jobs).
+    const double wait = PokeWait(job);
+    if (wait > 0) job.poke_at = job.sent + wait;
+  }
+  if (job.done_seen >= 0 && now - job.done_seen > settings_.result_wait) {
+    // Its worker finished it but the result was lost: ask the same worker
+    // again; it answers from its recent results without re-running.
+    if (workers_.count(job.worker) == 0) return;
+    SendAgain(id, job);
+    job.done_seen = now;
+    ++counters_.results_rerequested;
+    return;
+  }
+  if (job.poke_at > 0 && now >= job.poke_at &&
+      workers_.count(job.worker) != 0) {
+    // Lost on the way there or back, or just slow: ask again (above).
+    Poke(id, job, now);
   }
 }
 
@@ -403,9 +445,10 @@ void FarmMasterCore::QueueJob(std::int64_t job_id, const std::string& worker) {
   msg.scenario_hash = hash_;
   msg.worker_id = worker;
   msg.job_id = job_id;
-  msg.generation = static_cast<int32_t>(batch_);
+  msg.generation = static_cast<int32_t>(job_id >> kJobIdShift);
   msg.index = static_cast<int32_t>(job_id & kIndexMask);
-  msg.genome = genomes_[static_cast<size_t>(msg.index)];
+  msg.genome =
+      OpenAt(job_id >> kJobIdShift).genomes[static_cast<size_t>(msg.index)];
   msg.gene_count = static_cast<int32_t>(msg.genome.size());
   outbox_.jobs.push_back(std::move(msg));
 }
@@ -422,7 +465,7 @@ double FarmMasterCore::MaintainPeriod() const {
 }
 
 void FarmMasterCore::Send(std::int64_t job_id, Worker& w, double now) {
-  Job& job = jobs_[static_cast<size_t>(job_id & kIndexMask)];
+  Job& job = *FindJob(job_id);
   QueueJob(job_id, w.id);
   if (job.sends > 0) ++counters_.jobs_resent;
   ++counters_.jobs_sent;

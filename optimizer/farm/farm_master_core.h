@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -103,15 +104,28 @@ class FarmMasterCore {
   FarmMasterCore(std::string payload, std::string run_id,
                  std::int64_t started_utime, FarmSettings settings);
 
-  // Starts a batch (the previous one's late answers are ignored from now).
+  // Starts a batch alone: the open ones are closed first (their late
+  // answers are ignored from now).
   void StartBatch(const std::vector<Genome>& batch, double now);
-  bool batch_done() const { return remaining_ == 0; }
+  // Opens a batch beside the open ones and returns its id. Its jobs go out
+  // after theirs, so workers that finish the older batch's last jobs early
+  // go on with this one instead of waiting (several generations in flight).
+  std::int64_t OpenBatch(const std::vector<Genome>& batch, double now);
+  // Forgets a batch (done or not): its late answers are ignored.
+  void CloseBatch(std::int64_t id, double now);
+  // The newest batch's state, or batch `id`'s (an unknown id throws
+  // std::out_of_range).
+  bool batch_done() const { return batch_done(batch_); }
+  bool batch_done(std::int64_t id) const { return OpenAt(id).remaining == 0; }
+  const std::vector<EvalResult>& results() const { return results(batch_); }
+  const std::vector<EvalResult>& results(std::int64_t id) const {
+    return OpenAt(id).results;
+  }
   // Why the batch cannot finish ("" while it can): a job that
   // kMaxJobErrors answers said could not be run. The same genome fails
   // the same way on every worker, so asking again would loop forever.
   const std::string& failure() const { return failure_; }
   static constexpr int kMaxJobErrors = 3;
-  const std::vector<EvalResult>& results() const { return results_; }
 
   void OnHeartbeat(const opt_heartbeat_t& msg, double now);
   void OnResult(const opt_result_t& msg, double now);
@@ -148,7 +162,6 @@ class FarmMasterCore {
     int misses = 0;                   // jobs in a row it never listed
     double deaf_until = 0;
     double deaf_backoff = 0;
-    double batch_seconds = 0;  // its episodes' seconds in this batch
   };
   struct Job {
     bool done = false;
@@ -165,8 +178,21 @@ class FarmMasterCore {
     int errors = 0;          // workers that answered they could not run it
   };
 
+  // One open batch: its jobs and what came back.
+  struct Batch {
+    std::vector<Genome> genomes;
+    std::vector<Job> jobs;
+    std::vector<EvalResult> results;
+    size_t remaining = 0;
+    // Each worker's episode seconds in it, and the largest of them.
+    std::unordered_map<std::string, double> worker_seconds;
+    double busiest = 0.0;
+  };
+
+  const Batch& OpenAt(std::int64_t id) const;
   void Announce(double now);
   void Maintain(double now);
+  void MaintainJob(std::int64_t id, Job& job, double timeout, double now);
   void Dispatch(double now);
   void Send(std::int64_t job_id, Worker& w, double now);
   void SendAgain(std::int64_t job_id, Job& job);
@@ -195,15 +221,12 @@ class FarmMasterCore {
 
   std::unordered_map<std::string, Worker> workers_;
   std::set<std::pair<int, std::string>> room_;  // (load, id), ready, room
-  std::vector<Genome> genomes_;
-  std::vector<Job> jobs_;             // of the current batch
-  std::deque<std::int64_t> pending_;  // may hold stale ids
-  size_t pending_count_ = 0;          // live ids in pending_
-  int ready_count_ = 0;               // workers holding our payload
-  bool dispatch_due_ = false;         // jobs became pending since the last Tick
-  std::vector<EvalResult> results_;
-  std::int64_t batch_ = 0;
-  size_t remaining_ = 0;
+  std::map<std::int64_t, Batch> batches_;       // open, oldest first
+  std::deque<std::int64_t> pending_;            // may hold stale ids
+  size_t pending_count_ = 0;                    // live ids in pending_
+  int ready_count_ = 0;                         // workers holding our payload
+  bool dispatch_due_ = false;  // jobs became pending since the last Tick
+  std::int64_t batch_ = 0;     // the newest batch's id
   double last_announce_ = -1e9;
   double last_maintain_ = -1e9;
   std::int64_t send_order_ = 0;  // Job::order of the latest send
@@ -211,7 +234,6 @@ class FarmMasterCore {
   double tokens_at_ = -1e9;
   double slowest_episode_ = 0.0;
   double typical_episode_ = 0.0;  // moving average of the reported times
-  double batch_busiest_ = 0.0;    // the largest batch_seconds this batch
   double episode_seconds_ = 0.0;
   FarmCounters counters_;
   FarmOutbox outbox_;

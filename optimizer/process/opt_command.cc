@@ -116,6 +116,10 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
       ->capture_default_str();
   app.add_option("--seed", a.seed, "Seed of the run's random engine")
       ->capture_default_str();
+  app.add_option("--islands", a.islands,
+                 "Independent populations taking turns: a farm hands out one "
+                 "while another's last episodes run")
+      ->capture_default_str();
   app.add_flag("--no-start-genome", c.no_start,
                "Do not put the start genome in generation 0");
   app.add_option("--episode", e.duration, "Episode length (s of sim time)")

@@ -443,6 +443,58 @@ TEST(FarmMasterCore, LateDuplicateAndForeignResultsAreIgnored) {
   EXPECT_FALSE(m.batch_done());
 }
 
+// Islands keep two generations on the farm: the second batch's jobs wait
+// behind the first's and go to whoever finishes early, results find their
+// own batch, and a closed batch's late answers are ignored.
+TEST(FarmMasterCore, AnOpenSecondBatchFeedsWorkersThatFinishTheFirstEarly) {
+  constexpr double kEpisode = 5.0;  // s: no job is due a poke in this test
+  FarmSettings settings;
+  settings.extra_jobs_per_worker = 0;  // a job goes out when a worker frees
+  FarmMasterCore m(Payload(100), "run", 1, settings);
+  m.OnHeartbeat(Beat(m, "a"), 0.0);
+  m.OnHeartbeat(Beat(m, "b"), 0.0);
+  const std::vector<Genome> first = Batch(2, 0), second = Batch(2, 1);
+  const std::int64_t one = m.OpenBatch(first, 0.0);
+  const std::int64_t two = m.OpenBatch(second, 0.0);
+  const FarmOutbox out = m.Tick(0.0);
+  ASSERT_EQ(out.jobs.size(), 2u) << "one job per idle worker";
+  for (const opt_job_t& j : out.jobs) {
+    EXPECT_EQ(j.generation, one) << "the older batch's jobs go out first";
+  }
+  // "a" finishes early while "b" still runs the first batch's slow one.
+  const opt_job_t& fast =
+      out.jobs[0].worker_id == "a" ? out.jobs[0] : out.jobs[1];
+  const opt_job_t& slow =
+      out.jobs[0].worker_id == "a" ? out.jobs[1] : out.jobs[0];
+  m.OnResult(Answer(m, fast, kEpisode), 0.5);
+  const FarmOutbox next = m.Tick(0.5);
+  ASSERT_EQ(next.jobs.size(), 1u);
+  EXPECT_EQ(next.jobs[0].worker_id, "a") << "the idle worker goes on";
+  EXPECT_EQ(next.jobs[0].generation, two);
+  EXPECT_FALSE(m.batch_done(one));
+  m.OnResult(Answer(m, slow, kEpisode), 1.0);
+  ASSERT_TRUE(m.batch_done(one));
+  EXPECT_FALSE(m.batch_done(two));
+  for (size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(m.results(one)[i].fitness, SimFitness(first[i]));
+  }
+  m.CloseBatch(one, 1.0);
+  EXPECT_THROW(m.results(one), std::out_of_range);
+  const long long ignored = m.counters().results_ignored;
+  m.OnResult(Answer(m, slow, kEpisode),
+             1.1);  // a duplicate of a closed batch's
+  EXPECT_EQ(m.counters().results_ignored, ignored + 1);
+  const FarmOutbox last = m.Tick(1.0);
+  ASSERT_EQ(last.jobs.size(), 1u);
+  EXPECT_EQ(last.jobs[0].worker_id, "b");
+  m.OnResult(Answer(m, next.jobs[0], kEpisode), 1.2);
+  m.OnResult(Answer(m, last.jobs[0], kEpisode), 1.3);
+  ASSERT_TRUE(m.batch_done(two));
+  for (size_t i = 0; i < second.size(); ++i) {
+    EXPECT_EQ(m.results(two)[i].fitness, SimFitness(second[i]));
+  }
+}
+
 // A job the workers say they cannot run fails the same way on each: it is
 // tried again a few times (a worker may have lacked something), then the
 // batch fails with the workers' reason instead of looping forever.

@@ -104,6 +104,32 @@ TEST(FarmProcess, KilledAndLateWorkersGiveTheLocalResult) {
   ExpectSameResult(local, dir);
 }
 
+// With islands the master keeps the next island's generation on the farm
+// while one ends; the result is still the local run's.
+TEST(FarmProcess, IslandsOnTheFarmGiveTheLocalResult) {
+  const std::string local = TempDir("farm_islands_local");
+  ChildProcess reference(
+      With(OptArgs(local), {"--workers", "local:2", "--islands", "2"}),
+      local + "/log.txt");
+  ASSERT_EQ(reference.Wait(90), 0) << reference.Output();
+  const std::string url = TestLcmUrl(7704);
+  const std::string dir = TempDir("farm_islands");
+  std::vector<std::unique_ptr<ChildProcess>> workers;
+  for (const char* id : {"w1", "w2"}) {
+    workers.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{BinaryPath("optimizer/process/mrsim-worker"),
+                                 "--lcm-url", url, "--id", id},
+        dir + "/" + id + ".log"));
+  }
+  ChildProcess master(
+      With(OptArgs(dir), {"--farm", "--lcm-url", url, "--islands", "2"}),
+      dir + "/master.log");
+  ASSERT_EQ(master.Wait(120), 0) << master.Output();
+  EXPECT_NE(master.Output().find("generation 4 of 4"), std::string::npos)
+      << master.Output();
+  ExpectSameResult(local, dir);
+}
+
 TEST(OptimizerProcess, MasterKilledAndRestartedEndsWithTheSameResult) {
   const std::string local = LocalReference("opt_resume_ref");
   const std::string dir = TempDir("opt_resume");

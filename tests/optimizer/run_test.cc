@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <deque>
 #include <fstream>
 #include <sstream>
 
@@ -63,6 +65,111 @@ TEST(OptimizerRun, InterruptedRunResumesToTheSameResult) {
        {"/generations.csv", "/evaluations.csv", "/checkpoint.txt"}) {
     EXPECT_EQ(ReadAll(options.out_dir + f), ReadAll(straight_dir + f)) << f;
   }
+}
+
+// Answers batches only when collected, oldest first, like a farm with
+// several generations in flight; counts how many were in flight at once.
+struct PipelinedEvaluator : CountingEvaluator {
+  std::deque<std::vector<Genome>> in_flight;
+  size_t most_in_flight = 0;
+  void Submit(std::vector<Genome> batch) override {
+    in_flight.push_back(std::move(batch));
+    most_in_flight = std::max(most_in_flight, in_flight.size());
+  }
+  std::vector<EvalResult> Collect() override {
+    std::vector<Genome> batch = std::move(in_flight.front());
+    in_flight.pop_front();
+    return Evaluate(batch);
+  }
+};
+
+std::vector<std::vector<std::string>> CsvRows(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(ReadAll(path));
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream cell(line);
+    for (std::string c; std::getline(cell, c, ',');) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(OptimizerRun,
+     IslandsKeepTwoGenerationsInFlightAndIslandZeroIsTheSeedsRun) {
+  const GenomeSpec spec = TestFunctionSpec(4, -5.12, 5.12, 2.0);
+  AlgorithmSettings settings;
+  settings.population = 6;
+  settings.seed = 5;
+  RunOptions options;
+  options.generations = 8;
+  const std::string islands_dir = testing::TempDir("optimizer_run_islands");
+  options.out_dir = islands_dir;
+  settings.islands = 2;
+  PipelinedEvaluator farm;
+  const RunResult islands = RunOptimization(spec, settings, farm, options);
+  EXPECT_EQ(farm.most_in_flight, 2u) << "the next island's generation waits";
+  EXPECT_EQ(islands.generations_done, 8);
+
+  const std::string plain_dir = testing::TempDir("optimizer_run_one_island");
+  options.out_dir = plain_dir;
+  options.generations = 4;
+  settings.islands = 1;
+  CountingEvaluator local;
+  RunOptimization(spec, settings, local, options);
+  // generations.csv: generation,best,mean,worst,best_so_far,failed,genes...
+  const auto two = CsvRows(islands_dir + "/generations.csv");
+  const auto one = CsvRows(plain_dir + "/generations.csv");
+  ASSERT_EQ(two.size(), 9u);
+  ASSERT_EQ(one.size(), 5u);
+  for (size_t k = 1; k < one.size(); ++k) {
+    const auto& even = two[2 * k - 1];  // island 0's generation k - 1
+    for (size_t c : {1, 2, 3, 5}) EXPECT_EQ(even[c], one[k][c]) << k;
+    EXPECT_EQ(std::vector<std::string>(even.begin() + 6, even.end()),
+              std::vector<std::string>(one[k].begin() + 6, one[k].end()));
+  }
+  // Island 1 searches with a seed of its own: its generation 0 (after the
+  // start genome, index 0) is not island 0's.
+  const auto evals = CsvRows(islands_dir + "/evaluations.csv");
+  ASSERT_GT(evals.size(), 8u);
+  EXPECT_EQ(evals[2][0], "0");
+  EXPECT_EQ(evals[8][0], "1");
+  EXPECT_EQ(evals[2][1], evals[8][1]);
+  EXPECT_NE(std::vector<std::string>(evals[2].begin() + 9, evals[2].end()),
+            std::vector<std::string>(evals[8].begin() + 9, evals[8].end()));
+}
+
+TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
+  const GenomeSpec spec = TestFunctionSpec(4, -5.12, 5.12, 2.0);
+  AlgorithmSettings settings;
+  settings.population = 6;
+  settings.seed = 3;
+  settings.islands = 2;
+  RunOptions options;
+  options.generations = 9;
+  const std::string straight_dir = testing::TempDir("islands_straight");
+  options.out_dir = straight_dir;
+  PipelinedEvaluator straight;
+  const RunResult whole = RunOptimization(spec, settings, straight, options);
+
+  options.out_dir = testing::TempDir("islands_resumed");
+  PipelinedEvaluator first;
+  first.fail_after = 5;  // two generations submitted, five told
+  EXPECT_THROW(RunOptimization(spec, settings, first, options),
+               OptimizationInterrupted);
+  PipelinedEvaluator second;
+  const RunResult resumed = RunOptimization(spec, settings, second, options);
+  EXPECT_EQ(resumed.generations_replayed, 5);
+  EXPECT_EQ(resumed.best, whole.best);
+  for (const char* f :
+       {"/generations.csv", "/evaluations.csv", "/checkpoint.txt"}) {
+    EXPECT_NE(ReadAll(straight_dir + f), "") << f;
+    EXPECT_EQ(ReadAll(options.out_dir + f), ReadAll(straight_dir + f)) << f;
+  }
+  // Another number of islands is another run.
+  settings.islands = 3;
+  EXPECT_THROW(RunOptimization(spec, settings, second, options),
+               CheckpointError);
 }
 
 TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
