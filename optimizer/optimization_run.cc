@@ -74,6 +74,14 @@ std::string SettingsDiff(const std::vector<std::string>& recorded,
       diff += fmt::format("{}{}={} (this run: {})", diff.empty() ? "" : ", ",
                           key, value, here);
     }
+    mine.erase(key);
+  }
+  // A setting written only when not its default (islands).
+  if (!recorded.empty()) {
+    for (const auto& [key, value] : mine) {
+      diff += fmt::format("{}{} not set (this run: {})",
+                          diff.empty() ? "" : ", ", key, value);
+    }
   }
   return diff;
 }

@@ -166,10 +166,32 @@ TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
     EXPECT_NE(ReadAll(straight_dir + f), "") << f;
     EXPECT_EQ(ReadAll(options.out_dir + f), ReadAll(straight_dir + f)) << f;
   }
-  // Another number of islands is another run.
-  settings.islands = 3;
-  EXPECT_THROW(RunOptimization(spec, settings, second, options),
-               CheckpointError);
+  // Another number of islands is another run, and the refusal says so.
+  for (int islands : {3, 1}) {
+    settings.islands = islands;
+    try {
+      RunOptimization(spec, settings, second, options);
+      ADD_FAILURE() << "resumed with " << islands << " islands";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    islands == 3 ? "islands=2 (this run: 3)" : "islands=2 "),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  // One island's checkpoint names the islands a second run asks for.
+  options.out_dir = testing::TempDir("islands_from_one");
+  settings.islands = 1;
+  RunOptimization(spec, settings, second, options);
+  settings.islands = 2;
+  try {
+    RunOptimization(spec, settings, second, options);
+    ADD_FAILURE() << "resumed one island's run with two";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("islands not set (this run: 2)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
