@@ -290,7 +290,9 @@ RunResult RunOptimization(const GenomeSpec& spec,
   double evaluated_seconds = 0;
   int evaluated_generations = 0;
   long long evaluated_count = 0;
-  double first_seconds = 0;  // the first evaluated generation's
+  // The first evaluated generation's (one per island: the next islands'
+  // were on their way with it).
+  double first_seconds = 0;
   long long first_count = 0;
   auto t0 = Clock::now();  // since the last generation was told
   try {
@@ -363,8 +365,8 @@ RunResult RunOptimization(const GenomeSpec& spec,
       const auto now = Clock::now();
       const double seconds = std::chrono::duration<double>(now - t0).count();
       t0 = now;
-      if (evaluated_generations == 0) {
-        first_seconds = seconds;
+      if (evaluated_generations < islands) {
+        first_seconds += seconds;
         first_count = evaluated_count;
       }
       evaluated_seconds += seconds;
@@ -404,14 +406,15 @@ RunResult RunOptimization(const GenomeSpec& spec,
       report.best_so_far = result.best_result.fitness;
       report.failed = failed;
       report.evaluations = result.evaluations;
-      // Past the first generation, the pace leaves out its start-up.
-      const bool steady = evaluated_generations > 1;
+      // Past the first generation (of each island), the pace leaves out
+      // its start-up.
+      const bool steady = evaluated_generations > islands;
       const double seconds =
           steady ? evaluated_seconds - first_seconds : evaluated_seconds;
       const double count = static_cast<double>(
           steady ? evaluated_count - first_count : evaluated_count);
       const int generations =
-          steady ? evaluated_generations - 1 : evaluated_generations;
+          steady ? evaluated_generations - islands : evaluated_generations;
       report.evals_per_second = seconds > 0 ? count / seconds : 0.0;
       report.workers = evaluator.workers_alive();
       report.eta_seconds = generations > 0

@@ -704,6 +704,19 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
                IM_ARRAYSIZE(kAlgorithms));
   ImGui::SameLine();
   ImGui::Checkbox("farm", &farm_);
+  if (farm_) {
+    // Two populations taking turns keep a farm's workers busy through
+    // each generation's slowest episode (docs/optimizer.md).
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60);
+    ImGui::InputInt("islands", &islands_, 0, 0, kNumberFlags);
+    Record("islands");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "Populations taking turns: with 2, workers go on with one while\n"
+          "the other's generation ends. Each gets half the generations.");
+    }
+  }
   ImGui::SetNextItemWidth(80);
   ImGui::InputInt("generations", &generations_, 0, 0, kNumberFlags);
   Record("generations");
@@ -739,6 +752,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.seed = static_cast<unsigned>(std::max(0, seed_));
       o.episode_s = episode_;
       o.farm = farm_;
+      o.islands = farm_ ? islands_ : 1;
       o.lcm_url = url_;
       if (jump_to > 0) {
         optimise_.Jump(jump_to, o);

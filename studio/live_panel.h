@@ -122,6 +122,7 @@ class LivePanel {
   int seed_ = 1;
   float episode_ = 5;
   bool farm_ = false;
+  int islands_ = 1;
   int jump_to_ = 1;
   std::optional<BestReplay> replay_;  // what runs, when not the design
   int replay_revision_ = 0;

@@ -357,15 +357,18 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   };
   if (!c.quiet) {
     // Said at once: the first progress line comes only after a generation.
-    fmt::print(err,
-               "mrsim-opt: {}, {} generation{} of {}, {} s episodes, {}; "
-               "writing {}\n",
-               a.algorithm, c.generations, c.generations == 1 ? "" : "s",
-               a.population, setup.problem.episode.duration,
-               c.farm ? "on the farm"
-                      : fmt::format("{} thread{}", setup.threads,
-                                    setup.threads == 1 ? "" : "s"),
-               c.out_dir);
+    fmt::print(
+        err,
+        "mrsim-opt: {}, {} generation{} of {}{}, {} s episodes, {}; "
+        "writing {}\n",
+        a.algorithm, c.generations, c.generations == 1 ? "" : "s", a.population,
+        a.islands > 1 ? fmt::format(" in {} islands taking turns", a.islands)
+                      : "",
+        setup.problem.episode.duration,
+        c.farm ? "on the farm"
+               : fmt::format("{} thread{}", setup.threads,
+                             setup.threads == 1 ? "" : "s"),
+        c.out_dir);
     std::fflush(err);
   }
   OptOutcome outcome;

@@ -87,6 +87,9 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
     if (!o.lcm_url.empty())
       spec.args.insert(spec.args.end(), {"--lcm-url", o.lcm_url});
   }
+  if (o.islands != 1) {
+    spec.args.insert(spec.args.end(), {"--islands", std::to_string(o.islands)});
+  }
   if (o.jump_to >= 0) {
     spec.args.insert(spec.args.end(), {"--jump-to", std::to_string(o.jump_to)});
   }

@@ -32,6 +32,7 @@ struct OptimiseOptions {
   double episode_s = 5;
   std::string base_gait = "forward";
   bool farm = false;    // mrsim-worker processes over LCM
+  int islands = 1;      // populations taking turns (mrsim-opt --islands)
   std::string lcm_url;  // for the farm; empty: LCM's default
   int jump_to = -1;     // >= 0: stop after (or replay to) generation N
 };

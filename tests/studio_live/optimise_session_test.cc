@@ -71,6 +71,15 @@ TEST(OptimiseSession, SpecIsTheMrsimOptCommandLine) {
   EXPECT_TRUE(Has(spec.args, o.lcm_url));
   EXPECT_TRUE(Has(spec.args, "ga"));
   EXPECT_FALSE(Has(spec.args, "--jump-to"));
+  EXPECT_FALSE(Has(spec.args, "--islands"))
+      << "one island: mrsim-opt's default";
+  o.islands = 2;
+  const std::vector<std::string> islands =
+      OptimiseSession::Spec(o, "g.xml").args;
+  const auto at = std::find(islands.begin(), islands.end(), "--islands");
+  ASSERT_NE(at, islands.end());
+  ASSERT_NE(at + 1, islands.end());
+  EXPECT_EQ(*(at + 1), "2");
   o.jump_to = 2;
   EXPECT_TRUE(Has(OptimiseSession::Spec(o, "g.xml").args, "--jump-to"));
   o.algorithm = "hillclimb";
