@@ -195,6 +195,16 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     done.swap(finished_);
+    // A job handed out ahead whose core has followed another run since.
+    for (auto it = pool_queue_.begin(); it != pool_queue_.end();) {
+      FarmWorkerCore& core = *cores_[by_id_.at(it->first)];
+      if (it->second.run_id == core.run_id()) {
+        ++it;
+        continue;
+      }
+      core.Forget(it->second.job_id);
+      it = pool_queue_.erase(it);
+    }
   }
   while (!fake_running_.empty() && fake_running_.begin()->first <= now) {
     done.push_back(std::move(fake_running_.begin()->second));
@@ -211,7 +221,11 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
       continue;
     }
     dirty_[k] = 0;
-    for (WorkerTask& t : c->TakeTasks()) {
+    // The pool holds one job beyond its threads: a thread that ends an
+    // episode takes it at once. Waiting for this loop to hand it over cost
+    // two thread wake-ups per episode, and at a CPU cap a wake-up can wait
+    // for the next quota period. Fake episodes run on this loop's clock.
+    for (WorkerTask& t : c->TakeTasks(fake_episode_ > 0 ? 0 : 1)) {
       if (fake_episode_ > 0) {
         fake_running_.emplace(now + fake_episode_,
                               Run(t, c->id(), fake_episode_));

@@ -166,10 +166,10 @@ void FarmWorkerCore::OnJob(const opt_job_t& msg, double now) {
   queue_.push_back(std::move(task));
 }
 
-std::vector<WorkerTask> FarmWorkerCore::TakeTasks() {
+std::vector<WorkerTask> FarmWorkerCore::TakeTasks(int ahead) {
   std::vector<WorkerTask> out;
-  while (!queue_.empty() &&
-         static_cast<int>(running_.size()) < settings_.threads) {
+  while (!queue_.empty() && static_cast<int>(running_.size()) <
+                                settings_.threads + std::max(0, ahead)) {
     WorkerTask t = std::move(queue_.front());
     queue_.pop_front();
     queued_ids_.erase(t.job_id);

@@ -71,9 +71,13 @@ class FarmWorkerCore {
   // An episode handed out by TakeTasks ended (result filled in but utime).
   void OnEpisodeDone(opt_result_t result, double now);
   void CountMalformed() { ++counters_.messages_malformed; }
+  // A job handed out by TakeTasks that will not be run after all.
+  void Forget(std::int64_t job_id) { running_.erase(job_id); }
 
-  // Jobs to start now (keeps at most `threads` running).
-  std::vector<WorkerTask> TakeTasks();
+  // Jobs to start now: at most `threads` running plus `ahead` handed out
+  // to wait in the runner's own queue, so a thread that ends an episode
+  // starts the next without a round trip through this core.
+  std::vector<WorkerTask> TakeTasks(int ahead = 0);
   // Heartbeats, chunk requests, results; everything to publish.
   FarmOutbox Tick(double now);
   double next_deadline() const;
