@@ -650,6 +650,44 @@ TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
   EXPECT_TRUE(listed);
 }
 
+// The pool takes one job beyond its threads, so a thread that ends an
+// episode starts the next at once; the heartbeat lists both as held.
+TEST(FarmWorkerCore, AJobHandedOutAheadIsHeldAndCanBeForgotten) {
+  WorkerSettings s;
+  s.id = "w";
+  FarmWorkerCore w(s, "h", 1, [](const std::string&, const std::string&) {
+    return std::make_shared<const Problem>();
+  });
+  FarmMasterCore m(Payload(10), "run", 1, FarmSettings{});
+  for (const auto& x : m.Tick(0).runs) w.OnRun(x, 0.0);
+  for (const auto& r : w.Tick(0.0).chunk_requests) m.OnChunkRequest(r, 0.0);
+  for (const auto& c : m.Tick(0.0).chunks) w.OnChunk(c, 0.0);
+  ASSERT_TRUE(w.ready());
+  opt_job_t job{};
+  job.run_id = "run";
+  job.scenario_hash = m.scenario_hash();
+  job.worker_id = "w";
+  for (std::int64_t id : {1, 2, 3}) {
+    job.job_id = id;
+    w.OnJob(job, 0.1);
+  }
+  EXPECT_EQ(w.TakeTasks().size(), 1u) << "one thread, nothing ahead";
+  const auto ahead = w.TakeTasks(1);
+  ASSERT_EQ(ahead.size(), 1u) << "one more, to wait in the pool";
+  EXPECT_EQ(ahead[0].job_id, 2);
+  EXPECT_TRUE(w.TakeTasks(1).empty());
+  auto held = [&](double now) {
+    std::set<std::int64_t> ids;
+    for (const auto& hb : w.Tick(now).heartbeats) {
+      ids.insert(hb.jobs.begin(), hb.jobs.end());
+    }
+    return ids;
+  };
+  EXPECT_EQ(held(1.0), (std::set<std::int64_t>{1, 2, 3}));
+  w.Forget(2);  // its worker followed another run before starting it
+  EXPECT_EQ(held(2.0), (std::set<std::int64_t>{1, 3}));
+}
+
 TEST(SimFarm, EightWorkersPopulationEightAllWork) {
   SimFarm farm(Payload(20000), FarmSettings{}, SimNetwork{});
   for (int w = 0; w < 8; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
