@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <optional>
 
@@ -130,6 +131,16 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
   }
   sim_control_t request{};
   if (!status_only) request = ParseSimControl(words);
+  const bool file = request.command == sim_control_t::SAVE_CHECKPOINT ||
+                    request.command == sim_control_t::LOAD_CHECKPOINT;
+  if (file && !status_only) {
+    // The simulator opens the path in its own directory, which is seldom
+    // the one the user typed the command in (a launch file's, /). Relative
+    // paths mean this shell's directory, as for any command; a simulator
+    // on another host needs a path that exists there.
+    request.path =
+        std::filesystem::absolute(request.path).lexically_normal().string();
+  }
   Listener<sim_status_t> status(lcm, SimStatusChannel(o.prefix));
   const auto alive =
       status.Next([](const sim_status_t&) { return true; }, o.timeout);
@@ -183,7 +194,8 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
     out << "step: done\n" << Describe(*stepped, false) << "\n";
     return 0;
   }
-  out << words[0] << ": done\n" << Describe(*ack, false) << "\n";
+  out << words[0] << ": done" << (file ? " (" + request.path + ")" : "") << "\n"
+      << Describe(*ack, false) << "\n";
   return 0;
 }
 

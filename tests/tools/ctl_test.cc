@@ -123,6 +123,21 @@ TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {
   const auto [save_code, save_out] = ctl({"save", checkpoint}, "save");
   EXPECT_EQ(save_code, 0) << save_out;
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
+  // A relative path means the directory mrsim-ctl was run in, not the
+  // simulator's, and the answer says where the file went.
+  const std::string here = dir + "/elsewhere";
+  std::filesystem::create_directories(here);
+  ChildProcess relative(
+      {"/bin/sh", "-c",
+       "cd '" + here + "' && exec '" + BinaryPath("tools/mrsim-ctl") +
+           "' save rel.checkpoint --lcm-url '" + url + "' --timeout 20"},
+      dir + "/relative.log");
+  EXPECT_EQ(relative.Wait(60), 0) << relative.Output();
+  EXPECT_TRUE(std::filesystem::exists(here + "/rel.checkpoint"))
+      << relative.Output();
+  EXPECT_NE(relative.Output().find("save: done (" + here + "/rel.checkpoint)"),
+            std::string::npos)
+      << relative.Output();
 
   // Locks: detached and attached again on request; an unknown one refused.
   const auto [detach_code, detach_out] =
