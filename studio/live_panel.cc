@@ -561,6 +561,20 @@ void LivePanel::DrawPlots(float width) {
     }
     ImGui::PlotLines("##curve", values.data(), static_cast<int>(values.size()),
                      0, nullptr, FLT_MAX, FLT_MAX, ImVec2(width * 0.95f, 90));
+    if (ImGui::IsItemHovered() && values.size() >= 2) {
+      // ImGui's own tooltip names the sample's index; a student wants the
+      // time. The same point as ImGui picks (imgui_widgets.cpp, PlotEx).
+      const ImVec2 pad = ImGui::GetStyle().FramePadding;
+      const float left = ImGui::GetItemRectMin().x + pad.x;
+      const float right = ImGui::GetItemRectMax().x - pad.x;
+      const float t = std::clamp(
+          (ImGui::GetIO().MousePos.x - left) / std::max(1.0f, right - left),
+          0.0f, 0.9999f);
+      const size_t k = std::min(values.size() - 1,
+                                static_cast<size_t>(t * (values.size() - 1)));
+      ImGui::SetTooltip("t = %.2f s\n%s = %.4g", p.times()[k],
+                        p.column().c_str(), values[k]);
+    }
     bool paused = p.paused();
     if (ImGui::Checkbox("pause", &paused)) p.set_paused(paused);
     ImGui::SameLine();
