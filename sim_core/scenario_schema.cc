@@ -9,18 +9,12 @@
 #include <sstream>
 #include <type_traits>
 
+#include "common/trim.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
 
 namespace mrsim {
 namespace {
-
-std::string Trim(const std::string& s) {
-  size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
 
 // "A or B", "A, B, C or D".
 std::string OrList(const std::vector<std::string>& names) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/trim.h"
 #include "common/xml_error_text.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
@@ -42,13 +43,6 @@ bool RootLooksOriginal(const tinyxml2::XMLElement* root) {
 std::string LocalName(const char* name) {
   const char* colon = std::strrchr(name, ':');
   return colon ? std::string(colon + 1) : std::string(name);
-}
-
-std::string Trim(const std::string& s) {
-  size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
 }
 
 // XmlSerializer writes a null reference as xsi:nil="true".

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 
+#include "common/wall_time.h"
 #include "gait_controller/motion.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
@@ -22,12 +23,6 @@ namespace mrsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 // Keeps the newest decodable message of one type on one channel.
 template <class Message>
@@ -156,7 +151,7 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
     out << Describe(*alive) << "\n";
     return 0;
   }
-  request.utime = NowMicros();
+  request.utime = WallMicros();
   request.seq = 1;
   request.sender = o.sender;
   lcm.publish(SimControlChannel(o.prefix), &request);
@@ -217,7 +212,7 @@ int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,
     err << UndecodableNote(status.undecodable(), channel);
     return 1;
   }
-  c.utime = NowMicros();
+  c.utime = WallMicros();
   c.seq = 1;
   c.sender = o.sender;
   lcm.publish(GaitChannel(o.prefix, c.robot), &c);
