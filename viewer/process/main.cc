@@ -9,22 +9,26 @@
 #include <stdexcept>
 
 #include "lcmtypes/runtime/stop_signal.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/scenario_xml.h"
 #include "viewer/process/view_command.h"
 #include "viewer/process/view_options.h"
 
 int main(int argc, char** argv) {
   mrsim::ViewOptions options;
-  const int parsed = mrsim::ParseViewOptions(argc, argv, &options);
-  if (parsed >= 0) return parsed;
-  mrsim::InstallStopHandlers();
   try {
+    const int parsed = mrsim::ParseViewOptions(argc, argv, &options);
+    if (parsed >= 0) return parsed;
+    mrsim::InstallStopHandlers();
     mrsim::CheckViewOptions(options);
     std::unique_ptr<lcm::LCM> lcm;
     if (options.from_log.empty()) {
       lcm = std::make_unique<lcm::LCM>(options.lcm_url);
     }
     return mrsim::RunView(options, lcm.get(), stderr);
+  } catch (const mrsim::UsageError& e) {
+    std::fprintf(stderr, "mrsim-view: %s\n", e.what());
+    return 2;
   } catch (const mrsim::ViewInputError& e) {
     std::fprintf(stderr, "mrsim-view: %s\n", e.what());
     return 2;

@@ -1,12 +1,12 @@
 #include "viewer/process/view_options.h"
 
 #include <CLI/CLI.hpp>
-#include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/cli_exit.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 
 namespace mrsim {
@@ -118,21 +118,16 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
     return mrsim::CliParseExit(app, e);
   }
   if (!lookat.empty() && !ParseVector(lookat, &o->viewer.camera.lookat)) {
-    std::fprintf(stderr,
-                 "mrsim-view: --lookat: expected three numbers x,y,z, got "
-                 "'%s'\n",
-                 lookat.c_str());
-    return 2;
+    throw UsageError("--lookat: expected three numbers x,y,z, got '" + lookat +
+                     "'");
   }
   o->viewer.camera.mode =
       camera == "fixed" ? CameraMode::kFixed : CameraMode::kFollow;
   o->viewer.overlay = !no_overlay;
   o->viewer.rays = !no_rays;
   if (o->out.empty() && o->frames_dir.empty() && !o->window) {
-    std::fprintf(stderr,
-                 "mrsim-view: nothing to show: give --out FILE.mp4, "
-                 "--frames-dir DIR or --window\n");
-    return 2;
+    throw UsageError(
+        "nothing to show: give --out FILE.mp4, --frames-dir DIR or --window");
   }
   return -1;
 }

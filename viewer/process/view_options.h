@@ -36,8 +36,9 @@ struct ViewOptions {
   static constexpr int kDefaultShadowSize = 1024;
 };
 
-// Parses argv. Returns -1 to go on, or an exit code: 0 after --help, 2 on
-// bad flags (the message is printed).
+// Parses argv. Returns -1 to go on, or an exit code: 0 after --help or
+// --version, 2 on flags CLI11 refuses (its message printed, as by every
+// mrsim program); throws UsageError for values it refuses itself.
 int ParseViewOptions(int argc, char** argv, ViewOptions* options);
 
 }  // namespace mrsim
