@@ -58,29 +58,28 @@ double ParseDouble(const std::string& token, const std::string& where) {
 std::string SettingsDiff(const std::vector<std::string>& recorded,
                          const std::string& now) {
   std::map<std::string, std::string> mine;
+  // Settings written only when not their default: absent means the default.
+  const std::map<std::string, std::string> unwritten = {
+      {"islands", std::to_string(AlgorithmSettings().islands)}};
   std::istringstream lines(now);
   for (std::string l; std::getline(lines, l);) {
     const size_t eq = l.find('=');
     if (eq != std::string::npos) mine[l.substr(0, eq)] = l.substr(eq + 1);
   }
-  std::string diff;
+  for (const auto& [key, value] : unwritten) mine.emplace(key, value);
+  std::map<std::string, std::string> theirs = unwritten;
   for (const std::string& l : recorded) {
     const size_t eq = l.find('=');
-    if (eq == std::string::npos) continue;
-    const std::string key = l.substr(0, eq), value = l.substr(eq + 1);
+    if (eq != std::string::npos) theirs[l.substr(0, eq)] = l.substr(eq + 1);
+  }
+  if (recorded.empty()) theirs.clear();  // an older checkpoint: no settings
+  std::string diff;
+  for (const auto& [key, value] : theirs) {
     const auto it = mine.find(key);
     const std::string here = it == mine.end() ? "unset" : it->second;
     if (here != value) {
       diff += fmt::format("{}{}={} (this run: {})", diff.empty() ? "" : ", ",
                           key, value, here);
-    }
-    mine.erase(key);
-  }
-  // A setting written only when not its default (islands).
-  if (!recorded.empty()) {
-    for (const auto& [key, value] : mine) {
-      diff += fmt::format("{}{} not set (this run: {})",
-                          diff.empty() ? "" : ", ", key, value);
     }
   }
   return diff;
@@ -210,6 +209,12 @@ RunResult RunOptimization(const GenomeSpec& spec,
   }
   settings.Validate();
   const int islands = settings.islands;
+  if (options.generations < islands) {
+    throw std::invalid_argument(fmt::format(
+        "{} generations for {} islands: each island needs one at least "
+        "(generations count every island's)",
+        options.generations, islands));
+  }
   std::vector<std::unique_ptr<Algorithm>> algorithms;
   for (int i = 0; i < islands; ++i) {
     AlgorithmSettings island = settings;
@@ -247,13 +252,16 @@ RunResult RunOptimization(const GenomeSpec& spec,
     evals_csv = OpenCsv(options.out_dir + "/evaluations.csv");
     std::string genes;
     for (const GeneSpec& g : spec.genes) genes += "," + g.name;
+    // With islands, each row's island last (after the genes, so readers
+    // of one-population files see the same columns).
+    const char* island = islands > 1 ? ",island" : "";
     std::fprintf(gens_csv.get(),
-                 "generation,best,mean,worst,best_so_far,failed%s\n",
-                 genes.c_str());
+                 "generation,best,mean,worst,best_so_far,failed%s%s\n",
+                 genes.c_str(), island);
     std::fprintf(evals_csv.get(),
                  "generation,index,fitness,distance,speed,energy,drift,fell,"
-                 "failed%s\n",
-                 genes.c_str());
+                 "failed%s%s\n",
+                 genes.c_str(), island);
   }
 
   std::map<Genome, EvalResult> cache;  // results are a function of the genome
@@ -378,6 +386,9 @@ RunResult RunOptimization(const GenomeSpec& spec,
     if (result.wrote_files) {
       std::string genes;
       for (double v : batch[best_i]) genes += fmt::format(",{}", v);
+      const std::string island =
+          islands > 1 ? fmt::format(",{}", gen % islands) : "";
+      genes += island;
       std::fprintf(gens_csv.get(), "%s\n",
                    fmt::format("{},{},{},{},{},{}{}", gen, best, mean, worst,
                                result.best_result.fitness, failed, genes)
@@ -388,6 +399,7 @@ RunResult RunOptimization(const GenomeSpec& spec,
                                        e.fitness, e.distance, e.speed, e.energy,
                                        e.drift, e.fell, e.failed ? 1 : 0);
         for (double v : batch[i]) line += fmt::format(",{}", v);
+        line += island;
         std::fprintf(evals_csv.get(), "%s\n", line.c_str());
       }
       std::fflush(gens_csv.get());
@@ -401,6 +413,7 @@ RunResult RunOptimization(const GenomeSpec& spec,
       GenerationReport report;
       report.generation = gen + 1;
       report.generations = planned;
+      report.island = islands > 1 ? gen % islands : -1;
       report.best = best;
       report.mean = mean;
       report.best_so_far = result.best_result.fitness;

@@ -20,6 +20,7 @@ namespace mrsim {
 struct GenerationReport {
   int generation = 0;   // completed generations (1-based)
   int generations = 0;  // planned
+  int island = -1;      // the generation's island (-1: one population)
   double best = 0.0;    // of this generation
   double mean = 0.0;
   double best_so_far = 0.0;

@@ -119,7 +119,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--islands", a.islands,
                  "Independent populations taking turns: a farm hands out one "
                  "while another's last episodes run")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, AlgorithmSettings::kMaxIslands));
   app.add_flag("--no-start-genome", c.no_start,
                "Do not put the start genome in generation 0");
   app.add_option("--episode", e.duration, "Episode length (s of sim time)")
@@ -323,11 +324,28 @@ std::string FormatDuration(double s) {
   return fmt::format("{}s", t);
 }
 
+namespace {
+
+// " (in 2 islands taking turns, 3 generations each)"; "" for one island.
+std::string IslandsText(int generations, int islands) {
+  if (islands <= 1) return "";
+  const int least = generations / islands;
+  const int most = least + (generations % islands ? 1 : 0);
+  return fmt::format(
+      " (in {} islands taking turns, {} generation{} each)", islands,
+      least == most ? std::to_string(least) : fmt::format("{}-{}", least, most),
+      most == 1 ? "" : "s");
+}
+
+}  // namespace
+
 std::string FormatProgress(const GenerationReport& r) {
   return fmt::format(
-      "generation {} of {}: best {:.6g} mean {:.6g} best-so-far {:.6g}{} | "
+      "generation {} of {}{}: best {:.6g} mean {:.6g} best-so-far {:.6g}{} | "
       "{} | workers {} | ETA {}",
-      r.generation, r.generations, r.best, r.mean, r.best_so_far,
+      r.generation, r.generations,
+      r.island >= 0 ? fmt::format(" (island {})", r.island) : "", r.best,
+      r.mean, r.best_so_far,
       r.failed > 0 ? fmt::format(" failed {}", r.failed) : "",
       r.replayed ? std::string("from checkpoint")
                  : fmt::format("{:.2f} evals/s", r.evals_per_second),
@@ -357,18 +375,16 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   };
   if (!c.quiet) {
     // Said at once: the first progress line comes only after a generation.
-    fmt::print(
-        err,
-        "mrsim-opt: {}, {} generation{} of {}{}, {} s episodes, {}; "
-        "writing {}\n",
-        a.algorithm, c.generations, c.generations == 1 ? "" : "s", a.population,
-        a.islands > 1 ? fmt::format(" in {} islands taking turns", a.islands)
-                      : "",
-        setup.problem.episode.duration,
-        c.farm ? "on the farm"
-               : fmt::format("{} thread{}", setup.threads,
-                             setup.threads == 1 ? "" : "s"),
-        c.out_dir);
+    fmt::print(err,
+               "mrsim-opt: {}, {} generation{} of {}{}, {} s episodes, {}; "
+               "writing {}\n",
+               a.algorithm, c.generations, c.generations == 1 ? "" : "s",
+               a.population, IslandsText(c.generations, a.islands),
+               setup.problem.episode.duration,
+               c.farm ? "on the farm"
+                      : fmt::format("{} thread{}", setup.threads,
+                                    setup.threads == 1 ? "" : "s"),
+               c.out_dir);
     std::fflush(err);
   }
   OptOutcome outcome;
@@ -426,12 +442,16 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   }
   const EvalResult& b = result.best_result;
   fmt::print(out,
-             "best fitness {} in generation {} of {} ("
+             "best fitness {} in generation {} of {}{} ("
              "generation {}, index {} in evaluations.csv): distance "
              "{:.4f} m, speed {:.4f} m/s, energy {:.4g} J, drift {:.4f} m, "
              "fell {:.2f}\nbest genome:{}\nwrote {}/best_gait.xml, "
              "best_scenario.xml, best_genome.xml, replay.launch\n",
              b.fitness, result.best_generation + 1, result.generations_done,
+             c.algorithm.islands > 1
+                 ? fmt::format(", island {}",
+                               result.best_generation % c.algorithm.islands)
+                 : "",
              result.best_generation, result.best_index, b.distance, b.speed,
              b.energy, b.drift, b.fell, genes, outcome.best_dir);
   if (const auto* farm = dynamic_cast<const FarmEvaluator*>(&evaluator)) {

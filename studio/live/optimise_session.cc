@@ -186,6 +186,7 @@ std::vector<GenerationRow> OptimiseSession::ParseGenerations(
     r.best_so_far = Number(cells[4], number, header[4]);
     r.failed = static_cast<int>(Number(cells[5], number, header[5]));
     for (size_t i = 6; i < cells.size(); ++i) {
+      if (header[i] == "island") continue;  // mrsim-opt --islands: not a gene
       r.genes[header[i]] = Number(cells[i], number, header[i]);
     }
     rows.push_back(std::move(r));

@@ -247,6 +247,12 @@ TEST(OptCommand, ProgressAndDurationsReadWell) {
   r.eta_seconds = -1;  // only replayed so far: no pace yet
   EXPECT_NE(FormatProgress(r).find("from checkpoint"), std::string::npos);
   EXPECT_NE(FormatProgress(r).find("ETA ?"), std::string::npos);
+  // With islands each line says whose generation it was: the bests of two
+  // searches alternate.
+  r.island = 1;
+  EXPECT_EQ(FormatProgress(r).rfind("generation 3 of 20 (island 1): best", 0),
+            0u)
+      << FormatProgress(r);
 }
 
 }  // namespace

@@ -125,9 +125,21 @@ TEST(OptimizerRun,
   for (size_t k = 1; k < one.size(); ++k) {
     const auto& even = two[2 * k - 1];  // island 0's generation k - 1
     for (size_t c : {1, 2, 3, 5}) EXPECT_EQ(even[c], one[k][c]) << k;
-    EXPECT_EQ(std::vector<std::string>(even.begin() + 6, even.end()),
+    EXPECT_EQ(std::vector<std::string>(even.begin() + 6, even.end() - 1),
               std::vector<std::string>(one[k].begin() + 6, one[k].end()));
   }
+  // Each row names its island, last (a one-island file has no such column).
+  EXPECT_EQ(two[0].back(), "island");
+  for (size_t k = 1; k < two.size(); ++k) {
+    EXPECT_EQ(two[k].back(), std::to_string((k - 1) % 2)) << k;
+  }
+  EXPECT_NE(one[0].back(), "island");
+  // Fewer generations than islands would leave an island without any.
+  settings.islands = 3;
+  options.generations = 2;
+  options.out_dir = testing::TempDir("optimizer_run_too_few");
+  EXPECT_THROW(RunOptimization(spec, settings, local, options),
+               std::invalid_argument);
   // Island 1 searches with a seed of its own: its generation 0 (after the
   // start genome, index 0) is not island 0's.
   const auto evals = CsvRows(islands_dir + "/evaluations.csv");
@@ -135,8 +147,8 @@ TEST(OptimizerRun,
   EXPECT_EQ(evals[2][0], "0");
   EXPECT_EQ(evals[8][0], "1");
   EXPECT_EQ(evals[2][1], evals[8][1]);
-  EXPECT_NE(std::vector<std::string>(evals[2].begin() + 9, evals[2].end()),
-            std::vector<std::string>(evals[8].begin() + 9, evals[8].end()));
+  EXPECT_NE(std::vector<std::string>(evals[2].begin() + 9, evals[2].end() - 1),
+            std::vector<std::string>(evals[8].begin() + 9, evals[8].end() - 1));
 }
 
 TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
@@ -173,9 +185,10 @@ TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
       RunOptimization(spec, settings, second, options);
       ADD_FAILURE() << "resumed with " << islands << " islands";
     } catch (const CheckpointError& e) {
-      EXPECT_NE(std::string(e.what()).find(
-                    islands == 3 ? "islands=2 (this run: 3)" : "islands=2 "),
-                std::string::npos)
+      EXPECT_NE(
+          std::string(e.what()).find(islands == 3 ? "islands=2 (this run: 3)"
+                                                  : "islands=2 (this run: 1)"),
+          std::string::npos)
           << e.what();
     }
   }
@@ -188,7 +201,7 @@ TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
     RunOptimization(spec, settings, second, options);
     ADD_FAILURE() << "resumed one island's run with two";
   } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find("islands not set (this run: 2)"),
+    EXPECT_NE(std::string(e.what()).find("islands=1 (this run: 2)"),
               std::string::npos)
         << e.what();
   }

@@ -105,6 +105,14 @@ TEST(OptimiseSession, ReadsGenerationsAndStopsAtAHalfWrittenLine) {
                    "generation,best,mean,worst,best_so_far,failed\n"
                    "0,x,0,0,0,0\n"),
                std::runtime_error);
+  // A run with islands names each row's island last: not a gene.
+  const auto islands = OptimiseSession::ParseGenerations(
+      "generation,best,mean,worst,best_so_far,failed,T,island\n"
+      "0,0.5,0.25,0,0.5,0,4,0\n"
+      "1,0.4,0.25,0,0.5,0,3,1\n");
+  ASSERT_EQ(islands.size(), 2u);
+  EXPECT_EQ(islands[1].genes.size(), 1u);
+  EXPECT_EQ(islands[1].genes.at("T"), 3);
 }
 
 TEST(OptimiseSession, ATwoGenerationRunCompletesWithItsProgressAndBest) {
