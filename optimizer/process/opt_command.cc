@@ -203,6 +203,12 @@ OptSetup PrepareOpt(const OptCommand& c) {
     a.include_start = !c.no_start;
     a.Validate();
     if (c.generations < 1) throw OptInputError("--generations must be >= 1");
+    if (c.generations < a.islands) {
+      throw OptInputError(fmt::format(
+          "--generations {} with --islands {}: each island needs a "
+          "generation at least (--generations counts every island's)",
+          c.generations, a.islands));
+    }
     if (c.jump_to > c.generations) {
       throw OptInputError("--jump-to " + std::to_string(c.jump_to) +
                           ": beyond the run's --generations " +

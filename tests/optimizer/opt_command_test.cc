@@ -117,6 +117,15 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
                  CLI::ValidationError)
         << bad;
   }
+  // Islands: each needs a generation; the range is CLI11's.
+  EXPECT_NE(message({"--generations", "2", "--islands", "3"})
+                .find("--generations 2 with --islands 3"),
+            std::string::npos);
+  for (const char* bad : {"0", "17"}) {
+    EXPECT_THROW(Parse(With(SnakeArgs(out), {"--islands", bad})),
+                 CLI::ValidationError)
+        << bad;
+  }
   const std::string bad_genome = out + "/bad.genome.xml";
   std::ofstream(bad_genome)
       << "<genome><gene name=\"T\" lower=\"1\"/></genome>";
