@@ -127,10 +127,12 @@ class FarmNet : public ::testing::Test {
 
   // The local run of the same seed, the reference every case must equal.
   std::string Local(const std::string& name,
-                    const std::string& population = "6") {
+                    const std::string& population = "6",
+                    const std::vector<std::string>& more = {}) {
     const std::string dir = TempDir(name + "_local");
-    ChildProcess p(With(OptArgs(dir, population), {"--workers", "local:2"}),
-                   dir + "/log.txt");
+    ChildProcess p(
+        With(With(OptArgs(dir, population), {"--workers", "local:2"}), more),
+        dir + "/log.txt");
     EXPECT_EQ(p.Wait(120), 0) << p.Output();
     return dir;
   }
@@ -151,13 +153,15 @@ class FarmNet : public ::testing::Test {
     return p;
   }
 
-  std::unique_ptr<ChildProcess> Master(FarmRig& rig, const std::string& url,
-                                       const std::string& dir,
-                                       const std::string& log = "master",
-                                       const std::string& population = "6") {
+  std::unique_ptr<ChildProcess> Master(
+      FarmRig& rig, const std::string& url, const std::string& dir,
+      const std::string& log = "master", const std::string& population = "6",
+      const std::vector<std::string>& more = {}) {
     return std::make_unique<ChildProcess>(
-        rig.In(0, With(OptArgs(dir, population),
-                       {"--farm", "--lcm-url", url, "--worker-timeout", "2"})),
+        rig.In(0,
+               With(With(OptArgs(dir, population),
+                         {"--farm", "--lcm-url", url, "--worker-timeout", "2"}),
+                    more)),
         dir + "/" + log + ".log");
   }
 
@@ -178,15 +182,15 @@ class FarmNet : public ::testing::Test {
       const std::function<void(FarmRig&, ChildProcess& master,
                                std::vector<std::unique_ptr<ChildProcess>>& ws,
                                const std::string& dir)>& fault = {},
-      bool hub = false) {
-    const std::string local = Local(name);
+      bool hub = false, const std::vector<std::string>& more = {}) {
+    const std::string local = Local(name, "6", more);
     const std::string dir = TempDir(name);
     FarmRig rig(workers + 3);
     std::unique_ptr<ChildProcess> hub_process;
     if (hub) hub_process = Hub(rig, dir);
     std::vector<std::unique_ptr<ChildProcess>> ws;
     for (int k = 1; k <= workers; ++k) ws.push_back(Worker(rig, k, url, dir));
-    auto master = Master(rig, url, dir);
+    auto master = Master(rig, url, dir, "master", "6", more);
     if (fault) {
       ASSERT_TRUE(master->WaitForOutput("generation 1 of 3", 120))
           << master->Output();
@@ -293,6 +297,16 @@ TEST_F(FarmNet, FivePercentLossEqualsLocal) {
           [](FarmRig& rig, ChildProcess&, auto&, const std::string&) {
             rig.SetLoss(5);
           });
+}
+
+// Two islands keep two generations on the farm at once; a lost datagram
+// of either must not change a byte.
+TEST_F(FarmNet, IslandsUnderFivePercentLossEqualLocal) {
+  RunCase("fn_islands", kUdpm, 4,
+          [](FarmRig& rig, ChildProcess&, auto&, const std::string&) {
+            rig.SetLoss(5);
+          },
+          false, {"--islands", "2"});
 }
 
 TEST_F(FarmNet, KillThreeAddTwoEqualsLocal) {
