@@ -279,10 +279,15 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   } else if (Button("Detach")) {
     Disconnect();
   }
-  ImGui::SetNextItemWidth(-60);
-  ImGui::InputText("URL", &url_);
-  ImGui::SetNextItemWidth(-60);
-  ImGui::InputText("prefix", &prefix_);
+  // A run on this computer needs neither; attaching to a simulation or a
+  // farm elsewhere does. Folded, so a first look is not an LCM URL.
+  if (ImGui::TreeNode("network (LCM URL, prefix)")) {
+    ImGui::SetNextItemWidth(-60);
+    ImGui::InputText("URL", &url_);
+    ImGui::SetNextItemWidth(-60);
+    ImGui::InputText("prefix", &prefix_);
+    ImGui::TreePop();
+  }
 }
 
 void LivePanel::DrawControls() {
