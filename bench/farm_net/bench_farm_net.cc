@@ -151,6 +151,12 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   mrsim::FarmEvaluator farm(std::string(kUrl), mrsim::EncodeProblem(problem),
                             fmt::format("bench-{}-{}", getpid(), ++runs),
                             settings);
+  // Until every worker holds the payload, then once more so each has run a
+  // job: a worker still fetching would be missing from the measured run.
+  const int workers = rig.nodes() - 1;
+  for (int k = 0; k < 100 && farm.workers_ready() < workers; ++k) {
+    farm.Evaluate(RandomBatch(problem.genome, population, 1));
+  }
   farm.Evaluate(RandomBatch(problem.genome, population, 1));
   counting = true;
   const mrsim::FarmCounters c0 = farm.counters();

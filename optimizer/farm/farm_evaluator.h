@@ -36,6 +36,8 @@ class FarmEvaluator : public BatchEvaluator {
   void Submit(std::vector<Genome> batch) override;
   std::vector<EvalResult> Collect() override;
   int workers_alive() const override { return core_.workers_alive(); }
+  // Workers holding this run's payload.
+  int workers_ready() const { return core_.workers_ready(); }
 
   const std::string& scenario_hash() const { return core_.scenario_hash(); }
   const FarmCounters& counters() const { return core_.counters(); }

@@ -44,6 +44,7 @@ class FarmRig {
   FarmRig(const FarmRig&) = delete;
   FarmRig& operator=(const FarmRig&) = delete;
 
+  int nodes() const { return nodes_; }
   // argv prefixed to run a program inside node k's namespace.
   std::vector<std::string> In(int node, std::vector<std::string> argv) const;
   std::string Address(int node) const;
