@@ -172,7 +172,8 @@ double BareStepCpuSeconds(const mrsim::Problem& problem) {
 // Mean over seeds of the best forward distance each algorithm finds with
 // the same budget.
 double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
-                        int population, int generations, int seeds) {
+                        int population, int generations, int seeds,
+                        int islands = 1) {
   double sum = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
     mrsim::AlgorithmSettings a;
@@ -180,6 +181,7 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
     a.population = population;
     a.seed = static_cast<std::uint64_t>(seed);
     a.include_start = false;
+    a.islands = islands;
     mrsim::LocalEvaluator evaluator(
         [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
         static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
@@ -187,8 +189,9 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
     options.generations = generations;
     const mrsim::RunResult r =
         mrsim::RunOptimization(problem.genome, a, evaluator, options);
-    std::printf("# %s seed %d: best %.4f m\n", algo.c_str(), seed,
-                r.best_result.distance);
+    std::printf("# %s%s seed %d: best %.4f m\n", algo.c_str(),
+                islands > 1 ? fmt::format(" {} islands", islands).c_str() : "",
+                seed, r.best_result.distance);
     std::fflush(stdout);
     sum += r.best_result.distance;
   }
@@ -222,6 +225,14 @@ int CmaesVsGa() {
       MeanBestDistance(quick, "cmaes", population, generations, seeds);
   std::printf("# mean best distance: ga %.4f m, cmaes %.4f m\n", ga, cmaes);
   std::printf("BENCH cmaes_vs_ga %.3f x\n", cmaes / ga);
+  std::fflush(stdout);
+  // What --islands 2 costs the search (not the farm): the same budget as
+  // two populations of half the generations each, no exchange between them.
+  const double ga2 =
+      MeanBestDistance(quick, "ga", population, generations, seeds, 2);
+  std::printf("# mean best distance: ga %.4f m, ga in 2 islands %.4f m\n", ga,
+              ga2);
+  std::printf("BENCH ga_islands2_vs_one %.3f x\n", ga2 / ga);
   std::fflush(stdout);
   return 0;
 }
