@@ -303,140 +303,131 @@ RunResult RunOptimization(const GenomeSpec& spec,
   double first_seconds = 0;
   long long first_count = 0;
   auto t0 = Clock::now();  // since the last generation was told
+  // A stop inside the evaluator ends the run with what was completed.
   try {
     for (int gen = 0; gen < std::min(islands, planned); ++gen) ask(gen);
+    for (int gen = 0; gen < planned; ++gen) {
+      Asked a = std::move(asked.front());
+      asked.pop_front();
+      const std::vector<Genome>& batch = a.batch;
+      const bool replay = a.replay;
+      std::vector<EvalResult> results;
+      if (replay) {
+        results = recorded[gen].results;
+        for (size_t i = 0; i < batch.size(); ++i) cache[batch[i]] = results[i];
+      } else {
+        if (!a.todo.empty()) {
+          const std::vector<EvalResult> fresh = evaluator.Collect();
+          if (fresh.size() != a.todo.size()) {
+            throw std::runtime_error("evaluator returned the wrong count");
+          }
+          for (size_t i = 0; i < a.todo.size(); ++i) {
+            cache[a.todo[i]] = fresh[i];
+            in_flight.erase(a.todo[i]);
+          }
+          evaluated_count += static_cast<long long>(a.todo.size());
+        }
+        // A genome another generation in flight holds was collected with it.
+        for (const Genome& g : batch) results.push_back(cache.at(g));
+      }
+      algorithms[static_cast<size_t>(gen % islands)]->Tell(results);
+      // On its way before the files are written.
+      if (gen + islands < planned) ask(gen + islands);
+
+      double best = -INFINITY, worst = INFINITY, sum = 0;
+      int best_i = 0, failed = 0;
+      for (size_t i = 0; i < results.size(); ++i) {
+        const double f = results[i].fitness;
+        sum += f;
+        failed += results[i].failed ? 1 : 0;
+        if (f > best) {
+          best = f;
+          best_i = static_cast<int>(i);
+        }
+        worst = std::min(worst, f);
+        if (result.best_generation < 0 || f > result.best_result.fitness) {
+          result.best = batch[i];
+          result.best_result = results[i];
+          result.best_generation = gen;
+          result.best_index = static_cast<int>(i);
+        }
+      }
+      result.evaluations += static_cast<long long>(batch.size());
+      result.generations_done = gen + 1;
+      if (replay) {
+        ++result.generations_replayed;
+        t0 = Clock::now();
+      } else {
+        const auto now = Clock::now();
+        const double seconds = std::chrono::duration<double>(now - t0).count();
+        t0 = now;
+        if (evaluated_generations < islands) {
+          first_seconds += seconds;
+          first_count = evaluated_count;
+        }
+        evaluated_seconds += seconds;
+        ++evaluated_generations;
+        recorded.push_back({HashGenomes(batch), results});
+      }
+      const double mean = sum / results.size();
+
+      if (result.wrote_files) {
+        std::string genes;
+        for (double v : batch[best_i]) genes += fmt::format(",{}", v);
+        const std::string island =
+            islands > 1 ? fmt::format(",{}", gen % islands) : "";
+        genes += island;
+        std::fprintf(gens_csv.get(), "%s\n",
+                     fmt::format("{},{},{},{},{},{}{}", gen, best, mean, worst,
+                                 result.best_result.fitness, failed, genes)
+                         .c_str());
+        for (size_t i = 0; i < results.size(); ++i) {
+          const EvalResult& e = results[i];
+          std::string line = fmt::format(
+              "{},{},{},{},{},{},{},{},{}", gen, i, e.fitness, e.distance,
+              e.speed, e.energy, e.drift, e.fell, e.failed ? 1 : 0);
+          for (double v : batch[i]) line += fmt::format(",{}", v);
+          line += island;
+          std::fprintf(evals_csv.get(), "%s\n", line.c_str());
+        }
+        std::fflush(gens_csv.get());
+        std::fflush(evals_csv.get());
+        if (!replay) {
+          WriteCheckpoint(checkpoint_path, fingerprint, described, recorded);
+        }
+      }
+
+      if (options.progress) {
+        GenerationReport report;
+        report.generation = gen + 1;
+        report.generations = planned;
+        report.island = islands > 1 ? gen % islands : -1;
+        report.best = best;
+        report.mean = mean;
+        report.best_so_far = result.best_result.fitness;
+        report.failed = failed;
+        report.evaluations = result.evaluations;
+        // Past the first generation (of each island), the pace leaves out
+        // its start-up.
+        const bool steady = evaluated_generations > islands;
+        const double seconds =
+            steady ? evaluated_seconds - first_seconds : evaluated_seconds;
+        const double count = static_cast<double>(
+            steady ? evaluated_count - first_count : evaluated_count);
+        const int generations =
+            steady ? evaluated_generations - islands : evaluated_generations;
+        report.evals_per_second = seconds > 0 ? count / seconds : 0.0;
+        report.workers = evaluator.workers_alive();
+        report.eta_seconds = generations > 0
+                                 ? seconds / generations * (planned - gen - 1)
+                             : gen + 1 == planned ? 0.0
+                                                  : -1.0;
+        report.replayed = replay;
+        options.progress(report);
+      }
+    }
   } catch (const EvaluationInterrupted&) {
     throw OptimizationInterrupted(result);
-  }
-  for (int gen = 0; gen < planned; ++gen) {
-    Asked a = std::move(asked.front());
-    asked.pop_front();
-    const std::vector<Genome>& batch = a.batch;
-    const bool replay = a.replay;
-    std::vector<EvalResult> results;
-    if (replay) {
-      results = recorded[gen].results;
-      for (size_t i = 0; i < batch.size(); ++i) cache[batch[i]] = results[i];
-    } else {
-      if (!a.todo.empty()) {
-        std::vector<EvalResult> fresh;
-        try {
-          fresh = evaluator.Collect();
-        } catch (const EvaluationInterrupted&) {
-          throw OptimizationInterrupted(result);
-        }
-        if (fresh.size() != a.todo.size()) {
-          throw std::runtime_error("evaluator returned the wrong count");
-        }
-        for (size_t i = 0; i < a.todo.size(); ++i) {
-          cache[a.todo[i]] = fresh[i];
-          in_flight.erase(a.todo[i]);
-        }
-        evaluated_count += static_cast<long long>(a.todo.size());
-      }
-      // A genome another generation in flight holds was collected with it.
-      for (const Genome& g : batch) results.push_back(cache.at(g));
-    }
-    algorithms[static_cast<size_t>(gen % islands)]->Tell(results);
-    if (gen + islands < planned) {
-      try {
-        ask(gen + islands);  // on its way before the files are written
-      } catch (const EvaluationInterrupted&) {
-        throw OptimizationInterrupted(result);
-      }
-    }
-
-    double best = -INFINITY, worst = INFINITY, sum = 0;
-    int best_i = 0, failed = 0;
-    for (size_t i = 0; i < results.size(); ++i) {
-      const double f = results[i].fitness;
-      sum += f;
-      failed += results[i].failed ? 1 : 0;
-      if (f > best) {
-        best = f;
-        best_i = static_cast<int>(i);
-      }
-      worst = std::min(worst, f);
-      if (result.best_generation < 0 || f > result.best_result.fitness) {
-        result.best = batch[i];
-        result.best_result = results[i];
-        result.best_generation = gen;
-        result.best_index = static_cast<int>(i);
-      }
-    }
-    result.evaluations += static_cast<long long>(batch.size());
-    result.generations_done = gen + 1;
-    if (replay) {
-      ++result.generations_replayed;
-      t0 = Clock::now();
-    } else {
-      const auto now = Clock::now();
-      const double seconds = std::chrono::duration<double>(now - t0).count();
-      t0 = now;
-      if (evaluated_generations < islands) {
-        first_seconds += seconds;
-        first_count = evaluated_count;
-      }
-      evaluated_seconds += seconds;
-      ++evaluated_generations;
-      recorded.push_back({HashGenomes(batch), results});
-    }
-    const double mean = sum / results.size();
-
-    if (result.wrote_files) {
-      std::string genes;
-      for (double v : batch[best_i]) genes += fmt::format(",{}", v);
-      const std::string island =
-          islands > 1 ? fmt::format(",{}", gen % islands) : "";
-      genes += island;
-      std::fprintf(gens_csv.get(), "%s\n",
-                   fmt::format("{},{},{},{},{},{}{}", gen, best, mean, worst,
-                               result.best_result.fitness, failed, genes)
-                       .c_str());
-      for (size_t i = 0; i < results.size(); ++i) {
-        const EvalResult& e = results[i];
-        std::string line = fmt::format("{},{},{},{},{},{},{},{},{}", gen, i,
-                                       e.fitness, e.distance, e.speed, e.energy,
-                                       e.drift, e.fell, e.failed ? 1 : 0);
-        for (double v : batch[i]) line += fmt::format(",{}", v);
-        line += island;
-        std::fprintf(evals_csv.get(), "%s\n", line.c_str());
-      }
-      std::fflush(gens_csv.get());
-      std::fflush(evals_csv.get());
-      if (!replay) {
-        WriteCheckpoint(checkpoint_path, fingerprint, described, recorded);
-      }
-    }
-
-    if (options.progress) {
-      GenerationReport report;
-      report.generation = gen + 1;
-      report.generations = planned;
-      report.island = islands > 1 ? gen % islands : -1;
-      report.best = best;
-      report.mean = mean;
-      report.best_so_far = result.best_result.fitness;
-      report.failed = failed;
-      report.evaluations = result.evaluations;
-      // Past the first generation (of each island), the pace leaves out
-      // its start-up.
-      const bool steady = evaluated_generations > islands;
-      const double seconds =
-          steady ? evaluated_seconds - first_seconds : evaluated_seconds;
-      const double count = static_cast<double>(
-          steady ? evaluated_count - first_count : evaluated_count);
-      const int generations =
-          steady ? evaluated_generations - islands : evaluated_generations;
-      report.evals_per_second = seconds > 0 ? count / seconds : 0.0;
-      report.workers = evaluator.workers_alive();
-      report.eta_seconds = generations > 0
-                               ? seconds / generations * (planned - gen - 1)
-                           : gen + 1 == planned ? 0.0
-                                                : -1.0;
-      report.replayed = replay;
-      options.progress(report);
-    }
   }
   return result;
 }

@@ -605,17 +605,25 @@ TEST(FarmWorkerCore, FollowsARestartedMasterAtOnceKeepingItsPayload) {
   EXPECT_EQ(w.run_id(), "run-b");
 }
 
-TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
+// Worker "w" holding `m`'s payload, fetched through the protocol.
+std::unique_ptr<FarmWorkerCore> ReadyWorker(FarmMasterCore& m) {
   WorkerSettings s;
   s.id = "w";
-  FarmWorkerCore w(s, "h", 1, [](const std::string&, const std::string&) {
-    return std::make_shared<const Problem>();
-  });
+  auto w = std::make_unique<FarmWorkerCore>(
+      s, "h", 1, [](const std::string&, const std::string&) {
+        return std::make_shared<const Problem>();
+      });
+  for (const auto& x : m.Tick(0).runs) w->OnRun(x, 0.0);
+  for (const auto& r : w->Tick(0.0).chunk_requests) m.OnChunkRequest(r, 0.0);
+  for (const auto& c : m.Tick(0.0).chunks) w->OnChunk(c, 0.0);
+  return w;
+}
+
+TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
   FarmMasterCore m(Payload(10), "run", 1, FarmSettings{});
-  for (const auto& x : m.Tick(0).runs) w.OnRun(x, 0.0);
-  for (const auto& r : w.Tick(0.0).chunk_requests) m.OnChunkRequest(r, 0.0);
-  for (const auto& c : m.Tick(0.0).chunks) w.OnChunk(c, 0.0);
-  ASSERT_TRUE(w.ready());
+  const std::unique_ptr<FarmWorkerCore> worker = ReadyWorker(m);
+  ASSERT_TRUE(worker->ready());
+  FarmWorkerCore& w = *worker;
   opt_job_t job{};
   job.run_id = "run";
   job.scenario_hash = m.scenario_hash();
@@ -653,16 +661,10 @@ TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
 // The pool takes one job beyond its threads, so a thread that ends an
 // episode starts the next at once; the heartbeat lists both as held.
 TEST(FarmWorkerCore, AJobHandedOutAheadIsHeldAndCanBeForgotten) {
-  WorkerSettings s;
-  s.id = "w";
-  FarmWorkerCore w(s, "h", 1, [](const std::string&, const std::string&) {
-    return std::make_shared<const Problem>();
-  });
   FarmMasterCore m(Payload(10), "run", 1, FarmSettings{});
-  for (const auto& x : m.Tick(0).runs) w.OnRun(x, 0.0);
-  for (const auto& r : w.Tick(0.0).chunk_requests) m.OnChunkRequest(r, 0.0);
-  for (const auto& c : m.Tick(0.0).chunks) w.OnChunk(c, 0.0);
-  ASSERT_TRUE(w.ready());
+  const std::unique_ptr<FarmWorkerCore> worker = ReadyWorker(m);
+  ASSERT_TRUE(worker->ready());
+  FarmWorkerCore& w = *worker;
   opt_job_t job{};
   job.run_id = "run";
   job.scenario_hash = m.scenario_hash();
