@@ -69,7 +69,7 @@ std::vector<EvalResult> FarmEvaluator::Evaluate(
 }
 
 void FarmEvaluator::Submit(std::vector<Genome> batch) {
-  in_flight_.push_back(core_.OpenBatch(batch, FarmLink::Now()));
+  in_flight_.push_back(core_.OpenBatch(batch));
   // The jobs go out now, not after the first wait for a message.
   FarmOutbox first = core_.Tick(FarmLink::Now());
   link_->Publish(first);

@@ -111,11 +111,10 @@ void FarmMasterCore::Reindex(Worker& w, double now) {
 
 void FarmMasterCore::StartBatch(const std::vector<Genome>& batch, double now) {
   while (!batches_.empty()) CloseBatch(batches_.begin()->first, now);
-  OpenBatch(batch, now);
+  OpenBatch(batch);
 }
 
-std::int64_t FarmMasterCore::OpenBatch(const std::vector<Genome>& batch,
-                                       double now) {
+std::int64_t FarmMasterCore::OpenBatch(const std::vector<Genome>& batch) {
   if (batch.size() >= (size_t{1} << kJobIdShift)) {
     throw std::invalid_argument("farm: batch too large");
   }
@@ -131,7 +130,6 @@ std::int64_t FarmMasterCore::OpenBatch(const std::vector<Genome>& batch,
   for (size_t i = 0; i < batch.size(); ++i) {
     pending_.push_back((id << kJobIdShift) | static_cast<std::int64_t>(i));
   }
-  for (auto& [wid, w] : workers_) Reindex(w, now);
   return id;
 }
 

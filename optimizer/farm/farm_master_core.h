@@ -110,7 +110,7 @@ class FarmMasterCore {
   // Opens a batch beside the open ones and returns its id. Its jobs go out
   // after theirs, so workers that finish the older batch's last jobs early
   // go on with this one instead of waiting (several generations in flight).
-  std::int64_t OpenBatch(const std::vector<Genome>& batch, double now);
+  std::int64_t OpenBatch(const std::vector<Genome>& batch);
   // Forgets a batch (done or not): its late answers are ignored.
   void CloseBatch(std::int64_t id, double now);
   // The newest batch's state, or batch `id`'s (an unknown id throws

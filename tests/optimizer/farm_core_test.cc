@@ -454,8 +454,8 @@ TEST(FarmMasterCore, AnOpenSecondBatchFeedsWorkersThatFinishTheFirstEarly) {
   m.OnHeartbeat(Beat(m, "a"), 0.0);
   m.OnHeartbeat(Beat(m, "b"), 0.0);
   const std::vector<Genome> first = Batch(2, 0), second = Batch(2, 1);
-  const std::int64_t one = m.OpenBatch(first, 0.0);
-  const std::int64_t two = m.OpenBatch(second, 0.0);
+  const std::int64_t one = m.OpenBatch(first);
+  const std::int64_t two = m.OpenBatch(second);
   const FarmOutbox out = m.Tick(0.0);
   ASSERT_EQ(out.jobs.size(), 2u) << "one job per idle worker";
   for (const opt_job_t& j : out.jobs) {
