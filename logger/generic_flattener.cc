@@ -91,6 +91,9 @@ struct GenericFlattener::Layout {
   };
   std::vector<Member> members;
   bool pose = false;  // pose_t: .x .y .z .qw .qx .qy .qz
+  // Encoded bytes when every member has a fixed size (no strings, no
+  // variable arrays), else -1: validation skips such structs in one step.
+  int64_t fixed_size = -1;
 };
 
 namespace {
@@ -128,7 +131,14 @@ class Walker {
       const bool utime = top && m.name == "utime" && m.kind == Kind::kInt64;
       std::string name;
       if (names_ != nullptr) name = utime ? "time" : Join(prefix, m.name);
-      if (m.kind == Kind::kStruct) return Struct(*m.child, name, false);
+      if (m.kind == Kind::kStruct) {
+        if (values_ == nullptr && names_ == nullptr &&
+            m.child->fixed_size >= 0) {
+          const uint8_t* unused = nullptr;
+          return Take(static_cast<size_t>(m.child->fixed_size), &unused);
+        }
+        return Struct(*m.child, name, false);
+      }
       int64_t iv = 0;
       if (!Scalar(m.kind, name, &iv, utime)) return false;
       ints_[base + mi] = iv;
@@ -151,12 +161,17 @@ class Walker {
       shape_->insert(shape_->end(), dims_.begin(), dims_.end());
     const size_t elem = WireSize(m.kind);
     if (static_cast<uint64_t>(count) * elem > left_) return false;
-    // Validation skips fixed-size elements in one step.
-    if (values_ == nullptr && names_ == nullptr && m.kind != Kind::kString &&
-        m.kind != Kind::kStruct) {
-      p_ += count * elem;
-      left_ -= count * elem;
-      return true;
+    // Validation skips fixed-size elements in one step: a 50-module state
+    // is then a few dozen steps, not one per number.
+    if (values_ == nullptr && names_ == nullptr && m.kind != Kind::kString) {
+      const int64_t bytes =
+          m.kind == Kind::kStruct ? m.child->fixed_size : WireSize(m.kind);
+      if (bytes >= 0) {
+        if (static_cast<uint64_t>(count) * bytes > left_) return false;
+        p_ += count * bytes;
+        left_ -= count * bytes;
+        return true;
+      }
     }
     const std::vector<int64_t> dims = dims_;
     for (int64_t i = 0; i < count; ++i) {
@@ -331,10 +346,30 @@ class Compiler {
                      (cm.kind == Kind::kDouble || cm.kind == Kind::kFloat);
       layout->members.push_back(std::move(cm));
     }
+    layout->fixed_size = FixedSize(*layout);
     return layout;
   }
 
  private:
+  // A struct still being compiled (a cycle) counts as variable.
+  static int64_t FixedSize(const Layout& layout) {
+    int64_t total = 0;
+    for (const Layout::Member& m : layout.members) {
+      if (m.kind == Kind::kString) return -1;
+      int64_t bytes = m.kind == Kind::kStruct ? m.child->fixed_size
+                                              : int64_t(WireSize(m.kind));
+      if (bytes < 0) return -1;
+      for (const Layout::Dim& d : m.dims) {
+        if (d.fixed < 0 || d.fixed > kMaxElements) return -1;
+        bytes *= d.fixed;
+        if (bytes > kMaxElements * 8) return -1;
+      }
+      total += bytes;
+      if (total > kMaxElements * 8) return -1;
+    }
+    return total;
+  }
+
   const LcmTypeRegistry& registry_;
   std::vector<std::unique_ptr<Layout>>* out_;
   std::map<std::string, Layout*> done_;
