@@ -29,6 +29,10 @@ constexpr int kQueueCapacity = 20000;
 // quarter of the queue's room is used: a few wake-ups per second instead of
 // one per message, with rows on disk at the same flush interval as before.
 constexpr std::chrono::milliseconds kWriterPeriod(20);
+// How long received messages wait in LCM's queue to be taken together.
+// The subscription holds kQueueCapacity of them, and LCM's receive thread
+// grows its buffer rather than drop one.
+constexpr std::chrono::milliseconds kTakePeriod(4);
 
 void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
            MessageQueue* queue) {
@@ -98,7 +102,11 @@ void RunLive(const LogCommand& opt, const std::string& regex,
                  regex.c_str(), recorder.out_dir().c_str());
   }
   try {
-    while (!StopRequested() && !failed) HandleFor(lcm, 100);
+    while (!StopRequested() && !failed) {
+      // Messages wait in LCM's queue for a few milliseconds and are taken
+      // together: a wake-up per message cost more than copying it.
+      if (HandleFor(lcm, 100) > 0) std::this_thread::sleep_for(kTakePeriod);
+    }
     // Take what already arrived before stopping, but do not wait on a
     // publisher that never pauses.
     const auto drain_end = Clock::now() + std::chrono::milliseconds(300);
