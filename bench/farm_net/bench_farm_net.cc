@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -36,6 +37,7 @@
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
 #include "optimizer/farm/farm_evaluator.h"
+#include "optimizer/farm/farm_worker.h"
 #include "optimizer/problem_codec.h"
 #include "optimizer/random.h"
 #include "sim_core/scenario_xml.h"
@@ -105,8 +107,36 @@ std::string NsOf(const FarmRig& rig, int node) {
   return rig.In(node, {}).back();  // ".. ip netns exec <ns>"
 }
 
+// CPU seconds the worker processes ran, all threads and their episode
+// threads alone (/proc/PID/task/TID/schedstat, in nanoseconds).
+struct WorkerCpu {
+  double total = 0, episodes = 0;
+};
+
+WorkerCpu ReadWorkerCpu(const std::vector<int>& pids) {
+  WorkerCpu cpu;
+  for (int pid : pids) {
+    std::error_code ec;
+    for (const auto& task : std::filesystem::directory_iterator(
+             fmt::format("/proc/{}/task", pid), ec)) {
+      std::ifstream stat(task.path() / "schedstat");
+      std::ifstream comm(task.path() / "comm");
+      double ns = 0;
+      std::string name;
+      if (!(stat >> ns)) continue;
+      std::getline(comm, name);
+      cpu.total += ns * 1e-9;
+      if (name == mrsim::FarmWorker::kEpisodeThreadName) {
+        cpu.episodes += ns * 1e-9;
+      }
+    }
+  }
+  return cpu;
+}
+
 struct Measure {
   double wall = 0, episodes = 0, cpu = 0;
+  WorkerCpu workers;  // during the measured batches
   int jobs = 0;
   mrsim::FarmCounters counters;
   long long accepted_total = 0;  // results, the warm-up batch included
@@ -134,7 +164,8 @@ std::string UdpCounters(const FarmRig& rig, int node) {
 // batch that fetches the payload), `islands` of them in flight at once as
 // mrsim-opt --islands keeps them (1: each waits for the one before).
 Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
-                int batches, int islands = 1) {
+                int batches, int islands = 1,
+                const std::vector<int>& worker_pids = {}) {
   static int runs = 0;
   InNamespace in(NsOf(rig, 0));
   mrsim::FarmSettings settings;
@@ -162,6 +193,7 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   const mrsim::FarmCounters c0 = farm.counters();
   const double before = farm.episode_seconds();
   const double cpu0 = CpuSeconds();
+  const WorkerCpu workers0 = ReadWorkerCpu(worker_pids);
   const auto t0 = Clock::now();
   int submitted = 0;
   for (; submitted < std::min(islands, batches); ++submitted) {
@@ -176,6 +208,9 @@ Measure RunFarm(FarmRig& rig, const mrsim::Problem& problem, int population,
   }
   m.wall = Since(t0);
   m.cpu = CpuSeconds() - cpu0;
+  const WorkerCpu workers1 = ReadWorkerCpu(worker_pids);
+  m.workers.total = workers1.total - workers0.total;
+  m.workers.episodes = workers1.episodes - workers0.episodes;
   m.episodes = farm.episode_seconds() - before;
   counting = false;
   const mrsim::FarmCounters& c = farm.counters();
@@ -233,13 +268,16 @@ void Efficiency() {
   // is not the whole figure, nor the first and last generation's (the
   // pipeline filling and draining) with islands.
   const int kBatches = 24;
+  const double cap = 0.2;
   FarmRig rig(workers + 1);
   std::vector<std::unique_ptr<ChildProcess>> ws;
+  std::vector<int> pids;
   for (int k = 1; k <= workers; ++k) {
     ws.push_back(std::make_unique<ChildProcess>(rig.In(
         k, {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
             "--lcm-url", kUrl, "--id", fmt::format("w{}", k), "--quiet"})));
-    rig.CapCpu(ws.back()->pid(), 0.2);
+    rig.CapCpu(ws.back()->pid(), cap);
+    pids.push_back(ws.back()->pid());
   }
   const auto report = [&](const std::string& name, const Measure& m,
                           int islands = 1) {
@@ -262,6 +300,16 @@ void Efficiency() {
                           "busy {:.3f} of the wall time",
                           m.episodes / (workers * busiest), busiest / m.wall));
     fmt::print("BENCH {} {:.3f} ratio\n", name, efficiency);
+    if (m.workers.total > 0) {
+      fmt::print(stderr,
+                 "farm 8w {}: workers ran {:.2f} CPU-s ({:.3f} of their "
+                 "caps), {:.3f} of it in episode threads\n",
+                 name, m.workers.total,
+                 m.workers.total / (workers * cap * m.wall),
+                 m.workers.episodes / m.workers.total);
+      fmt::print("BENCH {}_cpu {:.3f} ratio\n", name,
+                 m.workers.episodes / (workers * cap * m.wall));
+    }
     std::fflush(stdout);
   };
   const mrsim::Problem problem = SnakeProblem(1.0);
@@ -270,9 +318,10 @@ void Efficiency() {
                                              : "farm_net_efficiency_8w";
     // As mrsim-opt --islands 2 runs: the next generation is on the farm
     // while one's last episodes run.
-    report(name, RunFarm(rig, problem, population, kBatches, 2), 2);
+    report(name, RunFarm(rig, problem, population, kBatches, 2, pids), 2);
     // One population: each generation waits for its slowest episode.
-    report(name + "_one_island", RunFarm(rig, problem, population, kBatches));
+    report(name + "_one_island",
+           RunFarm(rig, problem, population, kBatches, 1, pids));
     // That wait's ceiling, from the genomes themselves (the same batches).
     fmt::print("BENCH {}_genome_bound {:.3f} ratio\n", name,
                GenomeBound(problem, population, kBatches, workers));
@@ -281,8 +330,8 @@ void Efficiency() {
   // The setting the target was set in: ~1 s episodes (then 1 simulated s
   // at 0.2 CPU; now 20 simulated s).
   const mrsim::Problem long_problem = SnakeProblem(20.0);
-  report("farm_net_efficiency_8w_long", RunFarm(rig, long_problem, 16, 4, 2),
-         2);
+  report("farm_net_efficiency_8w_long",
+         RunFarm(rig, long_problem, 16, 4, 2, pids), 2);
   // Clean and lossy alternately, the median of three pairs: one pair's
   // runs last ~2 s each, and on a shared machine two clean runs already
   // differ by 10%, the size of the effect measured.

@@ -1,6 +1,7 @@
 #include "optimizer/farm/farm_worker.h"
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -154,6 +155,7 @@ opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
 }
 
 void FarmWorker::Work() {
+  pthread_setname_np(pthread_self(), kEpisodeThreadName);
   for (;;) {
     std::pair<std::string, WorkerTask> item;
     {

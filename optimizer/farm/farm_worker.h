@@ -25,6 +25,10 @@ namespace mrsim {
 
 class FarmWorker {
  public:
+  // The name of the threads that run episodes (`top -H`, /proc/PID/task):
+  // the farm benchmark tells their CPU from the LCM threads' by it.
+  static constexpr const char* kEpisodeThreadName = "episode";
+
   // `count` > 1 (fake workers only) runs that many workers named
   // <id>-0 ... <id>-(count-1).
   FarmWorker(const std::string& lcm_url, WorkerSettings settings,
