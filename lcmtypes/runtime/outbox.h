@@ -40,9 +40,11 @@ struct Outbox {
 };
 
 // Encodes and publishes everything in `out` (through one reused buffer, so
-// a steady stream allocates nothing), then empties it.
-template <class... Messages>
-void PublishAll(lcm::LCM& lcm, Outbox<Messages...>* out,
+// a steady stream allocates nothing), then empties it. `lcm` is an
+// lcm::LCM or anything with its publish(channel, data, size), such as a
+// PublishThread.
+template <class Sender, class... Messages>
+void PublishAll(Sender& lcm, Outbox<Messages...>* out,
                 std::vector<uint8_t>* buffer) {
   for (const auto& [channel, message] : out->messages) {
     std::visit(

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/publish_thread.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "sim_core/physics.h"
@@ -66,6 +67,8 @@ class SimServer {
   joint_command_t command_;
   sim_control_t control_;
   std::vector<uint8_t> buffer_;
+  // Pipelined lockstep sends from a thread of its own (see Flush).
+  std::unique_ptr<PublishThread> publisher_;
 };
 
 }  // namespace mrsim
