@@ -24,7 +24,9 @@ class PublishThread {
   // Calls `send` on the thread for each message (tests pass their own).
   explicit PublishThread(Send send);
   // Sends with lcm.publish: `lcm` must outlive this object and take
-  // publishes from another thread while its owner handles (LCM's are).
+  // publishes from another thread while its owner handles. LCM's udpm and
+  // mpudpm do; tcpq does until its hub goes away (both threads then close
+  // the socket).
   explicit PublishThread(lcm::LCM& lcm);
   ~PublishThread();  // sends what is queued, then joins
   PublishThread(const PublishThread&) = delete;

@@ -104,7 +104,8 @@ void RunLive(const LogCommand& opt, const std::string& regex,
   try {
     while (!StopRequested() && !failed) {
       // Messages wait in LCM's queue for a few milliseconds and are taken
-      // together: a wake-up per message cost more than copying it.
+      // together: this thread wakes a few hundred times a second, not once
+      // per message.
       if (HandleFor(lcm, 100) > 0) std::this_thread::sleep_for(kTakePeriod);
     }
     // Take what already arrived before stopping, but do not wait on a
