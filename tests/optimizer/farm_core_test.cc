@@ -619,16 +619,22 @@ std::unique_ptr<FarmWorkerCore> ReadyWorker(FarmMasterCore& m) {
   return w;
 }
 
+// Job `id` of `m`'s run, addressed to ReadyWorker's "w".
+opt_job_t JobFor(const FarmMasterCore& m, std::int64_t id) {
+  opt_job_t job{};
+  job.run_id = m.run_id();
+  job.scenario_hash = m.scenario_hash();
+  job.worker_id = "w";
+  job.job_id = id;
+  return job;
+}
+
 TEST(FarmWorkerCore, AReAskedJobIsAnsweredFromMemoryNotRunAgain) {
   FarmMasterCore m(Payload(10), "run", 1, FarmSettings{});
   const std::unique_ptr<FarmWorkerCore> worker = ReadyWorker(m);
   ASSERT_TRUE(worker->ready());
   FarmWorkerCore& w = *worker;
-  opt_job_t job{};
-  job.run_id = "run";
-  job.scenario_hash = m.scenario_hash();
-  job.worker_id = "w";
-  job.job_id = 42;
+  const opt_job_t job = JobFor(m, 42);
   w.OnJob(job, 0.1);
   w.OnJob(job, 0.1);  // a re-send of a queued job: one task
   const auto tasks = w.TakeTasks();
@@ -665,14 +671,7 @@ TEST(FarmWorkerCore, AJobHandedOutAheadIsHeldAndCanBeForgotten) {
   const std::unique_ptr<FarmWorkerCore> worker = ReadyWorker(m);
   ASSERT_TRUE(worker->ready());
   FarmWorkerCore& w = *worker;
-  opt_job_t job{};
-  job.run_id = "run";
-  job.scenario_hash = m.scenario_hash();
-  job.worker_id = "w";
-  for (std::int64_t id : {1, 2, 3}) {
-    job.job_id = id;
-    w.OnJob(job, 0.1);
-  }
+  for (std::int64_t id : {1, 2, 3}) w.OnJob(JobFor(m, id), 0.1);
   EXPECT_EQ(w.TakeTasks().size(), 1u) << "one thread, nothing ahead";
   const auto ahead = w.TakeTasks(1);
   ASSERT_EQ(ahead.size(), 1u) << "one more, to wait in the pool";
