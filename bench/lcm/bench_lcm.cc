@@ -1,7 +1,8 @@
 // bench_lcm: what LCM costs the simulator, measured in one run.
 //  (a) closed-loop lockstep over LCM (mrsim-sim + a controller process,
 //      100 Hz control, 2 ms physics step), strict and pipelined
-//      (--actuation-delay 1, and 2), vs the same loop in one process;
+//      (--actuation-delay 1, and 2; strict and delay 1 also --no-spin),
+//      vs the same loop in one process;
 //  (b) mrsim-sim's server publishing state at 100 Hz vs not publishing
 //      (fast clock);
 //  (c) round trip of a state-sized robot_state_t through encode/decode and a
@@ -216,17 +217,30 @@ Pace LocalLoop(const std::string& scenario, double duration,
 }
 
 Pace LcmLoop(const std::string& scenario, double duration, int port,
-             const std::string& dir, int delay) {
+             const std::string& dir, int delay, bool spin = true) {
   std::ostringstream d;
   d << duration;
   const std::string out = dir + "/sim.out";
   double cpu = 0;
   {
-    Child sim({MRSIM_SIM_BINARY, scenario, "--lcm-url", Url(port), "--clock",
-               "lockstep", "--controllers", "bench", "--rate", "100",
-               "--duration", d.str(), "--lockstep-timeout", "30",
-               "--actuation-delay", std::to_string(delay)},
-              out);
+    std::vector<std::string> args = {MRSIM_SIM_BINARY,
+                                     scenario,
+                                     "--lcm-url",
+                                     Url(port),
+                                     "--clock",
+                                     "lockstep",
+                                     "--controllers",
+                                     "bench",
+                                     "--rate",
+                                     "100",
+                                     "--duration",
+                                     d.str(),
+                                     "--lockstep-timeout",
+                                     "30",
+                                     "--actuation-delay",
+                                     std::to_string(delay)};
+    if (!spin) args.push_back("--no-spin");
+    Child sim(args, out);
     Child controller({SelfPath(), "--controller", Url(port)});
     sim.WaitExit(120);
     controller.Stop();
@@ -314,13 +328,18 @@ int RunBench() {
   // answer to state k acts from period k+1) against the same baseline.
   // A delay of 2 as well: it hides a round trip longer than one period's
   // physics (docs/sim.md).
+  // And both with --no-spin: the send thread asleep between states.
   std::vector<double> local, remote, piped, piped2, local_cpu, remote_cpu,
-      piped_cpu;
+      piped_cpu, remote_sleep, piped_sleep;
   for (int r = 0; r < kRepeats; ++r) {
     const Pace l = LocalLoop(path, duration, dir.string());
     const Pace x = LcmLoop(path, duration, 7900, dir.string(), 0);
     const Pace p = LcmLoop(path, duration, 7900, dir.string(), 1);
     const Pace p2 = LcmLoop(path, duration, 7900, dir.string(), 2);
+    const Pace xs = LcmLoop(path, duration, 7900, dir.string(), 0, false);
+    const Pace ps = LcmLoop(path, duration, 7900, dir.string(), 1, false);
+    remote_sleep.push_back(xs.wall);
+    piped_sleep.push_back(ps.wall);
     piped2.push_back(p2.wall);
     local.push_back(l.wall);
     remote.push_back(x.wall);
@@ -342,6 +361,10 @@ int RunBench() {
             << " x" << std::endl;
   std::cout << "BENCH lockstep_pipelined2_ratio " << Best(piped2) / Best(local)
             << " x" << std::endl;
+  std::cout << "BENCH lockstep_ratio_nospin "
+            << Best(remote_sleep) / Best(local) << " x" << std::endl;
+  std::cout << "BENCH lockstep_pipelined_ratio_nospin "
+            << Best(piped_sleep) / Best(local) << " x" << std::endl;
   std::cout << "BENCH lockstep_pipelined_ratio_cpu "
             << Best(piped_cpu) / Best(local_cpu) << " x" << std::endl;
 

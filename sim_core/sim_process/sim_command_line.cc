@@ -33,6 +33,9 @@ void SimCommandLine::AddFlags(CLI::App& app) {
                  "Lockstep: the answer to state k acts from period k+DELAY "
                  "(0 strict, 1 pipelined; docs/sim.md)")
       ->capture_default_str();
+  app.add_flag("--no-spin", no_spin,
+               "Lockstep: no idle-priority thread spinning for the next "
+               "state to send (saves idle CPU time; slower; docs/sim.md)");
   app.add_option("--duration", options.duration,
                  "Stop after this many sim seconds (0 = run until stopped)")
       ->capture_default_str();
@@ -49,6 +52,7 @@ void SimCommandLine::Finish() {
   try {
     options.clock = ParseClockMode(clock);
     options.publish_state = !no_state;
+    options.spin = !no_spin;
     options.Validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());

@@ -18,6 +18,7 @@ struct SimCommandLine {
   std::string clock = "realtime";
   std::string load_checkpoint;
   bool no_state = false;
+  bool no_spin = false;
   SimOptions options;
 
   // Declares every flag of mrsim-sim (and --version) on `app`.

@@ -30,6 +30,9 @@ struct SimOptions {
   // (0: strict; 1: pipelined, the next period's physics overlaps the round
   // trip). At most kMaxActuationDelay.
   int actuation_delay = 0;
+  // Lockstep: states go out through a thread that waits for them spinning
+  // at idle priority (PublishThread::Wait::kSpin) rather than asleep.
+  bool spin = true;
   double duration = 0.0;  // s of sim time; 0 = forever
   bool paused = false;
   bool publish_state = true;  // false: batch runs that nobody watches

@@ -30,9 +30,11 @@ SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
   commands->setQueueCapacity(kCommandQueueCapacity);
   control->setQueueCapacity(kControlQueueCapacity);
   subscriptions_ = {commands, control};
-  if (node_.options().clock == ClockMode::kLockstep &&
-      node_.options().actuation_delay > 0) {
-    publisher_ = std::make_unique<PublishThread>(lcm_);
+  const SimOptions& o = node_.options();
+  if (o.clock == ClockMode::kLockstep && (o.actuation_delay > 0 || o.spin)) {
+    publisher_ = std::make_unique<PublishThread>(
+        lcm_,
+        o.spin ? PublishThread::Wait::kSpin : PublishThread::Wait::kSleep);
   }
 }
 
@@ -62,11 +64,12 @@ StopReason SimServer::Run(const std::function<bool()>& stop_requested) {
   return *node_.stopped();
 }
 
-// With a pipelined lockstep the physics of the next period need not wait
-// for the controllers, but on udpm the sender's thread also pays for every
-// local subscriber's delivery (a fifth of a period for this snake): that
-// goes to the publisher's thread, on another core. Strict lockstep waits
-// for the answer anyway, and a hand-over would only add to its round trip.
+// On udpm the sender's thread pays for every local subscriber's delivery
+// (a fifth of a period for this snake): in lockstep that goes to the
+// publisher's thread, on another core. A sleeping publisher thread costs
+// the physics thread a wake-up instead, which only pays with a pipelined
+// lockstep (strict lockstep waits for the answer anyway, and the hand-over
+// would add to its round trip); a spinning one costs it nothing.
 void SimServer::Flush() {
   if (publisher_) {
     PublishAll(*publisher_, &outbox_, &buffer_);

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "mrsim/joint_command_t.hpp"
@@ -75,22 +76,26 @@ std::vector<std::string> SimArgs(const std::string& scenario, int port,
 }
 
 // Strict (delay 0) and pipelined (delay 1) lockstep with a controller in
-// another process give exactly the in-process loop with the same delay.
-class SimProcessLockstep : public ::testing::TestWithParam<int> {};
+// another process give exactly the in-process loop with the same delay,
+// whether mrsim-sim's send thread spins (the default) or sleeps.
+class SimProcessLockstep
+    : public ::testing::TestWithParam<std::tuple<int, bool>> {};
 
 TEST_P(SimProcessLockstep, ExternalControllerMatchesInProcessRun) {
-  const int delay = GetParam();
-  const std::string dir = TempDir("sim_lockstep_" + std::to_string(delay));
+  const auto [delay, spin] = GetParam();
+  const std::string dir = TempDir("sim_lockstep_" + std::to_string(delay) +
+                                  (spin ? "_spin" : "_sleep"));
   const std::string scenario = TestScenarioPath(dir);
-  const int port = delay == 0 ? 7600 : 7611;
+  const int port = (delay == 0 ? 7600 : 7611) + (spin ? 0 : 2);
+  std::vector<std::string> flags = {
+      "--clock",    "lockstep", "--controllers",     "ctl",
+      "--duration", "1.5",      "--actuation-delay", std::to_string(delay),
+      "--paused"};
+  if (!spin) flags.push_back("--no-spin");
   SimClient client(TestLcmUrl(port));
   ASSERT_TRUE(client.good());
   const int periods = 150;  // 1.5 s of sim time
-  ChildProcess sim(
-      SimArgs(scenario, port,
-              {"--clock", "lockstep", "--controllers", "ctl", "--duration",
-               "1.5", "--actuation-delay", std::to_string(delay), "--paused"}),
-      dir + "/sim.log");
+  ChildProcess sim(SimArgs(scenario, port, flags), dir + "/sim.log");
   ChildProcess controller(
       {ControllerBinary(), "--lcm-url", TestLcmUrl(port), "--name", "ctl"},
       dir + "/controller.log");
@@ -128,8 +133,13 @@ TEST_P(SimProcessLockstep, ExternalControllerMatchesInProcessRun) {
       << sim.Output();
 }
 
-INSTANTIATE_TEST_SUITE_P(StrictAndPipelined, SimProcessLockstep,
-                         ::testing::Values(0, 1));
+INSTANTIATE_TEST_SUITE_P(
+    StrictAndPipelined, SimProcessLockstep,
+    ::testing::Combine(::testing::Values(0, 1), ::testing::Bool()),
+    [](const ::testing::TestParamInfo<std::tuple<int, bool>>& info) {
+      return "Delay" + std::to_string(std::get<0>(info.param)) +
+             (std::get<1>(info.param) ? "Spin" : "Sleep");
+    });
 
 TEST(SimProcess, CheckpointOverLcmContinuesIdentically) {
   const std::string dir = TempDir("sim_checkpoint");

@@ -184,5 +184,24 @@ TEST(SimCommandLine, ADurationTheCheckpointIsPastIsRefused) {
               t, 1e-12);
 }
 
+// The spinning send thread is the default; --no-spin is for a machine
+// whose idle CPU time is not to be spent (docs/sim.md).
+TEST(SimCommandLine, LockstepSpinsUnlessToldNot) {
+  const auto spin = [](std::vector<std::string> args) {
+    CLI::App app;
+    SimCommandLine line;
+    line.AddFlags(app);
+    args.insert(args.begin(), {"mrsim-sim", "run.xml", "--clock", "lockstep",
+                               "--controllers", "ctl"});
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    line.Finish();
+    return line.options.spin;
+  };
+  EXPECT_TRUE(spin({}));
+  EXPECT_FALSE(spin({"--no-spin"}));
+}
+
 }  // namespace
 }  // namespace mrsim
