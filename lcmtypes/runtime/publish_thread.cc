@@ -3,6 +3,8 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
+
 namespace mrsim {
 namespace {
 
@@ -18,7 +20,19 @@ PublishThread::PublishThread(Send send, Wait wait)
     : send_(std::move(send)),
       spinning_(wait == Wait::kSpin),
       sleeper_([this] { RunSleeping(); }) {
-  if (wait == Wait::kSpin) spinner_ = std::thread([this] { RunSpinning(); });
+  if (wait != Wait::kSpin) return;
+  try {
+    spinner_ = std::thread([this] { RunSpinning(); });
+  } catch (...) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+      spinning_.store(false);
+    }
+    wake_sleeper_.notify_all();
+    sleeper_.join();
+    throw;
+  }
 }
 
 PublishThread::PublishThread(lcm::LCM& lcm, Wait wait)
@@ -36,9 +50,11 @@ PublishThread::~PublishThread() {
     stop_ = true;
     spinning_.store(false);  // the sleeping thread sends what is left
   }
+  // The sleeper sends what is queued even while a starved spinner has yet
+  // to notice.
+  wake_sleeper_.notify_all();
   wake_spinner_.notify_all();
   if (spinner_.joinable()) spinner_.join();
-  wake_sleeper_.notify_all();
   sleeper_.join();
 }
 
@@ -86,8 +102,16 @@ void PublishThread::SendOne(std::unique_lock<std::mutex>& lock) {
   send_(m.channel, m.data.data(), static_cast<unsigned>(m.data.size()));
   lock.lock();
   sending_ = false;
+  last_sent_ = Clock::now();
   if (spare_.size() < 8) spare_.push_back(std::move(m));
   if (queue_.empty()) drained_.notify_all();
+}
+
+PublishThread::Clock::duration PublishThread::HeadWaited(
+    Clock::time_point now) const {
+  // Behind a burst a message waits for the sends before it: only the time
+  // since it could have gone counts.
+  return now - std::max(queue_.front().given, last_sent_);
 }
 
 void PublishThread::Rescue(std::unique_lock<std::mutex>& lock) {
@@ -100,8 +124,7 @@ void PublishThread::Rescue(std::unique_lock<std::mutex>& lock) {
     spinning_.store(false);
     wake_spinner_.notify_one();  // it leaves after a send in progress
   }
-  while (!sending_ && !queue_.empty() &&
-         Clock::now() - queue_.front().given > kRescue) {
+  while (!sending_ && !queue_.empty() && HeadWaited(Clock::now()) > kRescue) {
     SendOne(lock);
   }
 }
@@ -123,8 +146,7 @@ void PublishThread::RunSleeping() {
     }
     // The spinner sends; this thread sends what it leaves waiting (it may
     // sit behind a busy thread on another CPU for a while).
-    if (!sending_ && !queue_.empty() &&
-        Clock::now() - queue_.front().given > kRescue) {
+    if (!sending_ && !queue_.empty() && HeadWaited(Clock::now()) > kRescue) {
       Rescue(lock);
       continue;
     }
@@ -160,10 +182,17 @@ void PublishThread::RunSpinning() {
   std::unique_lock<std::mutex> lock(mutex_);
   int late = 0;
   while (spinning_.load()) {
-    if (!sending_ && !queue_.empty()) {
+    if (!queue_.empty()) {
+      if (sending_) {
+        // The sleeper rescues a message: the next is this thread's.
+        lock.unlock();
+        Relax();
+        lock.lock();
+        continue;
+      }
       // Messages that keep waiting for this thread mean other threads
       // want every CPU: a thread at normal priority does better then.
-      late = Clock::now() - queue_.front().given > kLate ? late + 1 : 0;
+      late = HeadWaited(Clock::now()) > kLate ? late + 1 : 0;
       if (late == kLateInARow) {
         spinning_.store(false);
         break;
@@ -181,6 +210,7 @@ void PublishThread::RunSpinning() {
       wake_spinner_.wait(
           lock, [this] { return !spinning_.load() || !queue_.empty(); });
       spinner_waits_ = false;
+      late = 0;  // being woken is not being starved
     }
   }
   // The sleeping thread may wait for the send this thread just finished.

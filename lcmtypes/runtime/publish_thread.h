@@ -35,7 +35,10 @@ class PublishThread {
     // priority sends what waits longer than kRescue; when the machine has
     // no idle CPU (kRescuesToFallBack such rescues within kRescueWindow, or
     // kLateInARow messages that waited over kLate), it takes over the
-    // sending, as kSleep, for good.
+    // sending, as kSleep, for good. Until then, on a loaded machine, the
+    // idle-priority thread can be pre-empted while it holds the queue's
+    // lock or sends: the others then wait until it runs again (wall time
+    // only; an unprivileged thread cannot leave idle priority to avoid it).
     kSpin,
   };
   static constexpr std::chrono::microseconds kSpinWindow{1000};
@@ -76,6 +79,8 @@ class PublishThread {
   void SendOne(std::unique_lock<std::mutex>& lock);
   void RunSleeping();  // the normal-priority thread; kSpin: also the guard
   void Rescue(std::unique_lock<std::mutex>& lock);
+  // How long the oldest message has waited since it could have been sent.
+  Clock::duration HeadWaited(Clock::time_point now) const;
   void RunSpinning();  // kSpin: the idle-priority thread
   bool SpinFor(uint64_t seen);
 
@@ -88,6 +93,7 @@ class PublishThread {
   std::vector<Message> spare_;  // sent messages, their buffers reused
   bool sending_ = false;        // a message is out of the queue, not yet sent
   bool stop_ = false;
+  Clock::time_point last_sent_{};          // when the last send ended
   std::deque<Clock::time_point> rescues_;  // kSpin: within kRescueWindow
   bool sleeper_waits_ = false;             // indefinitely: publish must wake it
   bool spinner_waits_ = false;
