@@ -34,8 +34,9 @@ void SimCommandLine::AddFlags(CLI::App& app) {
                  "(0 strict, 1 pipelined; docs/sim.md)")
       ->capture_default_str();
   app.add_flag("--no-spin", no_spin,
-               "Lockstep: no idle-priority thread spinning for the next "
-               "state to send (saves idle CPU time; slower; docs/sim.md)");
+               "Lockstep: no thread spinning at idle priority for the next "
+               "state to send (uses no spare CPU; strict lockstep slower; "
+               "docs/sim.md)");
   app.add_option("--duration", options.duration,
                  "Stop after this many sim seconds (0 = run until stopped)")
       ->capture_default_str();
