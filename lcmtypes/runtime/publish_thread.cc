@@ -94,6 +94,12 @@ void PublishThread::Drain() {
   drained_.wait(lock, [this] { return queue_.empty() && !sending_; });
 }
 
+bool PublishThread::asleep() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!queue_.empty() || sending_) return false;
+  return spinning_.load() ? spinner_waits_ && sleeper_waits_ : sleeper_waits_;
+}
+
 void PublishThread::SendOne(std::unique_lock<std::mutex>& lock) {
   Message m = std::move(queue_.front());
   queue_.pop_front();

@@ -67,6 +67,9 @@ class PublishThread {
   // Whether the idle-priority thread sends (kSpin, and it has not been
   // starved so far).
   bool spinning() const { return spinning_.load(); }
+  // Whether all is sent and the sending threads sleep until publish wakes
+  // them (when spinning: once kSpinWindow passed without a message).
+  bool asleep() const;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -85,7 +88,7 @@ class PublishThread {
   bool SpinFor(uint64_t seen);
 
   Send send_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable wake_sleeper_;
   std::condition_variable wake_spinner_;
   std::condition_variable drained_;
