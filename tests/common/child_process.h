@@ -5,6 +5,7 @@
 
 #include <sys/types.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -43,8 +44,12 @@ class ChildProcess {
 };
 
 // A multicast URL on loopback with its own port and ttl=0, so concurrent
-// tests never hear each other.
+// tests never hear each other. MRSIM_TEST_PORT_OFFSET shifts every port, so
+// two checkouts can run their suites on one host at once (Linux delivers a
+// multicast datagram to every socket bound to its port, whatever the group).
 inline std::string TestLcmUrl(int port) {
+  const char* offset = std::getenv("MRSIM_TEST_PORT_OFFSET");
+  if (offset != nullptr) port += std::atoi(offset);
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
 }
 
