@@ -12,7 +12,7 @@ packages=(
   libcli11-dev libfmt-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
   libimgui-dev xdotool fonts-dejavu-core
-  clang-format
+  clang-format clang libfuzzer-14-dev
   iproute2 nftables
 )
 

@@ -5,14 +5,16 @@
 #   scripts/test.sh                      everything (what CI runs), then the
 #                                        unit tests under ASan+UBSan if the
 #                                        time budget allows (see below)
-#   scripts/test.sh --quick              everything, no sanitizer stage
+#   scripts/test.sh --quick              everything, no fuzz or sanitizer stage
 #   scripts/test.sh --sanitize address   ASan+UBSan build in build-asan/,
 #   scripts/test.sh --sanitize thread    TSan build in build-tsan/: the unit
 #                                        tests (ctest label "unit") only,
 #                                        with scripts/sanitizers/*.supp
 #
-# The sanitizer stage keeps the whole command within MRSIM_TEST_BUDGET_MIN
-# minutes (default 23, CI's limit is 25): it starts only when at least 9
+# After the suite, every fuzz target runs briefly (scripts/fuzz.sh,
+# MRSIM_FUZZ_SECONDS each, default 10). The sanitizer stage then keeps the
+# whole command within MRSIM_TEST_BUDGET_MIN minutes (default 34, CI's
+# limit is 40): it starts only when at least 9
 # minutes are left (its cold build and run take about 8 on a quiet 2-core
 # machine) and is stopped at the budget, which is reported, not failed.
 set -euo pipefail
@@ -83,9 +85,28 @@ ctest "${ctest_args[@]}" 2>&1 | tee ctest.log | grep --line-buffered -vE "$summa
 rc=${PIPESTATUS[0]}
 set -e
 
-# The ASan+UBSan stage: after a passing suite, within the time budget.
-budget_min="${MRSIM_TEST_BUDGET_MIN:-23}"
+budget_min="${MRSIM_TEST_BUDGET_MIN:-34}"
 budget=$(( budget_min * 60 ))
+
+# The fuzz stage: after a passing suite, every libFuzzer target for a short
+# spell (MRSIM_FUZZ_SECONDS each, default 10) on top of the replays ctest
+# already ran. A crash fails the run and names the input.
+if [ -z "$sanitize" ] && [ "$stage" = 1 ] && [ "$rc" = 0 ]; then
+  fuzz_s="${MRSIM_FUZZ_SECONDS:-10}"
+  echo "== fuzz targets, ${fuzz_s}s each (build-fuzz/)"
+  set +e
+  bash "$root/scripts/fuzz.sh" "$fuzz_s" >"$build/fuzz_stage.log" 2>&1
+  frc=$?
+  set -e
+  grep -E '^(BENCH|fuzz: .*(FAILED|failed|no crash))' "$build/fuzz_stage.log" || true
+  if [ "$frc" != 0 ]; then
+    grep -v '^BENCH' "$build/fuzz_stage.log" | tail -60
+    echo "fuzz: FAILED (full log: $build/fuzz_stage.log)"
+    rc=1
+  fi
+fi
+
+# The ASan+UBSan stage: after a passing suite, within the time budget.
 left=$(( budget - SECONDS ))
 if [ -z "$sanitize" ] && [ "$stage" = 1 ] && [ "$rc" = 0 ]; then
   if [ "$left" -ge 540 ]; then
