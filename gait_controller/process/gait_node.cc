@@ -115,6 +115,16 @@ WallTime GaitNode::Tick(WallTime now, GaitOutbox* out) {
         kNoSimulatorWarning, StateChannel(options_.prefix, options_.robot),
         SimStatusChannel(options_.prefix)));
   }
+  if (options_.exit_with_sim && !sim_heard_ && !sim_stopped_ &&
+      SecondsBetween(started_, now) >= kNoSimulatorGiveUp) {
+    sim_stopped_ = true;
+    gave_up_ = true;
+    Log(fmt::format(
+        "no simulator heard in {:.0f} s (--exit-with-sim): giving up (did "
+        "mrsim-sim fail to start, or does it use another --lcm-url or "
+        "--prefix?)",
+        kNoSimulatorGiveUp));
+  }
   if (options_.exit_with_sim && sim_heard_ && !sim_stopped_ &&
       SecondsBetween(*sim_heard_, now) >= kSimulatorSilence) {
     sim_stopped_ = true;

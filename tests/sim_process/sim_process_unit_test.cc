@@ -203,5 +203,35 @@ TEST(SimCommandLine, LockstepSpinsUnlessToldNot) {
   EXPECT_FALSE(spin({"--no-spin"}));
 }
 
+// --controllers names whom lockstep waits for; under another clock it
+// used to be accepted and the run went on in real time, unnoticed.
+TEST(SimCommandLine, ControllersWithoutLockstepIsAUsageError) {
+  for (const char* clock : {"realtime", "fast"}) {
+    CLI::App app;
+    SimCommandLine line;
+    line.AddFlags(app);
+    const std::vector<const char*> argv = {"mrsim-sim",     "run.xml",
+                                           "--clock",       clock,
+                                           "--controllers", "gait"};
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    try {
+      line.Finish();
+      ADD_FAILURE() << clock << ": --controllers accepted";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    "--controllers needs --clock lockstep"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  CLI::App app;
+  SimCommandLine line;
+  line.AddFlags(app);
+  const std::vector<const char*> argv = {"mrsim-sim", "run.xml",
+                                         "--controllers", "gait"};
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  EXPECT_THROW(line.Finish(), UsageError) << "the default clock is realtime";
+}
+
 }  // namespace
 }  // namespace mrsim

@@ -59,6 +59,31 @@ TEST(SimControlRequest, ParsesEveryCommandAndNamesWhatIsWrong) {
   }
 }
 
+// A typo names the command meant and lists every command, those mrsim-ctl
+// handles itself (status, gait) too.
+TEST(SimControlRequest, ATypoSuggestsTheNearestAndListsEveryCommand) {
+  try {
+    ParseSimControl({"pase"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("unknown command 'pase' (did you mean 'pause'?)"),
+              std::string::npos)
+        << what;
+    for (const char* command : {"resume", "quit", "status", "gait ROBOT"}) {
+      EXPECT_NE(what.find(command), std::string::npos) << command << ": " << what;
+    }
+  }
+  try {
+    ParseSimControl({"stauts"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'status'?"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GaitRequest, ChecksMotionAndRangesBeforeSending) {
   const gait_command_t c = ParseGaitRequest(
       {"gait", "snake", "motion", "turn-left", "strength", "0.5"});
