@@ -1,4 +1,5 @@
 // The pure parts of the sim bridge: state messages and the command rules.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
@@ -182,6 +183,35 @@ TEST(SimCommandLine, ADurationTheCheckpointIsPastIsRefused) {
                      std::to_string(t + 1)})
                   ->time(),
               t, 1e-12);
+}
+
+// mrsim-sim --load-checkpoint used to start without a word of what it
+// loaded: the line names the file, its robots and the sim time.
+TEST(SimCommandLine, TheLoadLineSaysWhatWasLoadedAndFromWhen) {
+  const std::string dir = testing::TempDir("sim_load_line");
+  Scenario scenario;
+  ChainOptions chain;
+  chain.name = "snake";
+  chain.modules = 4;
+  scenario.robots.push_back(MakeChain(chain));
+  Physics physics(scenario);
+  physics.Step(250);
+  const std::string checkpoint = dir + "/run.checkpoint";
+  SaveCheckpoint(checkpoint, physics);
+  CLI::App app;
+  SimCommandLine line;
+  line.AddFlags(app);
+  const std::vector<const char*> argv = {"mrsim-sim", "--load-checkpoint",
+                                         checkpoint.c_str()};
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  line.Finish();
+  const auto loaded = line.LoadPhysics();
+  EXPECT_EQ(line.LoadLine(*loaded),
+            "mrsim-sim: loaded checkpoint " + checkpoint +
+                ": 1 robot: snake (4 joints), continuing from sim time " +
+                fmt::format("{:.3f}", physics.time()) + " s");
+  SimCommandLine none;
+  EXPECT_EQ(none.LoadLine(*loaded), "");
 }
 
 // The spinning send thread is the default; --no-spin is for a machine
