@@ -122,6 +122,11 @@ std::string Describe(const gait_status_t& s) {
       fmt::format("robot {}: motion {} {:.2f}, gait {} ({}){}", s.robot,
                   s.motion, s.strength, s.gait, s.kind,
                   s.running ? "" : ", waiting for the first state");
+  // Until the first state the gait above is the old one: what was sent
+  // waits, and says so, rather than look ignored.
+  if (!s.queued.empty()) {
+    text += "; queued: " + s.queued + " (applies with the first state)";
+  }
   if (!s.warning.empty()) text += "; warning: " + s.warning;
   return text;
 }

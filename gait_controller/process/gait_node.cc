@@ -61,8 +61,14 @@ std::vector<std::string> GaitNode::TakeLog() {
 }
 
 std::string GaitNode::Describe() const {
-  if (!controller_)
-    return fmt::format("gait {} (waiting for the first state)", initial_.name);
+  if (!controller_) {
+    std::string queued;
+    for (const auto& [command, source] : queued_) {
+      queued += "; queued: " + DescribeGaitCommand(command);
+    }
+    return fmt::format("gait {} (waiting for the first state{})",
+                       initial_.name, queued);
+  }
   const GaitController& c = *controller_;
   return fmt::format("motion {} {:.2f}, gait {} ({})", ToString(c.motion()),
                      c.strength(), c.active_gait().name,
@@ -94,6 +100,9 @@ gait_status_t GaitNode::status() const {
   s.command_result = ack_result_;
   s.command_error = ack_error_;
   s.warning = warning_;
+  for (const auto& [command, source] : queued_) {
+    s.queued += (s.queued.empty() ? "" : "; ") + DescribeGaitCommand(command);
+  }
   return s;
 }
 
@@ -172,6 +181,8 @@ void GaitNode::Apply(const gait_command_t& command, const std::string& source,
       } else {
         queued_.emplace_back(command, source);
         Acknowledge(command, gait_status_t::QUEUED, "");
+        Log(fmt::format("{}: {} queued (applies with the first state)",
+                        source, DescribeGaitCommand(command)));
       }
       PublishStatus(now, out);
       return;

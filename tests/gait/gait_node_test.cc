@@ -333,6 +333,16 @@ TEST_F(GaitNodeTest, CommandsBeforeTheFirstStateAreQueuedAndAcknowledged) {
   EXPECT_EQ(statuses_.back().command_seq, 7);
   EXPECT_EQ(statuses_.back().command_sender, "ctl-1");
   EXPECT_EQ(statuses_.back().command_result, int8_t{gait_status_t::QUEUED});
+  // Shown as queued, not as the old gait alone, until it applies.
+  EXPECT_EQ(statuses_.back().queued, "motion backward 1.00");
+  EXPECT_NE(node->Describe().find("queued: motion backward 1.00"),
+            std::string::npos)
+      << node->Describe();
+  const size_t before = statuses_.size();
+  node->Tick(AfterSeconds(now_, 1.5), &out_);
+  Collect();
+  ASSERT_GT(statuses_.size(), before);
+  EXPECT_EQ(statuses_.back().queued, "motion backward 1.00");
   Send(*node, State(0, 0));
   ASSERT_NE(node->controller(), nullptr);
   EXPECT_EQ(node->controller()->motion(), Motion::kBackward);
@@ -340,6 +350,7 @@ TEST_F(GaitNodeTest, CommandsBeforeTheFirstStateAreQueuedAndAcknowledged) {
   EXPECT_EQ(statuses_.back().command_result, int8_t{gait_status_t::APPLIED});
   EXPECT_TRUE(statuses_.back().running);
   EXPECT_EQ(statuses_.back().motion, "backward");
+  EXPECT_EQ(statuses_.back().queued, "");
 }
 
 TEST_F(GaitNodeTest, StatusSaysWhatRunsOnChangeAndEverySecond) {
