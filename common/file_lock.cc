@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 namespace mrsim {
 namespace {
@@ -46,9 +47,8 @@ FileLock::FileLock(std::string path) : path_(std::move(path)) {
   }
   stale_holder_ = ReadPid(fd_);
   const std::string pid = std::to_string(getpid()) + "\n";
-  if (ftruncate(fd_, 0) != 0 ||
-      pwrite(fd_, pid.data(), pid.size(), 0) !=
-          static_cast<ssize_t>(pid.size())) {
+  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) !=
+                                    static_cast<ssize_t>(pid.size())) {
     const int error = errno;
     close(fd_);
     fd_ = -1;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -192,8 +193,8 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
       return 0;
     }
     for (const auto& [instance, s] : heard) {
-      out << "simulator " << (instance.empty() ? "(unnamed)" : instance)
-          << ": " << Describe(s) << "\n";
+      out << "simulator " << (instance.empty() ? "(unnamed)" : instance) << ": "
+          << Describe(s) << "\n";
     }
     err << SeveralSimulatorsNote(heard, SimStatusChannel(o.prefix));
     return 0;

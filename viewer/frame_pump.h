@@ -35,10 +35,11 @@ class FramePump {
 
   // Renders the frames that are due, at most `max_renders` pictures per
   // call; with a window its input is handled after every picture, and a
-  // window asked to close ends the call, whatever the render rate. With a window and no output, frames a slow
-  // render fell behind on are dropped (counted in dropped()): only the
-  // newest due frame is drawn. Frames are dropped, input never. Returns
-  // false once max_frames is reached. Throws what the writer throws.
+  // window asked to close ends the call, whatever the render rate. With a
+  // window and no output, frames a slow render fell behind on are dropped
+  // (counted in dropped()): only the newest due frame is drawn. Frames are
+  // dropped, input never. Returns false once max_frames is reached. Throws what
+  // the writer throws.
   bool Drain(int64_t max_renders = std::numeric_limits<int64_t>::max());
   // Window only: handles input and redraws after camera moves or a resize
   // while no new frame is due.

@@ -54,8 +54,8 @@ std::string DescribeGaitCommand(const gait_command_t& command) {
   std::vector<std::string> parts;
   if (!command.gait.empty()) parts.push_back("gait " + command.gait);
   if (command.has_parameters) {
-    parts.push_back(fmt::format("parameters [{:g}]",
-                                fmt::join(command.parameters, ", ")));
+    parts.push_back(
+        fmt::format("parameters [{:g}]", fmt::join(command.parameters, ", ")));
   }
   if (!command.motion.empty()) {
     parts.push_back(

@@ -66,8 +66,8 @@ std::string GaitNode::Describe() const {
     for (const auto& [command, source] : queued_) {
       queued += "; queued: " + DescribeGaitCommand(command);
     }
-    return fmt::format("gait {} (waiting for the first state{})",
-                       initial_.name, queued);
+    return fmt::format("gait {} (waiting for the first state{})", initial_.name,
+                       queued);
   }
   const GaitController& c = *controller_;
   return fmt::format("motion {} {:.2f}, gait {} ({})", ToString(c.motion()),
@@ -181,8 +181,8 @@ void GaitNode::Apply(const gait_command_t& command, const std::string& source,
       } else {
         queued_.emplace_back(command, source);
         Acknowledge(command, gait_status_t::QUEUED, "");
-        Log(fmt::format("{}: {} queued (applies with the first state)",
-                        source, DescribeGaitCommand(command)));
+        Log(fmt::format("{}: {} queued (applies with the first state)", source,
+                        DescribeGaitCommand(command)));
       }
       PublishStatus(now, out);
       return;

@@ -74,8 +74,8 @@ std::string SimCommandLine::LoadLine(const Physics& physics) const {
       "mrsim-sim: loaded checkpoint {}: {} robot{}{}{}, continuing from sim "
       "time {:.3f} s{}",
       load_checkpoint, physics.robot_count(),
-      physics.robot_count() == 1 ? "" : "s", robots.empty() ? "" : ": ",
-      robots, physics.time(),
+      physics.robot_count() == 1 ? "" : "s", robots.empty() ? "" : ": ", robots,
+      physics.time(),
       scenario_path.empty() ? "" : " (same scenario as " + scenario_path + ")");
 }
 

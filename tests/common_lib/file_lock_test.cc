@@ -30,8 +30,8 @@ TEST(FileLock, ASecondHolderIsRefusedWithTheFirstOnesPid) {
       FAIL() << "two holders";
     } catch (const FileLockBusy& e) {
       EXPECT_EQ(e.holder(), getpid());
-      EXPECT_NE(std::string(e.what()).find(
-                    "is locked by process " + std::to_string(getpid())),
+      EXPECT_NE(std::string(e.what()).find("is locked by process " +
+                                           std::to_string(getpid())),
                 std::string::npos)
           << e.what();
     }

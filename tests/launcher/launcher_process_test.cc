@@ -120,14 +120,15 @@ TEST(Launcher, ClientsStopBeforeTheirHubQuietly) {
     port += std::atoi(offset);
   }
   const std::string url = "tcpq://127.0.0.1:" + std::to_string(port);
-  const std::string launch = WriteLaunch(dir, R"(<launch>
-  <hub port=")" + std::to_string(port) + R"("/>
-  <process name="sim" program=")" + BinaryPath("sim_core/sim_process/mrsim-sim") +
-                                                  R"(" args=")" +
-                                                  testing::SourcePath(
-                                                      "scenarios/snake11.xml") +
-                                                  " --paused --lcm-url " + url +
-                                                  R"("/>
+  const std::string launch = WriteLaunch(
+      dir, R"(<launch>
+  <hub port=")" +
+               std::to_string(port) + R"("/>
+  <process name="sim" program=")" +
+               BinaryPath("sim_core/sim_process/mrsim-sim") + R"(" args=")" +
+               testing::SourcePath("scenarios/snake11.xml") +
+               " --paused --lcm-url " + url +
+               R"("/>
 </launch>)");
   ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
                      dir + "/out.txt");

@@ -163,9 +163,9 @@ TEST(OptCommand, ARunFolderIsLockedWhileARunWritesIt) {
       PrepareOpt(c);
       FAIL() << "two runs on one folder";
     } catch (const OptInputError& e) {
-      EXPECT_NE(std::string(e.what()).find(
-                    "another mrsim-opt (process " + std::to_string(getpid()) +
-                    ") is writing this run folder"),
+      EXPECT_NE(std::string(e.what()).find("another mrsim-opt (process " +
+                                           std::to_string(getpid()) +
+                                           ") is writing this run folder"),
                 std::string::npos)
           << e.what();
     }

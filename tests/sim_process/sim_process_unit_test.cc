@@ -240,17 +240,16 @@ TEST(SimCommandLine, ControllersWithoutLockstepIsAUsageError) {
     CLI::App app;
     SimCommandLine line;
     line.AddFlags(app);
-    const std::vector<const char*> argv = {"mrsim-sim",     "run.xml",
-                                           "--clock",       clock,
-                                           "--controllers", "gait"};
+    const std::vector<const char*> argv = {
+        "mrsim-sim", "run.xml", "--clock", clock, "--controllers", "gait"};
     app.parse(static_cast<int>(argv.size()), argv.data());
     try {
       line.Finish();
       ADD_FAILURE() << clock << ": --controllers accepted";
     } catch (const UsageError& e) {
-      EXPECT_NE(std::string(e.what()).find(
-                    "--controllers needs --clock lockstep"),
-                std::string::npos)
+      EXPECT_NE(
+          std::string(e.what()).find("--controllers needs --clock lockstep"),
+          std::string::npos)
           << e.what();
     }
   }

@@ -72,7 +72,8 @@ TEST(SimControlRequest, ATypoSuggestsTheNearestAndListsEveryCommand) {
               std::string::npos)
         << what;
     for (const char* command : {"resume", "quit", "status", "gait ROBOT"}) {
-      EXPECT_NE(what.find(command), std::string::npos) << command << ": " << what;
+      EXPECT_NE(what.find(command), std::string::npos)
+          << command << ": " << what;
     }
   }
   try {

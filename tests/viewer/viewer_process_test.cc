@@ -354,8 +354,8 @@ std::string StartXvfb(ChildProcess& xvfb) {
 }
 
 std::vector<std::string> XvfbArgs() {
-  return {"/usr/bin/Xvfb", "-displayfd", "1",  "-screen",
-          "0",             "640x480x24", "-nolisten", "tcp"};
+  return {"/usr/bin/Xvfb", "-displayfd", "1",  "-screen", "0",
+          "640x480x24",    "-nolisten",  "tcp"};
 }
 
 TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
@@ -419,19 +419,19 @@ TEST(ViewerProcess, WindowAnswersQWhileRenderingFallsBehind) {
   ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"), scenario,
                     "--lcm-url", url, "--clock", "fast"},
                    dir + "/sim.log");
-  ChildProcess viewer({"/usr/bin/env", "DISPLAY=" + display,
-                       BinaryPath(kViewer), scenario, "--lcm-url", url,
-                       "--window", "--fps", "200", "--width", "640",
-                       "--height", "480"},
-                      dir + "/viewer.log");
+  ChildProcess viewer(
+      {"/usr/bin/env", "DISPLAY=" + display, BinaryPath(kViewer), scenario,
+       "--lcm-url", url, "--window", "--fps", "200", "--width", "640",
+       "--height", "480"},
+      dir + "/viewer.log");
   ASSERT_TRUE(viewer.WaitForOutput("listening", 60.0)) << viewer.Output();
   // Rendering and behind: the fast simulator's states reach the viewer.
   ASSERT_TRUE(testing::WaitUntil(
       [&] {
-        ChildProcess probe({"/usr/bin/env", "DISPLAY=" + display,
-                            "/usr/bin/xdotool", "search", "--name",
-                            "mrsim-view"},
-                           dir + "/search.log");
+        ChildProcess probe(
+            {"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool", "search",
+             "--name", "mrsim-view"},
+            dir + "/search.log");
         return probe.Wait(30.0) == 0;
       },
       60.0))
@@ -439,10 +439,10 @@ TEST(ViewerProcess, WindowAnswersQWhileRenderingFallsBehind) {
   ASSERT_TRUE(sim.running()) << sim.Output();
   // Focus it (no window manager: xdotool sets the input focus) and press q
   // through XTEST, as a keyboard would.
-  ChildProcess press({"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool",
-                      "search", "--name", "mrsim-view", "windowfocus", "%1",
-                      "key", "q"},
-                     dir + "/press.log");
+  ChildProcess press(
+      {"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool", "search",
+       "--name", "mrsim-view", "windowfocus", "%1", "key", "q"},
+      dir + "/press.log");
   EXPECT_EQ(press.Wait(30.0), 0) << press.Output();
   EXPECT_EQ(viewer.Wait(10.0), 0) << viewer.Output();
   EXPECT_NE(viewer.Output().find("mrsim-view: done"), std::string::npos)

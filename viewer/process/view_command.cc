@@ -3,8 +3,8 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
