@@ -15,11 +15,11 @@ if(Pagmo_FOUND)
 endif()
 
 set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/mrsim)
-install(EXPORT mrsimTargets NAMESPACE mrsim:: DESTINATION ${config_dir})
+install(EXPORT mrsimTargets NAMESPACE mrsim:: DESTINATION ${config_dir} ${MRSIM_DEV_INSTALL})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/mrsimConfig.cmake.in
   ${PROJECT_BINARY_DIR}/mrsimConfig.cmake INSTALL_DESTINATION ${config_dir})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/mrsimConfig.cmake
-  ${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake DESTINATION ${config_dir})
+  ${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake DESTINATION ${config_dir} ${MRSIM_DEV_INSTALL})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim/scenarios)

@@ -23,19 +23,17 @@ void CollectNames(const CLI::App& app, std::vector<std::string>* names) {
 }  // namespace
 
 std::string NearestOption(const CLI::App& app, const std::string& typed) {
-  const std::string name = typed.substr(0, typed.find('='));
   std::vector<std::string> names;
   CollectNames(app, &names);
-  std::string best;
-  size_t best_distance = std::max<size_t>(2, name.size() / 3) + 1;
-  for (const std::string& candidate : names) {
-    const size_t d = EditDistance(name, candidate);
-    if (d < best_distance) {
-      best_distance = d;
-      best = candidate;
-    }
+  return NearestWord(typed.substr(0, typed.find('=')), names);
+}
+
+std::string NearestSubcommand(const CLI::App& app, const std::string& typed) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    names.push_back(sub->get_name());
   }
-  return best;
+  return NearestWord(typed, names);
 }
 
 int CliParseExit(const CLI::App& app, const CLI::ParseError& error,
@@ -52,6 +50,15 @@ int CliParseExit(const CLI::App& app, const CLI::ParseError& error,
       << (extras.size() == 1 ? "" : "s") << ":";
   for (const std::string& e : extras) err << " " << e;
   err << "\n";
+  // A word where a subcommand was expected: the first extra, when no
+  // subcommand was given ("mrsim-scenario valdate x.xml").
+  if (!extras.empty() && !extras[0].empty() && extras[0][0] != '-' &&
+      app.get_subcommands().empty()) {
+    const std::string nearest = NearestSubcommand(app, extras[0]);
+    if (!nearest.empty()) {
+      err << "  " << extras[0] << ": did you mean " << nearest << "?\n";
+    }
+  }
   for (const std::string& e : extras) {
     if (e.size() < 2 || e[0] != '-' || (e[1] >= '0' && e[1] <= '9')) continue;
     const std::string nearest = NearestOption(app, e);

@@ -73,8 +73,15 @@ Subprocess::Subprocess(const std::vector<std::string>& argv,
     posix_spawn_file_actions_addchdir_np(actions.get(),
                                          options.working_dir.c_str());
   }
-  const int rc =
-      posix_spawn(&pid_, args[0], actions.get(), nullptr, args.data(), environ);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  if (options.own_process_group) {
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
+  }
+  const int rc = posix_spawn(&pid_, args[0], actions.get(), &attributes,
+                             args.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   if (pipe_fds[1] >= 0) close(pipe_fds[1]);
   if (rc != 0) {
     if (pipe_fds[0] >= 0) close(pipe_fds[0]);

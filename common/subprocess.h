@@ -17,6 +17,10 @@ struct SpawnOptions {
   Output output = Output::kInherit;
   std::string output_path;  // for kFile (created or truncated)
   std::string working_dir;  // empty: the parent's
+  // In a process group of its own: the terminal's Ctrl-C (sent to the
+  // foreground group) does not reach it, so the parent decides when it
+  // stops (a hub its siblings need until they have stopped).
+  bool own_process_group = false;
 
   // Output to a file (created or truncated).
   static SpawnOptions ToFile(const std::string& path) {

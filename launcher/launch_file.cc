@@ -103,6 +103,7 @@ ProcessSpec HubProcess(const tinyxml2::XMLElement* e,
   spec.args = {"-cp", jar ? Substitute(jar, vars, where) : kLcmJar,
                "lcm.lcm.TCPService", port};
   spec.ready_port = static_cast<int>(value);
+  spec.stop_last = true;
   spec.enabled =
       ParseBool(e->Attribute("enabled")
                     ? Substitute(e->Attribute("enabled"), vars, where).c_str()

@@ -35,6 +35,10 @@ struct ProcessSpec {
   // > 0: the processes after it start only once this TCP port on this host
   // accepts connections (a hub: LCM's tcpq clients do not retry).
   int ready_port = 0;
+  // A hub: its siblings talk through it, so it is stopped after all of
+  // them (and the terminal's Ctrl-C does not reach it), which spares them
+  // "connection reset" and "re-connecting" on a normal stop.
+  bool stop_last = false;
   int line = 0;  // where it was declared, for messages
 };
 

@@ -18,7 +18,21 @@ namespace {
 
 constexpr int kColours[] = {36, 33, 32, 35, 34, 31};
 
-std::string DescribeStatus(int status) { return DescribeExitStatus(status); }
+bool IsStopSignal(int sig) { return sig == SIGINT || sig == SIGTERM; }
+
+// Ended by a stop signal, or exited 128 + one (as a JVM, or mrsim-opt
+// leaving a run unfinished, do).
+bool EndedByStopSignal(int status) {
+  return (WIFSIGNALED(status) && IsStopSignal(WTERMSIG(status))) ||
+         (WIFEXITED(status) && IsStopSignal(WEXITSTATUS(status) - 128));
+}
+
+// A process the group stopped, that ended as asked, just "stopped": not
+// "exited with code 130", which reads as a failure.
+std::string DescribeStatus(int status, bool stopped_by_us) {
+  if (stopped_by_us && EndedByStopSignal(status)) return "stopped";
+  return DescribeExitStatus(status);
+}
 
 }  // namespace
 
@@ -35,6 +49,7 @@ void ProcessGroup::Start(const ProcessSpec& spec,
   argv.insert(argv.end(), spec.args.begin(), spec.args.end());
   SpawnOptions options;
   options.output = SpawnOptions::Output::kPipe;
+  options.own_process_group = spec.stop_last;
   Child child;
   try {
     child.process = std::make_unique<Subprocess>(argv, options);
@@ -116,7 +131,7 @@ void ProcessGroup::Reap(Child& child, int status) {
   child.running = false;
   child.status = status;
   Forward(child, true);
-  Say(child.spec.name + " " + DescribeStatus(status));
+  Say(child.spec.name + " " + DescribeStatus(status, child.stopped_by_us));
 }
 
 std::string ProcessGroup::Poll(int timeout_ms) {
@@ -149,13 +164,27 @@ std::string ProcessGroup::Poll(int timeout_ms) {
 }
 
 void ProcessGroup::StopAll(double grace_s) {
+  // Clients first, in reverse start order (consumers before the
+  // simulator), then the hubs they talk through.
+  StopStage(false, grace_s);
+  StopStage(true, grace_s);
+  for (auto& c : children_) {
+    Forward(c, true);
+  }
+}
+
+void ProcessGroup::StopStage(bool stop_last, double grace_s) {
   using Clock = std::chrono::steady_clock;
+  const auto stage_running = [&] {
+    return std::any_of(children_.begin(), children_.end(), [&](const Child& c) {
+      return c.running && c.spec.stop_last == stop_last;
+    });
+  };
   const int signals[] = {SIGINT, SIGTERM, SIGKILL};
   for (int sig : signals) {
     bool any = false;
-    // Stop in reverse start order: consumers before the simulator.
     for (auto it = children_.rbegin(); it != children_.rend(); ++it) {
-      if (it->running) {
+      if (it->running && it->spec.stop_last == stop_last) {
         it->stopped_by_us = true;
         it->process->Signal(sig);
         any = true;
@@ -164,13 +193,10 @@ void ProcessGroup::StopAll(double grace_s) {
     if (!any) break;
     const auto deadline = Clock::now() + std::chrono::duration<double>(
                                              sig == SIGKILL ? 5.0 : grace_s);
-    while (AnyRunning() && Clock::now() < deadline) Poll(50);
-    if (!AnyRunning()) break;
+    while (stage_running() && Clock::now() < deadline) Poll(50);
+    if (!stage_running()) break;
     Say(std::string("some processes ignored ") + strsignal(sig) +
         ", escalating");
-  }
-  for (auto& c : children_) {
-    Forward(c, true);
   }
 }
 
@@ -180,16 +206,10 @@ bool ProcessGroup::AnyRunning() const {
 }
 
 bool ProcessGroup::AllClean(bool interrupted) const {
-  const auto stop_signal = [](int sig) {
-    return sig == SIGINT || sig == SIGTERM;
-  };
   for (const auto& c : children_) {
     if (c.running) return false;
-    const bool exited = WIFEXITED(c.status);
-    if (exited && WEXITSTATUS(c.status) == 0) continue;
-    const bool stopped =
-        (WIFSIGNALED(c.status) && stop_signal(WTERMSIG(c.status))) ||
-        (exited && stop_signal(WEXITSTATUS(c.status) - 128));
+    if (WIFEXITED(c.status) && WEXITSTATUS(c.status) == 0) continue;
+    const bool stopped = EndedByStopSignal(c.status);
     if (!stopped || !(c.stopped_by_us || interrupted)) return false;
   }
   return true;
@@ -199,7 +219,9 @@ std::string ProcessGroup::Summary() const {
   std::string s;
   for (const auto& c : children_) {
     s += "  " + c.spec.name + ": " +
-         (c.running ? std::string("running") : DescribeStatus(c.status)) + "\n";
+         (c.running ? std::string("running")
+                    : DescribeStatus(c.status, c.stopped_by_us)) +
+         "\n";
   }
   return s;
 }

@@ -38,6 +38,7 @@ class ProcessGroup {
 
   // SIGINT to all that run, then SIGTERM after grace_s, then SIGKILL;
   // forwards their last output. Returns when every process has ended.
+  // Hubs (ProcessSpec::stop_last) only once every other process ended.
   void StopAll(double grace_s);
 
   bool AnyRunning() const;
@@ -61,6 +62,8 @@ class ProcessGroup {
     bool stopped_by_us = false;
     int colour = 0;
   };
+  // Signals the children with spec.stop_last == stop_last, escalating.
+  void StopStage(bool stop_last, double grace_s);
   void Forward(Child& child, bool flush_partial);
   void Reap(Child& child, int status);
   void PrintLine(const Child& child, const std::string& line);

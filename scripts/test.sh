@@ -58,6 +58,8 @@ fi
 
 cd "$build"
 ctest_args=(-j"$jobs" --output-on-failure --timeout 600)
+# The slow docs blocks (long optimiser runs, root) only when asked.
+[ "${MRSIM_TEST_SLOW:-0}" = 1 ] || ctest_args+=(-LE slow)
 if [ -n "$sanitize" ]; then
   # Multi-process tests are left out: their programs are the same code the
   # unit tests cover, and sanitizer slow-down would only test the clock.

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 
 #include "common/wall_time.h"
@@ -23,6 +25,9 @@ namespace mrsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// s: a simulator sends its status about twice a second.
+constexpr double kEverySimulatorHeard = 0.7;
 
 // Keeps the newest decodable message of one type on one channel.
 template <class Message>
@@ -60,12 +65,16 @@ class Listener {
   // version of mrsim, or another program on the same channel).
   int undecodable() const { return undecodable_; }
 
+  // Called with every message decoded, whether Next wanted it or not.
+  std::function<void(const Message&)> watch;
+
  private:
   // Called from LCM's C code: nothing may escape.
   void On(const lcm::ReceiveBuffer* rbuf, const std::string&) noexcept {
     try {
       Message m;
       if (DecodeMessage(rbuf, &m)) {
+        if (watch) watch(m);
         fresh_.push_back(std::move(m));
       } else {
         ++undecodable_;
@@ -114,7 +123,32 @@ std::string Describe(const gait_status_t& s) {
       fmt::format("robot {}: motion {} {:.2f}, gait {} ({}){}", s.robot,
                   s.motion, s.strength, s.gait, s.kind,
                   s.running ? "" : ", waiting for the first state");
+  // Until the first state the gait above is the old one: what was sent
+  // waits, and says so, rather than look ignored.
+  if (!s.queued.empty()) {
+    text += "; queued: " + s.queued + " (applies with the first state)";
+  }
   if (!s.warning.empty()) text += "; warning: " + s.warning;
+  return text;
+}
+
+// Simulators heard, by instance: the newest status of each.
+using Heard = std::map<std::string, sim_status_t>;
+
+// Two simulators on one URL and prefix both take every request: say so,
+// listing them.
+std::string SeveralSimulatorsNote(const Heard& heard,
+                                  const std::string& channel) {
+  if (heard.size() < 2) return "";
+  std::string text = fmt::format(
+      "mrsim-ctl: warning: {} simulators answer on {}; each takes what is "
+      "sent there (stop all but one, or give each its own --prefix):\n",
+      heard.size(), channel);
+  for (const auto& [instance, s] : heard) {
+    text += fmt::format("  {}: sim time {:.3f} s, {} clock\n",
+                        instance.empty() ? "(unnamed)" : instance, s.sim_time,
+                        s.clock);
+  }
   return text;
 }
 
@@ -137,6 +171,8 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
         std::filesystem::absolute(request.path).lexically_normal().string();
   }
   Listener<sim_status_t> status(lcm, SimStatusChannel(o.prefix));
+  Heard heard;
+  status.watch = [&heard](const sim_status_t& s) { heard[s.instance] = s; };
   const auto alive =
       status.Next([](const sim_status_t&) { return true; }, o.timeout);
   if (!alive) {
@@ -148,7 +184,19 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
     return 1;
   }
   if (status_only) {
-    out << Describe(*alive) << "\n";
+    // Every simulator sends a status at least twice a second: listening a
+    // little longer hears each one.
+    status.Next([](const sim_status_t&) { return false; },
+                kEverySimulatorHeard);
+    if (heard.size() < 2) {
+      out << Describe(*alive) << "\n";
+      return 0;
+    }
+    for (const auto& [instance, s] : heard) {
+      out << "simulator " << (instance.empty() ? "(unnamed)" : instance) << ": "
+          << Describe(s) << "\n";
+    }
+    err << SeveralSimulatorsNote(heard, SimStatusChannel(o.prefix));
     return 0;
   }
   request.utime = WallMicros();
@@ -167,6 +215,7 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
         words[0], o.timeout);
     return 1;
   }
+  err << SeveralSimulatorsNote(heard, SimStatusChannel(o.prefix));
   if (!ack->control_ok) {
     out << words[0] << ": refused\n" << Describe(*ack) << "\n";
     return 1;
@@ -188,6 +237,20 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
     }
     out << "step: done\n" << Describe(*stepped, false) << "\n";
     return 0;
+  }
+  if (request.command == sim_control_t::RESUME) {
+    // The acknowledgement's real-time factor is over the paused spell
+    // (0.00); the next status measures the running one.
+    const int64_t acked = ack->seq;
+    const auto running = status.Next(
+        [&](const sim_status_t& s) {
+          return s.instance == ack->instance && s.seq > acked;
+        },
+        std::min(o.timeout, 2 * kEverySimulatorHeard));
+    if (running) {
+      out << "resume: done\n" << Describe(*running, false) << "\n";
+      return 0;
+    }
   }
   out << words[0] << ": done" << (file ? " (" + request.path + ")" : "") << "\n"
       << Describe(*ack, false) << "\n";

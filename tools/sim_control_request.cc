@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "common/edit_distance.h"
+#include "tools/gait_command_request.h"
+
 namespace mrsim {
 namespace {
 
@@ -79,8 +82,14 @@ sim_control_t ParseSimControl(const std::vector<std::string>& words) {
     Expect(words, 0, "no argument");
     msg.command = sim_control_t::QUIT;
   } else {
-    throw std::invalid_argument("unknown command '" + c + "'; expected " +
-                                SimControlUsage());
+    const std::string nearest =
+        NearestWord(c, {"pause", "resume", "step", "reset", "save", "load",
+                        "speed", "detach", "attach", "quit", "status", "gait"});
+    throw std::invalid_argument(
+        "unknown command '" + c + "'" +
+        (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") +
+        "; the commands are: " + SimControlUsage() + " | status | " +
+        GaitRequestUsage());
   }
   return msg;
 }

@@ -16,8 +16,11 @@ FramePump::FramePump(StateViewer* viewer, FrameScheduler* scheduler,
       gait_text_(std::move(gait_text)),
       mutex_(mutex) {}
 
-bool FramePump::Drain() {
-  while (!Done()) {
+bool FramePump::Drain(int64_t max_renders) {
+  // Only a window shows frames nobody keeps: those may be skipped.
+  const bool newest_only = window_ != nullptr && !make_writer_;
+  int64_t renders = 0;
+  while (!Done() && renders < max_renders) {
     FrameScheduler::Frame frame;
     bool changed = window_ != nullptr && window_->TakeCameraChanged();
     {
@@ -31,6 +34,13 @@ bool FramePump::Drain() {
         }
       }
       if (!scheduler_->NextFrame(&frame)) return true;
+      // Pointers of an earlier frame stay valid until the next Push, which
+      // needs the mutex held here.
+      for (FrameScheduler::Frame newer;
+           newest_only && scheduler_->NextFrame(&newer);) {
+        frame = std::move(newer);
+        ++dropped_;
+      }
       // A repeated state (lost or late messages) gives the same picture.
       changed = changed || !have_image_ || frame.key != last_key_ ||
                 frame.scene_key != last_scene_key_;
@@ -51,6 +61,13 @@ bool FramePump::Drain() {
       last_key_ = frame.key;
       last_scene_key_ = frame.scene_key;
       ++rendered_;
+      ++renders;
+      if (window_ != nullptr) {
+        // Input between pictures, however many are due: q and Esc act at
+        // once, drags and zoom apply to the next picture.
+        window_->PollEvents();
+        if (window_->ShouldClose()) return true;
+      }
     }
     if (first_index_ < 0) first_index_ = frame.index;
     last_time_ = frame.utime * 1e-6;

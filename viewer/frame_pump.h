@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -32,9 +33,14 @@ class FramePump {
             WriterFactory make_writer, LiveWindow* window, int64_t max_frames,
             std::function<std::string()> gait_text, std::mutex* mutex);
 
-  // Renders every frame that is due. Returns false once max_frames is
-  // reached. Throws what the writer throws.
-  bool Drain();
+  // Renders the frames that are due, at most `max_renders` pictures per
+  // call; with a window its input is handled after every picture, and a
+  // window asked to close ends the call, whatever the render rate. With a
+  // window and no output, frames a slow render fell behind on are dropped
+  // (counted in dropped()): only the newest due frame is drawn. Frames are
+  // dropped, input never. Returns false once max_frames is reached. Throws what
+  // the writer throws.
+  bool Drain(int64_t max_renders = std::numeric_limits<int64_t>::max());
   // Window only: handles input and redraws after camera moves or a resize
   // while no new frame is due.
   void Refresh();
@@ -44,6 +50,8 @@ class FramePump {
   bool Done() const { return max_frames_ > 0 && frames_ >= max_frames_; }
   int64_t frames() const { return frames_; }
   int64_t rendered() const { return rendered_; }
+  // Window only: due frames skipped to show a newer one.
+  int64_t dropped() const { return dropped_; }
   int64_t first_index() const { return first_index_; }
   double last_time() const { return last_time_; }
   // The output, once the first frame opened it; null before.
@@ -71,6 +79,7 @@ class FramePump {
   bool last_scene_valid_ = false;
   int64_t frames_ = 0;
   int64_t rendered_ = 0;
+  int64_t dropped_ = 0;
   int64_t first_index_ = -1;
   double last_time_ = 0.0;
 };

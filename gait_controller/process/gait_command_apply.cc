@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "gait_controller/gait_file.h"
 
@@ -47,6 +48,24 @@ std::string ApplyGaitCommand(const gait_command_t& command,
   }
   *controller = std::move(next);
   return what.substr(1);
+}
+
+std::string DescribeGaitCommand(const gait_command_t& command) {
+  std::vector<std::string> parts;
+  if (!command.gait.empty()) parts.push_back("gait " + command.gait);
+  if (command.has_parameters) {
+    parts.push_back(
+        fmt::format("parameters [{:g}]", fmt::join(command.parameters, ", ")));
+  }
+  if (!command.motion.empty()) {
+    parts.push_back(
+        fmt::format("motion {} {:.2f}", command.motion, command.strength));
+  }
+  if (command.has_direction) {
+    parts.push_back(fmt::format("direction forward {:.2f} turn {:.2f}",
+                                command.forward, command.turn));
+  }
+  return parts.empty() ? "nothing" : fmt::format("{}", fmt::join(parts, ", "));
 }
 
 }  // namespace mrsim

@@ -15,4 +15,8 @@ namespace mrsim {
 std::string ApplyGaitCommand(const gait_command_t& command,
                              GaitController* controller);
 
+// What a command asks for, in words ("gait sidewind, motion backward
+// 1.00"), for one not applied yet.
+std::string DescribeGaitCommand(const gait_command_t& command);
+
 }  // namespace mrsim

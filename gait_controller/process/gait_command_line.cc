@@ -39,7 +39,7 @@ void GaitCommandLine::AddFlags(CLI::App& app) {
   app.add_flag(
       "--exit-with-sim", options.exit_with_sim,
       "Exit when the simulator stops (a --duration run ends, QUIT) or has "
-      "been silent for 5 s");
+      "been silent for 5 s, or when none was heard within 30 s");
   app.add_flag("--keyboard", keyboard,
                "Steer from the keyboard (stdin must be a terminal)");
 }

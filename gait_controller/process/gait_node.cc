@@ -61,8 +61,14 @@ std::vector<std::string> GaitNode::TakeLog() {
 }
 
 std::string GaitNode::Describe() const {
-  if (!controller_)
-    return fmt::format("gait {} (waiting for the first state)", initial_.name);
+  if (!controller_) {
+    std::string queued;
+    for (const auto& [command, source] : queued_) {
+      queued += "; queued: " + DescribeGaitCommand(command);
+    }
+    return fmt::format("gait {} (waiting for the first state{})", initial_.name,
+                       queued);
+  }
   const GaitController& c = *controller_;
   return fmt::format("motion {} {:.2f}, gait {} ({})", ToString(c.motion()),
                      c.strength(), c.active_gait().name,
@@ -94,6 +100,9 @@ gait_status_t GaitNode::status() const {
   s.command_result = ack_result_;
   s.command_error = ack_error_;
   s.warning = warning_;
+  for (const auto& [command, source] : queued_) {
+    s.queued += (s.queued.empty() ? "" : "; ") + DescribeGaitCommand(command);
+  }
   return s;
 }
 
@@ -114,6 +123,16 @@ WallTime GaitNode::Tick(WallTime now, GaitOutbox* out) {
         "mrsim-sim running, with the same --lcm-url and --prefix?)",
         kNoSimulatorWarning, StateChannel(options_.prefix, options_.robot),
         SimStatusChannel(options_.prefix)));
+  }
+  if (options_.exit_with_sim && !sim_heard_ && !sim_stopped_ &&
+      SecondsBetween(started_, now) >= kNoSimulatorGiveUp) {
+    sim_stopped_ = true;
+    gave_up_ = true;
+    Log(fmt::format(
+        "no simulator heard in {:.0f} s (--exit-with-sim): giving up (did "
+        "mrsim-sim fail to start, or does it use another --lcm-url or "
+        "--prefix?)",
+        kNoSimulatorGiveUp));
   }
   if (options_.exit_with_sim && sim_heard_ && !sim_stopped_ &&
       SecondsBetween(*sim_heard_, now) >= kSimulatorSilence) {
@@ -162,6 +181,8 @@ void GaitNode::Apply(const gait_command_t& command, const std::string& source,
       } else {
         queued_.emplace_back(command, source);
         Acknowledge(command, gait_status_t::QUEUED, "");
+        Log(fmt::format("{}: {} queued (applies with the first state)", source,
+                        DescribeGaitCommand(command)));
       }
       PublishStatus(now, out);
       return;

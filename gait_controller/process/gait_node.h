@@ -68,6 +68,10 @@ class GaitNode {
   // its host lost) and the node stops; it sends a status every 0.5 s even
   // when paused (wall s).
   static constexpr double kSimulatorSilence = 5.0;
+  // With exit_with_sim, no simulator heard at all this long after starting:
+  // it failed to start (or the URL or prefix is wrong) and the node stops
+  // rather than wait forever in a batch script (wall s; docs/gait.md).
+  static constexpr double kNoSimulatorGiveUp = 30.0;
   // Answers kept for states the simulator may send again (pipelined
   // lockstep re-sends the two states it waits for).
   static constexpr size_t kRecentAnswers = 8;
@@ -107,6 +111,9 @@ class GaitNode {
   // With exit_with_sim: the simulator stopped (or went silent for
   // kSimulatorSilence), so should this node.
   bool done() const { return options_.exit_with_sim && sim_stopped_; }
+  // done() because no simulator was heard within kNoSimulatorGiveUp: the
+  // run did not happen (mrsim-gait exits 1).
+  bool gave_up() const { return gave_up_; }
   // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
   // checkpoint when the first state comes. Throws std::runtime_error
   // naming the file when it cannot be read.
@@ -155,6 +162,7 @@ class GaitNode {
   WallTime started_;
   std::optional<WallTime> sim_heard_;  // the last state or status
   bool warned_no_simulator_ = false;
+  bool gave_up_ = false;
   bool warned_other_name_ = false;
   bool have_last_ = false;
   int64_t last_state_seq_ = -1;

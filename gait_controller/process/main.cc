@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
     const std::string& error = server.node().error();
     if (!error.empty()) std::cerr << "mrsim-gait: " << error << "\n";
     std::cerr << "mrsim-gait: " << server.node().Summary() << std::endl;
-    return error.empty() ? 0 : 2;
+    if (!error.empty()) return 2;
+    return server.node().gave_up() ? 1 : 0;
   } catch (const mrsim::UsageError& e) {
     std::cerr << "mrsim-gait: " << e.what() << "\n";
     return 2;

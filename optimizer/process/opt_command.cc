@@ -290,6 +290,16 @@ OptSetup PrepareOpt(const OptCommand& c) {
     throw OptInputError("--out " + c.out_dir + ": cannot create (" +
                         ec.message() + ")");
   }
+  try {
+    setup.lock = std::make_shared<FileLock>(c.out_dir + "/.mrsim-opt.lock");
+  } catch (const FileLockBusy& e) {
+    throw OptInputError(fmt::format(
+        "--out {}: another mrsim-opt (process {}) is writing this run "
+        "folder; wait for it to end, stop it, or pass another --out",
+        c.out_dir, e.holder() > 0 ? std::to_string(e.holder()) : "unknown"));
+  } catch (const std::runtime_error& e) {
+    throw OptInputError("--out " + c.out_dir + ": " + e.what());
+  }
   return setup;
 }
 
@@ -379,6 +389,12 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     fmt::print(out, "{}\n", FormatProgress(r));
     std::fflush(out);
   };
+  if (setup.lock && setup.lock->stale_holder() > 0) {
+    fmt::print(err,
+               "mrsim-opt: took over the lock of {} from process {}, which "
+               "ended without releasing it\n",
+               c.out_dir, setup.lock->stale_holder());
+  }
   if (!c.quiet) {
     // Said at once: the first progress line comes only after a generation.
     fmt::print(err,

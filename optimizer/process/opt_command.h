@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/file_lock.h"
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
@@ -61,10 +62,15 @@ struct OptSetup {
   std::string payload;  // EncodeProblem
   std::string hash;     // FNV-1a 64 of the payload, hex
   int threads = 1;      // local threads
+  // The run folder's lock (<out>/.mrsim-opt.lock), held while the run
+  // writes there: two runs on one --out would overwrite each other's
+  // checkpoint.
+  std::shared_ptr<FileLock> lock;
 };
 
 // Reads and checks the scenario, genome, gait and settings; creates the
-// output folder. Throws OptInputError naming the flag or file.
+// output folder and locks it. Throws OptInputError naming the flag or file,
+// or, when another run holds the folder, the process that does.
 OptSetup PrepareOpt(const OptCommand& command);
 
 // The evaluator the command asks for: local threads, or (--farm) the farm

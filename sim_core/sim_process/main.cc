@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
     flags.Finish();
     mrsim::InstallStopHandlers();
     auto physics = flags.LoadPhysics();
+    const std::string loaded = flags.LoadLine(*physics);
+    if (!loaded.empty()) std::cerr << loaded << "\n";
     lcm::LCM lcm(flags.lcm_url);
     if (!lcm.good()) {
       std::cerr << "mrsim-sim: cannot open LCM '" << flags.lcm_url

@@ -63,6 +63,22 @@ void SimCommandLine::Finish() {
   }
 }
 
+std::string SimCommandLine::LoadLine(const Physics& physics) const {
+  if (load_checkpoint.empty()) return "";
+  std::string robots;
+  for (int r = 0; r < physics.robot_count(); ++r) {
+    robots += fmt::format("{}{} ({} joints)", r == 0 ? "" : ", ",
+                          physics.robot_name(r), physics.joint_count(r));
+  }
+  return fmt::format(
+      "mrsim-sim: loaded checkpoint {}: {} robot{}{}{}, continuing from sim "
+      "time {:.3f} s{}",
+      load_checkpoint, physics.robot_count(),
+      physics.robot_count() == 1 ? "" : "s", robots.empty() ? "" : ": ", robots,
+      physics.time(),
+      scenario_path.empty() ? "" : " (same scenario as " + scenario_path + ")");
+}
+
 std::unique_ptr<Physics> SimCommandLine::LoadPhysics() const {
   std::unique_ptr<Physics> physics;
   try {

@@ -28,6 +28,9 @@ struct SimCommandLine {
   // The physics to run: the scenario, the checkpoint, or the checkpoint
   // checked against the scenario. Throws UsageError naming the file.
   std::unique_ptr<Physics> LoadPhysics() const;
+  // With --load-checkpoint, the line that says what was loaded: the file,
+  // its robots and the sim time it continues from; "" otherwise.
+  std::string LoadLine(const Physics& physics) const;
 };
 
 }  // namespace mrsim

@@ -351,7 +351,22 @@ sim_status_t SimNode::status() const {
   s.control_ok = control_ok_;
   s.waiting_for = waiting_for_;
   s.last_error = last_error_;
+  s.instance = options_.instance;
   return s;
+}
+
+void SimNode::OnSimStatus(const sim_status_t& status) {
+  if (status.instance == options_.instance) return;
+  // A status without an instance comes from an older mrsim-sim: still
+  // another simulator, but one that cannot be told apart from others.
+  const std::string who = status.instance.empty() ? "?" : status.instance;
+  if (!other_simulators_.insert(who).second) return;
+  log_ << "mrsim-sim: warning: another simulator (" << who << ", "
+       << status.clock << " clock, sim time " << status.sim_time
+       << " s) publishes on " << SimStatusChannel(options_.prefix)
+       << ": both take the commands and controls sent there (stop one, or "
+          "give one another --prefix or --lcm-url)"
+       << std::endl;
 }
 
 void SimNode::PublishStatus(WallTime now, SimOutbox* out) {

@@ -54,6 +54,14 @@ class SimNode {
                  WallTime now);
   // A decoded control request; acknowledged by a status in `out`.
   void OnControl(const sim_control_t& msg, WallTime now, SimOutbox* out);
+  // A status heard on our <prefix>_SIM_STATUS: our own (looped back) is
+  // ignored; another simulator's is warned of once per simulator, since
+  // two on one URL and prefix take each other's commands and controls.
+  void OnSimStatus(const sim_status_t& status);
+  // The other simulators heard on our channels, by instance.
+  const std::set<std::string>& other_simulators() const {
+    return other_simulators_;
+  }
   // A message on our channels that did not decode; `what` for last_error.
   void OnMalformed(const std::string& what);
   // Does what is due at `now` (at most one control period) and returns when
@@ -180,6 +188,7 @@ class SimNode {
   bool control_ok_ = true;
   std::string last_error_;
   std::string exit_checkpoint_error_;
+  std::set<std::string> other_simulators_;
 };
 
 }  // namespace mrsim

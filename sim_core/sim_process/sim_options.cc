@@ -51,6 +51,14 @@ void SimOptions::Validate() const {
         "--actuation-delay needs --clock lockstep (the other clocks apply "
         "the newest command whenever it arrives)");
   }
+  if (!controllers.empty() && clock != ClockMode::kLockstep) {
+    // Only lockstep waits for named controllers; under another clock the
+    // list would be ignored and the run silently real-time or fast.
+    throw std::invalid_argument(
+        "--controllers needs --clock lockstep (the " +
+        std::string(ToString(clock)) +
+        " clock waits for no controller; every sender's commands apply)");
+  }
   if (clock == ClockMode::kLockstep) {
     if (controllers.empty()) {
       throw std::invalid_argument(

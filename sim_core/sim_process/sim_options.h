@@ -37,6 +37,9 @@ struct SimOptions {
   bool paused = false;
   bool publish_state = true;  // false: batch runs that nobody watches
   std::string checkpoint_on_exit;
+  // This simulator's name in its statuses ("host:pid"; SimServer fills it
+  // in when empty).
+  std::string instance;
 
   // Throws std::invalid_argument naming the bad option.
   void Validate() const;

@@ -1,5 +1,7 @@
 #include "sim_core/sim_process/sim_server.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -12,24 +14,39 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 
 namespace mrsim {
-namespace {}  // namespace
+namespace {
+
+// "host:pid": unique among the simulators one LCM URL reaches.
+SimOptions WithInstance(SimOptions options) {
+  if (!options.instance.empty()) return options;
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  options.instance = std::string(host[0] ? host : "localhost") + ":" +
+                     std::to_string(getpid());
+  return options;
+}
+
+}  // namespace
 
 SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
                      SimOptions options, std::ostream& log)
     : lcm_(lcm),
-      node_(std::move(physics), std::move(options), log, WallClock::now()) {
+      node_(std::move(physics), WithInstance(std::move(options)), log,
+            WallClock::now()) {
   const std::string& prefix = node_.options().prefix;
   lcm::Subscription* commands =
       lcm_.subscribe(LiteralChannelPattern(CommandChannel(prefix, "")) + ".*",
                      &SimServer::OnCommand, this);
   lcm::Subscription* control =
       lcm_.subscribe(SimControlChannel(prefix), &SimServer::OnControl, this);
-  if (commands == nullptr || control == nullptr) {
+  lcm::Subscription* status =
+      lcm_.subscribe(SimStatusChannel(prefix), &SimServer::OnStatus, this);
+  if (commands == nullptr || control == nullptr || status == nullptr) {
     throw std::runtime_error("cannot subscribe to the LCM channels");
   }
   commands->setQueueCapacity(kCommandQueueCapacity);
   control->setQueueCapacity(kControlQueueCapacity);
-  subscriptions_ = {commands, control};
+  subscriptions_ = {commands, control, status};
   const SimOptions& o = node_.options();
   if (o.clock == ClockMode::kLockstep && (o.actuation_delay > 0 || o.spin)) {
     publisher_ = std::make_unique<PublishThread>(
@@ -108,6 +125,15 @@ void SimServer::OnControl(const lcm::ReceiveBuffer* rbuf,
     node_.OnMalformed("control on " + channel + ": " + e.what());
   } catch (...) {
     node_.OnMalformed("");
+  }
+}
+
+void SimServer::OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  try {
+    // Not counted as malformed when unreadable: a simulator of another
+    // version may publish there, and our own statuses come back too.
+    if (DecodeMessage(rbuf, &status_)) node_.OnSimStatus(status_);
+  } catch (...) {
   }
 }
 

@@ -15,6 +15,7 @@
 #include "lcmtypes/runtime/publish_thread.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
+#include "mrsim/sim_status_t.hpp"
 #include "sim_core/physics.h"
 #include "sim_core/sim_process/sim_node.h"
 #include "sim_core/sim_process/sim_options.h"
@@ -29,7 +30,8 @@ inline constexpr int kControlQueueCapacity = 200;
 
 class SimServer {
  public:
-  // Subscribes to <prefix>_COMMAND_* and <prefix>_SIM_CONTROL. Throws
+  // Subscribes to <prefix>_COMMAND_* and <prefix>_SIM_CONTROL, and to
+  // <prefix>_SIM_STATUS to hear another simulator there. Throws
   // std::invalid_argument on bad options, std::runtime_error when LCM
   // cannot subscribe. Warnings go to `log`.
   SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics, SimOptions options,
@@ -57,6 +59,7 @@ class SimServer {
  private:
   void OnCommand(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void OnControl(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void Flush();
 
   lcm::LCM& lcm_;
@@ -66,6 +69,7 @@ class SimServer {
   // Reused for every message: no allocation per period.
   joint_command_t command_;
   sim_control_t control_;
+  sim_status_t status_;
   std::vector<uint8_t> buffer_;
   // Pipelined lockstep sends from a thread of its own (see Flush).
   std::unique_ptr<PublishThread> publisher_;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "common/edit_distance.h"
+
 namespace mrsim {
 namespace {
 
@@ -48,6 +50,42 @@ TEST(CliParseExit, AnUnknownOptionIsNamedAsTypedWithTheNearestOne) {
       std::string::npos);
   EXPECT_EQ(ParseWith({"--zzzzzzzz"}).err.find("did you mean"),
             std::string::npos);
+}
+
+// Nearest as meant, not fewest edits: "--gate" is one change from
+// "--rate" but was "--gait" (a shared beginning counts).
+TEST(CliParseExit, TheSuggestionIsTheOptionMeantNotTheFewestEdits) {
+  CLI::App app{"gait"};
+  std::string text;
+  app.add_option("--rate", text);
+  app.add_option("--gait", text);
+  app.add_option("--name", text);
+  EXPECT_EQ(NearestOption(app, "--gate"), "--gait");
+  EXPECT_EQ(NearestOption(app, "-gait"), "--gait");
+  EXPECT_EQ(NearestOption(app, "--rat=5"), "--rate");
+  EXPECT_EQ(NearestWord("pase", {"pause", "resume", "status", "gait"}),
+            "pause");
+  EXPECT_EQ(NearestWord("xyzzy", {"pause", "resume", "status", "gait"}), "");
+}
+
+// A word where a subcommand belongs suggests the nearest subcommand.
+TEST(CliParseExit, AMistypedSubcommandSuggestsTheNearest) {
+  CLI::App app{"test program"};
+  app.require_subcommand(1);
+  std::string file;
+  app.add_subcommand("validate", "")->add_option("FILE", file);
+  app.add_subcommand("convert", "")->add_option("IN", file);
+  const std::vector<const char*> argv = {"mrsim-test", "valdate", "a.xml"};
+  try {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    FAIL() << "parsed";
+  } catch (const CLI::ParseError& e) {
+    std::ostringstream out, err;
+    EXPECT_EQ(CliParseExit(app, e, out, err), 2);
+    EXPECT_NE(err.str().find("valdate: did you mean validate?"),
+              std::string::npos)
+        << err.str();
+  }
 }
 
 TEST(CliParseExit, HelpIsZeroAndOtherRefusalsAreTwo) {

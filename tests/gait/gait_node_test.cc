@@ -196,23 +196,50 @@ TEST_F(GaitNodeTest, ExitWithSimEndsTheNodeWhenTheSimulatorGoesSilent) {
   GaitNode node(
       o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
       *FindGaitPreset("forward"), now_);
-  // Not before it heard a simulator at all: that is a warning instead.
-  node.Tick(AfterSeconds(now_, 60), &out_);
+  // Not silence before it heard a simulator at all (a slow start).
+  const double t0 = GaitNode::kNoSimulatorGiveUp - 1;
+  node.Tick(AfterSeconds(now_, t0), &out_);
   EXPECT_FALSE(node.done());
   const double silence = GaitNode::kSimulatorSilence;
-  node.OnState(State(0, 0.0), AfterSeconds(now_, 60), &out_);
-  node.Tick(AfterSeconds(now_, 60 + silence - 1), &out_);
+  node.OnState(State(0, 0.0), AfterSeconds(now_, t0), &out_);
+  node.Tick(AfterSeconds(now_, t0 + silence - 1), &out_);
   EXPECT_FALSE(node.done());
   sim_status_t status{};
   status.mode = sim_status_t::PAUSED;  // paused still says so twice a second
-  node.OnSimStatus(status, AfterSeconds(now_, 60 + silence - 1), &out_);
-  node.Tick(AfterSeconds(now_, 60 + 2 * silence - 2), &out_);
+  node.OnSimStatus(status, AfterSeconds(now_, t0 + silence - 1), &out_);
+  node.Tick(AfterSeconds(now_, t0 + 2 * silence - 2), &out_);
   EXPECT_FALSE(node.done());
-  node.Tick(AfterSeconds(now_, 60 + 2 * silence - 1), &out_);
+  node.Tick(AfterSeconds(now_, t0 + 2 * silence - 1), &out_);
   EXPECT_TRUE(node.done());
+  EXPECT_FALSE(node.gave_up());
   std::string log;
   for (const auto& line : node.TakeLog()) log += line + "\n";
   EXPECT_NE(log.find("silent for 5 s"), std::string::npos) << log;
+}
+
+// `mrsim-sim ... & mrsim-gait --exit-with-sim` with a simulator that failed
+// to start used to wait forever; it gives up after kNoSimulatorGiveUp, and
+// without --exit-with-sim it keeps waiting (a simulator started later).
+TEST_F(GaitNodeTest, ExitWithSimGivesUpWhenNoSimulatorWasEverHeard) {
+  GaitNodeOptions o;
+  o.robot = "snake";
+  o.sender = "g";
+  for (bool exit_with_sim : {false, true}) {
+    o.exit_with_sim = exit_with_sim;
+    GaitNode node(
+        o, [](int n) { return JointAxesSpec("pitch").Expand(n); },
+        *FindGaitPreset("forward"), now_);
+    node.Tick(AfterSeconds(now_, GaitNode::kNoSimulatorGiveUp - 0.5), &out_);
+    EXPECT_FALSE(node.done());
+    node.Tick(AfterSeconds(now_, GaitNode::kNoSimulatorGiveUp), &out_);
+    EXPECT_EQ(node.done(), exit_with_sim);
+    EXPECT_EQ(node.gave_up(), exit_with_sim);
+    std::string log;
+    for (const auto& line : node.TakeLog()) log += line + "\n";
+    EXPECT_EQ(log.find("no simulator heard in 30 s") != std::string::npos,
+              exit_with_sim)
+        << log;
+  }
 }
 
 // Lockstep under another name: the simulator's status says whom it waits
@@ -306,6 +333,16 @@ TEST_F(GaitNodeTest, CommandsBeforeTheFirstStateAreQueuedAndAcknowledged) {
   EXPECT_EQ(statuses_.back().command_seq, 7);
   EXPECT_EQ(statuses_.back().command_sender, "ctl-1");
   EXPECT_EQ(statuses_.back().command_result, int8_t{gait_status_t::QUEUED});
+  // Shown as queued, not as the old gait alone, until it applies.
+  EXPECT_EQ(statuses_.back().queued, "motion backward 1.00");
+  EXPECT_NE(node->Describe().find("queued: motion backward 1.00"),
+            std::string::npos)
+      << node->Describe();
+  const size_t before = statuses_.size();
+  node->Tick(AfterSeconds(now_, 1.5), &out_);
+  Collect();
+  ASSERT_GT(statuses_.size(), before);
+  EXPECT_EQ(statuses_.back().queued, "motion backward 1.00");
   Send(*node, State(0, 0));
   ASSERT_NE(node->controller(), nullptr);
   EXPECT_EQ(node->controller()->motion(), Motion::kBackward);
@@ -313,6 +350,7 @@ TEST_F(GaitNodeTest, CommandsBeforeTheFirstStateAreQueuedAndAcknowledged) {
   EXPECT_EQ(statuses_.back().command_result, int8_t{gait_status_t::APPLIED});
   EXPECT_TRUE(statuses_.back().running);
   EXPECT_EQ(statuses_.back().motion, "backward");
+  EXPECT_EQ(statuses_.back().queued, "");
 }
 
 TEST_F(GaitNodeTest, StatusSaysWhatRunsOnChangeAndEverySecond) {

@@ -9,6 +9,26 @@ rm -rf "$work"
 mkdir -p "$work"
 
 cmake --install "$binary_dir" --prefix "$work/prefix" >"$work/install.log"
+# The default install is what a user runs: stripped programs and their
+# data, a few tens of MB (README: Install); no static library or header.
+size_mb="$(du -sm "$work/prefix" | cut -f1)"
+echo "default install: $size_mb MB"
+if [ "$size_mb" -ge 100 ]; then
+  echo "default install is $size_mb MB (expected under 100)" >&2
+  exit 1
+fi
+if find "$work/prefix" -name '*.a' -o -name '*.h' | grep -q .; then
+  echo "default install holds libraries or headers:" >&2
+  find "$work/prefix" -name '*.a' -o -name '*.h' | head >&2
+  exit 1
+fi
+if file "$work/prefix/bin/mrsim-sim" | grep -q 'not stripped'; then
+  echo "default install: programs not stripped" >&2
+  exit 1
+fi
+# The libraries for building on mrsim, on request.
+cmake --install "$binary_dir" --prefix "$work/prefix" --component development \
+  >>"$work/install.log"
 cmake -S "$source_dir/examples/distance" -B "$work/build" \
   -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure.log"
 cmake --build "$work/build" -j2 >"$work/build.log"

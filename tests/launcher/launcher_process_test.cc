@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -102,8 +103,49 @@ TEST(Launcher, AProcessSayingItWasInterruptedStillStopsCleanly) {
   ASSERT_TRUE(mrsim.WaitForOutput("armed", 30)) << mrsim.Output();
   mrsim.Signal(SIGINT);
   EXPECT_EQ(mrsim.Wait(30), 0) << mrsim.Output();
-  EXPECT_NE(mrsim.Output().find("exited with code 130"), std::string::npos)
+  // Stopped as asked: said so, not as "exited with code 130".
+  EXPECT_NE(mrsim.Output().find("opt stopped"), std::string::npos)
       << mrsim.Output();
+  EXPECT_EQ(mrsim.Output().find("exited with code 130"), std::string::npos)
+      << mrsim.Output();
+}
+
+// A launch through LCM's TCP hub used to end with "Connection reset by
+// peer", "re-connecting" and "hub: exited with code 130": the hub was
+// stopped with its clients. Now the clients stop first, then the hub.
+TEST(Launcher, ClientsStopBeforeTheirHubQuietly) {
+  const std::string dir = TempDir("launcher_hub");
+  int port = 7886;
+  if (const char* offset = std::getenv("MRSIM_TEST_PORT_OFFSET")) {
+    port += std::atoi(offset);
+  }
+  const std::string url = "tcpq://127.0.0.1:" + std::to_string(port);
+  const std::string launch = WriteLaunch(
+      dir, R"(<launch>
+  <hub port=")" +
+               std::to_string(port) + R"("/>
+  <process name="sim" program=")" +
+               BinaryPath("sim_core/sim_process/mrsim-sim") + R"(" args=")" +
+               testing::SourcePath("scenarios/snake11.xml") +
+               " --paused --lcm-url " + url +
+               R"("/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  ASSERT_TRUE(mrsim.WaitForOutput("mrsim-sim: 1 robot(s)", 60))
+      << mrsim.Output();
+  mrsim.Signal(SIGINT);
+  EXPECT_EQ(mrsim.Wait(60), 0) << mrsim.Output();
+  const std::string out = mrsim.Output();
+  for (const char* noise : {"Connection reset", "re-connecting",
+                            "Connection refused", "exited with code 130"}) {
+    EXPECT_EQ(out.find(noise), std::string::npos) << noise << "\n" << out;
+  }
+  const size_t sim_ended = out.find("] sim exited with code 0");
+  const size_t hub_ended = out.find("] hub stopped");
+  ASSERT_NE(sim_ended, std::string::npos) << out;
+  ASSERT_NE(hub_ended, std::string::npos) << out;
+  EXPECT_LT(sim_ended, hub_ended) << out;
 }
 
 TEST(Launcher, AnExit130NobodyAskedForIsAFailure) {

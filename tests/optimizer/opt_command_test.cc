@@ -1,6 +1,7 @@
 #include "optimizer/process/opt_command.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -149,6 +150,33 @@ class StoppingEvaluator : public BatchEvaluator {
   BatchEvaluator& inner_;
   int left_;
 };
+
+// Two runs on one --out would write the same checkpoint temporary file:
+// the second is refused, naming the process that holds the folder, and a
+// lock its holder left behind when killed is taken over.
+TEST(OptCommand, ARunFolderIsLockedWhileARunWritesIt) {
+  const std::string out = testing::TempDir("opt_command_lock");
+  const OptCommand c = Parse(SnakeArgs(out));
+  {
+    const OptSetup first = PrepareOpt(c);
+    try {
+      PrepareOpt(c);
+      FAIL() << "two runs on one folder";
+    } catch (const OptInputError& e) {
+      EXPECT_NE(std::string(e.what()).find("another mrsim-opt (process " +
+                                           std::to_string(getpid()) +
+                                           ") is writing this run folder"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  std::FILE* stale = std::fopen((out + "/.mrsim-opt.lock").c_str(), "w");
+  ASSERT_NE(stale, nullptr);
+  std::fputs("4242\n", stale);
+  std::fclose(stale);
+  const OptSetup after = PrepareOpt(c);
+  EXPECT_EQ(after.lock->stale_holder(), 4242);
+}
 
 TEST(OptCommand, AStopSaysWhetherThereIsAnythingToContinueFrom) {
   for (int batches : {0, 2}) {

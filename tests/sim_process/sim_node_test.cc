@@ -291,6 +291,31 @@ TEST(SimNode, LockstepWaitNamesARefusedSender) {
       << d.log();
 }
 
+// A second simulator left running on the same URL and prefix used to go
+// unmentioned while both took every command: each warns once per other
+// simulator, and its own statuses (looped back) are not another's.
+TEST(SimNode, AnotherSimulatorOnTheChannelsIsWarnedOfOnce) {
+  SimOptions o;
+  o.instance = "hostA:100";
+  Driver d(o);
+  d.node().OnSimStatus(d.node().status());
+  EXPECT_TRUE(d.node().other_simulators().empty());
+  EXPECT_EQ(d.log().find("another simulator"), std::string::npos) << d.log();
+  sim_status_t other = d.node().status();
+  other.instance = "hostA:200";
+  other.sim_time = 12.5;
+  d.node().OnSimStatus(other);
+  d.node().OnSimStatus(other);
+  EXPECT_EQ(d.node().other_simulators(), std::set<std::string>{"hostA:200"});
+  const std::string warning =
+      "mrsim-sim: warning: another simulator (hostA:200, realtime clock, sim "
+      "time 12.5 s) publishes on MRSIM_SIM_STATUS";
+  const size_t first = d.log().find(warning);
+  EXPECT_NE(first, std::string::npos) << d.log();
+  EXPECT_EQ(d.log().find(warning, first + 1), std::string::npos) << d.log();
+  EXPECT_EQ(d.node().status().instance, "hostA:100");
+}
+
 TEST(SimNode, LastListedControllerWinsWhateverTheOrder) {
   SimOptions o = Lockstep();
   o.controllers = {"first", "second"};

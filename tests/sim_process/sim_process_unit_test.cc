@@ -1,4 +1,5 @@
 // The pure parts of the sim bridge: state messages and the command rules.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
@@ -184,6 +185,35 @@ TEST(SimCommandLine, ADurationTheCheckpointIsPastIsRefused) {
               t, 1e-12);
 }
 
+// mrsim-sim --load-checkpoint used to start without a word of what it
+// loaded: the line names the file, its robots and the sim time.
+TEST(SimCommandLine, TheLoadLineSaysWhatWasLoadedAndFromWhen) {
+  const std::string dir = testing::TempDir("sim_load_line");
+  Scenario scenario;
+  ChainOptions chain;
+  chain.name = "snake";
+  chain.modules = 4;
+  scenario.robots.push_back(MakeChain(chain));
+  Physics physics(scenario);
+  physics.Step(250);
+  const std::string checkpoint = dir + "/run.checkpoint";
+  SaveCheckpoint(checkpoint, physics);
+  CLI::App app;
+  SimCommandLine line;
+  line.AddFlags(app);
+  const std::vector<const char*> argv = {"mrsim-sim", "--load-checkpoint",
+                                         checkpoint.c_str()};
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  line.Finish();
+  const auto loaded = line.LoadPhysics();
+  EXPECT_EQ(line.LoadLine(*loaded),
+            "mrsim-sim: loaded checkpoint " + checkpoint +
+                ": 1 robot: snake (4 joints), continuing from sim time " +
+                fmt::format("{:.3f}", physics.time()) + " s");
+  SimCommandLine none;
+  EXPECT_EQ(none.LoadLine(*loaded), "");
+}
+
 // The spinning send thread is the default; --no-spin is for a machine
 // whose idle CPU time is not to be spent (docs/sim.md).
 TEST(SimCommandLine, LockstepSpinsUnlessToldNot) {
@@ -201,6 +231,35 @@ TEST(SimCommandLine, LockstepSpinsUnlessToldNot) {
   };
   EXPECT_TRUE(spin({}));
   EXPECT_FALSE(spin({"--no-spin"}));
+}
+
+// --controllers names whom lockstep waits for; under another clock it
+// used to be accepted and the run went on in real time, unnoticed.
+TEST(SimCommandLine, ControllersWithoutLockstepIsAUsageError) {
+  for (const char* clock : {"realtime", "fast"}) {
+    CLI::App app;
+    SimCommandLine line;
+    line.AddFlags(app);
+    const std::vector<const char*> argv = {
+        "mrsim-sim", "run.xml", "--clock", clock, "--controllers", "gait"};
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    try {
+      line.Finish();
+      ADD_FAILURE() << clock << ": --controllers accepted";
+    } catch (const UsageError& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("--controllers needs --clock lockstep"),
+          std::string::npos)
+          << e.what();
+    }
+  }
+  CLI::App app;
+  SimCommandLine line;
+  line.AddFlags(app);
+  const std::vector<const char*> argv = {"mrsim-sim", "run.xml",
+                                         "--controllers", "gait"};
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  EXPECT_THROW(line.Finish(), UsageError) << "the default clock is realtime";
 }
 
 }  // namespace

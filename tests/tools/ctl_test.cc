@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -59,6 +60,32 @@ TEST(SimControlRequest, ParsesEveryCommandAndNamesWhatIsWrong) {
   }
 }
 
+// A typo names the command meant and lists every command, those mrsim-ctl
+// handles itself (status, gait) too.
+TEST(SimControlRequest, ATypoSuggestsTheNearestAndListsEveryCommand) {
+  try {
+    ParseSimControl({"pase"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("unknown command 'pase' (did you mean 'pause'?)"),
+              std::string::npos)
+        << what;
+    for (const char* command : {"resume", "quit", "status", "gait ROBOT"}) {
+      EXPECT_NE(what.find(command), std::string::npos)
+          << command << ": " << what;
+    }
+  }
+  try {
+    ParseSimControl({"stauts"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'status'?"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GaitRequest, ChecksMotionAndRangesBeforeSending) {
   const gait_command_t c = ParseGaitRequest(
       {"gait", "snake", "motion", "turn-left", "strength", "0.5"});
@@ -87,6 +114,53 @@ double SimTime(const std::string& output) {
   const std::regex re("sim time ([0-9.]+) s");
   if (!std::regex_search(output, m, re)) return -1;
   return std::stod(m[1]);
+}
+
+// A simulator left running in another terminal on the same URL and
+// prefix: each simulator warns of the other, and `mrsim-ctl status` lists
+// both. A resume reports the factor it runs at, not the paused 0.00.
+TEST(MrsimCtl, TwoSimulatorsOnOneChannelAreBothNamed) {
+  const std::string dir = TempDir("mrsim_ctl_two");
+  const std::string url = TestLcmUrl(7885);
+  const auto start = [&](const std::string& name) {
+    return std::make_unique<ChildProcess>(
+        std::vector<std::string>{BinaryPath("sim_core/sim_process/mrsim-sim"),
+                                 SourcePath("scenarios/snake11.xml"),
+                                 "--lcm-url", url, "--paused"},
+        dir + "/" + name + ".log");
+  };
+  auto first = start("first");
+  auto second = start("second");
+  const std::string warning = "warning: another simulator (";
+  EXPECT_TRUE(first->WaitForOutput(warning, 30)) << first->Output();
+  EXPECT_TRUE(second->WaitForOutput(warning, 30)) << second->Output();
+  auto ctl = [&](std::vector<std::string> words, const std::string& name) {
+    std::vector<std::string> argv{BinaryPath("tools/mrsim-ctl"), "--lcm-url",
+                                  url, "--timeout", "20"};
+    argv.insert(argv.end(), words.begin(), words.end());
+    ChildProcess p(argv, dir + "/" + name + ".log");
+    const int code = p.Wait(60);
+    return std::make_pair(code, p.Output());
+  };
+  const auto [code, out] = ctl({"status"}, "status");
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("2 simulators answer on MRSIM_SIM_STATUS"),
+            std::string::npos)
+      << out;
+  for (const auto* sim : {first.get(), second.get()}) {
+    EXPECT_NE(out.find(":" + std::to_string(sim->pid()) + ": sim time"),
+              std::string::npos)
+        << sim->pid() << "\n"
+        << out;
+  }
+  second->Stop();
+  const auto [resume_code, resume_out] = ctl({"resume"}, "resume");
+  EXPECT_EQ(resume_code, 0) << resume_out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(resume_out, m,
+                                std::regex("real-time factor ([0-9.]+)")))
+      << resume_out;
+  EXPECT_GT(std::stod(m[1]), 0.05) << resume_out;
 }
 
 TEST(MrsimCtl, StepsSavesAndQuitsARunningSimulator) {

@@ -335,20 +335,10 @@ std::string WriteMovingLog(const std::string& dir,
   return path;
 }
 
-TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
-  if (!std::filesystem::exists("/usr/bin/Xvfb")) {
-    GTEST_SKIP() << "Xvfb not installed (scripts/install_deps.sh)";
-  }
-  const std::string dir = TempDir("viewer_window");
-  const std::string scenario_path =
-      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
-  const std::string log = WriteMovingLog(dir, scenario_path, 25);
-  // -displayfd: Xvfb picks a free display and writes its number once it
-  // accepts connections.
-  const std::string xvfb_log = dir + "/xvfb.log";
-  ChildProcess xvfb({"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0",
-                     "640x480x24", "-nolisten", "tcp"},
-                    xvfb_log);
+// A virtual display: Xvfb picks a free display (-displayfd) and writes its
+// number once it accepts connections. Returns ":N", or "" when it did not
+// start.
+std::string StartXvfb(ChildProcess& xvfb) {
   std::string display;
   testing::WaitUntil(
       [&] {
@@ -360,6 +350,24 @@ TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
         return !display.empty() || !xvfb.running();
       },
       60.0);
+  return display;
+}
+
+std::vector<std::string> XvfbArgs() {
+  return {"/usr/bin/Xvfb", "-displayfd", "1",  "-screen", "0",
+          "640x480x24",    "-nolisten",  "tcp"};
+}
+
+TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
+  if (!std::filesystem::exists("/usr/bin/Xvfb")) {
+    GTEST_SKIP() << "Xvfb not installed (scripts/install_deps.sh)";
+  }
+  const std::string dir = TempDir("viewer_window");
+  const std::string scenario_path =
+      testing::WriteTestScenario(testing::ViewerTestScenario(), dir);
+  const std::string log = WriteMovingLog(dir, scenario_path, 25);
+  ChildProcess xvfb(XvfbArgs(), dir + "/xvfb.log");
+  const std::string display = StartXvfb(xvfb);
   ASSERT_FALSE(display.empty()) << "Xvfb did not start: " << xvfb.Output();
   const std::vector<std::string> common = {
       scenario_path, "--from-log", log,   "--fps",        "10", "--width",
@@ -391,6 +399,55 @@ TEST(ViewerProcess, WindowOnVirtualDisplayWritesTheSameFramesAsHeadless) {
     EXPECT_GT(testing::GreyStdDev(a), 5.0);
     EXPECT_LT(testing::MeanAbsDiff(a, b), 1.0) << "frame " << k;
   }
+}
+
+// The window answers whatever the render rate: with the simulator running
+// as fast as it can, frames fall behind at once, and a real key press (X
+// events from xdotool) still quits the viewer. It used to drain every due
+// frame before looking at the window, so `q` did nothing.
+TEST(ViewerProcess, WindowAnswersQWhileRenderingFallsBehind) {
+  if (!std::filesystem::exists("/usr/bin/Xvfb") ||
+      !std::filesystem::exists("/usr/bin/xdotool")) {
+    GTEST_SKIP() << "Xvfb or xdotool not installed (scripts/install_deps.sh)";
+  }
+  const std::string dir = TempDir("viewer_window_input");
+  const std::string url = TestLcmUrl(7806);
+  const std::string scenario = testing::SourcePath("scenarios/snake11.xml");
+  ChildProcess xvfb(XvfbArgs(), dir + "/xvfb.log");
+  const std::string display = StartXvfb(xvfb);
+  ASSERT_FALSE(display.empty()) << "Xvfb did not start: " << xvfb.Output();
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"), scenario,
+                    "--lcm-url", url, "--clock", "fast"},
+                   dir + "/sim.log");
+  ChildProcess viewer(
+      {"/usr/bin/env", "DISPLAY=" + display, BinaryPath(kViewer), scenario,
+       "--lcm-url", url, "--window", "--fps", "200", "--width", "640",
+       "--height", "480"},
+      dir + "/viewer.log");
+  ASSERT_TRUE(viewer.WaitForOutput("listening", 60.0)) << viewer.Output();
+  // Rendering and behind: the fast simulator's states reach the viewer.
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] {
+        ChildProcess probe(
+            {"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool", "search",
+             "--name", "mrsim-view"},
+            dir + "/search.log");
+        return probe.Wait(30.0) == 0;
+      },
+      60.0))
+      << viewer.Output();
+  ASSERT_TRUE(sim.running()) << sim.Output();
+  // Focus it (no window manager: xdotool sets the input focus) and press q
+  // through XTEST, as a keyboard would.
+  ChildProcess press(
+      {"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool", "search",
+       "--name", "mrsim-view", "windowfocus", "%1", "key", "q"},
+      dir + "/press.log");
+  EXPECT_EQ(press.Wait(30.0), 0) << press.Output();
+  EXPECT_EQ(viewer.Wait(10.0), 0) << viewer.Output();
+  EXPECT_NE(viewer.Output().find("mrsim-view: done"), std::string::npos)
+      << viewer.Output();
+  sim.Stop();
 }
 
 TEST(ViewerProcess, BadScenarioExitsWithTwoAndNamesTheFile) {

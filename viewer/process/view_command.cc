@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -117,7 +118,7 @@ void ReplayLog(const ViewOptions& opt, StateInbox& inbox, FramePump& pump,
     if (event == nullptr) break;
     ++events;
     inbox.Receive(event->channel, event->data, event->datalen);
-    pump.Drain();
+    pump.Drain();  // with a window, its input is handled between pictures
     if (window != nullptr) {
       window->PollEvents();
       if (window->ShouldClose()) break;
@@ -219,7 +220,9 @@ int RunView(const ViewOptions& opt, lcm::LCM* lcm, std::FILE* err) {
       if (!receiver.error().empty()) {
         throw std::runtime_error("LCM: " + receiver.error());
       }
-      pump.Drain();
+      // With a window, one picture at a time: its input (q, Esc, drags)
+      // is handled between pictures however slow they are.
+      pump.Drain(window ? 1 : std::numeric_limits<int64_t>::max());
       if (window) {
         pump.Refresh();
         if (window->ShouldClose()) break;
