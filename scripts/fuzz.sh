@@ -12,7 +12,7 @@
 # fix the reader; the unit tests (fuzz_replay.<t>) then replay it forever.
 # Prints one `BENCH fuzz_execs_per_s_<t> N execs/s` line per target.
 set -uo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
+root="$(cd "$(dirname "$(readlink -f "$0")")/.." && pwd)"
 seconds="${1:-60}"
 shift || true
 case "$seconds" in ''|*[!0-9]*) echo "usage: scripts/fuzz.sh [SECONDS] [TARGET...]" >&2; exit 2 ;; esac
