@@ -1,0 +1,115 @@
+"""BENCH lines of the Python package (see bench/python/CMakeLists.txt)."""
+
+import argparse
+import os
+import re
+import subprocess
+import tempfile
+import time
+
+import mrsim
+
+PORT = 7570 + int(os.environ.get("MRSIM_BENCH_PORT_OFFSET", "0"))
+
+
+def step_seconds(scenario, repeats):
+    """Best seconds of one Simulation.step(1000)."""
+    sim = mrsim.Simulation(scenario)
+    sim.set_joint_targets([0.3] * sim.joint_count())
+    best = 1e9
+    for _ in range(repeats):
+        start = time.perf_counter()
+        sim.step(1000)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def state_us(scenario, calls):
+    """Mean microseconds to read the full state into numpy arrays."""
+    sim = mrsim.Simulation(scenario)
+    sim.step(100)
+    start = time.perf_counter()
+    for _ in range(calls):
+        sim.state().arrays()
+    return (time.perf_counter() - start) / calls * 1e6
+
+
+def real_time_factor(output):
+    m = re.findall(r"real-time factor ([0-9.eE+-]+)", output)
+    if not m:
+        raise RuntimeError("no real-time factor in: " + output)
+    return float(m[-1])
+
+
+def lockstep(binary_dir, scenario, duration, python, work):
+    """Real-time factor of mrsim-sim in pipelined lockstep with mrsim-gait
+    or with a Python controller (this process)."""
+    url = "udpm://239.255.76.67:%d?ttl=0" % PORT
+    name = "py" if python else "gait"
+    sim_args = [os.path.join(binary_dir, "bin", "mrsim-sim"), scenario,
+                "--lcm-url", url, "--clock", "lockstep", "--controllers",
+                name, "--rate", "100", "--duration", str(duration),
+                "--lockstep-timeout", "30", "--actuation-delay", "1"]
+    log = os.path.join(work, "sim.out")
+    controller = None
+    node = None
+    if python:
+        node = mrsim.Node(url=url, name=name)
+    else:
+        controller = subprocess.Popen(
+            [os.path.join(binary_dir, "bin", "mrsim-gait"), "--robot",
+             "snake", "--scenario", scenario, "--gait", "forward",
+             "--lcm-url", url, "--name", name, "--exit-with-sim"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(log, "w") as out:
+        sim = subprocess.Popen(sim_args, stdout=out, stderr=subprocess.STDOUT)
+        if python:
+            gait = mrsim.Gait("forward", axes="pitch")
+            for state in node.states("snake", timeout=5):
+                node.send_targets("snake", gait.targets(state.time, state),
+                                  state)
+                if sim.poll() is not None:
+                    break
+        sim.wait(300)
+    if controller is not None:
+        controller.wait(60)
+    with open(log) as f:
+        return real_time_factor(f.read())
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--binary-dir", required=True)
+    p.add_argument("--source-dir", required=True)
+    p.add_argument("--duration", type=float, default=10.0)
+    args = p.parse_args()
+    scenario = os.path.join(args.source_dir, "scenarios", "snake11.xml")
+    step_exe = os.path.join(args.binary_dir, "bench", "python",
+                            "bench_python_step")
+
+    # Alternated, best of three each, so both see the same machine.
+    cpp, py = [], []
+    for _ in range(3):
+        out = subprocess.run([step_exe, scenario, "5"], check=True,
+                             capture_output=True, text=True).stdout
+        cpp.append(float(out))
+        py.append(step_seconds(scenario, 5))
+    print("step(1000): C++ %.4f s, Python %.4f s" % (min(cpp), min(py)))
+    print("BENCH python_step_ratio %.3f ratio" % (min(cpp) / min(py)))
+    print("BENCH python_state_us %.1f us" % state_us(scenario, 2000))
+
+    with tempfile.TemporaryDirectory() as work:
+        gait, python = [], []
+        for _ in range(3):
+            gait.append(lockstep(args.binary_dir, scenario, args.duration,
+                                 False, work))
+            python.append(lockstep(args.binary_dir, scenario, args.duration,
+                                   True, work))
+    print("pipelined lockstep real-time factor: mrsim-gait %s, Python %s" %
+          (" ".join("%.2f" % v for v in gait),
+           " ".join("%.2f" % v for v in python)))
+    print("BENCH python_lockstep_ratio %.3f ratio" % (max(python) / max(gait)))
+
+
+if __name__ == "__main__":
+    main()
