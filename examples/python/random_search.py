@@ -3,9 +3,9 @@
 
     PYTHONPATH=build/python python3 examples/python/random_search.py [--trials 20] [--seed 1]
 
-Each trial draws amplitude, phase step and period, runs one episode of
-the environment (an 8-module pitch-yaw chain, 5 s) with that travelling
-wave as actions, and keeps the one that travels furthest (the sum of the
+Each trial draws pitch and yaw amplitudes, a phase step and a period,
+runs one episode of the environment (an 8-module pitch-yaw chain, 5 s)
+with that travelling wave as actions, and keeps the one that travels furthest (the sum of the
 rewards is the forward travel of the centre of mass).
 """
 import argparse
@@ -15,9 +15,10 @@ import numpy as np
 from mrsim.env import ChainEnv
 
 
-def episode(env, amplitude, phase, period):
+def episode(env, a_pitch, a_yaw, phase, period):
     obs, info = env.reset()
     n = env.action_space.shape[0]
+    amplitude = np.where(np.arange(n) % 2 == 0, a_pitch, a_yaw)
     total, t, done = 0.0, 0.0, False
     while not done:
         action = amplitude * np.sin(2 * np.pi * t / period + phase * np.arange(n))
@@ -38,14 +39,16 @@ def main():
     rng = np.random.default_rng(args.seed)
     best = (-np.inf, None)
     for trial in range(args.trials):
-        params = (rng.uniform(0.2, 1.2), rng.uniform(0.3, 3.0),
-                  rng.uniform(1.0, 5.0))
+        params = (rng.uniform(0.2, 1.2), rng.uniform(0.0, 0.8),
+                  rng.uniform(0.3, 3.0), rng.uniform(1.0, 5.0))
         travel = episode(env, *params)
         if travel > best[0]:
             best = (travel, params)
-            print("trial %2d: %+.3f m  A=%.2f phi=%.2f T=%.2f  (best)" %
+            print("trial %2d: %+.3f m  A_pitch=%.2f A_yaw=%.2f phi=%.2f "
+                  "T=%.2f  (best)" %
                   ((trial, travel) + params))
-    print("best: %+.3f m with A=%.2f rad, phi=%.2f rad, T=%.2f s" %
+    print("best: %+.3f m with A_pitch=%.2f rad, A_yaw=%.2f rad, "
+          "phi=%.2f rad, T=%.2f s" %
           ((best[0],) + best[1]))
 
 

@@ -81,6 +81,7 @@ class Node:
         self._queues: Dict[str, collections.deque] = {}
         self._answers: Dict[str, "collections.OrderedDict[int, dict]"] = {}
         self._delivered: Dict[str, int] = {}
+        self._heard: Dict[str, bool] = {}
         self._command_seq = 0
         self._control_seq = 0
         self._gait_seq = 0
@@ -170,6 +171,7 @@ class Node:
             else:
                 msg = Message(**msg)
             delivered += 1
+            self._heard[channel] = True
             queue = self._queues.get(channel)
             if queue is not None:
                 queue.append(msg)
@@ -262,6 +264,10 @@ class Node:
         acknowledging status. Raises ControlError when the simulator
         refuses it, TimeoutError when it does not answer."""
         channel = self._channel_of("sim_status", None)
+        if wait and not self._heard.get(channel):
+            # As mrsim-ctl: a request sent before the simulator listens is
+            # lost, so the first one waits for its first status.
+            self._next(channel, timeout)
         self._control_seq += 1
         seq = self._control_seq
         msg = dict(fields, command=command, seq=seq, sender=self.name,
@@ -336,6 +342,8 @@ class Node:
         direction (forward, turn). With wait, returns the gait status that
         acknowledges it; raises ControlError when it is rejected."""
         channel = self._channel_of("gait_status", robot)
+        if wait and not self._heard.get(channel):
+            self._next(channel, timeout)  # mrsim-gait is listening
         self._gait_seq += 1
         seq = self._gait_seq
         msg = {"utime": int(_time.time() * 1e6), "seq": seq,

@@ -158,9 +158,11 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
   std::map<std::string, Channel> by_channel;
   std::vector<std::string> order;
   FlatRow row;
+  int64_t events = 0;
   {
     py::gil_scoped_release release;
     while (const lcm::LogEvent* e = log.readNextEvent()) {
+      ++events;
       if (!std::regex_match(e->channel, wanted) || e->datalen < 0) continue;
       const auto* data = static_cast<const uint8_t*>(e->data);
       const size_t size = static_cast<size_t>(e->datalen);
@@ -193,6 +195,12 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
       names.push_back("log_time");
       cells.push_back(std::to_string(static_cast<double>(e->timestamp) / 1e6));
       ch.table.AddRow(names, cells);
+    }
+  }
+  if (events == 0) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (in && in.tellg() > 0) {
+      throw PlotInputError(path + ": not an LCM log (no event found)");
     }
   }
   py::dict out;

@@ -43,12 +43,12 @@ def test_python_controller_in_lockstep_equals_mrsim_gait(tmp_path, children,
     gait = mrsim.Gait("turn-sharp", axes="pitch-yaw")
     sim = children.start(sim_args(scenario, url, "py", py_run, delay),
                          str(tmp_path / "sim_py.log"))
-    received = []
-    for state in node.states("snake", timeout=10):
+    first = node.next_state("snake", timeout=60)
+    node.send_targets("snake", gait.targets(first.time, first), first)
+    received = [first]
+    for state in node.states("snake", timeout=5):
         received.append(state)
         node.send_targets("snake", gait.targets(state.time, state), state)
-        if sim.proc.poll() is not None:
-            break
     assert sim.wait(60) == 0, sim.output()
     assert len(received) >= 200
     assert [s.seq for s in received] == list(range(len(received)))

@@ -60,3 +60,11 @@ def test_unknown_robot_raises_key_error():
         s.module_count("nobody")
     with pytest.raises(IndexError):
         s.module_count(3)
+
+
+def test_version_command():
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-m", "mrsim", "--version"],
+                         capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "mrsim " + mrsim.__version__
