@@ -43,7 +43,7 @@ def test_lcm_log_reads_like_the_loggers_csv(tmp_path, children):
     logger = children.start(["lcm-logger", "--lcm-url=" + url, "--flush-interval=10", "-q", log],
                             str(tmp_path / "logger.log"))
     sim = children.start([program("mrsim-sim"), path, "--lcm-url", url,
-                          "--clock", "fast", "--paused"],
+                          "--paused"],
                          str(tmp_path / "sim.log"))
     node = mrsim.Node(url=url, name="logs")
     node.next_message("sim_status", timeout=30)
@@ -60,7 +60,8 @@ def test_lcm_log_reads_like_the_loggers_csv(tmp_path, children):
     state = logs.get("MRSIM_STATE_snake")
     assert state is not None, list(logs)
     assert "module3.joint.angle" in state and "com.x" in state
-    assert len(state["time"]) >= 50
+    # Real time, so no burst overflows the logger's socket on a busy host.
+    assert len(state["time"]) >= 25
     assert np.all(np.diff(state["seq"]) > 0)
     only = mrsim.read_lcm_log(log, channels="MRSIM_SIM_STATUS")
     assert list(only) == ["MRSIM_SIM_STATUS"]
