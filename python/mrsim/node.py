@@ -34,9 +34,6 @@ DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 PAUSE, RESUME, STEP, RESET, SAVE_CHECKPOINT, LOAD_CHECKPOINT = 1, 2, 3, 4, 5, 6
 SET_SPEED, QUIT, DETACH, ATTACH = 7, 8, 9, 10
 
-# Answers kept per robot for states the simulator sends again (pipelined
-# lockstep re-sends the two states it waits for), as mrsim-gait keeps them.
-_RECENT_ANSWERS = 8
 # Messages kept per channel for the iterators; older ones are dropped.
 _QUEUE_LENGTH = 10000
 
@@ -79,13 +76,9 @@ class Node:
         self._types: Dict[str, str] = {}
         self._callbacks: Dict[str, List[Callable[[Any], None]]] = {}
         self._queues: Dict[str, collections.deque] = {}
-        self._answers: Dict[str, "collections.OrderedDict[int, dict]"] = {}
-        self._delivered: Dict[str, int] = {}
         self._heard: Dict[str, bool] = {}
-        self._command_seq = 0
         self._control_seq = 0
         self._gait_seq = 0
-        self.repeated = 0
 
     # Channels -----------------------------------------------------------
     def state_channel(self, robot: str) -> str:
@@ -155,20 +148,9 @@ class Node:
         got = self._lcm.handle(max(0, int(timeout * 1000)))
         delivered = 0
         for channel, kind, msg in got:
-            if kind == "robot_state":
-                robot = msg.robot
-                answers = self._answers.get(robot)
-                if answers is not None and msg.seq in answers:
-                    # The simulator sends a state again while it waits for
-                    # it: our answer was lost or is still on its way.
-                    self.repeated += 1
-                    self._lcm.publish_joint_command(
-                        self.command_channel(robot), answers[msg.seq])
-                    continue
-                if msg.seq <= self._delivered.get(robot, -1):
-                    continue
-                self._delivered[robot] = msg.seq
-            else:
+            # States come once each: the transport answers re-sent ones
+            # again and drops older ones (mrsim-gait's rules).
+            if kind != "robot_state":
                 msg = Message(**msg)
             delivered += 1
             self._heard[channel] = True
@@ -239,23 +221,13 @@ class Node:
         <prefix>_COMMAND_<robot>. With `state`, the command answers it
         (state_seq; what lockstep waits for) and is sent again if the
         simulator sends that state again."""
-        self._command_seq += 1
-        fields = {
-            "utime": int(round(state.time * 1e6)) if state is not None
-            else int(_time.time() * 1e6),
-            "seq": self._command_seq,
-            "robot": robot,
-            "sender": self.name,
-            "state_seq": state.seq if state is not None else -1,
-            "target": targets,
-        }
-        self._lcm.publish_joint_command(self.command_channel(robot), fields)
         if state is not None:
-            answers = self._answers.setdefault(robot,
-                                               collections.OrderedDict())
-            answers[state.seq] = fields
-            while len(answers) > _RECENT_ANSWERS:
-                answers.popitem(last=False)
+            self._lcm.answer(self.command_channel(robot), robot, self.name,
+                             state.seq, int(round(state.time * 1e6)), targets)
+            return
+        self._lcm.publish_joint_command(self.command_channel(robot), {
+            "utime": int(_time.time() * 1e6), "robot": robot,
+            "sender": self.name, "state_seq": -1, "target": targets})
 
     def sim_control(self, command: int, wait: bool = True,
                     timeout: float = 5.0, **fields: Any) -> Optional[Message]:
@@ -367,6 +339,11 @@ class Node:
     def publish_state(self, state: Any) -> None:
         """Publishes a State as mrsim-sim would (tests, replays)."""
         self._lcm.publish_state(self.state_channel(state.robot), state)
+
+    @property
+    def repeated(self) -> int:
+        """Re-sent states answered again with the same command."""
+        return self._lcm.repeated
 
     @property
     def malformed(self) -> int:

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -193,6 +194,7 @@ T Get(const py::dict& d, const char* key, T fallback) {
 class Transport {
  public:
   static constexpr size_t kMaxQueued = 100000;
+  static constexpr size_t kRecentAnswers = 8;
 
   explicit Transport(const std::string& url) : lcm_(url) {
     if (!lcm_.good()) {
@@ -238,7 +240,7 @@ class Transport {
   void PublishJointCommand(const std::string& channel, const py::dict& d) {
     joint_command_t m{};
     m.utime = Get<int64_t>(d, "utime", 0);
-    m.seq = Get<int64_t>(d, "seq", 0);
+    m.seq = Get<int64_t>(d, "seq", ++command_seq_);
     m.robot = Get<std::string>(d, "robot", "");
     m.sender = Get<std::string>(d, "sender", "");
     m.state_seq = Get<int64_t>(d, "state_seq", -1);
@@ -290,12 +292,36 @@ class Transport {
     Publish(channel, m);
   }
 
+  // The joint command answering state `state_seq` of `robot` (lockstep),
+  // remembered so that a re-sent state is answered again with it, as
+  // mrsim-gait does (GaitNode::kRecentAnswers).
+  void Answer(const std::string& channel, const std::string& robot,
+              const std::string& sender, int64_t state_seq, int64_t utime,
+              std::vector<double> targets) {
+    joint_command_t m{};
+    m.utime = utime;
+    m.seq = ++command_seq_;
+    m.robot = robot;
+    m.sender = sender;
+    m.state_seq = state_seq;
+    m.num_joints = static_cast<int32_t>(targets.size());
+    m.target = std::move(targets);
+    Publish(channel, m);
+    Answers& a = answers_[robot];
+    a.channel = channel;
+    a.by_seq[state_seq] = std::move(m);
+    while (a.by_seq.size() > kRecentAnswers) a.by_seq.erase(a.by_seq.begin());
+  }
+
   // A state as mrsim-sim publishes it (tests, replays, fake simulators).
   void PublishState(const std::string& channel, const StateObject& s) {
     Publish(channel, s.ToMessage());
   }
 
   int64_t malformed() const { return malformed_; }
+  int64_t repeated() const { return repeated_; }
+  int64_t command_seq() const { return command_seq_; }
+  void set_command_seq(int64_t seq) { command_seq_ = seq; }
   int64_t dropped() const { return dropped_; }
   int fileno() { return lcm_.getFileno(); }
 
@@ -317,11 +343,33 @@ class Transport {
       ++self->malformed_;
       return;
     }
+    if (const auto* state = std::get_if<robot_state_t>(&item.message)) {
+      if (!self->FirstTime(*state)) return;
+    }
     if (self->queue_.size() >= kMaxQueued) {
       self->queue_.pop_front();
       ++self->dropped_;
     }
     self->queue_.push_back(std::move(item));
+  }
+
+  // False for a state already handed over: answered ones are answered
+  // again (the simulator waits for them), older ones dropped, as
+  // mrsim-gait does.
+  bool FirstTime(const robot_state_t& state) {
+    auto a = answers_.find(state.robot);
+    if (a != answers_.end()) {
+      auto it = a->second.by_seq.find(state.seq);
+      if (it != a->second.by_seq.end()) {
+        ++repeated_;
+        lcm_.publish(a->second.channel, &it->second);
+        return false;
+      }
+    }
+    auto last = delivered_.find(state.robot);
+    if (last != delivered_.end() && state.seq <= last->second) return false;
+    delivered_[state.robot] = state.seq;
+    return true;
   }
 
   template <class T>
@@ -333,7 +381,15 @@ class Transport {
 
   lcm::LCM lcm_;
   std::vector<std::unique_ptr<Sub>> subs_;
+  struct Answers {
+    std::string channel;
+    std::map<int64_t, joint_command_t> by_seq;
+  };
   std::deque<Item> queue_;
+  std::map<std::string, Answers> answers_;    // by robot
+  std::map<std::string, int64_t> delivered_;  // newest state seq by robot
+  int64_t command_seq_ = 0;
+  int64_t repeated_ = 0;
   int64_t malformed_ = 0;
   int64_t dropped_ = 0;
 };
@@ -364,6 +420,16 @@ counted in `malformed` and dropped.)doc");
         py::arg("channel"), py::arg("fields"),
         "Publishes a gait_command_t from a dict (parameters: seven values, "
         "direction: (forward, turn)).");
+  c.def("answer", &Transport::Answer, py::arg("channel"), py::arg("robot"),
+        py::arg("sender"), py::arg("state_seq"), py::arg("utime"),
+        py::arg("targets"),
+        "Publishes the joint_command_t answering a state (next command seq) "
+        "and answers that state again with it if the simulator re-sends it.");
+  c.def_property("command_seq", &Transport::command_seq,
+                 &Transport::set_command_seq,
+                 "The seq of the last joint command published.");
+  c.def_property_readonly("repeated", &Transport::repeated,
+                          "Re-sent states answered again.");
   c.def("publish_state", &Transport::PublishState, py::arg("channel"),
         py::arg("state"), "Publishes a State as a robot_state_t.");
   c.def_property_readonly("malformed", &Transport::malformed,
