@@ -81,15 +81,16 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("--binary-dir", required=True)
     p.add_argument("--source-dir", required=True)
-    p.add_argument("--duration", type=float, default=10.0)
+    p.add_argument("--duration", type=float, default=6.0)
+    p.add_argument("--runs", type=int, default=5)
     args = p.parse_args()
     scenario = os.path.join(args.source_dir, "scenarios", "snake11.xml")
     step_exe = os.path.join(args.binary_dir, "bench", "python",
                             "bench_python_step")
 
-    # Alternated, best of three each, so both see the same machine.
+    # Alternated, best of five each, so both see the same machine.
     cpp, py = [], []
-    for _ in range(3):
+    for _ in range(5):
         out = subprocess.run([step_exe, scenario, "5"], check=True,
                              capture_output=True, text=True).stdout
         cpp.append(float(out))
@@ -100,7 +101,7 @@ def main():
 
     with tempfile.TemporaryDirectory() as work:
         gait, python = [], []
-        for _ in range(3):
+        for _ in range(args.runs):
             gait.append(lockstep(args.binary_dir, scenario, args.duration,
                                  False, work))
             python.append(lockstep(args.binary_dir, scenario, args.duration,
