@@ -58,16 +58,18 @@ def optimize(scenario: str, genome: str, out_dir: str,
     """Runs mrsim-opt on a scenario file and a genome file into out_dir
     (resumed when out_dir holds a checkpoint of the same problem).
 
-    progress(row) is called with each new row of generations.csv (a dict
+    workers: local threads (default: one per core; not with farm, whose
+    mrsim-worker processes join by themselves). progress(row) is called with each new row of generations.csv (a dict
     generation, best, mean, worst, best_so_far, failed and the genes).
     Returns read_generations(out_dir). Raises RuntimeError with mrsim-opt's
     message when it fails (bad input: its exit status 2)."""
     args = [_program("mrsim-opt"), os.fspath(scenario), "--genome",
             os.fspath(genome), "--out", os.fspath(out_dir), "--algorithm",
             algorithm, "--generations", str(int(generations)), "--quiet"]
+    if workers is not None and not farm:
+        args += ["--workers", "local:%d" % workers]
     for flag, value in (("--population", population), ("--seed", seed),
-                        ("--episode", episode), ("--gait", gait),
-                        ("--workers", workers)):
+                        ("--episode", episode), ("--gait", gait)):
         if value is not None:
             args += [flag, str(value)]
     if farm:
