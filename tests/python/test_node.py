@@ -77,11 +77,16 @@ def test_controls_are_acknowledged_and_refusals_raise(tmp_path, children):
     sim = children.start([program("mrsim-sim"), scenario, "--lcm-url", url,
                           "--paused"], str(tmp_path / "sim.log"))
     node = mrsim.Node(url=url, name="ctl")
+    statuses, states = [], []
+    node.on_sim_status(statuses.append)
+    node.on_state("snake", states.append)
     status = node.pause(timeout=20)
     assert status.mode == "paused"
     node.step(3)
     state = node.next_state("snake", timeout=10)
     assert state.robot == "snake"
+    assert statuses and statuses[-1].mode == "paused"
+    assert states and states[0] is state  # callbacks see what iterators get
     with pytest.raises(mrsim.ControlError):
         node.detach("snake", "no-such-lock")
     with pytest.raises(mrsim.ControlError):
