@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -393,6 +394,24 @@ lockstep with mrsim-gait.)doc");
       },
       py::arg("seconds"),
       "Runs the controller for round(seconds / period) control periods.");
+
+  // The baseline of bench/python's python_step_ratio: the same Step(n) on
+  // the same physics, timed inside C++ (no Python call around it).
+  m.def(
+      "_time_cpp_step",
+      [](Simulation& s, int n) {
+        if (n < 0) throw std::invalid_argument("n: expected a count >= 0");
+        py::gil_scoped_release release;
+        std::lock_guard<std::mutex> lock(s.mutex());
+        const auto start = std::chrono::steady_clock::now();
+        s.physics().Step(n);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                             start)
+            .count();
+      },
+      py::arg("simulation"), py::arg("n"),
+      "Seconds of Physics::Step(n) on this simulation timed in C++ (the "
+      "benchmark baseline of Simulation.step).");
 }
 
 }  // namespace mrsim::python
