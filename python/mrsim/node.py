@@ -192,7 +192,10 @@ class Node:
         """Iterates over the robot's new states (mrsim.State); ends when
         none comes within timeout s (None: waits forever)."""
         channel = self._channel_of("state", robot)
+        queue = self._queues[channel]
         while True:
+            while queue:  # the fast path of a controller keeping up
+                yield queue.popleft()
             try:
                 yield self._next(channel, timeout)
             except TimeoutError:
