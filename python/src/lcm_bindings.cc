@@ -313,6 +313,15 @@ class Transport {
     while (a.by_seq.size() > kRecentAnswers) a.by_seq.erase(a.by_seq.begin());
   }
 
+  // Bytes as they are (tests of what the node does with foreign traffic).
+  void PublishRaw(const std::string& channel, const py::bytes& data) {
+    const std::string bytes = data;
+    if (lcm_.publish(channel, bytes.data(),
+                     static_cast<unsigned>(bytes.size())) != 0) {
+      throw std::runtime_error("LCM: publishing on " + channel + " failed");
+    }
+  }
+
   // A state as mrsim-sim publishes it (tests, replays, fake simulators).
   void PublishState(const std::string& channel, const StateObject& s) {
     Publish(channel, s.ToMessage());
@@ -430,6 +439,8 @@ counted in `malformed` and dropped.)doc");
                  "The seq of the last joint command published.");
   c.def_property_readonly("repeated", &Transport::repeated,
                           "Re-sent states answered again.");
+  c.def("publish_raw", &Transport::PublishRaw, py::arg("channel"),
+        py::arg("data"), "Publishes bytes as they are (for tests).");
   c.def("publish_state", &Transport::PublishState, py::arg("channel"),
         py::arg("state"), "Publishes a State as a robot_state_t.");
   c.def_property_readonly("malformed", &Transport::malformed,

@@ -131,9 +131,11 @@ logger's CSV columns. columns() gives the logger's CSV row itself.)doc");
   c.def_property_readonly(
       "time", [](const StateObject& s) { return s.state.time; },
       "Simulation time (s).");
-  c.def_property_readonly(
+  c.def_property(
       "seq", [](const StateObject& s) { return s.seq; },
-      "The state message's seq (-1 for a state read in process).");
+      [](StateObject& s, int64_t seq) { s.seq = seq; },
+      "The state message's seq (-1 for a state read in process; set it to "
+      "publish the state as a simulator would).");
   c.def_property_readonly(
       "robot", [](const StateObject& s) { return s.state.robot; },
       "Robot name.");
