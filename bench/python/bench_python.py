@@ -3,6 +3,7 @@
 import argparse
 import os
 import re
+import resource
 import subprocess
 import tempfile
 import time
@@ -29,9 +30,15 @@ def real_time_factor(output):
     return float(m[-1])
 
 
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def lockstep(binary_dir, scenario, duration, python, work):
-    """Real-time factor of mrsim-sim in pipelined lockstep with mrsim-gait
-    or with a Python controller (this process)."""
+    """(real-time factor, sim s per CPU s of simulator and controller) of
+    mrsim-sim in pipelined lockstep with mrsim-gait or with a Python
+    controller (this process)."""
     url = "udpm://239.255.76.67:%d?ttl=0" % PORT
     name = "py" if python else "gait"
     sim_args = [os.path.join(binary_dir, "bin", "mrsim-sim"), scenario,
@@ -39,6 +46,8 @@ def lockstep(binary_dir, scenario, duration, python, work):
                 name, "--rate", "100", "--duration", str(duration),
                 "--lockstep-timeout", "30", "--actuation-delay", "1"]
     log = os.path.join(work, "sim.out")
+    cpu_children = children_cpu()
+    cpu_self = time.process_time()
     controller = None
     node = None
     if python:
@@ -61,8 +70,10 @@ def lockstep(binary_dir, scenario, duration, python, work):
         sim.wait(300)
     if controller is not None:
         controller.wait(60)
+    cpu = (children_cpu() - cpu_children) + (
+        time.process_time() - cpu_self if python else 0.0)
     with open(log) as f:
-        return real_time_factor(f.read())
+        return real_time_factor(f.read()), duration / cpu
 
 
 def main():
@@ -99,9 +110,14 @@ def main():
             python.append(lockstep(args.binary_dir, scenario, args.duration,
                                    True, work))
     print("pipelined lockstep real-time factor: mrsim-gait %s, Python %s" %
-          (" ".join("%.2f" % v for v in gait),
-           " ".join("%.2f" % v for v in python)))
-    print("BENCH python_lockstep_ratio %.3f ratio" % (max(python) / max(gait)))
+          (" ".join("%.2f" % v for v, _ in gait),
+           " ".join("%.2f" % v for v, _ in python)))
+    print("BENCH python_lockstep_ratio %.3f ratio" %
+          (max(v for v, _ in python) / max(v for v, _ in gait)))
+    # Sim seconds per CPU second of simulator and controller together: what
+    # a controller costs, whatever share of the machine the runs got.
+    print("BENCH python_lockstep_ratio_cpu %.3f ratio" %
+          (max(c for _, c in python) / max(c for _, c in gait)))
 
 
 if __name__ == "__main__":
