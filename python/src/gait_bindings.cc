@@ -228,6 +228,16 @@ value out of range.)doc");
           throw std::invalid_argument(
               "targets: give the state (or joint_count) on the first call");
         }
+        if (!g.controller() && !g.has_axes() &&
+            static_cast<int>(known.size()) != n) {
+          // As mrsim-gait without --scenario or --axes, said once.
+          if (PyErr_WarnEx(PyExc_UserWarning,
+                           "Gait.targets: the joint axes are not known; "
+                           "assuming alternating pitch-yaw (give axes=...)",
+                           1) != 0) {
+            throw py::error_already_set();
+          }
+        }
         const std::vector<double>& t_out = g.TargetsAt(t, g.AxesFor(n, known));
         return py::array_t<double>(t_out.size(), t_out.data());
       },

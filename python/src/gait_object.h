@@ -29,6 +29,7 @@ class GaitObject {
   // unset: those known from the state, else alternating pitch-yaw (what
   // mrsim-gait assumes without --scenario or --axes).
   void set_axes(const std::string& spec) { axes_.emplace(spec); }
+  bool has_axes() const { return axes_.has_value(); }
   // The axes of a chain of joint_count hinges whose axes may be `known`.
   std::vector<Axis> AxesFor(int joint_count,
                             const std::vector<Axis>& known) const;

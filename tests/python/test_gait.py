@@ -68,3 +68,16 @@ def test_episode_scores_a_gait_deterministically():
                        "fell"}
     with pytest.raises(ValueError):
         mrsim.run_episode(scenario, mrsim.Gait("forward"), duration=-1)
+
+
+def test_unknown_axes_warn_and_default_to_pitch_yaw():
+    g = mrsim.Gait("forward")
+    explicit = mrsim.Gait("forward", axes="pitch-yaw")
+    with pytest.warns(UserWarning, match="pitch-yaw"):
+        g.targets(0.0, joint_count=4)
+    explicit.targets(0.0, joint_count=4)
+    for t in (0.5, 1.0):
+        a = g.targets(t, joint_count=4)
+        b = explicit.targets(t, joint_count=4)
+    assert np.array_equal(a, b)
+    assert np.abs(a).max() > 0
