@@ -1,0 +1,54 @@
+"""mrsim for Python: the modular-robot simulator as a library and an LCM node.
+
+Everything here runs mrsim's C++ libraries (pybind11 bindings in
+mrsim._core); nothing is implemented a second time in Python.
+
+- Scenarios: ``Scenario.load(path)``, ``Scenario.chain(modules=11)``;
+  bad files raise ``ScenarioError`` naming file, line and field.
+- Simulation in process: ``sim = Simulation(scenario)``, ``sim.step(n)``
+  (GIL released), ``sim.state()`` (numpy arrays), joint targets,
+  ``detach``/``attach``, checkpoints.
+- Gaits: ``Gait("forward")``, ``gait.targets(t, state)``,
+  ``sim.set_controller(gait); sim.run(10)``.
+- Episodes and the optimiser: ``run_episode``, ``mrsim.optimize``.
+- Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
+- LCM: ``Node`` (states, commands, lockstep, simulator control).
+- Gymnasium-style environment: ``mrsim.env.ChainEnv``.
+"""
+
+from ._core import (  # noqa: F401
+    CheckpointError,
+    Gait,
+    GaitError,
+    GenomeError,
+    LogError,
+    PhysicsError,
+    Scenario,
+    ScenarioError,
+    Simulation,
+    State,
+    __version__,
+    gait_parameter_names,
+    gait_presets,
+    run_episode,
+)
+from .logs import read_csv, read_csv_folder, read_lcm_log  # noqa: F401
+from .node import ControlError, Message, Node  # noqa: F401
+from .optimize import optimize, read_generations  # noqa: F401
+
+#: Column order of every pose array (as the logger's CSV columns).
+POSE_FIELDS = ("x", "y", "z", "qw", "qx", "qy", "qz")
+
+
+def load_scenario(path, frame=None, length_scale=1.0):
+    """Reads and validates a scenario file (see Scenario.load)."""
+    return Scenario.load(path, frame=frame, length_scale=length_scale)
+
+
+__all__ = [
+    "CheckpointError", "ControlError", "Gait", "GaitError", "GenomeError",
+    "LogError", "Message", "Node", "POSE_FIELDS", "PhysicsError", "Scenario",
+    "ScenarioError", "Simulation", "State", "gait_parameter_names",
+    "gait_presets", "load_scenario", "optimize", "read_csv",
+    "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",
+]

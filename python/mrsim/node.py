@@ -1,0 +1,368 @@
+"""mrsim.Node: a Python program as an LCM process beside mrsim-sim.
+
+A Node subscribes to the states, scene, simulator status and gait status
+channels and publishes joint commands, simulator controls and gait
+commands with the message types, sequence numbers and acknowledgements of
+the C++ programs. Messages are decoded by the C++ message types (with the
+project's checked decoding; messages that do not decode are counted in
+``Node.malformed`` and dropped).
+
+A controller in lockstep (``mrsim-sim --clock lockstep --controllers NAME``)::
+
+    node = mrsim.Node(name="NAME")
+    gait = mrsim.Gait("forward")
+    for state in node.states("snake", timeout=5):
+        node.send_targets("snake", gait.targets(state.time, state), state)
+
+Like mrsim-gait, the node answers a state the simulator sends again (it
+waits for it) with the same command, and never hands the same state twice.
+"""
+
+from __future__ import annotations
+
+import collections
+import os
+import time as _time
+import types
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
+
+from . import _core
+
+DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
+
+# sim_control_t commands.
+PAUSE, RESUME, STEP, RESET, SAVE_CHECKPOINT, LOAD_CHECKPOINT = 1, 2, 3, 4, 5, 6
+SET_SPEED, QUIT, DETACH, ATTACH = 7, 8, 9, 10
+
+# Messages kept per channel for the iterators; older ones are dropped.
+_QUEUE_LENGTH = 10000
+
+
+class Message(types.SimpleNamespace):
+    """A decoded message: its fields as attributes (arrays as numpy)."""
+
+
+class ControlError(RuntimeError):
+    """The simulator or a gait controller refused a request; str() says why."""
+
+
+class Node:
+    """An LCM node: subscribe to mrsim's channels, publish commands."""
+
+    def __init__(self, url: Optional[str] = None, prefix: str = "MRSIM",
+                 key_file: Optional[str] = None,
+                 name: Optional[str] = None) -> None:
+        """Opens LCM.
+
+        url: the LCM URL (default: $LCM_DEFAULT_URL, else mrsim's default
+        udpm://239.255.76.67:7667?ttl=0). prefix: the channel prefix the
+        programs were started with (--prefix). name: the sender name, what
+        mrsim-sim --controllers lists (default python-<pid>).
+        key_file: signing key; message signing is not part of this build
+        yet, so giving one raises NotImplementedError rather than sending
+        unsigned messages the user believes signed.
+        """
+        if key_file is not None:
+            raise NotImplementedError(
+                "key_file: message signing is not available in this build "
+                "of mrsim")
+        if not prefix:
+            raise ValueError("prefix: expected a non-empty channel prefix")
+        url = url or os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
+        self.url = url
+        self.prefix = prefix
+        self.name = name or "python-%d" % os.getpid()
+        self._lcm = _core.LcmTransport(url)
+        self._types: Dict[str, str] = {}
+        self._callbacks: Dict[str, List[Callable[[Any], None]]] = {}
+        self._queues: Dict[str, collections.deque] = {}
+        self._heard: Dict[str, bool] = {}
+        self._control_seq = 0
+        self._gait_seq = 0
+
+    # Channels -----------------------------------------------------------
+    def state_channel(self, robot: str) -> str:
+        """<prefix>_STATE_<robot>."""
+        return "%s_STATE_%s" % (self.prefix, robot)
+
+    def command_channel(self, robot: str) -> str:
+        """<prefix>_COMMAND_<robot>."""
+        return "%s_COMMAND_%s" % (self.prefix, robot)
+
+    def _subscribe(self, channel: str, kind: str) -> str:
+        if channel not in self._types:
+            self._lcm.subscribe(channel, kind)
+            self._types[channel] = kind
+            self._queues[channel] = collections.deque(maxlen=_QUEUE_LENGTH)
+            self._callbacks[channel] = []
+        return channel
+
+    def _channel_of(self, what: str, robot: Optional[str]) -> str:
+        channels = {
+            "state": ("%s_STATE_%s", "robot_state"),
+            "gait_status": ("%s_GAIT_STATUS_%s", "gait_status"),
+            "scene": ("%s_SCENE", "scene_state"),
+            "sim_status": ("%s_SIM_STATUS", "sim_status"),
+        }
+        if what not in channels:
+            raise ValueError("expected one of %s, got %r" %
+                             (", ".join(channels), what))
+        pattern, kind = channels[what]
+        if pattern.count("%s") == 2:
+            if not robot:
+                raise ValueError("%s: give the robot's name" % what)
+            channel = pattern % (self.prefix, robot)
+        else:
+            channel = pattern % self.prefix
+        return self._subscribe(channel, kind)
+
+    def subscribe(self, what: str, robot: Optional[str] = None,
+                  callback: Optional[Callable[[Any], None]] = None) -> None:
+        """Listens to 'state' or 'gait_status' of a robot, or to 'scene' or
+        'sim_status'; callback(message) is called from spin_once()."""
+        channel = self._channel_of(what, robot)
+        if callback is not None:
+            self._callbacks[channel].append(callback)
+
+    def on_state(self, robot: str, callback: Callable[[Any], None]) -> None:
+        """callback(state) for every new state of the robot (mrsim.State)."""
+        self.subscribe("state", robot, callback)
+
+    def on_scene(self, callback: Callable[[Any], None]) -> None:
+        """callback(scene) for every scene message (object_index, poses)."""
+        self.subscribe("scene", None, callback)
+
+    def on_sim_status(self, callback: Callable[[Any], None]) -> None:
+        """callback(status) for every simulator status."""
+        self.subscribe("sim_status", None, callback)
+
+    def on_gait_status(self, robot: str,
+                       callback: Callable[[Any], None]) -> None:
+        """callback(status) for every gait status of the robot."""
+        self.subscribe("gait_status", robot, callback)
+
+    # Receiving ----------------------------------------------------------
+    def spin_once(self, timeout: float = 0.1) -> int:
+        """Waits up to timeout s for messages, dispatches them to the
+        callbacks and iterators; returns how many were new."""
+        got = self._lcm.handle(max(0, int(timeout * 1000)))
+        delivered = 0
+        for channel, kind, msg in got:
+            # States come once each: the transport answers re-sent ones
+            # again and drops older ones (mrsim-gait's rules).
+            if kind != "robot_state":
+                msg = Message(**msg)
+            delivered += 1
+            self._heard[channel] = True
+            queue = self._queues.get(channel)
+            if queue is not None:
+                queue.append(msg)
+            for cb in self._callbacks.get(channel, ()):
+                cb(msg)
+        return delivered
+
+    def spin(self, seconds: Optional[float] = None) -> None:
+        """Dispatches messages for `seconds` (None: until interrupted)."""
+        end = None if seconds is None else _time.monotonic() + seconds
+        while end is None or _time.monotonic() < end:
+            left = 0.1 if end is None else min(0.1, end - _time.monotonic())
+            self.spin_once(max(0.0, left))
+
+    def _next(self, channel: str, timeout: Optional[float],
+              accept: Callable[[Any], bool] = lambda m: True) -> Any:
+        queue = self._queues[channel]
+        end = None if timeout is None else _time.monotonic() + timeout
+        while True:
+            while queue:
+                m = queue.popleft()
+                if accept(m):
+                    return m
+            left = 0.25 if end is None else end - _time.monotonic()
+            if left <= 0:
+                raise TimeoutError("nothing on %s within %s s" %
+                                   (channel, timeout))
+            self.spin_once(min(left, 0.25))
+
+    def next_state(self, robot: str, timeout: Optional[float] = 5.0):
+        """The next new state of the robot; raises TimeoutError."""
+        return self._next(self._channel_of("state", robot), timeout)
+
+    def states(self, robot: str,
+               timeout: Optional[float] = 5.0) -> Iterator[Any]:
+        """Iterates over the robot's new states (mrsim.State); ends when
+        none comes within timeout s (None: waits forever)."""
+        channel = self._channel_of("state", robot)
+        queue = self._queues[channel]
+        while True:
+            while queue:  # the fast path of a controller keeping up
+                yield queue.popleft()
+            try:
+                yield self._next(channel, timeout)
+            except TimeoutError:
+                return
+
+    def next_message(self, what: str, robot: Optional[str] = None,
+                     timeout: Optional[float] = 5.0):
+        """The next 'scene', 'sim_status' or 'gait_status' message."""
+        return self._next(self._channel_of(what, robot), timeout)
+
+    def messages(self, what: str, robot: Optional[str] = None,
+                 timeout: Optional[float] = 5.0) -> Iterator[Any]:
+        """Iterates over 'scene', 'sim_status', 'gait_status' or 'state'
+        messages; ends when none comes within timeout s."""
+        channel = self._channel_of(what, robot)
+        while True:
+            try:
+                yield self._next(channel, timeout)
+            except TimeoutError:
+                return
+
+    # Publishing ---------------------------------------------------------
+    def send_targets(self, robot: str, targets: Sequence[float],
+                     state: Any = None) -> None:
+        """Publishes joint targets (rad, chain order) for the robot on
+        <prefix>_COMMAND_<robot>. With `state`, the command answers it
+        (state_seq; what lockstep waits for) and is sent again if the
+        simulator sends that state again."""
+        if state is not None:
+            self._lcm.answer(self.command_channel(robot), robot, self.name,
+                             state.seq, int(round(state.time * 1e6)), targets)
+            return
+        self._lcm.publish_joint_command(self.command_channel(robot), {
+            "utime": int(_time.time() * 1e6), "robot": robot,
+            "sender": self.name, "state_seq": -1, "target": targets})
+
+    def sim_control(self, command: int, wait: bool = True,
+                    timeout: float = 5.0, **fields: Any) -> Optional[Message]:
+        """Sends a sim_control_t (PAUSE, RESUME, STEP, ...; fields steps,
+        speed, path, robot, lock) and, with wait, returns the simulator's
+        acknowledging status. Raises ControlError when the simulator
+        refuses it, TimeoutError when it does not answer."""
+        channel = self._channel_of("sim_status", None)
+        if wait and not self._heard.get(channel):
+            # As mrsim-ctl: a request sent before the simulator listens is
+            # lost, so the first one waits for its first status.
+            self._next(channel, timeout)
+        self._control_seq += 1
+        seq = self._control_seq
+        msg = dict(fields, command=command, seq=seq, sender=self.name,
+                   utime=int(_time.time() * 1e6))
+        self._lcm.publish_sim_control("%s_SIM_CONTROL" % self.prefix, msg)
+        if not wait:
+            return None
+        status = self._next(
+            channel, timeout,
+            lambda s: s.control_seq == seq and s.control_sender == self.name)
+        if not status.control_ok:
+            raise ControlError(status.last_error or "request refused")
+        return status
+
+    def pause(self, **kw: Any) -> Optional[Message]:
+        """Pauses the simulator."""
+        return self.sim_control(PAUSE, **kw)
+
+    def resume(self, **kw: Any) -> Optional[Message]:
+        """Resumes a paused simulator."""
+        return self.sim_control(RESUME, **kw)
+
+    def step(self, periods: int = 1, wait: bool = True,
+             timeout: float = 5.0) -> Optional[Message]:
+        """Runs `periods` control periods, then stays paused; with wait,
+        returns the status once they ran (as mrsim-ctl step)."""
+        ack = self.sim_control(STEP, wait=wait, timeout=timeout,
+                               steps=int(periods))
+        if ack is None:
+            return None
+        want = ack.state_seq + int(periods)
+        return self._next(
+            self._channel_of("sim_status", None), timeout,
+            lambda s: s.mode == "paused" and s.state_seq >= want)
+
+    def reset(self, **kw: Any) -> Optional[Message]:
+        """Back to the scenario's initial state."""
+        return self.sim_control(RESET, **kw)
+
+    def save_checkpoint(self, path: str, **kw: Any) -> Optional[Message]:
+        """Makes the simulator write a checkpoint (a path on its host)."""
+        return self.sim_control(SAVE_CHECKPOINT, path=path, **kw)
+
+    def load_checkpoint(self, path: str, **kw: Any) -> Optional[Message]:
+        """Makes the simulator load a checkpoint (a path on its host)."""
+        return self.sim_control(LOAD_CHECKPOINT, path=path, **kw)
+
+    def set_speed(self, speed: float, **kw: Any) -> Optional[Message]:
+        """Real-time factor of the realtime clock (> 0)."""
+        return self.sim_control(SET_SPEED, speed=float(speed), **kw)
+
+    def quit(self, **kw: Any) -> Optional[Message]:
+        """Stops the simulator."""
+        return self.sim_control(QUIT, **kw)
+
+    def detach(self, robot: str, lock: str, **kw: Any) -> Optional[Message]:
+        """Releases a lock of a robot."""
+        return self.sim_control(DETACH, robot=robot, lock=lock, **kw)
+
+    def attach(self, robot: str, lock: str, **kw: Any) -> Optional[Message]:
+        """Re-makes a released lock of a robot."""
+        return self.sim_control(ATTACH, robot=robot, lock=lock, **kw)
+
+    def gait_command(self, robot: str, gait: Optional[str] = None,
+                     parameters: Optional[Sequence[float]] = None,
+                     motion: Optional[str] = None, strength: float = 1.0,
+                     direction: Optional[Sequence[float]] = None,
+                     wait: bool = True,
+                     timeout: float = 5.0) -> Optional[Message]:
+        """Sends a gait_command_t to the robot's mrsim-gait: a gait (preset,
+        file or name), the seven parameters, a motion with strength, or
+        direction (forward, turn). With wait, returns the gait status that
+        acknowledges it; raises ControlError when it is rejected."""
+        channel = self._channel_of("gait_status", robot)
+        if wait and not self._heard.get(channel):
+            self._next(channel, timeout)  # mrsim-gait is listening
+        self._gait_seq += 1
+        seq = self._gait_seq
+        msg = {"utime": int(_time.time() * 1e6), "seq": seq,
+               "sender": self.name, "robot": robot, "gait": gait or "",
+               "parameters": None if parameters is None
+               else [float(v) for v in parameters],
+               "motion": motion or "", "strength": float(strength),
+               "direction": None if direction is None
+               else [float(v) for v in direction]}
+        self._lcm.publish_gait_command("%s_GAIT_%s" % (self.prefix, robot),
+                                       msg)
+        if not wait:
+            return None
+        status = self._next(
+            channel, timeout,
+            lambda s: s.command_seq == seq and s.command_sender == self.name)
+        if status.command_result == "rejected":
+            raise ControlError(status.command_error or "gait command rejected")
+        return status
+
+    def publish_state(self, state: Any) -> None:
+        """Publishes a State as mrsim-sim would (tests, replays)."""
+        self._lcm.publish_state(self.state_channel(state.robot), state)
+
+    @property
+    def repeated(self) -> int:
+        """Re-sent states answered again with the same command."""
+        return self._lcm.repeated
+
+    @property
+    def malformed(self) -> int:
+        """Messages on our channels that did not decode (dropped)."""
+        return self._lcm.malformed
+
+    def fileno(self) -> int:
+        """LCM's file descriptor (readable when messages wait)."""
+        return self._lcm.fileno()
+
+    def close(self) -> None:
+        """Closes the LCM connection."""
+        self._lcm = None  # type: ignore[assignment]
+
+    def __enter__(self) -> "Node":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()

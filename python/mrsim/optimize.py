@@ -1,0 +1,113 @@
+"""Running mrsim's optimiser (mrsim-opt) from Python and reading its files.
+
+``optimize(...)`` runs ``mrsim-opt`` (the C++ optimiser, locally on this
+machine's cores or, with ``farm=True``, on mrsim-worker processes) and
+calls ``progress(row)`` with each generation's row of ``generations.csv``
+as it is written. ``read_generations(out_dir)`` reads a run's files.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from typing import Any, Callable, Dict, Optional
+
+import numpy as np
+
+from . import _core
+
+
+def _program(name: str) -> str:
+    """A program of the build tree (beside build/python) or of PATH."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for d in (os.environ.get("MRSIM_BIN_DIR"),
+              os.path.join(here, "..", "..", "bin")):
+        if d and os.access(os.path.join(d, name), os.X_OK):
+            return os.path.join(d, name)
+    found = shutil.which(name)
+    if not found:
+        raise FileNotFoundError(
+            "%s: not found (put mrsim's build/bin or install bin on PATH, "
+            "or set MRSIM_BIN_DIR)" % name)
+    return found
+
+
+def read_generations(out_dir: str) -> Dict[str, Any]:
+    """A run's results: {'generations': {column: array} of generations.csv,
+    'evaluations': ... of evaluations.csv (when present), 'best_gait':
+    mrsim.Gait of best_gait.xml (when present)}."""
+    out: Dict[str, Any] = {}
+    for name in ("generations", "evaluations"):
+        path = os.path.join(out_dir, name + ".csv")
+        if os.path.exists(path):
+            out[name] = _core.read_csv(path)
+    gait = os.path.join(out_dir, "best_gait.xml")
+    if os.path.exists(gait):
+        out["best_gait"] = _core.Gait.load(gait)
+    return out
+
+
+def optimize(scenario: str, genome: str, out_dir: str,
+             algorithm: str = "ga", generations: int = 10,
+             population: Optional[int] = None, seed: Optional[int] = None,
+             episode: Optional[float] = None, gait: Optional[str] = None,
+             farm: bool = False, workers: Optional[int] = None,
+             progress: Optional[Callable[[Dict[str, float]], None]] = None,
+             extra_args: tuple = ()) -> Dict[str, Any]:
+    """Runs mrsim-opt on a scenario file and a genome file into out_dir
+    (resumed when out_dir holds a checkpoint of the same problem).
+
+    workers: local threads (default: one per core; not with farm, whose
+    mrsim-worker processes join by themselves). progress(row) is called with each new row of generations.csv (a dict
+    generation, best, mean, worst, best_so_far, failed and the genes).
+    Returns read_generations(out_dir). Raises RuntimeError with mrsim-opt's
+    message when it fails (bad input: its exit status 2)."""
+    args = [_program("mrsim-opt"), os.fspath(scenario), "--genome",
+            os.fspath(genome), "--out", os.fspath(out_dir), "--algorithm",
+            algorithm, "--generations", str(int(generations)), "--quiet"]
+    if workers is not None and not farm:
+        args += ["--workers", "local:%d" % workers]
+    for flag, value in (("--population", population), ("--seed", seed),
+                        ("--episode", episode), ("--gait", gait)):
+        if value is not None:
+            args += [flag, str(value)]
+    if farm:
+        args.append("--farm")
+    args += list(extra_args)
+    csv = os.path.join(os.fspath(out_dir), "generations.csv")
+    seen = 0
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+    def report() -> None:
+        nonlocal seen
+        if progress is None or not os.path.exists(csv):
+            return
+        try:
+            table = _core.read_csv(csv)
+        except _core.LogError:
+            return  # a row being written; read again next time
+        rows = len(table.get("generation", ()))
+        for i in range(seen, rows):
+            progress({k: (v[i] if not isinstance(v, np.ndarray) else float(v[i]))
+                      for k, v in table.items()})
+        seen = rows
+
+    try:
+        while proc.poll() is None:
+            report()
+            try:
+                proc.wait(timeout=0.5)
+            except subprocess.TimeoutExpired:
+                pass
+    except KeyboardInterrupt:
+        proc.terminate()  # mrsim-opt stops cleanly and keeps its checkpoint
+        proc.wait()
+        raise
+    out, err = proc.communicate()
+    report()
+    if proc.returncode != 0:
+        raise RuntimeError("mrsim-opt failed (exit %d): %s" %
+                           (proc.returncode, (err or out).strip()))
+    return read_generations(out_dir)

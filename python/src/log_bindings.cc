@@ -1,0 +1,231 @@
+// Logs into columns: mrsim-log's CSV files and lcm-logger logs, the latter
+// decoded with the logger's own flatteners (so a log reads into the same
+// column names as the CSV mrsim-log would have written from it).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "logger/csv_columns.h"
+#include "logger/generic_flattener.h"
+#include "logger/lcm_type_registry.h"
+#include "logger/robot_state_flattener.h"
+#include "python/src/bindings.h"
+
+namespace py = pybind11;
+
+namespace mrsim::python {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::optional<double> Number(const std::string& cell) {
+  double v = 0;
+  const char* end = cell.data() + cell.size();
+  const auto r = std::from_chars(cell.data(), end, v);
+  if (r.ec != std::errc() || r.ptr != end) return std::nullopt;
+  return v;
+}
+
+// Columns filled row by row; a column first seen in a later row (a
+// message whose shape changed) reads NaN ("" for text) before it.
+class Table {
+ public:
+  void AddRow(const std::vector<std::string>& names,
+              const std::vector<std::string>& cells) {
+    for (size_t i = 0; i < names.size(); ++i) {
+      Column& c = ColumnFor(names[i]);
+      const std::string cell = i < cells.size() ? cells[i] : std::string();
+      if (c.rows == rows_ + 1) continue;  // a repeated name: first wins
+      Put(c, cell);
+    }
+    ++rows_;
+    for (auto& [name, c] : columns_) {
+      while (c.rows < rows_) Put(c, "");
+    }
+  }
+
+  py::dict ToPython() const {
+    py::dict d;
+    for (const std::string& name : order_) {
+      const Column& c = columns_.at(name);
+      if (c.text) {
+        d[py::str(name)] = c.strings;
+      } else {
+        d[py::str(name)] =
+            py::array_t<double>(c.numbers.size(), c.numbers.data());
+      }
+    }
+    return d;
+  }
+
+ private:
+  struct Column {
+    bool decided = false;
+    bool text = false;
+    std::vector<double> numbers;
+    std::vector<std::string> strings;  // all cells, until decided numeric
+    size_t rows = 0;
+  };
+
+  Column& ColumnFor(const std::string& name) {
+    auto it = columns_.find(name);
+    if (it != columns_.end()) return it->second;
+    order_.push_back(name);
+    Column& c = columns_[name];
+    while (c.rows < rows_) Put(c, "");
+    return c;
+  }
+
+  // A column is text when its first non-empty cell is not a number;
+  // otherwise later cells that are not numbers read as NaN.
+  static void Put(Column& c, const std::string& cell) {
+    ++c.rows;
+    if (!c.decided && !cell.empty()) {
+      c.decided = true;
+      c.text = !Number(cell).has_value();
+      if (!c.text) {
+        c.numbers.assign(c.strings.size(), kNaN);
+        c.strings.clear();
+      }
+    }
+    if (!c.decided || c.text) {
+      c.strings.push_back(cell);
+      return;
+    }
+    c.numbers.push_back(Number(cell).value_or(kNaN));
+  }
+
+  size_t rows_ = 0;
+  std::vector<std::string> order_;
+  std::map<std::string, Column> columns_;
+};
+
+py::dict ReadCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw PlotInputError(path + ": cannot open");
+  std::string line;
+  if (!std::getline(in, line)) throw PlotInputError(path + ": empty file");
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const std::vector<std::string> names = SplitCsvRecord(line);
+  Table table;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = SplitCsvRecord(line);
+    if (cells.size() != names.size()) {
+      throw PlotInputError(path + ":" + std::to_string(number) + ": " +
+                           std::to_string(cells.size()) +
+                           " cells, the header has " +
+                           std::to_string(names.size()));
+    }
+    table.AddRow(names, cells);
+  }
+  return table.ToPython();
+}
+
+int64_t Fingerprint(const uint8_t* data, size_t size) {
+  if (size < 8) return 0;
+  uint64_t h = 0;
+  for (int i = 0; i < 8; ++i) h = (h << 8) | data[i];
+  return static_cast<int64_t>(h);
+}
+
+py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw PlotInputError(path + ": cannot open as an LCM log");
+  static const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::regex wanted(channels.empty() ? ".*" : channels);
+  struct Channel {
+    std::unique_ptr<MessageFlattener> flattener;
+    int64_t hash = 0;
+    Table table;
+    int64_t undecoded = 0;
+  };
+  std::map<std::string, Channel> by_channel;
+  std::vector<std::string> order;
+  FlatRow row;
+  int64_t events = 0;
+  {
+    py::gil_scoped_release release;
+    while (const lcm::LogEvent* e = log.readNextEvent()) {
+      ++events;
+      if (!std::regex_match(e->channel, wanted) || e->datalen < 0) continue;
+      const auto* data = static_cast<const uint8_t*>(e->data);
+      const size_t size = static_cast<size_t>(e->datalen);
+      const int64_t hash = Fingerprint(data, size);
+      auto it = by_channel.find(e->channel);
+      if (it == by_channel.end()) {
+        it = by_channel.emplace(e->channel, Channel{}).first;
+        order.push_back(e->channel);
+      }
+      Channel& ch = it->second;
+      if (!ch.flattener || ch.hash != hash) {
+        const LcmStruct* type = registry.FindByHash(hash);
+        if (type == nullptr) {
+          ++ch.undecoded;
+          continue;
+        }
+        if (type->full_name() == "mrsim.robot_state_t") {
+          ch.flattener = std::make_unique<RobotStateFlattener>(registry);
+        } else {
+          ch.flattener = std::make_unique<GenericFlattener>(registry, *type);
+        }
+        ch.hash = hash;
+      }
+      if (!ch.flattener->Flatten(data, size, &row)) {
+        ++ch.undecoded;
+        continue;
+      }
+      std::vector<std::string> names = ch.flattener->columns();
+      std::vector<std::string> cells = SplitCsvRecord(row.values);
+      names.push_back("log_time");
+      cells.push_back(std::to_string(static_cast<double>(e->timestamp) / 1e6));
+      ch.table.AddRow(names, cells);
+    }
+  }
+  if (events == 0) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (in && in.tellg() > 0) {
+      throw PlotInputError(path + ": not an LCM log (no event found)");
+    }
+  }
+  py::dict out;
+  for (const std::string& name : order) {
+    const Channel& ch = by_channel.at(name);
+    py::dict columns = ch.table.ToPython();
+    out[py::str(name)] = columns;
+  }
+  return out;
+}
+
+}  // namespace
+
+void BindLogs(py::module_& m) {
+  m.def("read_csv", &ReadCsv, py::arg("path"), R"doc(
+One CSV file as mrsim-log writes it: a dict from column name to a numpy
+float array (text columns such as 'robot' as lists of str). Raises LogError
+naming the file and line of a malformed row.)doc");
+  m.def("read_lcm_log", &ReadLcmLog, py::arg("path"), py::arg("channels") = "",
+        R"doc(
+An lcm-logger log: {channel: {column: array}} with the column names
+mrsim-log gives (decoded by the logger's flatteners), plus 'log_time' (s,
+when the message was logged). channels: a regex of the channels to read
+(default all). Messages of unknown types or that do not decode are left
+out. Raises LogError when the file is not an LCM log.)doc");
+}
+
+}  // namespace mrsim::python

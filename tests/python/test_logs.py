@@ -1,0 +1,67 @@
+"""Logs into dicts of numpy arrays: CSV folders and lcm-logger logs."""
+
+import os
+import signal
+
+import numpy as np
+import pytest
+
+import mrsim
+from conftest import lcm_url, program, wait_until
+
+
+def test_csv_folder_reads_columns_and_joins_parts(tmp_path):
+    (tmp_path / "MRSIM_STATE_snake.csv").write_text(
+        "time,seq,robot,com.x\n0.01,0,snake,1.5\n0.02,1,snake,1.25\n")
+    (tmp_path / "MRSIM_STATE_snake.part2.csv").write_text(
+        "time,seq,robot,com.x,lock.a.attached\n0.03,2,snake,1,0\n")
+    logs = mrsim.read_csv_folder(str(tmp_path))
+    s = logs["MRSIM_STATE_snake"]
+    assert np.array_equal(s["time"], [0.01, 0.02, 0.03])
+    assert s["robot"] == ["snake"] * 3
+    assert np.array_equal(s["lock.a.attached"], [np.nan, np.nan, 0],
+                          equal_nan=True)
+
+
+def test_malformed_csv_raises_log_error(tmp_path):
+    bad = tmp_path / "x.csv"
+    bad.write_text("a,b\n1,2\n3\n")
+    with pytest.raises(mrsim.LogError) as e:
+        mrsim.read_csv(str(bad))
+    assert "x.csv:3" in str(e.value)
+    with pytest.raises(mrsim.LogError):
+        mrsim.read_csv_folder(str(tmp_path / "none"))
+    with pytest.raises(mrsim.LogError):
+        mrsim.read_lcm_log(str(bad))
+
+
+def test_lcm_log_reads_like_the_loggers_csv(tmp_path, children):
+    path = str(tmp_path / "snake.xml")
+    mrsim.Scenario.chain(modules=4, pattern="pitch").save(path)
+    url = lcm_url(7564)
+    log = str(tmp_path / "run.lcmlog")
+    logger = children.start(["lcm-logger", "--lcm-url=" + url, "--flush-interval=10", "-q", log],
+                            str(tmp_path / "logger.log"))
+    sim = children.start([program("mrsim-sim"), path, "--lcm-url", url,
+                          "--paused"],
+                         str(tmp_path / "sim.log"))
+    node = mrsim.Node(url=url, name="logs")
+    node.next_message("sim_status", timeout=30)
+    # The logger listens once the paused simulator's statuses reach its
+    # file (it flushes every 10 ms).
+    wait_until(lambda: node.spin_once(0.05) >= 0 and os.path.exists(log)
+               and os.path.getsize(log) > 0, 30, "the logger's first message")
+    node.step(50, timeout=30)
+    node.quit(timeout=30)
+    assert sim.wait(60) == 0, sim.output()
+    logger.proc.send_signal(signal.SIGINT)
+    logger.wait(20)
+    logs = mrsim.read_lcm_log(log)
+    state = logs.get("MRSIM_STATE_snake")
+    assert state is not None, list(logs)
+    assert "module3.joint.angle" in state and "com.x" in state
+    # Real time, so no burst overflows the logger's socket on a busy host.
+    assert len(state["time"]) >= 25
+    assert np.all(np.diff(state["seq"]) > 0)
+    only = mrsim.read_lcm_log(log, channels="MRSIM_SIM_STATUS")
+    assert list(only) == ["MRSIM_SIM_STATUS"]

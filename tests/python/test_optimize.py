@@ -1,0 +1,35 @@
+"""mrsim.optimize runs mrsim-opt with progress; its files read back."""
+
+import os
+
+import pytest
+
+import mrsim
+from conftest import BINARY_DIR, source
+
+os.environ.setdefault("MRSIM_BIN_DIR", os.path.join(BINARY_DIR, "bin"))
+
+
+def test_optimize_reports_every_generation_and_reads_the_results(tmp_path):
+    rows = []
+    out = str(tmp_path / "opt")
+    result = mrsim.optimize(source("scenarios/snake11.xml"),
+                            source("scenarios/forward_gait.genome.xml"), out,
+                            algorithm="random", generations=2, population=3,
+                            seed=1, episode=0.5, workers=1,
+                            progress=rows.append)
+    assert [int(r["generation"]) for r in rows] == [0, 1]
+    g = result["generations"]
+    assert len(g["best_so_far"]) == 2
+    assert g["best_so_far"][1] >= g["best_so_far"][0]
+    assert isinstance(result["best_gait"], mrsim.Gait)
+    assert mrsim.read_generations(out)["generations"]["best"][0] == rows[0]["best"]
+
+
+def test_optimize_with_a_bad_genome_raises(tmp_path):
+    bad = tmp_path / "bad.genome.xml"
+    bad.write_text("<genome><gene name='A_pitch' lower='2' upper='1'/></genome>")
+    with pytest.raises(RuntimeError) as e:
+        mrsim.optimize(source("scenarios/case_study.xml"), str(bad),
+                       str(tmp_path / "opt"), generations=1)
+    assert "bad.genome.xml" in str(e.value)
