@@ -41,6 +41,15 @@ int CliParseExit(const CLI::App& app, const CLI::ParseError& error,
   if (error.get_exit_code() == 0) return app.exit(error, out, err) == 0 ? 0 : 2;
   if (dynamic_cast<const CLI::ExtrasError*>(&error) == nullptr) {
     app.exit(error, out, err);
+    // "A subcommand is required" when the word meant as one is mistyped.
+    const std::vector<std::string> rest = app.remaining(true);
+    if (!rest.empty() && !rest[0].empty() && rest[0][0] != '-' &&
+        app.get_subcommands().empty()) {
+      const std::string nearest = NearestSubcommand(app, rest[0]);
+      if (!nearest.empty()) {
+        err << "  " << rest[0] << ": did you mean " << nearest << "?\n";
+      }
+    }
     return 2;
   }
   const std::string program =

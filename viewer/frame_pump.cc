@@ -62,18 +62,18 @@ bool FramePump::Drain(int64_t max_renders) {
       last_scene_key_ = frame.scene_key;
       ++rendered_;
       ++renders;
-      if (window_ != nullptr) {
-        // Input between pictures, however many are due: q and Esc act at
-        // once, drags and zoom apply to the next picture.
-        window_->PollEvents();
-        if (window_->ShouldClose()) return true;
-      }
     }
     if (first_index_ < 0) first_index_ = frame.index;
     last_time_ = frame.utime * 1e-6;
     if (!writer_ && make_writer_) writer_ = make_writer_();
     if (writer_) writer_->Write(image_, frame.index);
     ++frames_;
+    if (changed && window_ != nullptr) {
+      // Input between pictures, however many are due: q and Esc act at
+      // once, drags and zoom apply to the next picture.
+      window_->PollEvents();
+      if (window_->ShouldClose()) return true;
+    }
   }
   return false;
 }

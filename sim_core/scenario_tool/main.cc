@@ -21,8 +21,10 @@ int main(int argc, char** argv) {
     return argc > 1 && sub->get_name() == argv[1];
   });
   if (argc > 1 && argv[1][0] != '-' && known.empty()) {
-    std::cerr << "error: unknown subcommand '" << argv[1]
-              << "'; expected validate, info, schema, export-mjcf, convert "
+    const std::string nearest = mrsim::NearestSubcommand(app, argv[1]);
+    std::cerr << "error: unknown subcommand '" << argv[1] << "'"
+              << (nearest.empty() ? "" : " (did you mean " + nearest + "?)")
+              << "; expected validate, info, schema, export-mjcf, convert "
                  "or new (--help)\n";
     return 2;
   }

@@ -134,6 +134,7 @@ TEST(LoggerFlatten, GenericTypeGetsTimeSeqAndNamedCells) {
   st.clock = "fast";
   st.steps = 1234;
   st.last_error = "bad \"joint\", index 3";
+  st.instance = "host:42";
   const auto bytes = Encode(st);
   FlatRow row;
   ASSERT_TRUE(flattener.Flatten(bytes.data(), bytes.size(), &row));
@@ -148,8 +149,9 @@ TEST(LoggerFlatten, GenericTypeGetsTimeSeqAndNamedCells) {
       "time", "seq", "sim_time", "real_time_factor", "mode", "clock"};
   EXPECT_EQ(std::vector<std::string>(cols.begin(), cols.begin() + 6),
             first_cols);
-  EXPECT_EQ(cols.back(), "last_error");
-  const std::string quoted = "\"bad \"\"joint\"\", index 3\"";
+  EXPECT_EQ(cols.back(), "instance");
+  EXPECT_EQ(cols[cols.size() - 2], "last_error");
+  const std::string quoted = "\"bad \"\"joint\"\", index 3\",host:42";
   EXPECT_EQ(row.values.substr(row.values.size() - quoted.size()), quoted);
   EXPECT_NE(std::find(cols.begin(), cols.end(), "steps"), cols.end());
   EXPECT_NE(row.values.find(",1234,"), std::string::npos);

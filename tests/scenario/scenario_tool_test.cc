@@ -20,6 +20,7 @@ namespace {
 using testing::BinaryPath;
 using testing::ChildProcess;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::SourcePath;
 using testing::TempDir;
 using testing::TestLcmUrl;
@@ -82,6 +83,10 @@ TEST(ScenarioTool, BadCommandLineExitsTwo) {
   const auto unknown = RunTool({"frobnicate"}, dir);
   EXPECT_EQ(unknown.code, 2);
   EXPECT_THAT(unknown.output, HasSubstr("unknown subcommand 'frobnicate'"));
+  EXPECT_THAT(unknown.output, Not(HasSubstr("did you mean")));
+  EXPECT_THAT(
+      RunTool({"valdate", "x.xml"}, dir).output,
+      HasSubstr("unknown subcommand 'valdate' (did you mean validate?)"));
   EXPECT_EQ(RunTool({"new", "--pattern", "roll"}, dir).code, 2);
   EXPECT_EQ(RunTool({"new", "--modules", "0"}, dir).code, 2);
   EXPECT_EQ(RunTool({"new", "--sensors", "x,y"}, dir).code, 2);
