@@ -21,6 +21,12 @@ std::string LimitsText(const FieldLimits& l, FieldType type) {
   } else if (has_max) {
     add(fmt::format("{}<= {}", each, l.max));
   }
+  // Every number has a bound; the table names those tighter than the one
+  // for all (docs/scenario.md, "Limits").
+  if (l.magnitude < kMaxAnyValue &&
+      !(has_max && l.max <= l.magnitude && has_min && l.min >= -l.magnitude)) {
+    add(fmt::format("{}within -{}..{}", each, l.magnitude, l.magnitude));
+  }
   if (l.nonzero) add("not all zero");
   if (l.nonempty) add("not empty");
   return text;
