@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/input_limits.h"
 #include "common/trim.h"
 #include "common/xml_error_text.h"
 #include "sim_core/scenario_schema_inl.h"
@@ -342,6 +343,11 @@ class ReadVisitor {
                            fmt::format("{}/{}[{}]", path_, info.xml, i + 1));
       }
     }
+    // Refused before any is read: a billion modules would be built first.
+    if (items.size() > static_cast<size_t>(info.max_items)) {
+      r_.Fail(items[info.max_items].first, items[info.max_items].second,
+              ListLimitMessage(info));
+    }
     for (size_t i = 0; i < items.size(); ++i) {
       const XMLElement* x = items[i].first;
       if constexpr (std::is_same_v<P, Joint>) {
@@ -555,6 +561,13 @@ void Reader::Parse(const XMLElement* e, const std::string& path,
 
 Scenario Reader::Read(const std::string& xml) {
   const std::string& file = source_.file;
+  try {
+    // tinyxml2 parses recursively and keeps the whole tree: size and
+    // nesting are checked first.
+    CheckXmlLimits(xml, file);
+  } catch (const InputLimitError& e) {
+    throw ScenarioError(e.what());
+  }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     // An empty file has no line to point at.
@@ -706,8 +719,17 @@ Scenario ReadScenarioString(const std::string& xml, const std::string& name,
 }
 
 bool IsOriginalMrsimFile(const std::string& path) {
+  std::optional<std::string> text;
+  try {
+    text = ReadFileAtMost(path);
+    if (text) CheckXmlLimits(*text, path);
+  } catch (const InputLimitError&) {
+    return false;  // the reader says why
+  }
   tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return false;
+  if (!text || doc.Parse(text->data(), text->size()) != tinyxml2::XML_SUCCESS) {
+    return false;
+  }
   const tinyxml2::XMLElement* root = doc.RootElement();
   return root != nullptr && LocalName(root->Name()) == "Scenario" &&
          RootLooksOriginal(root);
@@ -719,17 +741,20 @@ Scenario ReadScenarioFile(const std::string& path,
   if (fs::is_directory(path, ec)) {
     throw ScenarioError(path + ": is a folder, not a scenario file");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::optional<std::string> bytes;
+  try {
+    bytes = ReadFileAtMost(path);
+  } catch (const InputLimitError& e) {
+    throw ScenarioError(e.what());
+  }
+  if (!bytes) {
     // No line: there is no file to point into.
     throw ScenarioError(path + ": cannot open the file (" +
                         std::strerror(errno) + ")");
   }
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
   // The files mrsim writes beside scenarios, given in their place: say so
   // rather than what the XML parser makes of them.
-  const std::string text = bytes.str();
+  const std::string& text = *bytes;
   if (text.rfind("mrsim-checkpoint ", 0) == 0) {
     throw ScenarioError(path +
                         ": is an mrsim-sim checkpoint, not a scenario; load "
