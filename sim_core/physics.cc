@@ -27,6 +27,9 @@ constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
 constexpr char kStateMagicV2[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
 constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
 // Lock flags in a version-3 blob.
+// The largest number a saved state may hold (positions, speeds, forces,
+// warm-start accelerations): far beyond a stable run, far below overflow.
+constexpr double kMaxStateValue = 1e12;
 constexpr unsigned char kLockAttached = 1;
 constexpr unsigned char kLockRuntimeWeld = 2;
 
@@ -763,6 +766,20 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
         "model has {}, {} bytes)",
         list(sizes), bytes.size(), list(expect),
         header + doubles * sizeof(double)));
+  }
+  // Every number as the physics could have saved it: finite, and the time
+  // a sim time (a NaN or 1e308 in a hostile checkpoint stalls stepping).
+  for (size_t i = 0; i < doubles; ++i) {
+    double v;
+    std::memcpy(&v, bytes.data() + header + i * sizeof(double), sizeof(v));
+    if (!std::isfinite(v) || std::abs(v) > kMaxStateValue ||
+        (i == 0 && v < 0)) {
+      throw std::invalid_argument(fmt::format(
+          "physics state: number {} of {} is {}, not a state the physics "
+          "can have ({}finite, at most {} in size)",
+          i + 1, doubles, v, i == 0 ? "the sim time: >= 0, " : "",
+          kMaxStateValue));
+    }
   }
   mjData* d = impl_->data.get();
   mj_resetData(m, d);
