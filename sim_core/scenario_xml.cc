@@ -23,6 +23,7 @@
 #include "common/input_limits.h"
 #include "common/trim.h"
 #include "common/xml_error_text.h"
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
 
@@ -180,6 +181,37 @@ void AddDefaultLocks(Robot* robot) {
     lock.right_frame_guid = best_b->guid;
     robot->locks.push_back(lock);
     join(best_a->guid, best_b->guid);
+  }
+}
+
+// In files the original MRSim wrote, a distance sensor looks along its
+// ray_Direction; its face number (sensorPosition) was counted in the
+// original's own way, which need not be mrsim's (docs/scenario.md, "Faces
+// of the original's sensors"): a front sensor with ray (0, 0, 1) ahead of
+// the chain is face 4 there, while mrsim's face 4 looks along the chain's
+// axis. Each such sensor is put on the face its ray looks out of, so its
+// ray starts where it leaves the module looking the same way it did in the
+// original.
+void PutRaysOnTheFacesTheyLookOutOf(std::vector<SensorModule>* modules) {
+  for (SensorModule& sm : *modules) {
+    for (DistanceSensor& d : sm.distance_sensors) {
+      const Eigen::Vector3d& dir = d.ray_direction;
+      if (d.sensor_position < 0 || d.sensor_position > 5 || !dir.allFinite() ||
+          !(dir.norm() > 0) ||
+          dir.dot(SensorFaceNormal(d.sensor_position)) > 0) {
+        continue;  // looks out of its face, or left to the validator
+      }
+      int best = d.sensor_position;
+      double best_dot = 0;
+      for (int face = 0; face <= 5; ++face) {
+        const double dot = dir.dot(SensorFaceNormal(face));
+        if (dot > best_dot) {
+          best = face;
+          best_dot = dot;
+        }
+      }
+      d.sensor_position = best;
+    }
   }
 }
 
@@ -625,6 +657,10 @@ Scenario Reader::Read(const std::string& xml) {
   to_model_.scale = options_.length_scale;
   Scenario s = Default<Scenario>(false);
   ReadPart(root, kRoot, &s, false);
+  if (!said && frame_ == FrameConvention::kUnityYUp) {
+    for (Robot& r : s.robots) PutRaysOnTheFacesTheyLookOutOf(&r.sensor_modules);
+    PutRaysOnTheFacesTheyLookOutOf(&s.loose_sensor_modules);
+  }
   s.base_dir = base_dir_;
   ValidateScenario(s, &source_);
   return s;
