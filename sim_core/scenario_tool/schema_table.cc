@@ -23,9 +23,12 @@ std::string LimitsText(const FieldLimits& l, FieldType type) {
   }
   // Every number has a bound; the table names those tighter than the one
   // for all (docs/scenario.md, "Limits").
-  if (l.magnitude < kMaxAnyValue &&
-      !(has_max && l.max <= l.magnitude && has_min && l.min >= -l.magnitude)) {
-    add(fmt::format("{}within -{}..{}", each, l.magnitude, l.magnitude));
+  if (l.magnitude < kMaxAnyValue && !(has_max && l.max <= l.magnitude)) {
+    if (has_min && l.min >= -l.magnitude) {
+      add(fmt::format("{}<= {}", each, l.magnitude));
+    } else {
+      add(fmt::format("{}within -{}..{}", each, l.magnitude, l.magnitude));
+    }
   }
   if (l.nonzero) add("not all zero");
   if (l.nonempty) add("not empty");
@@ -95,7 +98,7 @@ std::string SchemaMarkdown() {
                    ? fmt::format("`{}/{}` ({}", c.info.xml, c.info.item,
                                  CountText(c.count))
                    : fmt::format("`{}` ({}", c.info.xml, CountText(c.count));
-        if (c.info.max_items > 0)
+        if (c.count == ChildCount::kList || c.count == ChildCount::kRepeated)
           out += fmt::format(", at most {}", c.info.max_items);
         if (c.info.required) out += ", required";
         out += ")";
