@@ -30,6 +30,9 @@ constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
 // The largest number a saved state may hold (positions, speeds, forces,
 // warm-start accelerations): far beyond a stable run, far below overflow.
 constexpr double kMaxStateValue = 1e12;
+// Thirty years of sim time; beyond it a short timestep no longer changes
+// the time's double and the run would never end.
+constexpr double kMaxStateTime = 1e9;
 constexpr unsigned char kLockAttached = 1;
 constexpr unsigned char kLockRuntimeWeld = 2;
 
@@ -410,6 +413,12 @@ void Physics::Impl::CheckStability(double time_before) {
                                   "'{}') is not finite",
                                   i, body ? body : "?"));
   }
+  // A run that cannot reach its end must say so rather than step forever.
+  if (!(d->time > time_before)) {
+    Fail(time_before,
+         fmt::format("the sim time did not advance with a timestep of {} s",
+                     m->opt.timestep));
+  }
 }
 
 Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
@@ -773,11 +782,12 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     double v;
     std::memcpy(&v, bytes.data() + header + i * sizeof(double), sizeof(v));
     if (!std::isfinite(v) || std::abs(v) > kMaxStateValue ||
-        (i == 0 && v < 0)) {
+        (i == 0 && (v < 0 || v > kMaxStateTime))) {
       throw std::invalid_argument(fmt::format(
           "physics state: number {} of {} is {}, not a state the physics "
           "can have ({}finite, at most {} in size)",
-          i + 1, doubles, v, i == 0 ? "the sim time: >= 0, " : "",
+          i + 1, doubles, v,
+          i == 0 ? fmt::format("the sim time: 0..{} s, ", kMaxStateTime) : "",
           kMaxStateValue));
     }
   }
