@@ -732,8 +732,10 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
           saved_locks, nlocks));
     }
     lock_bytes = sizeof(int32_t) + nlocks;
-    std::memcpy(lock_flags.data(),
-                bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+    if (nlocks > 0) {  // an empty vector's data() may be null
+      std::memcpy(lock_flags.data(),
+                  bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+    }
     std::set<std::string> welds;
     size_t i = 0;
     for (const auto& r : impl_->robots) {
