@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/input_limits.h"
 #include "common/xml_error_text.h"
 #include "gait_controller/gait_presets.h"
 #include "sim_core/xml_writer.h"
@@ -22,6 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLDocument;
+
+// More joints than any chain has (MakeChain's kMaxModules).
+constexpr size_t kMaxJointOverrides = 1000;
 using tinyxml2::XMLElement;
 
 [[noreturn]] void Fail(const std::string& source, int line,
@@ -57,6 +61,11 @@ std::optional<double> OptionalAttribute(const std::string& source,
 }  // namespace
 
 Gait ReadGaitString(const std::string& xml, const std::string& source) {
+  try {
+    CheckXmlLimits(xml, source);
+  } catch (const InputLimitError& e) {
+    throw GaitFileError(e.what());
+  }
   XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     Fail(source, doc.ErrorLineNum(),
@@ -93,6 +102,11 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
     const std::string tag = e->Name();
     const int line = e->GetLineNum();
     if (tag == "joint") {
+      if (gait.parameters.overrides.size() >= kMaxJointOverrides) {
+        Fail(source, line,
+             fmt::format("gait/joint: more than {} joint overrides",
+                         kMaxJointOverrides));
+      }
       JointOverride o;
       const char* index = e->Attribute("index");
       if (!index) Fail(source, line, "gait/joint: missing attribute index");
@@ -171,11 +185,15 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
 }
 
 Gait ReadGaitFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw GaitFileError(fmt::format("{}: cannot open gait file", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ReadGaitString(ss.str(), path);
+  std::optional<std::string> text;
+  try {
+    text = ReadFileAtMost(path);
+  } catch (const InputLimitError& e) {
+    throw GaitFileError(e.what());
+  }
+  if (!text)
+    throw GaitFileError(fmt::format("{}: cannot open gait file", path));
+  return ReadGaitString(*text, path);
 }
 
 std::string WriteGaitString(const Gait& gait) {

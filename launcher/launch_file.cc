@@ -3,11 +3,15 @@
 #include <tinyxml2.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <set>
 
+#include "common/input_limits.h"
 #include "common/xml_error_text.h"
 
 namespace mrsim {
@@ -18,6 +22,11 @@ constexpr char kLcmJar[] = "/usr/share/java/lcm.jar";  // Debian liblcm-java
 std::string Where(const std::string& path, int line) {
   return path + ":" + std::to_string(line) + ": ";
 }
+
+// The longest value a substitution may make: a command line.
+constexpr size_t kMaxValueBytes = size_t{64} << 10;
+// More processes than one launch can mean.
+constexpr size_t kMaxProcesses = 1000;
 
 std::string Substitute(const std::string& text,
                        const std::map<std::string, std::string>& vars,
@@ -39,6 +48,13 @@ std::string Substitute(const std::string& text,
       }
       out += it->second;
       i = end + 1;
+      // Each arg may use the ones before it twice or more: thirty such
+      // lines would otherwise make a value of 2^30 copies.
+      if (out.size() > kMaxValueBytes) {
+        throw LaunchError(where + "'" + text.substr(0, 60) +
+                          "' expands to more than " +
+                          std::to_string(kMaxValueBytes >> 10) + " KiB");
+      }
     } else {
       out += text[i++];
     }
@@ -151,7 +167,19 @@ LaunchFile ReadLaunchFile(const std::string& path,
   if (fs::is_directory(path, ec)) {
     throw LaunchError(path + ": is a folder, not a launch file");
   }
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+  std::optional<std::string> text;
+  try {
+    text = ReadFileAtMost(path);
+    if (text) CheckXmlLimits(*text, path);
+  } catch (const InputLimitError& e) {
+    throw LaunchError(e.what());
+  }
+  if (!text) {
+    throw LaunchError(path + ": cannot read the launch file: " +
+                      (errno == ENOENT ? std::string("no such file")
+                                       : std::string(std::strerror(errno))));
+  }
+  if (doc.Parse(text->data(), text->size()) != tinyxml2::XML_SUCCESS) {
     const int line = doc.ErrorLineNum();
     // No line to point at when the file could not be read at all.
     throw LaunchError((line > 0 ? Where(path, line) : path + ": ") +
@@ -213,6 +241,10 @@ LaunchFile ReadLaunchFile(const std::string& path,
     const std::string tag = e->Name();
     const std::string where = Where(path, e->GetLineNum());
     if (tag == "arg") continue;
+    if (file.processes.size() >= kMaxProcesses) {
+      throw LaunchError(where + "more than " + std::to_string(kMaxProcesses) +
+                        " processes");
+    }
     if (tag == "hub") {
       file.processes.push_back(HubProcess(e, file.variables, where));
       if (!names.insert(file.processes.back().name).second) {

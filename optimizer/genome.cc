@@ -12,11 +12,20 @@
 #include <set>
 #include <sstream>
 
+#include "common/input_limits.h"
 #include "common/xml_error_text.h"
 #include "gait_controller/gait_parameters.h"
+#include "sim_core/scenario_schema.h"
 #include "sim_core/xml_writer.h"
 
 namespace mrsim {
+namespace {
+
+// Genes in one genome: far more than the gait and body genes there are
+// (farm problems may name their own).
+constexpr size_t kMaxGenes = 1000;
+
+}  // namespace
 
 bool IsIntegerGene(const std::string& name) {
   return name == "module_count" || name == "sensor_after";
@@ -78,7 +87,6 @@ void GenomeSpec::Check(const Genome& genome) const {
 }
 
 std::optional<GeneRange> GeneRangeOf(const std::string& name) {
-  const double inf = std::numeric_limits<double>::infinity();
   static const std::map<std::string, GeneRange> kRanges = {
       {"A_pitch", {0, kMaxGaitAmplitude, false}},
       {"A_yaw", {0, kMaxGaitAmplitude, false}},
@@ -87,12 +95,14 @@ std::optional<GeneRange> GeneRangeOf(const std::string& name) {
       {"T", {kMinGaitPeriod, kMaxGaitPeriod, false}},
       {"offset_pitch", {-kMaxGaitOffset, kMaxGaitOffset, false}},
       {"offset_yaw", {-kMaxGaitOffset, kMaxGaitOffset, false}},
-      {"module_count", {1, inf, false}},
-      {"module_mass", {0, inf, true}},
-      {"module_scale", {0, inf, true}},
-      {"joint_kp", {0, inf, false}},
-      {"joint_max_vel", {0, inf, true}},
-      {"sensor_after", {-1, inf, false}}};
+      // The scenario's physical bounds (scenario_schema.h): a genome must
+      // not make a body the validator refuses, or a billion modules.
+      {"module_count", {1, kMaxModules, false}},
+      {"module_mass", {0, kMaxMass, true}},
+      {"module_scale", {0, kMaxLength, true}},
+      {"joint_kp", {0, kMaxAnyValue, false}},
+      {"joint_max_vel", {0, kMaxAnyValue, true}},
+      {"sensor_after", {-1, kMaxModules - 1, false}}};
   const auto it = kRanges.find(name);
   if (it == kRanges.end()) return std::nullopt;
   return it->second;
@@ -126,7 +136,7 @@ void GenomeSpec::Validate(const std::string& source) const {
       };
       const std::string can_take = fmt::format(
           "{} {}{}", range->min_exclusive ? ">" : ">=", range->min,
-          std::isfinite(range->max) ? fmt::format(" and <= {:.4g}", range->max)
+          std::isfinite(range->max) ? fmt::format(" and <= {}", range->max)
                                     : "");
       const std::vector<std::pair<const char*, double>> checked =
           g.enabled
@@ -201,6 +211,11 @@ GenomeSpec ForwardGaitGenome() {
 
 GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
                             bool allow_any_name) {
+  try {
+    CheckXmlLimits(xml, name);
+  } catch (const InputLimitError& e) {
+    throw GenomeError(e.what());
+  }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw GenomeError(fmt::format("{}:{}: not well-formed XML: {}", name,
@@ -215,6 +230,10 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
   for (const tinyxml2::XMLElement* e = root->FirstChildElement(); e;
        e = e->NextSiblingElement()) {
     const std::string where = fmt::format("{}:{}", name, e->GetLineNum());
+    if (spec.genes.size() >= kMaxGenes) {
+      throw GenomeError(
+          fmt::format("{}: more than {} genes", where, kMaxGenes));
+    }
     if (std::string(e->Name()) != "gene") {
       throw GenomeError(
           fmt::format("{}: unexpected element <{}>, expected "
@@ -264,11 +283,14 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
 }
 
 GenomeSpec ReadGenomeFile(const std::string& path, bool allow_any_name) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw GenomeError(path + ": cannot open the genome file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ReadGenomeString(text.str(), path, allow_any_name);
+  std::optional<std::string> text;
+  try {
+    text = ReadFileAtMost(path);
+  } catch (const InputLimitError& e) {
+    throw GenomeError(e.what());
+  }
+  if (!text) throw GenomeError(path + ": cannot open the genome file");
+  return ReadGenomeString(*text, path, allow_any_name);
 }
 
 std::string WriteGenomeString(const GenomeSpec& spec) {

@@ -4,6 +4,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "sim_core/scenario_schema.h"
+
 namespace mrsim {
 namespace {
 
@@ -57,6 +59,12 @@ Joint MakeLock(const std::string& guid, const std::string& left,
 Robot MakeChain(const ChainOptions& options) {
   if (options.modules < 1) {
     throw std::invalid_argument("MakeChain: modules must be at least 1, got " +
+                                std::to_string(options.modules));
+  }
+  if (options.modules > kMaxModules) {
+    // A billion modules would be built before anything refused them.
+    throw std::invalid_argument("MakeChain: modules must be at most " +
+                                std::to_string(kMaxModules) + ", got " +
                                 std::to_string(options.modules));
   }
   if (!(options.frame_size.minCoeff() > 0)) {

@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/input_limits.h"
 #include "sim_core/base64.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/terrain.h"
@@ -146,11 +148,15 @@ std::unique_ptr<Physics> LoadCheckpointString(const std::string& text,
 }
 
 std::unique_ptr<Physics> LoadCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CheckpointError(path + ": cannot open the checkpoint");
-  const std::string text((std::istreambuf_iterator<char>(in)),
-                         std::istreambuf_iterator<char>());
-  return LoadCheckpointString(text, path);
+  std::optional<std::string> text;
+  try {
+    // The scenario (at most kMaxInputFileBytes) and the physics state.
+    text = ReadFileAtMost(path, 2 * kMaxInputFileBytes);
+  } catch (const InputLimitError& e) {
+    throw CheckpointError(e.what());
+  }
+  if (!text) throw CheckpointError(path + ": cannot open the checkpoint");
+  return LoadCheckpointString(*text, path);
 }
 
 }  // namespace mrsim

@@ -27,6 +27,12 @@ constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
 constexpr char kStateMagicV2[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
 constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
 // Lock flags in a version-3 blob.
+// The largest number a saved state may hold (positions, speeds, forces,
+// warm-start accelerations): far beyond a stable run, far below overflow.
+constexpr double kMaxStateValue = 1e12;
+// Thirty years of sim time; beyond it a short timestep no longer changes
+// the time's double and the run would never end.
+constexpr double kMaxStateTime = 1e9;
 constexpr unsigned char kLockAttached = 1;
 constexpr unsigned char kLockRuntimeWeld = 2;
 
@@ -407,6 +413,12 @@ void Physics::Impl::CheckStability(double time_before) {
                                   "'{}') is not finite",
                                   i, body ? body : "?"));
   }
+  // A run that cannot reach its end must say so rather than step forever.
+  if (!(d->time > time_before)) {
+    Fail(time_before,
+         fmt::format("the sim time did not advance with a timestep of {} s",
+                     m->opt.timestep));
+  }
 }
 
 Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
@@ -720,8 +732,10 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
           saved_locks, nlocks));
     }
     lock_bytes = sizeof(int32_t) + nlocks;
-    std::memcpy(lock_flags.data(),
-                bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+    if (nlocks > 0) {  // an empty vector's data() may be null
+      std::memcpy(lock_flags.data(),
+                  bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+    }
     std::set<std::string> welds;
     size_t i = 0;
     for (const auto& r : impl_->robots) {
@@ -763,6 +777,21 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
         "model has {}, {} bytes)",
         list(sizes), bytes.size(), list(expect),
         header + doubles * sizeof(double)));
+  }
+  // Every number as the physics could have saved it: finite, and the time
+  // a sim time (a NaN or 1e308 in a hostile checkpoint stalls stepping).
+  for (size_t i = 0; i < doubles; ++i) {
+    double v;
+    std::memcpy(&v, bytes.data() + header + i * sizeof(double), sizeof(v));
+    if (!std::isfinite(v) || std::abs(v) > kMaxStateValue ||
+        (i == 0 && (v < 0 || v > kMaxStateTime))) {
+      throw std::invalid_argument(fmt::format(
+          "physics state: number {} of {} is {}, not a state the physics "
+          "can have ({}finite, at most {} in size)",
+          i + 1, doubles, v,
+          i == 0 ? fmt::format("the sim time: 0..{} s, ", kMaxStateTime) : "",
+          kMaxStateValue));
+    }
   }
   mjData* d = impl_->data.get();
   mj_resetData(m, d);

@@ -31,11 +31,18 @@ constexpr bool kIsChoice =
     std::is_same_v<E, Axis> || std::is_same_v<E, JointType> ||
     std::is_same_v<E, PrimitiveShape> || std::is_same_v<E, FluidKind>;
 
+// A value beyond the field's physical bound (FieldLimits::magnitude).
+std::string MagnitudeMessage(const FieldLimits& l, double v) {
+  if (std::abs(v) <= l.magnitude) return "";
+  return fmt::format("expected a value within -{0}..{0}, got {1}", l.magnitude,
+                     v);
+}
+
 std::string NumberLimitMessage(const FieldLimits& l, double v) {
   const bool has_min = std::isfinite(l.min), has_max = std::isfinite(l.max);
   const bool ok = (!has_min || (l.min_exclusive ? v > l.min : v >= l.min)) &&
                   (!has_max || v <= l.max);
-  if (ok) return "";
+  if (ok) return MagnitudeMessage(l, v);
   if (has_min && has_max) {
     return fmt::format("expected {}..{}{}, got {}", l.min, l.max,
                        *l.meaning ? fmt::format(" ({})", l.meaning) : "", v);
@@ -53,10 +60,15 @@ std::string NumberLimitMessage(const FieldLimits& l, double v) {
 }
 
 std::string VectorLimitMessage(const FieldLimits& l, const Eigen::Vector3d& v) {
+  const std::string got = fmt::format("({}, {}, {})", v.x(), v.y(), v.z());
+  for (int i = 0; i < 3; ++i) {
+    if (MagnitudeMessage(l, v[i]).empty()) continue;
+    return fmt::format("expected x, y, z within -{0}..{0}, got {1}",
+                       l.magnitude, got);
+  }
   if (l.nonzero && !(v.norm() > 0)) return "expected a non-zero vector";
   for (int i = 0; i < 3; ++i) {
     if (NumberLimitMessage(l, v[i]).empty()) continue;
-    const std::string got = fmt::format("({}, {}, {})", v.x(), v.y(), v.z());
     if (std::isfinite(l.min) && l.min == 0 && !std::isfinite(l.max)) {
       return l.min_exclusive ? "expected positive x, y, z, got " + got
                              : "expected x, y, z >= 0, got " + got;
@@ -79,6 +91,12 @@ std::string LimitMessage(const FieldInfo& info, const T& v) {
   } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
     return VectorLimitMessage(l, v);
   } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+    for (int i = 0; i < 4; ++i) {
+      if (MagnitudeMessage(l, v.coeffs()[i]).empty()) continue;
+      return fmt::format(
+          "expected x, y, z, w within -{0}..{0}, got ({1}, {2}, {3}, {4})",
+          l.magnitude, v.x(), v.y(), v.z(), v.w());
+    }
     return l.nonzero && !(v.coeffs().norm() > 0)
                ? "expected a rotation quaternion, got all zeros"
                : "";
@@ -348,6 +366,15 @@ bool ParseBool(const std::string& raw) {
 }
 
 std::string FormatNumber(double value) { return FormatShortest(value); }
+
+std::string ListLimitMessage(const ChildInfo& info) {
+  if (*info.item) {
+    return fmt::format("more than {} <{}> in <{}> (at most {})", info.max_items,
+                       info.item, info.xml, info.max_items);
+  }
+  return fmt::format("more than {} <{}> (at most {})", info.max_items, info.xml,
+                     info.max_items);
+}
 
 FieldType FieldRef::type() const {
   return std::visit(

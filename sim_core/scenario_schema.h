@@ -40,10 +40,30 @@ enum class Geometry {
   kQuaternion,    // rotation: (x,y,z,w) -> (-x,-z,-y,w)
 };
 
-// The values a field accepts. For vectors min/max apply to each component.
+// Physical bounds on what a scenario may hold (docs/scenario.md, "Limits").
+// A value beyond them is no robot or world the physics can step: 1e308 in
+// a position overflowed MuJoCo's arithmetic, so the simulator stood at sim
+// time 0 or failed at its first step; the validator refuses it instead,
+// naming the field.
+inline constexpr double kMaxAnyValue = 1e9;    // every number, any unit
+inline constexpr double kMaxCoordinate = 1e4;  // m: each axis of a position
+inline constexpr double kMaxLength = 1e4;      // m: sizes, scales, ranges
+inline constexpr double kMaxMass = 1e6;        // kg
+inline constexpr double kMinTimestep = 1e-6;   // s: shorter never advances
+inline constexpr double kMaxTimestep = 1;      // s
+// Parts in one list (modules of a robot, scene objects, ...): the reader
+// stops at the first beyond, before building any.
+inline constexpr int kMaxListItems = 10000;
+inline constexpr int kMaxModules = 1000;  // per robot, sensor modules too
+
+// The values a field accepts. For vectors and quaternions min, max and
+// magnitude apply to each component.
 struct FieldLimits {
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
+  // |value| <= magnitude: every number has a physical bound, the schema's
+  // own for positions, sizes and masses (Within), kMaxAnyValue otherwise.
+  double magnitude = kMaxAnyValue;
   bool min_exclusive = false;  // min < value, not min <= value
   bool nonzero = false;        // vector or quaternion: not all zeros
   bool nonempty = false;       // text: not empty
@@ -83,6 +103,18 @@ struct FieldLimits {
     l.nonempty = true;
     return l;
   }
+  // The same limits with a physical bound: |value| <= bound.
+  FieldLimits Within(double bound) const {
+    FieldLimits l = *this;
+    l.magnitude = bound;
+    return l;
+  }
+  // Shorthands for the table: a position, a size (positive), a length
+  // (>= 0), a mass (positive).
+  static FieldLimits Coordinate() { return Any().Within(kMaxCoordinate); }
+  static FieldLimits Size() { return Positive().Within(kMaxLength); }
+  static FieldLimits Length() { return NonNegative().Within(kMaxLength); }
+  static FieldLimits Mass() { return Positive().Within(kMaxMass); }
 };
 
 // One field of a part. The type comes from the member it describes.
@@ -135,10 +167,10 @@ struct ChildInfo {
   const char* item;  // list items' element name, e.g. "Module"; else ""
   const char* member;
   const char* help;
-  bool required = false;         // the element must appear in a file
-  int max_items = 0;             // lists: at most this many (0: no limit)
-  bool assembly = false;         // the wrapper carries xmlns="Assembly"
-  bool omit_when_empty = false;  // an empty list is not written at all
+  bool required = false;          // the element must appear in a file
+  int max_items = kMaxListItems;  // lists: at most this many
+  bool assembly = false;          // the wrapper carries xmlns="Assembly"
+  bool omit_when_empty = false;   // an empty list is not written at all
   bool locks = false;  // joints in a lock list: <type> may be left out
 };
 
@@ -222,5 +254,9 @@ double ParseNumber(const std::string& text);  // throws FieldError
 int ParseInteger(const std::string& text);    // throws FieldError
 bool ParseBool(const std::string& text);      // throws FieldError
 std::string FormatNumber(double value);
+
+// What the reader and the validator say about a list longer than its
+// max_items, e.g. "more than 1000 <Module> in <modules> (at most 1000)".
+std::string ListLimitMessage(const ChildInfo& info);
 
 }  // namespace mrsim

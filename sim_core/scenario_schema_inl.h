@@ -35,9 +35,13 @@ inline ChildInfo Wrapper(const char* xml, const char* item, const char* member,
 template <typename V>
 void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
                   Eigen::Quaterniond& quat) {
-  static const FieldInfo kPosition{
-      "position", "position",      "m", L::Any(), "Position of the centre",
-      false,      G::kLengthVector};
+  static const FieldInfo kPosition{"position",
+                                   "position",
+                                   "m",
+                                   L::Coordinate(),
+                                   "Position of the centre",
+                                   false,
+                                   G::kLengthVector};
   static const FieldInfo kRotation{
       "rotation",
       "rotation",
@@ -77,14 +81,14 @@ void Describe(V& v, Frame& f) {
   static const FieldInfo kScale{"scale",
                                 "scale",
                                 "m",
-                                L::Positive(),
+                                L::Size(),
                                 "Box: full extents; mesh: scale of its "
                                 "vertices. One number means the same on x, "
                                 "y and z",
                                 false,
                                 G::kLengthVector,
                                 true};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
                                "Mass of the frame (static frames too)"};
   static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
                                  "Fixed to the world where it is placed"};
@@ -172,9 +176,13 @@ void Describe(V& v, Module& m) {
       L::Any(),
       "Module number, unique in its robot; sensor modules refer to it",
       true};
-  static const FieldInfo kPosition{
-      "position", "position",      "m", L::Any(), "Position of the hinge",
-      false,      G::kLengthVector};
+  static const FieldInfo kPosition{"position",
+                                   "position",
+                                   "m",
+                                   L::Coordinate(),
+                                   "Position of the hinge",
+                                   false,
+                                   G::kLengthVector};
   static const FieldInfo kAxis{
       "axis",
       "axis",
@@ -217,9 +225,13 @@ void Describe(V& v, ForceSensor& s) {
   static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
                                L::Range(0, 3, kForcePlateFaceList),
                                "Face of the sensor module the plate is on"};
-  static const FieldInfo kPosition{
-      "position", "position",      "m", L::Any(), "Position of the plate",
-      false,      G::kLengthVector};
+  static const FieldInfo kPosition{"position",
+                                   "position",
+                                   "m",
+                                   L::Coordinate(),
+                                   "Position of the plate",
+                                   false,
+                                   G::kLengthVector};
   static const FieldInfo kRotation{"rotation",
                                    "rotation",
                                    "",
@@ -229,12 +241,12 @@ void Describe(V& v, ForceSensor& s) {
                                    G::kQuaternion};
   static const FieldInfo kMaterial{"materialName", "material_name", "",
                                    L::Any(), "Material of the plate"};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
                                "Mass of the plate"};
   static const FieldInfo kSize{"size",
                                "size",
                                "m",
-                               L::Positive(),
+                               L::Size(),
                                "Plate extents; z is its thickness",
                                false,
                                G::kLengthVector};
@@ -263,15 +275,15 @@ void Describe(V& v, DistanceSensor& s) {
   static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
                                L::Range(0, 5, kSensorFaceList),
                                "Face of the sensor module the ray starts from"};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
                                "Mass of the sensor"};
   static const FieldInfo kSize{
-      "size", "size",          "m", L::Positive(), "Extents of the sensor body",
+      "size", "size",          "m", L::Size(), "Extents of the sensor body",
       false,  G::kLengthVector};
   static const FieldInfo kRange{"max_rayDistance",
                                 "max_ray_distance",
                                 "m",
-                                L::Positive(),
+                                L::Size(),
                                 "Reading when nothing is hit within range",
                                 false,
                                 G::kLength};
@@ -287,7 +299,7 @@ void Describe(V& v, DistanceSensor& s) {
       "ray_Resolution",
       "ray_resolution",
       "m",
-      L::Positive(),
+      L::Size(),
       "Sampling step along the ray in the original; MuJoCo's ray is exact, "
       "so it does not change readings",
       false,
@@ -345,7 +357,7 @@ void Describe(V& v, SensorModule& s) {
       "forceLockPosition",
       "force_lock_position",
       "m",
-      L::Any(),
+      L::Coordinate(),
       "Where the original placed the plate's lock",
       false,
       G::kLengthVector};
@@ -359,7 +371,7 @@ void Describe(V& v, SensorModule& s) {
       "distanceLockPosition",
       "distance_lock_position",
       "m",
-      L::Any(),
+      L::Coordinate(),
       "Where the original placed the distance sensors' locks",
       false,
       G::kLengthVector};
@@ -372,15 +384,19 @@ void Describe(V& v, SensorModule& s) {
     return c;
   }();
   static const FieldInfo kSize{
-      "size", "size",          "m", L::Positive(), "Extents of the box",
+      "size", "size",          "m", L::Size(), "Extents of the box",
       false,  G::kLengthVector};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Positive(),
+  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
                                "Mass of the box"};
   static const FieldInfo kMaterial{"materialName", "material_name", "",
                                    L::Any(), "Material of the box"};
-  static const FieldInfo kPosition{
-      "position", "position",      "m", L::Any(), "Position of the centre",
-      false,      G::kLengthVector};
+  static const FieldInfo kPosition{"position",
+                                   "position",
+                                   "m",
+                                   L::Coordinate(),
+                                   "Position of the centre",
+                                   false,
+                                   G::kLengthVector};
   static const FieldInfo kRotation{"rotation",
                                    "rotation",
                                    "deg",
@@ -418,11 +434,18 @@ void Describe(V& v, Robot& r) {
       "name", "name", "", L::Any(),
       "Unique robot name (letters, digits, _ - .); used in LCM channels; "
       "robot<i> when left out"};
-  static const ChildInfo kModules =
-      Wrapper("modules", "Module", "modules", "The modules of the chain");
-  static const ChildInfo kSensorModules =
-      Wrapper("sensorModules", "SensorModule", "sensor_modules",
-              "Sensor modules between the modules");
+  static const ChildInfo kModules = [] {
+    ChildInfo c =
+        Wrapper("modules", "Module", "modules", "The modules of the chain");
+    c.max_items = kMaxModules;
+    return c;
+  }();
+  static const ChildInfo kSensorModules = [] {
+    ChildInfo c = Wrapper("sensorModules", "SensorModule", "sensor_modules",
+                          "Sensor modules between the modules");
+    c.max_items = kMaxModules;
+    return c;
+  }();
   static const ChildInfo kLocks = [] {
     ChildInfo c = Wrapper("locks", "Joint", "locks",
                           "Rigid joints between consecutive parts");
@@ -446,24 +469,20 @@ void Describe(V& v, Scene& s) {
   static const FieldInfo kPosition{"position",
                                    "position",
                                    "m",
-                                   L::Any(),
+                                   L::Coordinate(),
                                    "Corner of the terrain (or the plane's "
                                    "height)",
                                    false,
                                    G::kLengthVector};
   static const FieldInfo kMaterial{"materialName", "material_name", "",
                                    L::Any(), "Material of the ground"};
-  static const FieldInfo kHeight{"height",
-                                 "height",
-                                 "m",
-                                 L::NonNegative(),
-                                 "Height of the brightest pixel",
-                                 false,
-                                 G::kLength};
+  static const FieldInfo kHeight{
+      "height", "height",  "m", L::Length(), "Height of the brightest pixel",
+      false,    G::kLength};
   static const FieldInfo kPixel{"metersPerPixel",
                                 "meters_per_pixel",
                                 "m",
-                                L::Positive(),
+                                L::Size(),
                                 "Horizontal extent of one pixel",
                                 false,
                                 G::kLength};
@@ -491,7 +510,7 @@ void Describe(V& v, SceneObject& o) {
       "size",
       "size",
       "m",
-      L::Positive(),
+      L::Size(),
       "Box: extents; Sphere: x is the diameter; Cylinder/Capsule: x "
       "diameter, z length",
       false,
@@ -500,7 +519,8 @@ void Describe(V& v, SceneObject& o) {
                                    L::Any(), "Material of the object"};
   static const FieldInfo kShape{
       "shape", "shape", "", L::Any(), "Box, Sphere, Cylinder or Capsule", true};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::NonNegative(),
+  static const FieldInfo kMass{"mass", "mass", "kg",
+                               L::NonNegative().Within(kMaxMass),
                                "Mass; positive unless the object is static"};
   static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
                                  "Fixed to the world where it is placed"};
@@ -529,8 +549,9 @@ void Describe(V& v, ContactFriction& f) {
       "Bounce: 0 none (critically damped) .. 1 elastic"};
   static const FieldInfo kFriction{"friction", "friction", "", L::NonNegative(),
                                    "Sliding friction coefficient"};
+  // Diamond's is about 1.2e12 Pa.
   static const FieldInfo kYoung{"youngsModulus", "youngs_modulus", "Pa",
-                                L::Positive(),
+                                L::Positive().Within(1e13),
                                 "Stiffness of the contact (docs/physics.md)"};
   v.Field(kM1, f.material1);
   v.Field(kM2, f.material2);
@@ -552,10 +573,10 @@ void Describe(V& v, FluidRegion& r) {
       "defaults",
       true};
   static const FieldInfo kPosition{"position",      "position",          "m",
-                                   L::Any(),        "Centre of the box", false,
+                                   L::Coordinate(), "Centre of the box", false,
                                    G::kLengthVector};
   static const FieldInfo kSize{
-      "size", "size",          "m", L::Positive(), "Extents of the box",
+      "size", "size",          "m", L::Size(), "Extents of the box",
       false,  G::kLengthVector};
   static const FieldInfo kDensity{"density", "density", "kg/m^3", L::Positive(),
                                   "Density of the fluid"};
@@ -576,7 +597,8 @@ void Describe(V& v, FluidRegion& r) {
 
 template <typename V>
 void Describe(V& v, SimulationSettings& s) {
-  static const FieldInfo kTimestep{"timestep", "timestep", "s", L::Positive(),
+  static const FieldInfo kTimestep{"timestep", "timestep", "s",
+                                   L::Range(kMinTimestep, kMaxTimestep),
                                    "Physics step"};
   static const FieldInfo kGravity{
       "gravity",

@@ -103,10 +103,8 @@ class Validator {
   template <typename P>
   void List(const ChildInfo& info, std::vector<P>& parts) {
     for (size_t i = 0; i < parts.size(); ++i) {
-      if (info.max_items > 0 && static_cast<int>(i) == info.max_items) {
-        Fail(ItemPath(info, i),
-             fmt::format("more than {} <{}> in <{}> (at most {})",
-                         info.max_items, info.item, info.xml, info.max_items));
+      if (static_cast<int>(i) == info.max_items) {
+        Fail(ItemPath(info, i), ListLimitMessage(info));
       }
       Enter(ItemPath(info, i), parts[i], info.locks);
     }

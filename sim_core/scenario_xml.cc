@@ -20,8 +20,10 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/input_limits.h"
 #include "common/trim.h"
 #include "common/xml_error_text.h"
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
 
@@ -179,6 +181,37 @@ void AddDefaultLocks(Robot* robot) {
     lock.right_frame_guid = best_b->guid;
     robot->locks.push_back(lock);
     join(best_a->guid, best_b->guid);
+  }
+}
+
+// In files the original MRSim wrote, a distance sensor looks along its
+// ray_Direction; its face number (sensorPosition) was counted in the
+// original's own way, which need not be mrsim's (docs/scenario.md, "Faces
+// of the original's sensors"): a front sensor with ray (0, 0, 1) ahead of
+// the chain is face 4 there, while mrsim's face 4 looks along the chain's
+// axis. Each such sensor is put on the face its ray looks out of, so its
+// ray starts where it leaves the module looking the same way it did in the
+// original.
+void PutRaysOnTheFacesTheyLookOutOf(std::vector<SensorModule>* modules) {
+  for (SensorModule& sm : *modules) {
+    for (DistanceSensor& d : sm.distance_sensors) {
+      const Eigen::Vector3d& dir = d.ray_direction;
+      if (d.sensor_position < 0 || d.sensor_position > 5 || !dir.allFinite() ||
+          !(dir.norm() > 0) ||
+          dir.dot(SensorFaceNormal(d.sensor_position)) > 0) {
+        continue;  // looks out of its face, or left to the validator
+      }
+      int best = d.sensor_position;
+      double best_dot = 0;
+      for (int face = 0; face <= 5; ++face) {
+        const double dot = dir.dot(SensorFaceNormal(face));
+        if (dot > best_dot) {
+          best = face;
+          best_dot = dot;
+        }
+      }
+      d.sensor_position = best;
+    }
   }
 }
 
@@ -341,6 +374,11 @@ class ReadVisitor {
         items.emplace_back(all[i],
                            fmt::format("{}/{}[{}]", path_, info.xml, i + 1));
       }
+    }
+    // Refused before any is read: a billion modules would be built first.
+    if (items.size() > static_cast<size_t>(info.max_items)) {
+      r_.Fail(items[info.max_items].first, items[info.max_items].second,
+              ListLimitMessage(info));
     }
     for (size_t i = 0; i < items.size(); ++i) {
       const XMLElement* x = items[i].first;
@@ -555,6 +593,13 @@ void Reader::Parse(const XMLElement* e, const std::string& path,
 
 Scenario Reader::Read(const std::string& xml) {
   const std::string& file = source_.file;
+  try {
+    // tinyxml2 parses recursively and keeps the whole tree: size and
+    // nesting are checked first.
+    CheckXmlLimits(xml, file);
+  } catch (const InputLimitError& e) {
+    throw ScenarioError(e.what());
+  }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     // An empty file has no line to point at.
@@ -612,6 +657,10 @@ Scenario Reader::Read(const std::string& xml) {
   to_model_.scale = options_.length_scale;
   Scenario s = Default<Scenario>(false);
   ReadPart(root, kRoot, &s, false);
+  if (!said && frame_ == FrameConvention::kUnityYUp) {
+    for (Robot& r : s.robots) PutRaysOnTheFacesTheyLookOutOf(&r.sensor_modules);
+    PutRaysOnTheFacesTheyLookOutOf(&s.loose_sensor_modules);
+  }
   s.base_dir = base_dir_;
   ValidateScenario(s, &source_);
   return s;
@@ -706,8 +755,17 @@ Scenario ReadScenarioString(const std::string& xml, const std::string& name,
 }
 
 bool IsOriginalMrsimFile(const std::string& path) {
+  std::optional<std::string> text;
+  try {
+    text = ReadFileAtMost(path);
+    if (text) CheckXmlLimits(*text, path);
+  } catch (const InputLimitError&) {
+    return false;  // the reader says why
+  }
   tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return false;
+  if (!text || doc.Parse(text->data(), text->size()) != tinyxml2::XML_SUCCESS) {
+    return false;
+  }
   const tinyxml2::XMLElement* root = doc.RootElement();
   return root != nullptr && LocalName(root->Name()) == "Scenario" &&
          RootLooksOriginal(root);
@@ -719,17 +777,20 @@ Scenario ReadScenarioFile(const std::string& path,
   if (fs::is_directory(path, ec)) {
     throw ScenarioError(path + ": is a folder, not a scenario file");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::optional<std::string> bytes;
+  try {
+    bytes = ReadFileAtMost(path);
+  } catch (const InputLimitError& e) {
+    throw ScenarioError(e.what());
+  }
+  if (!bytes) {
     // No line: there is no file to point into.
     throw ScenarioError(path + ": cannot open the file (" +
                         std::strerror(errno) + ")");
   }
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
   // The files mrsim writes beside scenarios, given in their place: say so
   // rather than what the XML parser makes of them.
-  const std::string text = bytes.str();
+  const std::string& text = *bytes;
   if (text.rfind("mrsim-checkpoint ", 0) == 0) {
     throw ScenarioError(path +
                         ": is an mrsim-sim checkpoint, not a scenario; load "

@@ -8,8 +8,10 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
+#include "common/input_limits.h"
 #include "sim_core/base64.h"
 
 namespace mrsim {
@@ -32,9 +34,29 @@ TerrainImage Decode(const std::vector<unsigned char>& bytes,
   if (bytes.empty()) {
     throw std::runtime_error("terrain image " + source + " is empty");
   }
+  if (bytes.size() > kMaxInputFileBytes) {
+    throw std::runtime_error("terrain image " + source + ": larger than " +
+                             std::to_string(kMaxInputFileBytes >> 20) + " MiB");
+  }
   // stb_image (PNG 8/16 bit, JPEG, BMP, TGA...), converted to one grey
   // channel: no video stack in the core library.
   const int size = static_cast<int>(bytes.size());
+  // The header first: a few bytes can claim 100,000 x 100,000 pixels, and
+  // decoding would allocate for them before finding the data missing.
+  const std::string most = "at most " + std::to_string(kMaxTerrainSide) +
+                           " on a side and " +
+                           std::to_string(kMaxTerrainPixels) + " in all";
+  int header_cols = 0, header_rows = 0, header_channels = 0;
+  // (stb refuses headers beyond 2^30 bytes of pixels itself, before it
+  // allocates: see the failure below.)
+  if (stbi_info_from_memory(bytes.data(), size, &header_cols, &header_rows,
+                            &header_channels) != 0 &&
+      (header_cols > kMaxTerrainSide || header_rows > kMaxTerrainSide ||
+       static_cast<long long>(header_cols) * header_rows > kMaxTerrainPixels)) {
+    throw std::runtime_error("terrain image " + source + ": " +
+                             std::to_string(header_cols) + "x" +
+                             std::to_string(header_rows) + " pixels; " + most);
+  }
   const bool wide = stbi_is_16_bit_from_memory(bytes.data(), size) != 0;
   int cols = 0, rows = 0, channels = 0;
   std::unique_ptr<void, decltype(&stbi_image_free)> pixels(
@@ -44,6 +66,12 @@ TerrainImage Decode(const std::vector<unsigned char>& bytes,
                                                       &rows, &channels, 1)),
       &stbi_image_free);
   if (!pixels) {
+    if (std::string(stbi_failure_reason()) == "too large") {
+      throw std::runtime_error("terrain image " + source +
+                               ": its header claims more pixels than can be "
+                               "decoded; " +
+                               most);
+    }
     throw std::runtime_error(
         "terrain image " + source +
         ": not an image (PNG, JPEG, BMP, TGA...): " + stbi_failure_reason());
@@ -88,14 +116,18 @@ TerrainImage LoadTerrainImage(const Scene& scene, const std::string& base_dir) {
   }
   std::string path;
   if (TerrainImageIsFile(scene, base_dir, &path)) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::optional<std::string> text;
+    try {
+      text = ReadFileAtMost(path);
+    } catch (const InputLimitError& e) {
+      throw std::runtime_error("terrain image " + std::string(e.what()));
+    }
+    if (!text) {
       throw std::runtime_error("terrain image '" + path +
                                "': cannot open the file");
     }
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                     std::istreambuf_iterator<char>());
-    return Decode(bytes, "'" + path + "'");
+    return Decode(std::vector<unsigned char>(text->begin(), text->end()),
+                  "'" + path + "'");
   }
   const bool prefixed = HasBase64Prefix(s);
   std::vector<unsigned char> bytes;

@@ -9,6 +9,13 @@
 
 namespace mrsim {
 
+// The largest height image the terrain takes (docs/scenario.md, "Limits"),
+// checked on the image's header before it is decoded: 4096 x 4096 samples
+// is a 40 m square at 1 cm per pixel, and MuJoCo's height field of it
+// already holds 64 MB.
+inline constexpr int kMaxTerrainSide = 16384;
+inline constexpr long long kMaxTerrainPixels = 4096LL * 4096;
+
 // A grey-scale image, row-major, row 0 = top row of the image (the +y edge
 // of the terrain), values in [0, 1] (pixel / max pixel value of the depth).
 struct TerrainImage {

@@ -21,6 +21,15 @@ std::string LimitsText(const FieldLimits& l, FieldType type) {
   } else if (has_max) {
     add(fmt::format("{}<= {}", each, l.max));
   }
+  // Every number has a bound; the table names those tighter than the one
+  // for all (docs/scenario.md, "Limits").
+  if (l.magnitude < kMaxAnyValue && !(has_max && l.max <= l.magnitude)) {
+    if (has_min && l.min >= -l.magnitude) {
+      add(fmt::format("{}<= {}", each, l.magnitude));
+    } else {
+      add(fmt::format("{}within -{}..{}", each, l.magnitude, l.magnitude));
+    }
+  }
   if (l.nonzero) add("not all zero");
   if (l.nonempty) add("not empty");
   return text;
@@ -89,7 +98,7 @@ std::string SchemaMarkdown() {
                    ? fmt::format("`{}/{}` ({}", c.info.xml, c.info.item,
                                  CountText(c.count))
                    : fmt::format("`{}` ({}", c.info.xml, CountText(c.count));
-        if (c.info.max_items > 0)
+        if (c.count == ChildCount::kList || c.count == ChildCount::kRepeated)
           out += fmt::format(", at most {}", c.info.max_items);
         if (c.info.required) out += ", required";
         out += ")";

@@ -133,5 +133,31 @@ TEST(GaitFile, ResolvesPresetPathAndSearchPath) {
   unsetenv("MRSIM_GAIT_PATH");
 }
 
+TEST(GaitFile, HostileFilesAreRefusedWithTheirLine) {
+  std::string deep = "<gait name=\"g\">\n";
+  for (int i = 0; i < 10000; ++i) deep += "<joint>";
+  EXPECT_EQ(ErrorOf(deep),
+            "bad.xml:2: elements nested more than 32 deep, more than any "
+            "mrsim file has");
+  std::string many = "<gait name=\"g\">\n";
+  for (int i = 0; i < 1001; ++i) many += "<joint index=\"1\"/>\n";
+  EXPECT_EQ(ErrorOf(many + "</gait>"),
+            "bad.xml:1002: gait/joint: more than 1000 joint "
+            "overrides");
+  EXPECT_EQ(ErrorOf("<gait name=\"g\">\n<T>NaN</T></gait>"),
+            "bad.xml:2: gait/T: expected a number, got 'NaN'");
+  const std::string dir = testing::TempDir("gait_file_hostile");
+  const std::string big = dir + "/big.xml";
+  std::ofstream(big) << "<gait>";
+  fs::resize_file(big, size_t{64} << 20 | 1);
+  try {
+    ReadGaitFile(big);
+    ADD_FAILURE() << "read it";
+  } catch (const GaitFileError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              big + ": larger than 64 MiB, the most mrsim reads from one file");
+  }
+}
+
 }  // namespace
 }  // namespace mrsim

@@ -217,5 +217,27 @@ TEST(LaunchFile, SplitArgsHonoursQuotes) {
   EXPECT_THROW(SplitArgs("'open"), std::invalid_argument);
 }
 
+TEST(LaunchFile, HostileFilesAreRefusedWithTheirLine) {
+  // Each arg doubling the one before: 2^40 copies if nothing stopped it.
+  std::string doubling = "<launch>\n<arg name=\"a0\" default=\"xxxxxxxx\"/>\n";
+  for (int i = 1; i <= 40; ++i) {
+    doubling += "<arg name=\"a" + std::to_string(i) + "\" default=\"${a" +
+                std::to_string(i - 1) + "}${a" + std::to_string(i - 1) +
+                "}\"/>\n";
+  }
+  const std::string error =
+      ErrorOf(WriteFile("doubling.launch", doubling + "</launch>\n"));
+  EXPECT_NE(error.find("doubling.launch:16: '${a13}${a13}' expands to more "
+                       "than 64 KiB"),
+            std::string::npos)
+      << error;
+  std::string deep = "<launch>\n";
+  for (int i = 0; i < 10000; ++i) deep += "<process>";
+  const std::string path = WriteFile("deep.launch", deep);
+  EXPECT_EQ(ErrorOf(path), path +
+                               ":2: elements nested more than 32 deep, "
+                               "more than any mrsim file has");
+}
+
 }  // namespace
 }  // namespace mrsim

@@ -50,10 +50,11 @@ TEST(OptimizerGenome, LimitsTheSimulatorWouldRefuseAreNamed) {
   EXPECT_EQ(
       error(R"(<gene name="joint_kp" lower="-5" upper="1" start="0.5"/>)"),
       "g.xml:2: gene 'joint_kp': lower -5 is outside what joint_kp can "
-      "take (>= 0)");
+      "take (>= 0 and <= 1000000000)");
   EXPECT_NE(
       error(R"(<gene name="module_scale" lower="0" upper="2" start="1"/>)")
-          .find("lower 0 is outside what module_scale can take (> 0)"),
+          .find("lower 0 is outside what module_scale can take (> 0 and "
+                "<= 10000)"),
       std::string::npos);
   EXPECT_NE(error(R"(<gene name="T" lower="0" upper="2" start="1"/>)")
                 .find("lower 0 is outside what T can take"),
@@ -98,6 +99,35 @@ TEST(OptimizerGenome, RejectsUnknownNamesAndStartOutsideLimits) {
                                 "g.xml"),
                GenomeError);
   EXPECT_THROW(ReadGenomeFile("/nonexistent/genome.xml"), GenomeError);
+}
+
+TEST(OptimizerGenome, HostileFilesAreRefusedWithTheirLine) {
+  const auto error = [](const std::string& xml) {
+    try {
+      ReadGenomeString(xml, "g.xml");
+    } catch (const GenomeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // A billion modules, or a negative count, is no body to evaluate.
+  EXPECT_EQ(error("<genome>\n<gene name=\"module_count\" lower=\"1\" "
+                  "upper=\"1e9\" start=\"2\"/>\n</genome>"),
+            "g.xml:2: gene 'module_count': upper 1000000000 is outside what "
+            "module_count can take (>= 1 and <= 1000)");
+  EXPECT_NE(error("<genome>\n<gene name=\"module_count\" lower=\"-5\" "
+                  "upper=\"3\" start=\"2\"/>\n</genome>")
+                .find("g.xml:2: gene 'module_count': lower -5"),
+            std::string::npos);
+  EXPECT_NE(error("<genome>\n<gene name=\"T\" lower=\"NaN\" upper=\"3\" "
+                  "start=\"2\"/>\n</genome>")
+                .find("g.xml:2: attribute 'lower': expected a number"),
+            std::string::npos);
+  std::string deep = "<genome>\n";
+  for (int i = 0; i < 10000; ++i) deep += "<gene>";
+  EXPECT_EQ(error(deep),
+            "g.xml:2: elements nested more than 32 deep, more than any mrsim "
+            "file has");
 }
 
 }  // namespace

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "sim_core/chain_builder.h"
 #include "tests/common/child_process.h"
@@ -226,6 +229,42 @@ TEST(Checkpoint, DamagedCheckpointIsRejectedWithItsName) {
     EXPECT_NE(std::string(e.what()).find("cut.ckpt"), std::string::npos);
   }
   EXPECT_THROW(LoadCheckpoint(dir + "/missing.ckpt"), CheckpointError);
+}
+
+TEST(Checkpoint, AStateNoRunCanHaveIsRefused) {
+  const std::string dir = testing::TempDir("checkpoint_hostile_state");
+  Physics original(Snake(dir));
+  Drive(original, 0.1);
+  const std::vector<unsigned char> good = original.SaveState();
+  // The sim time is stored as its own double: find and replace it.
+  const double time = original.time();
+  const std::vector<unsigned char> pattern = Bytes(&time, 1);
+  const auto at =
+      std::search(good.begin(), good.end(), pattern.begin(), pattern.end());
+  ASSERT_NE(at, good.end());
+  for (const double bad : {std::nan(""), -1.0, 1e308}) {
+    std::vector<unsigned char> state = good;
+    std::memcpy(state.data() + (at - good.begin()), &bad, sizeof(bad));
+    Physics copy(Snake(dir));
+    try {
+      copy.LoadState(state);
+      ADD_FAILURE() << "loaded a sim time of " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("the sim time"), std::string::npos)
+          << e.what();
+    }
+  }
+  const std::string big = dir + "/big.ckpt";
+  std::ofstream(big) << "mrsim-checkpoint 1\n";
+  std::filesystem::resize_file(big, (size_t{128} << 20) + 1);
+  try {
+    LoadCheckpoint(big);
+    ADD_FAILURE() << "loaded it";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find(big + ": larger than 128 MiB"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

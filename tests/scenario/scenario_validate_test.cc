@@ -9,8 +9,10 @@
 
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/chain_builder.h"
@@ -210,6 +212,36 @@ std::vector<Rule> BuilderRules() {
       {"unreadable height image",
        [](Scenario& s) { s.scene.height_image = "missing.png"; },
        "Scenario/scene/height_Image", "cannot read the height image"},
+      // Physical bounds (scenario_schema.h): beyond them MuJoCo's
+      // arithmetic overflows and the simulator stood still at time 0.
+      {"frame position beyond the world",
+       [](Scenario& s) {
+         s.robots[0].modules[0].frames[0].position.x() = -1e308;
+       },
+       m1 + "/frames/Frame[1]/position",
+       "expected x, y, z within -10000..10000, got (-1e+308"},
+      {"frame mass beyond the bound",
+       [](Scenario& s) { s.robots[0].modules[0].frames[0].mass = 1e308; },
+       m1 + "/frames/Frame[1]/mass", "expected a value within"},
+      {"frame scale beyond the bound",
+       [](Scenario& s) { s.robots[0].modules[0].frames[1].scale.y() = 1e12; },
+       m1 + "/frames/Frame[2]/scale", "expected x, y, z within"},
+      {"scene object position beyond the world",
+       [](Scenario& s) { s.scene_objects[0].position.z() = 1e308; },
+       "Scenario/sceneObjects/SceneObject[1]/position",
+       "expected x, y, z within"},
+      {"sensor module rotation beyond every bound",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].quat_rotation.w() = 1e300;
+       },
+       sm1 + "/quatRotation", "expected x, y, z, w within"},
+      {"servo gain beyond every bound",
+       [](Scenario& s) { s.robots[0].modules[1].joint.kp = 1e308; },
+       "Scenario/robot[1]/modules/Module[2]/joint/Kp",
+       "expected a value within"},
+      {"a timestep that never advances",
+       [](Scenario& s) { s.settings.timestep = 1e-300; },
+       "Scenario/settings/timestep", "expected 1e-06..1"},
       {"loose joint naming a scene object",
        [](Scenario& s) { s.loose_joints[0].right_frame_guid = "ball"; },
        "Scenario/joints/Joint[1]/rightFrameGuid",
@@ -265,6 +297,37 @@ TEST(ScenarioValidate, EveryBuilderRuleIsRefusedByTheReaderBuilderAndPhysics) {
       std::string leaf = rule.path.substr(rule.path.rfind('/') + 1);
       leaf = leaf.substr(0, leaf.find('['));
       EXPECT_THAT(LineOf(file, e.line()), HasSubstr("<" + leaf + ">"));
+    }
+  }
+}
+
+// Scenarios built in memory (genomes, the studio) can hold what no file
+// can: NaN. Every number field refuses it by its bound.
+TEST(ScenarioValidate, NanInAnyNumberIsRefusedNamingTheField) {
+  const std::string dir = TempDir("validate_nan");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<std::function<void(Scenario&)>, std::string>>
+      cases = {
+          {[&](Scenario& s) { s.robots[0].modules[0].position.y() = nan; },
+           std::string(kM1) + "/position"},
+          {[&](Scenario& s) { s.robots[0].modules[0].frames[0].mass = nan; },
+           std::string(kM1) + "/frames/Frame[1]/mass"},
+          {[&](Scenario& s) { s.robots[0].modules[0].joint.max_vel = nan; },
+           std::string(kM1) + "/joint/max_vel"},
+          {[&](Scenario& s) { s.settings.gravity.z() = nan; },
+           "Scenario/settings/gravity"},
+          {[&](Scenario& s) { s.scene_objects[0].quat_rotation.x() = nan; },
+           "Scenario/sceneObjects/SceneObject[1]/quatRotation"},
+      };
+  for (const auto& [break_it, path] : cases) {
+    SCOPED_TRACE(path);
+    Scenario s = Base(dir);
+    break_it(s);
+    try {
+      ValidateScenario(s);
+      ADD_FAILURE() << "accepted";
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(e.path(), path) << e.what();
     }
   }
 }
