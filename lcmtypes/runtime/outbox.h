@@ -20,6 +20,12 @@ using WallClock = std::chrono::steady_clock;
 using WallTime = WallClock::time_point;
 
 inline WallTime AfterSeconds(WallTime t, double seconds) {
+  // Clamped to +-1e9 s (32 years; NaN counts as the past): a time computed
+  // from a hostile number (a speed of 1e-300) must not overflow the clock's
+  // 64-bit nanoseconds, which is undefined behaviour.
+  constexpr double kLimit = 1e9;
+  if (!(seconds > -kLimit)) seconds = -kLimit;
+  if (seconds > kLimit) seconds = kLimit;
   return t + std::chrono::duration_cast<WallClock::duration>(
                  std::chrono::duration<double>(seconds));
 }
