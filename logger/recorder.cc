@@ -156,6 +156,12 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
                                                             e.missing - 1)
                                     : "") +
                      " missing (" + std::to_string(e.missing) + " messages)");
+    } else if (e.jumped) {
+      Report(ch, ch.stats.channel + ": seq jumped from " +
+                     std::to_string(e.previous) + " to " +
+                     std::to_string(ch.row.seq) +
+                     " (publisher restarted, or a forged number); not "
+                     "counted as missing");
     } else if (e.went_back) {
       Report(ch, ch.stats.channel + ": seq went back from " +
                      std::to_string(e.previous) + " to " +

@@ -52,7 +52,10 @@ struct Outbox {
 template <class Sender, class... Messages>
 void PublishAll(Sender& lcm, Outbox<Messages...>* out,
                 std::vector<uint8_t>* buffer) {
-  for (const auto& [channel, message] : out->messages) {
+  for (const auto& entry : out->messages) {
+    // Not a structured binding: C++17 lambdas cannot capture one (clang).
+    const std::string& channel = entry.first;
+    const auto& message = entry.second;
     std::visit(
         [&](const auto& msg) {
           const int size = msg.getEncodedSize();

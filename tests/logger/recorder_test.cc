@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -131,6 +132,22 @@ TEST(LoggerRecorder, ChannelsBeyondTheCapAreCountedNotRecorded) {
   EXPECT_EQ(rec.messages_on_extra_channels(), static_cast<int64_t>(extra) + 1);
   EXPECT_EQ(rec.CsvPath("MRSIM_STATE_late"), "");
   EXPECT_TRUE(cap.Has("further channels are counted and dropped"));
+}
+
+// A forged seq of INT64_MAX once made the missing count overflow into
+// garbage: a jump too far to be lost messages is reported, not counted.
+TEST(LoggerSeqTracker, ForgedSequenceNumbersAreNoGap) {
+  SeqTracker t;
+  t.Add(5);
+  const SeqTracker::Event e = t.Add(std::numeric_limits<int64_t>::max());
+  EXPECT_TRUE(e.jumped);
+  EXPECT_EQ(e.missing, 0);
+  t.Add(std::numeric_limits<int64_t>::min());
+  t.Add(7);
+  t.Add(9);
+  EXPECT_EQ(t.missing(), 1);
+  EXPECT_EQ(t.gaps(), 1);
+  EXPECT_EQ(t.forward_jumps(), 2);
 }
 
 TEST(LoggerRecorder, MalformedAndForeignMessagesAreCountedNotWritten) {
