@@ -246,7 +246,9 @@ LcmTypeRegistry LcmTypeRegistry::WithBuiltinTypes() {
     }
   }
   registry.Reindex();
-  for (const auto& [name, s] : registry.by_name_) {
+  for (const auto& entry : registry.by_name_) {
+    // Not a structured binding: C++17 lambdas cannot capture one (clang).
+    const std::string& name = entry.first;
     if (std::none_of(registry.by_hash_.begin(), registry.by_hash_.end(),
                      [&](const auto& h) { return h.second == name; })) {
       registry.warnings_.push_back("LCM type " + name +

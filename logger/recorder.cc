@@ -86,6 +86,15 @@ void Recorder::OnMessage(const std::string& channel, const void* data,
   ++messages_;
   auto it = channels_.find(channel);
   if (it == channels_.end()) {
+    if (channels_.size() >= kMaxChannels) {
+      if (extra_channel_messages_++ == 0) {
+        options_.report(channel + ": more than " +
+                        std::to_string(kMaxChannels) +
+                        " channels; messages on further channels are counted "
+                        "and dropped");
+      }
+      return;
+    }
     it = channels_.emplace(channel, Channel{}).first;
     it->second.stats.channel = channel;
   }
@@ -147,6 +156,12 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
                                                             e.missing - 1)
                                     : "") +
                      " missing (" + std::to_string(e.missing) + " messages)");
+    } else if (e.jumped) {
+      Report(ch, ch.stats.channel + ": seq jumped from " +
+                     std::to_string(e.previous) + " to " +
+                     std::to_string(ch.row.seq) +
+                     " (publisher restarted, or a forged number); not "
+                     "counted as missing");
     } else if (e.went_back) {
       Report(ch, ch.stats.channel + ": seq went back from " +
                      std::to_string(e.previous) + " to " +
@@ -154,7 +169,21 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
     }
   }
   if (!ch.writer || ch.flattener->shape_version() != ch.shape_version) {
-    OpenPart(ch);
+    if (ch.stats.files.size() >= kMaxPartFiles &&
+        ch.flattener->columns() != ch.part_columns) {
+      if (ch.stats.dropped++ == 0) {
+        Report(ch, ch.stats.channel + ": message shape changed again after " +
+                       std::to_string(kMaxPartFiles) +
+                       " files; rows of further shapes are counted and "
+                       "dropped");
+      }
+      return;
+    }
+    if (ch.stats.files.size() >= kMaxPartFiles) {
+      ch.shape_version = ch.flattener->shape_version();  // back to its shape
+    } else {
+      OpenPart(ch);
+    }
   }
   ch.writer->WriteLine(ch.row.values);
   ++ch.stats.rows;
@@ -201,6 +230,7 @@ void Recorder::OpenPart(Channel& ch) {
   ch.writer = std::make_unique<CsvWriter>(path);
   ch.stats.files.push_back(path);
   ch.shape_version = ch.flattener->shape_version();
+  ch.part_columns = ch.flattener->columns();
   std::string header;
   for (const std::string& name : ch.flattener->columns()) {
     if (!header.empty()) header.push_back(',');
@@ -266,6 +296,10 @@ std::string Recorder::Summary() const {
       if (s.repeats > 0) os << ", " << s.repeats << " re-sends skipped";
     }
     if (s.malformed > 0) os << ", " << s.malformed << " malformed";
+    if (s.dropped > 0) {
+      os << ", " << s.dropped << " dropped (over " << kMaxPartFiles
+         << " files)";
+    }
     if (s.unknown_type + s.other_type > 0) {
       os << ", " << (s.unknown_type + s.other_type) << " of another type";
     }
@@ -275,6 +309,10 @@ std::string Recorder::Summary() const {
   }
   os << "  total: " << messages_ << " messages on " << channels_.size()
      << " channels, " << missing << " missing by seq";
+  if (extra_channel_messages_ > 0) {
+    os << ", " << extra_channel_messages_ << " on channels over "
+       << kMaxChannels << " dropped";
+  }
   return os.str();
 }
 

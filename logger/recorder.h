@@ -34,6 +34,9 @@ struct ChannelStats {
   int64_t missing = 0;
   int64_t back_jumps = 0;
   int64_t repeats = 0;  // re-sends skipped (see Recorder)
+  // Rows of yet another shape once the channel has Recorder::kMaxPartFiles
+  // files: dropped, so decodable garbage cannot fill a folder.
+  int64_t dropped = 0;
   bool has_seq = false;
   int64_t first_seq = 0;
   int64_t last_seq = 0;
@@ -49,6 +52,14 @@ struct RecorderOptions {
 
 class Recorder {
  public:
+  // Files per channel (<channel>.csv, .part2.csv, ...): a new file starts
+  // when the messages' shape changes, and traffic that decodes but changes
+  // shape with every message must not become thousands of files.
+  static constexpr size_t kMaxPartFiles = 8;
+  // Channels recorded; messages on further channels are counted and
+  // dropped, so a flood of new channel names cannot exhaust memory.
+  static constexpr size_t kMaxChannels = 1000;
+
   // Creates out_dir if needed and checks it is writable; throws
   // std::runtime_error naming the folder otherwise. `registry` must outlive
   // the recorder.
@@ -64,6 +75,8 @@ class Recorder {
   bool failed() const { return !error_.empty(); }
   const std::string& error() const { return error_; }
   int64_t messages() const { return messages_; }
+  // Messages on channels beyond kMaxChannels (not recorded).
+  int64_t messages_on_extra_channels() const { return extra_channel_messages_; }
   std::vector<ChannelStats> Stats() const;
   // A human-readable table of Stats(), one line per channel.
   std::string Summary() const;
@@ -78,6 +91,7 @@ class Recorder {
     std::unique_ptr<MessageFlattener> flattener;
     std::unique_ptr<CsvWriter> writer;
     uint64_t shape_version = 0;
+    std::vector<std::string> part_columns;  // the open file's header
     SeqTracker seq;
     FlatRow row;
     int reports = 0;
@@ -98,6 +112,7 @@ class Recorder {
   std::map<std::string, Channel> channels_;
   std::string error_;
   int64_t messages_ = 0;
+  int64_t extra_channel_messages_ = 0;
 };
 
 // A channel name as a file name: characters other than letters, digits,

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "lcmtypes/runtime/decode.h"
 #include "logger/csv_format.h"
 
 namespace mrsim {
@@ -34,22 +35,14 @@ const LcmStruct& RobotStateType(const LcmTypeRegistry& registry) {
 
 }  // namespace
 
-RobotStateFlattener::RobotStateFlattener(const LcmTypeRegistry& registry)
-    : validator_(registry, RobotStateType(registry)) {}
+RobotStateFlattener::RobotStateFlattener(const LcmTypeRegistry& registry) {
+  RobotStateType(registry);  // throws when the definitions differ
+}
 
 bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
                                   FlatRow* row) {
-  // The generated decoder trusts array lengths (a forged length would make
-  // it allocate gigabytes), so the bytes are checked first.
-  if (size > static_cast<size_t>(INT32_MAX) ||
-      !validator_.IsWellFormed(data, size)) {
-    return false;
-  }
-  try {
-    if (msg_.decode(data, 0, static_cast<int>(size)) < 0) return false;
-  } catch (const std::exception&) {
-    return false;
-  }
+  // Bounds-checked before lcm-gen's decode, which trusts every length.
+  if (!DecodeMessage(data, size, &msg_)) return false;
   const robot_state_t& m = msg_;
   shape_.clear();
   shape_.push_back(m.num_modules);

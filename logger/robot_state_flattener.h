@@ -27,7 +27,6 @@ class RobotStateFlattener : public MessageFlattener {
  private:
   std::vector<std::string> ColumnNames() const;
 
-  GenericFlattener validator_;
   robot_state_t msg_;
   std::vector<int> shape_;
   std::vector<int> last_shape_;

@@ -14,6 +14,7 @@ class SeqTracker {
     int64_t missing = 0;  // messages skipped just before this one
     int64_t first_missing = 0;
     bool went_back = false;  // seq not above the previous one
+    bool jumped = false;     // seq more than kMaxSeqGap ahead: no gap
     int64_t previous = 0;
   };
 
@@ -23,6 +24,7 @@ class SeqTracker {
   int64_t gaps() const { return gaps_; }
   int64_t missing() const { return missing_; }
   int64_t back_jumps() const { return back_jumps_; }
+  int64_t forward_jumps() const { return forward_jumps_; }
   int64_t first() const { return first_; }
   int64_t last() const { return last_; }
 
@@ -31,6 +33,7 @@ class SeqTracker {
   int64_t gaps_ = 0;
   int64_t missing_ = 0;
   int64_t back_jumps_ = 0;
+  int64_t forward_jumps_ = 0;
   int64_t first_ = 0;
   int64_t last_ = 0;
 };

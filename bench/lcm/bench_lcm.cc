@@ -28,6 +28,7 @@
 
 #include "common/subprocess.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "mrsim/joint_command_t.hpp"
@@ -86,7 +87,7 @@ class Controller {
   explicit Controller(lcm::LCM& lcm) : lcm_(lcm) {}
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     mrsim::robot_state_t s;
-    if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;
+    if (!mrsim::DecodeMessage(rbuf, &s)) return;
     mrsim::joint_command_t cmd;
     cmd.utime = s.utime;
     cmd.seq = ++seq_;

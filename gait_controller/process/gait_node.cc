@@ -252,7 +252,10 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
     ++counters_.states_foreign;
     return;
   }
-  if (!std::isfinite(state.sim_time) || state.sim_time < 0) {
+  // Beyond kMaxSimTime (decades) the gait's phase would overflow to inf and
+  // poison every later target: such a time is forged, not simulated.
+  if (!std::isfinite(state.sim_time) || state.sim_time < 0 ||
+      state.sim_time > kMaxSimTime) {
     ++counters_.messages_malformed;
     return;
   }
@@ -331,6 +334,19 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
   }
   const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;
   const std::vector<double>& targets = controller_->Update(dt);
+  for (double t : targets) {
+    if (!std::isfinite(t)) {
+      // Never send a non-finite target; start the gait again from rest.
+      ++counters_.messages_malformed;
+      Log(
+          fmt::format("state seq {} gave a non-finite target; the gait "
+                      "starts again from rest",
+                      state.seq));
+      controller_->Reset();
+      have_last_ = false;
+      return;
+    }
+  }
 
   joint_command_t command;
   command.utime = state.utime;

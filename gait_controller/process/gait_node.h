@@ -75,6 +75,7 @@ class GaitNode {
   // Answers kept for states the simulator may send again (pipelined
   // lockstep re-sends the two states it waits for).
   static constexpr size_t kRecentAnswers = 8;
+  static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
 
   // axes_for(joint_count) gives the hinge axes once the first state says
   // how many joints there are; it may throw std::invalid_argument, which

@@ -1,23 +1,52 @@
 // Decoding a raw LCM buffer. Our handlers subscribe raw rather than typed,
 // because lcm-cpp's typed subscriptions drop undecodable messages silently
-// and we must count what we drop.
+// and we must count what we drop, and because lcm-gen's decode trusts every
+// length it reads: a forged string length reads far past the datagram and a
+// forged array length allocates gigabytes. So the bytes are walked by the
+// generated bounds check (mrsim/wire_check.hpp) first, and lcm-gen's decode
+// only ever sees messages whose lengths it may trust.
 #pragma once
 
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
 #include <lcm/lcm-cpp.hpp>
+
+#include "mrsim/wire_check.hpp"
 
 namespace mrsim {
 
-// True when `rbuf` decodes as Message (right fingerprint, whole, consistent).
-// Never throws: a forged array length makes lcm-gen's decode allocate
-// without bound (std::bad_alloc, std::length_error), and a handler called
-// from LCM's C code must not let that escape.
+// Messages refused by the bounds check in this process (any type), for
+// tests and diagnostics; every caller also counts its own drops.
+inline std::atomic<int64_t>& WireRejections() {
+  static std::atomic<int64_t> count{0};
+  return count;
+}
+
+// True when `data` holds exactly one well-formed Message (right
+// fingerprint, every length within the bytes and its field's maximum), then
+// decoded into `msg`. `error` (optional) says which field was refused.
+// Never throws and never allocates more than the message's own size.
 template <class Message>
-bool DecodeMessage(const lcm::ReceiveBuffer* rbuf, Message* msg) noexcept {
-  try {
-    return msg->decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0;
-  } catch (...) {
+bool DecodeMessage(const void* data, size_t size, Message* msg,
+                   WireError* error = nullptr) noexcept {
+  if (!CheckWire<Message>(data, size, error)) {
+    WireRejections().fetch_add(1, std::memory_order_relaxed);
     return false;
   }
+  try {
+    // The check bounds size by the types' maxima, far below INT32_MAX.
+    return msg->decode(data, 0, static_cast<int>(size)) ==
+           static_cast<int>(size);
+  } catch (...) {
+    return false;  // out of memory: the message is dropped like a bad one
+  }
+}
+
+template <class Message>
+bool DecodeMessage(const lcm::ReceiveBuffer* rbuf, Message* msg,
+                   WireError* error = nullptr) noexcept {
+  return DecodeMessage(rbuf->data, rbuf->data_size, msg, error);
 }
 
 }  // namespace mrsim

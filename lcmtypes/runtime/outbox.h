@@ -20,6 +20,12 @@ using WallClock = std::chrono::steady_clock;
 using WallTime = WallClock::time_point;
 
 inline WallTime AfterSeconds(WallTime t, double seconds) {
+  // Clamped to +-1e9 s (32 years; NaN counts as the past): a time computed
+  // from a hostile number (a speed of 1e-300) must not overflow the clock's
+  // 64-bit nanoseconds, which is undefined behaviour.
+  constexpr double kLimit = 1e9;
+  if (!(seconds > -kLimit)) seconds = -kLimit;
+  if (seconds > kLimit) seconds = kLimit;
   return t + std::chrono::duration_cast<WallClock::duration>(
                  std::chrono::duration<double>(seconds));
 }
@@ -46,7 +52,10 @@ struct Outbox {
 template <class Sender, class... Messages>
 void PublishAll(Sender& lcm, Outbox<Messages...>* out,
                 std::vector<uint8_t>* buffer) {
-  for (const auto& [channel, message] : out->messages) {
+  for (const auto& entry : out->messages) {
+    // Not a structured binding: C++17 lambdas cannot capture one (clang).
+    const std::string& channel = entry.first;
+    const auto& message = entry.second;
     std::visit(
         [&](const auto& msg) {
           const int size = msg.getEncodedSize();

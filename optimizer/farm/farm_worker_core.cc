@@ -40,9 +40,28 @@ std::vector<std::string> FarmWorkerCore::TakeLog() {
   return out;
 }
 
+namespace {
+
+// An announcement a master could have sent (see kMaxPayloadBytes).
+bool PlausibleRun(const opt_run_t& msg) {
+  if (msg.run_id.empty() || msg.payload_size < 0 ||
+      msg.payload_size > FarmWorkerCore::kMaxPayloadBytes ||
+      msg.chunk_count < 1 || msg.chunk_count > FarmWorkerCore::kMaxChunks ||
+      msg.chunk_size < 0 || msg.chunk_size > FarmWorkerCore::kMaxChunkBytes) {
+    return false;
+  }
+  if (msg.payload_size == 0) return msg.chunk_count == 1;
+  if (msg.chunk_size == 0) return false;
+  const long long needed =
+      (msg.payload_size + msg.chunk_size - 1) / msg.chunk_size;
+  return msg.chunk_count == needed;
+}
+
+}  // namespace
+
 void FarmWorkerCore::OnRun(const opt_run_t& msg, double now) {
   ++heard_;
-  if (msg.chunk_count < 1 || msg.payload_size < 0 || msg.run_id.empty()) {
+  if (!PlausibleRun(msg)) {
     ++counters_.messages_malformed;
     return;
   }

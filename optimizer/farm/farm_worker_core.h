@@ -57,6 +57,14 @@ struct WorkerTask {
 
 class FarmWorkerCore {
  public:
+  // The largest announcement followed: a payload of at most 256 MB in at
+  // most 65536 chunks of at most 65536 bytes (opt_chunk_t's limit), as many
+  // as the payload needs. A forged announcement of 2^31 chunks once made
+  // the worker allocate 64 GB.
+  static constexpr long long kMaxPayloadBytes = 256LL << 20;
+  static constexpr int kMaxChunks = 65536;
+  static constexpr int kMaxChunkBytes = 65536;
+
   // Turns a payload whose hash matched into a problem (throws naming what
   // is wrong). Default: DecodeProblem.
   using Decoder = std::function<std::shared_ptr<const Problem>(

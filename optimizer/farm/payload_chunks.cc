@@ -23,8 +23,10 @@ ChunkAssembler::ChunkAssembler(int count, long long total_size)
 
 bool ChunkAssembler::Add(int index, const std::string& data) {
   if (index < 0 || index >= count_) return false;
-  if (static_cast<long long>(data.size()) > total_size_) return false;
   if (have_[index]) return true;
+  // Chunks that add up to more than the announced payload are forged.
+  if (static_cast<long long>(data.size()) > total_size_ - bytes_) return false;
+  bytes_ += static_cast<long long>(data.size());
   chunks_[index] = data;
   have_[index] = true;
   ++received_;

@@ -30,6 +30,7 @@ class ChunkAssembler {
   int count_ = 0;
   long long total_size_ = 0;
   int received_ = 0;
+  long long bytes_ = 0;  // received so far, never above total_size_
   std::vector<std::string> chunks_;
   std::vector<bool> have_;
 };

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lcmtypes/runtime/seq_gap.h"
+
 namespace mrsim {
 namespace {
 
@@ -64,11 +66,10 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
   // Gap accounting sees every decodable command of a known robot, valid or
   // not: a rejected command was received, a missing seq was not.
   SenderHistory& h = senders_[{robot, cmd.sender}];
-  if (h.seen && cmd.seq > h.last_seen_seq + 1) {
-    seq_gaps_ += cmd.seq - h.last_seen_seq - 1;
-  }
+  // Overflow-safe: a forged seq of INT64_MAX is no gap of 2^63 messages.
+  if (h.seen) seq_gaps_ += SeqGap(h.last_seen_seq, cmd.seq);
   if (!h.seen || cmd.seq > h.last_seen_seq || cmd.seq < 0 ||
-      cmd.seq + 1000 < h.last_seen_seq) {
+      SeqFarBehind(h.last_seen_seq, cmd.seq, 1000)) {
     // Forward, or a restarted sender (seq far back): follow it.
     h.last_seen_seq = cmd.seq;
   }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/seq_gap.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/scene_object_state.h"
 #include "sim_core/sim_process/state_message.h"
@@ -493,8 +494,8 @@ void SimNode::OnControl(const sim_control_t& msg, WallTime now,
   const size_t first = out->messages.size();
   try {
     auto last = control_last_seq_.find(msg.sender);
-    if (last != control_last_seq_.end() && msg.seq > last->second + 1) {
-      control_gaps_ += msg.seq - last->second - 1;
+    if (last != control_last_seq_.end()) {
+      control_gaps_ += SeqGap(last->second, msg.seq);  // overflow-safe
     }
     if (last == control_last_seq_.end() &&
         control_last_seq_.size() >= kMaxControlSenders) {

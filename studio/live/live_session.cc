@@ -11,6 +11,7 @@
 
 #include "gait_controller/motion.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "logger/generic_flattener.h"
 #include "logger/robot_state_flattener.h"
 
@@ -19,6 +20,9 @@ namespace {
 
 // The requests kept for the window's list; older ones are forgotten.
 constexpr size_t kMaxRequests = 200;
+// Channels read (and so robots shown): a flood of new channel names is
+// dropped and counted rather than growing the session without bound.
+constexpr size_t kMaxChannels = 1000;
 
 int64_t Fingerprint(const uint8_t* data, size_t size) {
   if (size < 8) return 0;
@@ -57,11 +61,7 @@ std::optional<double> ParseNumber(std::string_view cell) {
 
 template <class T>
 bool Decode(const uint8_t* data, size_t size, T* msg) {
-  try {
-    return msg->decode(data, 0, static_cast<int>(size)) >= 0;
-  } catch (const std::exception&) {
-    return false;
-  }
+  return DecodeMessage(data, size, msg);
 }
 
 }  // namespace
@@ -97,6 +97,11 @@ LiveSession::ChannelReader* LiveSession::Reader(const std::string& channel,
   auto it = readers_.find(channel);
   if (it != readers_.end() && it->second->hash == hash) {
     return it->second.get();
+  }
+  if (it == readers_.end() && readers_.size() >= kMaxChannels) {
+    Drop(channel, "more than " + std::to_string(kMaxChannels) + " channels",
+         /*foreign=*/true);
+    return nullptr;
   }
   const LcmStruct* type = size < 8 ? nullptr : registry_.FindByHash(hash);
   if (type == nullptr) {

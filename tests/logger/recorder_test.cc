@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -73,6 +74,80 @@ TEST(LoggerRecorder, ShapeChangeContinuesInANewPartWithItsOwnHeader) {
   EXPECT_GE(two.Column("module3.z"), 0);
   EXPECT_EQ(two.rows[0].size(), two.header.size());
   EXPECT_TRUE(cap.Has("part2.csv"));
+}
+
+// Traffic that decodes but changes shape with every message (a forged or
+// confused sender) must not become hundreds of part files: after
+// kMaxPartFiles the rows of new shapes are counted, with one warning, and
+// rows of the last file's shape still go to it.
+TEST(LoggerRecorder, PartFilesPerChannelAreCappedAndTheRestCountedAsDropped) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_part_cap");
+  Capture cap;
+  const int shapes = static_cast<int>(Recorder::kMaxPartFiles) + 20;
+  {
+    Recorder rec(registry, cap.Options(dir));
+    for (int k = 0; k < shapes; ++k) {
+      Send(rec, "MRSIM_STATE_a", testing::KnownRobotState(k, 1 + k, 0));
+    }
+    // The last file's shape again: written.
+    Send(rec, "MRSIM_STATE_a",
+         testing::KnownRobotState(shapes, Recorder::kMaxPartFiles, 0));
+    rec.Flush();
+    const auto stats = rec.Stats();
+    ASSERT_EQ(stats.size(), 1u);
+    EXPECT_EQ(stats[0].files.size(), Recorder::kMaxPartFiles);
+    EXPECT_EQ(stats[0].rows, static_cast<int64_t>(Recorder::kMaxPartFiles) + 1);
+    EXPECT_EQ(stats[0].dropped,
+              shapes - static_cast<int64_t>(Recorder::kMaxPartFiles));
+    EXPECT_NE(rec.Summary().find("dropped"), std::string::npos);
+  }
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, static_cast<int>(Recorder::kMaxPartFiles));
+  int warnings = 0;
+  for (const std::string& l : cap.lines) {
+    if (l.find("counted and dropped") != std::string::npos) ++warnings;
+  }
+  EXPECT_EQ(warnings, 1);
+}
+
+TEST(LoggerRecorder, ChannelsBeyondTheCapAreCountedNotRecorded) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_channel_cap");
+  Capture cap;
+  Recorder rec(registry, cap.Options(dir));
+  const auto b = Encode(testing::KnownRobotState(0, 1, 0));
+  const size_t extra = 5;
+  for (size_t k = 0; k < Recorder::kMaxChannels + extra; ++k) {
+    // Unknown type: counted per channel, no file, so the test stays cheap.
+    const uint8_t foreign[12] = {9, 9, 9, 9, 9, 9, 9, 9, 0, 0, 0, 0};
+    rec.OnMessage("X" + std::to_string(k), foreign, sizeof(foreign));
+  }
+  rec.OnMessage("MRSIM_STATE_late", b.data(), b.size());
+  EXPECT_EQ(rec.Stats().size(), Recorder::kMaxChannels);
+  EXPECT_EQ(rec.messages_on_extra_channels(), static_cast<int64_t>(extra) + 1);
+  EXPECT_EQ(rec.CsvPath("MRSIM_STATE_late"), "");
+  EXPECT_TRUE(cap.Has("further channels are counted and dropped"));
+}
+
+// A forged seq of INT64_MAX once made the missing count overflow into
+// garbage: a jump too far to be lost messages is reported, not counted.
+TEST(LoggerSeqTracker, ForgedSequenceNumbersAreNoGap) {
+  SeqTracker t;
+  t.Add(5);
+  const SeqTracker::Event e = t.Add(std::numeric_limits<int64_t>::max());
+  EXPECT_TRUE(e.jumped);
+  EXPECT_EQ(e.missing, 0);
+  t.Add(std::numeric_limits<int64_t>::min());
+  t.Add(7);
+  t.Add(9);
+  EXPECT_EQ(t.missing(), 1);
+  EXPECT_EQ(t.gaps(), 1);
+  EXPECT_EQ(t.forward_jumps(), 2);
 }
 
 TEST(LoggerRecorder, MalformedAndForeignMessagesAreCountedNotWritten) {

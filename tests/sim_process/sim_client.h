@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_control_t.hpp"
@@ -132,13 +133,13 @@ class SimClient {
 
   void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     sim_status_t s;
-    if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0) {
+    if (DecodeMessage(rbuf, &s)) {
       status_ = s;
     }
   }
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     robot_state_t s;
-    if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0) {
+    if (DecodeMessage(rbuf, &s)) {
       if (s.seq > last_state_seq_) last_state_seq_ = s.seq;
       ++states_received_;
       states_[s.robot] = s;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "mrsim/joint_command_t.hpp"
@@ -24,7 +25,7 @@ class WaveController {
 
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
     mrsim::robot_state_t state;
-    if (state.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
+    if (!mrsim::DecodeMessage(rbuf, &state)) {
       ++malformed_;
       return;
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/robot_state_t.hpp"
@@ -29,7 +30,7 @@ StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
 bool StateInbox::ReceiveScene(const void* data, int size) {
   try {
     scene_state_t msg;
-    if (msg.decode(data, 0, size) < 0) {
+    if (size < 0 || !DecodeMessage(data, static_cast<size_t>(size), &msg)) {
       ++malformed_;
       last_error_ = scene_channel_ + ": cannot decode scene_state_t";
       return false;
@@ -65,7 +66,7 @@ bool StateInbox::ReceiveScene(const void* data, int size) {
 bool StateInbox::ReceiveGait(const void* data, int size) {
   try {
     gait_command_t msg;
-    if (msg.decode(data, 0, size) < 0) {
+    if (size < 0 || !DecodeMessage(data, static_cast<size_t>(size), &msg)) {
       ++malformed_;
       last_error_ = gait_channel_ + ": cannot decode gait_command_t";
       return false;
@@ -88,7 +89,7 @@ bool StateInbox::ReceiveGait(const void* data, int size) {
 bool StateInbox::ReceiveGaitStatus(const void* data, int size) {
   try {
     gait_status_t msg;
-    if (msg.decode(data, 0, size) < 0) {
+    if (size < 0 || !DecodeMessage(data, static_cast<size_t>(size), &msg)) {
       ++malformed_;
       last_error_ = gait_status_channel_ + ": cannot decode gait_status_t";
       return false;
@@ -124,7 +125,7 @@ bool StateInbox::Receive(const std::string& channel, const void* data,
     if (it == channels_.end()) return false;
     const int robot = it->second;
     robot_state_t msg;
-    if (msg.decode(data, 0, size) < 0) {
+    if (size < 0 || !DecodeMessage(data, static_cast<size_t>(size), &msg)) {
       ++malformed_;
       last_error_ = channel + ": cannot decode robot_state_t";
       return false;
