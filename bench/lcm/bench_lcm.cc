@@ -6,7 +6,9 @@
 //  (b) mrsim-sim's server publishing state at 100 Hz vs not publishing
 //      (fast clock);
 //  (c) round trip of a state-sized robot_state_t through encode/decode and a
-//      typed handler vs a bare ping-pong of an 8-byte raw message.
+//      typed handler vs a bare ping-pong of an 8-byte raw message;
+//  (d) signed messages (--key-file): pipelined lockstep and (b)'s publishing
+//      with a key over the same without.
 // LCM ports 7900-7909. Prints BENCH lines (bench/run).
 #include <unistd.h>
 
@@ -29,6 +31,8 @@
 #include "common/subprocess.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/message_key.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
@@ -83,7 +87,7 @@ std::vector<double> WaveTargets(const mrsim::robot_state_t& s) {
 // --controller URL: answers every state with a command (lockstep peer).
 class Controller {
  public:
-  explicit Controller(lcm::LCM& lcm) : lcm_(lcm) {}
+  explicit Controller(mrsim::SignedLcm& lcm) : lcm_(lcm) {}
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     mrsim::robot_state_t s;
     if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;
@@ -100,13 +104,14 @@ class Controller {
   }
 
  private:
-  lcm::LCM& lcm_;
+  mrsim::SignedLcm& lcm_;
   int64_t seq_ = 0;
 };
 
+// Signs with $MRSIM_KEY_FILE when the bench sets it, as mrsim-sim does.
 int RunController(const std::string& url) {
   mrsim::InstallStopHandlers();
-  lcm::LCM lcm(url);
+  mrsim::SignedLcm lcm(url, mrsim::LoadAuthConfig("", false));
   if (!lcm.good()) return 1;
   Controller c(lcm);
   lcm.subscribe(std::string(mrsim::kDefaultChannelPrefix) + "_STATE_.*",
@@ -251,8 +256,8 @@ Pace LcmLoop(const std::string& scenario, double duration, int port,
 
 // SimServer on the fast clock, in this process.
 Pace ServerRun(const std::string& scenario, double duration, bool publish,
-               int port) {
-  lcm::LCM lcm(Url(port));
+               int port, const mrsim::AuthConfig& auth = {}) {
+  mrsim::SignedLcm lcm(Url(port), auth);
   mrsim::SimOptions options;
   options.clock = mrsim::ClockMode::kFast;
   options.rate = kRate;
@@ -330,7 +335,11 @@ int RunBench() {
   // physics (docs/sim.md).
   // And both with --no-spin: the send thread asleep between states.
   std::vector<double> local, remote, piped, piped2, local_cpu, remote_cpu,
-      piped_cpu, remote_sleep, piped_sleep;
+      piped_cpu, remote_sleep, piped_sleep, piped_signed;
+  // (d): mrsim-sim and the controller sign with this key when
+  // MRSIM_KEY_FILE names it.
+  const std::string key = (dir / "bench.key").string();
+  mrsim::WriteKeyFile(key);
   for (int r = 0; r < kRepeats; ++r) {
     const Pace l = LocalLoop(path, duration, dir.string());
     const Pace x = LcmLoop(path, duration, 7900, dir.string(), 0);
@@ -340,6 +349,9 @@ int RunBench() {
     const Pace ps = LcmLoop(path, duration, 7900, dir.string(), 1, false);
     remote_sleep.push_back(xs.wall);
     piped_sleep.push_back(ps.wall);
+    setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
+    piped_signed.push_back(LcmLoop(path, duration, 7900, dir.string(), 1).wall);
+    unsetenv(mrsim::kKeyFileEnv);
     piped2.push_back(p2.wall);
     local.push_back(l.wall);
     remote.push_back(x.wall);
@@ -367,13 +379,19 @@ int RunBench() {
             << Best(piped_sleep) / Best(local) << " x" << std::endl;
   std::cout << "BENCH lockstep_pipelined_ratio_cpu "
             << Best(piped_cpu) / Best(local_cpu) << " x" << std::endl;
+  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
+            << " sim s/s with a key, " << Best(piped) << " without\n";
+  std::cout << "BENCH signed_lockstep_ratio "
+            << Best(piped_signed) / Best(piped) << " x" << std::endl;
 
   // (b) fast clock with and without 100 Hz state publishing.
   // The snake lies still (no controller), the heaviest contact load.
-  std::vector<double> quiet, loud, quiet_cpu, loud_cpu;
+  std::vector<double> quiet, loud, quiet_cpu, loud_cpu, loud_signed;
+  const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
   for (int r = 0; r < kRepeats; ++r) {
     const Pace q = ServerRun(path, duration / 4, false, 7901);
     const Pace l = ServerRun(path, duration / 4, true, 7901);
+    loud_signed.push_back(ServerRun(path, duration / 4, true, 7901, auth).wall);
     quiet.push_back(q.wall);
     loud.push_back(l.wall);
     quiet_cpu.push_back(q.cpu);
@@ -386,6 +404,10 @@ int RunBench() {
   std::cout << "BENCH publish_ratio " << Best(loud) / Best(quiet) << " x"
             << std::endl;
   std::cout << "BENCH publish_ratio_cpu " << Best(loud_cpu) / Best(quiet_cpu)
+            << " x" << std::endl;
+  std::cout << "signed: publishing " << Best(loud_signed)
+            << " sim s/s with a key, " << Best(loud) << " without\n";
+  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
             << " x" << std::endl;
 
   // (c) round trips.

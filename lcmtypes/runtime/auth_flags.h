@@ -11,22 +11,15 @@
 
 namespace mrsim {
 
-struct AuthFlags {
-  std::string key_file;
-  bool accept_replays = false;
-
-  void Add(CLI::App& app) {
-    app.add_option("--key-file", key_file,
-                   "Sign every message with this key and drop unsigned, "
-                   "forged and replayed ones (default: $MRSIM_KEY_FILE; "
-                   "none: unsigned; mrsim keygen PATH writes one)");
-    app.add_flag("--accept-replays", accept_replays,
-                 "With a key: take signed messages whatever their timestamp "
-                 "(a log played back with lcm-logplayer)");
-  }
-  // Throws UsageError naming the key file when it cannot be used.
-  AuthConfig Load() const { return LoadAuthConfig(key_file, accept_replays); }
-};
+inline void AddAuthFlags(CLI::App& app, AuthFlags& flags) {
+  app.add_option("--key-file", flags.key_file,
+                 "Sign every message with this key and drop unsigned, "
+                 "forged and replayed ones (default: $MRSIM_KEY_FILE; none: "
+                 "unsigned; mrsim keygen PATH writes one)");
+  app.add_flag("--accept-replays", flags.accept_replays,
+               "With a key: take signed messages whatever their timestamp "
+               "(a log played back with lcm-logplayer)");
+}
 
 // A SignedLcm's warnings as lines "PROGRAM: ..." on `out`.
 inline SignedLcm::Warn WarnLines(std::ostream& out, std::string program) {

@@ -6,8 +6,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "lcmtypes/runtime/usage_error.h"
@@ -141,6 +144,13 @@ AuthConfig LoadAuthConfig(const std::string& flag, bool accept_replays) {
   }
   if (!config.key_file.empty()) config.key = ReadKeyFile(config.key_file);
   return config;
+}
+
+void AuthFlags::ExportToChildren() const {
+  if (key_file.empty()) return;
+  std::error_code error;
+  const std::filesystem::path path = std::filesystem::absolute(key_file, error);
+  setenv(kKeyFileEnv, error ? key_file.c_str() : path.c_str(), 1);
 }
 
 }  // namespace mrsim

@@ -31,4 +31,15 @@ std::string ReadKeyFile(const std::string& path);
 // The key of --key-file `flag`, else of $MRSIM_KEY_FILE, else none.
 AuthConfig LoadAuthConfig(const std::string& flag, bool accept_replays);
 
+// What --key-file and --accept-replays set (auth_flags.h adds them).
+struct AuthFlags {
+  std::string key_file;
+  bool accept_replays = false;
+
+  // Throws UsageError naming the key file when it cannot be used.
+  AuthConfig Load() const { return LoadAuthConfig(key_file, accept_replays); }
+  // Hands --key-file to the programs this one starts, as MRSIM_KEY_FILE.
+  void ExportToChildren() const;
+};
+
 }  // namespace mrsim

@@ -101,12 +101,14 @@ void SignedLcm::Refused(MessageAuth::Verdict verdict,
       verdict == MessageAuth::Verdict::kUnsigned ? c.unsigned_
       : verdict == MessageAuth::Verdict::kForged ? c.forged
                                                  : c.replayed;
-  if (!PowerOfTen(n)) return;
   const std::string kind = MessageAuth::ToString(verdict);
-  if (n == 1) {
-    warn_("dropped a " + kind + " message on " + channel + " (" +
-          Hint(verdict) + "); more are counted");
-  } else {
+  if (warned_.size() < kWarnChannels &&
+      warned_.emplace(static_cast<int>(verdict), channel).second) {
+    warn_(std::string("dropped ") +
+          (verdict == MessageAuth::Verdict::kUnsigned ? "an " : "a ") + kind +
+          " message on " + channel + " (" + Hint(verdict) +
+          "); more are counted");
+  } else if (n >= 10 && PowerOfTen(n)) {
     warn_("dropped " + std::to_string(n) + " " + kind + " messages so far");
   }
 }

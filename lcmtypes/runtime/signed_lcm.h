@@ -13,7 +13,9 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lcmtypes/runtime/message_auth.h"
@@ -26,10 +28,12 @@ class SignedLcm {
   using Warn = std::function<void(const std::string&)>;
   using RawHandler =
       std::function<void(const lcm::ReceiveBuffer*, const std::string&)>;
+  static constexpr std::size_t kWarnChannels = 64;
 
   // Opens `url` (empty: LCM's default). Without a key in `auth`, nothing is
   // signed or refused. `warn` (may be empty) gets a line for the first
-  // rejected message of each kind and at every power of ten after.
+  // rejected message of each kind on each channel (the first kWarnChannels
+  // channels), and for each kind's total at every power of ten.
   explicit SignedLcm(const std::string& url, AuthConfig auth = {},
                      Warn warn = {});
   ~SignedLcm();
@@ -96,6 +100,7 @@ class SignedLcm {
   std::mutex publish_mutex_;
   std::vector<std::uint8_t> signed_;  // reused: no allocation per message
   std::list<Entry> entries_;
+  std::set<std::pair<int, std::string>> warned_;  // (verdict, channel)
 };
 
 }  // namespace mrsim

@@ -163,6 +163,17 @@ void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
     ++counters_.messages_malformed;
     return;
   }
+  if (msg.build != settings_.build && !settings_.allow_mixed_builds) {
+    ++counters_.heartbeats_refused;
+    if (refused_.insert(msg.worker_id).second) {
+      Log(fmt::format(
+          "refused worker {} ({}): its build '{}' is not this master's '{}', "
+          "so its results could differ from a local run's; rebuild it alike "
+          "or pass --allow-mixed-builds",
+          msg.worker_id, msg.host, msg.build, settings_.build));
+    }
+    return;
+  }
   auto [it, fresh] = workers_.try_emplace(msg.worker_id);
   Worker& w = it->second;
   if (fresh) {

@@ -17,7 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include "lcmtypes/runtime/message_key.h"
 #include "optimizer/eval_result.h"
+#include "optimizer/farm/build_fingerprint.h"
 #include "optimizer/farm/farm_outbox.h"
 #include "optimizer/genome.h"
 
@@ -25,6 +27,11 @@ namespace mrsim {
 
 struct FarmSettings {
   std::string prefix = "MRSIM_OPT";
+  AuthConfig auth;  // the key messages are signed with (none: unsigned)
+  // This master's build; workers announcing another are refused unless
+  // allow_mixed_builds (their results could differ from a local run's).
+  std::string build = BuildFingerprint();
+  bool allow_mixed_builds = false;
   // A job is re-sent when not answered this long after it was sent; 0:
   // automatic (10 s, then 3 x the slowest episode seen x the jobs a worker
   // holds, plus 2 s).
@@ -83,6 +90,7 @@ struct FarmCounters {
   long long chunks_sent = 0;
   long long messages_received = 0;
   long long heartbeats_received = 0;
+  long long heartbeats_refused = 0;  // workers of another build
   // Sum over finished batches of the busiest worker's episode seconds in
   // it: no dispatch can end a batch sooner (the generation barrier), so
   // episode_seconds / (workers x this) is the most a farm of equal
@@ -212,6 +220,7 @@ class FarmMasterCore {
   std::string hash_;
   std::string failure_;
   bool warned_other_run_ = false;  // another master on our prefix, said
+  std::set<std::string> refused_;  // workers of another build, said once
   std::int64_t started_;
   FarmSettings settings_;
   std::vector<std::string> chunks_;

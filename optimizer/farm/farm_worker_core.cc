@@ -222,6 +222,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
       hb.scenario_hash = hash_;
     }
     hb.slots = settings_.threads;
+    hb.build = settings_.build;
     hb.jobs.assign(queued_ids_.begin(), queued_ids_.end());
     for (const auto& [id, genome] : running_) hb.jobs.push_back(id);
     hb.job_count = static_cast<int32_t>(hb.jobs.size());

@@ -173,6 +173,11 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_flag("--farm", c.farm, "Evaluate on mrsim-worker processes over LCM");
   app.add_option("--lcm-url", c.lcm_url,
                  "LCM URL of the farm (--farm) and of the --replay");
+  AddAuthFlags(app, c.auth);
+  app.add_flag("--allow-mixed-builds", c.allow_mixed_builds,
+               "Farm: take workers whose build (version, compiler, MuJoCo, "
+               "CPU floating-point features) differs from this one's; their "
+               "results may then differ from a local run's");
   app.add_option("--prefix", c.prefix, "Farm channel prefix")
       ->capture_default_str();
   app.add_option("--job-timeout", c.job_timeout,
@@ -307,6 +312,8 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
   }
   FarmSettings settings;
   settings.prefix = c.prefix;
+  settings.auth = c.auth.Load();
+  settings.allow_mixed_builds = c.allow_mixed_builds;
   settings.job_timeout = c.job_timeout;
   settings.worker_timeout = c.worker_timeout;
   settings.chunk_size = c.chunk_size;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lcmtypes/runtime/auth_flags.h"
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
@@ -32,6 +33,8 @@ struct OptCommand {
   std::string gait_spec = "forward";
   bool farm = false;
   std::string lcm_url;
+  AuthFlags auth;
+  bool allow_mixed_builds = false;
   std::string prefix = "MRSIM_OPT";
   double job_timeout = 0.0;
   double worker_timeout = 2.0;

@@ -4,6 +4,8 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "common/cli_exit.h"
+#include "lcmtypes/runtime/auth_flags.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "sim_core/sim_process/sim_server.h"
@@ -21,7 +23,8 @@ int main(int argc, char** argv) {
     flags.Finish();
     mrsim::InstallStopHandlers();
     auto physics = flags.LoadPhysics();
-    lcm::LCM lcm(flags.lcm_url);
+    mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
+                         mrsim::WarnLines(std::cerr, "mrsim-sim"));
     if (!lcm.good()) {
       std::cerr << "mrsim-sim: cannot open LCM '" << flags.lcm_url
                 << "' (no multicast route? see docs/sim.md)\n";

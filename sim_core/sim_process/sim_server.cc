@@ -14,7 +14,7 @@
 namespace mrsim {
 namespace {}  // namespace
 
-SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
+SimServer::SimServer(SignedLcm& lcm, std::unique_ptr<Physics> physics,
                      SimOptions options, std::ostream& log)
     : lcm_(lcm),
       node_(std::move(physics), std::move(options), log, WallClock::now()) {

@@ -62,11 +62,38 @@ opt_heartbeat_t Beat(const FarmMasterCore& m, const std::string& id,
   hb.run_id = m.run_id();
   hb.scenario_hash = m.scenario_hash();
   hb.slots = 1;
+  hb.build = BuildFingerprint();
   hb.jobs = std::move(held);
   hb.job_count = static_cast<int32_t>(hb.jobs.size());
   hb.done = std::move(done);
   hb.done_count = static_cast<int32_t>(hb.done.size());
   return hb;
+}
+
+TEST(FarmMasterCore, WorkerOfAnotherBuildIsRefusedUnlessMixedBuildsAllowed) {
+  std::vector<std::string> log;
+  FarmSettings settings;
+  settings.log = [&](const std::string& line) { log.push_back(line); };
+  FarmMasterCore m(Payload(100), "run", 1, settings);
+  opt_heartbeat_t other = Beat(m, "odd");
+  other.build = "mrsim 0.0.1; gcc 9; MuJoCo 2.3.0; x86_64";
+  m.OnHeartbeat(other, 0.0);
+  m.OnHeartbeat(other, 0.1);
+  m.OnHeartbeat(Beat(m, "same"), 0.0);
+  EXPECT_EQ(m.workers_alive(), 1);
+  EXPECT_EQ(m.counters().heartbeats_refused, 2);
+  // Said once, naming the worker and both builds.
+  const auto said = std::count_if(log.begin(), log.end(), [](const auto& l) {
+    return l.find("refused worker odd") != std::string::npos;
+  });
+  EXPECT_EQ(said, 1);
+  m.StartBatch(Batch(4, 0), 0.0);
+  for (const auto& job : m.Tick(0.0).jobs) EXPECT_EQ(job.worker_id, "same");
+
+  settings.allow_mixed_builds = true;
+  FarmMasterCore mixed(Payload(100), "run", 1, settings);
+  mixed.OnHeartbeat(other, 0.0);
+  EXPECT_EQ(mixed.workers_alive(), 1);
 }
 
 TEST(FarmMasterCore, EveryReadyWorkerGetsAJobBeforeAnyGetsASecond) {
