@@ -187,6 +187,7 @@ void FarmWorkerCore::OnEpisodeDone(opt_result_t result, double now) {
     running_.erase(it);
   }
   ++counters_.jobs_done;
+  if (result.error.empty()) result.fitness += settings_.lie;
   recent_.push_back(Recent{now, result, std::move(genome)});
   while (recent_.size() > kRecentResults) recent_.pop_front();
   outbox_.results.push_back(std::move(result));

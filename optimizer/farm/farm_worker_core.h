@@ -26,6 +26,9 @@ struct WorkerSettings {
   std::string prefix = "MRSIM_OPT";
   AuthConfig auth;  // the key messages are signed with (none: unsigned)
   std::string build = BuildFingerprint();  // announced in heartbeats
+  // For tests of --verify only: adds this to every fitness it reports (a
+  // worker that lies). 0 in every real use.
+  double lie = 0.0;
   std::string id;  // unique on the network; default host-pid
   int threads = 1;
   double heartbeat_period = 0.2;  // s, until a master asks for another

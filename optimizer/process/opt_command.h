@@ -35,6 +35,7 @@ struct OptCommand {
   std::string lcm_url;
   AuthFlags auth;
   bool allow_mixed_builds = false;
+  double verify = 0.0;  // share of jobs run again elsewhere (FarmSettings)
   std::string prefix = "MRSIM_OPT";
   double job_timeout = 0.0;
   double worker_timeout = 2.0;

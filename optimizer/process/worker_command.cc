@@ -26,6 +26,10 @@ void AddWorkerFlags(CLI::App& app, WorkerCommand& command) {
   app.add_option("--fake-workers", command.fake_workers,
                  "With --fake-episode: this many workers in this process")
       ->check(CLI::Range(1, 100000));
+  // Hidden: a lying worker for the tests of mrsim-opt --verify.
+  app.add_option("--test-lie", settings.lie,
+                 "Tests only: add this to every fitness reported")
+      ->group("");
 }
 
 void CheckWorkerCommand(const WorkerCommand& command) {
