@@ -313,6 +313,45 @@ double Best(const std::vector<double>& v) {
   return *std::max_element(v.begin(), v.end());
 }
 
+// --signed: only (d), the two signed figures (a few minutes instead of
+// about ten), each pair measured back to back.
+int RunSignedBench() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("mrsim_bench_lcm_signed_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  mrsim::Scenario scenario;
+  mrsim::ChainOptions chain;
+  chain.modules = 11;
+  scenario.robots.push_back(mrsim::MakeChain(chain));
+  scenario.settings.timestep = 0.002;
+  const std::string path = (dir / "snake11.xml").string();
+  mrsim::WriteScenarioFile(scenario, path);
+  const std::string key = (dir / "bench.key").string();
+  mrsim::WriteKeyFile(key);
+  const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
+  const double duration = 20.0;
+  std::vector<double> piped, piped_signed, loud, loud_signed;
+  for (int r = 0; r < kRepeats; ++r) {
+    piped.push_back(LcmLoop(path, duration, 7903, dir.string(), 1).wall);
+    setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
+    piped_signed.push_back(LcmLoop(path, duration, 7903, dir.string(), 1).wall);
+    unsetenv(mrsim::kKeyFileEnv);
+    loud.push_back(ServerRun(path, duration / 4, true, 7903).wall);
+    loud_signed.push_back(ServerRun(path, duration / 4, true, 7903, auth).wall);
+  }
+  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
+            << " sim s/s with a key, " << Best(piped) << " without\n";
+  std::cout << "BENCH signed_lockstep_ratio "
+            << Best(piped_signed) / Best(piped) << " x" << std::endl;
+  std::cout << "signed: publishing " << Best(loud_signed)
+            << " sim s/s with a key, " << Best(loud) << " without\n";
+  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
+            << " x" << std::endl;
+  std::filesystem::remove_all(dir);
+  return 0;
+}
+
 int RunBench() {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
@@ -450,6 +489,9 @@ int main(int argc, char** argv) {
     }
     if (argc == 3 && std::strcmp(argv[1], "--echo") == 0) {
       return RunEcho(argv[2]);
+    }
+    if (argc == 2 && std::strcmp(argv[1], "--signed") == 0) {
+      return RunSignedBench();
     }
     return RunBench();
   } catch (const std::exception& e) {

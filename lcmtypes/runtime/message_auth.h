@@ -65,6 +65,18 @@ class MessageAuth {
   Verdict Verify(const std::string& channel, const void* data, std::size_t size,
                  std::int64_t now_us, std::size_t* payload_size);
 
+  // The size of `data` without what looks like a signature trailer (its
+  // marker bytes at the end), unchecked; `size` when there is none. For
+  // readers without the key that check the payload themselves (mrsim-log
+  // reading a signed lcm-logger file).
+  static std::size_t SizeWithoutTrailer(const void* data, std::size_t size) {
+    const auto* b = static_cast<const std::uint8_t*>(data);
+    return size >= kTrailerSize && b[size - 2] == kMagic &&
+                   b[size - 1] == kVersion
+               ? size - kTrailerSize
+               : size;
+  }
+
   Counts counts() const;
   std::uint32_t sender() const { return sender_; }
   bool accept_replays() const { return accept_replays_; }

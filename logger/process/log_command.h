@@ -25,6 +25,7 @@ namespace mrsim {
 
 struct LogCommand {
   std::string lcm_url;
+  AuthFlags auth;  // --key-file, --accept-replays
   std::string prefix = kDefaultChannelPrefix;
   std::string channels;
   std::string out_dir = ".";
