@@ -23,6 +23,9 @@ void AddLaunchFlags(CLI::App& launch, LaunchCommand& c) {
   launch.add_option("file", c.file, "Launch file (XML)")->required();
   launch.add_option("--set", c.sets, "Override an <arg>: NAME=VALUE");
   launch.add_option("--without", c.without, "Leave a process out (by name)");
+  launch.add_option("--key-file", c.key_file,
+                    "Sign every process's messages with this key (passed "
+                    "on as MRSIM_KEY_FILE; docs/security.md)");
   launch.add_flag("--dry-run", c.dry_run,
                   "Print the resolved commands and start nothing");
 }

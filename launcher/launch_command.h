@@ -24,6 +24,7 @@ struct LaunchCommand {
   std::vector<std::string> sets;     // NAME=VALUE
   std::vector<std::string> without;  // process names
   bool dry_run = false;
+  std::string key_file;  // handed to every process as MRSIM_KEY_FILE
 };
 
 // Registers the launch subcommand's arguments on `launch`.

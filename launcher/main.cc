@@ -6,10 +6,15 @@
 
 #include "common/cli_exit.h"
 #include "common/version.h"
+#include "launcher/keygen_command.h"
 #include "launcher/launch_command.h"
 #include "lcmtypes/runtime/stop_signal.h"
+#include "lcmtypes/runtime/usage_error.h"
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "keygen") {
+    return mrsim::RunKeygen(argc, argv);
+  }
   try {
     // `mrsim TOOL ...` passes everything after TOOL through untouched.
     if (argc >= 2 && argv[1][0] != '-' && std::string(argv[1]) != "launch") {
@@ -19,6 +24,7 @@ int main(int argc, char** argv) {
     CLI::App app{
         "mrsim: modular robot simulator front door.\n"
         "  mrsim launch FILE    start the processes of a launch file\n"
+        "  mrsim keygen PATH    write a key for signed messages\n"
         "  mrsim TOOL ARGS...   run mrsim-TOOL: scenario, studio, sim, "
         "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary"};
     app.set_version_flag("--version", std::string("mrsim ") + mrsim::kVersion);
@@ -36,6 +42,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
       return mrsim::CliParseExit(app, e);
     }
+    mrsim::ExportLaunchKey(command.key_file);
     const mrsim::LaunchPlan plan = mrsim::PlanLaunch(argv[0], command);
     if (command.dry_run) {
       mrsim::PrintPlan(plan, std::cout);
@@ -44,6 +51,9 @@ int main(int argc, char** argv) {
     mrsim::InstallStopHandlers();
     return mrsim::RunLaunch(
         plan, [] { return mrsim::StopRequested(); }, stdout);
+  } catch (const mrsim::UsageError& e) {  // the key file
+    std::fprintf(stderr, "mrsim: %s\n", e.what());
+    return 2;
   } catch (const mrsim::LaunchError& e) {
     std::fprintf(stderr, "mrsim: %s\n", e.what());
     return 2;

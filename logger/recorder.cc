@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lcmtypes/runtime/message_auth.h"
 #include "logger/generic_flattener.h"
 #include "logger/robot_state_flattener.h"
 
@@ -139,7 +140,13 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
     }
     return;
   }
-  if (!ch.flattener->Flatten(data, size, &ch.row)) {
+  // A message signed by a program with a key (docs/security.md) carries a
+  // trailer the type's layout does not: tried without it when it does not
+  // read whole.
+  if (!ch.flattener->Flatten(data, size, &ch.row) &&
+      (MessageAuth::SizeWithoutTrailer(data, size) == size ||
+       !ch.flattener->Flatten(data, MessageAuth::SizeWithoutTrailer(data, size),
+                              &ch.row))) {
     ++ch.stats.malformed;
     Report(ch, ch.stats.channel + ": malformed " + ch.stats.type +
                    " message of " + std::to_string(size) + " bytes; dropped");

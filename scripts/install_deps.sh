@@ -9,7 +9,7 @@ packages=(
   libmujoco-dev libqhull-dev libmujoco-samples
   libeigen3-dev libtinyxml2-dev libstb-dev libopencv-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libfmt-dev
+  libcli11-dev libfmt-dev libssl-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
   libimgui-dev xdotool fonts-dejavu-core
   clang-format clang libfuzzer-14-dev

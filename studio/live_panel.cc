@@ -19,6 +19,7 @@
 
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/message_key.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/plot_export.h"
@@ -106,7 +107,10 @@ void LivePanel::Connect(const std::string& url, const std::string& prefix) {
   png_note_ = {};      // its plot is gone
   plot_channel_ = -1;  // the pickers start again on the followed robot
   plot_column_ = -1;
-  link_ = std::make_unique<LiveLink>(url, session_.get());
+  // The studio's --key-file reaches here, and the processes it starts, as
+  // MRSIM_KEY_FILE (checked at start-up).
+  link_ = std::make_unique<LiveLink>(url, session_.get(),
+                                     LoadAuthConfig("", false));
   followed_.clear();
 }
 

@@ -5,6 +5,8 @@
 #include <csignal>
 #include <iostream>
 
+#include "lcmtypes/runtime/message_key.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/headless_studio.h"
@@ -30,8 +32,21 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cli.add_option("--layout-dump", options.layout_dump,
                  "Write widget rectangles and state here (for tests)");
+  std::string key_file;
+  cli.add_option("--key-file", key_file,
+                 "Sign the live session's messages, and those of the "
+                 "processes it starts, with this key (default: "
+                 "$MRSIM_KEY_FILE; docs/security.md)");
   cli.set_version_flag("--version", mrsim::VersionLine("mrsim-studio"));
   CLI11_PARSE(cli, argc, argv);
+  try {
+    mrsim::AuthFlags auth{key_file};
+    auth.Load();  // a bad key file is said now, not at the first run
+    auth.ExportToChildren();
+  } catch (const mrsim::UsageError& e) {
+    std::cerr << "mrsim-studio: " << e.what() << "\n";
+    return 2;
+  }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   std::signal(SIGPIPE, SIG_IGN);  // a tcpq hub gone must not kill the window

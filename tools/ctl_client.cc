@@ -33,7 +33,7 @@ constexpr double kEverySimulatorHeard = 0.7;
 template <class Message>
 class Listener {
  public:
-  Listener(lcm::LCM& lcm, const std::string& channel) : lcm_(lcm) {
+  Listener(SignedLcm& lcm, const std::string& channel) : lcm_(lcm) {
     sub_ = lcm_.subscribe(channel, &Listener::On, this);
     sub_->setQueueCapacity(100);
   }
@@ -83,7 +83,7 @@ class Listener {
       ++undecodable_;
     }
   }
-  lcm::LCM& lcm_;
+  SignedLcm& lcm_;
   lcm::Subscription* sub_ = nullptr;
   std::vector<Message> fresh_;
   int undecodable_ = 0;
@@ -152,7 +152,7 @@ std::string SeveralSimulatorsNote(const Heard& heard,
   return text;
 }
 
-int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
+int RunSimControl(SignedLcm& lcm, const std::vector<std::string>& words,
                   const CtlOptions& o, std::ostream& out, std::ostream& err) {
   const bool status_only = !words.empty() && words[0] == "status";
   if (status_only && words.size() != 1) {
@@ -257,7 +257,7 @@ int RunSimControl(lcm::LCM& lcm, const std::vector<std::string>& words,
   return 0;
 }
 
-int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,
+int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
             const CtlOptions& o, std::ostream& out, std::ostream& err) {
   gait_command_t c = ParseGaitRequest(words);
   const std::string channel = GaitStatusChannel(o.prefix, c.robot);
@@ -310,7 +310,7 @@ int RunGait(lcm::LCM& lcm, const std::vector<std::string>& words,
 
 }  // namespace
 
-int RunCtl(lcm::LCM& lcm, const std::vector<std::string>& words,
+int RunCtl(SignedLcm& lcm, const std::vector<std::string>& words,
            const CtlOptions& options, std::ostream& out, std::ostream& err) {
   if (!words.empty() && words[0] == "gait") {
     return RunGait(lcm, words, options, out, err);

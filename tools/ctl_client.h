@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/signed_lcm.h"
+
 namespace mrsim {
 
 struct CtlOptions {
@@ -22,7 +24,7 @@ struct CtlOptions {
 
 // The exit status: 0 done, 1 refused or no answer, 2 bad words (thrown as
 // std::invalid_argument before anything is sent).
-int RunCtl(lcm::LCM& lcm, const std::vector<std::string>& words,
+int RunCtl(SignedLcm& lcm, const std::vector<std::string>& words,
            const CtlOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace mrsim

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "common/cli_exit.h"
+#include "lcmtypes/runtime/auth_flags.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "tools/ctl_client.h"
 #include "tools/gait_command_request.h"
@@ -28,6 +30,8 @@ int main(int argc, char** argv) {
   mrsim::CtlOptions options;
   std::vector<std::string> words;
   app.add_option("--lcm-url", lcm_url, "LCM URL (default: LCM's default)");
+  mrsim::AuthFlags auth;
+  mrsim::AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
       ->capture_default_str();
   app.add_option("--timeout", options.timeout,
@@ -43,12 +47,16 @@ int main(int argc, char** argv) {
   }
   try {
     options.sender = "mrsim-ctl-" + std::to_string(getpid());
-    lcm::LCM lcm(lcm_url);
+    mrsim::SignedLcm lcm(lcm_url, auth.Load(),
+                         mrsim::WarnLines(std::cerr, "mrsim-ctl"));
     if (!lcm.good()) {
       std::cerr << "mrsim-ctl: cannot open LCM '" << lcm_url << "'\n";
       return 1;
     }
     return mrsim::RunCtl(lcm, words, options, std::cout, std::cerr);
+  } catch (const mrsim::UsageError& e) {  // the key file
+    std::cerr << "mrsim-ctl: " << e.what() << "\n";
+    return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "mrsim-ctl: " << e.what() << "\n";
     return 2;

@@ -6,7 +6,9 @@
 //  (b) mrsim-sim's server publishing state at 100 Hz vs not publishing
 //      (fast clock);
 //  (c) round trip of a state-sized robot_state_t through encode/decode and a
-//      typed handler vs a bare ping-pong of an 8-byte raw message.
+//      typed handler vs a bare ping-pong of an 8-byte raw message;
+//  (d) signed messages (--key-file): pipelined lockstep and (b)'s publishing
+//      with a key over the same without.
 // LCM ports 7900-7909. Prints BENCH lines (bench/run).
 #include <unistd.h>
 
@@ -30,6 +32,8 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/message_key.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
@@ -84,7 +88,7 @@ std::vector<double> WaveTargets(const mrsim::robot_state_t& s) {
 // --controller URL: answers every state with a command (lockstep peer).
 class Controller {
  public:
-  explicit Controller(lcm::LCM& lcm) : lcm_(lcm) {}
+  explicit Controller(mrsim::SignedLcm& lcm) : lcm_(lcm) {}
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     mrsim::robot_state_t s;
     if (!mrsim::DecodeMessage(rbuf, &s)) return;
@@ -101,13 +105,14 @@ class Controller {
   }
 
  private:
-  lcm::LCM& lcm_;
+  mrsim::SignedLcm& lcm_;
   int64_t seq_ = 0;
 };
 
+// Signs with $MRSIM_KEY_FILE when the bench sets it, as mrsim-sim does.
 int RunController(const std::string& url) {
   mrsim::InstallStopHandlers();
-  lcm::LCM lcm(url);
+  mrsim::SignedLcm lcm(url, mrsim::LoadAuthConfig("", false));
   if (!lcm.good()) return 1;
   Controller c(lcm);
   lcm.subscribe(std::string(mrsim::kDefaultChannelPrefix) + "_STATE_.*",
@@ -252,8 +257,8 @@ Pace LcmLoop(const std::string& scenario, double duration, int port,
 
 // SimServer on the fast clock, in this process.
 Pace ServerRun(const std::string& scenario, double duration, bool publish,
-               int port) {
-  lcm::LCM lcm(Url(port));
+               int port, const mrsim::AuthConfig& auth = {}) {
+  mrsim::SignedLcm lcm(Url(port), auth);
   mrsim::SimOptions options;
   options.clock = mrsim::ClockMode::kFast;
   options.rate = kRate;
@@ -309,6 +314,45 @@ double Best(const std::vector<double>& v) {
   return *std::max_element(v.begin(), v.end());
 }
 
+// --signed: only (d), the two signed figures (a few minutes instead of
+// about ten), each pair measured back to back.
+int RunSignedBench() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("mrsim_bench_lcm_signed_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  mrsim::Scenario scenario;
+  mrsim::ChainOptions chain;
+  chain.modules = 11;
+  scenario.robots.push_back(mrsim::MakeChain(chain));
+  scenario.settings.timestep = 0.002;
+  const std::string path = (dir / "snake11.xml").string();
+  mrsim::WriteScenarioFile(scenario, path);
+  const std::string key = (dir / "bench.key").string();
+  mrsim::WriteKeyFile(key);
+  const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
+  const double duration = 20.0;
+  std::vector<double> piped, piped_signed, loud, loud_signed;
+  for (int r = 0; r < kRepeats; ++r) {
+    piped.push_back(LcmLoop(path, duration, 7903, dir.string(), 1).wall);
+    setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
+    piped_signed.push_back(LcmLoop(path, duration, 7903, dir.string(), 1).wall);
+    unsetenv(mrsim::kKeyFileEnv);
+    loud.push_back(ServerRun(path, duration / 4, true, 7903).wall);
+    loud_signed.push_back(ServerRun(path, duration / 4, true, 7903, auth).wall);
+  }
+  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
+            << " sim s/s with a key, " << Best(piped) << " without\n";
+  std::cout << "BENCH signed_lockstep_ratio "
+            << Best(piped_signed) / Best(piped) << " x" << std::endl;
+  std::cout << "signed: publishing " << Best(loud_signed)
+            << " sim s/s with a key, " << Best(loud) << " without\n";
+  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
+            << " x" << std::endl;
+  std::filesystem::remove_all(dir);
+  return 0;
+}
+
 int RunBench() {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
@@ -331,7 +375,11 @@ int RunBench() {
   // physics (docs/sim.md).
   // And both with --no-spin: the send thread asleep between states.
   std::vector<double> local, remote, piped, piped2, local_cpu, remote_cpu,
-      piped_cpu, remote_sleep, piped_sleep;
+      piped_cpu, remote_sleep, piped_sleep, piped_signed;
+  // (d): mrsim-sim and the controller sign with this key when
+  // MRSIM_KEY_FILE names it.
+  const std::string key = (dir / "bench.key").string();
+  mrsim::WriteKeyFile(key);
   for (int r = 0; r < kRepeats; ++r) {
     const Pace l = LocalLoop(path, duration, dir.string());
     const Pace x = LcmLoop(path, duration, 7900, dir.string(), 0);
@@ -341,6 +389,9 @@ int RunBench() {
     const Pace ps = LcmLoop(path, duration, 7900, dir.string(), 1, false);
     remote_sleep.push_back(xs.wall);
     piped_sleep.push_back(ps.wall);
+    setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
+    piped_signed.push_back(LcmLoop(path, duration, 7900, dir.string(), 1).wall);
+    unsetenv(mrsim::kKeyFileEnv);
     piped2.push_back(p2.wall);
     local.push_back(l.wall);
     remote.push_back(x.wall);
@@ -368,13 +419,19 @@ int RunBench() {
             << Best(piped_sleep) / Best(local) << " x" << std::endl;
   std::cout << "BENCH lockstep_pipelined_ratio_cpu "
             << Best(piped_cpu) / Best(local_cpu) << " x" << std::endl;
+  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
+            << " sim s/s with a key, " << Best(piped) << " without\n";
+  std::cout << "BENCH signed_lockstep_ratio "
+            << Best(piped_signed) / Best(piped) << " x" << std::endl;
 
   // (b) fast clock with and without 100 Hz state publishing.
   // The snake lies still (no controller), the heaviest contact load.
-  std::vector<double> quiet, loud, quiet_cpu, loud_cpu;
+  std::vector<double> quiet, loud, quiet_cpu, loud_cpu, loud_signed;
+  const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
   for (int r = 0; r < kRepeats; ++r) {
     const Pace q = ServerRun(path, duration / 4, false, 7901);
     const Pace l = ServerRun(path, duration / 4, true, 7901);
+    loud_signed.push_back(ServerRun(path, duration / 4, true, 7901, auth).wall);
     quiet.push_back(q.wall);
     loud.push_back(l.wall);
     quiet_cpu.push_back(q.cpu);
@@ -387,6 +444,10 @@ int RunBench() {
   std::cout << "BENCH publish_ratio " << Best(loud) / Best(quiet) << " x"
             << std::endl;
   std::cout << "BENCH publish_ratio_cpu " << Best(loud_cpu) / Best(quiet_cpu)
+            << " x" << std::endl;
+  std::cout << "signed: publishing " << Best(loud_signed)
+            << " sim s/s with a key, " << Best(loud) << " without\n";
+  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
             << " x" << std::endl;
 
   // (c) round trips.
@@ -429,6 +490,9 @@ int main(int argc, char** argv) {
     }
     if (argc == 3 && std::strcmp(argv[1], "--echo") == 0) {
       return RunEcho(argv[2]);
+    }
+    if (argc == 2 && std::strcmp(argv[1], "--signed") == 0) {
+      return RunSignedBench();
     }
     return RunBench();
   } catch (const std::exception& e) {

@@ -101,7 +101,7 @@ struct FarmMeasure {
 FarmMeasure MeasureFarm(int workers, int port, int jobs) {
   const std::string url = fmt::format("udpm://239.255.76.67:{}?ttl=0", port);
   const mrsim::Problem problem = SnakeProblem(4.0);
-  lcm::LCM lcm(url);
+  mrsim::SignedLcm lcm(url);
   if (!lcm.good()) throw std::runtime_error("cannot open LCM " + url);
   std::vector<std::unique_ptr<mrsim::Subprocess>> pool;
   for (int w = 0; w < workers; ++w) {

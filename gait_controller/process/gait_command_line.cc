@@ -13,6 +13,7 @@ void GaitCommandLine::AddFlags(CLI::App& app) {
   app.add_option("--robot", robot, "Robot name (as in the scenario)")
       ->required();
   app.add_option("--lcm-url", lcm_url, "LCM URL (default: LCM's default)");
+  AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
       ->capture_default_str();
   app.add_option("--gait", gait_spec,

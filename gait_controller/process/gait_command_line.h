@@ -10,6 +10,7 @@
 
 #include "gait_controller/gait.h"
 #include "gait_controller/process/gait_node.h"
+#include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/scenario.h"
 
@@ -18,6 +19,7 @@ namespace mrsim {
 struct GaitCommandLine {
   std::string robot;
   std::string lcm_url;
+  AuthFlags auth;
   std::string gait_spec = "forward";
   std::string scenario_path;
   std::string axes_text;

@@ -17,7 +17,7 @@ constexpr int kGaitQueueCapacity = 100;
 
 }  // namespace
 
-GaitServer::GaitServer(lcm::LCM& lcm, GaitNodeOptions options,
+GaitServer::GaitServer(SignedLcm& lcm, GaitNodeOptions options,
                        std::function<std::vector<Axis>(int)> axes_for,
                        Gait initial)
     : lcm_(lcm),

@@ -1,4 +1,4 @@
-// mrsim-gait's LCM adapter: wires one lcm::LCM (borrowed from main),
+// mrsim-gait's LCM adapter: wires one SignedLcm (borrowed from main),
 // steady_clock and optionally the raw keyboard to a GaitNode. Decodes what
 // arrives, hands it to the node with the time, publishes what the node
 // returns and prints the node's log lines.
@@ -13,6 +13,7 @@
 
 #include "gait_controller/process/gait_node.h"
 #include "gait_controller/process/keyboard.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 
@@ -23,7 +24,7 @@ class GaitServer {
   // Subscribes STATE_<robot>, GAIT_<robot>, SIM_CONTROL and SIM_STATUS
   // (checkpoints). Throws std::runtime_error if
   // LCM cannot subscribe, std::invalid_argument on bad options.
-  GaitServer(lcm::LCM& lcm, GaitNodeOptions options,
+  GaitServer(SignedLcm& lcm, GaitNodeOptions options,
              std::function<std::vector<Axis>(int)> axes_for, Gait initial);
   ~GaitServer();
   GaitServer(const GaitServer&) = delete;
@@ -45,7 +46,7 @@ class GaitServer {
   void OnSimStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void Flush();
 
-  lcm::LCM& lcm_;
+  SignedLcm& lcm_;
   GaitNode node_;
   GaitOutbox outbox_;
   std::vector<lcm::Subscription*> subscriptions_;

@@ -10,6 +10,8 @@
 #include "common/cli_exit.h"
 #include "gait_controller/process/gait_command_line.h"
 #include "gait_controller/process/gait_server.h"
+#include "lcmtypes/runtime/auth_flags.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 
 int main(int argc, char** argv) {
@@ -26,7 +28,8 @@ int main(int argc, char** argv) {
     if (!flags.warning.empty())
       std::cerr << "mrsim-gait: " << flags.warning << "\n";
     mrsim::InstallStopHandlers();
-    lcm::LCM lcm(flags.lcm_url);
+    mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
+                         mrsim::WarnLines(std::cerr, "mrsim-gait"));
     if (!lcm.good()) {
       std::cerr << "mrsim-gait: cannot open LCM '" << flags.lcm_url << "'\n";
       return 1;

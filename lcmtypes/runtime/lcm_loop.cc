@@ -15,9 +15,8 @@ bool Readable(int fd, int timeout_ms) {
   return n > 0 && (pfd.revents & POLLIN);
 }
 
-}  // namespace
-
-int HandleFor(lcm::LCM& lcm, int timeout_ms) {
+template <class Lcm>
+int HandleAll(Lcm& lcm, int timeout_ms) {
   const int fd = lcm.getFileno();
   int handled = 0;
   int wait_ms = timeout_ms;
@@ -34,6 +33,15 @@ int HandleFor(lcm::LCM& lcm, int timeout_ms) {
     wait_ms = 0;
   }
   return handled;
+}
+
+}  // namespace
+
+int HandleFor(lcm::LCM& lcm, int timeout_ms) {
+  return HandleAll(lcm, timeout_ms);
+}
+int HandleFor(SignedLcm& lcm, int timeout_ms) {
+  return HandleAll(lcm, timeout_ms);
 }
 
 }  // namespace mrsim

@@ -44,6 +44,11 @@ PublishThread::PublishThread(lcm::LCM& lcm, Wait wait)
           },
           wait) {}
 
+PublishThread::PublishThread(SignedLcm& lcm, Wait wait)
+    : PublishThread([&lcm](const std::string& channel, const void* data,
+                           unsigned size) { lcm.publish(channel, data, size); },
+                    wait) {}
+
 PublishThread::~PublishThread() {
   {
     std::lock_guard<std::mutex> lock(mutex_);

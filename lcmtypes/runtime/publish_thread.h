@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include "lcmtypes/runtime/signed_lcm.h"
+
 namespace mrsim {
 
 class PublishThread {
@@ -55,6 +57,8 @@ class PublishThread {
   // mpudpm do; tcpq does until its hub goes away (both threads then close
   // the socket).
   explicit PublishThread(lcm::LCM& lcm, Wait wait = Wait::kSleep);
+  // The same through a SignedLcm: messages are signed on this thread.
+  explicit PublishThread(SignedLcm& lcm, Wait wait = Wait::kSleep);
   ~PublishThread();  // sends what is queued, then joins
   PublishThread(const PublishThread&) = delete;
   PublishThread& operator=(const PublishThread&) = delete;

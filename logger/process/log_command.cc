@@ -11,6 +11,7 @@
 
 #include "CLI/CLI.hpp"
 #include "common/lcm_url.h"
+#include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/channel_pattern.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -84,7 +85,7 @@ void WriteQueued(MessageQueue& queue, Recorder& recorder,
 }
 
 void RunLive(const LogCommand& opt, const std::string& regex,
-             Recorder& recorder, lcm::LCM& lcm, std::FILE* err) {
+             Recorder& recorder, SignedLcm& lcm, std::FILE* err) {
   if (!lcm.good()) {
     throw std::runtime_error(
         "cannot open LCM at '" +
@@ -236,6 +237,7 @@ std::string ChannelRegex(const std::string& channels) {
 void AddLogFlags(CLI::App& app, LogCommand& opt) {
   app.add_option("--lcm-url", opt.lcm_url,
                  "LCM URL (default: LCM's default or $LCM_DEFAULT_URL)");
+  AddAuthFlags(app, opt.auth);
   app.add_option("--prefix", opt.prefix,
                  "channel prefix; by default every channel starting with "
                  "PREFIX_ is recorded")
@@ -297,7 +299,7 @@ LogPlan PlanLog(const LogCommand& opt) {
   return plan;
 }
 
-int RunLogCommand(const LogCommand& opt, const LogPlan& plan, lcm::LCM* lcm,
+int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
                   std::FILE* err) {
   LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
   for (const std::string& w : registry.warnings()) {

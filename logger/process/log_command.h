@@ -1,6 +1,6 @@
 // mrsim-log as library code: its flags, the channel selection, recording
 // live (LCM handler -> queue -> writer thread) or from an .lcmlog, the
-// summary and the plots at stop. main parses, owns the lcm::LCM and calls
+// summary and the plots at stop. main parses, owns the SignedLcm and calls
 // RunLogCommand.
 #pragma once
 
@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/message_key.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "logger/log_plot_spec.h"
 #include "logger/recorder.h"
 
@@ -23,6 +25,7 @@ namespace mrsim {
 
 struct LogCommand {
   std::string lcm_url;
+  AuthFlags auth;  // --key-file, --accept-replays
   std::string prefix = kDefaultChannelPrefix;
   std::string channels;
   std::string out_dir = ".";
@@ -61,7 +64,7 @@ LogPlan PlanLog(const LogCommand& command);
 // status: 0, 1 (a write failed) or 2 (a plot could not be drawn from its
 // input). Throws LogInputError (a file that is not an LCM log, no message
 // on the channels asked) or std::runtime_error.
-int RunLogCommand(const LogCommand& command, const LogPlan& plan, lcm::LCM* lcm,
-                  std::FILE* err);
+int RunLogCommand(const LogCommand& command, const LogPlan& plan,
+                  SignedLcm* lcm, std::FILE* err);
 
 }  // namespace mrsim

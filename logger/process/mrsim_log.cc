@@ -8,7 +8,9 @@
 #include "CLI/CLI.hpp"
 #include "common/cli_exit.h"
 #include "common/lcm_url.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "logger/process/log_command.h"
 
@@ -27,12 +29,19 @@ int main(int argc, char** argv) {
   try {
     const mrsim::LogPlan plan = mrsim::PlanLog(command);
     mrsim::InstallStopHandlers();
-    std::unique_ptr<lcm::LCM> lcm;
+    std::unique_ptr<mrsim::SignedLcm> lcm;
     if (command.from_log.empty()) {
-      lcm = std::make_unique<lcm::LCM>(mrsim::LcmUrlWithReceiveBuffer(
-          command.lcm_url, command.recv_buf_size));
+      lcm = std::make_unique<mrsim::SignedLcm>(
+          mrsim::LcmUrlWithReceiveBuffer(command.lcm_url,
+                                         command.recv_buf_size),
+          command.auth.Load(), [](const std::string& line) {
+            std::fprintf(stderr, "mrsim-log: %s\n", line.c_str());
+          });
     }
     return mrsim::RunLogCommand(command, plan, lcm.get(), stderr);
+  } catch (const mrsim::UsageError& e) {  // the key file
+    std::fprintf(stderr, "mrsim-log: %s\n", e.what());
+    return 2;
   } catch (const mrsim::LogInputError& e) {
     std::fprintf(stderr, "mrsim-log: %s\n", e.what());
     return 2;

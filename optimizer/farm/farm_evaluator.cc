@@ -30,7 +30,8 @@ FarmEvaluator::FarmEvaluator(const std::string& lcm_url, std::string payload,
     : settings_(settings),
       core_(std::move(payload), std::move(run_id), WallMicros(),
             std::move(settings)) {
-  link_ = std::make_unique<FarmLink>(lcm_url, settings_.prefix, MakeHandlers());
+  link_ = std::make_unique<FarmLink>(lcm_url, settings_.prefix, MakeHandlers(),
+                                     settings_.auth);
   worker_hint_ =
       fmt::format("; start one with: mrsim-worker --lcm-url '{}'{}", lcm_url,
                   settings_.prefix == FarmSettings().prefix
@@ -39,7 +40,7 @@ FarmEvaluator::FarmEvaluator(const std::string& lcm_url, std::string payload,
   Step(0);
 }
 
-FarmEvaluator::FarmEvaluator(lcm::LCM& lcm, std::string payload,
+FarmEvaluator::FarmEvaluator(SignedLcm& lcm, std::string payload,
                              std::string run_id, FarmSettings settings)
     : settings_(settings),
       core_(std::move(payload), std::move(run_id), WallMicros(),

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/farm/farm_link.h"
 #include "optimizer/farm/farm_master_core.h"
@@ -26,7 +27,7 @@ class FarmEvaluator : public BatchEvaluator {
   FarmEvaluator(const std::string& lcm_url, std::string payload,
                 std::string run_id, FarmSettings settings);
   // Uses a connection the caller owns (not re-connected).
-  FarmEvaluator(lcm::LCM& lcm, std::string payload, std::string run_id,
+  FarmEvaluator(SignedLcm& lcm, std::string payload, std::string run_id,
                 FarmSettings settings);
   ~FarmEvaluator() override;
   FarmEvaluator(const FarmEvaluator&) = delete;

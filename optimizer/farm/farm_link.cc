@@ -23,11 +23,12 @@ double FarmLink::Now() {
 }
 
 FarmLink::FarmLink(std::string url, const std::string& prefix,
-                   Handlers handlers)
+                   Handlers handlers, AuthConfig auth)
     : url_(LcmUrlWithReceiveBuffer(
           url, std::min(kReceiveBuffer, KernelReceiveBufferMax()))),
       channels_(prefix),
-      handlers_(std::move(handlers)) {
+      handlers_(std::move(handlers)),
+      auth_(std::move(auth)) {
   const std::int64_t max = KernelReceiveBufferMax();
   if (url_ != ResolveLcmUrl(url) && max > 0 && max < kReceiveBuffer / 4) {
     log_.push_back(fmt::format(
@@ -44,7 +45,7 @@ FarmLink::FarmLink(std::string url, const std::string& prefix,
   }
 }
 
-FarmLink::FarmLink(lcm::LCM& borrowed, const std::string& prefix,
+FarmLink::FarmLink(SignedLcm& borrowed, const std::string& prefix,
                    Handlers handlers)
     : channels_(prefix), handlers_(std::move(handlers)), lcm_(&borrowed) {
   Subscribe();
@@ -63,7 +64,8 @@ std::vector<std::string> FarmLink::TakeLog() {
 }
 
 void FarmLink::Open() {
-  auto lcm = std::make_unique<lcm::LCM>(url_);
+  auto lcm = std::make_unique<SignedLcm>(
+      url_, auth_, [this](const std::string& line) { log_.push_back(line); });
   if (!lcm->good()) return;
   owned_ = std::move(lcm);
   lcm_ = owned_.get();

@@ -1,5 +1,5 @@
 // The one place a farm node meets LCM and the clock (as Drake's DrakeLcm
-// is for its systems): owns the lcm::LCM, decodes the farm's channels into
+// is for its systems): owns the SignedLcm, decodes the farm's channels into
 // handler calls, publishes a core's FarmOutbox, and re-connects with
 // back-off when the connection fails (a tcpq hub that went away) or when
 // asked to re-join (a worker that lost its multicast membership).
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/wake_fd.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"
 
@@ -42,11 +43,13 @@ class FarmLink {
     std::function<void()> malformed;
   };
 
-  // Opens `url` (with a larger receive buffer, above); throws naming the
-  // URL when the first attempt fails.
-  FarmLink(std::string url, const std::string& prefix, Handlers handlers);
+  // Opens `url` (with a larger receive buffer, above), signing and checking
+  // messages with `auth`'s key if it has one; throws naming the URL when
+  // the first attempt fails.
+  FarmLink(std::string url, const std::string& prefix, Handlers handlers,
+           AuthConfig auth = {});
   // Uses a connection the caller owns (no re-connecting).
-  FarmLink(lcm::LCM& borrowed, const std::string& prefix, Handlers handlers);
+  FarmLink(SignedLcm& borrowed, const std::string& prefix, Handlers handlers);
   ~FarmLink();
   FarmLink(const FarmLink&) = delete;
   FarmLink& operator=(const FarmLink&) = delete;
@@ -83,8 +86,9 @@ class FarmLink {
   std::string url_;
   FarmChannels channels_;
   Handlers handlers_;
-  std::unique_ptr<lcm::LCM> owned_;
-  lcm::LCM* lcm_ = nullptr;
+  AuthConfig auth_;
+  std::unique_ptr<SignedLcm> owned_;
+  SignedLcm* lcm_ = nullptr;
   std::vector<lcm::Subscription*> subscriptions_;
   double backoff_ = 0.1;
   double next_attempt_ = 0;

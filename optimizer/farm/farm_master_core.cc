@@ -127,8 +127,13 @@ std::int64_t FarmMasterCore::OpenBatch(const std::vector<Genome>& batch) {
   failure_.clear();
   pending_count_ += batch.size();
   dispatch_due_ = true;
+  const double f = std::clamp(settings_.verify, 0.0, 1.0);
   for (size_t i = 0; i < batch.size(); ++i) {
     pending_.push_back((id << kJobIdShift) | static_cast<std::int64_t>(i));
+    // Every job whose place in the run crosses a multiple of 1/f: an even
+    // spread, the same in every run.
+    const double n = static_cast<double>(jobs_opened_++);
+    b.jobs[i].verify = f > 0 && std::floor((n + 1) * f) > std::floor(n * f);
   }
   return id;
 }
@@ -140,6 +145,12 @@ void FarmMasterCore::CloseBatch(std::int64_t id, double now) {
     if (job.pending) --pending_count_;
   }
   batches_.erase(it);
+  for (auto& [worker, ids] : results_by_) {
+    ids.erase(std::remove_if(
+                  ids.begin(), ids.end(),
+                  [&](std::int64_t j) { return (j >> kJobIdShift) == id; }),
+              ids.end());
+  }
   // Its jobs are of no use now: the workers holding them have room again.
   for (auto& [wid, w] : workers_) {
     bool freed = false;
@@ -161,6 +172,21 @@ void FarmMasterCore::OnHeartbeat(const opt_heartbeat_t& msg, double now) {
   if (msg.worker_id.empty() || msg.slots < 1 || msg.job_count < 0 ||
       msg.done_count < 0) {
     ++counters_.messages_malformed;
+    return;
+  }
+  if (dropped_.count(msg.worker_id) != 0) {  // outvoted: not for this run
+    ++counters_.heartbeats_refused;
+    return;
+  }
+  if (msg.build != settings_.build && !settings_.allow_mixed_builds) {
+    ++counters_.heartbeats_refused;
+    if (refused_.insert(msg.worker_id).second) {
+      Log(fmt::format(
+          "refused worker {} ({}): its build '{}' is not this master's '{}', "
+          "so its results could differ from a local run's; rebuild it alike "
+          "or pass --allow-mixed-builds",
+          msg.worker_id, msg.host, msg.build, settings_.build));
+    }
     return;
   }
   auto [it, fresh] = workers_.try_emplace(msg.worker_id);
@@ -261,8 +287,11 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
       return;
     }
   }
-  Batch& batch = batches_.at(msg.job_id >> kJobIdShift);
-  EvalResult& r = batch.results[static_cast<size_t>(msg.job_id & kIndexMask)];
+  if (dropped_.count(msg.worker_id) != 0) {
+    ++counters_.results_ignored;
+    return;
+  }
+  EvalResult r;
   r.fitness = msg.fitness;
   r.distance = msg.distance;
   r.speed = msg.speed;
@@ -270,27 +299,163 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
   r.drift = msg.drift;
   r.fell = msg.fell;
   r.failed = msg.failed;
+  if (job->verify) {
+    Verify(msg.job_id, *job, r, msg.worker_id, msg.eval_seconds, now);
+  } else {
+    Accept(msg.job_id, *job, r, msg.worker_id, msg.eval_seconds, now);
+  }
+}
+
+void FarmMasterCore::Accept(std::int64_t job_id, Job& job_ref,
+                            const EvalResult& r, const std::string& worker,
+                            double eval_seconds, double now) {
+  Job* job = &job_ref;
+  Batch& batch = batches_.at(job_id >> kJobIdShift);
+  batch.results[static_cast<size_t>(job_id & kIndexMask)] = r;
+  results_by_[worker].push_back(job_id);
   job->done = true;
   if (job->pending) --pending_count_;
   job->pending = false;  // a stale id in pending_ is skipped
   --batch.remaining;
   ++counters_.results_accepted;
   auto owner = workers_.find(job->worker);
-  if (owner != workers_.end() && owner->second.assigned.erase(msg.job_id)) {
+  if (owner != workers_.end() && owner->second.assigned.erase(job_id)) {
     Reindex(owner->second, now);
     Overtaken(owner->second, *job, now);
   }
-  if (std::isfinite(msg.eval_seconds) && msg.eval_seconds > 0) {
+  if (std::isfinite(eval_seconds) && eval_seconds > 0) {
     typical_episode_ = typical_episode_ <= 0
-                           ? msg.eval_seconds
-                           : 0.9 * typical_episode_ + 0.1 * msg.eval_seconds;
-    slowest_episode_ = std::max(slowest_episode_, msg.eval_seconds);
-    episode_seconds_ += msg.eval_seconds;
-    double& seconds = batch.worker_seconds[msg.worker_id];
-    seconds += msg.eval_seconds;
+                           ? eval_seconds
+                           : 0.9 * typical_episode_ + 0.1 * eval_seconds;
+    slowest_episode_ = std::max(slowest_episode_, eval_seconds);
+    episode_seconds_ += eval_seconds;
+    double& seconds = batch.worker_seconds[worker];
+    seconds += eval_seconds;
     batch.busiest = std::max(batch.busiest, seconds);
   }
   if (batch.remaining == 0) counters_.busiest_worker_seconds += batch.busiest;
+}
+
+namespace {
+
+bool Same(const EvalResult& a, const EvalResult& b) {
+  return a.fitness == b.fitness && a.distance == b.distance &&
+         a.speed == b.speed && a.energy == b.energy && a.drift == b.drift &&
+         a.fell == b.fell && a.failed == b.failed;
+}
+
+// Opinions on one job before it counts as unsettled (no two agree).
+constexpr size_t kMaxOpinions = 4;
+
+}  // namespace
+
+bool FarmMasterCore::Answered(const Job& job, const std::string& worker) {
+  for (const auto& o : job.opinions) {
+    if (o.first == worker) return true;
+  }
+  return false;
+}
+
+void FarmMasterCore::Verify(std::int64_t job_id, Job& job, const EvalResult& r,
+                            const std::string& worker, double eval_seconds,
+                            double now) {
+  if (Answered(job, worker)) {
+    ++counters_.results_ignored;  // a copy, or asked again
+    return;
+  }
+  std::string partner;
+  for (const auto& [who, result] : job.opinions) {
+    if (dropped_.count(who) == 0 && Same(result, r)) {
+      partner = who;
+      break;
+    }
+  }
+  job.opinions.emplace_back(worker, r);
+  if (!partner.empty()) {
+    std::vector<std::string> outvoted;
+    for (const auto& [who, result] : job.opinions) {
+      if (!Same(result, r) && dropped_.count(who) == 0) outvoted.push_back(who);
+    }
+    ++counters_.results_verified;
+    Accept(job_id, job, r, worker, eval_seconds, now);
+    results_by_[partner].push_back(job_id);
+    for (const std::string& who : outvoted) {
+      Drop(who,
+           fmt::format("its result for job {} differs from those of workers "
+                       "{} and {}",
+                       job_id, partner, worker));
+    }
+    return;
+  }
+  if (job.opinions.size() >= kMaxOpinions) {
+    if (failure_.empty()) {
+      failure_ =
+          fmt::format("job {}: {} workers gave {} different results (--verify)",
+                      job_id, job.opinions.size(), job.opinions.size());
+    }
+    return;
+  }
+  if (job.opinions.size() >= 2) {
+    Log(fmt::format("job {}: workers {} and {} disagree; asking a third",
+                    job_id, job.opinions[0].first, worker));
+  }
+  // Free the slots it held and ask a worker that has not run it.
+  for (const std::string& who : {worker, job.worker}) {
+    auto w = workers_.find(who);
+    if (w != workers_.end() && w->second.assigned.erase(job_id)) {
+      Reindex(w->second, now);
+    }
+  }
+  if (!job.pending) {
+    job.pending = true;
+    ++pending_count_;
+    pending_.push_front(job_id);
+  }
+  dispatch_due_ = true;
+  job.unlisted = 0;
+  job.done_seen = -1;
+}
+
+void FarmMasterCore::Drop(const std::string& worker, const std::string& why) {
+  if (!dropped_.insert(worker).second) return;
+  ++counters_.workers_dropped;
+  auto it = workers_.find(worker);
+  if (it != workers_.end()) {
+    Worker& w = it->second;
+    std::vector<std::int64_t> ids(w.assigned.begin(), w.assigned.end());
+    for (std::int64_t id : ids) Requeue(id, "its worker was dropped");
+    if (w.room_load >= 0) room_.erase({w.room_load, w.id});
+    if (w.ready) --ready_count_;
+    workers_.erase(it);
+  }
+  // Its opinions count no more; every result it gave is re-done.
+  for (auto& [batch_id, batch] : batches_) {
+    for (Job& job : batch.jobs) {
+      job.opinions.erase(
+          std::remove_if(job.opinions.begin(), job.opinions.end(),
+                         [&](const auto& o) { return o.first == worker; }),
+          job.opinions.end());
+    }
+  }
+  int redone = 0;
+  for (std::int64_t id : results_by_[worker]) {
+    Job* job = FindJob(id);
+    if (job == nullptr || !job->done) continue;
+    Batch& batch = batches_.at(id >> kJobIdShift);
+    batch.results[static_cast<size_t>(id & kIndexMask)] = EvalResult{};
+    ++batch.remaining;
+    job->done = false;
+    job->opinions.clear();
+    job->pending = true;
+    ++pending_count_;
+    pending_.push_front(id);
+    dispatch_due_ = true;
+    ++redone;
+  }
+  results_by_.erase(worker);
+  counters_.results_redone += redone;
+  Log(fmt::format("worker {} dropped for this run: {}; {} result(s) re-done",
+                  worker, why, redone));
 }
 
 void FarmMasterCore::OnChunkRequest(const opt_chunk_request_t& msg,
@@ -493,6 +658,7 @@ void FarmMasterCore::Dispatch(double now) {
   }
   tokens_at_ = now;
   dispatch_due_ = false;
+  std::vector<std::int64_t> waiting;
   while (!pending_.empty() && !room_.empty() && tokens_ >= 1) {
     const std::int64_t id = pending_.front();
     Job* job = FindJob(id);
@@ -501,9 +667,19 @@ void FarmMasterCore::Dispatch(double now) {
       continue;
     }
     // Least loaded first (ties by id); a re-sent job goes to another
-    // worker than its last one when there is one with room.
+    // worker than its last one when there is one with room; a job under
+    // verification only to a worker that has not run it.
     auto slot = room_.begin();
-    if (slot->second == job->worker && room_.size() > 1) ++slot;
+    if (!job->opinions.empty()) {
+      while (slot != room_.end() && Answered(*job, slot->second)) ++slot;
+      if (slot == room_.end()) {
+        waiting.push_back(id);  // until another worker has room
+        pending_.pop_front();
+        continue;
+      }
+    } else if (slot->second == job->worker && room_.size() > 1) {
+      ++slot;
+    }
     Worker& w = workers_.at(slot->second);
     if (slot->first >= w.slots &&
         pending_count_ <= static_cast<size_t>(std::max(ready_count_, 1))) {
@@ -515,6 +691,7 @@ void FarmMasterCore::Dispatch(double now) {
     Send(id, w, now);
     tokens_ -= 1;
   }
+  pending_.insert(pending_.begin(), waiting.begin(), waiting.end());
 }
 
 FarmOutbox FarmMasterCore::Tick(double now) {

@@ -17,7 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include "lcmtypes/runtime/message_key.h"
 #include "optimizer/eval_result.h"
+#include "optimizer/farm/build_fingerprint.h"
 #include "optimizer/farm/farm_outbox.h"
 #include "optimizer/genome.h"
 
@@ -25,6 +27,17 @@ namespace mrsim {
 
 struct FarmSettings {
   std::string prefix = "MRSIM_OPT";
+  AuthConfig auth;  // the key messages are signed with (none: unsigned)
+  // This master's build; workers announcing another are refused unless
+  // allow_mixed_builds (their results could differ from a local run's).
+  std::string build = BuildFingerprint();
+  bool allow_mixed_builds = false;
+  // Fraction of jobs (0..1, spread evenly) run again on a different worker.
+  // Where two results of a job differ, a third worker decides; a worker
+  // outvoted is dropped for the run and every result of it in the open
+  // batches is re-done (BOINC's redundancy). Same build, same genome: the
+  // very same numbers, so any difference is a fault or a lie.
+  double verify = 0.0;
   // A job is re-sent when not answered this long after it was sent; 0:
   // automatic (10 s, then 3 x the slowest episode seen x the jobs a worker
   // holds, plus 2 s).
@@ -83,6 +96,10 @@ struct FarmCounters {
   long long chunks_sent = 0;
   long long messages_received = 0;
   long long heartbeats_received = 0;
+  long long heartbeats_refused = 0;  // workers of another build
+  long long results_verified = 0;    // jobs whose results two workers agreed
+  long long workers_dropped = 0;     // outvoted by verification
+  long long results_redone = 0;      // accepted, then re-done (worker dropped)
   // Sum over finished batches of the busiest worker's episode seconds in
   // it: no dispatch can end a batch sooner (the generation barrier), so
   // episode_seconds / (workers x this) is the most a farm of equal
@@ -176,6 +193,9 @@ class FarmMasterCore {
     std::int64_t order = 0;  // when it went out, among every send
     int overtaken = 0;       // results of its worker's later jobs since
     int errors = 0;          // workers that answered they could not run it
+    bool verify = false;     // needs results from two workers that agree
+    // Results so far of a job under verification, by worker.
+    std::vector<std::pair<std::string, EvalResult>> opinions;
   };
 
   // One open batch: its jobs and what came back.
@@ -205,6 +225,16 @@ class FarmMasterCore {
   void Requeue(std::int64_t job_id, const char* why);
   void Reindex(Worker& w, double now);
   Job* FindJob(std::int64_t job_id);
+  // Takes `r` as job `job_id`'s result, answered by `worker`.
+  void Accept(std::int64_t job_id, Job& job, const EvalResult& r,
+              const std::string& worker, double eval_seconds, double now);
+  // A result of a job under verification.
+  void Verify(std::int64_t job_id, Job& job, const EvalResult& r,
+              const std::string& worker, double eval_seconds, double now);
+  // Drops a worker for the run and re-does every result it gave.
+  void Drop(const std::string& worker, const std::string& why);
+  // Whether `worker` already gave job `job` a result (verification).
+  static bool Answered(const Job& job, const std::string& worker);
   void Log(const std::string& text) const;
 
   std::string payload_;
@@ -212,6 +242,11 @@ class FarmMasterCore {
   std::string hash_;
   std::string failure_;
   bool warned_other_run_ = false;  // another master on our prefix, said
+  std::set<std::string> refused_;  // workers of another build, said once
+  std::set<std::string> dropped_;  // outvoted: ignored for the rest of the run
+  // Jobs of the open batches each worker's result was taken for.
+  std::unordered_map<std::string, std::vector<std::int64_t>> results_by_;
+  long long jobs_opened_ = 0;  // every job so far, for the verify spread
   std::int64_t started_;
   FarmSettings settings_;
   std::vector<std::string> chunks_;

@@ -25,12 +25,13 @@ std::string HostName() {
 // constructor that throws leaves running threads to std::terminate).
 FarmWorker::FarmWorker(const std::string& lcm_url, WorkerSettings settings,
                        int count) {
-  link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers());
+  link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers(),
+                                     settings.auth);
   link_->SetWake(&done_fd_);
   Build(settings, count);
 }
 
-FarmWorker::FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count) {
+FarmWorker::FarmWorker(SignedLcm& lcm, WorkerSettings settings, int count) {
   link_ = std::make_unique<FarmLink>(lcm, settings.prefix, MakeHandlers());
   link_->SetWake(&done_fd_);
   Build(settings, count);

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "optimizer/farm/farm_link.h"
 #include "optimizer/farm/farm_worker_core.h"
 
@@ -33,7 +34,7 @@ class FarmWorker {
   // <id>-0 ... <id>-(count-1).
   FarmWorker(const std::string& lcm_url, WorkerSettings settings,
              int count = 1);
-  FarmWorker(lcm::LCM& lcm, WorkerSettings settings, int count = 1);
+  FarmWorker(SignedLcm& lcm, WorkerSettings settings, int count = 1);
   ~FarmWorker();  // abandons the running episodes, drops queued jobs
   FarmWorker(const FarmWorker&) = delete;
   FarmWorker& operator=(const FarmWorker&) = delete;

@@ -206,6 +206,7 @@ void FarmWorkerCore::OnEpisodeDone(opt_result_t result, double now) {
     running_.erase(it);
   }
   ++counters_.jobs_done;
+  if (result.error.empty()) result.fitness += settings_.lie;
   recent_.push_back(Recent{now, result, std::move(genome)});
   while (recent_.size() > kRecentResults) recent_.pop_front();
   outbox_.results.push_back(std::move(result));
@@ -241,6 +242,7 @@ FarmOutbox FarmWorkerCore::Tick(double now) {
       hb.scenario_hash = hash_;
     }
     hb.slots = settings_.threads;
+    hb.build = settings_.build;
     hb.jobs.assign(queued_ids_.begin(), queued_ids_.end());
     for (const auto& [id, genome] : running_) hb.jobs.push_back(id);
     hb.job_count = static_cast<int32_t>(hb.jobs.size());

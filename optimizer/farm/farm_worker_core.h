@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/message_key.h"
 #include "optimizer/episode.h"
+#include "optimizer/farm/build_fingerprint.h"
 #include "optimizer/farm/farm_outbox.h"
 #include "optimizer/farm/payload_chunks.h"
 
@@ -22,6 +24,11 @@ namespace mrsim {
 
 struct WorkerSettings {
   std::string prefix = "MRSIM_OPT";
+  AuthConfig auth;  // the key messages are signed with (none: unsigned)
+  std::string build = BuildFingerprint();  // announced in heartbeats
+  // For tests of --verify only: adds this to every fitness it reports (a
+  // worker that lies). 0 in every real use.
+  double lie = 0.0;
   std::string id;  // unique on the network; default host-pid
   int threads = 1;
   double heartbeat_period = 0.2;  // s, until a master asks for another

@@ -173,6 +173,17 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_flag("--farm", c.farm, "Evaluate on mrsim-worker processes over LCM");
   app.add_option("--lcm-url", c.lcm_url,
                  "LCM URL of the farm (--farm) and of the --replay");
+  AddAuthFlags(app, c.auth);
+  app.add_flag("--allow-mixed-builds", c.allow_mixed_builds,
+               "Farm: take workers whose build (version, compiler, MuJoCo, "
+               "CPU floating-point features) differs from this one's; their "
+               "results may then differ from a local run's");
+  app.add_option("--verify", c.verify,
+                 "Farm: run this share of jobs (0..1) again on another "
+                 "worker; a worker whose results disagree is dropped for the "
+                 "run and all its results are re-done")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   app.add_option("--prefix", c.prefix, "Farm channel prefix")
       ->capture_default_str();
   app.add_option("--job-timeout", c.job_timeout,
@@ -317,6 +328,9 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
   }
   FarmSettings settings;
   settings.prefix = c.prefix;
+  settings.auth = c.auth.Load();
+  settings.allow_mixed_builds = c.allow_mixed_builds;
+  settings.verify = c.verify;
   settings.job_timeout = c.job_timeout;
   settings.worker_timeout = c.worker_timeout;
   settings.chunk_size = c.chunk_size;
@@ -484,6 +498,14 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                "{} jobs asked again of their worker\n",
                n.jobs_sent, n.jobs_resent, n.results_accepted,
                n.results_ignored, n.messages_malformed, n.jobs_poked);
+    if (c.verify > 0 || n.heartbeats_refused > 0) {
+      fmt::print(out,
+                 "farm checks: {} results verified by a second worker, {} "
+                 "worker(s) dropped, {} results re-done, {} heartbeats "
+                 "refused (another build, or dropped)\n",
+                 n.results_verified, n.workers_dropped, n.results_redone,
+                 n.heartbeats_refused);
+    }
   }
   std::fflush(out);
   return outcome;

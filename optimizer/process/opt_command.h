@@ -13,6 +13,7 @@
 #include <string>
 
 #include "common/file_lock.h"
+#include "lcmtypes/runtime/auth_flags.h"
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
@@ -33,6 +34,9 @@ struct OptCommand {
   std::string gait_spec = "forward";
   bool farm = false;
   std::string lcm_url;
+  AuthFlags auth;
+  bool allow_mixed_builds = false;
+  double verify = 0.0;  // share of jobs run again elsewhere (FarmSettings)
   std::string prefix = "MRSIM_OPT";
   double job_timeout = 0.0;
   double worker_timeout = 2.0;

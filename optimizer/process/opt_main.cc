@@ -12,6 +12,7 @@
 
 #include "common/cli_exit.h"
 #include "lcmtypes/runtime/stop_signal.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/opt_command.h"
 
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   }
   try {
     mrsim::InstallStopHandlers();
+    command.auth.ExportToChildren();  // --replay's processes
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
     auto evaluator = mrsim::MakeOptEvaluator(
@@ -49,6 +51,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "mrsim-opt: cannot start '{}'; run: mrsim launch {}\n",
                launcher, outcome.launch);
     return 1;
+  } catch (const mrsim::UsageError& err) {  // the key file
+    fmt::print(stderr, "mrsim-opt: {}\n", err.what());
+    return 2;
   } catch (const mrsim::OptInputError& err) {
     fmt::print(stderr, "mrsim-opt: {}\n", err.what());
     return 2;

@@ -12,6 +12,7 @@ void AddWorkerFlags(CLI::App& app, WorkerCommand& command) {
   WorkerSettings& settings = command.settings;
   app.add_option("--lcm-url", command.lcm_url,
                  "LCM URL (default: LCM's default)");
+  AddAuthFlags(app, command.auth);
   app.add_option("--prefix", settings.prefix, "Farm channel prefix")
       ->capture_default_str();
   app.add_option("--id", settings.id, "Worker name (default: host-pid)");
@@ -25,6 +26,10 @@ void AddWorkerFlags(CLI::App& app, WorkerCommand& command) {
   app.add_option("--fake-workers", command.fake_workers,
                  "With --fake-episode: this many workers in this process")
       ->check(CLI::Range(1, 100000));
+  // Hidden: a lying worker for the tests of mrsim-opt --verify.
+  app.add_option("--test-lie", settings.lie,
+                 "Tests only: add this to every fitness reported")
+      ->group("");
 }
 
 void CheckWorkerCommand(const WorkerCommand& command) {
@@ -38,7 +43,9 @@ void CheckWorkerCommand(const WorkerCommand& command) {
 
 void RunWorkerCommand(const WorkerCommand& command, std::FILE* out,
                       const std::function<bool()>& stop) {
-  FarmWorker worker(command.lcm_url, command.settings, command.fake_workers);
+  WorkerSettings settings = command.settings;
+  settings.auth = command.auth.Load();
+  FarmWorker worker(command.lcm_url, settings, command.fake_workers);
   const auto say = [&](const std::string& line) {
     if (command.quiet) return;
     fmt::print(out, "mrsim-worker {}: {}\n", worker.id(), line);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lcmtypes/runtime/auth_flags.h"
 #include "optimizer/farm/farm_worker_core.h"
 
 namespace CLI {
@@ -19,6 +20,7 @@ namespace mrsim {
 // Everything the command line sets.
 struct WorkerCommand {
   std::string lcm_url;  // empty: LCM's default
+  AuthFlags auth;
   WorkerSettings settings;
   bool quiet = false;
   int fake_workers = 1;

@@ -7,6 +7,7 @@
 
 #include "common/cli_exit.h"
 #include "lcmtypes/runtime/stop_signal.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/worker_command.h"
 
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
     mrsim::RunWorkerCommand(command, stdout, mrsim::StopRequested);
     return 0;
+  } catch (const mrsim::UsageError& err) {  // the key file
+    std::fprintf(stderr, "mrsim-worker: %s\n", err.what());
+    return 2;
   } catch (const mrsim::WorkerInputError& err) {
     std::fprintf(stderr, "mrsim-worker: %s\n", err.what());
     return 2;

@@ -4,6 +4,8 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "common/cli_exit.h"
+#include "lcmtypes/runtime/auth_flags.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "sim_core/sim_process/sim_server.h"
@@ -23,7 +25,8 @@ int main(int argc, char** argv) {
     auto physics = flags.LoadPhysics();
     const std::string loaded = flags.LoadLine(*physics);
     if (!loaded.empty()) std::cerr << loaded << "\n";
-    lcm::LCM lcm(flags.lcm_url);
+    mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
+                         mrsim::WarnLines(std::cerr, "mrsim-sim"));
     if (!lcm.good()) {
       std::cerr << "mrsim-sim: cannot open LCM '" << flags.lcm_url
                 << "' (no multicast route? see docs/sim.md)\n";

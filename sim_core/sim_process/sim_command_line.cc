@@ -13,6 +13,7 @@ void SimCommandLine::AddFlags(CLI::App& app) {
   app.add_option("scenario", scenario_path,
                  "Scenario XML file (optional with --load-checkpoint)");
   app.add_option("--lcm-url", lcm_url, "LCM URL (default: LCM's default)");
+  AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
       ->capture_default_str();
   app.add_option("--clock", clock, "realtime | fast | lockstep")

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/physics.h"
 #include "sim_core/sim_process/sim_options.h"
@@ -15,6 +16,7 @@ namespace mrsim {
 struct SimCommandLine {
   std::string scenario_path;
   std::string lcm_url;
+  AuthFlags auth;
   std::string clock = "realtime";
   std::string load_checkpoint;
   bool no_state = false;

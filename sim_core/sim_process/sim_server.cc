@@ -28,7 +28,7 @@ SimOptions WithInstance(SimOptions options) {
 
 }  // namespace
 
-SimServer::SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics,
+SimServer::SimServer(SignedLcm& lcm, std::unique_ptr<Physics> physics,
                      SimOptions options, std::ostream& log)
     : lcm_(lcm),
       node_(std::move(physics), WithInstance(std::move(options)), log,

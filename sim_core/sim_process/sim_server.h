@@ -1,5 +1,5 @@
 // The simulator's LCM adapter: owns nothing but the wiring between one
-// lcm::LCM (borrowed from main), steady_clock and a SimNode. It decodes what
+// SignedLcm (borrowed from main), steady_clock and a SimNode. It decodes what
 // arrives, hands it to the node with the time, publishes what the node
 // returns and sleeps on the LCM socket until the node's next deadline.
 #pragma once
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/publish_thread.h"
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
@@ -34,8 +35,8 @@ class SimServer {
   // <prefix>_SIM_STATUS to hear another simulator there. Throws
   // std::invalid_argument on bad options, std::runtime_error when LCM
   // cannot subscribe. Warnings go to `log`.
-  SimServer(lcm::LCM& lcm, std::unique_ptr<Physics> physics, SimOptions options,
-            std::ostream& log);
+  SimServer(SignedLcm& lcm, std::unique_ptr<Physics> physics,
+            SimOptions options, std::ostream& log);
   ~SimServer();
   SimServer(const SimServer&) = delete;
   SimServer& operator=(const SimServer&) = delete;
@@ -62,7 +63,7 @@ class SimServer {
   void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void Flush();
 
-  lcm::LCM& lcm_;
+  SignedLcm& lcm_;
   SimNode node_;
   SimOutbox outbox_;
   std::vector<lcm::Subscription*> subscriptions_;

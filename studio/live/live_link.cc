@@ -6,8 +6,9 @@
 
 namespace mrsim {
 
-LiveLink::LiveLink(const std::string& url, LiveSession* session)
-    : url_(url), session_(session), lcm_(url) {
+LiveLink::LiveLink(const std::string& url, LiveSession* session,
+                   AuthConfig auth)
+    : url_(url), session_(session), lcm_(url, std::move(auth)) {
   if (!lcm_.good()) {
     throw std::runtime_error("cannot open LCM at '" + url + "'");
   }

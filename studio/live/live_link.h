@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "studio/live/live_session.h"
 
 namespace mrsim {
@@ -15,7 +16,9 @@ namespace mrsim {
 class LiveLink {
  public:
   // Throws std::runtime_error naming the URL when LCM cannot open it.
-  LiveLink(const std::string& url, LiveSession* session);
+  // With a key in `auth`, signs what it publishes and hands the session
+  // only messages signed with it (refused ones are counted, not shown).
+  LiveLink(const std::string& url, LiveSession* session, AuthConfig auth = {});
   ~LiveLink();
   LiveLink(const LiveLink&) = delete;
   LiveLink& operator=(const LiveLink&) = delete;
@@ -32,7 +35,7 @@ class LiveLink {
 
   std::string url_;
   LiveSession* session_;
-  lcm::LCM lcm_;
+  SignedLcm lcm_;
   lcm::Subscription* subscription_ = nullptr;
   std::vector<uint8_t> buffer_;
 };

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "lcmtypes/runtime/message_auth.h"
 #include "logger/csv_writer.h"
 #include "logger/message_queue.h"
 #include "logger/seq_tracker.h"
@@ -179,6 +180,28 @@ TEST(LoggerRecorder, MalformedAndForeignMessagesAreCountedNotWritten) {
   EXPECT_NE(rec.Summary().find("U: 1 messages of unknown type"),
             std::string::npos)
       << rec.Summary();
+}
+
+// Traffic signed with a key (docs/security.md) is logged without the key:
+// the signature trailer after the message is not taken for garbage.
+TEST(LoggerRecorder, SignedMessagesAreWrittenLikeUnsignedOnes) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_signed");
+  Capture cap;
+  Recorder rec(registry, cap.Options(dir));
+  MessageAuth auth("0123456789abcdef0123456789abcdef");
+  for (int64_t seq = 0; seq < 3; ++seq) {
+    const auto b = Encode(testing::KnownRobotState(seq, 2, 1));
+    std::vector<uint8_t> signed_message;
+    auth.Sign("MRSIM_STATE_a", b.data(), b.size(), 1000 + seq, &signed_message);
+    rec.OnMessage("MRSIM_STATE_a", signed_message.data(),
+                  signed_message.size());
+  }
+  rec.Flush();
+  const auto stats = rec.Stats();
+  ASSERT_EQ(stats.size(), 1u);
+  EXPECT_EQ(stats[0].rows, 3);
+  EXPECT_EQ(stats[0].malformed, 0);
 }
 
 // A lockstep simulator re-sends the states its controllers have not

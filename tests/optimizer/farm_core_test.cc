@@ -62,11 +62,38 @@ opt_heartbeat_t Beat(const FarmMasterCore& m, const std::string& id,
   hb.run_id = m.run_id();
   hb.scenario_hash = m.scenario_hash();
   hb.slots = 1;
+  hb.build = BuildFingerprint();
   hb.jobs = std::move(held);
   hb.job_count = static_cast<int32_t>(hb.jobs.size());
   hb.done = std::move(done);
   hb.done_count = static_cast<int32_t>(hb.done.size());
   return hb;
+}
+
+TEST(FarmMasterCore, WorkerOfAnotherBuildIsRefusedUnlessMixedBuildsAllowed) {
+  std::vector<std::string> log;
+  FarmSettings settings;
+  settings.log = [&](const std::string& line) { log.push_back(line); };
+  FarmMasterCore m(Payload(100), "run", 1, settings);
+  opt_heartbeat_t other = Beat(m, "odd");
+  other.build = "mrsim 0.0.1; gcc 9; MuJoCo 2.3.0; x86_64";
+  m.OnHeartbeat(other, 0.0);
+  m.OnHeartbeat(other, 0.1);
+  m.OnHeartbeat(Beat(m, "same"), 0.0);
+  EXPECT_EQ(m.workers_alive(), 1);
+  EXPECT_EQ(m.counters().heartbeats_refused, 2);
+  // Said once, naming the worker and both builds.
+  const auto said = std::count_if(log.begin(), log.end(), [](const auto& l) {
+    return l.find("refused worker odd") != std::string::npos;
+  });
+  EXPECT_EQ(said, 1);
+  m.StartBatch(Batch(4, 0), 0.0);
+  for (const auto& job : m.Tick(0.0).jobs) EXPECT_EQ(job.worker_id, "same");
+
+  settings.allow_mixed_builds = true;
+  FarmMasterCore mixed(Payload(100), "run", 1, settings);
+  mixed.OnHeartbeat(other, 0.0);
+  EXPECT_EQ(mixed.workers_alive(), 1);
 }
 
 TEST(FarmMasterCore, EveryReadyWorkerGetsAJobBeforeAnyGetsASecond) {
@@ -819,6 +846,78 @@ TEST(SimFarm, AHundredWorkersAreFedWithoutIdling) {
   RunAndCheck(farm, 5, 400);
   // 2000 one-second episodes on 100 workers: about 20 s when nobody idles.
   EXPECT_LT(farm.now() - t0, 20.0 * 1.15);
+}
+
+TEST(FarmVerify, LyingWorkerIsOutvotedDroppedAndItsResultsRedone) {
+  std::vector<std::string> log;
+  FarmSettings settings;
+  settings.verify = 0.5;
+  settings.log = [&](const std::string& line) { log.push_back(line); };
+  SimFarm farm(Payload(2000), settings, SimNetwork{});
+  farm.AddWorker("a", 1.0);
+  farm.AddWorker("b", 1.0);
+  farm.AddWorker("liar", 1.0);
+  farm.SetLiar("liar", true);
+  farm.RunUntil(3.0);
+  // Every result is the genome's own, as a local run gives.
+  RunAndCheck(farm, 4, 12);
+  const FarmCounters& c = farm.master().counters();
+  EXPECT_EQ(c.workers_dropped, 1);
+  EXPECT_GE(c.results_verified, 1);
+  EXPECT_EQ(farm.master().workers_alive(), 2);
+  const auto said = std::count_if(log.begin(), log.end(), [](const auto& l) {
+    return l.find("worker liar dropped for this run") != std::string::npos;
+  });
+  EXPECT_EQ(said, 1);
+  // Dropped for good: no job reaches it after that.
+  const long long jobs_to_liar = farm.jobs_addressed_to("liar");
+  RunAndCheck(farm, 2, 12);
+  EXPECT_EQ(farm.jobs_addressed_to("liar"), jobs_to_liar);
+}
+
+TEST(FarmVerify, LiarWhoseResultsWereTakenHasThemRedone) {
+  // The liar answers first (it is faster), so some of its unverified
+  // results are in the batch before a verified job catches it.
+  FarmSettings settings;
+  settings.verify = 0.25;
+  SimFarm farm(Payload(2000), settings, SimNetwork{});
+  farm.AddWorker("a", 1.0);
+  farm.AddWorker("b", 1.0);
+  farm.AddWorker("liar", 0.2);
+  farm.SetLiar("liar", true);
+  farm.RunUntil(3.0);
+  RunAndCheck(farm, 1, 16);
+  EXPECT_EQ(farm.master().counters().workers_dropped, 1);
+  EXPECT_GE(farm.master().counters().results_redone, 1);
+}
+
+TEST(FarmVerify, HonestFarmVerifiesTheAskedShareAndDropsNobody) {
+  FarmSettings settings;
+  settings.verify = 0.25;
+  SimFarm farm(Payload(2000), settings, SimNetwork{});
+  for (int w = 0; w < 4; ++w) farm.AddWorker("w" + std::to_string(w), 1.0);
+  farm.RunUntil(3.0);
+  RunAndCheck(farm, 2, 16);
+  EXPECT_EQ(farm.master().counters().results_verified, 8);  // 32 x 0.25
+  EXPECT_EQ(farm.master().counters().workers_dropped, 0);
+  EXPECT_EQ(farm.episodes_run(), 40);
+}
+
+TEST(FarmVerify, WithoutVerifyALiarGoesUnnoticed) {
+  // What the test harness's liar does to an unverified farm.
+  SimFarm farm(Payload(2000), FarmSettings{}, SimNetwork{});
+  farm.AddWorker("a", 1.0);
+  farm.AddWorker("liar", 1.0);
+  farm.SetLiar("liar", true);
+  farm.RunUntil(3.0);
+  const std::vector<Genome> batch = Batch(8, 0);
+  std::vector<EvalResult> results;
+  ASSERT_TRUE(farm.Evaluate(batch, 600, &results));
+  int wrong = 0;
+  for (size_t i = 0; i < batch.size(); ++i) {
+    wrong += results[i].fitness != SimFitness(batch[i]);
+  }
+  EXPECT_GT(wrong, 0);
 }
 
 }  // namespace

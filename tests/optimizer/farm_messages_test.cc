@@ -36,7 +36,7 @@ TEST(FarmEvaluator, IgnoresOtherRunsOtherPayloadsAndGarbage) {
       {testing::BinaryPath("optimizer/process/mrsim-worker"), "--lcm-url", url,
        "--id", "honest"},
       dir + "/worker.log");
-  lcm::LCM lcm(url);
+  SignedLcm lcm(url);
   ASSERT_TRUE(lcm.good());
   FarmSettings settings;
   // The honest worker must not be dropped because a loaded machine left it

@@ -104,6 +104,41 @@ TEST(FarmProcess, KilledAndLateWorkersGiveTheLocalResult) {
   ExpectSameResult(local, dir);
 }
 
+// A signed farm checked by --verify: a worker without the key gets no job
+// and a worker that lies is outvoted and dropped; the result is the local
+// run's.
+TEST(FarmProcess, SignedVerifiedFarmShutsOutIntrudersAndLiars) {
+  const std::string local = LocalReference("farm_signed_local_ref");
+  const std::string url = TestLcmUrl(7705);
+  const std::string dir = TempDir("farm_signed");
+  const std::string key = dir + "/farm.key";
+  ChildProcess keygen({BinaryPath("launcher/mrsim"), "keygen", key});
+  ASSERT_EQ(keygen.Wait(30), 0);
+  auto worker = [&](const std::string& id, std::vector<std::string> more) {
+    std::vector<std::string> argv{BinaryPath("optimizer/process/mrsim-worker"),
+                                  "--lcm-url", url, "--id", id};
+    argv.insert(argv.end(), more.begin(), more.end());
+    return std::make_unique<ChildProcess>(argv, dir + "/" + id + ".log");
+  };
+  auto w1 = worker("w1", {"--key-file", key});
+  auto w2 = worker("w2", {"--key-file", key});
+  auto liar = worker("liar", {"--key-file", key, "--test-lie", "1"});
+  auto intruder = worker("intruder", {});
+  ChildProcess master(With(OptArgs(dir), {"--farm", "--lcm-url", url,
+                                          "--key-file", key, "--verify", "1"}),
+                      dir + "/master.log");
+  ASSERT_EQ(master.Wait(120), 0) << master.Output();
+  EXPECT_NE(master.Output().find("worker liar dropped for this run"),
+            std::string::npos)
+      << master.Output();
+  EXPECT_EQ(master.Output().find("worker intruder"), std::string::npos)
+      << master.Output();
+  intruder->Stop();
+  EXPECT_NE(intruder->Output().find("stopping; 0 jobs done"), std::string::npos)
+      << intruder->Output();
+  ExpectSameResult(local, dir);
+}
+
 // With islands the master keeps the next island's generation on the farm
 // while one ends; the result is still the local run's.
 TEST(FarmProcess, IslandsOnTheFarmGiveTheLocalResult) {

@@ -74,6 +74,8 @@ class SimFarm {
     workers_.at(id).partitioned = on;
   }
   void SetDeaf(const std::string& id, bool on) { workers_.at(id).deaf = on; }
+  // A worker that lies: every fitness it reports is off by one.
+  void SetLiar(const std::string& id, bool on) { workers_.at(id).lies = on; }
   void SetNetwork(SimNetwork net) { net_ = net; }
   // Drop the next `n` results a worker sends.
   void DropResults(const std::string& id, int n) {
@@ -126,6 +128,7 @@ class SimFarm {
     double episode = 1.0;
     bool partitioned = false;
     bool deaf = false;
+    bool lies = false;
     int drop_results = 0;
     std::multimap<double, WorkerTask> running;
   };
@@ -247,6 +250,7 @@ class SimFarm {
         r.generation = task.generation;
         r.index = task.index;
         r.fitness = r.distance = SimFitness(task.genome);
+        if (n.lies) r.fitness += 1.0;
         r.eval_seconds = n.episode;
         n.core->OnEpisodeDone(r, now_);
       }

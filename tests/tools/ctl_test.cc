@@ -281,7 +281,7 @@ TEST(MrsimCtl, UnreadableMessagesOnTheStatusChannelAreNamed) {
         },
         [&] { return done.load(); }, 0.02, 60);
   });
-  lcm::LCM lcm(url);
+  SignedLcm lcm(url);
   CtlOptions options;
   options.timeout = 1.0;
   options.sender = "ctl-test";

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/scenario_xml.h"
@@ -21,9 +22,12 @@ int main(int argc, char** argv) {
     if (parsed >= 0) return parsed;
     mrsim::InstallStopHandlers();
     mrsim::CheckViewOptions(options);
-    std::unique_ptr<lcm::LCM> lcm;
+    std::unique_ptr<mrsim::SignedLcm> lcm;
     if (options.from_log.empty()) {
-      lcm = std::make_unique<lcm::LCM>(options.lcm_url);
+      lcm = std::make_unique<mrsim::SignedLcm>(
+          options.lcm_url, options.auth.Load(), [](const std::string& line) {
+            std::fprintf(stderr, "mrsim-view: %s\n", line.c_str());
+          });
     }
     return mrsim::RunView(options, lcm.get(), stderr);
   } catch (const mrsim::UsageError& e) {

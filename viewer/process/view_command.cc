@@ -28,7 +28,7 @@ using Clock = std::chrono::steady_clock;
 // --queue per robot), instead of LCM dropping states while we are busy.
 class Receiver {
  public:
-  Receiver(lcm::LCM* lcm, StateInbox* inbox, std::mutex* mutex)
+  Receiver(SignedLcm* lcm, StateInbox* inbox, std::mutex* mutex)
       : lcm_(lcm), inbox_(inbox), mutex_(mutex) {
     // The inbox's own list: a channel it handles but nobody subscribed to
     // (the gait status once) leaves the overlay silently empty.
@@ -79,7 +79,7 @@ class Receiver {
     }
   }
 
-  lcm::LCM* lcm_;
+  SignedLcm* lcm_;
   StateInbox* inbox_;
   std::mutex* mutex_;
   std::condition_variable arrived_;
@@ -155,7 +155,7 @@ void CheckViewOptions(const ViewOptions& opt) {
   }
 }
 
-int RunView(const ViewOptions& opt, lcm::LCM* lcm, std::FILE* err) {
+int RunView(const ViewOptions& opt, SignedLcm* lcm, std::FILE* err) {
   CheckViewOptions(opt);
   const Scenario scenario = ReadScenarioFile(opt.scenario);
 

@@ -1,13 +1,14 @@
 // mrsim-view as library code: opens the window or the off-screen context,
 // builds the viewer, and runs the frame pump over a live LCM stream (states
 // received on their own thread) or an .lcmlog, printing progress and a
-// summary. main parses the flags, owns the lcm::LCM and calls RunView.
+// summary. main parses the flags, owns the SignedLcm and calls RunView.
 #pragma once
 
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "lcmtypes/runtime/signed_lcm.h"
 #include "viewer/process/view_options.h"
 
 namespace mrsim {
@@ -28,6 +29,6 @@ void CheckViewOptions(const ViewOptions& options);
 // --from-log). Nothing is written unless a frame is rendered. Returns 0;
 // throws ViewInputError, ScenarioError, std::invalid_argument (bad input)
 // or std::runtime_error.
-int RunView(const ViewOptions& options, lcm::LCM* lcm, std::FILE* err);
+int RunView(const ViewOptions& options, SignedLcm* lcm, std::FILE* err);
 
 }  // namespace mrsim

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/cli_exit.h"
+#include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 
@@ -42,6 +43,7 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("--lcm-url", o->lcm_url, "LCM URL (default: LCM's own)");
+  AddAuthFlags(app, o->auth);
   app.add_option("--prefix", o->prefix, "Channel prefix")
       ->capture_default_str();
   app.add_option("--robot", o->viewer.follow_robot,

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "lcmtypes/runtime/message_key.h"
 #include "viewer/state_viewer.h"
 
 namespace mrsim {
@@ -11,6 +12,7 @@ namespace mrsim {
 struct ViewOptions {
   std::string scenario;
   std::string lcm_url;  // empty: LCM's default
+  AuthFlags auth;
   std::string prefix = "MRSIM";
   std::string from_log;    // .lcmlog to replay instead of listening
   std::string out;         // MP4 path
