@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <lcm/lcm-cpp.hpp>
 
+#include "lcmtypes/runtime/message_auth.h"
 #include "mrsim/wire_check.hpp"
 
 namespace mrsim {
@@ -27,12 +28,23 @@ inline std::atomic<int64_t>& WireRejections() {
 // fingerprint, every length within the bytes and its field's maximum), then
 // decoded into `msg`. `error` (optional) says which field was refused.
 // Never throws and never allocates more than the message's own size.
+//
+// A message signed by a sender with a key (lcmtypes/runtime/message_auth.h)
+// ends with the signature trailer. A receiver with the key has checked and
+// removed it before decoding; one without a key (a viewer, lcm-spy) reads
+// the message and ignores the trailer, as it reads unsigned traffic.
 template <class Message>
 bool DecodeMessage(const void* data, size_t size, Message* msg,
                    WireError* error = nullptr) noexcept {
   if (!CheckWire<Message>(data, size, error)) {
-    WireRejections().fetch_add(1, std::memory_order_relaxed);
-    return false;
+    const size_t unsigned_size = MessageAuth::SizeWithoutTrailer(data, size);
+    if (unsigned_size == size ||
+        !CheckWire<Message>(data, unsigned_size, nullptr)) {
+      WireRejections().fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
+    size = unsigned_size;
+    if (error) *error = WireError{};
   }
   try {
     // The check bounds size by the types' maxima, far below INT32_MAX.

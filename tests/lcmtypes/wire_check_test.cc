@@ -175,4 +175,26 @@ TEST(WireCheck, ArrayOverItsDeclaredMaximumIsRefusedEvenWhenTheBytesAreThere) {
 }
 
 }  // namespace
+
+TEST(WireCheck,
+     AReaderWithoutTheKeyDecodesSignedMessagesAndNothingElseAfterThem) {
+  robot_state_t m{};
+  m.robot = "snake";
+  m.seq = 42;
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  MessageAuth auth(std::string(32, 'k'));
+  std::vector<uint8_t> signed_bytes;
+  auth.Sign("MRSIM_STATE_snake", bytes.data(), bytes.size(), 1000,
+            &signed_bytes);
+  ASSERT_EQ(signed_bytes.size(), bytes.size() + MessageAuth::kTrailerSize);
+  robot_state_t got{};
+  EXPECT_TRUE(DecodeMessage(signed_bytes.data(), signed_bytes.size(), &got));
+  EXPECT_EQ(got.seq, 42);
+  EXPECT_EQ(got.robot, "snake");
+  // Any other bytes after a message are still refused.
+  std::vector<uint8_t> padded = bytes;
+  padded.resize(bytes.size() + MessageAuth::kTrailerSize, 0);
+  EXPECT_FALSE(DecodeMessage(padded.data(), padded.size(), &got));
+}
 }  // namespace mrsim
