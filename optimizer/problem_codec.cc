@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/exact_number.h"
+#include "common/input_limits.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
 #include "sim_core/base64.h"
@@ -76,6 +77,13 @@ EpisodeSettings DecodeEpisode(const std::string& text,
 // Refuses a scenario text that names a file before it is parsed (parsing
 // would open the image to validate it).
 void CheckNamesNoFile(const std::string& xml, const std::string& source) {
+  // tinyxml2 parses recursively: a payload from the network is held to the
+  // same size and depth limits as a file before it is parsed.
+  try {
+    CheckXmlLimits(xml, source);
+  } catch (const InputLimitError& err) {
+    throw ProblemError(err.what());
+  }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw ProblemError(source + ": scenario is not well-formed XML");

@@ -95,13 +95,17 @@ budget=$(( budget_min * 60 ))
 # already ran. A crash fails the run and names the input.
 if [ -z "$sanitize" ] && [ "$stage" = 1 ] && [ "$rc" = 0 ]; then
   fuzz_s="${MRSIM_FUZZ_SECONDS:-10}"
-  echo "== fuzz targets, ${fuzz_s}s each (build-fuzz/)"
+  fuzz_left=$(( budget - SECONDS - 60 ))
+  [ "$fuzz_left" -lt 120 ] && fuzz_left=120
+  echo "== fuzz targets, ${fuzz_s}s each (build-fuzz/; stopped after $(( fuzz_left / 60 )) min)"
   set +e
-  bash "$root/scripts/fuzz.sh" "$fuzz_s" >"$build/fuzz_stage.log" 2>&1
+  timeout -k 20 "$fuzz_left" bash "$root/scripts/fuzz.sh" "$fuzz_s" >"$build/fuzz_stage.log" 2>&1
   frc=$?
   set -e
   grep -E '^(BENCH|fuzz: .*(FAILED|failed|no crash))' "$build/fuzz_stage.log" || true
-  if [ "$frc" != 0 ]; then
+  if [ "$frc" = 124 ] || [ "$frc" = 137 ]; then
+    echo "fuzz: stopped at the time budget, not run to the end (log: $build/fuzz_stage.log)"
+  elif [ "$frc" != 0 ]; then
     grep -v '^BENCH' "$build/fuzz_stage.log" | tail -60
     echo "fuzz: FAILED (full log: $build/fuzz_stage.log)"
     rc=1

@@ -237,6 +237,23 @@ TEST(OptimizerProblem, PayloadRoundTripsAndNamesNoFile) {
                ProblemError);
 }
 
+TEST(OptimizerProblem, APayloadNestedTenThousandDeepIsRefusedBeforeParsing) {
+  std::string payload = EncodeProblem(SnakeProblem(3.0));
+  const size_t at = payload.find("<Scenario");
+  ASSERT_NE(at, std::string::npos);
+  std::string deep;
+  for (int i = 0; i < 10000; ++i) deep += "<a>";
+  for (int i = 0; i < 10000; ++i) deep += "</a>";
+  payload.insert(at, deep);
+  try {
+    DecodeProblem(payload, "farm payload");
+    FAIL() << "a 10,000-deep payload was accepted";
+  } catch (const ProblemError& e) {
+    EXPECT_NE(std::string(e.what()).find("farm payload"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(OptimizerEpisode, SeededLocalRunGivesTheSameResultTwice) {
   const Problem problem = SnakeProblem(1.0);
   AlgorithmSettings settings;
