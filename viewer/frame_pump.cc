@@ -16,7 +16,7 @@ FramePump::FramePump(StateViewer* viewer, FrameScheduler* scheduler,
       gait_text_(std::move(gait_text)),
       mutex_(mutex) {}
 
-bool FramePump::Drain(int64_t max_renders) {
+bool FramePump::Drain(int64_t max_renders, const std::function<bool()>& stop) {
   // Only a window shows frames nobody keeps: those may be skipped.
   const bool newest_only = window_ != nullptr && !make_writer_;
   int64_t renders = 0;
@@ -68,6 +68,7 @@ bool FramePump::Drain(int64_t max_renders) {
     if (!writer_ && make_writer_) writer_ = make_writer_();
     if (writer_) writer_->Write(image_, frame.index);
     ++frames_;
+    if (stop && stop()) return true;
     if (changed && window_ != nullptr) {
       // Input between pictures, however many are due: q and Esc act at
       // once, drags and zoom apply to the next picture.

@@ -40,7 +40,10 @@ class FramePump {
   // (counted in dropped()): only the newest due frame is drawn. Frames are
   // dropped, input never. Returns false once max_frames is reached. Throws what
   // the writer throws.
-  bool Drain(int64_t max_renders = std::numeric_limits<int64_t>::max());
+  // `stop` (may be empty), asked after every frame, ends the call early: a
+  // stop signal is not kept waiting by a backlog of frames to write.
+  bool Drain(int64_t max_renders = std::numeric_limits<int64_t>::max(),
+             const std::function<bool()>& stop = nullptr);
   // Window only: handles input and redraws after camera moves or a resize
   // while no new frame is due.
   void Refresh();

@@ -222,7 +222,10 @@ int RunView(const ViewOptions& opt, SignedLcm* lcm, std::FILE* err) {
       }
       // With a window, one picture at a time: its input (q, Esc, drags)
       // is handled between pictures however slow they are.
-      pump.Drain(window ? 1 : std::numeric_limits<int64_t>::max());
+      // Without one, a backlog of frames to write still yields to a stop
+      // signal after each frame.
+      pump.Drain(window ? 1 : std::numeric_limits<int64_t>::max(),
+                 [] { return StopRequested(); });
       if (window) {
         pump.Refresh();
         if (window->ShouldClose()) break;
