@@ -379,7 +379,7 @@ def main():
                         help="the build folder (programs in BUILD/bin)")
     parser.add_argument("--slow", action="store_true",
                         help="run the blocks marked slow (and root) instead")
-    parser.add_argument("--port", type=int, default=7990,
+    parser.add_argument("--port", type=int, default=7993,
                         help="LCM port (plus MRSIM_TEST_PORT_OFFSET)")
     parser.add_argument("--scratch", help="scratch folder (default BUILD/docs_runner)")
     parser.add_argument("--only", help="run only blocks at FILE[:LINE]")
