@@ -507,7 +507,9 @@ counted in `malformed` and dropped.)doc");
   c.def_property_readonly("repeated", &Transport::repeated,
                           "Re-sent states answered again.");
   c.def("publish_raw", &Transport::PublishRaw, py::arg("channel"),
-        py::arg("data"), "Publishes bytes as they are (for tests).");
+        py::arg("data"),
+        "Publishes bytes as they are, signed when the transport has a key "
+        "(for tests).");
   c.def("publish_state", &Transport::PublishState, py::arg("channel"),
         py::arg("state"), "Publishes a State as a robot_state_t.");
   c.def_property_readonly("malformed", &Transport::malformed,

@@ -23,7 +23,11 @@ def keygen(path):
 
 
 def next_status(node, accept=lambda s: True, timeout=20):
-    return node._next(node._channel_of("sim_status", None), timeout, accept)
+    """The next simulator status for which accept(status) holds."""
+    for status in node.messages("sim_status", timeout=timeout):
+        if accept(status):
+            return status
+    raise AssertionError("no such simulator status within %s s" % timeout)
 
 
 def test_signed_node_steers_the_simulator_and_an_unkeyed_one_is_ignored(
@@ -63,14 +67,19 @@ def test_signed_node_steers_the_simulator_and_an_unkeyed_one_is_ignored(
     later = next_status(intruder, lambda s: s.time > first.time)
     assert first.mode == later.mode == "running"
 
-    # What the intruder sends to the signed node is counted and dropped.
+    # What the intruder, or a node with another key, sends to the signed
+    # node is counted and dropped.
+    forger = mrsim.Node(url=url, name="forger",
+                        key_file=keygen(str(tmp_path / "other.key")))
     state.seq += 1000
 
     def dropped():
         intruder.publish_state(state)
+        forger.publish_state(state)
         node.spin_once(0.1)
-        return node.auth_counts()["unsigned"] > 0
-    wait_until(dropped, 30, "the signed node to drop an unsigned state")
+        counts = node.auth_counts()
+        return counts["unsigned"] > 0 and counts["forged"] > 0
+    wait_until(dropped, 30, "the signed node to drop the foreign states")
     assert node.next_state("snake", timeout=10).seq < state.seq
 
     # The signed node's pause is applied.
