@@ -12,7 +12,8 @@ mrsim._core); nothing is implemented a second time in Python.
   ``sim.set_controller(gait); sim.run(10)``.
 - Episodes and the optimiser: ``run_episode``, ``mrsim.optimize``.
 - Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
-- LCM: ``Node`` (states, commands, lockstep, simulator control).
+- LCM: ``Node`` (states, commands, lockstep, simulator control; signed
+  with a key file, ``KeyFileError`` when it cannot be used).
 - Gymnasium-style environment: ``mrsim.env.ChainEnv``.
 """
 
@@ -21,6 +22,7 @@ from ._core import (  # noqa: F401
     Gait,
     GaitError,
     GenomeError,
+    KeyFileError,
     LogError,
     PhysicsError,
     Scenario,
@@ -47,7 +49,7 @@ def load_scenario(path, frame=None, length_scale=1.0):
 
 __all__ = [
     "CheckpointError", "ControlError", "Gait", "GaitError", "GenomeError",
-    "LogError", "Message", "Node", "POSE_FIELDS", "PhysicsError", "Scenario",
+    "KeyFileError", "LogError", "Message", "Node", "POSE_FIELDS", "PhysicsError", "Scenario",
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
     "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",

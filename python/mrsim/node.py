@@ -7,6 +7,11 @@ the C++ programs. Messages are decoded by the C++ message types (with the
 project's checked decoding; messages that do not decode are counted in
 ``Node.malformed`` and dropped).
 
+With a key (``key_file``, else ``$MRSIM_KEY_FILE``, as the C++ programs)
+the node signs what it publishes and drops unsigned, forged and replayed
+messages with the C++ programs' transport; ``Node.auth_counts()`` counts
+them (docs/security.md).
+
 A controller in lockstep (``mrsim-sim --clock lockstep --controllers NAME``)::
 
     node = mrsim.Node(name="NAME")
@@ -51,28 +56,31 @@ class Node:
 
     def __init__(self, url: Optional[str] = None, prefix: str = "MRSIM",
                  key_file: Optional[str] = None,
-                 name: Optional[str] = None) -> None:
+                 name: Optional[str] = None,
+                 accept_replays: bool = False) -> None:
         """Opens LCM.
 
         url: the LCM URL (default: $LCM_DEFAULT_URL, else mrsim's default
         udpm://239.255.76.67:7667?ttl=0). prefix: the channel prefix the
         programs were started with (--prefix). name: the sender name, what
         mrsim-sim --controllers lists (default python-<pid>).
-        key_file: signing key; message signing is not part of this build
-        yet, so giving one raises NotImplementedError rather than sending
-        unsigned messages the user believes signed.
+        key_file: a key written by ``mrsim keygen``, as the programs'
+        --key-file (None: $MRSIM_KEY_FILE, else unsigned): every message
+        is signed, and received ones that are unsigned, forged or replayed
+        are dropped and counted (auth_counts()). A key file that is
+        missing, readable by group or others or not a key raises
+        mrsim.KeyFileError (a ValueError) naming it. accept_replays: as
+        --accept-replays, take signed messages whatever their timestamp
+        (a log played back with lcm-logplayer).
         """
-        if key_file is not None:
-            raise NotImplementedError(
-                "key_file: message signing is not available in this build "
-                "of mrsim")
         if not prefix:
             raise ValueError("prefix: expected a non-empty channel prefix")
         url = url or os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
         self.url = url
         self.prefix = prefix
         self.name = name or "python-%d" % os.getpid()
-        self._lcm = _core.LcmTransport(url)
+        self._lcm = _core.LcmTransport(url, key_file or "",
+                                       bool(accept_replays))
         self._types: Dict[str, str] = {}
         self._callbacks: Dict[str, List[Callable[[Any], None]]] = {}
         self._queues: Dict[str, collections.deque] = {}
@@ -352,6 +360,16 @@ class Node:
     def malformed(self) -> int:
         """Messages on our channels that did not decode (dropped)."""
         return self._lcm.malformed
+
+    @property
+    def signing(self) -> bool:
+        """True when the node signs and checks messages (it has a key)."""
+        return self._lcm.signing
+
+    def auth_counts(self) -> Dict[str, int]:
+        """Signed messages taken ('accepted') and messages dropped as
+        'unsigned', 'forged' or 'replayed' (all 0 without a key)."""
+        return dict(self._lcm.auth_counts())
 
     def fileno(self) -> int:
         """LCM's file descriptor (readable when messages wait)."""

@@ -2,12 +2,15 @@
 // subscribes raw, decodes every message with the C++ generated types and
 // the project's checked decoding (DecodeMessage; a message that does not
 // decode is counted and dropped), and hands decoded messages to Python as
-// State objects and dicts. Waiting happens with the GIL released.
+// State objects and dicts. Waiting happens with the GIL released. With a
+// key it is a SignedLcm, the C++ programs' transport: it signs what it
+// publishes and drops (and counts) unsigned, forged and replayed messages.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
@@ -19,6 +22,9 @@
 
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/message_key.h"
+#include "lcmtypes/runtime/signed_lcm.h"
+#include "lcmtypes/runtime/usage_error.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
@@ -33,6 +39,17 @@ namespace py = pybind11;
 
 namespace mrsim::python {
 namespace {
+
+// A key file the transport cannot use; mrsim.KeyFileError in Python.
+class KeyFileError : public std::runtime_error {
+ public:
+  KeyFileError(const std::string& what, std::string path)
+      : std::runtime_error(what), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
 
 using Message =
     std::variant<robot_state_t, scene_state_t, sim_status_t, gait_status_t,
@@ -196,7 +213,11 @@ class Transport {
   static constexpr size_t kMaxQueued = 100000;
   static constexpr size_t kRecentAnswers = 8;
 
-  explicit Transport(const std::string& url) : lcm_(url) {
+  // key_file: as --key-file ('' falls back to $MRSIM_KEY_FILE, else
+  // unsigned). A key file that cannot be used throws KeyFileError.
+  Transport(const std::string& url, const std::string& key_file,
+            bool accept_replays)
+      : lcm_(url, LoadKey(key_file, accept_replays)) {
     if (!lcm_.good()) {
       throw std::runtime_error("LCM: cannot open '" + url +
                                "' (for multicast on loopback see README.md, "
@@ -211,7 +232,10 @@ class Transport {
       throw std::invalid_argument("unknown message type '" + type + "'");
     }
     auto sub = std::make_unique<Sub>(Sub{this, t});
-    lcm_.subscribeFunction(channel, &Transport::OnMessage, sub.get());
+    if (lcm_.subscribeFunction(channel, &Transport::OnMessage, sub.get()) ==
+        nullptr) {
+      throw std::runtime_error("LCM: cannot subscribe to " + channel);
+    }
     subs_.push_back(std::move(sub));
   }
 
@@ -328,6 +352,17 @@ class Transport {
   }
 
   int64_t malformed() const { return malformed_; }
+  bool signing() const { return lcm_.signing(); }
+  std::string describe() const { return lcm_.Describe(); }
+  py::dict auth_counts() const {
+    const MessageAuth::Counts c = lcm_.counts();
+    py::dict d;
+    d["accepted"] = c.accepted;
+    d["unsigned"] = c.unsigned_;
+    d["forged"] = c.forged;
+    d["replayed"] = c.replayed;
+    return d;
+  }
   int64_t repeated() const { return repeated_; }
   int64_t command_seq() const { return command_seq_; }
   void set_command_seq(int64_t seq) { command_seq_ = seq; }
@@ -388,7 +423,18 @@ class Transport {
     }
   }
 
-  lcm::LCM lcm_;
+  static AuthConfig LoadKey(const std::string& key_file, bool accept_replays) {
+    try {
+      return LoadAuthConfig(key_file, accept_replays);
+    } catch (const UsageError& e) {
+      const char* env = std::getenv(kKeyFileEnv);
+      throw KeyFileError(e.what(), key_file.empty() && env != nullptr
+                                       ? std::string(env)
+                                       : key_file);
+    }
+  }
+
+  SignedLcm lcm_;
   std::vector<std::unique_ptr<Sub>> subs_;
   struct Answers {
     std::string channel;
@@ -406,12 +452,33 @@ class Transport {
 }  // namespace
 
 void BindLcm(py::module_& m) {
+  static py::exception<KeyFileError> key_error(m, "KeyFileError",
+                                               PyExc_ValueError);
+  key_error.attr("__doc__") =
+      "A key file that cannot be used for message signing (missing, "
+      "readable or writable by group or others, not a key, too short). "
+      "str() names the file and what is wrong; the attribute path holds it.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const KeyFileError& e) {
+      py::object exc = py::reinterpret_borrow<py::object>(key_error)(e.what());
+      exc.attr("path") = e.path();
+      PyErr_SetObject(key_error.ptr(), exc.ptr());
+    }
+  });
   py::class_<Transport> c(m, "LcmTransport", R"doc(
 The LCM connection of mrsim.Node (use Node): subscriptions decoded with
 the C++ message types and checked decoding, messages that do not decode
 counted in `malformed` and dropped.)doc");
-  c.def(py::init<const std::string&>(), py::arg("url"),
-        "Opens LCM at url ('' for LCM's default or $LCM_DEFAULT_URL).");
+  c.def(py::init<const std::string&, const std::string&, bool>(),
+        py::arg("url"), py::arg("key_file") = "",
+        py::arg("accept_replays") = false,
+        "Opens LCM at url ('' for LCM's default or $LCM_DEFAULT_URL). "
+        "key_file: sign and check messages with this key, as --key-file "
+        "('': $MRSIM_KEY_FILE, else unsigned); raises KeyFileError naming "
+        "the file when it cannot be used. accept_replays: as "
+        "--accept-replays.");
   c.def("subscribe", &Transport::Subscribe, py::arg("channel"), py::arg("type"),
         "Subscribes a channel (regex) decoded as one of robot_state, "
         "scene_state, sim_status, gait_status, joint_command, sim_control, "
@@ -440,13 +507,22 @@ counted in `malformed` and dropped.)doc");
   c.def_property_readonly("repeated", &Transport::repeated,
                           "Re-sent states answered again.");
   c.def("publish_raw", &Transport::PublishRaw, py::arg("channel"),
-        py::arg("data"), "Publishes bytes as they are (for tests).");
+        py::arg("data"),
+        "Publishes bytes as they are, signed when the transport has a key "
+        "(for tests).");
   c.def("publish_state", &Transport::PublishState, py::arg("channel"),
         py::arg("state"), "Publishes a State as a robot_state_t.");
   c.def_property_readonly("malformed", &Transport::malformed,
                           "Messages that did not decode (dropped).");
   c.def_property_readonly("dropped", &Transport::dropped,
                           "Decoded messages dropped because nobody read them.");
+  c.def_property_readonly("signing", &Transport::signing,
+                          "True when messages are signed and checked.");
+  c.def("describe", &Transport::describe,
+        "'messages signed with KEYFILE' or 'messages unsigned (no key)'.");
+  c.def("auth_counts", &Transport::auth_counts,
+        "Signed messages accepted and messages dropped as unsigned, forged or "
+        "replayed, as a dict (all zero without a key).");
   c.def("fileno", &Transport::fileno,
         "LCM's file descriptor, readable when traffic waits (select/poll).");
 }

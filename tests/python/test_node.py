@@ -96,8 +96,8 @@ def test_controls_are_acknowledged_and_refusals_raise(tmp_path, children):
 
 
 def test_bad_node_arguments_raise():
-    with pytest.raises(NotImplementedError):
-        mrsim.Node(url=lcm_url(7563), key_file="key.pem")
+    with pytest.raises(mrsim.KeyFileError):
+        mrsim.Node(url=lcm_url(7563), key_file="no-such.key")
     with pytest.raises(ValueError):
         mrsim.Node(url=lcm_url(7563), prefix="")
     node = mrsim.Node(url=lcm_url(7563))
