@@ -132,7 +132,15 @@ class Runner:
 
     def env(self, scratch):
         env = dict(os.environ)
-        env["PATH"] = os.path.join(self.build, "bin") + os.pathsep + env["PATH"]
+        # `python3` in a block is the interpreter the package was built for
+        # (Debian's, with numpy), whatever comes first on the caller's PATH.
+        pybin = os.path.join(scratch, ".python-bin")
+        os.makedirs(pybin, exist_ok=True)
+        link = os.path.join(pybin, "python3")
+        if not os.path.lexists(link):
+            os.symlink("/usr/bin/python3", link)
+        env["PATH"] = os.pathsep.join(
+            [os.path.join(self.build, "bin"), pybin, env["PATH"]])
         env["HOME"] = scratch
         env["LCM_DEFAULT_URL"] = self.url
         env["MRSIM_DOCS_BUILD"] = self.build
