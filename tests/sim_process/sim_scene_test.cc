@@ -10,7 +10,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/scene_state_t.hpp"
 #include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/scene_object_state.h"
