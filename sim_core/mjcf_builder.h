@@ -84,5 +84,4 @@ std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options);
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
                       MjcfInfo* info);
 
-
 }  // namespace mrsim

@@ -415,9 +415,9 @@ class Validator {
                        "join loose frames and sensor modules)";
         }
         const std::string where =
-            use.robot >= 0 ? fmt::format(" in robot '{}'",
-                                         RobotName(s_, use.robot))
-                           : " among the loose parts";
+            use.robot >= 0
+                ? fmt::format(" in robot '{}'", RobotName(s_, use.robot))
+                : " among the loose parts";
         Fail(use.path + "/" + end,
              fmt::format("no {} with guid '{}'{}{}", what, guid, where, hint));
       }
