@@ -27,7 +27,8 @@ std::vector<uint8_t> Encode(const Message& msg) {
 // One request from the window, with hostile arguments.
 void Request(mrsim::fuzz::HostileInput& in,
              const std::vector<std::string>& robots, mrsim::WallTime now,
-             mrsim::LiveSession* session, mrsim::StudioOutbox* out) {
+             mrsim::studio::LiveSession* session,
+             mrsim::studio::StudioOutbox* out) {
   switch (in.Byte() % 4) {
     case 0:
       session->Pause(now, out);
@@ -49,6 +50,7 @@ void Request(mrsim::fuzz::HostileInput& in,
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace mrsim;
+  using namespace mrsim::studio;
   fuzz::HostileInput in(data, size);
   LiveSession session(LiveSessionOptions{});
   session.AddPlot("MRSIM_STATE_snake", "module0.x");

@@ -19,9 +19,9 @@
 #include <functional>
 #include <vector>
 
-#include "studio/design.h"
-#include "studio/headless_studio.h"
-#include "studio/studio_app.h"
+#include "studio/app/headless_studio.h"
+#include "studio/design/design.h"
+#include "studio/ui/studio_app.h"
 
 namespace {
 

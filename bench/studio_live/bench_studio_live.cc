@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "common/subprocess.h"
-#include "studio/design.h"
-#include "studio/frame_pacer.h"
-#include "studio/headless_studio.h"
-#include "studio/studio_app.h"
+#include "studio/app/frame_pacer.h"
+#include "studio/app/headless_studio.h"
+#include "studio/design/design.h"
+#include "studio/ui/studio_app.h"
 
 namespace {
 

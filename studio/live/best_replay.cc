@@ -7,7 +7,7 @@
 #include "optimizer/episode.h"
 #include "sim_core/scenario_xml.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 BestReplay MakeBestReplay(const OptimiseOptions& options,
                           const GenerationRow& row) {
@@ -52,4 +52,4 @@ RunOptions WriteBestReplay(const BestReplay& replay, const std::string& dir,
   return run;
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -12,7 +12,7 @@
 #include "studio/live/live_runner.h"
 #include "studio/live/optimise_session.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 struct BestReplay {
   int generation = -1;  // as in generations.csv (the first is 0)
@@ -37,4 +37,4 @@ BestReplay MakeBestReplay(const OptimiseOptions& options,
 RunOptions WriteBestReplay(const BestReplay& replay, const std::string& dir,
                            RunOptions run);
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

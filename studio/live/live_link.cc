@@ -4,7 +4,7 @@
 
 #include "lcmtypes/runtime/lcm_loop.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 LiveLink::LiveLink(const std::string& url, LiveSession* session,
                    AuthConfig auth)
@@ -36,4 +36,4 @@ int LiveLink::Poll(int timeout_ms) {
 
 void LiveLink::Publish(StudioOutbox* out) { PublishAll(lcm_, out, &buffer_); }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

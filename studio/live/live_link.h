@@ -11,7 +11,7 @@
 #include "lcmtypes/runtime/signed_lcm.h"
 #include "studio/live/live_session.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 class LiveLink {
  public:
@@ -40,4 +40,4 @@ class LiveLink {
   std::vector<uint8_t> buffer_;
 };
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

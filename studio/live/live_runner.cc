@@ -12,7 +12,7 @@
 
 #include "launcher/program_locator.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 std::vector<std::string> LcmArgs(const RunOptions& o) {
@@ -184,4 +184,4 @@ std::string NewRecordingFolder(const std::string& base, std::time_t now) {
   return folder;
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

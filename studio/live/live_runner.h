@@ -14,7 +14,7 @@
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 struct RunOptions {
   std::string scenario_path;        // a saved scenario file
@@ -88,4 +88,4 @@ class LiveRunner {
 // a new recording never overwrites the last. Nothing is created.
 std::string NewRecordingFolder(const std::string& base, std::time_t now);
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

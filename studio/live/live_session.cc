@@ -15,7 +15,7 @@
 #include "logger/generic_flattener.h"
 #include "logger/robot_state_flattener.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 // The requests kept for the window's list; older ones are forgotten.
@@ -497,4 +497,4 @@ std::vector<std::string> LiveSession::Channels() const {
   return names;
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -23,7 +23,7 @@
 #include "mrsim/sim_status_t.hpp"
 #include "studio/live/plot_series.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 using StudioOutbox = Outbox<sim_control_t, gait_command_t>;
 
@@ -158,4 +158,4 @@ class LiveSession {
   std::string last_error_;
 };
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

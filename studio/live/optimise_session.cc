@@ -14,7 +14,7 @@
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 constexpr size_t kConsoleLines = 500;
@@ -318,4 +318,4 @@ std::string GenomePathFor(const std::string& genome_path,
   return genome_path;  // the error names what the user typed
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

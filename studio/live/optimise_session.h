@@ -19,7 +19,7 @@
 #include "optimizer/genome.h"
 #include "studio/live/stall_watch.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 struct OptimiseOptions {
   std::string scenario_path;
@@ -132,4 +132,4 @@ class OptimiseSession {
 std::string GenomePathFor(const std::string& genome_path,
                           const std::string& design_path);
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -5,7 +5,7 @@
 
 #include "logger/csv_columns.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 PlotResult ExportPlotPng(const PlotSeries& series,
                          const std::string& png_path) {
@@ -28,4 +28,4 @@ PlotResult ExportPlotPng(const PlotSeries& series,
   return result;
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

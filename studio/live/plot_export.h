@@ -7,11 +7,11 @@
 #include "logger/plot.h"
 #include "studio/live/plot_series.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 // Draws what `series` holds now (its column against time). Throws
 // PlotInputError when it holds no point, std::runtime_error naming the PNG
 // when it cannot be written.
 PlotResult ExportPlotPng(const PlotSeries& series, const std::string& png_path);
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <utility>
 
-namespace mrsim {
+namespace mrsim::studio {
 
 PlotSeries::PlotSeries(std::string channel, std::string column, double window_s)
     : channel_(std::move(channel)),
@@ -46,4 +46,4 @@ void PlotSeries::Clear() {
   values_.clear();
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

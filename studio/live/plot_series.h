@@ -7,7 +7,7 @@
 #include <deque>
 #include <string>
 
-namespace mrsim {
+namespace mrsim::studio {
 
 class PlotSeries {
  public:
@@ -43,4 +43,4 @@ class PlotSeries {
   int64_t received_ = 0;
 };
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

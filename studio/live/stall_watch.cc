@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace mrsim {
+namespace mrsim::studio {
 
 void StallWatch::Start(long count, WallTime now) {
   started_ = true;
@@ -32,4 +32,4 @@ std::optional<double> StallWatch::Stalled(WallTime now) const {
   return silent;
 }
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

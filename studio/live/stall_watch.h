@@ -8,7 +8,7 @@
 
 #include "lcmtypes/runtime/outbox.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 
 class StallWatch {
  public:
@@ -36,4 +36,4 @@ class StallWatch {
   double longest_ = 0;
 };
 
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -1,6 +1,6 @@
 // The studio's editing model without a window: commands, undo/redo, the
 // validator, and equality with what `mrsim-scenario new` writes.
-#include "studio/design.h"
+#include "studio/design/design.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@
 #include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
-#include "studio/chain_edit.h"
-#include "studio/inspector_fields.h"
+#include "studio/design/chain_edit.h"
+#include "studio/design/inspector_fields.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::studio {

@@ -1,6 +1,6 @@
 // The live view's distance rays: from the sensor's site where the state
 // puts it, along the sensor's direction, as long as the reading.
-#include "studio/live_rays.h"
+#include "studio/ui/live_rays.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // shows exactly the model the physics builds from the saved file, and what
 // it draws after rebuilding in place (context kept) equals a fresh window
 // on that file.
-#include "studio/preview.h"
+#include "studio/ui/preview.h"
 
 #include <GL/gl.h>
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
-#include "studio/design.h"
-#include "studio/headless_studio.h"
-#include "studio/studio_app.h"
+#include "studio/app/headless_studio.h"
+#include "studio/design/design.h"
+#include "studio/ui/studio_app.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::studio {

@@ -11,7 +11,7 @@
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 using testing::SourcePath;
@@ -95,4 +95,4 @@ TEST(StudioBestReplay, AScenarioThatCannotBeReadIsNamed) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

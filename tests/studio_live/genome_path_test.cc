@@ -7,7 +7,7 @@
 #include "studio/live/optimise_session.h"
 #include "tests/common/child_process.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 TEST(GenomePathFor, ARelativePathNotFoundHereIsFoundBesideTheDesign) {
@@ -28,4 +28,4 @@ TEST(GenomePathFor, ARelativePathNotFoundHereIsFoundBesideTheDesign) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -9,7 +9,7 @@
 
 #include "tests/common/child_process.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 using testing::BinaryPath;
@@ -113,4 +113,4 @@ TEST(LiveLink, AttachesToARunningSimulationSteersPausesAndStepsIt) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -15,7 +15,7 @@
 #include "studio/live/live_link.h"
 #include "tests/common/child_process.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 using testing::BinaryPath;
@@ -172,4 +172,4 @@ TEST(LiveRunner, EveryRecordingGetsAFolderOfItsOwn) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

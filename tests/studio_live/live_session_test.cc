@@ -15,7 +15,7 @@
 #include "tests/common/child_process.h"
 #include "tests/logger/test_messages.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 template <typename T>
@@ -283,4 +283,4 @@ TEST_F(LiveSessionTest, APlotExportsAsAPngWithEveryPointItHolds) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

@@ -15,7 +15,7 @@
 #include "studio/live/live_runner.h"
 #include "tests/common/child_process.h"
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 using testing::BinaryPath;
@@ -282,4 +282,4 @@ TEST(OptimiseSession, WatchingABestWithBodyGenesRunsItsBodyWhileTheRunGoesOn) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

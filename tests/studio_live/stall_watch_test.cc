@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace mrsim {
+namespace mrsim::studio {
 namespace {
 
 const WallTime kT0 = WallTime() + std::chrono::hours(1);
@@ -76,4 +76,4 @@ TEST(StudioStallWatch, StartForgetsTheLastRun) {
 }
 
 }  // namespace
-}  // namespace mrsim
+}  // namespace mrsim::studio

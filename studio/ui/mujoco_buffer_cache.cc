@@ -1,4 +1,4 @@
-#include "studio/mujoco_buffer_cache.h"
+#include "studio/ui/mujoco_buffer_cache.h"
 
 #include <mujoco/mujoco.h>
 

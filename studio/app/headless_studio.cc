@@ -1,4 +1,4 @@
-#include "studio/headless_studio.h"
+#include "studio/app/headless_studio.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "studio/gui_setup.h"
+#include "studio/ui/gui_setup.h"
 
 namespace mrsim::studio {
 

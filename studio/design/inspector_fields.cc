@@ -1,4 +1,4 @@
-#include "studio/inspector_fields.h"
+#include "studio/design/inspector_fields.h"
 
 #include <cctype>
 #include <cmath>

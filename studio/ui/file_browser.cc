@@ -1,4 +1,4 @@
-#include "studio/file_browser.h"
+#include "studio/ui/file_browser.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "studio/layout_recorder.h"
+#include "studio/ui/layout_recorder.h"
 
 namespace mrsim::studio {
 

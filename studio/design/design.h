@@ -9,7 +9,7 @@
 
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
-#include "studio/selection.h"
+#include "studio/design/selection.h"
 
 namespace mrsim::studio {
 

@@ -1,4 +1,4 @@
-#include "studio/window_studio.h"
+#include "studio/app/window_studio.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -8,8 +8,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "studio/frame_pacer.h"
-#include "studio/gui_setup.h"
+#include "studio/app/frame_pacer.h"
+#include "studio/ui/gui_setup.h"
 
 namespace mrsim::studio {
 namespace {

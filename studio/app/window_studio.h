@@ -4,7 +4,7 @@
 #include <atomic>
 #include <string>
 
-#include "studio/studio_app.h"
+#include "studio/ui/studio_app.h"
 
 namespace mrsim::studio {
 

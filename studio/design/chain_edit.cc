@@ -1,4 +1,4 @@
-#include "studio/chain_edit.h"
+#include "studio/design/chain_edit.h"
 
 #include <cmath>
 #include <stdexcept>

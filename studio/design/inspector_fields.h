@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "studio/schema.h"
-#include "studio/selection.h"
+#include "studio/design/schema.h"
+#include "studio/design/selection.h"
 
 namespace mrsim::studio {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "sim_core/scenario.h"
-#include "studio/selection.h"
+#include "studio/design/selection.h"
 
 namespace mrsim::studio {
 

@@ -1,4 +1,4 @@
-#include "studio/live_panel.h"
+#include "studio/ui/live_panel.h"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>

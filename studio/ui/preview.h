@@ -17,8 +17,8 @@
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
 #include "sim_core/scene_object_state.h"
-#include "studio/part_map.h"
-#include "studio/selection.h"
+#include "studio/design/selection.h"
+#include "studio/ui/part_map.h"
 #include "viewer/renderer.h"
 
 namespace mrsim {

@@ -1,4 +1,4 @@
-#include "studio/live_rays.h"
+#include "studio/ui/live_rays.h"
 
 #include <algorithm>
 

@@ -9,8 +9,8 @@
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "sim_core/scenario_xml.h"
-#include "studio/headless_studio.h"
-#include "studio/window_studio.h"
+#include "studio/app/headless_studio.h"
+#include "studio/app/window_studio.h"
 #include "viewer/live_window.h"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "studio/layout_recorder.h"
+#include "studio/ui/layout_recorder.h"
 
 #include <cstdio>
 #include <fstream>

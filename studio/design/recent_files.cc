@@ -1,4 +1,4 @@
-#include "studio/recent_files.h"
+#include "studio/design/recent_files.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -14,12 +14,12 @@
 #include <utility>
 #include <vector>
 
-#include "studio/design.h"
-#include "studio/file_browser.h"
-#include "studio/layout_recorder.h"
-#include "studio/live_panel.h"
-#include "studio/preview.h"
-#include "studio/recent_files.h"
+#include "studio/design/design.h"
+#include "studio/design/recent_files.h"
+#include "studio/ui/file_browser.h"
+#include "studio/ui/layout_recorder.h"
+#include "studio/ui/live_panel.h"
+#include "studio/ui/preview.h"
 
 namespace mrsim::studio {
 

@@ -12,12 +12,12 @@
 #include <utility>
 #include <vector>
 
-#include "studio/layout_recorder.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
 #include "studio/live/live_session.h"
 #include "studio/live/optimise_session.h"
+#include "studio/ui/layout_recorder.h"
 
 namespace mrsim::studio {
 

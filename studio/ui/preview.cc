@@ -1,4 +1,4 @@
-#include "studio/preview.h"
+#include "studio/ui/preview.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +14,8 @@
 #include <GL/glext.h>
 
 #include "sim_core/part_look.h"
-#include "studio/live_rays.h"
-#include "studio/mujoco_buffer_cache.h"
+#include "studio/ui/live_rays.h"
+#include "studio/ui/mujoco_buffer_cache.h"
 
 namespace mrsim::studio {
 namespace {

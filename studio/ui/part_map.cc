@@ -1,4 +1,4 @@
-#include "studio/part_map.h"
+#include "studio/ui/part_map.h"
 
 #include <string>
 

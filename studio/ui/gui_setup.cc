@@ -1,4 +1,4 @@
-#include "studio/gui_setup.h"
+#include "studio/ui/gui_setup.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>

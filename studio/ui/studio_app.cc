@@ -1,4 +1,4 @@
-#include "studio/studio_app.h"
+#include "studio/ui/studio_app.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -21,9 +21,9 @@
 #include "sim_core/part_look.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
-#include "studio/chain_edit.h"
-#include "studio/gui_setup.h"
-#include "studio/inspector_fields.h"
+#include "studio/design/chain_edit.h"
+#include "studio/design/inspector_fields.h"
+#include "studio/ui/gui_setup.h"
 
 namespace mrsim::studio {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "studio/studio_app.h"
+#include "studio/ui/studio_app.h"
 #include "viewer/gl_context.h"
 
 namespace mrsim::studio {

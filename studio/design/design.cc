@@ -1,4 +1,4 @@
-#include "studio/design.h"
+#include "studio/design/design.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include "sim_core/face_geometry.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
-#include "studio/chain_edit.h"
-#include "studio/inspector_fields.h"
-#include "studio/schema.h"
+#include "studio/design/chain_edit.h"
+#include "studio/design/inspector_fields.h"
+#include "studio/design/schema.h"
 
 namespace mrsim::studio {
 namespace {
