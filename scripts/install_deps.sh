@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   liblcm-dev liblcm-bin liblcm-java libjchart2d-java liblcm-lua lua5.2 libglib2.0-dev default-jdk-headless
   libmujoco-dev libqhull-dev libmujoco-samples
-  libeigen3-dev libtinyxml2-dev libstb-dev libopencv-dev
+  libeigen3-dev libtinyxml2-dev libstb-dev zlib1g-dev libopencv-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libssl-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb

@@ -1,9 +1,12 @@
 #include "sim_core/terrain.h"
 
 #include <stb/stb_image.h>
+#include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -27,6 +30,86 @@ bool HasBase64Prefix(const std::string& s) {
 
 std::string Shorten(const std::string& s) {
   return s.size() <= 60 ? s : s.substr(0, 57) + "...";
+}
+
+uint32_t ReadBigEndian32(const unsigned char* p) {
+  return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) |
+         (uint32_t{p[2]} << 8) | uint32_t{p[3]};
+}
+
+// stb_image trusts a PNG's chunk lengths (it grows its buffer to a chunk's
+// claimed length before finding the bytes missing: 70 bytes could make it
+// allocate 2 GiB) and lets the image data inflate without bound. So a PNG
+// is walked here first: every chunk must fit in the bytes left, and the
+// image data must inflate (zlib) to no more than its header's pixels need.
+void CheckPng(const std::vector<unsigned char>& bytes,
+              const std::string& source) {
+  static constexpr std::array<unsigned char, 8> kSignature = {
+      0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < kSignature.size() ||
+      !std::equal(kSignature.begin(), kSignature.end(), bytes.begin())) {
+    return;
+  }
+  auto fail = [&](const std::string& what) {
+    throw std::runtime_error("terrain image " + source +
+                             ": not a valid PNG: " + what);
+  };
+  size_t pos = kSignature.size();
+  uint64_t raw_bytes = 0;  // what the header's pixels inflate to, at most
+  std::vector<std::pair<size_t, size_t>> data;  // IDAT (offset, length)
+  bool end = false;
+  while (!end) {
+    if (bytes.size() - pos < 12) break;  // stb says what is missing
+    const uint64_t length = ReadBigEndian32(&bytes[pos]);
+    const std::string type(reinterpret_cast<const char*>(&bytes[pos + 4]), 4);
+    if (length > bytes.size() - pos - 12) {
+      fail("chunk '" + type + "' at byte " + std::to_string(pos) + " claims " +
+           std::to_string(length) + " bytes; only " +
+           std::to_string(bytes.size() - pos - 12) + " are left");
+    }
+    const unsigned char* body = &bytes[pos + 8];
+    if (type == "IHDR" && length >= 13) {
+      const uint64_t cols = ReadBigEndian32(body);
+      const uint64_t rows = ReadBigEndian32(body + 4);
+      const uint64_t depth = body[8];
+      static const int kChannels[] = {1, 0, 3, 1, 2, 0, 4};
+      const uint64_t channels = body[9] < 7 ? kChannels[body[9]] : 0;
+      if (channels == 0) fail("colour type " + std::to_string(body[9]));
+      // A filter byte per row; Adam7 interlacing adds at most a filter byte
+      // and a partial byte per row of each of its seven passes.
+      raw_bytes =
+          rows * (1 + (cols * channels * depth + 7) / 8) + 14 * rows + 1024;
+    } else if (type == "IDAT") {
+      data.emplace_back(pos + 8, static_cast<size_t>(length));
+    } else if (type == "IEND") {
+      end = true;
+    }
+    pos += 12 + length;
+  }
+  if (raw_bytes == 0 || data.empty()) return;  // stb says what is missing
+  z_stream z{};
+  if (inflateInit(&z) != Z_OK) fail("zlib cannot start");
+  std::unique_ptr<z_stream, int (*)(z_stream*)> guard(&z, &inflateEnd);
+  std::vector<unsigned char> scratch(1 << 16);
+  uint64_t inflated = 0;
+  int rc = Z_OK;
+  for (const auto& [offset, length] : data) {
+    z.next_in = const_cast<unsigned char*>(&bytes[offset]);
+    z.avail_in = static_cast<uInt>(length);
+    while (z.avail_in > 0 && rc == Z_OK) {
+      z.next_out = scratch.data();
+      z.avail_out = static_cast<uInt>(scratch.size());
+      rc = inflate(&z, Z_NO_FLUSH);
+      inflated += scratch.size() - z.avail_out;
+      if (inflated > raw_bytes) {
+        fail("its image data inflates to more than the " +
+             std::to_string(raw_bytes) + " bytes its header's pixels need");
+      }
+      if (rc == Z_BUF_ERROR) rc = Z_OK;  // more input in the next chunk
+      if (rc != Z_OK && rc != Z_STREAM_END) break;
+    }
+    if (rc != Z_OK) break;
+  }
 }
 
 TerrainImage Decode(const std::vector<unsigned char>& bytes,
@@ -57,6 +140,7 @@ TerrainImage Decode(const std::vector<unsigned char>& bytes,
                              std::to_string(header_cols) + "x" +
                              std::to_string(header_rows) + " pixels; " + most);
   }
+  CheckPng(bytes, source);
   const bool wide = stbi_is_16_bit_from_memory(bytes.data(), size) != 0;
   int cols = 0, rows = 0, channels = 0;
   std::unique_ptr<void, decltype(&stbi_image_free)> pixels(

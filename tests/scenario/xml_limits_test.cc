@@ -2,6 +2,7 @@
 // file, line and field, before it can exhaust memory or the stack.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -154,6 +155,64 @@ TEST(ScenarioLimits, AnImageHeaderClaimingTenGigapixelsIsRefusedUndecoded) {
   s.scene.height_image = "big.png";
   WriteScenarioFile(s, path);
   EXPECT_THAT(ErrorReading(path), HasSubstr("8000x8000 pixels"));
+}
+
+// A chunk: length, type, body and a CRC stb does not check.
+void AppendChunk(std::vector<unsigned char>* png, const std::string& type,
+                 const std::vector<unsigned char>& body, uint32_t length) {
+  for (int shift = 24; shift >= 0; shift -= 8) png->push_back(length >> shift);
+  png->insert(png->end(), type.begin(), type.end());
+  png->insert(png->end(), body.begin(), body.end());
+  for (int k = 0; k < 4; ++k) png->push_back(0);
+}
+
+std::string ImageError(const std::vector<unsigned char>& png) {
+  const std::string dir = TempDir("scenario_limits_png");
+  Scenario s;
+  ChainOptions options;
+  options.modules = 1;
+  s.robots.push_back(MakeChain(options));
+  s.scene.height_image = "base64:" + Base64Encode(png);
+  const std::string path = dir + "/image.xml";
+  WriteScenarioFile(s, path);
+  return ErrorReading(path);
+}
+
+TEST(ScenarioLimits, APngChunkClaimingMoreBytesThanAreLeftIsRefused) {
+  // 70 bytes once made the image decoder allocate 2 GiB for a chunk that
+  // claimed 1.5 GB (fuzz/regressions/height_image/).
+  std::vector<unsigned char> png = PngHeader(4, 3);
+  AppendChunk(&png, "IDAT", {0x78, 0x9c, 0x63, 0x60}, 0x59000023u);
+  EXPECT_THAT(ImageError(png),
+              HasSubstr("not a valid PNG: chunk 'IDAT' at byte 33 claims "
+                        "1493172259 bytes; only 8 are left"));
+}
+
+TEST(ScenarioLimits, APngWhoseDataInflatesBeyondItsPixelsIsRefused) {
+  // A 2x2 image whose data inflates to 10 MB: a zip bomb for the decoder.
+  const std::vector<unsigned char> zeros(10'000'000, 0);
+  uLongf packed_size = compressBound(zeros.size());
+  std::vector<unsigned char> packed(packed_size);
+  ASSERT_EQ(compress(packed.data(), &packed_size, zeros.data(), zeros.size()),
+            Z_OK);
+  packed.resize(packed_size);
+  std::vector<unsigned char> png = PngHeader(2, 2);
+  AppendChunk(&png, "IDAT", packed, static_cast<uint32_t>(packed.size()));
+  AppendChunk(&png, "IEND", {}, 0);
+  EXPECT_THAT(ImageError(png),
+              HasSubstr("not a valid PNG: its image data inflates to more "
+                        "than the 1058 bytes its header's pixels need"));
+  // The same image with the data it needs decodes.
+  const std::vector<unsigned char> pixels(2 * 3, 0);
+  packed_size = compressBound(pixels.size());
+  packed.assign(packed_size, 0);
+  ASSERT_EQ(compress(packed.data(), &packed_size, pixels.data(), pixels.size()),
+            Z_OK);
+  packed.resize(packed_size);
+  png = PngHeader(2, 2);
+  AppendChunk(&png, "IDAT", packed, static_cast<uint32_t>(packed.size()));
+  AppendChunk(&png, "IEND", {}, 0);
+  EXPECT_EQ(ImageError(png), "");
 }
 
 }  // namespace
