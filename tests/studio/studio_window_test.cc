@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Studio() { return BinaryPath("studio/app/mrsim-studio"); }
+std::string Studio() { return BinaryPath("studio/mrsim-studio"); }
 
 bool HaveX() {
   return fs::exists("/usr/bin/Xvfb") && fs::exists("/usr/bin/xdotool");

@@ -70,8 +70,7 @@ class StudioRun : public ::testing::Test {
     studio_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{
             "/bin/sh", "-c",
-            "cd '" + dir_ + "' && exec '" +
-                BinaryPath("studio/app/mrsim-studio") +
+            "cd '" + dir_ + "' && exec '" + BinaryPath("studio/mrsim-studio") +
                 "' --layout-dump layout.txt case_study.xml"},
         dir_ + "/studio.log");
     ASSERT_TRUE(WaitForLayout(layout_, "revision", "0")) << studio_->Output();
