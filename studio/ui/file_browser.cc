@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "studio/ui/layout_recorder.h"
+#include "studio/ui/widgets.h"
 
 namespace mrsim::studio {
 
@@ -92,18 +92,12 @@ bool FileBrowser::Draw(std::string* chosen, LayoutRecorder* layout) {
                          ImGuiInputTextFlags_EnterReturnsTrue)) {
       done = true;
     }
-    if (layout) {
-      const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-      layout->Widget("file name", a.x, a.y, b.x - a.x, b.y - a.y);
-    }
+    RecordItem(layout, "file name");
     if (!error_.empty()) {
       ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error_.c_str());
     }
     if (ImGui::Button(save_ ? "Save" : "Open", ImVec2(100, 0))) done = true;
-    if (layout) {
-      const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-      layout->Widget("file ok", a.x, a.y, b.x - a.x, b.y - a.y);
-    }
+    RecordItem(layout, "file ok");
     ImGui::SameLine();
     if (ImGui::Button("Cancel", ImVec2(100, 0))) {
       open_ = false;

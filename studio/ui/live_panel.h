@@ -2,7 +2,10 @@
 // simulation, simulator controls, steering buttons and arrow keys, gait
 // parameters, recording, live plots and the children's console. A thin
 // face over studio/live (LiveSession, LiveLink, LiveRunner): every button
-// is one LCM message or one process a script could send or start.
+// is one LCM message or one process a script could send or start. One file
+// per section: live_panel.cc (connection, keys, overlay, the panel's frame)
+// and live_<section>_section.cc (Run, Simulator, Steering, Recording, Plots,
+// Optimise, Console), sharing live_panel_common.h.
 #pragma once
 
 #include <functional>
@@ -89,10 +92,6 @@ class LivePanel {
   void Connect(const std::string& url, const std::string& prefix);
   void Disconnect();
   void Send(const std::function<void(StudioOutbox*)>& request);
-  bool Button(const char* label, float width = 0);
-  // Records the last item's rectangle under `name` for --layout-dump.
-  void Record(const std::string& name);
-  bool Header(const char* label, bool open_at_start);
   void DrawRun(const LiveDesign& design);
   void DrawControls();
   void DrawSteering();

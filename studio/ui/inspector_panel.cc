@@ -1,0 +1,226 @@
+#include "studio/ui/inspector_panel.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim_core/sensor_face.h"
+#include "studio/design/inspector_fields.h"
+#include "studio/ui/widgets.h"
+
+namespace mrsim::studio {
+namespace {
+
+std::string Key(const Selection& s, const std::string& sub,
+                const std::string& field) {
+  return std::string(ToString(s.kind)) + " " + std::to_string(s.robot) + " " +
+         std::to_string(s.index) + "/" + sub + "/" + field;
+}
+
+std::string LimitsText(const FieldInfo& info) {
+  const FieldLimits& l = info.limits;
+  char buf[96] = "";
+  if (std::isfinite(l.min) && std::isfinite(l.max)) {
+    std::snprintf(buf, sizeof(buf), "%g .. %g", l.min, l.max);
+  } else if (std::isfinite(l.min)) {
+    std::snprintf(buf, sizeof(buf), "%s %g",
+                  l.min_exclusive ? ">" : ">=", l.min);
+  }
+  return buf;
+}
+
+}  // namespace
+
+void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
+  const float x = rect.x, y = rect.y, w = rect.w, h = rect.h;
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowSize(ImVec2(w, h));
+  ImGui::Begin("Inspector", nullptr, kPanelFlags);
+  Scenario view = studio.design.scenario();
+  const Selection sel = studio.design.selection();
+  if (studio.design.revision() != fields_revision_ ||
+      sel != fields_selection_) {
+    // What was refused belongs to the design and part it was typed for.
+    field_errors_.clear();
+    field_edits_.clear();
+    fields_revision_ = studio.design.revision();
+    fields_selection_ = sel;
+  }
+  const std::vector<FieldGroup> groups = InspectorFields(view, sel);
+  if (groups.empty()) {
+    ImGui::TextWrapped(
+        "Select a part in the list or click it in the 3-D view to see and "
+        "edit every field.");
+  }
+  if (sel.kind == PartKind::kSensorModule) DrawSensorMounts(studio, view, sel);
+  for (const FieldGroup& g : groups) {
+    if (!ImGui::CollapsingHeader(g.title.c_str(),
+                                 ImGuiTreeNodeFlags_DefaultOpen)) {
+      continue;
+    }
+    ImGui::PushID(g.sub.c_str());
+    for (const FieldRef& f : g.fields) {
+      const FieldInfo& info = f.info();
+      const std::string key = Key(sel, g.sub, info.xml);
+      const FieldAddress address{sel, g.sub, info.xml};
+      std::string label = info.xml;
+      if (*info.unit) label += std::string(" [") + info.unit + "]";
+      ImGui::PushID(info.xml);
+      ImGui::TextUnformatted(label.c_str());
+      if (ImGui::IsItemHovered()) {
+        const std::string limits = LimitsText(info);
+        ImGui::SetTooltip("%s%s%s", info.help,
+                          limits.empty() ? "" : "\nlimits: ", limits.c_str());
+      }
+      ImGui::SameLine(w * 0.5f);
+      ImGui::SetNextItemWidth(-1);
+      const bool numbers = f.type() == FieldType::kNumber ||
+                           f.type() == FieldType::kVector ||
+                           f.type() == FieldType::kQuaternion;
+      const std::string current =
+          numbers ? ShortNumbers(f.GetText()) : f.GetText();
+      if (*info.limits.meaning) {
+        // An integer range whose values have names (a face): picked by
+        // name, from the schema's own list.
+        std::vector<std::string> names;
+        std::stringstream meaning(info.limits.meaning);
+        for (std::string n; std::getline(meaning, n, ',');) {
+          names.push_back(n.substr(n.find_first_not_of(' ')));
+        }
+        const int value = std::atoi(current.c_str());
+        const auto name_of = [&](int k) {
+          const int i = k - static_cast<int>(info.limits.min);
+          return std::to_string(k) +
+                 (i >= 0 && i < static_cast<int>(names.size()) ? " " + names[i]
+                                                               : "");
+        };
+        if (ImGui::BeginCombo("##v", name_of(value).c_str())) {
+          for (int k = static_cast<int>(info.limits.min);
+               k <= static_cast<int>(info.limits.max); ++k) {
+            if (ImGui::Selectable(name_of(k).c_str(), k == value)) {
+              studio.Try(
+                  [&] { studio.design.SetField(address, std::to_string(k)); });
+            }
+          }
+          ImGui::EndCombo();
+        }
+      } else if (info.kept) {
+        ImGui::TextDisabled("%s", current.c_str());
+      } else if (f.type() == FieldType::kBool) {
+        bool on = current == "true";
+        if (ImGui::Checkbox("##v", &on)) {
+          studio.Try(
+              [&] { studio.design.SetField(address, on ? "true" : "false"); });
+        }
+      } else if (f.type() == FieldType::kChoice) {
+        if (ImGui::BeginCombo("##v", current.c_str())) {
+          for (const std::string& c : f.choices()) {
+            if (ImGui::Selectable(c.c_str(), c == current)) {
+              studio.Try([&] { studio.design.SetField(address, c); });
+            }
+          }
+          ImGui::EndCombo();
+        }
+      } else {
+        auto edit = field_edits_.find(key);
+        std::string text = edit != field_edits_.end() ? edit->second : current;
+        const bool enter = ImGui::InputText(
+            "##v", &text, ImGuiInputTextFlags_EnterReturnsTrue);
+        const bool active = ImGui::IsItemActive();
+        if (active) {
+          field_edits_[key] = text;
+          // Checked as typed against the schema on a scratch copy.
+          try {
+            f.SetText(text);
+            field_errors_.erase(key);
+          } catch (const std::exception& e) {
+            field_errors_[key] = e.what();
+          }
+        }
+        if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
+          // Refused: the field shows the design's value again, so what is
+          // on screen is what is saved and run.
+          field_edits_.erase(key);
+          try {
+            studio.design.SetField(address, text);
+            field_errors_.erase(key);
+          } catch (const std::exception& e) {
+            field_errors_[key] =
+                "not applied, still " + current + ": " + e.what();
+          }
+        } else if (!active && field_edits_.erase(key) > 0) {
+          field_errors_.erase(key);  // typing abandoned (Escape)
+        }
+      }
+      studio.Record("field " + g.sub + "/" + info.xml);
+      auto error = field_errors_.find(key);
+      if (error != field_errors_.end()) {
+        ImGui::PushTextWrapPos(0);
+        ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s",
+                           error->second.c_str());
+        ImGui::PopTextWrapPos();
+      }
+      ImGui::PopID();
+    }
+    ImGui::PopID();
+  }
+  ImGui::End();
+}
+
+void InspectorPanel::DrawSensorMounts(StudioContext& studio,
+                                      const Scenario& view,
+                                      const Selection& sel) {
+  const SensorModule& sm =
+      view.robots.at(sel.robot).sensor_modules.at(sel.index);
+  bool plate = sm.force_sensor.has_value();
+  if (ImGui::Checkbox("force plate", &plate)) {
+    studio.Try(plate ? "add the force plate" : "remove the force plate",
+               [&] { studio.design.SetForcePlate(plate); });
+  }
+  studio.Record("force plate");
+  if (studio.design.revision() != ray_face_revision_ ||
+      !(sel == ray_face_selection_)) {
+    ray_face_revision_ = studio.design.revision();
+    ray_face_selection_ = sel;
+    const std::vector<int> open = studio.design.OpenRayFaces();
+    // Front first (a sensor looking ahead), else the first face open.
+    if (!open.empty() &&
+        std::find(open.begin(), open.end(), ray_face_) == open.end()) {
+      ray_face_ = std::find(open.begin(), open.end(), 4) != open.end()
+                      ? 4
+                      : open.front();
+    }
+  }
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("##face", &ray_face_, kSensorFaceNames.data(),
+               static_cast<int>(kSensorFaceNames.size()));
+  ImGui::SameLine();
+  if (studio.Button("add distance sensor")) {
+    studio.Try("add the distance sensor",
+               [&] { studio.design.AddDistanceSensor(ray_face_); });
+  }
+  for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
+    const int face = sm.distance_sensors[k].sensor_position;
+    ImGui::PushID(static_cast<int>(k));
+    ImGui::Text("ray %zu: %s", k,
+                face >= 0 && face < static_cast<int>(kSensorFaceNames.size())
+                    ? kSensorFaceNames[face]
+                    : "?");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) {
+      studio.Try(
+          [&] { studio.design.RemoveDistanceSensor(static_cast<int>(k)); });
+    }
+    ImGui::PopID();
+  }
+  ImGui::Separator();
+}
+
+}  // namespace mrsim::studio

@@ -1,0 +1,34 @@
+// The right column of the studio window (unless the Run panel is shown):
+// every field of the selected part, straight from the scenario schema,
+// checked as typed; a sensor module's force plate and distance sensors.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "studio/ui/panel.h"
+#include "studio/ui/studio_context.h"
+
+namespace mrsim::studio {
+
+class InspectorPanel {
+ public:
+  void Draw(StudioContext& studio, const PanelRect& rect);
+
+ private:
+  // Force plate on/off and distance sensors of the selected sensor module.
+  void DrawSensorMounts(StudioContext& studio, const Scenario& view,
+                        const Selection& sel);
+
+  std::map<std::string, std::string> field_errors_;  // by field key
+  std::map<std::string, std::string> field_edits_;   // text being typed
+  long fields_revision_ = -1;  // the design the two maps above are for
+  Selection fields_selection_;
+  int ray_face_ = 4;  // face for "add distance sensor": front
+  // The design revision and selection ray_face_ was last defaulted for:
+  // it moves to a face that would be accepted when they change.
+  long ray_face_revision_ = -1;
+  Selection ray_face_selection_;
+};
+
+}  // namespace mrsim::studio

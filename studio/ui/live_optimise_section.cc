@@ -1,0 +1,264 @@
+// The Run panel's Optimise section: genome, settings, start, stop, jump,
+// progress curves, and playing an individual live.
+// Part of LivePanel (live_panel.h), one file per section.
+#include "studio/ui/live_panel.h"
+#include "studio/ui/live_panel_common.h"
+
+namespace mrsim::studio {
+
+void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
+  static const char* const kAlgorithms[] = {"ga", "sa", "pso", "cmaes",
+                                            "random"};
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("genome", &genome_path_);
+  if (RecordedButton(layout_, "Load genome")) {
+    try {
+      genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
+      message_.clear();
+    } catch (const std::exception& e) {
+      message_ = e.what();
+      message_is_note_ = false;
+    }
+  }
+  if (!genome_.genes.empty() &&
+      ImGui::BeginTable("genes", 5,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    for (const char* h : {"gene", "on", "lower", "upper", "start"}) {
+      ImGui::TableSetupColumn(h);
+    }
+    ImGui::TableHeadersRow();
+    for (GeneSpec& g : genome_.genes) {
+      ImGui::PushID(g.name.c_str());
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(g.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Checkbox("##on", &g.enabled);
+      for (double* v : {&g.lower, &g.upper, &g.start}) {
+        ImGui::TableNextColumn();
+        ImGui::SetNextItemWidth(-1);
+        ImGui::PushID(v);
+        ImGui::InputDouble("##v", v, 0, 0, "%.3g");
+        ImGui::PopID();
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("algorithm", &algorithm_, kAlgorithms,
+               IM_ARRAYSIZE(kAlgorithms));
+  ImGui::SameLine();
+  ImGui::Checkbox("farm", &farm_);
+  if (farm_) {
+    // Two populations taking turns keep a farm's workers busy through
+    // each generation's slowest episode (docs/optimizer.md).
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60);
+    ImGui::InputInt("islands", &islands_, 0, 0, kNumberFlags);
+    RecordItem(layout_, "islands");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "Populations taking turns: with 2, workers go on with one while\n"
+          "the other's generation ends. Each gets half the generations.");
+    }
+  }
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("generations", &generations_, 0, 0, kNumberFlags);
+  RecordItem(layout_, "generations");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("population", &population_, 0, 0, kNumberFlags);
+  RecordItem(layout_, "population");
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputFloat("episode s", &episode_, 0, 0, "%.1f", kNumberFlags);
+  RecordItem(layout_, "episode");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("seed", &seed_);
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("folder", &opt_dir_);
+  auto start = [&](int jump_to) {
+    try {
+      message_.clear();
+      if (design.path.empty() || design.dirty) {
+        throw std::invalid_argument("save the design first");
+      }
+      if (genome_.genes.empty()) {
+        genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
+      }
+      OptimiseOptions o;
+      o.scenario_path = design.path;
+      o.out_dir = opt_dir_;
+      o.genome = genome_;
+      if (!design.robots.empty()) o.genome.robot = design.robots.front();
+      o.algorithm = kAlgorithms[algorithm_];
+      o.generations = generations_;
+      o.population = population_;
+      o.seed = static_cast<unsigned>(std::max(0, seed_));
+      o.episode_s = episode_;
+      o.farm = farm_;
+      o.islands = farm_ ? islands_ : 1;
+      o.lcm_url = url_;
+      if (jump_to > 0) {
+        optimise_.Jump(jump_to, o);
+      } else {
+        optimise_.Start(o);
+      }
+    } catch (const std::exception& e) {
+      message_ = e.what();
+      message_is_note_ = false;
+    }
+  };
+  const OptimiseProgress& p = optimise_.progress();
+  if (!p.running) {
+    if (RecordedButton(layout_, "Start optimisation")) start(-1);
+  } else if (RecordedButton(layout_, "Stop optimisation")) {
+    optimise_.Stop();
+  }
+  ImGui::SameLine();
+  if (RecordedButton(layout_, "Watch best")) WatchBest();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("##jump", &jump_to_);
+  ImGui::SameLine();
+  if (RecordedButton(layout_, "Jump to generation"))
+    start(std::max(1, jump_to_));
+  if (!watching_.empty()) ImGui::TextUnformatted(watching_.c_str());
+  if (optimise_.replay_pending()) {
+    ImGui::TextDisabled("waiting for generation %d...", jump_to_);
+  }
+  if (const std::string stall = optimise_.StallWarning(); !stall.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.6f, 0.2f, 1));
+    ImGui::TextWrapped("%s", stall.c_str());
+    ImGui::PopStyleColor();
+  }
+  // "...: the checkpoint was made with other settings: population=8 (this
+  // run: 6) (fingerprint ...); use the same, ...": the settings that
+  // differ, in the panel's words; the whole line is in the console.
+  const std::string kOther = "made with other settings: ";
+  const size_t other = p.failure.find(kOther);
+  const bool other_settings = p.finished && other != std::string::npos;
+  if (other_settings) {
+    std::string differ = p.failure.substr(other + kOther.size());
+    differ = differ.substr(0, differ.find(" (fingerprint"));
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.35f, 1));
+    ImGui::TextWrapped(
+        "Not started: the folder '%s' holds a run made with other settings "
+        "(%s).",
+        optimise_.options().out_dir.c_str(), differ.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextWrapped(
+        "Start a new run in a new folder, or set those settings back to "
+        "continue the old one.");
+    if (RecordedButton(layout_, "Start in a new folder")) {
+      // "optimise" -> "optimise-2", "optimise-3", ...: the first free.
+      const std::string base = opt_dir_;
+      for (int k = 2; std::filesystem::exists(opt_dir_); ++k) {
+        opt_dir_ = base + "-" + std::to_string(k);
+      }
+      start(-1);
+    }
+  } else if (p.finished && p.exit_code != 0 && !p.failure.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.35f, 1));
+    ImGui::TextWrapped("failed: %s", p.failure.c_str());
+    ImGui::PopStyleColor();
+  }
+  // With other settings the rows on show are the old run's, not progress.
+  if (!other_settings &&
+      (p.running || p.finished || p.stopped || !p.rows.empty())) {
+    const GenerationRow* last = p.rows.empty() ? nullptr : &p.rows.back();
+    if (p.running) {
+      // Wrapped: the panel is narrower than the whole line.
+      ImGui::TextWrapped(
+          "generation %zu of %d, best so far %.4g, %.2f evals/s, %d "
+          "worker%s, ETA %s",
+          p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
+          p.evals_per_s, p.workers, p.workers == 1 ? "" : "s", p.eta.c_str());
+    } else {
+      ImGui::TextWrapped(
+          "%s after generation %zu of %d, best so far %.4g%s",
+          p.stopped ? "stopped" : (p.exit_code == 0 ? "finished" : "failed"),
+          p.rows.size(), p.generations, last ? last->best_so_far : 0.0,
+          p.stopped ? " (Start continues from there)" : "");
+      // mrsim-opt writes the best so far on a stop too.
+      std::error_code ec;
+      const std::filesystem::path best =
+          std::filesystem::path(optimise_.options().out_dir) / "best_gait.xml";
+      if (!p.rows.empty() && std::filesystem::exists(best, ec)) {
+        ImGui::TextWrapped(
+            "best gait: %s",
+            std::filesystem::absolute(best, ec).string().c_str());
+      }
+    }
+    // Best so far (it only rises) and each generation's mean, each with
+    // its range written on it: the curves have no axes.
+    const auto curve = [&](const char* label, auto value) {
+      std::vector<float> v;
+      for (const GenerationRow& r : p.rows) {
+        v.push_back(static_cast<float>(value(r)));
+      }
+      char range[64] = "";
+      if (!v.empty()) {
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        std::snprintf(range, sizeof(range), "%.4g .. %.4g", *lo, *hi);
+      }
+      ImGui::PlotLines(label, v.data(), static_cast<int>(v.size()), 0, range,
+                       FLT_MAX, FLT_MAX, ImVec2(width * 0.62f, 50));
+    };
+    curve("best so far", [](const GenerationRow& r) { return r.best_so_far; });
+    curve("mean", [](const GenerationRow& r) { return r.mean; });
+  }
+}
+
+void LivePanel::WatchBest() {
+  const auto best = optimise_.Best();
+  if (!best) {
+    message_ = "no generation finished yet";
+    message_is_note_ = false;
+    return;
+  }
+  Play(*best);
+}
+
+void LivePanel::Play(const GenerationRow& row) {
+  try {
+    BestReplay best = MakeBestReplay(optimise_.options(), row);
+    const LiveRobot* robot = session_->robot(best.robot);
+    watching_ = fmt::format("playing generation {}'s best ({:.4g}){}",
+                            best.generation + 1, best.fitness,
+                            best.body ? ", its body and gait" : "");
+    const std::vector<double> p = best.gait.parameters.ToVector();
+    for (int i = 0; i < 7; ++i) parameters_[i] = static_cast<float>(p[i]);
+    if (!best.body && !replay_ && robot != nullptr && runner_.running()) {
+      // The design runs: the gait alone changes, the robot goes on.
+      Send([&](StudioOutbox* out) {
+        session_->SetGaitParameters(best.robot, p, WallClock::now(), out);
+      });
+      return;
+    }
+    // A new body (or nothing running): the run restarts with the best's
+    // scenario and gait, while the optimisation goes on.
+    const RunOptions o = WriteBestReplay(
+        best, optimise_.options().out_dir + "/watch", FormRun());
+    runner_.Start(o);
+    Connect(url_, prefix_);
+    if (best.body) {
+      replay_ = std::move(best);
+      ++replay_revision_;
+    } else {
+      EndReplay();
+    }
+    message_.clear();
+  } catch (const std::exception& e) {
+    message_ = e.what();
+    message_is_note_ = false;
+  }
+}
+
+void LivePanel::EndReplay() {
+  if (replay_) ++replay_revision_;
+  replay_.reset();
+  watching_.clear();
+}
+
+}  // namespace mrsim::studio

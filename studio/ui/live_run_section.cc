@@ -1,0 +1,89 @@
+// The Run panel's first section: run the design (saved first) or attach to
+// a simulation; stop or detach.
+// Part of LivePanel (live_panel.h), one file per section.
+#include "sim_core/scenario_xml.h"
+#include "studio/ui/live_panel.h"
+#include "studio/ui/live_panel_common.h"
+
+namespace mrsim::studio {
+
+void LivePanel::DrawRun(const LiveDesign& design) {
+  ImGui::TextUnformatted("Run this design");
+  ImGui::SetNextItemWidth(110);
+  ImGui::Combo("clock", &clock_, kClocks, IM_ARRAYSIZE(kClocks));
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputFloat("Hz", &rate_, 0, 0, "%.0f");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputFloat("speed", &speed_, 0, 0, "%.2f");
+  if (!runner_.running()) {
+    // mrsim-sim runs the file: what is on screen is saved first.
+    const bool saved = !design.path.empty() && !design.dirty;
+    if (RecordedButton(layout_, saved ? "Run" : "Save and Run")) {
+      const std::string path =
+          saved ? design.path : (design.save ? design.save() : "");
+      if (path.empty()) {
+        message_ =
+            "the design is not saved yet: choose where to save it, then "
+            "press Run";
+        message_is_note_ = false;
+      } else {
+        try {
+          RunOptions o = FormRun();
+          o.scenario_path = path;
+          o.robots = design.robots;
+          runner_.Start(o);
+          Connect(url_, prefix_);
+          EndReplay();
+          running_ = ReadScenarioFile(path);
+          ++replay_revision_;
+          message_.clear();
+        } catch (const std::exception& e) {
+          message_ = e.what();
+          message_is_note_ = false;
+        }
+      }
+    }
+  } else if (RecordedButton(layout_, "Stop")) {
+    // Back to the design: the view, the camera and the simulator section
+    // leave the stopped run (its last pose and counters would look live).
+    runner_.Stop();
+    EndReplay();
+    Disconnect();
+  }
+  ImGui::SameLine();
+  if (!link_) {
+    if (RecordedButton(layout_, "Attach")) {
+      try {
+        Connect(url_, prefix_);
+      } catch (const std::exception& e) {
+        message_ = e.what();
+        message_is_note_ = false;
+      }
+    }
+  } else if (RecordedButton(layout_, "Detach")) {
+    Disconnect();
+  }
+  // A run on this computer needs neither; attaching to a simulation or a
+  // farm elsewhere does. Folded, so a first look is not an LCM URL.
+  if (ImGui::TreeNode("network (LCM URL, prefix)")) {
+    ImGui::SetNextItemWidth(-60);
+    ImGui::InputText("URL", &url_);
+    ImGui::SetNextItemWidth(-60);
+    ImGui::InputText("prefix", &prefix_);
+    ImGui::TreePop();
+  }
+}
+
+RunOptions LivePanel::FormRun() const {
+  RunOptions o;
+  o.lcm_url = url_;
+  o.prefix = prefix_;
+  o.clock = kClocks[clock_];
+  o.rate = rate_;
+  o.speed = speed_;
+  return o;
+}
+
+}  // namespace mrsim::studio

@@ -1,0 +1,85 @@
+// What the panels and dialogs of the studio window share (panel.h): the
+// Design being edited, the 3-D preview, the Run panel, the layout dump, the
+// status message, the file dialog and the action waiting for an answer,
+// with the actions several panels offer (save, open, guard against losing
+// unsaved changes, try an edit). StudioApp owns one.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "studio/design/design.h"
+#include "studio/design/recent_files.h"
+#include "studio/ui/file_browser.h"
+#include "studio/ui/layout_recorder.h"
+#include "studio/ui/live_panel.h"
+#include "studio/ui/preview.h"
+
+namespace mrsim::studio {
+
+struct AppOptions {
+  int width = 1280;  // largest frame the off-screen buffer must hold
+  int height = 800;
+  std::string layout_dump;   // --layout-dump file, "" for none
+  std::string recent_store;  // RecentFiles store, "" for the default
+};
+
+// An action that may first ask about unsaved changes.
+enum class Pending { kNone, kNew, kOpen, kTemplate, kQuit };
+// What the open file dialog is choosing a file for.
+enum class BrowseFor { kNone, kOpen, kSaveAs, kHeightImage };
+
+struct StudioContext {
+  StudioContext(Design design, const AppOptions& options);
+  ~StudioContext();
+
+  Design design;
+  AppOptions options;
+  std::unique_ptr<Preview> preview;
+  LayoutRecorder layout;
+  std::unique_ptr<LivePanel> live;
+  RecentFiles recent;
+  FileBrowser browser;
+  BrowseFor browse_for = BrowseFor::kNone;
+  bool show_run = false;  // the right column shows Run instead of Inspector
+  bool show_help = false;
+  bool show_template = false;
+  bool quit = false;
+  long built_revision = -1;  // the design revision the preview shows
+  std::string build_error;   // why the preview could not be built
+  std::string message;       // last note, refusal or error, in the status bar
+  bool message_is_error = false;  // red, else a plain note ("saved ...")
+  Pending pending = Pending::kNone;
+  std::string pending_path;  // a recent file to open once asked
+  bool ask_unsaved = false;  // the unsaved-changes prompt is up
+  // Quitting would stop what the Run panel has going: asked first.
+  std::string ask_busy_quit;   // the question, "" when not asking
+  std::string refused_action;  // the action a dialog says was not done
+  std::string refused_why;
+
+  // A recorded button (widgets.h) and the last item recorded by name.
+  bool Button(const char* label, float width = 0);
+  void Record(const std::string& name);
+  void Try(const std::function<void()>& edit);
+  // A button's action ("add the yaw module"): a refusal also opens a
+  // dialog saying what was not done and why, so it cannot go unseen.
+  void Try(const std::string& action, const std::function<void()>& edit);
+  void Note(const std::string& text);
+  void Refuse(const std::string& text);
+  // Runs `action` now, or after the unsaved-changes prompt.
+  void Guard(Pending action);
+  void RunPending();
+  // The user closed the window: quits now, or asks first when unsaved or
+  // when something runs.
+  void RequestClose();
+  void OpenFile(const std::string& path);
+  void SaveFile();
+  // Opens the file dialog for Save As.
+  void BrowseSaveAs();
+  // Where file dialogs open: beside the design, else ./scenarios when
+  // there is one (the source tree), else the current folder.
+  std::string StartFolder() const;
+};
+
+}  // namespace mrsim::studio
