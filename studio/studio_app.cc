@@ -802,6 +802,15 @@ void StudioApp::DrawSensorMounts(const Scenario& view, const Selection& sel) {
         [&] { design_.SetForcePlate(plate); });
   }
   Record("force plate");
+  for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
+    if (kind.set == nullptr) continue;
+    bool on = kind.count(sm) > 0;
+    if (ImGui::Checkbox(kind.label, &on)) {
+      Try(std::string(on ? "add the " : "remove the ") + kind.label,
+          [&] { design_.SetSensorKind(kind, on); });
+    }
+    Record(kind.label);
+  }
   if (design_.revision() != ray_face_revision_ ||
       !(sel == ray_face_selection_)) {
     ray_face_revision_ = design_.revision();
