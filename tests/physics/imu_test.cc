@@ -26,9 +26,13 @@ Scenario ImuScenario(
   return s;
 }
 
-const SensorReading& ImuReading(const RobotState& state) {
+// A copy: a RobotState is often a temporary.
+SensorReading ImuReading(const RobotState& state) {
   const std::vector<SensorReading>& r = state.sensor_modules.at(0).readings;
-  EXPECT_EQ(r.size(), 1u);
+  if (r.size() != 1u) {
+    ADD_FAILURE() << "readings: " << r.size();
+    return {};
+  }
   EXPECT_EQ(r.at(0).kind, "imu");
   EXPECT_EQ(r.at(0).values.size(), 6u);
   return r.at(0);
@@ -45,7 +49,7 @@ TEST(PhysicsImu, ModuleAtRestReadsGravityUpAndNoRate) {
   Physics physics(ImuScenario(Imu{}, Eigen::Vector3d(0, 0, 0.03)));
   physics.Step(500);  // settled on the ground
   const RobotState state = physics.ReadRobotState(0);
-  const SensorReading& r = ImuReading(state);
+  const SensorReading r = ImuReading(state);
   EXPECT_NEAR(Accel(r).x(), 0, 0.05);
   EXPECT_NEAR(Accel(r).y(), 0, 0.05);
   EXPECT_NEAR(Accel(r).z(), kG, 0.05);  // accelerometer convention: +g up
@@ -76,7 +80,7 @@ TEST(PhysicsImu, SpinningModuleReadsItsRate) {
   d->qvel[4] = 0.0;
   d->qvel[5] = 2.0;  // rad/s about the module's z axis
   physics.Step(100);
-  const SensorReading& r = ImuReading(physics.ReadRobotState(0));
+  const SensorReading r = ImuReading(physics.ReadRobotState(0));
   EXPECT_NEAR(Gyro(r).z(), 2.0, 1e-3);
   EXPECT_NEAR(Gyro(r).x(), 0.0, 1e-3);
   EXPECT_NEAR(Gyro(r).y(), 0.0, 1e-3);
@@ -96,7 +100,7 @@ TEST(PhysicsImu, BiasAddsAndNoiseIsTheSameForTheSameSeed) {
     std::vector<double> values;
     for (int i = 0; i < 200; ++i) {
       physics.Step(1);
-      const SensorReading& r = ImuReading(physics.ReadRobotState(0));
+      const SensorReading r = ImuReading(physics.ReadRobotState(0));
       values.insert(values.end(), r.values.begin(), r.values.end());
     }
     return values;
