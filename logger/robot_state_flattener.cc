@@ -4,6 +4,7 @@
 
 #include "lcmtypes/runtime/decode.h"
 #include "logger/csv_format.h"
+#include "sim_core/sensor_kind.h"
 
 namespace mrsim {
 namespace {
@@ -53,6 +54,14 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
     shape_.push_back(s.has_force ? 1 : 0);
     shape_.push_back(s.num_distances);
     for (int8_t face : s.distance_face) shape_.push_back(face);
+    shape_.push_back(s.num_readings);
+    for (const sensor_reading_t& r : s.readings) {
+      shape_.push_back(r.face);
+      shape_.push_back(r.num_values);
+      const SensorKind* kind = FindSensorKind(r.kind);
+      shape_.push_back(kind == nullptr ? -1
+                                       : static_cast<int>(kind - kinds_base_));
+    }
   }
   shape_.push_back(m.num_locks);
   if (!have_shape_ || shape_ != last_shape_ || m.lock_names != last_locks_) {
@@ -107,6 +116,9 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
     for (double d : s.distance) {
       cells.CommaDouble(d);
     }
+    for (const sensor_reading_t& r : s.readings) {
+      for (double v : r.values) cells.CommaDouble(v);
+    }
   }
   for (double v : m.com) {
     cells.CommaDouble(v);
@@ -151,13 +163,19 @@ std::vector<std::string> RobotStateFlattener::ColumnNames() const {
       joint_names("joint" + std::to_string(k));
     }
   }
+  // Sensor values are named by their kind's table (sensor_kind.h).
+  const SensorKind& force = *FindSensorKind("force");
+  const SensorKind& distance = *FindSensorKind("distance");
   for (int k = 0; k < m.num_sensor_modules; ++k) {
     const std::string sm = "sensor_module" + std::to_string(k);
     const sensor_module_state_t& s = m.sensor_modules[k];
     PoseNames(sm, &names);
-    if (s.has_force) names.push_back(sm + ".force");
+    if (s.has_force) {
+      names.push_back(SensorValueName(sm, force, -1, force.channels[0]));
+    }
     for (int j = 0; j < s.num_distances; ++j) {
-      std::string name = sm + ".distance" + std::to_string(s.distance_face[j]);
+      std::string name = SensorValueName(sm, distance, s.distance_face[j],
+                                         distance.channels[0]);
       // Two sensors on one face keep distinct names.
       for (int i = 0; i < j; ++i) {
         if (s.distance_face[i] == s.distance_face[j]) {
@@ -166,6 +184,21 @@ std::vector<std::string> RobotStateFlattener::ColumnNames() const {
         }
       }
       names.push_back(name);
+    }
+    for (int r = 0; r < s.num_readings; ++r) {
+      const sensor_reading_t& reading = s.readings[r];
+      const SensorKind* kind = FindSensorKind(reading.kind);
+      for (int j = 0; j < reading.num_values; ++j) {
+        if (kind != nullptr && j < static_cast<int>(kind->channels.size())) {
+          names.push_back(
+              SensorValueName(sm, *kind, reading.face, kind->channels[j]));
+        } else {
+          // A kind this build does not know (or more values than it
+          // has): named by position, never by the sender's text.
+          names.push_back(sm + ".reading" + std::to_string(r) + "." +
+                          std::to_string(j));
+        }
+      }
     }
   }
   for (const char* n : {"com.x", "com.y", "com.z", "com_velocity.x",

@@ -1,9 +1,10 @@
 // Flattens mrsim::robot_state_t with the names users plot by: `time`, `seq`,
 // `robot`, `sim_time`, `module3.x .. module3.qz`, `module3.frame0.x ..`,
 // `module3.joint.angle/speed/torque/x..qz`, `sensor_module0.x ..`,
-// `sensor_module0.force`, `sensor_module0.distance4` (4 = face), `com.x`,
-// `com_velocity.x`, `lock.snake/lock3.attached` (1 holds, 0 released). SI
-// units throughout.
+// `sensor_module0.force`, `sensor_module0.distance4` (4 = face),
+// `sensor_module0.imu.accel.x` (the sensor kinds' table, sensor_kind.h),
+// `com.x`, `com_velocity.x`, `lock.snake/lock3.attached` (1 holds, 0 released).
+// SI units throughout.
 #pragma once
 
 #include <string>
@@ -13,6 +14,7 @@
 #include "logger/lcm_type_registry.h"
 #include "logger/message_flattener.h"
 #include "mrsim/robot_state_t.hpp"
+#include "sim_core/sensor_kind.h"
 
 namespace mrsim {
 
@@ -32,6 +34,8 @@ class RobotStateFlattener : public MessageFlattener {
   std::vector<int> last_shape_;
   std::vector<std::string> last_locks_;
   bool have_shape_ = false;
+  // Kinds in the shape by index in SensorKinds().
+  const SensorKind* kinds_base_ = SensorKinds().data();
 };
 
 }  // namespace mrsim

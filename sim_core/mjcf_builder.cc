@@ -21,6 +21,7 @@
 #include "sim_core/face_geometry.h"
 #include "sim_core/part_look.h"
 #include "sim_core/scenario_validate.h"
+#include "sim_core/sensor_kind.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -212,6 +213,7 @@ class Builder {
       force_sensors_;  // name, site
   std::vector<ElementSpec> assets_;
   std::vector<std::pair<std::string, std::string>> rangefinders_;  // name, site
+  std::vector<ElementSpec> kind_sensors_;  // sensor kinds' MuJoCo sensors
   std::map<std::string, std::string> mesh_names_;  // key path|scale -> name
   std::string terrain_geom_type_;
 };
@@ -345,6 +347,23 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
       g.collide = false;
       g.kind = PartKind::kDistanceSensor;
       bodies_[body].geoms.push_back(g);
+    }
+  }
+  // Kinds read through MuJoCo's own sensors (sensor_kind.h): a site at the
+  // module's centre with the module's axes, and their sensors on it.
+  for (const SensorKind& kind : SensorKinds()) {
+    if (kind.mujoco.empty()) continue;
+    for (int k = 0; k < kind.count(sm); ++k) {
+      const std::string site =
+          mjcf_names::SensorKindSite(robot_name, index, kind.name, k);
+      bodies_[body].sites.push_back({site});
+      for (const SensorMujoco& ms : kind.mujoco) {
+        kind_sensors_.push_back(
+            {ms.element,
+             {{"name", mjcf_names::SensorKindSensor(robot_name, index,
+                                                    kind.name, k, ms.suffix)},
+              {"site", site}}});
+      }
     }
   }
 }
@@ -1079,7 +1098,8 @@ std::string Builder::Build() {
     }
     out.CloseElement();
   }
-  if (!force_sensors_.empty() || !rangefinders_.empty()) {
+  if (!force_sensors_.empty() || !rangefinders_.empty() ||
+      !kind_sensors_.empty()) {
     out.OpenElement("sensor");
     for (const auto& f : force_sensors_) {
       element({"force", {{"name", f.first}, {"site", f.second}}});
@@ -1087,6 +1107,7 @@ std::string Builder::Build() {
     for (const auto& r : rangefinders_) {
       element({"rangefinder", {{"name", r.first}, {"site", r.second}}});
     }
+    for (const ElementSpec& e : kind_sensors_) element(e);
     out.CloseElement();
   }
   out.CloseElement();

@@ -33,6 +33,15 @@ std::string ForceSensor(const std::string& robot, int sm) {
 std::string DistanceSite(const std::string& robot, int sm, int k) {
   return SensorModuleBody(robot, sm) + "/d" + std::to_string(k);
 }
+std::string SensorKindSite(const std::string& robot, int sm, const char* kind,
+                           int k) {
+  return SensorModuleBody(robot, sm) + "/" + kind +
+         (k == 0 ? "" : std::to_string(k));
+}
+std::string SensorKindSensor(const std::string& robot, int sm, const char* kind,
+                             int k, const char* suffix) {
+  return SensorKindSite(robot, sm, kind, k) + "/" + suffix;
+}
 std::string Weld(const std::string& robot, const std::string& lock) {
   return robot + "/weld/" + lock;
 }

@@ -22,6 +22,13 @@ std::string ForceSite(const std::string& robot, int sm);    // ".../plate_site"
 std::string ForceSensor(const std::string& robot, int sm);  // "r/sm2/force"
 std::string DistanceSite(const std::string& robot, int sm,
                          int k);  // "r/sm2/d0"
+// The site of instance k of a kind read through MuJoCo sensors
+// (sensor_kind.h), "r/sm2/imu" (k > 0: "r/sm2/imu1"), and its MuJoCo
+// sensors "r/sm2/imu/accel".
+std::string SensorKindSite(const std::string& robot, int sm, const char* kind,
+                           int k);
+std::string SensorKindSensor(const std::string& robot, int sm, const char* kind,
+                             int k, const char* suffix);
 std::string Weld(const std::string& robot,
                  const std::string& lock);  // "r/weld/<lock name>"
 std::string SceneObject(int index);         // "scene/obj<i>"

@@ -9,12 +9,14 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/hash.h"
 #include "sim_core/distance_ray.h"
 #include "sim_core/fluid_forces.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/model_compiler.h"
 #include "sim_core/mujoco_handlers.h"
 #include "sim_core/scenario_validate.h"
+#include "sim_core/sensor_kind.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
@@ -93,6 +95,14 @@ struct Physics::Impl {
     std::vector<int> sites;
     std::vector<int> faces;
     std::vector<double> max_distance;
+    // Instances of kinds read through MuJoCo sensors (sensor_kind.h).
+    struct KindInstance {
+      const SensorKind* kind = nullptr;
+      int k = 0;
+      int face = -1;
+      std::vector<int> adr;  // sensordata address per SensorKind::mujoco
+    };
+    std::vector<KindInstance> kinds;
   };
   struct LockIndex {
     std::string name;
@@ -357,6 +367,19 @@ void Physics::Impl::Index(const MjcfInfo& info) {
         si.faces.push_back(sm.distance_sensors[d].sensor_position);
         si.max_distance.push_back(sm.distance_sensors[d].max_ray_distance);
       }
+      for (const SensorKind& kind : SensorKinds()) {
+        if (kind.mujoco.empty()) continue;
+        for (int i = 0; i < kind.count(sm); ++i) {
+          SensorModuleIndex::KindInstance inst{&kind, i, kind.face(sm, i), {}};
+          for (const SensorMujoco& ms : kind.mujoco) {
+            const int sensor =
+                Id(mjOBJ_SENSOR, mjcf_names::SensorKindSensor(
+                                     ri.name, k, kind.name, i, ms.suffix));
+            inst.adr.push_back(m->sensor_adr[sensor]);
+          }
+          si.kinds.push_back(std::move(inst));
+        }
+      }
       ri.sensor_modules.push_back(si);
     }
     robots.push_back(std::move(ri));
@@ -578,7 +601,11 @@ RobotState Physics::ReadRobotState(int robot) const {
     state.joints.push_back(j);
   }
   bool need_forces = false;
-  for (const auto& si : r.sensor_modules) need_forces |= si.force_adr >= 0;
+  // Force plates and the kinds read through MuJoCo sensors (accelerations)
+  // need the current state's forces.
+  for (const auto& si : r.sensor_modules) {
+    need_forces |= si.force_adr >= 0 || !si.kinds.empty();
+  }
   if (need_forces) {
     // Contact forces of the current state: a full forward pass on a copy,
     // with the controls the next step would apply.
@@ -601,7 +628,8 @@ RobotState Physics::ReadRobotState(int robot) const {
     impl_->ComputeControls(s);
     mj_forward(m, s);
   }
-  for (const auto& si : r.sensor_modules) {
+  for (size_t smi = 0; smi < r.sensor_modules.size(); ++smi) {
+    const Impl::SensorModuleIndex& si = r.sensor_modules[smi];
     SensorModuleState sm;
     sm.pose = BodyPose(d, si.body);
     if (si.force_adr >= 0) {
@@ -613,6 +641,23 @@ RobotState Physics::ReadRobotState(int robot) const {
           CastDistanceRay(m, d, si.sites[k], si.plate, si.max_distance[k])
               .distance);
       sm.distance_faces.push_back(si.faces[k]);
+    }
+    for (const auto& inst : si.kinds) {
+      SensorReadInput in;
+      in.sensor_module =
+          &impl_->scenario.robots.at(robot).sensor_modules.at(smi);
+      in.instance = inst.k;
+      for (int adr : inst.adr) {
+        in.mujoco.push_back(impl_->scratch->sensordata + adr);
+      }
+      in.time = d->time;
+      const uint64_t ids[3] = {static_cast<uint64_t>(robot), smi,
+                               static_cast<uint64_t>(inst.k)};
+      in.key = Fnv1a64(ids, sizeof ids);
+      SensorReading reading{inst.kind->name, inst.face,
+                            std::vector<double>(inst.kind->channels.size())};
+      inst.kind->read(in, reading.values.data());
+      sm.readings.push_back(std::move(reading));
     }
     state.sensor_modules.push_back(std::move(sm));
   }

@@ -22,12 +22,23 @@ struct JointState {
   Pose world;           // anchor position and child frame orientation
 };
 
+// One instance's values of a sensor kind read through MuJoCo's sensors
+// (sensor_kind.h: the IMU), in the kind's channel order.
+struct SensorReading {
+  std::string kind;  // SensorKind::name, e.g. "imu"
+  int face = -1;     // 0..5, or -1 when on no face
+  std::vector<double> values;
+};
+
 struct SensorModuleState {
   Pose pose;
   bool has_force = false;
   double force = 0.0;               // N, magnitude
   std::vector<double> distances;    // m, one per distance sensor
   std::vector<int> distance_faces;  // face (0..5) of each distance sensor
+  // The other kinds, in SensorKinds() order; an IMU's six values are
+  // accel.x/y/z (m/s^2), gyro.x/y/z (rad/s) in the module's frame.
+  std::vector<SensorReading> readings;
 };
 
 struct RobotState {

@@ -1,5 +1,8 @@
 #include "sim_core/scenario.h"
 
+#include <type_traits>
+#include <variant>
+
 #include "sim_core/scenario_schema_inl.h"
 
 namespace mrsim {
@@ -44,104 +47,100 @@ const char* ToString(FrameConvention frame) {
 namespace mrsim {
 namespace {
 
-bool QuatEq(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  return a.coeffs() == b.coeffs();
+// Walks one part through the schema and keeps, in schema order, a pointer
+// to each field and an equality test of each child: two parts are equal
+// when their lists are.
+class EqualityItems {
+ public:
+  struct ChildRef {
+    const void* part;
+    bool (*equal)(const void*, const void*);
+  };
+
+  template <typename T>
+  void Field(const FieldInfo&, T& member) {
+    fields.emplace_back(&member);
+  }
+  template <typename P>
+  void Child(const ChildInfo&, P& part) {
+    children.push_back({&part, &Equal<P>});
+  }
+  template <typename P>
+  void Optional(const ChildInfo&, std::optional<P>& part) {
+    children.push_back({&part, &Equal<std::optional<P>>});
+  }
+  template <typename P, size_t N>
+  void Array(const ChildInfo&, std::array<P, N>& parts) {
+    children.push_back({&parts, &Equal<std::array<P, N>>});
+  }
+  template <typename P>
+  void List(const ChildInfo&, std::vector<P>& parts) {
+    children.push_back({&parts, &Equal<std::vector<P>>});
+  }
+  void Unsupported(const ChildInfo&) {}
+
+  std::vector<FieldPtr> fields;
+  std::vector<ChildRef> children;
+
+ private:
+  template <typename P>
+  static bool Equal(const void* a, const void* b) {
+    return *static_cast<const P*>(a) == *static_cast<const P*>(b);
+  }
+};
+
+bool FieldEqual(const FieldPtr& a, const FieldPtr& b) {
+  if (a.index() != b.index()) return false;
+  return std::visit(
+      [&b](auto* pa) {
+        using T = std::remove_pointer_t<decltype(pa)>;
+        const T& vb = *std::get<T*>(b);
+        if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+          return pa->coeffs() == vb.coeffs();
+        } else {
+          return *pa == vb;
+        }
+      },
+      a);
+}
+
+template <typename P>
+bool SchemaEqual(const P& a, const P& b) {
+  // Describe takes a mutable part to serve readers too; nothing is written.
+  EqualityItems ia;
+  EqualityItems ib;
+  schema::Describe(ia, const_cast<P&>(a));
+  schema::Describe(ib, const_cast<P&>(b));
+  for (size_t i = 0; i < ia.fields.size(); ++i) {
+    if (!FieldEqual(ia.fields[i], ib.fields[i])) return false;
+  }
+  for (size_t i = 0; i < ia.children.size(); ++i) {
+    if (!ia.children[i].equal(ia.children[i].part, ib.children[i].part)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
 
-bool operator==(const Frame& a, const Frame& b) {
-  return a.guid == b.guid && a.shape == b.shape && a.scale == b.scale &&
-         a.position == b.position && a.rotation == b.rotation &&
-         QuatEq(a.quat_rotation, b.quat_rotation) && a.mass == b.mass &&
-         a.is_static == b.is_static && a.material_name == b.material_name;
-}
-
-bool operator==(const Joint& a, const Joint& b) {
-  return a.guid == b.guid && a.left_frame_guid == b.left_frame_guid &&
-         a.right_frame_guid == b.right_frame_guid && a.type == b.type &&
-         a.lower_range_limit == b.lower_range_limit &&
-         a.upper_range_limit == b.upper_range_limit && a.kp == b.kp &&
-         a.max_vel == b.max_vel && a.velocity_gain == b.velocity_gain &&
-         a.max_torque == b.max_torque && a.break_force == b.break_force;
-}
-
-bool operator==(const Module& a, const Module& b) {
-  return a.mod_nr == b.mod_nr && a.position == b.position && a.axis == b.axis &&
-         a.frames == b.frames && a.joint == b.joint;
-}
-
-bool operator==(const ForceSensor& a, const ForceSensor& b) {
-  return a.guid == b.guid && a.force_value == b.force_value &&
-         a.sensor_position == b.sensor_position && a.position == b.position &&
-         QuatEq(a.rotation, b.rotation) && a.material_name == b.material_name &&
-         a.mass == b.mass && a.size == b.size;
-}
-
-bool operator==(const DistanceSensor& a, const DistanceSensor& b) {
-  return a.guid == b.guid && a.sensor_position == b.sensor_position &&
-         a.position == b.position && a.rotation == b.rotation &&
-         QuatEq(a.quat_rotation, b.quat_rotation) && a.mass == b.mass &&
-         a.size == b.size && a.max_ray_distance == b.max_ray_distance &&
-         a.ray_direction == b.ray_direction &&
-         a.ray_resolution == b.ray_resolution;
-}
-
-bool operator==(const SensorModule& a, const SensorModule& b) {
-  return a.guid == b.guid && a.left_mod_nr == b.left_mod_nr &&
-         a.right_mod_nr == b.right_mod_nr && a.force_sensor == b.force_sensor &&
-         a.force_sensor_lock == b.force_sensor_lock &&
-         a.force_lock_position == b.force_lock_position &&
-         a.distance_sensors == b.distance_sensors &&
-         a.distance_lock_position == b.distance_lock_position &&
-         a.distance_sensor_locks == b.distance_sensor_locks &&
-         a.position == b.position && a.rotation == b.rotation &&
-         a.size == b.size && QuatEq(a.quat_rotation, b.quat_rotation) &&
-         a.mass == b.mass && a.material_name == b.material_name;
-}
-
-bool operator==(const Robot& a, const Robot& b) {
-  return a.name == b.name && a.modules == b.modules &&
-         a.sensor_modules == b.sensor_modules && a.locks == b.locks;
-}
-
-bool operator==(const Scene& a, const Scene& b) {
-  return a.guid == b.guid && a.height_image == b.height_image &&
-         a.position == b.position && a.material_name == b.material_name &&
-         a.height == b.height && a.meters_per_pixel == b.meters_per_pixel;
-}
-
-bool operator==(const SceneObject& a, const SceneObject& b) {
-  return a.guid == b.guid && a.size == b.size && a.position == b.position &&
-         a.rotation == b.rotation && QuatEq(a.quat_rotation, b.quat_rotation) &&
-         a.material_name == b.material_name && a.shape == b.shape &&
-         a.mass == b.mass && a.is_static == b.is_static;
-}
-
-bool operator==(const ContactFriction& a, const ContactFriction& b) {
-  return a.material1 == b.material1 && a.material2 == b.material2 &&
-         a.restitution == b.restitution && a.friction == b.friction &&
-         a.youngs_modulus == b.youngs_modulus;
-}
-
-bool operator==(const FluidRegion& a, const FluidRegion& b) {
-  return a.guid == b.guid && a.kind == b.kind && a.position == b.position &&
-         a.size == b.size && a.density == b.density &&
-         a.viscosity == b.viscosity && a.velocity == b.velocity;
-}
-
-bool operator==(const SimulationSettings& a, const SimulationSettings& b) {
-  return a.timestep == b.timestep && a.gravity == b.gravity;
-}
-
-bool operator==(const Scenario& a, const Scenario& b) {
-  return a.robots == b.robots && a.scene == b.scene &&
-         a.scene_objects == b.scene_objects &&
-         a.contact_frictions == b.contact_frictions &&
-         a.fluid_regions == b.fluid_regions && a.settings == b.settings &&
-         a.loose_frames == b.loose_frames && a.loose_joints == b.loose_joints &&
-         a.loose_sensor_modules == b.loose_sensor_modules;
-}
+#define MRSIM_SCHEMA_EQUAL(Type) \
+  bool operator==(const Type& a, const Type& b) { return SchemaEqual(a, b); }
+MRSIM_SCHEMA_EQUAL(Frame)
+MRSIM_SCHEMA_EQUAL(Joint)
+MRSIM_SCHEMA_EQUAL(Module)
+MRSIM_SCHEMA_EQUAL(ForceSensor)
+MRSIM_SCHEMA_EQUAL(DistanceSensor)
+MRSIM_SCHEMA_EQUAL(Imu)
+MRSIM_SCHEMA_EQUAL(SensorModule)
+MRSIM_SCHEMA_EQUAL(Robot)
+MRSIM_SCHEMA_EQUAL(Scene)
+MRSIM_SCHEMA_EQUAL(SceneObject)
+MRSIM_SCHEMA_EQUAL(ContactFriction)
+MRSIM_SCHEMA_EQUAL(FluidRegion)
+MRSIM_SCHEMA_EQUAL(SimulationSettings)
+MRSIM_SCHEMA_EQUAL(Scenario)
+#undef MRSIM_SCHEMA_EQUAL
 
 void ConvertUnityToZUp(Scenario* scenario) {
   schema::GeometryMap m;

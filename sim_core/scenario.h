@@ -96,8 +96,24 @@ struct DistanceSensor {
   double ray_resolution = 1.0;  // sampling step along the ray (m)
 };
 
+// An inertial measurement unit at the centre of a sensor module: a 3-axis
+// accelerometer (specific force, m/s^2: a module at rest reads +9.81 along
+// its up axis) and a 3-axis gyroscope (rad/s), both in the module's own
+// frame, read from MuJoCo's accelerometer and gyro sensors. Each reading
+// adds `*_bias` and white noise of standard deviation `*_noise`, drawn from
+// `seed` and the simulation time: the same seed gives the same readings.
+struct Imu {
+  std::string guid;
+  double accel_noise = 0.0;                              // m/s^2
+  double gyro_noise = 0.0;                               // rad/s
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // m/s^2
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // rad/s
+  int seed = 0;
+};
+
 // A box between two modules (left_mod_nr/right_mod_nr, -1 = chain end)
-// carrying at most one force sensor and up to six distance sensors.
+// carrying at most one force sensor, up to six distance sensors and at most
+// one IMU (the kinds: sensor_kind.h).
 struct SensorModule {
   std::string guid;
   int left_mod_nr = -1;
@@ -114,6 +130,7 @@ struct SensorModule {
   Eigen::Quaterniond quat_rotation = Eigen::Quaterniond::Identity();
   double mass = 0.05;
   std::string material_name = "plastic";
+  std::optional<Imu> imu;
 };
 
 // A chain of modules with sensor modules between them. `locks` are the rigid
@@ -204,7 +221,8 @@ struct Scenario {
   std::string base_dir;
 };
 
-// Exact, field-by-field equality (doubles with ==, quaternions by
+// Exact, field-by-field equality over the fields and children the schema
+// lists (scenario_schema_inl.h; doubles with ==, quaternions by
 // coefficients), as the XML round trip promises. Scenario::base_dir is
 // where a file was read from, not content, and is not compared.
 bool operator==(const Frame& a, const Frame& b);
@@ -212,6 +230,7 @@ bool operator==(const Joint& a, const Joint& b);
 bool operator==(const Module& a, const Module& b);
 bool operator==(const ForceSensor& a, const ForceSensor& b);
 bool operator==(const DistanceSensor& a, const DistanceSensor& b);
+bool operator==(const Imu& a, const Imu& b);
 bool operator==(const SensorModule& a, const SensorModule& b);
 bool operator==(const Robot& a, const Robot& b);
 bool operator==(const Scene& a, const Scene& b);
@@ -229,6 +248,7 @@ inline bool operator!=(const ForceSensor& a, const ForceSensor& b) {
 inline bool operator!=(const DistanceSensor& a, const DistanceSensor& b) {
   return !(a == b);
 }
+inline bool operator!=(const Imu& a, const Imu& b) { return !(a == b); }
 inline bool operator!=(const SensorModule& a, const SensorModule& b) {
   return !(a == b);
 }

@@ -269,6 +269,7 @@ const std::pair<std::vector<FieldSpec>, std::vector<ChildSpec>>& SpecsOf(
     t[PartKind::kSensorModule] = Specs<SensorModule>();
     t[PartKind::kForceSensor] = Specs<ForceSensor>();
     t[PartKind::kDistanceSensor] = Specs<DistanceSensor>();
+    t[PartKind::kImu] = Specs<Imu>();
     t[PartKind::kScene] = Specs<Scene>();
     t[PartKind::kSceneObject] = Specs<SceneObject>();
     t[PartKind::kContactFriction] = Specs<ContactFriction>();
@@ -319,6 +320,8 @@ const char* ToString(PartKind kind) {
       return "forceSensor";
     case PartKind::kDistanceSensor:
       return "DistanceSensor";
+    case PartKind::kImu:
+      return "imu";
     case PartKind::kScene:
       return "scene";
     case PartKind::kSceneObject:
@@ -432,6 +435,7 @@ std::vector<FieldRef> FieldsOf(Joint& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(SensorModule& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(ForceSensor& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(DistanceSensor& part) { return Collect(part); }
+std::vector<FieldRef> FieldsOf(Imu& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(Scene& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(SceneObject& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(ContactFriction& part) { return Collect(part); }

@@ -152,6 +152,7 @@ enum class PartKind {
   kSensorModule,
   kForceSensor,
   kDistanceSensor,
+  kImu,
   kScene,
   kSceneObject,
   kContactFriction,
@@ -224,6 +225,7 @@ std::vector<FieldRef> FieldsOf(Joint& part);
 std::vector<FieldRef> FieldsOf(SensorModule& part);
 std::vector<FieldRef> FieldsOf(ForceSensor& part);
 std::vector<FieldRef> FieldsOf(DistanceSensor& part);
+std::vector<FieldRef> FieldsOf(Imu& part);
 std::vector<FieldRef> FieldsOf(Scene& part);
 std::vector<FieldRef> FieldsOf(SceneObject& part);
 std::vector<FieldRef> FieldsOf(ContactFriction& part);

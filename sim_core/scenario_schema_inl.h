@@ -315,6 +315,47 @@ void Describe(V& v, DistanceSensor& s) {
 }
 
 template <typename V>
+void Describe(V& v, Imu& s) {
+  static const FieldInfo kGuid{"guid",
+                               "guid",
+                               "",
+                               L::Any(),
+                               "Id of the IMU (optional; nothing refers to it)",
+                               false,
+                               Geometry::kNone,
+                               false,
+                               true};
+  static const FieldInfo kAccelNoise{
+      "accelNoise", "accel_noise", "m/s^2", L::NonNegative(),
+      "Standard deviation of the accelerometer's white noise; 0: none"};
+  static const FieldInfo kGyroNoise{
+      "gyroNoise", "gyro_noise", "rad/s", L::NonNegative(),
+      "Standard deviation of the gyroscope's white noise; 0: none"};
+  static const FieldInfo kAccelBias{"accelBias",
+                                    "accel_bias",
+                                    "m/s^2",
+                                    L::Any(),
+                                    "Constant offset of every accelerometer "
+                                    "reading, in the module's frame",
+                                    false,
+                                    G::kDirection};
+  // An angular rate is an axial vector: a change of handedness flips it
+  // too, so it is left alone rather than mirrored wrongly.
+  static const FieldInfo kGyroBias{
+      "gyroBias", "gyro_bias", "rad/s", L::Any(),
+      "Constant offset of every gyroscope reading, in the module's frame"};
+  static const FieldInfo kSeed{
+      "seed", "seed", "", L::Any(),
+      "Seed of the noise: the same seed gives the same readings"};
+  v.Field(kGuid, s.guid);
+  v.Field(kAccelNoise, s.accel_noise);
+  v.Field(kGyroNoise, s.gyro_noise);
+  v.Field(kAccelBias, s.accel_bias);
+  v.Field(kGyroBias, s.gyro_bias);
+  v.Field(kSeed, s.seed);
+}
+
+template <typename V>
 void Describe(V& v, SensorModule& s) {
   static const FieldInfo kGuid{"guid",
                                "guid",
@@ -383,6 +424,9 @@ void Describe(V& v, SensorModule& s) {
     c.locks = true;
     return c;
   }();
+  static const ChildInfo kImu{
+      "imu", "", "imu",
+      "At most one IMU (accelerometer and gyroscope) at the box's centre"};
   static const FieldInfo kSize{
       "size", "size",          "m", L::Size(), "Extents of the box",
       false,  G::kLengthVector};
@@ -426,6 +470,7 @@ void Describe(V& v, SensorModule& s) {
   v.Field(kQuat, s.quat_rotation);
   v.Field(kMass, s.mass);
   v.Field(kMaterial, s.material_name);
+  v.Optional(kImu, s.imu);
 }
 
 template <typename V>
@@ -677,6 +722,7 @@ MRSIM_KIND_OF(Joint, kJoint);
 MRSIM_KIND_OF(SensorModule, kSensorModule);
 MRSIM_KIND_OF(ForceSensor, kForceSensor);
 MRSIM_KIND_OF(DistanceSensor, kDistanceSensor);
+MRSIM_KIND_OF(Imu, kImu);
 MRSIM_KIND_OF(Scene, kScene);
 MRSIM_KIND_OF(SceneObject, kSceneObject);
 MRSIM_KIND_OF(ContactFriction, kContactFriction);

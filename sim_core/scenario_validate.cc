@@ -284,6 +284,13 @@ class Validator {
     }
   }
 
+  // Parts with no rules beyond their fields' limits (an IMU: noise >= 0,
+  // bounded biases), which Field checks.
+  template <typename P>
+  void Before(const P&) {}
+  template <typename P>
+  void After(const P&, bool) {}
+
   void Before(const Scene&) {}
   void After(const Scene& scene, bool) {
     if (!scene.guid.empty()) AddGuid(scene.guid, false);

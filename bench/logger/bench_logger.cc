@@ -101,7 +101,7 @@ mrsim::robot_state_t State(int64_t seq) {
   }
   m.num_sensor_modules = kSensorModules;
   for (int s = 0; s < kSensorModules; ++s) {
-    mrsim::sensor_module_state_t sm;
+    mrsim::sensor_module_state_t sm{};
     sm.pose = Pose(t, 100 + s);
     sm.has_force = true;
     sm.force = 4.9 + std::sin(t);

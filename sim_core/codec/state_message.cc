@@ -83,6 +83,16 @@ robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq) {
       const int face = i < s.distance_faces.size() ? s.distance_faces[i] : -1;
       sm.distance_face.push_back(static_cast<int8_t>(face));
     }
+    sm.num_readings = static_cast<int32_t>(s.readings.size());
+    sm.readings.reserve(s.readings.size());
+    for (const SensorReading& r : s.readings) {
+      sensor_reading_t m{};
+      m.kind = r.kind;
+      m.face = static_cast<int8_t>(r.face);
+      m.num_values = static_cast<int32_t>(r.values.size());
+      m.values = r.values;
+      sm.readings.push_back(std::move(m));
+    }
     msg.sensor_modules.push_back(std::move(sm));
   }
 
@@ -114,6 +124,9 @@ RobotState FromRobotStateMessage(const robot_state_t& msg) {
     s.force = sm.force;
     s.distances = sm.distance;
     for (int8_t f : sm.distance_face) s.distance_faces.push_back(f);
+    for (const sensor_reading_t& r : sm.readings) {
+      s.readings.push_back({r.kind, r.face, r.values});
+    }
     state.sensor_modules.push_back(std::move(s));
   }
   state.com = Eigen::Vector3d(msg.com[0], msg.com[1], msg.com[2]);

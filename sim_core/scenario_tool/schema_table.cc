@@ -56,16 +56,10 @@ const char* CountText(ChildCount count) {
 }  // namespace
 
 std::string SchemaMarkdown() {
-  const PartKind kinds[] = {
-      PartKind::kScenario,        PartKind::kRobot,
-      PartKind::kModule,          PartKind::kFrame,
-      PartKind::kJoint,           PartKind::kSensorModule,
-      PartKind::kForceSensor,     PartKind::kDistanceSensor,
-      PartKind::kScene,           PartKind::kSceneObject,
-      PartKind::kContactFriction, PartKind::kFluidRegion,
-      PartKind::kSettings};
   std::string out;
-  for (PartKind kind : kinds) {
+  // Every part, in the enum's order (a new part kind is listed by itself).
+  for (int k = 0; k <= static_cast<int>(PartKind::kSettings); ++k) {
+    const PartKind kind = static_cast<PartKind>(k);
     out += fmt::format("### {}\n\n", ToString(kind));
     const auto& fields = FieldSpecsOf(kind);
     if (!fields.empty()) {

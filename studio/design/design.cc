@@ -365,6 +365,14 @@ SensorModule& Design::SelectedSensorModule(Scenario* next) const {
   return next->robots.at(selection_.robot).sensor_modules.at(selection_.index);
 }
 
+void Design::SetSensorKind(const SensorKind& kind, bool on) {
+  Scenario next = scenario_;
+  SensorModule& sm = SelectedSensorModule(&next);
+  if (kind.set == nullptr || on == (kind.count(sm) > 0)) return;
+  kind.set(sm, on);
+  Commit(std::move(next), selection_);
+}
+
 void Design::SetForcePlate(bool on) {
   Scenario next = scenario_;
   SensorModule& sm = SelectedSensorModule(&next);

@@ -9,6 +9,7 @@
 
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
+#include "sim_core/sensor_kind.h"
 #include "studio/design/selection.h"
 
 namespace mrsim::studio {
@@ -83,6 +84,9 @@ class Design {
   // loses it; the chain rises onto plates or comes down when the first
   // arrives or the last goes.
   void SetForcePlate(bool on);
+  // The selected sensor module gets a sensor of `kind` (sensor_kind.h,
+  // a kind with SensorKind::set: the IMU) or loses it.
+  void SetSensorKind(const SensorKind& kind, bool on);
   // A distance sensor on face `face` (0..5: bottom, left, top, right,
   // front, back) of the selected sensor module, looking out of that face;
   // one per face, at most six.

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "sim_core/sensor_kind.h"
+
 namespace mrsim::studio {
 
 std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
@@ -37,6 +39,14 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
         if (sm.force_sensor) {
           groups.push_back(
               {"force_sensor", "Force plate", FieldsOf(*sm.force_sensor)});
+        }
+        for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
+          if (kind.fields == nullptr) continue;
+          for (int k = 0; k < kind.count(sm); ++k) {
+            const std::string n = k == 0 ? "" : std::to_string(k);
+            groups.push_back(
+                {kind.name + n, kind.label + n, kind.fields(sm, k)});
+          }
         }
         for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
           groups.push_back({"distance_sensors[" + std::to_string(k) + "]",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim_core/sensor_face.h"
+#include "sim_core/sensor_kind.h"
 #include "studio/design/inspector_fields.h"
 #include "studio/ui/widgets.h"
 
@@ -185,6 +186,15 @@ void InspectorPanel::DrawSensorMounts(StudioContext& studio,
                [&] { studio.design.SetForcePlate(plate); });
   }
   studio.Record("force plate");
+  for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
+    if (kind.set == nullptr) continue;
+    bool on = kind.count(sm) > 0;
+    if (ImGui::Checkbox(kind.label, &on)) {
+      studio.Try(std::string(on ? "add the " : "remove the ") + kind.label,
+                 [&] { studio.design.SetSensorKind(kind, on); });
+    }
+    studio.Record(kind.label);
+  }
   if (studio.design.revision() != ray_face_revision_ ||
       !(sel == ray_face_selection_)) {
     ray_face_revision_ = studio.design.revision();

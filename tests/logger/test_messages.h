@@ -50,7 +50,7 @@ inline robot_state_t KnownRobotState(int64_t seq, int modules,
   }
   m.num_sensor_modules = sensor_modules;
   for (int s = 0; s < sensor_modules; ++s) {
-    sensor_module_state_t sm;
+    sensor_module_state_t sm{};
     sm.pose = KnownPose(seq, 100 + s, 0);
     sm.has_force = true;
     sm.force = KnownValue(seq, 100 + s, 50);
