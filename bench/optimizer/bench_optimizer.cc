@@ -185,7 +185,7 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
     mrsim::LocalEvaluator evaluator(
         [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
         static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-    mrsim::RunOptions options;
+    mrsim::OptimizationRunOptions options;
     options.generations = generations;
     const mrsim::RunResult r =
         mrsim::RunOptimization(problem.genome, a, evaluator, options);
@@ -329,7 +329,7 @@ int main(int argc, char** argv) {
       mrsim::LocalEvaluator evaluator(
           [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
           static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-      mrsim::RunOptions options;
+      mrsim::OptimizationRunOptions options;
       options.generations = generations;
       const auto t0 = Clock::now();
       const mrsim::RunResult r =

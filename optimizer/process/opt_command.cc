@@ -386,7 +386,7 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                   BatchEvaluator& evaluator, std::FILE* out, std::FILE* err) {
   AlgorithmSettings a = c.algorithm;
   a.include_start = !c.no_start;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = c.generations;
   options.stop_after = c.jump_to;
   options.out_dir = c.out_dir;

@@ -16,7 +16,7 @@ double BestOf(const std::string& algo, const std::string& function,
   settings.seed = seed;
   LocalEvaluator evaluator(
       [&](const Genome& g) { return EvaluateTestFunction(function, g); }, 1);
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = generations;
   return RunOptimization(spec, settings, evaluator, options)
       .best_result.fitness;
@@ -49,7 +49,7 @@ TEST(OptimizerAlgorithms, ResultDoesNotDependOnThreadCount) {
     settings.algorithm = algo;
     settings.population = 9;
     settings.seed = 5;
-    RunOptions options;
+    OptimizationRunOptions options;
     options.generations = 12;
     auto fn = [](const Genome& g) {
       return EvaluateTestFunction("rastrigin", g);

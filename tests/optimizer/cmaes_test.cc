@@ -24,7 +24,7 @@ RunResult RunTest(const std::string& algo, const std::string& function,
   settings.seed = seed;
   LocalEvaluator local(
       [&](const Genome& g) { return EvaluateTestFunction(function, g); }, 1);
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = generations;
   options.out_dir = out_dir;
   return RunOptimization(spec, settings, evaluator ? *evaluator : local,

@@ -259,7 +259,7 @@ TEST(OptimizerEpisode, SeededLocalRunGivesTheSameResultTwice) {
   AlgorithmSettings settings;
   settings.population = 4;
   settings.seed = 23;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 3;
   auto run = [&](int threads) {
     LocalEvaluator evaluator(
