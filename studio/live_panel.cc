@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "gait_controller/gait_file.h"
+#include "gait_controller/process/gait_parameters_message.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "sim_core/scenario_xml.h"
@@ -428,8 +429,7 @@ void LivePanel::DrawSteering() {
       Gait gait;
       gait.name = std::filesystem::path(gait_file_).stem().string();
       gait.kind = ParseGaitKind(robot->gait->kind).value_or(GaitKind::kLinear);
-      gait.parameters = GaitParameters::FromVector(std::vector<double>(
-          robot->gait->parameters, robot->gait->parameters + 7));
+      gait.parameters = GaitParametersFromMessage(robot->gait->parameters);
       WriteGaitFile(gait, gait_file_);
       message_ = "wrote " + gait_file_;
       message_is_note_ = true;
@@ -439,18 +439,20 @@ void LivePanel::DrawSteering() {
     }
   }
   if (ImGui::TreeNode("gait parameters")) {
-    const char* const names7[] = {"A_pitch",   "A_yaw", "phi_pitch",
-                                  "phi_yaw",   "T (s)", "offset_pitch",
-                                  "offset_yaw"};
+    const auto& names = GaitParameterNames();
     bool changed = false;
-    for (int i = 0; i < 7; ++i) {
+    for (int i = 0; i < GaitParameters::kVectorSize; ++i) {
       ImGui::SetNextItemWidth(150);
-      changed |= ImGui::DragFloat(names7[i], &parameters_[i], 0.01f);
+      // The period's unit beside its name, as the user types seconds.
+      const std::string label =
+          std::string(names[i]) + (names[i] == std::string("T") ? " (s)" : "");
+      changed |= ImGui::DragFloat(label.c_str(), &parameters_[i], 0.01f);
     }
     if (changed) {
       Send([&](StudioOutbox* out) {
         session_->SetGaitParameters(
-            followed_, std::vector<double>(parameters_, parameters_ + 7),
+            followed_,
+            std::vector<double>(std::begin(parameters_), std::end(parameters_)),
             WallClock::now(), out);
       });
     }
@@ -656,7 +658,9 @@ void LivePanel::Play(const GenerationRow& row) {
                             best.generation + 1, best.fitness,
                             best.body ? ", its body and gait" : "");
     const std::vector<double> p = best.gait.parameters.ToVector();
-    for (int i = 0; i < 7; ++i) parameters_[i] = static_cast<float>(p[i]);
+    for (int i = 0; i < GaitParameters::kVectorSize; ++i) {
+      parameters_[i] = static_cast<float>(p[i]);
+    }
     if (!best.body && !replay_ && robot != nullptr && runner_.running()) {
       // The design runs: the gait alone changes, the robot goes on.
       Send([&](StudioOutbox* out) {
