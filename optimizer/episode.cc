@@ -94,6 +94,13 @@ class PhysicsLease {
 
 }  // namespace
 
+const EnumTable<DistanceMode>& DistanceModes() {
+  static const EnumTable<DistanceMode> kModes(
+      "fitness distance mode",
+      {{DistanceMode::kForward, "forward"}, {DistanceMode::kNet, "net"}});
+  return kModes;
+}
+
 void EpisodeSettings::Validate() const {
   if (!(duration > 0) || !std::isfinite(duration)) {
     throw std::invalid_argument("episode duration must be > 0 s");
@@ -101,12 +108,8 @@ void EpisodeSettings::Validate() const {
   if (!(control_period > 0)) {
     throw std::invalid_argument("control period must be > 0 s");
   }
-  if (fitness.distance_mode != "forward" && fitness.distance_mode != "net") {
-    throw std::invalid_argument(
-        "fitness distance mode: expected forward or "
-        "net, got '" +
-        fitness.distance_mode + "'");
-  }
+  // A value cast from a number, not one of the table's.
+  DistanceModes().Parse(ToString(fitness.distance_mode));
   for (double w : {fitness.w_distance, fitness.w_speed, fitness.w_energy,
                    fitness.w_drift, fitness.w_fall}) {
     if (!std::isfinite(w)) {
@@ -174,8 +177,9 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const GaitRunResult run = RunGait(physics, robot, controller, e.duration,
                                       e.control_period, observer);
     const Eigen::Vector3d d = run.com_end - run.com_start;
-    result.distance =
-        e.fitness.distance_mode == "net" ? std::hypot(d.x(), d.y()) : d.x();
+    result.distance = e.fitness.distance_mode == DistanceMode::kNet
+                          ? std::hypot(d.x(), d.y())
+                          : d.x();
     result.speed = result.distance / e.duration;
     result.energy = run.energy;
     result.drift = std::abs(d.y());

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "common/enum_table.h"
 #include "gait_controller/gait.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/eval_result.h"
@@ -15,12 +16,24 @@
 
 namespace mrsim {
 
+// "forward": CoM displacement along +x (the chain's head direction, see
+// chain_builder.h); "net": horizontal CoM displacement in any direction.
+enum class DistanceMode { kForward, kNet };
+const EnumTable<DistanceMode>& DistanceModes();
+inline const char* ToString(DistanceMode mode) {
+  return DistanceModes().Name(mode);
+}
+// Throws std::invalid_argument naming `field` and every valid word.
+inline DistanceMode ParseDistanceMode(
+    const std::string& text,
+    const std::string& field = "fitness distance mode") {
+  return DistanceModes().Parse(text, field);
+}
+
 // Fitness = distance * w_distance + speed * w_speed - energy * w_energy
 //           - drift * w_drift - fell * w_fall            (higher is better)
 struct FitnessSettings {
-  // "forward": CoM displacement along +x (the chain's head direction, see
-  // chain_builder.h); "net": horizontal CoM displacement in any direction.
-  std::string distance_mode = "forward";
+  DistanceMode distance_mode = DistanceMode::kForward;
   double w_distance = 1.0;
   double w_speed = 0.0;
   double w_energy = 0.0;

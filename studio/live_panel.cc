@@ -21,6 +21,7 @@
 #include "gait_controller/process/gait_parameters_message.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/message_key.h"
+#include "optimizer/algorithm_registry.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/plot_export.h"
@@ -688,8 +689,8 @@ void LivePanel::Play(const GenerationRow& row) {
 }
 
 void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
-  static const char* const kAlgorithms[] = {"ga", "sa", "pso", "cmaes",
-                                            "random"};
+  // The optimiser's registry: a new algorithm shows up here by itself.
+  const std::vector<AlgorithmInfo>& algorithms = Algorithms();
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("genome", &genome_path_);
   if (Button("Load genome")) {
@@ -727,8 +728,17 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::EndTable();
   }
   ImGui::SetNextItemWidth(90);
-  ImGui::Combo("algorithm", &algorithm_, kAlgorithms,
-               IM_ARRAYSIZE(kAlgorithms));
+  ImGui::Combo(
+      "algorithm", &algorithm_,
+      +[](void* data, int i, const char** text) {
+        *text =
+            static_cast<const std::vector<AlgorithmInfo>*>(data)->at(i).name;
+        return true;
+      },
+      const_cast<std::vector<AlgorithmInfo>*>(&algorithms),
+      static_cast<int>(algorithms.size()));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", algorithms.at(algorithm_).summary);
   ImGui::SameLine();
   ImGui::Checkbox("farm", &farm_);
   if (farm_) {
@@ -773,7 +783,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.out_dir = opt_dir_;
       o.genome = genome_;
       if (!design.robots.empty()) o.genome.robot = design.robots.front();
-      o.algorithm = kAlgorithms[algorithm_];
+      o.algorithm = algorithms.at(algorithm_).name;
       o.generations = generations_;
       o.population = population_;
       o.seed = static_cast<unsigned>(std::max(0, seed_));

@@ -177,7 +177,7 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
   double sum = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
     mrsim::AlgorithmSettings a;
-    a.algorithm = algo;
+    a.algorithm = mrsim::ParseAlgorithm(algo);
     a.population = population;
     a.seed = static_cast<std::uint64_t>(seed);
     a.include_start = false;
@@ -322,7 +322,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     for (const char* algo : {"ga", "sa", "pso", "cmaes", "random"}) {
       mrsim::AlgorithmSettings a;
-      a.algorithm = algo;
+      a.algorithm = mrsim::ParseAlgorithm(algo);
       a.population = population;
       a.seed = 1;
       a.include_start = false;

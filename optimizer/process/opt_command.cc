@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/enum_option.h"
 #include "common/hash.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
@@ -95,6 +96,15 @@ void WriteBestFiles(const OptCommand& c, const Problem& problem,
                     c.episode.duration, ReplayLcmUrl(c.lcm_url));
 }
 
+// --algorithm's help: one line per algorithm of the registry.
+std::string AlgorithmHelp() {
+  std::string help = "the search algorithm";
+  for (const AlgorithmInfo& info : Algorithms()) {
+    help += fmt::format("\n  {}: {}", info.name, info.summary);
+  }
+  return help + "\n";
+}
+
 }  // namespace
 
 void AddOptFlags(CLI::App& app, OptCommand& c) {
@@ -106,8 +116,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--out", c.out_dir,
                  "Output directory (checkpoint, CSVs, best)")
       ->required();
-  app.add_option("--algorithm", a.algorithm, "ga | sa | pso | cmaes | random")
-      ->capture_default_str();
+  AddEnumOption(app, "--algorithm", &a.algorithm, AlgorithmNames(),
+                AlgorithmHelp());
   app.add_option("--generations", c.generations, "Generations to run")
       ->capture_default_str();
   app.add_option("--population", a.population,
@@ -131,9 +141,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--gait", c.gait_spec,
                  "Base gait (preset or file) the gait genes modify")
       ->capture_default_str();
-  app.add_option("--distance", e.fitness.distance_mode,
-                 "forward (+x) | net (any direction)")
-      ->capture_default_str();
+  AddEnumOption(app, "--distance", &e.fitness.distance_mode, DistanceModes(),
+                "distance scored, along +x or in any direction");
   app.add_option("--w-distance", e.fitness.w_distance)->capture_default_str();
   app.add_option("--w-speed", e.fitness.w_speed)->capture_default_str();
   app.add_option("--w-energy", e.fitness.w_energy, "Per joule")
@@ -143,8 +152,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--w-fall", e.fitness.w_fall,
                  "Per fraction of the episode upside down")
       ->capture_default_str();
-  app.add_option("--selection", a.selection, "GA: tournament | truncation")
-      ->capture_default_str();
+  AddEnumOption(app, "--selection", &a.selection, SelectionMethods(),
+                "the GA's parent selection");
   app.add_option("--tournament-size", a.tournament_size)->capture_default_str();
   app.add_option("--truncation", a.truncation_fraction,
                  "GA: fraction that may breed")
@@ -395,9 +404,10 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   options.described = fmt::format(
       "episode={}\ncontrol_period={}\ngait={}\ndistance_mode={}\n"
       "w_distance={}\nw_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
-      e.duration, e.control_period, e.base_gait.name, e.fitness.distance_mode,
-      e.fitness.w_distance, e.fitness.w_speed, e.fitness.w_energy,
-      e.fitness.w_drift, e.fitness.w_fall);
+      e.duration, e.control_period, e.base_gait.name,
+      ToString(e.fitness.distance_mode), e.fitness.w_distance,
+      e.fitness.w_speed, e.fitness.w_energy, e.fitness.w_drift,
+      e.fitness.w_fall);
   options.progress = [&](const GenerationReport& r) {
     if (c.quiet) return;
     fmt::print(out, "{}\n", FormatProgress(r));
@@ -414,8 +424,9 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     fmt::print(err,
                "mrsim-opt: {}, {} generation{} of {}{}, {} s episodes, {}; "
                "writing {}\n",
-               a.algorithm, c.generations, c.generations == 1 ? "" : "s",
-               a.population, IslandsText(c.generations, a.islands),
+               ToString(a.algorithm), c.generations,
+               c.generations == 1 ? "" : "s", a.population,
+               IslandsText(c.generations, a.islands),
                setup.problem.episode.duration,
                c.farm ? "on the farm"
                       : fmt::format("{} thread{}", setup.threads,

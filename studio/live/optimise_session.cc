@@ -13,6 +13,7 @@
 #include "common/atomic_file.h"
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
+#include "optimizer/algorithm_registry.h"
 
 namespace mrsim {
 namespace {
@@ -48,13 +49,7 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
     throw std::invalid_argument("optimise: save the design to a file first");
   }
   if (o.out_dir.empty()) throw std::invalid_argument("optimise: no folder");
-  const std::vector<std::string> algorithms = {"ga", "sa", "pso", "cmaes",
-                                               "random"};
-  if (std::find(algorithms.begin(), algorithms.end(), o.algorithm) ==
-      algorithms.end()) {
-    throw std::invalid_argument("optimise: algorithm '" + o.algorithm +
-                                "' (expected ga, sa, pso, cmaes or random)");
-  }
+  ParseAlgorithm(o.algorithm, "optimise: algorithm");
   if (o.generations < 1 || o.population < 1 || !(o.episode_s > 0)) {
     throw std::invalid_argument(fmt::format(
         "optimise: {} generations of {} over {} s episodes (expected at "

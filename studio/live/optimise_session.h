@@ -25,7 +25,7 @@ struct OptimiseOptions {
   std::string scenario_path;
   std::string out_dir;
   GenomeSpec genome;
-  std::string algorithm = "cmaes";  // ga | sa | pso | cmaes | random
+  std::string algorithm = "cmaes";  // a name of Algorithms()
   int generations = 10;
   int population = 8;
   unsigned seed = 1;

@@ -11,7 +11,7 @@ double BestOf(const std::string& algo, const std::string& function,
               std::uint64_t seed, int population, int generations) {
   const GenomeSpec spec = TestFunctionSpec(6, -5.12, 5.12, 4.0);
   AlgorithmSettings settings;
-  settings.algorithm = algo;
+  settings.algorithm = ParseAlgorithm(algo);
   settings.population = population;
   settings.seed = seed;
   LocalEvaluator evaluator(
@@ -46,7 +46,7 @@ TEST(OptimizerAlgorithms, ResultDoesNotDependOnThreadCount) {
   const GenomeSpec spec = TestFunctionSpec(5, -5.12, 5.12, 4.0);
   for (const std::string algo : {"ga", "sa", "pso", "cmaes", "random"}) {
     AlgorithmSettings settings;
-    settings.algorithm = algo;
+    settings.algorithm = ParseAlgorithm(algo);
     settings.population = 9;
     settings.seed = 5;
     OptimizationRunOptions options;
