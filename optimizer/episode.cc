@@ -1,98 +1,21 @@
 #include "optimizer/episode.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_runner.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_physics_pool.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 
 namespace mrsim {
-namespace {
-
-// Building a Physics (MJCF compile and three zeroed mjData arenas) costs
-// about as much as a 4 s episode. Built ones are kept in a small pool
-// shared by all threads and, when the next episode's scenario is the same
-// (gait genes only, or the same body), reset to the state a new one starts
-// in: bit for bit the same episode (tested), at a fraction of the cost.
-// Shared, not one per thread: a worker's pool thread that runs its first
-// episode takes the one another thread built, so a farm worker builds one
-// per episode it runs at once, not one per thread (a cold thread cost a
-// generation a whole extra build on a slow host).
-class PhysicsPool {
- public:
-  static PhysicsPool& Get() {
-    static PhysicsPool pool;
-    return pool;
-  }
-
-  std::unique_ptr<Physics> Take(const Scenario& scenario, std::string* key) {
-    *key = WriteScenarioString(scenario) + '\n' + scenario.base_dir;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (auto it = idle_.begin(); it != idle_.end(); ++it) {
-        if (it->first != *key) continue;
-        std::unique_ptr<Physics> physics = std::move(it->second);
-        idle_.erase(it);
-        physics->Reset();
-        return physics;
-      }
-    }
-    auto built = std::make_unique<Physics>(scenario);
-    ++built_;
-    return built;
-  }
-
-  long long built() const { return built_; }
-
-  void Clear() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle_.clear();
-  }
-
-  void Give(std::string key, std::unique_ptr<Physics> physics) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle_.emplace_back(std::move(key), std::move(physics));
-    // As many as the machine runs episodes at once: the most recent.
-    const size_t keep =
-        std::max<size_t>(1, std::thread::hardware_concurrency());
-    while (idle_.size() > keep) idle_.erase(idle_.begin());
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::pair<std::string, std::unique_ptr<Physics>>> idle_;
-  std::atomic<long long> built_{0};
-};
-
-// A Physics from the pool for one episode, given back when it ends.
-class PhysicsLease {
- public:
-  explicit PhysicsLease(const Scenario& scenario)
-      : physics_(PhysicsPool::Get().Take(scenario, &key_)) {}
-  ~PhysicsLease() {
-    PhysicsPool::Get().Give(std::move(key_), std::move(physics_));
-  }
-  PhysicsLease(const PhysicsLease&) = delete;
-  PhysicsLease& operator=(const PhysicsLease&) = delete;
-  Physics& operator*() { return *physics_; }
-
- private:
-  std::string key_;
-  std::unique_ptr<Physics> physics_;
-};
-
-}  // namespace
 
 const EnumTable<DistanceMode>& DistanceModes() {
   static const EnumTable<DistanceMode> kModes(
@@ -131,21 +54,18 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome) {
   return gait;
 }
 
-void ReleaseEpisodePhysics() { PhysicsPool::Get().Clear(); }
-
-long long EpisodePhysicsBuilt() { return PhysicsPool::Get().built(); }
-
-void PrepareEpisode(const Problem& problem) {
+void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
   try {
-    PhysicsLease lease(ApplyBodyGenes(problem.scenario, problem.genome,
-                                      problem.genome.StartGenome()));
+    PhysicsLease lease(pool, ApplyBodyGenes(problem.scenario, problem.genome,
+                                            problem.genome.StartGenome()));
   } catch (const std::exception&) {
     // Its episodes report it.
   }
 }
 
 EvalResult RunEpisode(const Problem& problem, const Genome& genome,
-                      const std::function<bool()>& stop) {
+                      const std::function<bool()>& stop,
+                      EpisodePhysicsPool* pool) {
   if (genome.size() != problem.genome.genes.size()) {
     throw GenomeError("genome has the wrong number of values");
   }
@@ -155,7 +75,7 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const Scenario scenario =
         ApplyBodyGenes(problem.scenario, problem.genome, genome);
     const int robot = GenomeRobotIndex(scenario, problem.genome);
-    PhysicsLease lease(scenario);
+    PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
     GaitController controller(JointAxes(physics, robot));
     controller.SetGait(GaitOfGenome(problem, genome));

@@ -66,26 +66,26 @@ struct Problem {
 // The gait an individual runs: the base gait with the gait genes applied.
 Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 
+class EpisodePhysicsPool;
+
 // Runs the episode. An unstable simulation, gait values the controller
 // refuses or a body the validator refuses give failed = true and
 // kFailedFitness, never an exception; a genome of the wrong size or a
 // robot not in the scenario throws. `stop` (optional) is polled every ten
 // control periods: when it returns true the episode is abandoned with
 // EvaluationInterrupted, so Ctrl-C does not wait for a long episode.
+// `pool` (optional, see episode_physics_pool.h): where the simulation is
+// taken from and given back to, so the next episode of the same body
+// resets it instead of building one (bit for bit the same result); without
+// one the episode builds its own.
 EvalResult RunEpisode(const Problem& problem, const Genome& genome,
-                      const std::function<bool()>& stop = {});
+                      const std::function<bool()>& stop = {},
+                      EpisodePhysicsPool* pool = nullptr);
 
-// Episodes keep the simulations they built (a few, shared by all threads)
-// and reset one for the next episode of the same body, which is bit for
-// bit a fresh one. This frees them: the next episode builds afresh.
-void ReleaseEpisodePhysics();
-
-// Builds and keeps the simulation of the problem's start genome, so that a
-// first episode of that body does not pay the build (a worker does it
+// Builds the simulation of the problem's start genome into `pool`, so that
+// a first episode of that body does not pay the build (a worker does it
 // while it waits for its first job). Never throws: a problem that cannot
 // be built fails in its episodes as before.
-void PrepareEpisode(const Problem& problem);
-// How many simulations episodes (and PrepareEpisode) have built so far.
-long long EpisodePhysicsBuilt();
+void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool);
 
 }  // namespace mrsim

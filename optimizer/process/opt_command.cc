@@ -18,6 +18,7 @@
 #include "common/hash.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/problem_codec.h"
@@ -328,10 +329,12 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     std::function<void(const std::string&)> log) {
   if (!c.farm) {
     const Problem& problem = setup.problem;
+    // The threads share one pool of simulations, as long as the evaluator.
+    auto physics = std::make_shared<EpisodePhysicsPool>();
     // Episodes poll the stop too: Ctrl-C does not wait for a long one.
     return std::make_unique<LocalEvaluator>(
-        [&problem, stop](const Genome& g) {
-          return RunEpisode(problem, g, stop);
+        [&problem, stop, physics](const Genome& g) {
+          return RunEpisode(problem, g, stop, physics.get());
         },
         setup.threads, stop);
   }
