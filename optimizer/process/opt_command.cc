@@ -16,12 +16,15 @@
 #include "common/atomic_file.h"
 #include "common/enum_option.h"
 #include "common/hash.h"
+#include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
 #include "optimizer/episode_physics_pool.h"
+#include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/problem_codec.h"
+#include "optimizer/process/opt_progress_reporter.h"
 #include "sim_core/scenario_xml.h"
 
 namespace fs = std::filesystem;
@@ -117,6 +120,9 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--out", c.out_dir,
                  "Output directory (checkpoint, CSVs, best)")
       ->required();
+  app.add_option("--progress-url", c.progress_url,
+                 "Also publish opt_progress_t on <prefix>_PROGRESS over this "
+                 "LCM URL after every generation and at the end");
   AddEnumOption(app, "--algorithm", &a.algorithm, AlgorithmNames(),
                 AlgorithmHelp());
   app.add_option("--generations", c.generations, "Generations to run")
@@ -395,8 +401,13 @@ std::string FormatProgress(const GenerationReport& r) {
 }
 
 OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
-                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err) {
+                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err,
+                  const std::function<void(const opt_progress_t&)>& publish) {
   AlgorithmSettings a = c.algorithm;
+  OptProgressReporter reporter(MakeRunId(), c.out_dir, ToString(a.algorithm));
+  auto report_end = [&](int8_t state, const std::string& error) {
+    if (publish) publish(reporter.End(state, WallMicros(), error));
+  };
   a.include_start = !c.no_start;
   OptimizationRunOptions options;
   options.generations = c.generations;
@@ -412,6 +423,7 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
       e.fitness.w_speed, e.fitness.w_energy, e.fitness.w_drift,
       e.fitness.w_fall);
   options.progress = [&](const GenerationReport& r) {
+    if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;
     fmt::print(out, "{}\n", FormatProgress(r));
     std::fflush(out);
@@ -442,8 +454,10 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     outcome.result =
         RunOptimization(setup.problem.genome, a, evaluator, options);
   } catch (const CheckpointError& e) {
+    report_end(opt_progress_t::FAILED, e.what());
     throw OptInputError(e.what());
   } catch (const OptimizationInterrupted& stopped) {
+    report_end(opt_progress_t::STOPPED, "");
     const RunResult& partial = stopped.partial();
     if (partial.generations_done > 0 && partial.wrote_files) {
       // What the completed generations found, to take away now; the run
@@ -472,7 +486,11 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     }
     outcome.stopped = true;
     return outcome;
+  } catch (const std::exception& e) {
+    report_end(opt_progress_t::FAILED, e.what());
+    throw;
   }
+  report_end(opt_progress_t::FINISHED, "");
   const RunResult& result = outcome.result;
   // A --jump-to into an older part of the run writes the best apart,
   // leaving the run's own files alone.
@@ -523,6 +541,19 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   }
   std::fflush(out);
   return outcome;
+}
+
+std::function<void(const opt_progress_t&)> MakeProgressPublisher(
+    const OptCommand& c, std::unique_ptr<lcm::LCM>* connection) {
+  if (c.progress_url.empty()) return {};
+  *connection = std::make_unique<lcm::LCM>(c.progress_url);
+  if (!(*connection)->good()) {
+    throw OptInputError("--progress-url: cannot open LCM at '" +
+                        c.progress_url + "'");
+  }
+  lcm::LCM* lcm = connection->get();
+  const std::string channel = FarmChannels(c.prefix).progress;
+  return [lcm, channel](const opt_progress_t& m) { lcm->publish(channel, &m); };
 }
 
 std::string FindLauncher() {
