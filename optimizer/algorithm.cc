@@ -2,31 +2,26 @@
 
 #include <fmt/format.h>
 
-#include "optimizer/cmaes.h"
-#include "optimizer/genetic_algorithm.h"
-#include "optimizer/particle_swarm.h"
-#include "optimizer/random_search.h"
-#include "optimizer/simulated_annealing.h"
-
 namespace mrsim {
+
+const EnumTable<SelectionMethod>& SelectionMethods() {
+  static const EnumTable<SelectionMethod> kMethods(
+      "selection", {{SelectionMethod::kTournament, "tournament"},
+                    {SelectionMethod::kTruncation, "truncation"}});
+  return kMethods;
+}
 
 void AlgorithmSettings::Validate() const {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument(what);
   };
-  if (algorithm != "ga" && algorithm != "sa" && algorithm != "pso" &&
-      algorithm != "cmaes" && algorithm != "random") {
-    fail("algorithm: expected ga, sa, pso, cmaes or random, got '" + algorithm +
-         "'");
-  }
+  // A value cast from a number, not one of the registry's.
+  AlgorithmNames().Parse(ToString(algorithm));
   if (population < 1) fail("population must be at least 1");
   if (islands < 1 || islands > kMaxIslands) {
     fail(fmt::format("islands must be in [1, {}]", kMaxIslands));
   }
-  if (selection != "tournament" && selection != "truncation") {
-    fail("selection: expected tournament or truncation, got '" + selection +
-         "'");
-  }
+  SelectionMethods().Parse(ToString(selection));
   if (tournament_size < 1) fail("tournament size must be at least 1");
   if (!(truncation_fraction > 0 && truncation_fraction <= 1)) {
     fail("truncation fraction must be in (0, 1]");
@@ -50,30 +45,34 @@ void AlgorithmSettings::Validate() const {
   if (!(cmaes_sigma > 0 && cmaes_sigma <= 1)) {
     fail("CMA-ES sigma must be in (0, 1]");
   }
-  if (algorithm == "cmaes" && population < 2) {
-    fail("CMA-ES needs a population of at least 2");
+  const AlgorithmInfo& info = AlgorithmInfoOf(algorithm);
+  if (population < info.min_population) {
+    fail(fmt::format("{} needs a population of at least {}", info.title,
+                     info.min_population));
   }
 }
 
 std::string AlgorithmSettings::Describe() const {
   std::string s =
       fmt::format("algorithm={}\npopulation={}\nseed={}\ninclude_start={}\n",
-                  algorithm, population, seed, include_start);
+                  ToString(algorithm), population, seed, include_start);
   // Not written when 1, so runs from before islands keep their checkpoints.
   if (islands != 1) s += fmt::format("islands={}\n", islands);
-  if (algorithm == "ga") {
+  // Each algorithm's own settings only, so a checkpoint's fingerprint does
+  // not change with settings the run does not use.
+  if (algorithm == AlgorithmKind::kGa) {
     s += fmt::format(
         "selection={}\ntournament_size={}\ntruncation_fraction={}\n"
         "crossover_rate={}\nmutation_rate={}\nmutation_scale={}\nelites={}\n",
-        selection, tournament_size, truncation_fraction, crossover_rate,
-        mutation_rate, mutation_scale, elites);
-  } else if (algorithm == "sa") {
+        ToString(selection), tournament_size, truncation_fraction,
+        crossover_rate, mutation_rate, mutation_scale, elites);
+  } else if (algorithm == AlgorithmKind::kSa) {
     s += fmt::format("sa_t0={}\nsa_cooling={}\nsa_rate={}\nsa_step={}\n", sa_t0,
                      sa_cooling, sa_rate, sa_step);
-  } else if (algorithm == "pso") {
+  } else if (algorithm == AlgorithmKind::kPso) {
     s += fmt::format("pso_inertia={}\npso_c1={}\npso_c2={}\npso_vmax={}\n",
                      pso_inertia, pso_c1, pso_c2, pso_vmax);
-  } else if (algorithm == "cmaes") {
+  } else if (algorithm == AlgorithmKind::kCmaes) {
     s += fmt::format("cmaes_sigma={}\n", cmaes_sigma);
   }
   return s;
@@ -93,19 +92,7 @@ std::uint64_t IslandSeed(std::uint64_t seed, int island) {
 std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,
                                          const AlgorithmSettings& settings) {
   settings.Validate();
-  if (settings.algorithm == "ga") {
-    return std::make_unique<GeneticAlgorithm>(spec, settings);
-  }
-  if (settings.algorithm == "sa") {
-    return std::make_unique<SimulatedAnnealing>(spec, settings);
-  }
-  if (settings.algorithm == "pso") {
-    return std::make_unique<ParticleSwarm>(spec, settings);
-  }
-  if (settings.algorithm == "cmaes") {
-    return std::make_unique<Cmaes>(spec, settings);
-  }
-  return std::make_unique<RandomSearch>(spec, settings);
+  return AlgorithmInfoOf(settings.algorithm).make(spec, settings);
 }
 
 }  // namespace mrsim

@@ -10,14 +10,28 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_table.h"
+#include "optimizer/algorithm_registry.h"
 #include "optimizer/eval_result.h"
 #include "optimizer/genome.h"
 
 namespace mrsim {
 
+// How the genetic algorithm picks parents.
+enum class SelectionMethod { kTournament, kTruncation };
+const EnumTable<SelectionMethod>& SelectionMethods();
+inline const char* ToString(SelectionMethod method) {
+  return SelectionMethods().Name(method);
+}
+// Throws std::invalid_argument naming `field` and every valid word.
+inline SelectionMethod ParseSelectionMethod(
+    const std::string& text, const std::string& field = "selection") {
+  return SelectionMethods().Parse(text, field);
+}
+
 struct AlgorithmSettings {
   static constexpr int kMaxIslands = 16;
-  std::string algorithm = "ga";  // ga | sa | pso | cmaes | random
+  AlgorithmKind algorithm = AlgorithmKind::kGa;  // see Algorithms()
   int population = 16;
   std::uint64_t seed = 1;
   bool include_start = true;  // generation 0 holds the start genome
@@ -29,7 +43,7 @@ struct AlgorithmSettings {
   int islands = 1;
 
   // Genetic algorithm.
-  std::string selection = "tournament";  // tournament | truncation
+  SelectionMethod selection = SelectionMethod::kTournament;
   int tournament_size = 3;
   double truncation_fraction = 0.5;  // best fraction that may breed
   double crossover_rate = 0.9;       // else the child copies one parent
@@ -69,7 +83,7 @@ class Algorithm {
 // The seed of island `island` (island 0: `seed` itself).
 std::uint64_t IslandSeed(std::uint64_t seed, int island);
 
-// The algorithm named by settings.algorithm.
+// The algorithm settings.algorithm names (its row of Algorithms()).
 std::unique_ptr<Algorithm> MakeAlgorithm(const GenomeSpec& spec,
                                          const AlgorithmSettings& settings);
 

@@ -1,98 +1,28 @@
 #include "optimizer/episode.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_runner.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_physics_pool.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 
 namespace mrsim {
-namespace {
 
-// Building a Physics (MJCF compile and three zeroed mjData arenas) costs
-// about as much as a 4 s episode. Built ones are kept in a small pool
-// shared by all threads and, when the next episode's scenario is the same
-// (gait genes only, or the same body), reset to the state a new one starts
-// in: bit for bit the same episode (tested), at a fraction of the cost.
-// Shared, not one per thread: a worker's pool thread that runs its first
-// episode takes the one another thread built, so a farm worker builds one
-// per episode it runs at once, not one per thread (a cold thread cost a
-// generation a whole extra build on a slow host).
-class PhysicsPool {
- public:
-  static PhysicsPool& Get() {
-    static PhysicsPool pool;
-    return pool;
-  }
-
-  std::unique_ptr<Physics> Take(const Scenario& scenario, std::string* key) {
-    *key = WriteScenarioString(scenario) + '\n' + scenario.base_dir;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (auto it = idle_.begin(); it != idle_.end(); ++it) {
-        if (it->first != *key) continue;
-        std::unique_ptr<Physics> physics = std::move(it->second);
-        idle_.erase(it);
-        physics->Reset();
-        return physics;
-      }
-    }
-    auto built = std::make_unique<Physics>(scenario);
-    ++built_;
-    return built;
-  }
-
-  long long built() const { return built_; }
-
-  void Clear() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle_.clear();
-  }
-
-  void Give(std::string key, std::unique_ptr<Physics> physics) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle_.emplace_back(std::move(key), std::move(physics));
-    // As many as the machine runs episodes at once: the most recent.
-    const size_t keep =
-        std::max<size_t>(1, std::thread::hardware_concurrency());
-    while (idle_.size() > keep) idle_.erase(idle_.begin());
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::pair<std::string, std::unique_ptr<Physics>>> idle_;
-  std::atomic<long long> built_{0};
-};
-
-// A Physics from the pool for one episode, given back when it ends.
-class PhysicsLease {
- public:
-  explicit PhysicsLease(const Scenario& scenario)
-      : physics_(PhysicsPool::Get().Take(scenario, &key_)) {}
-  ~PhysicsLease() {
-    PhysicsPool::Get().Give(std::move(key_), std::move(physics_));
-  }
-  PhysicsLease(const PhysicsLease&) = delete;
-  PhysicsLease& operator=(const PhysicsLease&) = delete;
-  Physics& operator*() { return *physics_; }
-
- private:
-  std::string key_;
-  std::unique_ptr<Physics> physics_;
-};
-
-}  // namespace
+const EnumTable<DistanceMode>& DistanceModes() {
+  static const EnumTable<DistanceMode> kModes(
+      "fitness distance mode",
+      {{DistanceMode::kForward, "forward"}, {DistanceMode::kNet, "net"}});
+  return kModes;
+}
 
 void EpisodeSettings::Validate() const {
   if (!(duration > 0) || !std::isfinite(duration)) {
@@ -101,12 +31,8 @@ void EpisodeSettings::Validate() const {
   if (!(control_period > 0)) {
     throw std::invalid_argument("control period must be > 0 s");
   }
-  if (fitness.distance_mode != "forward" && fitness.distance_mode != "net") {
-    throw std::invalid_argument(
-        "fitness distance mode: expected forward or "
-        "net, got '" +
-        fitness.distance_mode + "'");
-  }
+  // A value cast from a number, not one of the table's.
+  DistanceModes().Parse(ToString(fitness.distance_mode));
   for (double w : {fitness.w_distance, fitness.w_speed, fitness.w_energy,
                    fitness.w_drift, fitness.w_fall}) {
     if (!std::isfinite(w)) {
@@ -128,21 +54,18 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome) {
   return gait;
 }
 
-void ReleaseEpisodePhysics() { PhysicsPool::Get().Clear(); }
-
-long long EpisodePhysicsBuilt() { return PhysicsPool::Get().built(); }
-
-void PrepareEpisode(const Problem& problem) {
+void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
   try {
-    PhysicsLease lease(ApplyBodyGenes(problem.scenario, problem.genome,
-                                      problem.genome.StartGenome()));
+    PhysicsLease lease(pool, ApplyBodyGenes(problem.scenario, problem.genome,
+                                            problem.genome.StartGenome()));
   } catch (const std::exception&) {
     // Its episodes report it.
   }
 }
 
 EvalResult RunEpisode(const Problem& problem, const Genome& genome,
-                      const std::function<bool()>& stop) {
+                      const std::function<bool()>& stop,
+                      EpisodePhysicsPool* pool) {
   if (genome.size() != problem.genome.genes.size()) {
     throw GenomeError("genome has the wrong number of values");
   }
@@ -152,7 +75,7 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const Scenario scenario =
         ApplyBodyGenes(problem.scenario, problem.genome, genome);
     const int robot = GenomeRobotIndex(scenario, problem.genome);
-    PhysicsLease lease(scenario);
+    PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
     GaitController controller(JointAxes(physics, robot));
     controller.SetGait(GaitOfGenome(problem, genome));
@@ -174,8 +97,9 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const GaitRunResult run = RunGait(physics, robot, controller, e.duration,
                                       e.control_period, observer);
     const Eigen::Vector3d d = run.com_end - run.com_start;
-    result.distance =
-        e.fitness.distance_mode == "net" ? std::hypot(d.x(), d.y()) : d.x();
+    result.distance = e.fitness.distance_mode == DistanceMode::kNet
+                          ? std::hypot(d.x(), d.y())
+                          : d.x();
     result.speed = result.distance / e.duration;
     result.energy = run.energy;
     result.drift = std::abs(d.y());

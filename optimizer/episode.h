@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "common/enum_table.h"
 #include "gait_controller/gait.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/eval_result.h"
@@ -15,12 +16,24 @@
 
 namespace mrsim {
 
+// "forward": CoM displacement along +x (the chain's head direction, see
+// chain_builder.h); "net": horizontal CoM displacement in any direction.
+enum class DistanceMode { kForward, kNet };
+const EnumTable<DistanceMode>& DistanceModes();
+inline const char* ToString(DistanceMode mode) {
+  return DistanceModes().Name(mode);
+}
+// Throws std::invalid_argument naming `field` and every valid word.
+inline DistanceMode ParseDistanceMode(
+    const std::string& text,
+    const std::string& field = "fitness distance mode") {
+  return DistanceModes().Parse(text, field);
+}
+
 // Fitness = distance * w_distance + speed * w_speed - energy * w_energy
 //           - drift * w_drift - fell * w_fall            (higher is better)
 struct FitnessSettings {
-  // "forward": CoM displacement along +x (the chain's head direction, see
-  // chain_builder.h); "net": horizontal CoM displacement in any direction.
-  std::string distance_mode = "forward";
+  DistanceMode distance_mode = DistanceMode::kForward;
   double w_distance = 1.0;
   double w_speed = 0.0;
   double w_energy = 0.0;
@@ -53,26 +66,26 @@ struct Problem {
 // The gait an individual runs: the base gait with the gait genes applied.
 Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 
+class EpisodePhysicsPool;
+
 // Runs the episode. An unstable simulation, gait values the controller
 // refuses or a body the validator refuses give failed = true and
 // kFailedFitness, never an exception; a genome of the wrong size or a
 // robot not in the scenario throws. `stop` (optional) is polled every ten
 // control periods: when it returns true the episode is abandoned with
 // EvaluationInterrupted, so Ctrl-C does not wait for a long episode.
+// `pool` (optional, see episode_physics_pool.h): where the simulation is
+// taken from and given back to, so the next episode of the same body
+// resets it instead of building one (bit for bit the same result); without
+// one the episode builds its own.
 EvalResult RunEpisode(const Problem& problem, const Genome& genome,
-                      const std::function<bool()>& stop = {});
+                      const std::function<bool()>& stop = {},
+                      EpisodePhysicsPool* pool = nullptr);
 
-// Episodes keep the simulations they built (a few, shared by all threads)
-// and reset one for the next episode of the same body, which is bit for
-// bit a fresh one. This frees them: the next episode builds afresh.
-void ReleaseEpisodePhysics();
-
-// Builds and keeps the simulation of the problem's start genome, so that a
-// first episode of that body does not pay the build (a worker does it
+// Builds the simulation of the problem's start genome into `pool`, so that
+// a first episode of that body does not pay the build (a worker does it
 // while it waits for its first job). Never throws: a problem that cannot
 // be built fails in its episodes as before.
-void PrepareEpisode(const Problem& problem);
-// How many simulations episodes (and PrepareEpisode) have built so far.
-long long EpisodePhysicsBuilt();
+void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool);
 
 }  // namespace mrsim

@@ -25,7 +25,7 @@ std::vector<Genome> GeneticAlgorithm::Ask() {
     next.push_back(population_[ranking[e]]);
   }
   auto select = [&]() {
-    return settings_.selection == "truncation"
+    return settings_.selection == SelectionMethod::kTruncation
                ? TruncationSelect(ranking, settings_.truncation_fraction,
                                   random_)
                : TournamentSelect(fitness_, settings_.tournament_size, random_);

@@ -200,7 +200,7 @@ FilePtr OpenCsv(const std::string& path) {
 RunResult RunOptimization(const GenomeSpec& spec,
                           const AlgorithmSettings& settings,
                           BatchEvaluator& evaluator,
-                          const RunOptions& options) {
+                          const OptimizationRunOptions& options) {
   using Clock = std::chrono::steady_clock;
   if (options.stop_after == 0) {
     // Nothing run has no best to write.

@@ -34,7 +34,9 @@ struct GenerationReport {
   bool replayed = false;     // taken from the checkpoint, not evaluated
 };
 
-struct RunOptions {
+// How RunOptimization runs: length, output folder, checkpoint identity and
+// the progress callback (the studio's live run has its own RunOptions).
+struct OptimizationRunOptions {
   int generations = 10;
   // Stop after this many generations (--jump-to); < 0: all; 0 is refused
   // (std::invalid_argument). When the checkpoint already holds more,
@@ -85,6 +87,7 @@ class OptimizationInterrupted : public EvaluationInterrupted {
 // or what the evaluator throws.
 RunResult RunOptimization(const GenomeSpec& spec,
                           const AlgorithmSettings& settings,
-                          BatchEvaluator& evaluator, const RunOptions& options);
+                          BatchEvaluator& evaluator,
+                          const OptimizationRunOptions& options);
 
 }  // namespace mrsim

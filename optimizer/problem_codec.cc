@@ -31,8 +31,8 @@ std::string EncodeEpisode(const EpisodeSettings& e) {
   return fmt::format(
       "duration={}\ncontrol_period={}\ndistance_mode={}\nw_distance={}\n"
       "w_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
-      e.duration, e.control_period, f.distance_mode, f.w_distance, f.w_speed,
-      f.w_energy, f.w_drift, f.w_fall);
+      e.duration, e.control_period, ToString(f.distance_mode), f.w_distance,
+      f.w_speed, f.w_energy, f.w_drift, f.w_fall);
 }
 
 EpisodeSettings DecodeEpisode(const std::string& text,
@@ -60,7 +60,12 @@ EpisodeSettings DecodeEpisode(const std::string& text,
   EpisodeSettings e;
   e.duration = number("duration");
   e.control_period = number("control_period");
-  e.fitness.distance_mode = kv["distance_mode"];
+  try {
+    e.fitness.distance_mode =
+        ParseDistanceMode(kv["distance_mode"], "episode setting distance_mode");
+  } catch (const std::invalid_argument& err) {
+    throw ProblemError(source + ": " + err.what());
+  }
   e.fitness.w_distance = number("w_distance");
   e.fitness.w_speed = number("w_speed");
   e.fitness.w_energy = number("w_energy");

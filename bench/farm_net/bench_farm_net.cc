@@ -36,6 +36,7 @@
 #include "common/lcm_url.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
+#include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/farm/farm_worker.h"
 #include "optimizer/problem_codec.h"
@@ -46,6 +47,12 @@
 #include "tests/optimizer/sim_farm.h"
 
 namespace {
+
+// The simulations the benchmark's episodes share, as mrsim-opt's threads do.
+mrsim::EpisodePhysicsPool& Physics() {
+  static mrsim::EpisodePhysicsPool pool;
+  return pool;
+}
 
 using Clock = std::chrono::steady_clock;
 using mrsim::testing::ChildProcess;
@@ -249,7 +256,7 @@ double GenomeBound(const mrsim::Problem& problem, int population, int batches,
       double best = 1e9;
       for (int r = 0; r < 3; ++r) {
         const double t0 = thread_cpu();
-        mrsim::RunEpisode(problem, g);
+        mrsim::RunEpisode(problem, g, {}, &Physics());
         best = std::min(best, thread_cpu() - t0);
       }
       sum += best;

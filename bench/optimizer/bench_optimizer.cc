@@ -26,6 +26,7 @@
 #include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
+#include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/optimization_run.h"
@@ -34,6 +35,12 @@
 #include "sim_core/scenario_xml.h"
 
 namespace {
+
+// The simulations the benchmark's episodes share, as mrsim-opt's threads do.
+mrsim::EpisodePhysicsPool& Physics() {
+  static mrsim::EpisodePhysicsPool pool;
+  return pool;
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -177,15 +184,17 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
   double sum = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
     mrsim::AlgorithmSettings a;
-    a.algorithm = algo;
+    a.algorithm = mrsim::ParseAlgorithm(algo);
     a.population = population;
     a.seed = static_cast<std::uint64_t>(seed);
     a.include_start = false;
     a.islands = islands;
     mrsim::LocalEvaluator evaluator(
-        [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
+        [&](const mrsim::Genome& g) {
+          return mrsim::RunEpisode(problem, g, {}, &Physics());
+        },
         static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-    mrsim::RunOptions options;
+    mrsim::OptimizationRunOptions options;
     options.generations = generations;
     const mrsim::RunResult r =
         mrsim::RunOptimization(problem.genome, a, evaluator, options);
@@ -203,7 +212,9 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
 double LocalRate(int threads, int jobs) {
   const mrsim::Problem problem = SnakeProblem(4.0);
   mrsim::LocalEvaluator local(
-      [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
+      [&](const mrsim::Genome& g) {
+        return mrsim::RunEpisode(problem, g, {}, &Physics());
+      },
       threads);
   const auto batch = RandomBatch(problem.genome, jobs, 2);
   const auto t0 = Clock::now();
@@ -311,8 +322,8 @@ int main(int argc, char** argv) {
 
     // Optimised gait vs the preset: 20 s episodes, same budget each.
     const mrsim::Problem problem = SnakeProblem(20.0);
-    const mrsim::EvalResult preset =
-        mrsim::RunEpisode(problem, problem.genome.StartGenome());
+    const mrsim::EvalResult preset = mrsim::RunEpisode(
+        problem, problem.genome.StartGenome(), {}, &Physics());
     const int population = 8, generations = 6;
     std::printf(
         "# forward preset: %.4f m/s over 20 s; budget per algorithm: "
@@ -322,14 +333,16 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     for (const char* algo : {"ga", "sa", "pso", "cmaes", "random"}) {
       mrsim::AlgorithmSettings a;
-      a.algorithm = algo;
+      a.algorithm = mrsim::ParseAlgorithm(algo);
       a.population = population;
       a.seed = 1;
       a.include_start = false;
       mrsim::LocalEvaluator evaluator(
-          [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); },
+          [&](const mrsim::Genome& g) {
+            return mrsim::RunEpisode(problem, g, {}, &Physics());
+          },
           static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-      mrsim::RunOptions options;
+      mrsim::OptimizationRunOptions options;
       options.generations = generations;
       const auto t0 = Clock::now();
       const mrsim::RunResult r =

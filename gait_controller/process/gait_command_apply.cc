@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gait_controller/gait_file.h"
+#include "gait_controller/process/gait_parameters_message.h"
 
 namespace mrsim {
 
@@ -21,8 +22,7 @@ std::string ApplyGaitCommand(const gait_command_t& command,
     what += fmt::format(" gait {} ({})", gait.name, ToString(gait.kind));
   }
   if (command.has_parameters) {
-    const std::vector<double> values(command.parameters,
-                                     command.parameters + 7);
+    const std::vector<double> values = GaitParameterValues(command.parameters);
     next.SetParameters(next.active_gait().parameters.WithVector(values));
     what += fmt::format(" parameters [{}]", fmt::join(values, ", "));
   }

@@ -14,6 +14,7 @@
 #include "common/atomic_file.h"
 #include "common/exact_number.h"
 #include "gait_controller/process/gait_command_apply.h"
+#include "gait_controller/process/gait_parameters_message.h"
 #include "gait_controller/process/motion_fit.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/usage_error.h"
@@ -86,8 +87,7 @@ gait_status_t GaitNode::status() const {
   const Gait& gait = controller_ ? controller_->active_gait() : initial_;
   s.gait = gait.name;
   s.kind = ToString(gait.kind);
-  const auto values = gait.parameters.ToArray();
-  std::copy(values.begin(), values.end(), s.parameters);
+  WriteGaitParameters(gait.parameters, s.parameters);
   s.motion = ToString(controller_ ? controller_->motion() : Motion::kForward);
   s.strength = controller_ ? controller_->strength() : 1.0;
   s.stopped = controller_ && controller_->stopped();

@@ -1,5 +1,6 @@
 // Channel names of the optimiser farm: <prefix>_RUN, _CHUNK,
-// _CHUNK_REQUEST, _HEARTBEAT, _JOB, _RESULT (default prefix MRSIM_OPT).
+// _CHUNK_REQUEST, _HEARTBEAT, _JOB, _RESULT (default prefix MRSIM_OPT),
+// and mrsim-opt's progress, <prefix>_PROGRESS (opt_progress_t).
 #pragma once
 
 #include <string>
@@ -15,8 +16,9 @@ struct FarmChannels {
         chunk_request(prefix + "_CHUNK_REQUEST"),
         heartbeat(prefix + "_HEARTBEAT"),
         job(prefix + "_JOB"),
-        result(prefix + "_RESULT") {}
-  std::string run, chunk, chunk_request, heartbeat, job, result;
+        result(prefix + "_RESULT"),
+        progress(prefix + "_PROGRESS") {}
+  std::string run, chunk, chunk_request, heartbeat, job, result, progress;
 };
 
 }  // namespace mrsim

@@ -118,7 +118,7 @@ WorkerCounters FarmWorker::counters() const {
 }
 
 opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
-                             double fake_episode,
+                             double fake_episode, EpisodePhysicsPool* physics,
                              const std::function<bool()>& stop) {
   opt_result_t r{};
   r.run_id = task.run_id;
@@ -138,7 +138,7 @@ opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
   const auto t0 = std::chrono::steady_clock::now();
   try {
     task.problem->genome.Check(task.genome);
-    const EvalResult e = RunEpisode(*task.problem, task.genome, stop);
+    const EvalResult e = RunEpisode(*task.problem, task.genome, stop, physics);
     r.fitness = e.fitness;
     r.distance = e.distance;
     r.speed = e.speed;
@@ -169,14 +169,14 @@ void FarmWorker::Work() {
         const std::shared_ptr<const Problem> problem = warm_queue_.front();
         warm_queue_.pop_front();
         lock.unlock();
-        PrepareEpisode(*problem);
+        PrepareEpisode(*problem, &physics_);
         continue;
       }
       item = std::move(pool_queue_.front());
       pool_queue_.pop_front();
     }
-    opt_result_t r =
-        Run(item.second, item.first, 0, [this] { return abandon_.load(); });
+    opt_result_t r = Run(item.second, item.first, 0, &physics_,
+                         [this] { return abandon_.load(); });
     {
       std::lock_guard<std::mutex> lock(mutex_);
       finished_.push_back(std::move(r));
@@ -231,7 +231,7 @@ std::vector<std::string> FarmWorker::Poll(int timeout_ms) {
     for (WorkerTask& t : c->TakeTasks(fake_episode_ > 0 ? 0 : 1)) {
       if (fake_episode_ > 0) {
         fake_running_.emplace(now + fake_episode_,
-                              Run(t, c->id(), fake_episode_));
+                              Run(t, c->id(), fake_episode_, &physics_));
       } else {
         std::lock_guard<std::mutex> lock(mutex_);
         pool_queue_.emplace_back(c->id(), std::move(t));

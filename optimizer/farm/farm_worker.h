@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/signed_lcm.h"
+#include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_link.h"
 #include "optimizer/farm/farm_worker_core.h"
 
@@ -52,7 +53,7 @@ class FarmWorker {
   FarmWorkerCore* Find(const std::string& id);
   void Work();
   static opt_result_t Run(const WorkerTask& task, const std::string& worker,
-                          double fake_episode,
+                          double fake_episode, EpisodePhysicsPool* physics,
                           const std::function<bool()>& stop = {});
 
   std::string id_;
@@ -81,6 +82,9 @@ class FarmWorker {
   std::deque<std::shared_ptr<const Problem>> warm_queue_;
   std::shared_ptr<const Problem> warmed_;  // the last one queued
   std::vector<opt_result_t> finished_;
+  // The simulations this worker's episode threads share (one per episode
+  // they run at once, reset for the next episode of the same body).
+  EpisodePhysicsPool physics_;
   bool quit_ = false;
   // Set on destruction: running episodes are abandoned (their results
   // would never be sent), so a stopped worker exits at once.

@@ -14,12 +14,17 @@
 #include <vector>
 
 #include "common/atomic_file.h"
+#include "common/enum_option.h"
 #include "common/hash.h"
+#include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_physics_pool.h"
+#include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/problem_codec.h"
+#include "optimizer/process/opt_progress_reporter.h"
 #include "sim_core/scenario_xml.h"
 
 namespace fs = std::filesystem;
@@ -95,6 +100,15 @@ void WriteBestFiles(const OptCommand& c, const Problem& problem,
                     c.episode.duration, ReplayLcmUrl(c.lcm_url));
 }
 
+// --algorithm's help: one line per algorithm of the registry.
+std::string AlgorithmHelp() {
+  std::string help = "the search algorithm";
+  for (const AlgorithmInfo& info : Algorithms()) {
+    help += fmt::format("\n  {}: {}", info.name, info.summary);
+  }
+  return help + "\n";
+}
+
 }  // namespace
 
 void AddOptFlags(CLI::App& app, OptCommand& c) {
@@ -106,8 +120,11 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--out", c.out_dir,
                  "Output directory (checkpoint, CSVs, best)")
       ->required();
-  app.add_option("--algorithm", a.algorithm, "ga | sa | pso | cmaes | random")
-      ->capture_default_str();
+  app.add_option("--progress-url", c.progress_url,
+                 "Also publish opt_progress_t on <prefix>_PROGRESS over this "
+                 "LCM URL after every generation and at the end");
+  AddEnumOption(app, "--algorithm", &a.algorithm, AlgorithmNames(),
+                AlgorithmHelp());
   app.add_option("--generations", c.generations, "Generations to run")
       ->capture_default_str();
   app.add_option("--population", a.population,
@@ -131,9 +148,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--gait", c.gait_spec,
                  "Base gait (preset or file) the gait genes modify")
       ->capture_default_str();
-  app.add_option("--distance", e.fitness.distance_mode,
-                 "forward (+x) | net (any direction)")
-      ->capture_default_str();
+  AddEnumOption(app, "--distance", &e.fitness.distance_mode, DistanceModes(),
+                "distance scored, along +x or in any direction");
   app.add_option("--w-distance", e.fitness.w_distance)->capture_default_str();
   app.add_option("--w-speed", e.fitness.w_speed)->capture_default_str();
   app.add_option("--w-energy", e.fitness.w_energy, "Per joule")
@@ -143,8 +159,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--w-fall", e.fitness.w_fall,
                  "Per fraction of the episode upside down")
       ->capture_default_str();
-  app.add_option("--selection", a.selection, "GA: tournament | truncation")
-      ->capture_default_str();
+  AddEnumOption(app, "--selection", &a.selection, SelectionMethods(),
+                "the GA's parent selection");
   app.add_option("--tournament-size", a.tournament_size)->capture_default_str();
   app.add_option("--truncation", a.truncation_fraction,
                  "GA: fraction that may breed")
@@ -319,10 +335,12 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     std::function<void(const std::string&)> log) {
   if (!c.farm) {
     const Problem& problem = setup.problem;
+    // The threads share one pool of simulations, as long as the evaluator.
+    auto physics = std::make_shared<EpisodePhysicsPool>();
     // Episodes poll the stop too: Ctrl-C does not wait for a long one.
     return std::make_unique<LocalEvaluator>(
-        [&problem, stop](const Genome& g) {
-          return RunEpisode(problem, g, stop);
+        [&problem, stop, physics](const Genome& g) {
+          return RunEpisode(problem, g, stop, physics.get());
         },
         setup.threads, stop);
   }
@@ -383,10 +401,15 @@ std::string FormatProgress(const GenerationReport& r) {
 }
 
 OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
-                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err) {
+                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err,
+                  const std::function<void(const opt_progress_t&)>& publish) {
   AlgorithmSettings a = c.algorithm;
+  OptProgressReporter reporter(MakeRunId(), c.out_dir, ToString(a.algorithm));
+  auto report_end = [&](int8_t state, const std::string& error) {
+    if (publish) publish(reporter.End(state, WallMicros(), error));
+  };
   a.include_start = !c.no_start;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = c.generations;
   options.stop_after = c.jump_to;
   options.out_dir = c.out_dir;
@@ -395,10 +418,12 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   options.described = fmt::format(
       "episode={}\ncontrol_period={}\ngait={}\ndistance_mode={}\n"
       "w_distance={}\nw_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
-      e.duration, e.control_period, e.base_gait.name, e.fitness.distance_mode,
-      e.fitness.w_distance, e.fitness.w_speed, e.fitness.w_energy,
-      e.fitness.w_drift, e.fitness.w_fall);
+      e.duration, e.control_period, e.base_gait.name,
+      ToString(e.fitness.distance_mode), e.fitness.w_distance,
+      e.fitness.w_speed, e.fitness.w_energy, e.fitness.w_drift,
+      e.fitness.w_fall);
   options.progress = [&](const GenerationReport& r) {
+    if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;
     fmt::print(out, "{}\n", FormatProgress(r));
     std::fflush(out);
@@ -414,8 +439,9 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     fmt::print(err,
                "mrsim-opt: {}, {} generation{} of {}{}, {} s episodes, {}; "
                "writing {}\n",
-               a.algorithm, c.generations, c.generations == 1 ? "" : "s",
-               a.population, IslandsText(c.generations, a.islands),
+               ToString(a.algorithm), c.generations,
+               c.generations == 1 ? "" : "s", a.population,
+               IslandsText(c.generations, a.islands),
                setup.problem.episode.duration,
                c.farm ? "on the farm"
                       : fmt::format("{} thread{}", setup.threads,
@@ -428,8 +454,10 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     outcome.result =
         RunOptimization(setup.problem.genome, a, evaluator, options);
   } catch (const CheckpointError& e) {
+    report_end(opt_progress_t::FAILED, e.what());
     throw OptInputError(e.what());
   } catch (const OptimizationInterrupted& stopped) {
+    report_end(opt_progress_t::STOPPED, "");
     const RunResult& partial = stopped.partial();
     if (partial.generations_done > 0 && partial.wrote_files) {
       // What the completed generations found, to take away now; the run
@@ -458,7 +486,11 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     }
     outcome.stopped = true;
     return outcome;
+  } catch (const std::exception& e) {
+    report_end(opt_progress_t::FAILED, e.what());
+    throw;
   }
+  report_end(opt_progress_t::FINISHED, "");
   const RunResult& result = outcome.result;
   // A --jump-to into an older part of the run writes the best apart,
   // leaving the run's own files alone.
@@ -509,6 +541,19 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   }
   std::fflush(out);
   return outcome;
+}
+
+std::function<void(const opt_progress_t&)> MakeProgressPublisher(
+    const OptCommand& c, std::unique_ptr<lcm::LCM>* connection) {
+  if (c.progress_url.empty()) return {};
+  *connection = std::make_unique<lcm::LCM>(c.progress_url);
+  if (!(*connection)->good()) {
+    throw OptInputError("--progress-url: cannot open LCM at '" +
+                        c.progress_url + "'");
+  }
+  lcm::LCM* lcm = connection->get();
+  const std::string channel = FarmChannels(c.prefix).progress;
+  return [lcm, channel](const opt_progress_t& m) { lcm->publish(channel, &m); };
 }
 
 std::string FindLauncher() {

@@ -14,6 +14,7 @@
 
 #include "common/file_lock.h"
 #include "lcmtypes/runtime/auth_flags.h"
+#include "mrsim/opt_progress_t.hpp"
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
@@ -34,6 +35,8 @@ struct OptCommand {
   std::string gait_spec = "forward";
   bool farm = false;
   std::string lcm_url;
+  // --progress-url: where opt_progress_t goes (empty: not published).
+  std::string progress_url;
   AuthFlags auth;
   bool allow_mixed_builds = false;
   double verify = 0.0;  // share of jobs run again elsewhere (FarmSettings)
@@ -98,8 +101,19 @@ struct OptOutcome {
 // best_scenario.xml, best_genome.xml and replay.launch, prints a progress
 // line per generation and the summary on `out`, notes on `err`. Throws
 // OptInputError for a checkpoint of other settings.
-OptOutcome RunOpt(const OptCommand& command, const OptSetup& setup,
-                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err);
+// With --progress-url: opens a connection to it into *connection (its
+// owner, main, keeps it while the run goes) and returns what publishes an
+// opt_progress_t on <prefix>_PROGRESS there; without: an empty function.
+// Throws OptInputError when LCM cannot open the URL.
+std::function<void(const opt_progress_t&)> MakeProgressPublisher(
+    const OptCommand& command, std::unique_ptr<lcm::LCM>* connection);
+
+// `publish` (optional) gets an opt_progress_t after every generation and
+// when the run ends (opt_progress_reporter.h).
+OptOutcome RunOpt(
+    const OptCommand& command, const OptSetup& setup, BatchEvaluator& evaluator,
+    std::FILE* out, std::FILE* err,
+    const std::function<void(const opt_progress_t&)>& publish = {});
 
 // "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s".
 std::string FormatProgress(const GenerationReport& report);

@@ -36,8 +36,10 @@ int main(int argc, char** argv) {
         [&](const std::string& text) {
           if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
         });
+    std::unique_ptr<lcm::LCM> progress;  // --progress-url's connection
+    const auto publish = mrsim::MakeProgressPublisher(command, &progress);
     const mrsim::OptOutcome outcome =
-        mrsim::RunOpt(command, setup, *evaluator, stdout, stderr);
+        mrsim::RunOpt(command, setup, *evaluator, stdout, stderr, publish);
     // Unfinished: 128 + the signal, as a shell reports it, so a script can
     // tell it from a finished run.
     if (outcome.stopped) return 128 + std::max(mrsim::StopSignal(), SIGINT);

@@ -43,7 +43,7 @@ void BindEpisode(py::module_& m) {
         problem.episode.control_period = control_period;
         problem.episode.base_gait = gait->gait();
         FitnessSettings& f = problem.episode.fitness;
-        f.distance_mode = distance_mode;
+        f.distance_mode = ParseDistanceMode(distance_mode, "distance_mode");
         f.w_distance = w_distance;
         f.w_speed = w_speed;
         f.w_energy = w_energy;

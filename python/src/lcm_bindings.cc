@@ -143,7 +143,7 @@ py::object ToPython(const gait_status_t& m) {
   d["running"] = m.running;
   d["gait"] = m.gait;
   d["kind"] = m.kind;
-  d["parameters"] = Doubles(m.parameters, 7);
+  d["parameters"] = Doubles(m.parameters, std::size(m.parameters));
   d["motion"] = m.motion;
   d["strength"] = m.strength;
   d["stopped"] = m.stopped;
@@ -194,7 +194,7 @@ py::object ToPython(const gait_command_t& m) {
   d["robot"] = m.robot;
   d["gait"] = m.gait;
   d["has_parameters"] = m.has_parameters;
-  d["parameters"] = Doubles(m.parameters, 7);
+  d["parameters"] = Doubles(m.parameters, std::size(m.parameters));
   d["motion"] = m.motion;
   d["strength"] = m.strength;
   d["has_direction"] = m.has_direction;
@@ -296,7 +296,7 @@ class Transport {
     m.gait = Get<std::string>(d, "gait", "");
     if (d.contains("parameters") && !d["parameters"].is_none()) {
       const auto p = d["parameters"].cast<std::vector<double>>();
-      if (p.size() != 7) {
+      if (p.size() != std::size(m.parameters)) {
         throw std::invalid_argument("parameters: expected the seven values");
       }
       m.has_parameters = true;

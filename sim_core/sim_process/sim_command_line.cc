@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "common/enum_option.h"
 #include "lcmtypes/runtime/version.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/scenario_xml.h"
@@ -16,8 +17,8 @@ void SimCommandLine::AddFlags(CLI::App& app) {
   AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
       ->capture_default_str();
-  app.add_option("--clock", clock, "realtime | fast | lockstep")
-      ->capture_default_str();
+  AddEnumOption(app, "--clock", &options.clock, ClockModes(),
+                "how simulated time runs against the wall clock");
   app.add_option("--speed", options.speed,
                  "Real-time factor for the realtime clock")
       ->capture_default_str();
@@ -52,7 +53,6 @@ void SimCommandLine::AddFlags(CLI::App& app) {
 
 void SimCommandLine::Finish() {
   try {
-    options.clock = ParseClockMode(clock);
     options.publish_state = !no_state;
     options.spin = !no_spin;
     options.Validate();

@@ -17,7 +17,6 @@ struct SimCommandLine {
   std::string scenario_path;
   std::string lcm_url;
   AuthFlags auth;
-  std::string clock = "realtime";
   std::string load_checkpoint;
   bool no_state = false;
   bool no_spin = false;

@@ -6,24 +6,12 @@
 
 namespace mrsim {
 
-const char* ToString(ClockMode mode) {
-  switch (mode) {
-    case ClockMode::kRealtime:
-      return "realtime";
-    case ClockMode::kFast:
-      return "fast";
-    case ClockMode::kLockstep:
-      return "lockstep";
-  }
-  return "?";
-}
-
-ClockMode ParseClockMode(const std::string& text) {
-  if (text == "realtime") return ClockMode::kRealtime;
-  if (text == "fast") return ClockMode::kFast;
-  if (text == "lockstep") return ClockMode::kLockstep;
-  throw std::invalid_argument(
-      "--clock: expected realtime, fast or lockstep, got '" + text + "'");
+const EnumTable<ClockMode>& ClockModes() {
+  static const EnumTable<ClockMode> kModes(
+      "--clock", {{ClockMode::kRealtime, "realtime"},
+                  {ClockMode::kFast, "fast"},
+                  {ClockMode::kLockstep, "lockstep"}});
+  return kModes;
 }
 
 void SimOptions::Validate() const {

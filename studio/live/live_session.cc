@@ -1,6 +1,7 @@
 #include "studio/live/live_session.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "gait_controller/motion.h"
+#include "gait_controller/process/gait_parameters_message.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "logger/generic_flattener.h"
@@ -418,21 +420,20 @@ int64_t LiveSession::Steer(const std::string& robot, const std::string& motion,
 int64_t LiveSession::SetGaitParameters(const std::string& robot,
                                        const std::vector<double>& parameters,
                                        WallTime now, StudioOutbox* out) {
-  if (parameters.size() != 7) {
+  if (parameters.size() != GaitParameters::kVectorSize) {
     throw std::invalid_argument(fmt::format(
-        "{} gait parameters (expected 7: A_pitch, A_yaw, phi_pitch, "
-        "phi_yaw, T, offset_pitch, offset_yaw)",
-        parameters.size()));
+        "{} gait parameters (expected {}: {})", parameters.size(),
+        GaitParameters::kVectorSize, fmt::join(GaitParameterNames(), ", ")));
   }
-  gait_command_t msg = GaitCommand(robot);
-  msg.has_parameters = true;
-  for (size_t i = 0; i < 7; ++i) {
+  for (size_t i = 0; i < parameters.size(); ++i) {
     if (!std::isfinite(parameters[i])) {
       throw std::invalid_argument(
           fmt::format("gait parameter {} is not a number", i));
     }
-    msg.parameters[i] = parameters[i];
   }
+  gait_command_t msg = GaitCommand(robot);
+  msg.has_parameters = true;
+  WriteGaitParameters(GaitParameters::FromVector(parameters), msg.parameters);
   return SendGait(std::move(msg), robot + " parameters", now, out);
 }
 

@@ -11,8 +11,11 @@
 #include <utility>
 
 #include "common/atomic_file.h"
+#include "common/lcm_url.h"
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
+#include "optimizer/algorithm_registry.h"
+#include "optimizer/farm/farm_channels.h"
 
 namespace mrsim::studio {
 namespace {
@@ -48,13 +51,7 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
     throw std::invalid_argument("optimise: save the design to a file first");
   }
   if (o.out_dir.empty()) throw std::invalid_argument("optimise: no folder");
-  const std::vector<std::string> algorithms = {"ga", "sa", "pso", "cmaes",
-                                               "random"};
-  if (std::find(algorithms.begin(), algorithms.end(), o.algorithm) ==
-      algorithms.end()) {
-    throw std::invalid_argument("optimise: algorithm '" + o.algorithm +
-                                "' (expected ga, sa, pso, cmaes or random)");
-  }
+  ParseAlgorithm(o.algorithm, "optimise: algorithm");
   if (o.generations < 1 || o.population < 1 || !(o.episode_s > 0)) {
     throw std::invalid_argument(fmt::format(
         "optimise: {} generations of {} over {} s episodes (expected at "
@@ -93,7 +90,12 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
   if (o.jump_to >= 0) {
     spec.args.insert(spec.args.end(), {"--jump-to", std::to_string(o.jump_to)});
   }
+  spec.args.insert(spec.args.end(), {"--progress-url", ProgressUrl(o)});
   return spec;
+}
+
+std::string OptimiseSession::ProgressUrl(const OptimiseOptions& o) {
+  return ResolveLcmUrl(o.progress_url.empty() ? o.lcm_url : o.progress_url);
 }
 
 void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
@@ -112,6 +114,13 @@ void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
   stall_.Start(0, now);
   console_.clear();
   last_line_.clear();
+  // Listening before mrsim-opt starts: no message is missed.
+  std::error_code ec;
+  const auto dir = std::filesystem::absolute(options.out_dir, ec);
+  progress_dir_ = ec ? options.out_dir : dir.lexically_normal().string();
+  progress_link_ = std::make_unique<OptProgressLink>(
+      ProgressUrl(options), FarmChannels(kDefaultFarmPrefix).progress,
+      [this](const opt_progress_t& m) { OnProgress(m); });
   group_ = std::make_unique<ProcessGroup>(
       [this](const std::string& name, const std::string& line) {
         // The group's own lines ("opt exited with code 2") come as
@@ -135,27 +144,20 @@ void OptimiseSession::Stop() {
 void OptimiseSession::Line(const std::string& line) {
   console_.push_back(line);
   if (console_.size() > kConsoleLines) console_.erase(console_.begin());
-  // "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s"
-  const auto bar = line.find(" | ");
-  if (line.find("generation ") == std::string::npos ||
-      bar == std::string::npos) {
-    return;
-  }
-  double rate = 0;
-  int workers = 0;
-  char eta[32] = {0};
-  const std::string tail = line.substr(bar + 3);
-  if (std::sscanf(tail.c_str(), "%lf evals/s | workers %d | ETA %31s", &rate,
-                  &workers, eta) == 3) {
-    progress_.evals_per_s = rate;
-    progress_.workers = workers;
-    progress_.eta = eta;
-    ++progress_lines_;
-  } else if (tail.find("from checkpoint | workers") == 0 &&
-             std::sscanf(tail.c_str(), "from checkpoint | workers %d",
-                         &workers) == 1) {
-    ++progress_lines_;  // a generation read back on resuming
-  }
+}
+
+bool TakeOptProgress(const opt_progress_t& m, const std::string& out_dir,
+                     OptimiseProgress* progress) {
+  if (m.out_dir != out_dir) return false;  // another run's
+  progress->workers = m.workers;
+  if (m.replayed) return true;  // read back on resuming: no rate, no ETA
+  progress->evals_per_s = m.evals_per_second;
+  progress->eta = m.eta;
+  return true;
+}
+
+void OptimiseSession::OnProgress(const opt_progress_t& m, WallTime) {
+  if (TakeOptProgress(m, progress_dir_, &progress_)) ++progress_lines_;
 }
 
 std::vector<GenerationRow> OptimiseSession::ParseGenerations(
@@ -195,6 +197,8 @@ std::vector<GenerationRow> OptimiseSession::ParseGenerations(
 }
 
 void OptimiseSession::Poll(int timeout_ms, WallTime now) {
+  // Messages first: those sent before mrsim-opt ended count for its run.
+  if (progress_link_) progress_link_->Poll();
   if (group_) {
     group_->Poll(timeout_ms);
     if (progress_.running && !group_->AnyRunning()) {

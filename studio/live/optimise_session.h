@@ -1,7 +1,8 @@
 // The studio's Optimise panel behind the buttons: writes the edited genome,
 // starts mrsim-opt (local threads or the farm) as a child process, and
-// follows its progress from the files it writes (generations.csv) and its
-// progress line (evaluations/s, workers, ETA). "Watch best" takes the best
+// follows its progress from the files it writes (generations.csv) and the
+// opt_progress_t messages it publishes (evaluations/s, workers, ETA; read
+// over OptProgressLink, handled by OnProgress). "Watch best" takes the best
 // so far from generations.csv while the run goes on; "Jump to generation"
 // hands that generation's best over once it is there; a run alive without
 // progress for too long gets a warning (StallWatch).
@@ -16,7 +17,9 @@
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
 #include "lcmtypes/runtime/outbox.h"
+#include "mrsim/opt_progress_t.hpp"
 #include "optimizer/genome.h"
+#include "studio/live/opt_progress_link.h"
 #include "studio/live/stall_watch.h"
 
 namespace mrsim::studio {
@@ -25,7 +28,7 @@ struct OptimiseOptions {
   std::string scenario_path;
   std::string out_dir;
   GenomeSpec genome;
-  std::string algorithm = "cmaes";  // ga | sa | pso | cmaes | random
+  std::string algorithm = "cmaes";  // a name of Algorithms()
   int generations = 10;
   int population = 8;
   unsigned seed = 1;
@@ -34,7 +37,10 @@ struct OptimiseOptions {
   bool farm = false;    // mrsim-worker processes over LCM
   int islands = 1;      // populations taking turns (mrsim-opt --islands)
   std::string lcm_url;  // for the farm; empty: LCM's default
-  int jump_to = -1;     // >= 0: stop after (or replay to) generation N
+  // Where mrsim-opt publishes its progress (--progress-url); empty: lcm_url
+  // (or LCM's default).
+  std::string progress_url;
+  int jump_to = -1;  // >= 0: stop after (or replay to) generation N
 };
 
 // One line of generations.csv.
@@ -78,6 +84,12 @@ class OptimiseSession {
   // Reads new progress; once per frame (timeout_ms: how long to wait for
   // the child's output first).
   void Poll(int timeout_ms = 0, WallTime now = WallClock::now());
+  // One of mrsim-opt's progress messages (Poll hands them over); those of
+  // another run folder are ignored.
+  void OnProgress(const opt_progress_t& message,
+                  WallTime now = WallClock::now());
+  // The URL mrsim-opt publishes its progress on for `options`.
+  static std::string ProgressUrl(const OptimiseOptions& options);
   const OptimiseProgress& progress() const { return progress_; }
   const std::vector<std::string>& console() const { return console_; }
   // The best individual so far, or of the first N generations after a
@@ -116,6 +128,8 @@ class OptimiseSession {
   std::vector<std::string> search_path_;
   OptimiseOptions options_;
   std::unique_ptr<ProcessGroup> group_;
+  std::unique_ptr<OptProgressLink> progress_link_;
+  std::string progress_dir_;  // out_dir as the messages carry it
   OptimiseProgress progress_;
   std::vector<std::string> console_;
   long long csv_size_ = -1;
@@ -124,6 +138,12 @@ class OptimiseSession {
   int pending_replay_ = -1;  // generation (from 0) a jump waits for
   std::string last_line_;    // mrsim-opt's, for OptimiseProgress::failure
 };
+
+// Takes one of mrsim-opt's progress messages into `progress` (workers,
+// evaluations/s, ETA) when it is about the run in `out_dir` (absolute, as
+// the messages carry it); returns whether it was.
+bool TakeOptProgress(const opt_progress_t& message, const std::string& out_dir,
+                     OptimiseProgress* progress);
 
 // The genome file to read for the path typed in the panel: a relative path
 // that does not exist from the working folder is looked for beside the

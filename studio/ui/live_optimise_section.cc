@@ -1,14 +1,15 @@
 // The Run panel's Optimise section: genome, settings, start, stop, jump,
 // progress curves, and playing an individual live.
 // Part of LivePanel (live_panel.h), one file per section.
+#include "optimizer/algorithm_registry.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
 
 namespace mrsim::studio {
 
 void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
-  static const char* const kAlgorithms[] = {"ga", "sa", "pso", "cmaes",
-                                            "random"};
+  // The optimiser's registry: a new algorithm shows up here by itself.
+  const std::vector<AlgorithmInfo>& algorithms = Algorithms();
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("genome", &genome_path_);
   if (RecordedButton(layout_, "Load genome")) {
@@ -46,8 +47,17 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     ImGui::EndTable();
   }
   ImGui::SetNextItemWidth(90);
-  ImGui::Combo("algorithm", &algorithm_, kAlgorithms,
-               IM_ARRAYSIZE(kAlgorithms));
+  ImGui::Combo(
+      "algorithm", &algorithm_,
+      +[](void* data, int i, const char** text) {
+        *text =
+            static_cast<const std::vector<AlgorithmInfo>*>(data)->at(i).name;
+        return true;
+      },
+      const_cast<std::vector<AlgorithmInfo>*>(&algorithms),
+      static_cast<int>(algorithms.size()));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", algorithms.at(algorithm_).summary);
   ImGui::SameLine();
   ImGui::Checkbox("farm", &farm_);
   if (farm_) {
@@ -92,7 +102,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.out_dir = opt_dir_;
       o.genome = genome_;
       if (!design.robots.empty()) o.genome.robot = design.robots.front();
-      o.algorithm = kAlgorithms[algorithm_];
+      o.algorithm = algorithms.at(algorithm_).name;
       o.generations = generations_;
       o.population = population_;
       o.seed = static_cast<unsigned>(std::max(0, seed_));
@@ -228,7 +238,9 @@ void LivePanel::Play(const GenerationRow& row) {
                             best.generation + 1, best.fitness,
                             best.body ? ", its body and gait" : "");
     const std::vector<double> p = best.gait.parameters.ToVector();
-    for (int i = 0; i < 7; ++i) parameters_[i] = static_cast<float>(p[i]);
+    for (int i = 0; i < GaitParameters::kVectorSize; ++i) {
+      parameters_[i] = static_cast<float>(p[i]);
+    }
     if (!best.body && !replay_ && robot != nullptr && runner_.running()) {
       // The design runs: the gait alone changes, the robot goes on.
       Send([&](StudioOutbox* out) {

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "gait_controller/gait_parameters.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
@@ -142,7 +143,7 @@ class LivePanel {
   bool camera_follows_ = true;
   int step_periods_ = 10;
   float strength_ = 1;
-  float parameters_[7] = {1, 0, 2.5f, 0, 4, 0, 0};
+  float parameters_[GaitParameters::kVectorSize] = {1, 0, 2.5f, 0, 4, 0, 0};
   std::string checkpoint_ = "studio.checkpoint";
   std::string gait_file_ = "studio.gait.xml";
   std::string record_dir_ = "recordings";

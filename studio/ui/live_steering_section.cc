@@ -1,7 +1,10 @@
 // The Run panel's Steering section: the followed robot, motion buttons,
 // gait files and the seven gait parameters.
 // Part of LivePanel (live_panel.h), one file per section.
+#include <iterator>
+
 #include "gait_controller/gait_file.h"
+#include "gait_controller/process/gait_parameters_message.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
 
@@ -69,8 +72,7 @@ void LivePanel::DrawSteering() {
       Gait gait;
       gait.name = std::filesystem::path(gait_file_).stem().string();
       gait.kind = ParseGaitKind(robot->gait->kind).value_or(GaitKind::kLinear);
-      gait.parameters = GaitParameters::FromVector(std::vector<double>(
-          robot->gait->parameters, robot->gait->parameters + 7));
+      gait.parameters = GaitParametersFromMessage(robot->gait->parameters);
       WriteGaitFile(gait, gait_file_);
       message_ = "wrote " + gait_file_;
       message_is_note_ = true;
@@ -80,18 +82,21 @@ void LivePanel::DrawSteering() {
     }
   }
   if (ImGui::TreeNode("gait parameters")) {
-    const char* const names7[] = {"A_pitch",   "A_yaw", "phi_pitch",
-                                  "phi_yaw",   "T (s)", "offset_pitch",
-                                  "offset_yaw"};
+    const auto& parameter_names = GaitParameterNames();
     bool changed = false;
-    for (int i = 0; i < 7; ++i) {
+    for (int i = 0; i < GaitParameters::kVectorSize; ++i) {
       ImGui::SetNextItemWidth(150);
-      changed |= ImGui::DragFloat(names7[i], &parameters_[i], 0.01f);
+      // The period's unit beside its name, as the user types seconds.
+      const std::string label =
+          std::string(parameter_names[i]) +
+          (parameter_names[i] == std::string("T") ? " (s)" : "");
+      changed |= ImGui::DragFloat(label.c_str(), &parameters_[i], 0.01f);
     }
     if (changed) {
       Send([&](StudioOutbox* out) {
         session_->SetGaitParameters(
-            followed_, std::vector<double>(parameters_, parameters_ + 7),
+            followed_,
+            std::vector<double>(std::begin(parameters_), std::end(parameters_)),
             WallClock::now(), out);
       });
     }

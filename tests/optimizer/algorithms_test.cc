@@ -11,12 +11,12 @@ double BestOf(const std::string& algo, const std::string& function,
               std::uint64_t seed, int population, int generations) {
   const GenomeSpec spec = TestFunctionSpec(6, -5.12, 5.12, 4.0);
   AlgorithmSettings settings;
-  settings.algorithm = algo;
+  settings.algorithm = ParseAlgorithm(algo);
   settings.population = population;
   settings.seed = seed;
   LocalEvaluator evaluator(
       [&](const Genome& g) { return EvaluateTestFunction(function, g); }, 1);
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = generations;
   return RunOptimization(spec, settings, evaluator, options)
       .best_result.fitness;
@@ -46,10 +46,10 @@ TEST(OptimizerAlgorithms, ResultDoesNotDependOnThreadCount) {
   const GenomeSpec spec = TestFunctionSpec(5, -5.12, 5.12, 4.0);
   for (const std::string algo : {"ga", "sa", "pso", "cmaes", "random"}) {
     AlgorithmSettings settings;
-    settings.algorithm = algo;
+    settings.algorithm = ParseAlgorithm(algo);
     settings.population = 9;
     settings.seed = 5;
-    RunOptions options;
+    OptimizationRunOptions options;
     options.generations = 12;
     auto fn = [](const Genome& g) {
       return EvaluateTestFunction("rastrigin", g);

@@ -19,12 +19,12 @@ RunResult RunTest(const std::string& algo, const std::string& function,
                   const std::string& out_dir = "") {
   const GenomeSpec spec = TestFunctionSpec(6, -5.12, 5.12, 4.0);
   AlgorithmSettings settings;
-  settings.algorithm = algo;
+  settings.algorithm = ParseAlgorithm(algo);
   settings.population = population;
   settings.seed = seed;
   LocalEvaluator local(
       [&](const Genome& g) { return EvaluateTestFunction(function, g); }, 1);
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = generations;
   options.out_dir = out_dir;
   return RunOptimization(spec, settings, evaluator ? *evaluator : local,
@@ -53,7 +53,7 @@ TEST(OptimizerCmaes, StaysWithinTheLimitsAndKeepsDisabledGenes) {
   GenomeSpec spec = TestFunctionSpec(4, -1, 1, 0.9);
   spec.genes[2].enabled = false;
   AlgorithmSettings settings;
-  settings.algorithm = "cmaes";
+  settings.algorithm = AlgorithmKind::kCmaes;
   settings.population = 10;
   settings.cmaes_sigma = 1.0;  // large steps hit the limits often
   Cmaes cmaes(spec, settings);
@@ -77,7 +77,7 @@ TEST(OptimizerCmaes, StaysWithinTheLimitsAndKeepsDisabledGenes) {
 TEST(OptimizerCmaes, AskedTwiceGivesTheSameGenerationAndTellChecksTheCount) {
   const GenomeSpec spec = TestFunctionSpec(3, -1, 1, 0.5);
   AlgorithmSettings settings;
-  settings.algorithm = "cmaes";
+  settings.algorithm = AlgorithmKind::kCmaes;
   settings.population = 6;
   Cmaes cmaes(spec, settings);
   const auto first = cmaes.Ask();

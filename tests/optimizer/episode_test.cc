@@ -6,6 +6,7 @@
 
 #include "gait_controller/gait_presets.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_physics_pool.h"
 #include "optimizer/local_evaluator.h"
 #include "optimizer/optimization_run.h"
 #include "optimizer/problem_codec.h"
@@ -63,18 +64,22 @@ TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
     for (int i = 0; i < 4; ++i) {
       genomes.push_back(problem.genome.RandomGenome(random));
     }
+    EpisodePhysicsPool pool;
     std::vector<EvalResult> in_turn;
     std::thread one([&] {
-      for (const Genome& g : genomes) in_turn.push_back(RunEpisode(problem, g));
+      for (const Genome& g : genomes) {
+        in_turn.push_back(RunEpisode(problem, g, {}, &pool));
+      }
     });
     one.join();
     for (size_t i = 0; i < genomes.size(); ++i) {
       EvalResult reused;
-      std::thread t([&] { reused = RunEpisode(problem, genomes[i]); });
+      std::thread t(
+          [&] { reused = RunEpisode(problem, genomes[i], {}, &pool); });
       t.join();
       EXPECT_EQ(in_turn[i].fitness, reused.fitness) << path << " " << i;
-      ReleaseEpisodePhysics();
-      const EvalResult fresh = RunEpisode(problem, genomes[i]);
+      pool.Clear();
+      const EvalResult fresh = RunEpisode(problem, genomes[i], {}, &pool);
       EXPECT_EQ(in_turn[i].fitness, fresh.fitness) << path << " " << i;
       EXPECT_EQ(in_turn[i].energy, fresh.energy) << path << " " << i;
       EXPECT_EQ(in_turn[i].drift, fresh.drift) << path << " " << i;
@@ -89,17 +94,37 @@ TEST(OptimizerEpisode, EpisodeAfterOthersEqualsAFreshOneBitForBit) {
 // first: no episode of the same body builds it again, in any thread.
 TEST(OptimizerEpisode, APreparedSimulationServesEveryThreadsFirstEpisode) {
   const Problem problem = SnakeProblem(0.2);
-  ReleaseEpisodePhysics();
-  const long long before = EpisodePhysicsBuilt();
-  PrepareEpisode(problem);
-  EXPECT_EQ(EpisodePhysicsBuilt(), before + 1);
+  EpisodePhysicsPool pool;
+  PrepareEpisode(problem, &pool);
+  EXPECT_EQ(pool.built(), 1);
   Random random(5);
   for (int i = 0; i < 3; ++i) {
     const Genome g = problem.genome.RandomGenome(random);  // gait genes
-    std::thread t([&] { EXPECT_FALSE(RunEpisode(problem, g).failed); });
+    std::thread t(
+        [&] { EXPECT_FALSE(RunEpisode(problem, g, {}, &pool).failed); });
     t.join();
   }
-  EXPECT_EQ(EpisodePhysicsBuilt(), before + 1);
+  EXPECT_EQ(pool.built(), 1);
+}
+
+// The pool is the caller's: two pools share nothing, and a scenario that
+// differs in content (not only in how it was written) builds its own.
+TEST(OptimizerEpisode, PoolsAreIndependentAndKeyedByScenarioContent) {
+  const Problem problem = SnakeProblem(0.2);
+  EpisodePhysicsPool first, second;
+  PrepareEpisode(problem, &first);
+  EXPECT_EQ(first.built(), 1);
+  EXPECT_EQ(second.built(), 0);
+  RunEpisode(problem, problem.genome.StartGenome(), {}, &second);
+  EXPECT_EQ(second.built(), 1);
+
+  Problem renamed = problem;
+  renamed.scenario.robots.at(0).name += "_b";
+  EXPECT_NE(ScenarioContentHash(renamed.scenario),
+            ScenarioContentHash(problem.scenario));
+  EXPECT_EQ(ScenarioContentHash(problem.scenario),
+            ScenarioContentHash(Problem(problem).scenario));
+  EXPECT_EQ(ScenarioContentHash(problem.scenario).size(), 64u);
 }
 
 TEST(OptimizerEpisode, ForwardPresetScoresPositiveForwardDistance) {
@@ -259,11 +284,13 @@ TEST(OptimizerEpisode, SeededLocalRunGivesTheSameResultTwice) {
   AlgorithmSettings settings;
   settings.population = 4;
   settings.seed = 23;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 3;
   auto run = [&](int threads) {
+    EpisodePhysicsPool pool;
     LocalEvaluator evaluator(
-        [&](const Genome& g) { return RunEpisode(problem, g); }, threads);
+        [&](const Genome& g) { return RunEpisode(problem, g, {}, &pool); },
+        threads);
     return RunOptimization(problem.genome, settings, evaluator, options);
   };
   const RunResult a = run(1);

@@ -65,7 +65,7 @@ TEST(OptimizerOperators, ToggledOffGenesNeverChange) {
   settings.mutation_rate = 1.0;
   settings.mutation_scale = 0.5;
   for (const std::string algo : {"ga", "sa", "pso", "random"}) {
-    settings.algorithm = algo;
+    settings.algorithm = ParseAlgorithm(algo);
     auto algorithm = MakeAlgorithm(spec, settings);
     for (int gen = 0; gen < 8; ++gen) {
       const std::vector<Genome> batch = algorithm->Ask();

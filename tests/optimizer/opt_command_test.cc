@@ -55,7 +55,7 @@ TEST(OptCommand, FlagsFillTheCommand) {
            {"--algorithm", "cmaes", "--cmaes-sigma", "0.2", "--population", "6",
             "--episode", "3", "--seed", "7", "--w-energy", "0.5", "--farm",
             "--chunk-size", "1000", "--no-start-genome", "--jump-to", "4"}));
-  EXPECT_EQ(c.algorithm.algorithm, "cmaes");
+  EXPECT_EQ(c.algorithm.algorithm, AlgorithmKind::kCmaes);
   EXPECT_EQ(c.algorithm.cmaes_sigma, 0.2);
   EXPECT_EQ(c.algorithm.population, 6);
   EXPECT_EQ(c.algorithm.seed, 7u);
@@ -97,7 +97,19 @@ TEST(OptCommand, BadInputIsAnInputErrorNamingTheProblem) {
   EXPECT_NE(
       message({"--algorithm", "cmaes", "--population", "1"}).find("CMA-ES"),
       std::string::npos);
-  EXPECT_NE(message({"--algorithm", "nope"}).find("nope"), std::string::npos);
+  // A word no algorithm has is a usage error while parsing, naming the
+  // flag and every algorithm of the registry.
+  try {
+    Parse(With(SnakeArgs(out), {"--algorithm", "nope"}));
+    ADD_FAILURE() << "--algorithm nope accepted";
+  } catch (const CLI::ValidationError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--algorithm"), std::string::npos) << what;
+    EXPECT_NE(what.find("nope"), std::string::npos) << what;
+    for (const AlgorithmInfo& info : Algorithms()) {
+      EXPECT_NE(what.find(info.name), std::string::npos) << what;
+    }
+  }
   // Farm settings out of range, or one the farm would ignore.
   EXPECT_NE(message({"--farm", "--chunk-size", "70000"})
                 .find("--chunk-size: expected 0 (one Ethernet frame) or "

@@ -40,7 +40,7 @@ TEST(OptimizerRun, InterruptedRunResumesToTheSameResult) {
   AlgorithmSettings settings;
   settings.population = 8;
   settings.seed = 9;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 10;
 
   const std::string straight_dir = testing::TempDir("optimizer_run_straight");
@@ -101,7 +101,7 @@ TEST(OptimizerRun,
   AlgorithmSettings settings;
   settings.population = 6;
   settings.seed = 5;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 8;
   const std::string islands_dir = testing::TempDir("optimizer_run_islands");
   options.out_dir = islands_dir;
@@ -157,7 +157,7 @@ TEST(OptimizerRun, AnInterruptedIslandRunResumesToTheSameFiles) {
   settings.population = 6;
   settings.seed = 3;
   settings.islands = 2;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 9;
   const std::string straight_dir = testing::TempDir("islands_straight");
   options.out_dir = straight_dir;
@@ -211,7 +211,7 @@ TEST(OptimizerRun, CheckpointOfOtherSettingsIsRefused) {
   const GenomeSpec spec = TestFunctionSpec(3, -1, 1, 0);
   AlgorithmSettings settings;
   settings.population = 4;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 2;
   options.out_dir = testing::TempDir("optimizer_run_refused");
   CountingEvaluator e;
@@ -275,7 +275,7 @@ TEST(OptimizerRun, JumpToReplaysWithoutTouchingTheFiles) {
   const GenomeSpec spec = TestFunctionSpec(3, -5, 5, 4);
   AlgorithmSettings settings;
   settings.population = 6;
-  RunOptions options;
+  OptimizationRunOptions options;
   options.generations = 8;
   options.out_dir = testing::TempDir("optimizer_run_jump");
   CountingEvaluator e;

@@ -47,6 +47,8 @@ OptimiseOptions SnakeRun(const std::string& dir, const std::string& genome) {
   o.genome = ReadGenomeFile(SourcePath("scenarios/" + genome));
   o.population = 4;
   o.episode_s = 1;
+  // mrsim-opt's progress messages (each run folder hears only its own).
+  o.progress_url = testing::TestLcmUrl(7964);
   return o;
 }
 
@@ -87,6 +89,46 @@ TEST(OptimiseSession, SpecIsTheMrsimOptCommandLine) {
   o.algorithm = "ga";
   o.population = 0;
   EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
+}
+
+// The panel's figures come from mrsim-opt's opt_progress_t, not its text:
+// only the messages of the panel's own run folder count, and a generation
+// read back from the checkpoint has workers but no rate or ETA yet.
+TEST(OptimiseSession, ProgressMessagesOfItsOwnRunFillThePanelsFigures) {
+  opt_progress_t m{};
+  m.out_dir = "/runs/a";
+  m.evals_per_second = 5.2;
+  m.workers = 2;
+  m.eta = "1m12s";
+  OptimiseProgress progress;
+  EXPECT_FALSE(TakeOptProgress(m, "/runs/b", &progress));
+  EXPECT_EQ(progress.workers, 0);
+  ASSERT_TRUE(TakeOptProgress(m, "/runs/a", &progress));
+  EXPECT_EQ(progress.evals_per_s, 5.2);
+  EXPECT_EQ(progress.workers, 2);
+  EXPECT_EQ(progress.eta, "1m12s");
+  m.replayed = true;
+  m.workers = 3;
+  m.evals_per_second = 0;
+  m.eta = "?";
+  ASSERT_TRUE(TakeOptProgress(m, "/runs/a", &progress));
+  EXPECT_EQ(progress.workers, 3);
+  EXPECT_EQ(progress.evals_per_s, 5.2);
+  EXPECT_EQ(progress.eta, "1m12s");
+}
+
+TEST(OptimiseSession, SpecPublishesProgressOnThePanelsUrl) {
+  OptimiseOptions o;
+  o.scenario_path = "snake.xml";
+  o.out_dir = "out";
+  o.lcm_url = "udpm://239.255.76.67:7001?ttl=0";
+  auto url_of = [](const std::vector<std::string>& args) {
+    const auto at = std::find(args.begin(), args.end(), "--progress-url");
+    return at != args.end() && at + 1 != args.end() ? *(at + 1) : std::string();
+  };
+  EXPECT_EQ(url_of(OptimiseSession::Spec(o, "g.xml").args), o.lcm_url);
+  o.progress_url = "udpm://239.255.76.67:7002?ttl=0";
+  EXPECT_EQ(url_of(OptimiseSession::Spec(o, "g.xml").args), o.progress_url);
 }
 
 TEST(OptimiseSession, ReadsGenerationsAndStopsAtAHalfWrittenLine) {
