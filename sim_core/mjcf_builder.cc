@@ -955,15 +955,11 @@ std::string Builder::Build() {
            {{"timestep", Num(s_.settings.timestep)},
             {"gravity", Vec(s_.settings.gravity)},
             {"integrator", "Euler"}}});
-  // MuJoCo 2.2 allocates njmax^2 doubles (efc_AR) per mjData, so long
-  // chains get what they need, not a generous multiple: a box resting on
-  // a plane makes 4 contacts of 4 rows (pyramidal friction, condim 3);
-  // small models keep room for piles and self-contact.
-  const int ncon = std::max(200, std::min(16 * ncollide, 4 * ncollide + 200));
-  const int njmax = 4 * ncon + 6 * static_cast<int>(welds_.size()) + nhinge;
-  element(
-      {"size",
-       {{"nconmax", std::to_string(ncon)}, {"njmax", std::to_string(njmax)}}});
+  const MjcfSizes sizes =
+      MjcfSizesFor(ncollide, static_cast<int>(welds_.size()), nhinge);
+  element({"size",
+           {{"nconmax", std::to_string(sizes.nconmax)},
+            {"njmax", std::to_string(sizes.njmax)}}});
   // MuJoCo's usual look (its model gallery): headlight, haze, a gradient
   // sky and a checker floor.
   out.OpenElement("visual");
@@ -1119,6 +1115,24 @@ std::string Builder::Build() {
 
 std::string BuildMjcf(const Scenario& scenario) {
   return BuildMjcf(scenario, MjcfOptions{});
+}
+
+MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges) {
+  // What the model needs at rest: every colliding box flat on the ground
+  // (4 corner contacts of 4 pyramidal rows each), every weld (6 rows) and
+  // every hinge at its limit (1 row). Small models keep room for piles and
+  // self-contact (up to 200 contacts more); long chains get their resting
+  // need, since memory grows with its square. More than that (a pile, a
+  // coiled chain) grows the buffers at run time (Physics), so nothing is
+  // ever dropped.
+  MjcfSizes sizes;
+  sizes.nconmax =
+      std::max(kMjcfMinContacts,
+               4 * colliding_geoms + std::max(0, 200 - colliding_geoms));
+  const long rows = static_cast<long>(kMjcfRowsPerContact) * sizes.nconmax +
+                    6L * welds + hinges;
+  sizes.njmax = static_cast<int>(std::min<long>(rows, kMjcfMaxRows));
+  return sizes;
 }
 
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options) {

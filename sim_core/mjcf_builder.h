@@ -27,6 +27,20 @@ struct ServoModel {
 // below XML parsers' nesting limits (tinyxml2: 100 elements).
 constexpr int kMaxBodyDepth = 64;
 
+// Contact and constraint-row capacity of the model's mjData (MJCF <size>).
+// MuJoCo 2.2 allocates 12 njmax^2 bytes per mjData (the dense efc_AR and
+// its column indices) and holds its buffer size in an int, so a model can
+// have at most kMjcfMaxRows rows; the sizes are what the model needs at
+// rest, and Physics grows them when a step needs more.
+struct MjcfSizes {
+  int nconmax = 0;
+  int njmax = 0;
+};
+constexpr int kMjcfMinContacts = 200;
+constexpr int kMjcfRowsPerContact = 4;  // pyramidal cone, condim 3
+constexpr int kMjcfMaxRows = 13000;     // 12 * 13000^2 bytes < 2^31
+MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges);
+
 struct MjcfOptions {
   // false (export): the height field names a grey PNG by absolute path (the
   // scene's own PNG file, or the decoded image written to asset_dir, or to
