@@ -884,10 +884,11 @@ std::string Builder::Build() {
   AddTerrain();
 
   const std::vector<int> weld = WeldGroups();
-  int ncollide = 0, nhinge = 0;
+  int ncollide = 0, nhinge = 0, nfree = 0;
   for (const BodySpec& b : bodies_) {
     for (const GeomSpec& g : b.geoms) ncollide += g.collide;
     nhinge += b.joint == JointKind::kHinge;
+    nfree += b.joint == JointKind::kFree;
   }
 
   // Pairs for material pairs of two different materials, with the same
@@ -1117,7 +1118,13 @@ std::string BuildMjcf(const Scenario& scenario) {
   return BuildMjcf(scenario, MjcfOptions{});
 }
 
-MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges) {
+int MjcfMaxRows(int nv) {
+  // Largest j with 12 j^2 + 24 j nv <= 1.9e9 (room for the rest of mjData).
+  const double budget = 1.9e9 / 12;
+  return static_cast<int>(-double(nv) + std::sqrt(double(nv) * nv + budget));
+}
+
+MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges, int nv) {
   // What the model needs at rest: every colliding box flat on the ground
   // (4 corner contacts of 4 pyramidal rows each), every weld (6 rows) and
   // every hinge at its limit (1 row). Small models keep room for piles and
@@ -1131,7 +1138,7 @@ MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges) {
                4 * colliding_geoms + std::max(0, 200 - colliding_geoms));
   const long rows = static_cast<long>(kMjcfRowsPerContact) * sizes.nconmax +
                     6L * welds + hinges;
-  sizes.njmax = static_cast<int>(std::min<long>(rows, kMjcfMaxRows));
+  sizes.njmax = static_cast<int>(std::min<long>(rows, MjcfMaxRows(nv)));
   return sizes;
 }
 

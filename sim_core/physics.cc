@@ -384,7 +384,8 @@ void Physics::Impl::MakeRoom() {
     const bool contacts_full = data->warning[mjWARN_CONTACTFULL].number > 0;
     const bool rows_full = data->warning[mjWARN_CNSTRFULL].number > 0;
     if (!contacts_full && !rows_full) return;
-    if (m->njmax >= kMjcfMaxRows) {
+    const int max_rows = MjcfMaxRows(m->nv);
+    if (m->njmax >= max_rows) {
       Fail(data->time,
            fmt::format("the constraints need more than {} rows ({} contacts "
                        "found), the most one MuJoCo 2.2 world holds; fewer "
@@ -401,7 +402,7 @@ void Physics::Impl::MakeRoom() {
           std::max(njmax, m->njmax + static_cast<long>(kMjcfRowsPerContact) *
                                          (nconmax - m->nconmax));
     }
-    njmax = std::min<long>(njmax, kMjcfMaxRows);
+    njmax = std::min<long>(njmax, max_rows);
     const double scale = static_cast<double>(njmax) / m->njmax;
     m->nstack =
         static_cast<int>(std::min(2e9, std::ceil(m->nstack * scale * scale)));
