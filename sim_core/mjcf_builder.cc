@@ -934,8 +934,8 @@ std::string Builder::Build() {
            {{"timestep", Num(s_.settings.timestep)},
             {"gravity", Vec(s_.settings.gravity)},
             {"integrator", "Euler"}}});
-  const MjcfSizes sizes =
-      MjcfSizesFor(ncollide, static_cast<int>(welds_.size()), nhinge);
+  const MjcfSizes sizes = MjcfSizesFor(
+      ncollide, static_cast<int>(welds_.size()), nhinge, nhinge + 6 * nfree);
   element({"size",
            {{"nconmax", std::to_string(sizes.nconmax)},
             {"njmax", std::to_string(sizes.njmax)}}});
