@@ -386,11 +386,13 @@ void Physics::Impl::MakeRoom() {
     if (!contacts_full && !rows_full) return;
     const int max_rows = MjcfMaxRows(m->nv);
     if (m->njmax >= max_rows) {
-      Fail(data->time,
-           fmt::format("the constraints need more than {} rows ({} contacts "
-                       "found), the most one MuJoCo 2.2 world holds; fewer "
-                       "parts touching at once fit",
-                       m->njmax, data->ncon));
+      for (int w = 0; w < mjNWARNING; ++w)
+        warnings[w] = data->warning[w].number;
+      throw PhysicsError(fmt::format(
+          "physics at t={:.4f} s: the constraints need more than {} rows "
+          "({} contacts found), the most one MuJoCo 2.2 world holds; fewer "
+          "parts touching at once fit",
+          data->time, m->njmax, data->ncon));
     }
     // Half as much again (memory grows with njmax^2); the stack (untouched
     // until used) in proportion, as the compiler sizes it.
