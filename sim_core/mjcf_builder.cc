@@ -881,10 +881,11 @@ std::string Builder::Build() {
   AddTerrain();
 
   const std::vector<int> weld = WeldGroups();
-  int ncollide = 0, nhinge = 0;
+  int ncollide = 0, nhinge = 0, nfree = 0;
   for (const BodySpec& b : bodies_) {
     for (const GeomSpec& g : b.geoms) ncollide += g.collide;
     nhinge += b.joint == JointKind::kHinge;
+    nfree += b.joint == JointKind::kFree;
   }
 
   // Pairs for material pairs of two different materials, with the same
@@ -952,15 +953,11 @@ std::string Builder::Build() {
            {{"timestep", Num(s_.settings.timestep)},
             {"gravity", Vec(s_.settings.gravity)},
             {"integrator", "Euler"}}});
-  // MuJoCo 2.2 allocates njmax^2 doubles (efc_AR) per mjData, so long
-  // chains get what they need, not a generous multiple: a box resting on
-  // a plane makes 4 contacts of 4 rows (pyramidal friction, condim 3);
-  // small models keep room for piles and self-contact.
-  const int ncon = std::max(200, std::min(16 * ncollide, 4 * ncollide + 200));
-  const int njmax = 4 * ncon + 6 * static_cast<int>(welds_.size()) + nhinge;
-  element(
-      {"size",
-       {{"nconmax", std::to_string(ncon)}, {"njmax", std::to_string(njmax)}}});
+  const MjcfSizes sizes = MjcfSizesFor(
+      ncollide, static_cast<int>(welds_.size()), nhinge, nhinge + 6 * nfree);
+  element({"size",
+           {{"nconmax", std::to_string(sizes.nconmax)},
+            {"njmax", std::to_string(sizes.njmax)}}});
   // MuJoCo's usual look (its model gallery): headlight, haze, a gradient
   // sky and a checker floor.
   out.OpenElement("visual");
@@ -1118,6 +1115,30 @@ std::string Builder::Build() {
 
 std::string BuildMjcf(const Scenario& scenario) {
   return BuildMjcf(scenario, MjcfOptions{});
+}
+
+int MjcfMaxRows(int nv) {
+  // Largest j with 12 j^2 + 24 j nv <= 1.9e9 (room for the rest of mjData).
+  const double budget = 1.9e9 / 12;
+  return static_cast<int>(-double(nv) + std::sqrt(double(nv) * nv + budget));
+}
+
+MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges, int nv) {
+  // What the model needs at rest: every colliding box flat on the ground
+  // (4 corner contacts of 4 pyramidal rows each), every weld (6 rows) and
+  // every hinge at its limit (1 row). Small models keep room for piles and
+  // self-contact (up to 200 contacts more); long chains get their resting
+  // need, since memory grows with its square. More than that (a pile, a
+  // coiled chain) grows the buffers at run time (Physics), so nothing is
+  // ever dropped.
+  MjcfSizes sizes;
+  sizes.nconmax =
+      std::max(kMjcfMinContacts,
+               4 * colliding_geoms + std::max(0, 200 - colliding_geoms));
+  const long rows = static_cast<long>(kMjcfRowsPerContact) * sizes.nconmax +
+                    6L * welds + hinges;
+  sizes.njmax = static_cast<int>(std::min<long>(rows, MjcfMaxRows(nv)));
+  return sizes;
 }
 
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options) {

@@ -29,6 +29,21 @@ struct ServoModel {
 // below XML parsers' nesting limits (tinyxml2: 100 elements).
 constexpr int kMaxBodyDepth = 64;
 
+// Contact and constraint-row capacity of the model's mjData (MJCF <size>):
+// what the model needs at rest; Physics grows them when a step needs more.
+struct MjcfSizes {
+  int nconmax = 0;
+  int njmax = 0;
+};
+constexpr int kMjcfMinContacts = 200;
+constexpr int kMjcfRowsPerContact = 4;  // pyramidal cone, condim 3
+MjcfSizes MjcfSizesFor(int colliding_geoms, int welds, int hinges, int nv);
+// The most constraint rows one mjData of a model with `nv` degrees of
+// freedom can hold: MuJoCo 2.2 allocates 12 njmax^2 + 24 njmax nv bytes
+// (the dense efc_AR, the Jacobian and their indices) in one buffer whose
+// size is an int (under 2^31 bytes).
+int MjcfMaxRows(int nv);
+
 struct MjcfOptions {
   // false (export): the height field names a grey PNG by absolute path (the
   // scene's own PNG file, or the decoded image written to asset_dir, or to

@@ -156,7 +156,7 @@ struct Physics::Impl {
   // model changed (eq_active), from the integrated qpos as a step does.
   void Refresh() {
     mju_copy(data->qpos, qpos_integrated.data(), model->nq);
-    mj_step1(model.get(), data.get());
+    Step1();
     for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
   }
   LockIndex& FindLock(const std::string& robot, const std::string& lock);
@@ -172,9 +172,24 @@ struct Physics::Impl {
   }
   void AfterStateChange() {
     mju_copy(qpos_integrated.data(), data->qpos, model->nq);
-    mj_step1(model.get(), data.get());
+    Step1();
     for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
   }
+  // mj_step1 (kinematics, contacts, constraints of the current state).
+  // MuJoCo 2.2 drops the contacts (CONTACTFULL) and constraint rows
+  // (CNSTRFULL) that do not fit mjData's buffers, which are sized for the
+  // model at rest; when it did, MakeRoom gives the step bigger buffers and
+  // redoes it, so no constraint is ever dropped.
+  void Step1() {
+    const int contacts = data->warning[mjWARN_CONTACTFULL].number;
+    const int rows = data->warning[mjWARN_CNSTRFULL].number;
+    mj_step1(model.get(), data.get());
+    if (data->warning[mjWARN_CONTACTFULL].number != contacts ||
+        data->warning[mjWARN_CNSTRFULL].number != rows) {
+      MakeRoom();
+    }
+  }
+  void MakeRoom();
   void CheckStability(double time_before);
   [[noreturn]] void Fail(double time, const std::string& what);
   const RobotIndex& robot(int r) const {
@@ -386,6 +401,68 @@ void Physics::Impl::Index(const MjcfInfo& info) {
   }
 }
 
+void Physics::Impl::MakeRoom() {
+  mjModel* m = model.get();
+  for (;;) {
+    const bool contacts_full = data->warning[mjWARN_CONTACTFULL].number > 0;
+    const bool rows_full = data->warning[mjWARN_CNSTRFULL].number > 0;
+    if (!contacts_full && !rows_full) return;
+    const int max_rows = MjcfMaxRows(m->nv);
+    if (m->njmax >= max_rows) {
+      for (int w = 0; w < mjNWARNING; ++w)
+        warnings[w] = data->warning[w].number;
+      throw PhysicsError(fmt::format(
+          "physics at t={:.4f} s: the constraints need more than {} rows "
+          "({} contacts found), the most one MuJoCo 2.2 world holds; fewer "
+          "parts touching at once fit",
+          data->time, m->njmax, data->ncon));
+    }
+    // Half as much again (memory grows with njmax^2); the stack (untouched
+    // until used) in proportion, as the compiler sizes it.
+    const int nconmax =
+        contacts_full ? m->nconmax + m->nconmax / 2 : m->nconmax;
+    long njmax = m->njmax + m->njmax / 2;
+    if (contacts_full) {
+      njmax =
+          std::max(njmax, m->njmax + static_cast<long>(kMjcfRowsPerContact) *
+                                         (nconmax - m->nconmax));
+    }
+    njmax = std::min<long>(njmax, max_rows);
+    const double scale = static_cast<double>(njmax) / m->njmax;
+    m->nstack =
+        static_cast<int>(std::min(2e9, std::ceil(m->nstack * scale * scale)));
+    m->nconmax = nconmax;
+    m->njmax = static_cast<int>(njmax);
+    MjDataPtr grown(mj_makeData(m));
+    if (!grown) {
+      Fail(data->time, fmt::format("cannot allocate buffers for {} contacts "
+                                   "and {} constraint rows",
+                                   m->nconmax, m->njmax));
+    }
+    mjData* to = grown.get();
+    const mjData* from = data.get();
+    to->time = from->time;
+    mju_copy(to->qpos, qpos_integrated.data(), m->nq);
+    mju_copy(to->qvel, from->qvel, m->nv);
+    mju_copy(to->act, from->act, m->na);
+    mju_copy(to->act_dot, from->act_dot, m->na);
+    mju_copy(to->ctrl, from->ctrl, m->nu);
+    mju_copy(to->qacc, from->qacc, m->nv);
+    mju_copy(to->qacc_warmstart, from->qacc_warmstart, m->nv);
+    mju_copy(to->qfrc_applied, from->qfrc_applied, m->nv);
+    mju_copy(to->xfrc_applied, from->xfrc_applied, 6 * m->nbody);
+    mju_copy(to->mocap_pos, from->mocap_pos, 3 * m->nmocap);
+    mju_copy(to->mocap_quat, from->mocap_quat, 4 * m->nmocap);
+    mju_copy(to->userdata, from->userdata, m->nuserdata);
+    mju_copy(to->actuator_force, from->actuator_force, m->nu);
+    mju_copy(to->sensordata, from->sensordata, m->nsensordata);
+    data = std::move(grown);
+    scratch.reset();
+    warnings.fill(0);  // the counters of the new mjData
+    mj_step1(m, data.get());
+  }
+}
+
 void Physics::Impl::Fail(double time, const std::string& what) {
   // Accept the current counters so a caller that resets can go on.
   for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
@@ -397,7 +474,11 @@ void Physics::Impl::CheckStability(double time_before) {
   const mjModel* m = model.get();
   const mjData* d = data.get();
   for (int w = 0; w < mjNWARNING; ++w) {
-    if (w == mjWARN_VGEOMFULL || d->warning[w].number == warnings[w]) continue;
+    // Full contact / constraint buffers are made room for (Step1).
+    if (w == mjWARN_VGEOMFULL || w == mjWARN_CONTACTFULL ||
+        w == mjWARN_CNSTRFULL || d->warning[w].number == warnings[w]) {
+      continue;
+    }
     std::string where;
     const int info = d->warning[w].lastinfo;
     if ((w == mjWARN_BADQVEL || w == mjWARN_BADQACC) && info >= 0 &&
@@ -464,7 +545,7 @@ void Physics::Step() {
   mj_step2(m, d);
   if (impl_->any_breakable) impl_->BreakOverloadedLocks();
   mju_copy(impl_->qpos_integrated.data(), d->qpos, m->nq);
-  mj_step1(m, d);
+  impl_->Step1();
   impl_->CheckStability(time_before);
 }
 

@@ -6,7 +6,11 @@
 // each counts. Then the step time per module of pitch-yaw chains of 10 to
 // 200 modules (a sensor module after each), and how far the timestep moves
 // the result of a gait (scenarios/snake11.xml, 2 ms over 0.5 ms).
+#include <fcntl.h>
 #include <mujoco/mujoco.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +33,7 @@ namespace {
 
 constexpr int kSteps = 10000;  // per round: 20 s of simulated time
 constexpr int kRounds = 9;
+constexpr const char* kSimPath = MRSIM_SIM_PATH;
 constexpr double kAmplitude = 1.0, kPeriod = 4.0, kPhase = 2.5;
 
 double CpuNow() {
@@ -87,38 +92,176 @@ double RunBare(const mjModel* m, const std::vector<double>& kp,
   return rate;
 }
 
-// Microseconds of CPU per module per step of a pitch-yaw chain of `n`
-// modules with a sensor module after each, running a travelling wave.
-double UsPerModuleStep(int n) {
+// The chain of the module benchmark: pitch-yaw, a sensor module after each
+// module (so 3 boxes per module touch the ground at rest).
+mrsim::Scenario LongChain(int n) {
   mrsim::Scenario s = Snake();
   mrsim::ChainOptions options;
   options.modules = n;
   options.pattern = mrsim::ChainPattern::kPitchYaw;
   for (int i = 0; i < n; ++i) options.sensor_after.push_back(i);
   s.robots[0] = mrsim::MakeChain(options);
-  mrsim::Physics physics(s);
-  std::vector<double> targets(physics.joint_count(0));
+  return s;
+}
+
+// Travelling wave on the pitch joints (even hinges) of every robot.
+void Wave(mrsim::Physics& physics, std::vector<std::vector<double>>& targets) {
   const double omega = 2 * M_PI / kPeriod;
-  auto run = [&](int steps) {
-    for (int i = 0; i < steps; ++i) {
-      const double t = physics.time();
-      for (size_t j = 0; j < targets.size(); ++j) {
-        targets[j] =
-            j % 2 ? 0.0 : kAmplitude * std::sin(omega * t + kPhase * j);
-      }
-      physics.SetJointTargets(0, targets);
+  const double t = physics.time();
+  for (size_t r = 0; r < targets.size(); ++r) {
+    for (size_t j = 0; j < targets[r].size(); ++j) {
+      targets[r][j] =
+          j % 2 ? 0.0 : kAmplitude * std::sin(omega * t + kPhase * j + r);
+    }
+    physics.SetJointTargets(static_cast<int>(r), targets[r]);
+  }
+}
+
+// CPU seconds per step of `scenario` under the wave: `warmup` steps first
+// (the wave lifts the chain off its resting contacts), best of 3 rounds.
+double SecondsPerStep(const mrsim::Scenario& scenario, int warmup, int steps) {
+  mrsim::Physics physics(scenario);
+  std::vector<std::vector<double>> targets;
+  for (int r = 0; r < physics.robot_count(); ++r) {
+    targets.emplace_back(physics.joint_count(r));
+  }
+  auto run = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      Wave(physics, targets);
       physics.Step();
     }
   };
-  run(500);  // the wave lifts the chain off its resting contacts
+  run(warmup);
   double best = 1e300;
-  const int steps = std::max(200, 20000 / n);
   for (int round = 0; round < 3; ++round) {
     const double start = CpuNow();
     run(steps);
     best = std::min(best, (CpuNow() - start) / steps);
   }
-  return 1e6 * best / n;
+  return best;
+}
+
+// Microseconds of CPU per module per step of a LongChain of `n` modules.
+double UsPerModuleStep(int n) {
+  return 1e6 * SecondsPerStep(LongChain(n), 500, std::max(200, 20000 / n)) / n;
+}
+
+// The largest LongChain whose step takes less CPU than its timestep
+// (bisection between module counts; `fast` steps in real time, `slow` not).
+int RealtimeModules(int fast, int slow) {
+  const double timestep = Snake().settings.timestep;
+  while (slow - fast > std::max(2, fast / 50)) {
+    const int mid = (fast + slow) / 2;
+    const double s = SecondsPerStep(LongChain(mid), 300, 200);
+    (s < timestep ? fast : slow) = mid;
+  }
+  return fast;
+}
+
+// `count` eleven-module pitch-yaw robots side by side, 0.3 m apart.
+mrsim::Scenario Crowd(int count) {
+  mrsim::Scenario s = Snake();
+  s.robots.clear();
+  const int columns = 10;
+  for (int i = 0; i < count; ++i) {
+    mrsim::ChainOptions options;
+    options.name = "snake" + std::to_string(i);
+    options.modules = 11;
+    options.pattern = mrsim::ChainPattern::kPitchYaw;
+    options.origin =
+        Eigen::Vector3d(1.6 * (i / columns), 0.3 * (i % columns), 0);
+    s.robots.push_back(mrsim::MakeChain(options));
+  }
+  return s;
+}
+
+void RunModules() {
+  std::vector<std::pair<int, double>> us;
+  for (int n : {10, 50, 100, 200, 400}) {
+    try {
+      us.emplace_back(n, UsPerModuleStep(n));
+    } catch (const mrsim::PhysicsError& e) {
+      // MuJoCo 2.2 holds at most MjcfMaxRows(nv) constraint rows in a world.
+      std::printf("%d modules do not fit one MuJoCo 2.2 world: %s\n", n,
+                  e.what());
+      std::fflush(stdout);
+      break;
+    }
+    std::printf("BENCH physics_us_per_module_step_%d %.2f us\n", n,
+                us.back().second);
+    std::fflush(stdout);
+  }
+  if (us.size() >= 4) {
+    std::printf("BENCH physics_scaling_200 %.2f x\n",
+                us[3].second / us[0].second);
+  }
+  const double timestep = Snake().settings.timestep;
+  int fast = 1, slow = us.back().first + 1;
+  for (const auto& [n, u] : us) {
+    if (1e-6 * u * n < timestep) {
+      fast = std::max(fast, n);
+    } else {
+      slow = std::min(slow, n);
+    }
+  }
+  std::printf("BENCH realtime_modules %d modules\n",
+              RealtimeModules(fast, std::max(slow, fast + 1)));
+  std::fflush(stdout);
+}
+
+void RunRobots() {
+  double one = 0;
+  for (int k : {1, 10, 25, 50}) {
+    double us = 0;
+    try {
+      us = 1e6 * SecondsPerStep(Crowd(k), 300, std::max(100, 10000 / k)) / k;
+    } catch (const mrsim::PhysicsError& e) {
+      // MuJoCo 2.2 holds at most MjcfMaxRows(nv) constraint rows in a world.
+      std::printf(
+          "%d eleven-module robots do not fit one MuJoCo 2.2 world: %s\n", k,
+          e.what());
+      std::fflush(stdout);
+      continue;
+    }
+    if (k == 1) one = us;
+    std::printf("BENCH physics_us_per_robot_step_%d %.2f us\n", k, us);
+    if (k > 1)
+      std::printf("BENCH physics_scaling_robots_%d %.2f x\n", k, us / one);
+    std::fflush(stdout);
+  }
+}
+
+// Peak resident memory (MB) of mrsim-sim running a plain 200-module pitch
+// chain (`mrsim-scenario new --modules 200`) for 1 s of sim time.
+void RunMemory() {
+  mrsim::ChainScenarioOptions options;
+  options.chain.modules = 200;
+  options.friction = 0.6;
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "bench_sim_rss_200.xml")
+          .string();
+  mrsim::WriteScenarioFile(mrsim::MakeChainScenario(options), path);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open("/dev/null", O_WRONLY);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(kSimPath, kSimPath, path.c_str(), "--clock", "fast", "--duration",
+          "1", "--no-state", "--lcm-url", "udpm://239.255.76.67:7667?ttl=0",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  if (pid < 0 || wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) ||
+      WEXITSTATUS(status) != 0) {
+    std::fprintf(stderr, "bench_physics_step: %s %s failed (status %d)\n",
+                 kSimPath, path.c_str(), status);
+    std::exit(1);
+  }
+  std::filesystem::remove(path);
+  std::printf("BENCH sim_rss_mb_200 %.0f MB\n", usage.ru_maxrss / 1024.0);
+  std::fflush(stdout);
 }
 
 // Horizontal CoM displacement of snake11 after `seconds` of `forward`.
@@ -139,25 +282,22 @@ double ForwardDisplacement(double timestep, double seconds) {
 
 void RunRatio();
 
-// Optional argument: run one part only (ratio, modules, convergence).
+// Optional argument: run one part only (ratio, modules, robots, memory,
+// convergence).
 int main(int argc, char** argv) {
   const std::string only = argc > 1 ? argv[1] : "";
   if (!only.empty() && only != "ratio" && only != "modules" &&
-      only != "convergence") {
+      only != "robots" && only != "memory" && only != "convergence") {
     std::fprintf(stderr,
                  "bench_physics_step: unknown part '%s' (expected ratio, "
-                 "modules or convergence)\n",
+                 "modules, robots, memory or convergence)\n",
                  only.c_str());
     return 2;
   }
   if (only.empty() || only == "ratio") RunRatio();
-  if (only.empty() || only == "modules") {
-    for (int n : {10, 50, 100, 200}) {
-      std::printf("BENCH physics_us_per_module_step_%d %.2f us\n", n,
-                  UsPerModuleStep(n));
-      std::fflush(stdout);
-    }
-  }
+  if (only.empty() || only == "modules") RunModules();
+  if (only.empty() || only == "robots") RunRobots();
+  if (only.empty() || only == "memory") RunMemory();
   if (only.empty() || only == "convergence") {
     const double coarse = ForwardDisplacement(0.002, 10.0);
     const double fine = ForwardDisplacement(0.0005, 10.0);
