@@ -18,6 +18,7 @@
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
 #include "optimizer/optimization_run.h"
+#include "optimizer/slurm/farm_cluster.h"
 
 namespace CLI {
 class App;
@@ -46,6 +47,9 @@ struct OptCommand {
   bool no_start = false;
   bool replay = false;
   bool quiet = false;
+  int slurm = 0;  // --slurm N: workers submitted as one Slurm array job
+  std::vector<std::string> slurm_options;  // --slurm-opt, sbatch options
+  int hub_port = 0;                        // --hub PORT: start LCM's TCP hub
   AlgorithmSettings algorithm;
   EpisodeSettings episode;
 };
@@ -77,12 +81,21 @@ struct OptSetup {
 // or, when another run holds the folder, the process that does.
 OptSetup PrepareOpt(const OptCommand& command);
 
+// --hub and --slurm: starts LCM's TCP hub and submits the workers' array
+// job; nullptr when neither was asked for. Destroying it cancels the
+// workers and stops the hub. Throws OptInputError when sbatch or the hub
+// fails.
+std::unique_ptr<FarmCluster> StartOptCluster(
+    const OptCommand& command, std::function<void(const std::string&)> log);
+
 // The evaluator the command asks for: local threads, or (--farm) the farm
-// master on its own connection to --lcm-url (throws when it cannot open).
-// `stop` abandons a batch; `log` gets the farm's events.
+// master on its own connection to --lcm-url, or to `cluster`'s hub (throws
+// when it cannot open). `stop` abandons a batch; `log` gets the farm's
+// events.
 std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     const OptCommand& command, const OptSetup& setup,
-    std::function<bool()> stop, std::function<void(const std::string&)> log);
+    std::function<bool()> stop, std::function<void(const std::string&)> log,
+    FarmCluster* cluster = nullptr);
 
 // What a run left.
 struct OptOutcome {
@@ -98,8 +111,10 @@ struct OptOutcome {
 // best_scenario.xml, best_genome.xml and replay.launch, prints a progress
 // line per generation and the summary on `out`, notes on `err`. Throws
 // OptInputError for a checkpoint of other settings.
+// With a `cluster`, each progress line ends with its Slurm array's counts.
 OptOutcome RunOpt(const OptCommand& command, const OptSetup& setup,
-                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err);
+                  BatchEvaluator& evaluator, std::FILE* out, std::FILE* err,
+                  FarmCluster* cluster = nullptr);
 
 // "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s".
 std::string FormatProgress(const GenerationReport& report);
@@ -108,5 +123,7 @@ std::string FormatDuration(double seconds);
 
 // mrsim (the launcher) next to this program, in build/bin, or "mrsim".
 std::string FindLauncher();
+// `program` beside this one (mrsim-worker beside mrsim-opt), or `program`.
+std::string FindSibling(const std::string& program);
 
 }  // namespace mrsim

@@ -31,18 +31,22 @@ int main(int argc, char** argv) {
     command.auth.ExportToChildren();  // --replay's processes
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
+    const auto log = [&](const std::string& text) {
+      if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
+    };
+    // Declared before the evaluator: the workers are cancelled after it.
+    auto cluster = mrsim::StartOptCluster(command, log);
     auto evaluator = mrsim::MakeOptEvaluator(
-        command, setup, [] { return mrsim::StopRequested(); },
-        [&](const std::string& text) {
-          if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
-        });
-    const mrsim::OptOutcome outcome =
-        mrsim::RunOpt(command, setup, *evaluator, stdout, stderr);
+        command, setup, [] { return mrsim::StopRequested(); }, log,
+        cluster.get());
+    const mrsim::OptOutcome outcome = mrsim::RunOpt(
+        command, setup, *evaluator, stdout, stderr, cluster.get());
     // Unfinished: 128 + the signal, as a shell reports it, so a script can
     // tell it from a finished run.
     if (outcome.stopped) return 128 + std::max(mrsim::StopSignal(), SIGINT);
     if (!command.replay) return 0;
     evaluator.reset();
+    cluster.reset();
     const std::string launcher = mrsim::FindLauncher();
     fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);
     std::fflush(stdout);
