@@ -25,7 +25,7 @@ struct FarmClusterOptions {
   std::string worker_program;  // mrsim-worker as the nodes see it
   std::string out_dir;         // hub.log and slurm/ logs go here
   std::string host;            // this host's name, for the workers' URL
-  double poll_interval = 5.0;
+  double poll_interval = 2.0;
 };
 
 // The URL the workers get: --lcm-url, else tcpq://HOST:PORT with --hub,
