@@ -438,12 +438,11 @@ void ManyWorkers(int processes, int per, double episode) {
   std::vector<std::unique_ptr<ChildProcess>> ws;
   for (int k = 1; k <= processes; ++k) {
     ws.push_back(std::make_unique<ChildProcess>(
-        rig.In(
-            k,
-            {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
-             "--lcm-url", kUrl, "--id", fmt::format("f{}", k), "--fake-episode",
-             fmt::format("{}", episode), "--fake-workers",
-             std::to_string(per)}),
+        rig.In(k, {std::string(MRSIM_BINARY_DIR) +
+                       "/optimizer/process/mrsim-worker",
+                   "--lcm-url", kUrl, "--id", fmt::format("f{}", k),
+                   "--fake-episode", fmt::format("{}", episode),
+                   "--fake-workers", std::to_string(per)}),
         fmt::format("/tmp/bench_farm_net_f{}.log", k)));
   }
   std::vector<std::string> udp0;
