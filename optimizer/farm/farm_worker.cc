@@ -120,7 +120,11 @@ FarmLink::Handlers FarmWorker::MakeHandlers() {
     dirty_.assign(cores_.size(), 1);
   };
   h.job = [this](const opt_job_t& m) {
-    if (FarmWorkerCore* c = Find(m.worker_id)) c->OnJob(m, FarmLink::Now());
+    if (FarmWorkerCore* c = Find(m.worker_id)) {
+      c->OnJob(m, FarmLink::Now());
+    } else {
+      ++jobs_for_others_;  // another worker's, on our shard (or on udpm)
+    }
   };
   h.malformed = [this] { cores_.front()->CountMalformed(); };
   return h;
@@ -128,6 +132,7 @@ FarmLink::Handlers FarmWorker::MakeHandlers() {
 
 WorkerCounters FarmWorker::counters() const {
   WorkerCounters sum;
+  sum.messages_ignored = jobs_for_others_;
   for (const auto& c : cores_) {
     const WorkerCounters& k = c->counters();
     sum.jobs_done += k.jobs_done;
