@@ -18,8 +18,9 @@ namespace fs = std::filesystem;
 namespace mrsim::testing {
 namespace {
 
-const char* const kPrograms[] = {"munged", "slurmctld", "slurmd", "sbatch",
-                                 "squeue", "scancel",   "sinfo",  "java"};
+const char* const kPrograms[] = {"munged", "slurmctld", "slurmd",
+                                 "sbatch", "squeue",    "scancel",
+                                 "sinfo",  "scontrol",  "java"};
 
 void WriteText(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::trunc);

@@ -1,9 +1,9 @@
 // The farm through a real Slurm cluster on this host: mrsim-opt --slurm 4
 // --hub submits its workers as an array job; mid-run two of its tasks are
-// cancelled and two workers are added by hand with scripts/slurm's batch
-// script; the result equals the local run of the same seed, and at the end
-// mrsim-opt has cancelled its own job and no other. Needs root (skips
-// otherwise, as tests/farm_net does).
+// cancelled, two workers are added by hand with scripts/slurm's batch
+// script and a third task is requeued (it re-joins); the result equals the
+// local run of the same seed, and at the end mrsim-opt has cancelled its own
+// job and no other. Needs root (skips otherwise, as tests/farm_net does).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -92,10 +92,25 @@ TEST(SlurmFarm, WorkersCancelledAndAddedMidRunGiveTheLocalResult) {
   const std::string added_job =
       added.output.substr(0, added.output.find_first_of(";\n"));
 
+  // One more is requeued, as Slurm does when its node fails: it comes
+  // back as a new worker.
+  const CommandOutput requeued =
+      cluster.Run({"scontrol", "requeue", job + "_2"});
+  ASSERT_EQ(requeued.exit_code, 0) << requeued.output;
+  // Slurm holds a requeued job back for a while (its begin time); the test
+  // lets it start as soon as a node is free.
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return cluster.Tasks(job).find("_2 PENDING") != std::string::npos;
+      },
+      60.0, 0.1))
+      << cluster.Tasks(job);
+  cluster.Run({"scontrol", "update", "JobId=" + job + "_2", "StartTime=now"});
+
   ASSERT_EQ(opt.Wait(300.0), 0) << opt.Output() << cluster.Logs();
   const std::string farm_output = opt.Output();
-  // Four array tasks and the two added workers joined.
-  EXPECT_GE(Count(farm_output, " joined"), 6) << farm_output;
+  // Four array tasks, the two added workers and the requeued task joined.
+  EXPECT_GE(Count(farm_output, " joined"), 7) << farm_output;
   EXPECT_NE(farm_output.find("cancelled Slurm job " + job), std::string::npos)
       << farm_output;
   EXPECT_NE(farm_output.find(" running, "), std::string::npos);
