@@ -16,6 +16,8 @@
 //   farm_master_cpu_1000w    the master's share of a core, 1,000 fake
 //                            workers, 1 s episodes
 //   farm_throughput_1000w    evaluations/s over 1,000 / 1 s
+//   farm_master_cpu_10000w   the same with 10,000 fake workers in 10
+//   farm_throughput_10000w   processes and 10 s episodes
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sched.h>
@@ -422,8 +424,12 @@ void JitterDuplicates() {
              static_cast<double>(ran - m.accepted_total) / m.accepted_total);
 }
 
-void Thousand() {
-  const int processes = 4, per = 250;
+// `processes` x `per` protocol-only workers with `episode` s fake
+// episodes, two generations of two rounds each; prints
+// farm_master_cpu_<N>w and farm_throughput_<N>w.
+void ManyWorkers(int processes, int per, double episode) {
+  const int total = processes * per;
+  const std::string tag = fmt::format("{}w", total);
   const mrsim::Problem problem = SnakeProblem(1.0);
   FarmRig rig(processes + 1);
   // The figure depends on the receive buffer the kernel allows
@@ -439,28 +445,28 @@ void Thousand() {
   std::vector<std::unique_ptr<ChildProcess>> ws;
   for (int k = 1; k <= processes; ++k) {
     ws.push_back(std::make_unique<ChildProcess>(
-        rig.In(
-            k,
-            {std::string(MRSIM_BINARY_DIR) + "/optimizer/process/mrsim-worker",
-             "--lcm-url", kUrl, "--id", fmt::format("f{}", k), "--fake-episode",
-             "1", "--fake-workers", std::to_string(per)}),
+        rig.In(k, {std::string(MRSIM_BINARY_DIR) +
+                       "/optimizer/process/mrsim-worker",
+                   "--lcm-url", kUrl, "--id", fmt::format("f{}", k),
+                   "--fake-episode", fmt::format("{}", episode),
+                   "--fake-workers", std::to_string(per)}),
         fmt::format("/tmp/bench_farm_net_f{}.log", k)));
   }
   std::vector<std::string> udp0;
   for (int k = 0; k <= processes; ++k) udp0.push_back(UdpCounters(rig, k));
-  const Measure m = RunFarm(rig, problem, processes * per * 2, 2);
+  const Measure m = RunFarm(rig, problem, total * 2, 2);
   // What went where (stderr: the BENCH lines stay on stdout).
-  fmt::print(stderr, "farm 1000w: net.core.rmem_max {} bytes\n",
+  fmt::print(stderr, "farm {}: net.core.rmem_max {} bytes\n", tag,
              mrsim::KernelReceiveBufferMax());
   fmt::print(stderr,
-             "farm 1000w: {:.1f} s, {} jobs sent ({} re-sent), {} results, "
+             "farm {}: {:.1f} s, {} jobs sent ({} re-sent), {} results, "
              "{} heartbeats and {} messages received by the master, {} "
              "workers declared gone, {} re-queues\n",
-             m.wall, m.counters.jobs_sent, m.counters.jobs_resent,
+             tag, m.wall, m.counters.jobs_sent, m.counters.jobs_resent,
              m.counters.results_accepted, m.counters.heartbeats_received,
              m.counters.messages_received, m.gone, m.requeued);
   for (int k = 0; k <= processes; ++k) {
-    fmt::print(stderr, "farm 1000w: node {} udp before [{}] after [{}]\n", k,
+    fmt::print(stderr, "farm {}: node {} udp before [{}] after [{}]\n", tag, k,
                udp0[static_cast<size_t>(k)], UdpCounters(rig, k));
   }
   ws.clear();  // stopped: their logs end with their counters
@@ -470,17 +476,18 @@ void Thousand() {
     while (std::getline(log, line)) {
       if (line.find("stopping;") != std::string::npos) last = line;
     }
-    fmt::print(stderr, "farm 1000w: {}\n", last);
+    fmt::print(stderr, "farm {}: {}\n", tag, last);
   }
-  fmt::print("BENCH farm_master_cpu_1000w {:.3f} core\n", m.cpu / m.wall);
-  fmt::print("BENCH farm_throughput_1000w {:.3f} ratio\n",
-             (m.jobs / m.wall) / (processes * per / 1.0));
+  fmt::print("BENCH farm_master_cpu_{} {:.3f} core\n", tag, m.cpu / m.wall);
+  fmt::print("BENCH farm_throughput_{} {:.3f} ratio\n", tag,
+             (m.jobs / m.wall) / (total / episode));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  // bench_farm_net [jitter|efficiency|thousand]...: only those cases.
+  // bench_farm_net [jitter|efficiency|thousand|tenthousand]...: only those
+  // cases.
   const std::vector<std::string> only(argv + 1, argv + argc);
   const auto want = [&](const std::string& name) {
     return only.empty() ||
@@ -497,7 +504,9 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     if (want("efficiency")) Efficiency();
     std::fflush(stdout);
-    if (want("thousand")) Thousand();
+    if (want("thousand")) ManyWorkers(4, 250, 1.0);
+    std::fflush(stdout);
+    if (want("tenthousand")) ManyWorkers(10, 1000, 10.0);
   } catch (const std::exception& e) {
     fmt::print(stderr, "bench_farm_net: {}\n", e.what());
     return 1;

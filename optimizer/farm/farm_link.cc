@@ -109,7 +109,16 @@ void FarmLink::Subscribe() {
   sub(channels_.chunk_request, bool(handlers_.chunk_request),
       &FarmLink::OnChunkRequest);
   sub(channels_.heartbeat, bool(handlers_.heartbeat), &FarmLink::OnHeartbeat);
-  sub(channels_.job, bool(handlers_.job), &FarmLink::OnJob);
+  if (handlers_.job) {
+    std::vector<bool> shard(kJobShards, handlers_.job_workers.empty());
+    for (const std::string& id : handlers_.job_workers) {
+      shard[static_cast<size_t>(JobShard(id))] = true;
+    }
+    for (int k = 0; k < kJobShards; ++k) {
+      sub(channels_.JobChannel(k), shard[static_cast<size_t>(k)],
+          &FarmLink::OnJob);
+    }
+  }
   sub(channels_.result, bool(handlers_.result), &FarmLink::OnResult);
 }
 
@@ -220,7 +229,11 @@ void FarmLink::Publish(FarmOutbox& out) {
   send(channels_.chunk_request, out.chunk_requests);
   send(channels_.heartbeat, out.heartbeats);
   const int copies = std::clamp(out.copies, 1, 4);
-  send(channels_.job, out.jobs, copies);
+  for (auto& msg : out.jobs) {  // each on its worker's shard
+    msg.utime = stamp;
+    const std::string channel = channels_.JobChannel(JobShard(msg.worker_id));
+    for (int c = 0; c < copies; ++c) lcm_->publish(channel, &msg);
+  }
   send(channels_.result, out.results, copies);
 }
 

@@ -39,6 +39,9 @@ class FarmLink {
     std::function<void(const opt_chunk_request_t&)> chunk_request;
     std::function<void(const opt_heartbeat_t&)> heartbeat;
     std::function<void(const opt_job_t&)> job;
+    // With `job`: the workers whose job channels to subscribe to (each
+    // id's shard, FarmChannels::JobChannel); empty: every shard.
+    std::vector<std::string> job_workers;
     std::function<void(const opt_result_t&)> result;
     std::function<void()> malformed;
   };

@@ -19,20 +19,43 @@ std::string HostName() {
   return host;
 }
 
+// The ids of a process's workers: --id (default host-pid), and -k after
+// it for each of several fake workers.
+std::vector<std::string> CoreIds(const WorkerSettings& settings, int count) {
+  const std::string id =
+      settings.id.empty()
+          ? fmt::format("{}-{}", HostName(), static_cast<int>(getpid()))
+          : settings.id;
+  count = std::max(1, count);
+  if (count == 1) return {id};
+  std::vector<std::string> ids;
+  for (int k = 0; k < count; ++k) ids.push_back(fmt::format("{}-{}", id, k));
+  return ids;
+}
+
+FarmLink::Handlers WithJobWorkers(FarmLink::Handlers h,
+                                  std::vector<std::string> ids) {
+  h.job_workers = std::move(ids);
+  return h;
+}
+
 }  // namespace
 
 // The link first: a bad URL throws before any pool thread exists (a
 // constructor that throws leaves running threads to std::terminate).
 FarmWorker::FarmWorker(const std::string& lcm_url, WorkerSettings settings,
                        int count) {
-  link_ = std::make_unique<FarmLink>(lcm_url, settings.prefix, MakeHandlers(),
-                                     settings.auth);
+  link_ = std::make_unique<FarmLink>(
+      lcm_url, settings.prefix,
+      WithJobWorkers(MakeHandlers(), CoreIds(settings, count)), settings.auth);
   link_->SetWake(&done_fd_);
   Build(settings, count);
 }
 
 FarmWorker::FarmWorker(SignedLcm& lcm, WorkerSettings settings, int count) {
-  link_ = std::make_unique<FarmLink>(lcm, settings.prefix, MakeHandlers());
+  link_ = std::make_unique<FarmLink>(
+      lcm, settings.prefix,
+      WithJobWorkers(MakeHandlers(), CoreIds(settings, count)));
   link_->SetWake(&done_fd_);
   Build(settings, count);
 }
@@ -97,7 +120,11 @@ FarmLink::Handlers FarmWorker::MakeHandlers() {
     dirty_.assign(cores_.size(), 1);
   };
   h.job = [this](const opt_job_t& m) {
-    if (FarmWorkerCore* c = Find(m.worker_id)) c->OnJob(m, FarmLink::Now());
+    if (FarmWorkerCore* c = Find(m.worker_id)) {
+      c->OnJob(m, FarmLink::Now());
+    } else {
+      ++jobs_for_others_;  // another worker's, on our shard (or on udpm)
+    }
   };
   h.malformed = [this] { cores_.front()->CountMalformed(); };
   return h;
@@ -105,6 +132,7 @@ FarmLink::Handlers FarmWorker::MakeHandlers() {
 
 WorkerCounters FarmWorker::counters() const {
   WorkerCounters sum;
+  sum.messages_ignored = jobs_for_others_;
   for (const auto& c : cores_) {
     const WorkerCounters& k = c->counters();
     sum.jobs_done += k.jobs_done;

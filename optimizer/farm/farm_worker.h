@@ -57,6 +57,9 @@ class FarmWorker {
                           const std::function<bool()>& stop = {});
 
   std::string id_;
+  // Jobs heard for workers of another process (a shared job shard, or
+  // udpm), counted as messages ignored.
+  long long jobs_for_others_ = 0;
   double fake_episode_ = 0;
   std::vector<std::unique_ptr<FarmWorkerCore>> cores_;
   std::unordered_map<std::string, size_t> by_id_;

@@ -208,6 +208,18 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--worker-timeout", c.worker_timeout,
                  "Farm: s without heartbeat before a worker counts as gone")
       ->capture_default_str();
+  app.add_option("--slurm", c.slurm,
+                 "Farm: submit N mrsim-worker processes as one Slurm array "
+                 "job, cancelled when the run ends (docs/optimizer.md)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--slurm-opt", c.slurm_options,
+                 "Farm: an sbatch option for the array, e.g. partition=debug, "
+                 "account=proj, time=2:00:00, cpus-per-task=4 (repeat it)")
+      ->allow_extra_args(false);
+  app.add_option("--hub", c.hub_port,
+                 "Farm: start LCM's TCP hub on this port (the URL is then "
+                 "tcpq://THIS_HOST:PORT unless --lcm-url says)")
+      ->check(CLI::Range(1, 65535));
   app.add_option("--chunk-size", c.chunk_size,
                  "Farm: payload bytes per chunk, 1..60000; 0: what fits one "
                  "Ethernet frame (a lost frame then loses one chunk only)")
@@ -268,7 +280,21 @@ OptSetup PrepareOpt(const OptCommand& c) {
             "automatic), got " +
             fmt::format("{}", c.job_timeout));
       }
+      for (const std::string& o : c.slurm_options) NormaliseSbatchOption(o);
+      if (!c.slurm_options.empty() && c.slurm == 0) {
+        throw OptInputError("--slurm-opt needs --slurm N");
+      }
+      if (c.hub_port > 0) {
+        FarmClusterOptions cluster;
+        cluster.hub_port = c.hub_port;
+        cluster.lcm_url = c.lcm_url;
+        WorkerLcmUrl(cluster);
+      }
     } else {
+      if (c.slurm > 0 || c.hub_port > 0 || !c.slurm_options.empty()) {
+        throw OptInputError(
+            "--slurm, --slurm-opt and --hub start farm workers: add --farm");
+      }
       if (c.workers.rfind("local:", 0) != 0) {
         throw OptInputError("--workers: expected local:K, got '" + c.workers +
                             "' (use --farm for worker processes)");
@@ -330,9 +356,32 @@ OptSetup PrepareOpt(const OptCommand& c) {
   return setup;
 }
 
+std::unique_ptr<FarmCluster> StartOptCluster(
+    const OptCommand& c, std::function<void(const std::string&)> log) {
+  if (c.slurm == 0 && c.hub_port == 0) return nullptr;
+  FarmClusterOptions o;
+  o.hub_port = c.hub_port;
+  o.slurm_tasks = c.slurm;
+  o.slurm_options = c.slurm_options;
+  o.lcm_url = c.lcm_url;
+  o.prefix = c.prefix;
+  o.key_file = c.auth.key_file;
+  o.out_dir = fs::absolute(c.out_dir).string();
+  o.worker_program = FindSibling("mrsim-worker");
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  o.host = host;
+  try {
+    return std::make_unique<FarmCluster>(
+        o, std::make_unique<ProcessSlurmRunner>(), std::move(log));
+  } catch (const std::exception& e) {
+    throw OptInputError(e.what());
+  }
+}
+
 std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     const OptCommand& c, const OptSetup& setup, std::function<bool()> stop,
-    std::function<void(const std::string&)> log) {
+    std::function<void(const std::string&)> log, FarmCluster* cluster) {
   if (!c.farm) {
     const Problem& problem = setup.problem;
     // The threads share one pool of simulations, as long as the evaluator.
@@ -355,8 +404,9 @@ std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
   settings.stop = std::move(stop);
   settings.log = log;
   // The farm opens its own connection so it can re-connect (tcpq hub).
-  auto farm = std::make_unique<FarmEvaluator>(c.lcm_url, setup.payload,
-                                              MakeRunId(), settings);
+  auto farm = std::make_unique<FarmEvaluator>(
+      cluster != nullptr ? cluster->master_url() : c.lcm_url, setup.payload,
+      MakeRunId(), settings);
   if (log) {
     log(fmt::format("farm on {}_* (payload {}, {} bytes)", c.prefix, setup.hash,
                     setup.payload.size()));
@@ -402,6 +452,7 @@ std::string FormatProgress(const GenerationReport& r) {
 
 OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                   BatchEvaluator& evaluator, std::FILE* out, std::FILE* err,
+                  FarmCluster* cluster,
                   const std::function<void(const opt_progress_t&)>& publish) {
   AlgorithmSettings a = c.algorithm;
   OptProgressReporter reporter(MakeRunId(), c.out_dir, ToString(a.algorithm));
@@ -425,7 +476,8 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   options.progress = [&](const GenerationReport& r) {
     if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;
-    fmt::print(out, "{}\n", FormatProgress(r));
+    fmt::print(out, "{}{}\n", FormatProgress(r),
+               cluster != nullptr ? cluster->ProgressNote() : "");
     std::fflush(out);
   };
   if (setup.lock && setup.lock->stale_holder() > 0) {
@@ -568,6 +620,26 @@ std::string FindLauncher() {
     }
   }
   return "mrsim";
+}
+
+int ExecReplay(const OptOutcome& outcome) {
+  const std::string launcher = FindLauncher();
+  fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);
+  std::fflush(stdout);
+  execlp(launcher.c_str(), launcher.c_str(), "launch", outcome.launch.c_str(),
+         static_cast<char*>(nullptr));
+  fmt::print(stderr, "mrsim-opt: cannot start '{}'; run: mrsim launch {}\n",
+             launcher, outcome.launch);
+  return 1;
+}
+
+std::string FindSibling(const std::string& program) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec && fs::exists(self.parent_path() / program)) {
+    return (self.parent_path() / program).string();
+  }
+  return program;
 }
 
 }  // namespace mrsim

@@ -19,6 +19,7 @@
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
 #include "optimizer/optimization_run.h"
+#include "optimizer/slurm/farm_cluster.h"
 
 namespace CLI {
 class App;
@@ -49,6 +50,9 @@ struct OptCommand {
   bool no_start = false;
   bool replay = false;
   bool quiet = false;
+  int slurm = 0;  // --slurm N: workers submitted as one Slurm array job
+  std::vector<std::string> slurm_options;  // --slurm-opt, sbatch options
+  int hub_port = 0;                        // --hub PORT: start LCM's TCP hub
   AlgorithmSettings algorithm;
   EpisodeSettings episode;
 };
@@ -80,12 +84,21 @@ struct OptSetup {
 // or, when another run holds the folder, the process that does.
 OptSetup PrepareOpt(const OptCommand& command);
 
+// --hub and --slurm: starts LCM's TCP hub and submits the workers' array
+// job; nullptr when neither was asked for. Destroying it cancels the
+// workers and stops the hub. Throws OptInputError when sbatch or the hub
+// fails.
+std::unique_ptr<FarmCluster> StartOptCluster(
+    const OptCommand& command, std::function<void(const std::string&)> log);
+
 // The evaluator the command asks for: local threads, or (--farm) the farm
-// master on its own connection to --lcm-url (throws when it cannot open).
-// `stop` abandons a batch; `log` gets the farm's events.
+// master on its own connection to --lcm-url, or to `cluster`'s hub (throws
+// when it cannot open). `stop` abandons a batch; `log` gets the farm's
+// events.
 std::unique_ptr<BatchEvaluator> MakeOptEvaluator(
     const OptCommand& command, const OptSetup& setup,
-    std::function<bool()> stop, std::function<void(const std::string&)> log);
+    std::function<bool()> stop, std::function<void(const std::string&)> log,
+    FarmCluster* cluster = nullptr);
 
 // What a run left.
 struct OptOutcome {
@@ -108,11 +121,12 @@ struct OptOutcome {
 std::function<void(const opt_progress_t&)> MakeProgressPublisher(
     const OptCommand& command, std::unique_ptr<lcm::LCM>* connection);
 
+// With a `cluster`, each progress line ends with its Slurm array's counts.
 // `publish` (optional) gets an opt_progress_t after every generation and
 // when the run ends (opt_progress_reporter.h).
 OptOutcome RunOpt(
     const OptCommand& command, const OptSetup& setup, BatchEvaluator& evaluator,
-    std::FILE* out, std::FILE* err,
+    std::FILE* out, std::FILE* err, FarmCluster* cluster = nullptr,
     const std::function<void(const opt_progress_t&)>& publish = {});
 
 // "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s".
@@ -122,5 +136,10 @@ std::string FormatDuration(double seconds);
 
 // mrsim (the launcher) next to this program, in build/bin, or "mrsim".
 std::string FindLauncher();
+// --replay: replaces this process with `mrsim launch <outcome.launch>`;
+// returns (1) only when the launcher cannot be started, having said so.
+int ExecReplay(const OptOutcome& outcome);
+// `program` beside this one (mrsim-worker beside mrsim-opt), or `program`.
+std::string FindSibling(const std::string& program);
 
 }  // namespace mrsim

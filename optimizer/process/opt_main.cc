@@ -4,7 +4,6 @@
 // (docs/optimizer.md). The work is in opt_command.h.
 #include <fmt/format.h>
 #include <signal.h>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -31,32 +30,29 @@ int main(int argc, char** argv) {
     command.auth.ExportToChildren();  // --replay's processes
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
+    const auto log = [&](const std::string& text) {
+      if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
+    };
+    // Declared before the evaluator: the workers are cancelled after it.
+    auto cluster = mrsim::StartOptCluster(command, log);
     auto evaluator = mrsim::MakeOptEvaluator(
-        command, setup, [] { return mrsim::StopRequested(); },
-        [&](const std::string& text) {
-          if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
-        });
+        command, setup, [] { return mrsim::StopRequested(); }, log,
+        cluster.get());
     std::unique_ptr<lcm::LCM> progress;  // --progress-url's connection
     const auto publish = mrsim::MakeProgressPublisher(command, &progress);
-    const mrsim::OptOutcome outcome =
-        mrsim::RunOpt(command, setup, *evaluator, stdout, stderr, publish);
+    const mrsim::OptOutcome outcome = mrsim::RunOpt(
+        command, setup, *evaluator, stdout, stderr, cluster.get(), publish);
     // Unfinished: 128 + the signal, as a shell reports it, so a script can
     // tell it from a finished run.
     if (outcome.stopped) return 128 + std::max(mrsim::StopSignal(), SIGINT);
     if (!command.replay) return 0;
     evaluator.reset();
-    const std::string launcher = mrsim::FindLauncher();
-    fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);
-    std::fflush(stdout);
-    execlp(launcher.c_str(), launcher.c_str(), "launch", outcome.launch.c_str(),
-           static_cast<char*>(nullptr));
-    fmt::print(stderr, "mrsim-opt: cannot start '{}'; run: mrsim launch {}\n",
-               launcher, outcome.launch);
-    return 1;
+    cluster.reset();
+    return mrsim::ExecReplay(outcome);
   } catch (const mrsim::UsageError& err) {  // the key file
     fmt::print(stderr, "mrsim-opt: {}\n", err.what());
     return 2;
-  } catch (const mrsim::OptInputError& err) {
+  } catch (const mrsim::OptInputError& err) {  // flags and files
     fmt::print(stderr, "mrsim-opt: {}\n", err.what());
     return 2;
   } catch (const std::exception& err) {

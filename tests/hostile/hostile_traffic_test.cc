@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/hash.h"
 #include "lcmtypes/runtime/decode.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
@@ -192,10 +193,15 @@ TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
   ASSERT_TRUE(lcm.good());
   Recorder rec;
   lcm.subscribe(".*", &Recorder::On, &rec);
+  // Worker w1's jobs go on its shard of the job channels (farm_channels.h).
+  char job_channel[32];
+  std::snprintf(job_channel, sizeof job_channel, "MRSIM_OPT_JOB_%02x",
+                static_cast<unsigned>(Fnv1a64(std::string("w1")) % 256));
   const std::vector<std::string> wanted = {
-      "MRSIM_STATE_snake",       "MRSIM_SIM_STATUS", "MRSIM_COMMAND_snake",
-      "MRSIM_GAIT_STATUS_snake", "MRSIM_OPT_RUN",    "MRSIM_OPT_HEARTBEAT",
-      "MRSIM_OPT_JOB",           "MRSIM_OPT_RESULT"};
+      "MRSIM_STATE_snake",   "MRSIM_SIM_STATUS",
+      "MRSIM_COMMAND_snake", "MRSIM_GAIT_STATUS_snake",
+      "MRSIM_OPT_RUN",       "MRSIM_OPT_HEARTBEAT",
+      job_channel,           "MRSIM_OPT_RESULT"};
   auto have_all = [&] {
     for (const std::string& c : wanted) {
       if (rec.samples().count(c) == 0) return false;

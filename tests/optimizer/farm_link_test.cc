@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "optimizer/farm/farm_channels.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -75,6 +76,31 @@ TEST(FarmLink, ABurstReadByLcmBeforeItIsHandledIsKeptWhole) {
   while (heard < kJobs && Clock::now() < deadline) link.Handle(10);
   EXPECT_EQ(heard, kJobs);
   EXPECT_EQ(malformed, 0);
+}
+
+// Jobs go on the job channel of their worker's shard and a worker
+// subscribes to its own: on tcpq the hub then copies a job to the workers
+// of one shard instead of to every worker (docs/scaling.md).
+TEST(FarmLink, AWorkerHearsOnlyTheJobsOfItsOwnShard) {
+  ASSERT_NE(JobShard("w1"), JobShard("w2"));
+  std::vector<std::string> heard;
+  FarmLink::Handlers handlers;
+  handlers.job = [&](const opt_job_t& job) { heard.push_back(job.worker_id); };
+  handlers.job_workers = {"w1"};
+  FarmLink link(testing::TestLcmUrl(7706), "SHARD", handlers);
+  FarmOutbox out;
+  for (int k = 0; k < 4; ++k) {
+    opt_job_t job = Job(k);
+    job.worker_id = k % 2 == 0 ? "w1" : "w2";
+    out.jobs.push_back(job);
+  }
+  link.Publish(out);
+  const auto deadline = Clock::now() + std::chrono::seconds(20);
+  while (heard.size() < 2 && Clock::now() < deadline) link.Handle(10);
+  link.Handle(50);  // anything more that was coming
+  EXPECT_EQ(heard, (std::vector<std::string>{"w1", "w1"}));
+  EXPECT_EQ(FarmChannels("P").JobChannel(JobShard("w1")).rfind("P_JOB_", 0),
+            0u);
 }
 
 }  // namespace

@@ -262,6 +262,39 @@ TEST(OptCommand, RunWritesTheBestAndAProgressLinePerGeneration) {
   std::fclose(quiet);
 }
 
+TEST(OptCommand, SlurmFlagsNeedTheFarmAndAMatchingHubUrl) {
+  const std::string out = testing::TempDir("opt_command_slurm");
+  const OptCommand c =
+      Parse(With(SnakeArgs(out),
+                 {"--farm", "--slurm", "4", "--slurm-opt", "partition=debug",
+                  "--slurm-opt=--time=10", "--hub", "7701"}));
+  EXPECT_EQ(c.slurm, 4);
+  EXPECT_EQ(c.slurm_options,
+            (std::vector<std::string>{"partition=debug", "--time=10"}));
+  EXPECT_EQ(c.hub_port, 7701);
+  auto message = [&](const std::vector<std::string>& more) {
+    try {
+      PrepareOpt(Parse(With(SnakeArgs(out), more)));
+    } catch (const OptInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({"--slurm", "2"}).find("add --farm"), std::string::npos);
+  EXPECT_NE(message({"--farm", "--slurm-opt", "time=1"}).find("--slurm N"),
+            std::string::npos);
+  EXPECT_NE(message({"--farm", "--slurm", "2", "--slurm-opt", "array=1-3"})
+                .find("sets --array itself"),
+            std::string::npos);
+  EXPECT_NE(message({"--farm", "--hub", "7701", "--lcm-url",
+                     "udpm://239.255.76.67:7667"})
+                .find("tcpq://HOST:7701"),
+            std::string::npos);
+  EXPECT_EQ(message({"--farm", "--hub", "7701", "--lcm-url",
+                     "tcpq://127.0.0.1:7701"}),
+            "no error");
+}
+
 TEST(OptCommand, FarmOnAnUnusableLcmUrlIsRefused) {
   OptCommand c = Parse(With(SnakeArgs(testing::TempDir("opt_command_farm")),
                             {"--farm", "--lcm-url", "nonsense://nowhere"}));
