@@ -622,6 +622,13 @@ std::string FindLauncher() {
   return "mrsim";
 }
 
+std::function<void(const std::string&)> OptLog(const OptCommand& command) {
+  const bool quiet = command.quiet;
+  return [quiet](const std::string& text) {
+    if (!quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
+  };
+}
+
 int ExecReplay(const OptOutcome& outcome) {
   const std::string launcher = FindLauncher();
   fmt::print("replaying: {} launch {}\n", launcher, outcome.launch);

@@ -139,6 +139,8 @@ std::string FindLauncher();
 // --replay: replaces this process with `mrsim launch <outcome.launch>`;
 // returns (1) only when the launcher cannot be started, having said so.
 int ExecReplay(const OptOutcome& outcome);
+// Notes for the user: "mrsim-opt: <text>" on stderr, nothing with --quiet.
+std::function<void(const std::string&)> OptLog(const OptCommand& command);
 // `program` beside this one (mrsim-worker beside mrsim-opt), or `program`.
 std::string FindSibling(const std::string& program);
 

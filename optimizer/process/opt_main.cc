@@ -30,9 +30,7 @@ int main(int argc, char** argv) {
     command.auth.ExportToChildren();  // --replay's processes
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
-    const auto log = [&](const std::string& text) {
-      if (!command.quiet) fmt::print(stderr, "mrsim-opt: {}\n", text);
-    };
+    const auto log = mrsim::OptLog(command);
     // Declared before the evaluator: the workers are cancelled after it.
     auto cluster = mrsim::StartOptCluster(command, log);
     auto evaluator = mrsim::MakeOptEvaluator(
