@@ -101,10 +101,11 @@ void EpisodeSettings::Validate() const {
   if (!(control_period > 0)) {
     throw std::invalid_argument("control period must be > 0 s");
   }
-  if (fitness.distance_mode != "forward" && fitness.distance_mode != "net") {
+  if (fitness.distance_mode != "forward" && fitness.distance_mode != "net" &&
+      fitness.distance_mode != "up") {
     throw std::invalid_argument(
-        "fitness distance mode: expected forward or "
-        "net, got '" +
+        "fitness distance mode: expected forward, net "
+        "or up, got '" +
         fitness.distance_mode + "'");
   }
   for (double w : {fitness.w_distance, fitness.w_speed, fitness.w_energy,
@@ -124,6 +125,16 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome) {
     if (i >= 0) values[k] = genome[i];
   }
   gait.parameters = gait.parameters.WithVector(values);
+  const auto& cpg_names = CpgGeneNames();
+  for (size_t k = 0; k < cpg_names.size(); ++k) {
+    const int i = problem.genome.Find(cpg_names[k]);
+    if (i < 0) continue;
+    // Any CPG gene makes it a CPG gait.
+    if (!gait.cpg) gait.cpg = CpgParameters{};
+    double* fields[] = {&gait.cpg->coupling, &gait.cpg->convergence,
+                        &gait.cpg->feedback_gain};
+    *fields[k] = genome[i];
+  }
   gait.name = "optimised";
   return gait;
 }
@@ -174,8 +185,10 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const GaitRunResult run = RunGait(physics, robot, controller, e.duration,
                                       e.control_period, observer);
     const Eigen::Vector3d d = run.com_end - run.com_start;
-    result.distance =
-        e.fitness.distance_mode == "net" ? std::hypot(d.x(), d.y()) : d.x();
+    result.distance = e.fitness.distance_mode == "net"
+                          ? std::hypot(d.x(), d.y())
+                      : e.fitness.distance_mode == "up" ? d.z()
+                                                        : d.x();
     result.speed = result.distance / e.duration;
     result.energy = run.energy;
     result.drift = std::abs(d.y());

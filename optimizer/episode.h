@@ -19,7 +19,8 @@ namespace mrsim {
 //           - drift * w_drift - fell * w_fall            (higher is better)
 struct FitnessSettings {
   // "forward": CoM displacement along +x (the chain's head direction, see
-  // chain_builder.h); "net": horizontal CoM displacement in any direction.
+  // chain_builder.h); "net": horizontal CoM displacement in any direction;
+  // "up": CoM rise along +z (climbing, the pole task).
   std::string distance_mode = "forward";
   double w_distance = 1.0;
   double w_speed = 0.0;
