@@ -64,7 +64,7 @@ const std::vector<Gait>& GaitPresets() {
       // Helical rolling: equal pitch and yaw waves a quarter period apart
       // bend the chain into a helix that rolls about its own axis; tight
       // (pole climbing) and wide (pressing on the wall of a pipe).
-      Make("helical-pole", GaitKind::kRoll, {1.2, 1.2, 0.4, 0.4, 2, 0, 0},
+      Make("helical-pole", GaitKind::kRoll, {1.0, 1.0, 0.15, 0.15, 4, 0, 0},
            kHalfPi),
       Make("helical-pipe", GaitKind::kRoll, {0.7, 0.7, 0.4, 0.4, 2, 0, 0},
            kHalfPi),

@@ -5,12 +5,14 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
 #include <utility>
 
+#include "gait_controller/gait_presets.h"
 #include "sim_core/base64.h"
 #include "sim_core/chain_builder.h"
 
@@ -73,27 +75,27 @@ Task Flat() {
   t.name = "flat";
   t.description = "flat ground, friction 0.6: distance along +x";
   t.scenario = Base();
-  t.gait = "forward";
+  t.gait = *FindGaitPreset("forward");
   return t;
 }
 
 Task Slope() {
   Task t;
   t.name = "slope";
-  t.description = "a 10 degree ramp starting 0.1 m ahead: distance along +x";
+  t.description = "a 10 degree ramp starting 0.3 m ahead: distance along +x";
   t.scenario = Base();
   const double a = 10.0 * kPi / 180.0;
-  const Eigen::Vector3d size(4.0, 2.0, 0.1);
-  // The top face starts at ground level at x = 0.1 and rises along +x.
+  const Eigen::Vector3d size(4.0, 2.0, 0.4);
+  // The top face starts at ground level at x = 0.3 and rises along +x.
   const Eigen::Vector3d dir(std::cos(a), 0, std::sin(a));
   const Eigen::Vector3d normal(-std::sin(a), 0, std::cos(a));
-  const Eigen::Vector3d start(0.1, 0, 0);
+  const Eigen::Vector3d start(0.3, 0, 0);
   const Eigen::Vector3d centre =
       start + dir * size.x() / 2 - normal * size.z() / 2;
   t.scenario.scene_objects.push_back(StaticBox(
       "ramp", size, centre,
       Eigen::Quaterniond(Eigen::AngleAxisd(-a, Eigen::Vector3d::UnitY()))));
-  t.gait = "forward";
+  t.gait = *FindGaitPreset("forward");
   return t;
 }
 
@@ -111,7 +113,7 @@ Task Stairs() {
         StaticBox(fmt::format("step{}", i), Eigen::Vector3d(depth, 2.0, h),
                   Eigen::Vector3d(x0 + depth / 2, 0, h / 2)));
   }
-  t.gait = "forward";
+  t.gait = *FindGaitPreset("forward");
   return t;
 }
 
@@ -138,7 +140,7 @@ Task Pegs() {
       t.scenario.scene_objects.push_back(peg);
     }
   }
-  t.gait = "serpenoid";
+  t.gait = *FindGaitPreset("serpenoid");
   return t;
 }
 
@@ -164,34 +166,70 @@ Task Pipe() {
         centre,
         Eigen::Quaterniond(Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitX()))));
   }
-  t.gait = "helical-pipe";
+  t.gait = *FindGaitPreset("helical-pipe");
   return t;
 }
 
-// The robot turned so that it stands on its tail, head up, with its chain
-// along the line (x, y) = (offset, 0); the pole's axis is the z axis.
-Robot StandingChain(double offset) {
-  ChainOptions c = TaskChain();
-  Robot robot = MakeChain(c);
-  // Module 0 (head) is at x = 0, the tail at x = -1.2: turn about y by
-  // -90 degrees so +x points up, then lift so the tail's end is on the
-  // ground.
-  const Eigen::Quaterniond q(
-      Eigen::AngleAxisd(-kPi / 2, Eigen::Vector3d::UnitY()));
-  const double half = c.frame_size.z() / 2;
-  const double length = 2 * c.frame_size.x() * c.modules;
-  const Eigen::Vector3d lift(offset, 0, length - c.frame_size.x() + 0.002);
-  auto move = [&](Eigen::Vector3d p) {
-    // Centre the chain's cross-section on the line.
-    p.z() -= half;
-    return Eigen::Vector3d(q * p + lift);
-  };
+// Bends a straight MakeChain robot (no sensor modules) so that hinge i
+// sits at angles[i]: that pose becomes the joints' zero. Each hinge turns
+// everything behind it about its axis (y: pitch, z: yaw, in the frame in
+// front of it), positive as the physics measures a joint angle.
+void Bend(Robot& robot, const std::vector<double>& angles) {
+  Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
+  for (size_t i = 0; i < robot.modules.size(); ++i) {
+    Module& mod = robot.modules[i];
+    const Eigen::Vector3d hinge = mod.position;
+    Frame& front = mod.frames[0];
+    front.position = m * front.position;
+    front.quat_rotation =
+        Eigen::Quaterniond(m.rotation()) * front.quat_rotation;
+    const Eigen::Vector3d axis = mod.axis == Axis::kPitch
+                                     ? Eigen::Vector3d::UnitY()
+                                     : Eigen::Vector3d::UnitZ();
+    m = m * Eigen::Translation3d(hinge) * Eigen::AngleAxisd(angles[i], axis) *
+        Eigen::Translation3d(-hinge);
+    Frame& back = mod.frames[1];
+    back.position = m * back.position;
+    back.quat_rotation = Eigen::Quaterniond(m.rotation()) * back.quat_rotation;
+    mod.position = m * hinge;
+  }
+}
+
+// The pole task's robot: bent in the ground plane into an arc round the
+// z axis (every yaw hinge at kPoleArcAngle), hugging the pole; arc_radius
+// gets the distance from the axis to the middle of the polygon's sides.
+constexpr double kPoleArcAngle = 1.0;  // rad
+
+Robot WrappedChain(double* arc_radius) {
+  Robot robot = MakeChain(TaskChain());
+  std::vector<double> angles(robot.modules.size(), 0.0);
+  for (size_t i = 0; i < angles.size(); ++i) {
+    if (robot.modules[i].axis == Axis::kYaw) angles[i] = kPoleArcAngle;
+  }
+  Bend(robot, angles);
+  // The yaw hinges are the corners of a regular polygon: the centre of
+  // the circle through three of them.
+  const Eigen::Vector2d a = robot.modules[1].position.head<2>();
+  const Eigen::Vector2d b = robot.modules[5].position.head<2>();
+  const Eigen::Vector2d c = robot.modules[9].position.head<2>();
+  const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) +
+                        c.x() * (a.y() - b.y()));
+  const Eigen::Vector2d centre(
+      (a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) +
+       c.squaredNorm() * (a.y() - b.y())) /
+          d,
+      (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) +
+       c.squaredNorm() * (b.x() - a.x())) /
+          d);
+  // The sides (0.2 m between yaw hinges) are nearest the centre in their
+  // middle.
+  const double corner = (a - centre).norm();
+  const double side = (b - robot.modules[4].position.head<2>()).norm() * 2;
+  *arc_radius = std::sqrt(corner * corner - side * side / 4);
+  const Eigen::Vector3d shift(-centre.x(), -centre.y(), 0);
   for (Module& m : robot.modules) {
-    m.position = move(m.position);
-    for (Frame& f : m.frames) {
-      f.position = move(f.position);
-      f.quat_rotation = q * f.quat_rotation;
-    }
+    m.position += shift;
+    for (Frame& f : m.frames) f.position += shift;
   }
   return robot;
 }
@@ -200,11 +238,14 @@ Task Pole() {
   Task t;
   t.name = "pole";
   t.description =
-      "a vertical pole of 0.2 m diameter, friction 1; the robot stands on "
-      "its tail beside it: height gained by the centre of mass";
+      "a vertical pole, friction 1; the robot starts wrapped round its foot "
+      "(an arc, its joints' zero): height gained by the centre of mass";
   Scenario s;
-  const double pole_radius = 0.1;
-  s.robots.push_back(StandingChain(pole_radius + 0.025 + 0.005));
+  double arc_radius = 0;
+  s.robots.push_back(WrappedChain(&arc_radius));
+  // The pole's surface 3 mm inside the chain's inner side: the servos
+  // holding the arc squeeze it.
+  const double pole_radius = arc_radius - 0.025 + 0.003;
   s.scene.guid = "scene";
   s.scene.material_name = "ground";
   AddFriction(s, "ground", 0.6);
@@ -221,7 +262,11 @@ Task Pole() {
   t.scenario = std::move(s);
   t.distance_mode = "up";
   t.duration = 30.0;
-  t.gait = "helical-pole";
+  // Helical rolling relative to the wrapped start: the yaw offset takes
+  // the arc back out, so the targets start at 0.
+  t.gait = *FindGaitPreset("helical-pole");
+  t.gait.name = "helical-pole-wrapped";
+  t.gait.parameters.offset_yaw = -kPoleArcAngle;
   return t;
 }
 
@@ -278,7 +323,7 @@ Task Rubble() {
   // One pixel at full white, so the brightest is 4 cm whatever the stones.
   grey[kSide * kSide - 1] = 255;
   scene.height_image = Pgm(kSide, kSide, grey);
-  t.gait = "forward";
+  t.gait = *FindGaitPreset("forward");
   return t;
 }
 
@@ -295,7 +340,7 @@ Task Water() {
   pool.position = Eigen::Vector3d(0, 0, 0.15);
   pool.size = Eigen::Vector3d(10, 10, 0.3);
   t.scenario.fluid_regions.push_back(pool);
-  t.gait = "serpenoid";
+  t.gait = *FindGaitPreset("serpenoid");
   return t;
 }
 

@@ -21,7 +21,9 @@ struct Task {
   // FitnessSettings::distance_mode: "forward" (+x), or "up" (+z, the pole).
   std::string distance_mode = "forward";
   double duration = 20.0;  // s of sim time the table in tasks.md uses
-  std::string gait;        // the preset suggested for it
+  // The gait to start from: a preset, or (pole) a preset adapted to the
+  // task's start pose.
+  Gait gait;
 };
 
 // An unknown task name; what() lists the known ones.

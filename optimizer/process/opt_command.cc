@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -145,8 +146,8 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "Gait control period (s)")
       ->capture_default_str();
   app.add_option("--gait", c.gait_spec,
-                 "Base gait (preset or file) the gait genes modify")
-      ->capture_default_str();
+                 "Base gait (preset or file) the gait genes modify "
+                 "(default: forward, or the task's own gait)");
   app.add_option("--distance", e.fitness.distance_mode,
                  "forward (+x) | net (any direction) | up (+z); --task sets "
                  "its own")
@@ -294,17 +295,22 @@ OptSetup PrepareOpt(const OptCommand& c) {
                                 1u, std::thread::hardware_concurrency()));
     }
     EpisodeSettings e = c.episode;
+    std::optional<Gait> task_gait;
     if (!c.task.empty()) {
       Task task = MakeTask(c.task);
       problem.scenario = std::move(task.scenario);
       e.fitness.distance_mode = task.distance_mode;
+      task_gait = task.gait;
     } else {
       problem.scenario = ReadScenarioFile(c.scenario_path);
     }
     EmbedAssets(problem.scenario);
     problem.genome = c.genes.empty() ? ReadGenomeFile(c.genome_path)
                                      : BuiltInGenome(c.genes);
-    e.base_gait = ResolveGait(c.gait_spec);
+    // A task starts from its own gait unless --gait names one.
+    e.base_gait = c.gait_spec.empty() && task_gait ? *task_gait
+                  : c.gait_spec.empty()            ? ResolveGait("forward")
+                                                   : ResolveGait(c.gait_spec);
     e.Validate();
     problem.episode = e;
     GenomeRobotIndex(problem.scenario, problem.genome);

@@ -33,7 +33,7 @@ struct OptCommand {
   std::string genes;  // a built-in genome instead of --genome: sine | cpg
   std::string out_dir;
   std::string workers = "local:0";  // local:K threads (0: one per core)
-  std::string gait_spec = "forward";
+  std::string gait_spec;            // empty: forward, or the task's own gait
   bool farm = false;
   std::string lcm_url;
   AuthFlags auth;

@@ -39,21 +39,22 @@ int main(int argc, char** argv) {
       for (const std::string& n : mrsim::TaskNames()) {
         const mrsim::Task t = mrsim::MakeTask(n);
         fmt::print("{:<8} {:<8} {:>5g}  {:<14} {}\n", t.name, t.distance_mode,
-                   t.duration, t.gait, t.description);
+                   t.duration, t.gait.name, t.description);
       }
       return 0;
     }
     const mrsim::Task t = mrsim::MakeTask(name);
     if (!gait.empty()) {
-      const mrsim::EvalResult r =
-          mrsim::EvaluateTask(t, mrsim::ResolveGait(gait), seconds);
+      const mrsim::EvalResult r = mrsim::EvaluateTask(
+          t, gait == "task" ? t.gait : mrsim::ResolveGait(gait), seconds);
       fmt::print("{} {} {}: {:.3f} m{}\n", t.name, gait, t.distance_mode,
                  r.distance, r.failed ? " (unstable)" : "");
       return 0;
     }
     if (out.empty()) {
       fmt::print("{}: {}\nfitness: {} (m), episode {} s, suggested gait {}\n",
-                 t.name, t.description, t.distance_mode, t.duration, t.gait);
+                 t.name, t.description, t.distance_mode, t.duration,
+                 t.gait.name);
       return 0;
     }
     mrsim::WriteScenarioFile(t.scenario, out);
