@@ -82,19 +82,15 @@ Task Flat() {
 Task Slope() {
   Task t;
   t.name = "slope";
-  t.description = "a 10 degree ramp starting 0.3 m ahead: distance along +x";
+  t.description =
+      "a 10 degree slope, uphill along +x (gravity tilted): distance along +x";
   t.scenario = Base();
+  // The ground plane is infinite, so tilting gravity is the same as tilting
+  // the ground, without the edge of a ramp (a thin static box at 10 degrees
+  // made MuJoCo's box contacts unstable where the robot met it).
   const double a = 10.0 * kPi / 180.0;
-  const Eigen::Vector3d size(4.0, 2.0, 0.4);
-  // The top face starts at ground level at x = 0.3 and rises along +x.
-  const Eigen::Vector3d dir(std::cos(a), 0, std::sin(a));
-  const Eigen::Vector3d normal(-std::sin(a), 0, std::cos(a));
-  const Eigen::Vector3d start(0.3, 0, 0);
-  const Eigen::Vector3d centre =
-      start + dir * size.x() / 2 - normal * size.z() / 2;
-  t.scenario.scene_objects.push_back(StaticBox(
-      "ramp", size, centre,
-      Eigen::Quaterniond(Eigen::AngleAxisd(-a, Eigen::Vector3d::UnitY()))));
+  t.scenario.settings.gravity =
+      9.81 * Eigen::Vector3d(-std::sin(a), 0, -std::cos(a));
   t.gait = *FindGaitPreset("forward");
   return t;
 }
@@ -238,18 +234,20 @@ Task Pole() {
   Task t;
   t.name = "pole";
   t.description =
-      "a vertical pole, friction 1; the robot starts wrapped round its foot "
+      "a vertical pole (rubber, friction 2); the robot starts wrapped round "
+      "its foot "
       "(an arc, its joints' zero): height gained by the centre of mass";
   Scenario s;
   double arc_radius = 0;
   s.robots.push_back(WrappedChain(&arc_radius));
-  // The pole's surface 3 mm inside the chain's inner side: the servos
-  // holding the arc squeeze it.
-  const double pole_radius = arc_radius - 0.025 + 0.003;
+  // The pole's surface 12 mm inside the chain's inner side: the servos
+  // holding the arc squeeze it (a tighter squeeze climbed higher, up to
+  // about 15 mm where the chain slips off).
+  const double pole_radius = arc_radius - 0.025 + 0.012;
   s.scene.guid = "scene";
   s.scene.material_name = "ground";
   AddFriction(s, "ground", 0.6);
-  AddFriction(s, "pole", 1.0);
+  AddFriction(s, "pole", 2.0);
   SceneObject pole;
   pole.guid = "pole";
   pole.shape = PrimitiveShape::kCylinder;
