@@ -51,7 +51,9 @@ void CheckInput(const char* what, double v) {
 
 GaitController::GaitController(std::vector<Axis> joint_axes,
                                GaitControllerOptions options)
-    : axes_(std::move(joint_axes)), options_(options) {
+    : axes_(std::move(joint_axes)),
+      options_(options),
+      cpg_(std::max<int>(1, static_cast<int>(axes_.size()))) {
   if (axes_.empty()) {
     throw std::invalid_argument("gait controller: the chain has no joints");
   }
@@ -71,6 +73,7 @@ GaitController::GaitController(std::vector<Axis> joint_axes,
   gaits_[KindIndex(GaitKind::kSidewind)] = *FindGaitPreset("sidewind");
   gaits_[KindIndex(GaitKind::kRoll)] = *FindGaitPreset("rolling");
   drive_goal_ = kForwardDrive;
+  feedback_.assign(axes_.size(), 0.0);
   Reset();
 }
 
@@ -84,6 +87,7 @@ const Gait& GaitController::gait(GaitKind kind) const {
 
 void GaitController::SetGait(const Gait& gait) {
   ValidateGaitParameters(gait.parameters, joint_count());
+  if (gait.cpg) ValidateCpgParameters(*gait.cpg);
   gaits_[KindIndex(gait.kind)] = gait;
   if (stopped_ || kind_ != gait.kind) {
     switch (gait.kind) {
@@ -206,10 +210,81 @@ void GaitController::Reset() {
   drive_ = stopped_ ? 0.0 : drive_goal_;
   phase_ = 0;
   time_ = 0;
+  cpg_running_ = false;
+}
+
+void GaitController::SetFeedback(const std::vector<double>& inputs) {
+  if (inputs.size() != axes_.size()) {
+    throw std::invalid_argument(
+        fmt::format("gait controller: {} feedback inputs for {} joints",
+                    inputs.size(), axes_.size()));
+  }
+  for (double v : inputs) {
+    if (!std::isfinite(v)) {
+      throw std::invalid_argument("gait controller: feedback not finite");
+    }
+  }
+  feedback_ = inputs;
+}
+
+void GaitController::StartCpg() {
+  // Hand over from the sinusoid where it is: same phases, amplitudes,
+  // offsets and frequency, so the targets do not jump.
+  std::vector<double> phases(axes_.size());
+  for (size_t j = 0; j < axes_.size(); ++j)
+    phases[j] = phase_ + waves_[j].shift;
+  cpg_.Seed(phases, waves_, drive_ / active_gait().parameters.period);
+  cpg_running_ = true;
+}
+
+void GaitController::SetOscillatorPhases(const std::vector<double>& phases) {
+  if (!active_gait().cpg) {
+    throw std::invalid_argument("gait controller: the gait is not a CPG gait");
+  }
+  if (!cpg_running_) StartCpg();
+  cpg_.SetPhases(phases);
+}
+
+void GaitController::UpdateCpg(double dt) {
+  if (!cpg_running_) StartCpg();
+  // The network smooths a drive step itself (second-order frequency).
+  if (!stopped_) drive_ = drive_goal_;
+  const double period = active_gait().parameters.period;
+  cpg_.Step(dt, goal_, drive_ / period, *active_gait().cpg, feedback_);
+  const double max_change = options_.max_target_rate * dt;
+  for (size_t j = 0; j < axes_.size(); ++j) {
+    const int i = static_cast<int>(j);
+    // Keep the sinusoid's state in step, so leaving the CPG continues
+    // from here.
+    waves_[j].amplitude = std::max(0.0, cpg_.amplitudes()[j]);
+    waves_[j].offset = cpg_.offsets()[j];
+    waves_[j].shift = std::remainder(cpg_.phases()[j] - phase_, kTwoPi);
+    const double raw = std::clamp(cpg_.output(i), -options_.target_limit,
+                                  options_.target_limit);
+    targets_[j] += std::clamp(raw - targets_[j], -max_change, max_change);
+  }
 }
 
 bool GaitController::settled() const {
   if (!stopped_ && drive_ != drive_goal_) return false;
+  if (cpg_running_) {
+    // The oscillators approach their goals exponentially: settled within
+    // a milliradian.
+    constexpr double kTolerance = 1e-3;
+    for (size_t j = 0; j < goal_.size(); ++j) {
+      if (std::abs(cpg_.amplitudes()[j] - goal_[j].amplitude) > kTolerance ||
+          std::abs(cpg_.offsets()[j] - goal_[j].offset) > kTolerance) {
+        return false;
+      }
+      if (j > 0 && goal_[j].amplitude != 0 &&
+          std::abs(std::remainder(cpg_.phases()[j] - cpg_.phases()[j - 1] -
+                                      (goal_[j].shift - goal_[j - 1].shift),
+                                  kTwoPi)) > kTolerance) {
+        return false;
+      }
+    }
+    return true;
+  }
   for (size_t j = 0; j < goal_.size(); ++j) {
     if (waves_[j].amplitude != goal_[j].amplitude ||
         waves_[j].offset != goal_[j].offset) {
@@ -228,6 +303,11 @@ const std::vector<double>& GaitController::Update(double dt) {
         "gait controller: time step must be finite and >= 0, got {}", dt));
   }
   time_ += dt;
+  if (active_gait().cpg) {
+    UpdateCpg(dt);
+    return targets_;
+  }
+  cpg_running_ = false;
   // At rest (no amplitude anywhere) the phase speed and the shifts are
   // invisible, so they take their goals at once; otherwise they ramp.
   bool at_rest = true;

@@ -11,7 +11,10 @@
 namespace mrsim {
 namespace {
 
-constexpr const char* kTag = "mrsim-gait-controller-state-1";
+// Version 2 adds the CPG settings of each gait and the oscillators' state;
+// version 1 (no CPG) is still read.
+constexpr const char* kTag = "mrsim-gait-controller-state-2";
+constexpr const char* kTagV1 = "mrsim-gait-controller-state-1";
 
 class Writer {
  public:
@@ -122,12 +125,21 @@ std::string GaitController::SaveState() const {
     const GaitParameters& p = g.parameters;
     for (double v : p.ToArray()) w.Double(v);
     w.Double(p.pitch_yaw_lag);
+    w.Double(p.amplitude_taper);
     w.Int(static_cast<long long>(p.overrides.size()));
     for (const JointOverride& o : p.overrides) {
       w.Int(o.joint);
       w.Optional(o.amplitude);
       w.Optional(o.phase);
       w.Optional(o.offset);
+    }
+    w.Int(g.cpg ? 1 : 0);
+    if (g.cpg) {
+      w.Double(g.cpg->coupling);
+      w.Double(g.cpg->convergence);
+      w.Double(g.cpg->feedback_gain);
+      w.Double(g.cpg->force_scale);
+      w.Double(g.cpg->distance_range);
     }
   }
   w.Int(static_cast<int>(kind_));
@@ -143,14 +155,21 @@ std::string GaitController::SaveState() const {
   w.Double(drive_);
   w.Double(phase_);
   w.Double(time_);
+  w.Int(cpg_running_ ? 1 : 0);
+  const std::vector<double> network = cpg_.ToNumbers();
+  w.Int(static_cast<long long>(network.size()));
+  for (double v : network) w.Double(v);
+  for (double f : feedback_) w.Double(f);
   return w.str();
 }
 
 void GaitController::LoadState(const std::string& text) {
   Reader r(text);
-  if (r.Text() != kTag) {
+  const std::string tag = r.Text();
+  if (tag != kTag && tag != kTagV1) {
     throw std::invalid_argument("gait state: not a gait controller state");
   }
+  const bool v2 = tag == kTag;
   if (r.Int() != static_cast<long long>(axes_.size())) {
     throw std::invalid_argument("gait state: for another joint count");
   }
@@ -162,6 +181,7 @@ void GaitController::LoadState(const std::string& text) {
     for (double& v : seven) v = r.Double();
     g.parameters = GaitParameters::FromVector(seven);
     g.parameters.pitch_yaw_lag = r.Double();
+    if (v2) g.parameters.amplitude_taper = r.Double();
     const long long n = r.Int();
     if (n < 0 || n > 1000) throw std::invalid_argument("gait state: overrides");
     for (long long i = 0; i < n; ++i) {
@@ -171,6 +191,17 @@ void GaitController::LoadState(const std::string& text) {
       o.phase = r.Optional();
       o.offset = r.Optional();
       g.parameters.overrides.push_back(o);
+    }
+    g.cpg.reset();
+    if (v2 && r.Int() != 0) {
+      CpgParameters c;
+      c.coupling = r.Double();
+      c.convergence = r.Double();
+      c.feedback_gain = r.Double();
+      c.force_scale = r.Double();
+      c.distance_range = r.Double();
+      ValidateCpgParameters(c);
+      g.cpg = c;
     }
   }
   next.kind_ = static_cast<GaitKind>(Enum(r, 2));
@@ -188,6 +219,18 @@ void GaitController::LoadState(const std::string& text) {
   next.drive_ = r.Double();
   next.phase_ = r.Double();
   next.time_ = r.Double();
+  next.cpg_running_ = false;
+  if (v2) {
+    next.cpg_running_ = r.Int() != 0;
+    const long long n = r.Int();
+    if (n != static_cast<long long>(axes_.size()) * 6 + 2) {
+      throw std::invalid_argument("gait state: for another joint count");
+    }
+    std::vector<double> network(static_cast<size_t>(n));
+    for (double& v : network) v = r.Double();
+    next.cpg_.FromNumbers(network);
+    for (double& f : next.feedback_) f = r.Double();
+  }
   *this = std::move(next);
 }
 

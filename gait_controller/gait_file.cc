@@ -96,6 +96,7 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
   std::array<std::optional<double>, GaitParameters::kVectorSize> seven;
   std::array<int, GaitParameters::kVectorSize> lines{};
   int lag_line = 0;
+  int taper_line = 0;
   std::vector<int> override_lines;
   for (const XMLElement* e = root->FirstChildElement(); e;
        e = e->NextSiblingElement()) {
@@ -125,6 +126,47 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
       override_lines.push_back(line);
       continue;
     }
+    if (tag == "cpg") {
+      if (gait.cpg) Fail(source, line, "gait/cpg: repeated");
+      CpgParameters c;
+      const std::pair<const char*, double*> fields[] = {
+          {"coupling", &c.coupling},
+          {"convergence", &c.convergence},
+          {"feedback", &c.feedback_gain},
+          {"force_scale", &c.force_scale},
+          {"distance_range", &c.distance_range}};
+      for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a;
+           a = a->Next()) {
+        bool known = false;
+        for (const auto& [name, value] : fields) {
+          if (std::string(a->Name()) == name) {
+            *value = ParseNumber(source, line,
+                                 fmt::format("gait/cpg/@{}", name), a->Value());
+            known = true;
+          }
+        }
+        if (!known) {
+          Fail(source, line,
+               fmt::format("gait/cpg/@{}: unknown attribute (expected "
+                           "coupling, convergence, feedback, force_scale or "
+                           "distance_range)",
+                           a->Name()));
+        }
+      }
+      try {
+        ValidateCpgParameters(c);
+      } catch (const std::invalid_argument& err) {
+        Fail(source, line, err.what());
+      }
+      gait.cpg = c;
+      continue;
+    }
+    if (tag == "amplitude_taper") {
+      gait.parameters.amplitude_taper =
+          ParseNumber(source, line, "gait/" + tag, e->GetText());
+      taper_line = line;
+      continue;
+    }
     if (tag == "pitch_yaw_lag") {
       gait.parameters.pitch_yaw_lag =
           ParseNumber(source, line, "gait/" + tag, e->GetText());
@@ -144,7 +186,7 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
       Fail(source, line,
            fmt::format("gait/{}: unknown element (expected A_pitch, A_yaw, "
                        "phi_pitch, phi_yaw, T, offset_pitch, offset_yaw, "
-                       "pitch_yaw_lag or joint)",
+                       "pitch_yaw_lag, amplitude_taper, joint or cpg)",
                        tag));
     }
   }
@@ -173,6 +215,9 @@ Gait ReadGaitString(const std::string& xml, const std::string& source) {
         if (rest.rfind(std::string(names[n]) + ":", 0) == 0) line = lines[n];
       }
       if (rest.rfind("pitch_yaw_lag:", 0) == 0 && lag_line > 0) line = lag_line;
+      if (rest.rfind("amplitude_taper:", 0) == 0 && taper_line > 0) {
+        line = taper_line;
+      }
       int k = -1;
       if (std::sscanf(rest.c_str(), "joint override %d", &k) == 1 && k >= 0 &&
           k < static_cast<int>(override_lines.size())) {
@@ -206,6 +251,16 @@ std::string WriteGaitString(const Gait& gait) {
   w.Attribute("kind", ToString(gait.kind));
   for (size_t n = 0; n < names.size(); ++n) w.Number(names[n], values[n]);
   w.Number("pitch_yaw_lag", p.pitch_yaw_lag);
+  if (p.amplitude_taper != 0) w.Number("amplitude_taper", p.amplitude_taper);
+  if (gait.cpg) {
+    w.Open("cpg");
+    w.Attribute("coupling", gait.cpg->coupling);
+    w.Attribute("convergence", gait.cpg->convergence);
+    w.Attribute("feedback", gait.cpg->feedback_gain);
+    w.Attribute("force_scale", gait.cpg->force_scale);
+    w.Attribute("distance_range", gait.cpg->distance_range);
+    w.Close();
+  }
   for (const JointOverride& o : p.overrides) {
     w.Open("joint");
     w.Attribute("index", std::to_string(o.joint));

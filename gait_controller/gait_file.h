@@ -6,6 +6,7 @@
 //     <phi_yaw>0</phi_yaw> <T>4</T> <offset_pitch>0</offset_pitch>
 //     <offset_yaw>0</offset_yaw> <pitch_yaw_lag>0</pitch_yaw_lag>
 //     <joint index="3" amplitude="0.2" phase="1.0" offset="0.1"/>
+//     <cpg coupling="4" convergence="10" feedback="0"/>  (a CPG gait)
 //   </gait>
 #pragma once
 
@@ -25,8 +26,9 @@ class GaitFileError : public std::runtime_error {
 };
 
 // Reads and validates one gait. The seven parameters are required;
-// pitch_yaw_lag, kind (default linear), name (default: the file's stem) and
-// joint overrides are optional. Throws GaitFileError.
+// pitch_yaw_lag, kind (default linear), name (default: the file's stem),
+// joint overrides and <cpg> (its attributes default to CpgParameters')
+// are optional. Throws GaitFileError.
 Gait ReadGaitFile(const std::string& path);
 // As ReadGaitFile; `source` names the text in error messages.
 Gait ReadGaitString(const std::string& xml, const std::string& source);

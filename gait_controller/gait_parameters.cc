@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -48,7 +49,7 @@ bool operator==(const JointOverride& a, const JointOverride& b) {
 
 bool operator==(const GaitParameters& a, const GaitParameters& b) {
   return a.ToArray() == b.ToArray() && a.pitch_yaw_lag == b.pitch_yaw_lag &&
-         a.overrides == b.overrides;
+         a.amplitude_taper == b.amplitude_taper && a.overrides == b.overrides;
 }
 
 const std::array<const char*, GaitParameters::kVectorSize>&
@@ -80,6 +81,8 @@ void ValidateGaitParameters(const GaitParameters& p, int joint_count) {
   CheckRange("offset_pitch", p.offset_pitch, -kMaxGaitOffset, kMaxGaitOffset);
   CheckRange("offset_yaw", p.offset_yaw, -kMaxGaitOffset, kMaxGaitOffset);
   CheckRange("pitch_yaw_lag", p.pitch_yaw_lag, -kMaxGaitPhase, kMaxGaitPhase);
+  CheckRange("amplitude_taper", p.amplitude_taper, -kMaxGaitTaper,
+             kMaxGaitTaper);
   for (size_t n = 0; n < p.overrides.size(); ++n) {
     const JointOverride& o = p.overrides[n];
     const std::string where =
@@ -119,6 +122,15 @@ std::vector<JointWave> JointWaves(const GaitParameters& p,
       w.shift = yaw_index * p.phase_yaw + p.pitch_yaw_lag;
       w.offset = p.offset_yaw;
       ++yaw_index;
+    }
+  }
+  if (p.amplitude_taper != 0 && waves.size() > 1) {
+    const double last = static_cast<double>(waves.size() - 1);
+    for (size_t j = 0; j < waves.size(); ++j) {
+      const double u = 1.0 - 2.0 * static_cast<double>(j) / last;
+      waves[j].amplitude = std::min(
+          kMaxGaitAmplitude,
+          waves[j].amplitude * std::max(0.0, 1.0 + p.amplitude_taper * u));
     }
   }
   for (const JointOverride& o : p.overrides) {

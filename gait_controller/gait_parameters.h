@@ -35,6 +35,10 @@ struct GaitParameters {
   double offset_yaw = 0.0;    // o_yaw, rad
   // Extra phase of every yaw joint (phi_py of the 5-module pitch-yaw form).
   double pitch_yaw_lag = 0.0;
+  // Linear change of every amplitude along the body (conical sidewinding,
+  // docs/gait.md): joint i of N gets A_g * (1 + taper * u_i), u_i running
+  // from +1 at the head (joint 0) to -1 at the tail; 0: no change.
+  double amplitude_taper = 0.0;
   std::vector<JointOverride> overrides;
 
   // [A_pitch, A_yaw, phi_pitch, phi_yaw, T, offset_pitch, offset_yaw].
@@ -44,7 +48,7 @@ struct GaitParameters {
   // std::invalid_argument when the size is not 7 (values are not checked:
   // use ValidateGaitParameters).
   static GaitParameters FromVector(const std::vector<double>& values);
-  // Keeps this gait's lag and overrides, replaces the seven.
+  // Keeps this gait's lag, taper and overrides, replaces the seven.
   GaitParameters WithVector(const std::vector<double>& values) const;
 };
 
@@ -65,6 +69,7 @@ inline constexpr double kMaxGaitPhase = 2 * 3.14159265358979323846;  // |phi|
 inline constexpr double kMinGaitPeriod = 0.1;                        // s
 inline constexpr double kMaxGaitPeriod = 60.0;                       // s
 inline constexpr double kMaxGaitOffset = 3.14159265358979323846;     // |o|
+inline constexpr double kMaxGaitTaper = 1.0;  // |amplitude_taper|
 
 // Throws std::invalid_argument naming the field and the accepted range when
 // a value is not finite or out of range, or an override names a joint

@@ -13,7 +13,9 @@
 namespace mrsim {
 
 // forward, forward-strong, turn-wide, turn-sharp, sidewind-1, sidewind-2,
-// rolling (the domain's table, in that order), then sidewind (tuned here).
+// rolling (the domain's table, in that order), then sidewind (tuned here),
+// the classic gaits serpenoid, concertina, helical-pole, helical-pipe,
+// conical-sidewind, and the CPG gaits cpg-forward and cpg-serpenoid.
 const std::vector<Gait>& GaitPresets();
 // The preset with this name ('_' accepted for '-'), or nullopt.
 std::optional<Gait> FindGaitPreset(const std::string& name);

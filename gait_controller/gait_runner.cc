@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+
+#include "gait_controller/cpg_feedback.h"
 
 namespace mrsim {
 
@@ -79,6 +82,11 @@ GaitRunResult RunGait(Physics& physics, int robot, GaitController& controller,
   for (int k = 0; k < periods; ++k) {
     // The clock is the sim time, as mrsim-gait reads it from the state.
     const double now = physics.time();
+    // A CPG gait with feedback reads the sensors, as mrsim-gait does.
+    const std::optional<CpgParameters>& cpg = controller.active_gait().cpg;
+    if (cpg && cpg->feedback_gain != 0) {
+      controller.SetFeedback(CpgFeedback(state, *cpg));
+    }
     const std::vector<double>& targets =
         controller.Update(first ? 0.0 : now - last_time);
     first = false;

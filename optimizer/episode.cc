@@ -19,8 +19,9 @@ namespace mrsim {
 
 const EnumTable<DistanceMode>& DistanceModes() {
   static const EnumTable<DistanceMode> kModes(
-      "fitness distance mode",
-      {{DistanceMode::kForward, "forward"}, {DistanceMode::kNet, "net"}});
+      "fitness distance mode", {{DistanceMode::kForward, "forward"},
+                                {DistanceMode::kNet, "net"},
+                                {DistanceMode::kUp, "up"}});
   return kModes;
 }
 
@@ -50,6 +51,16 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome) {
     if (i >= 0) values[k] = genome[i];
   }
   gait.parameters = gait.parameters.WithVector(values);
+  const auto& cpg_names = CpgGeneNames();
+  for (size_t k = 0; k < cpg_names.size(); ++k) {
+    const int i = problem.genome.Find(cpg_names[k]);
+    if (i < 0) continue;
+    // Any CPG gene makes it a CPG gait.
+    if (!gait.cpg) gait.cpg = CpgParameters{};
+    double* fields[] = {&gait.cpg->coupling, &gait.cpg->convergence,
+                        &gait.cpg->feedback_gain};
+    *fields[k] = genome[i];
+  }
   gait.name = "optimised";
   return gait;
 }
@@ -99,7 +110,8 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     const Eigen::Vector3d d = run.com_end - run.com_start;
     result.distance = e.fitness.distance_mode == DistanceMode::kNet
                           ? std::hypot(d.x(), d.y())
-                          : d.x();
+                      : e.fitness.distance_mode == DistanceMode::kUp ? d.z()
+                                                                     : d.x();
     result.speed = result.distance / e.duration;
     result.energy = run.energy;
     result.drift = std::abs(d.y());

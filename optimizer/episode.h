@@ -17,8 +17,9 @@
 namespace mrsim {
 
 // "forward": CoM displacement along +x (the chain's head direction, see
-// chain_builder.h); "net": horizontal CoM displacement in any direction.
-enum class DistanceMode { kForward, kNet };
+// chain_builder.h); "net": horizontal CoM displacement in any direction;
+// "up": CoM rise along +z (climbing, the pole task).
+enum class DistanceMode { kForward, kNet, kUp };
 const EnumTable<DistanceMode>& DistanceModes();
 inline const char* ToString(DistanceMode mode) {
   return DistanceModes().Name(mode);

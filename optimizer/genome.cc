@@ -14,6 +14,7 @@
 
 #include "common/input_limits.h"
 #include "common/xml_error_text.h"
+#include "gait_controller/cpg_parameters.h"
 #include "gait_controller/gait_parameters.h"
 #include "sim_core/scenario_schema.h"
 #include "sim_core/xml_writer.h"
@@ -95,6 +96,9 @@ std::optional<GeneRange> GeneRangeOf(const std::string& name) {
       {"T", {kMinGaitPeriod, kMaxGaitPeriod, false}},
       {"offset_pitch", {-kMaxGaitOffset, kMaxGaitOffset, false}},
       {"offset_yaw", {-kMaxGaitOffset, kMaxGaitOffset, false}},
+      {"cpg_coupling", {0, kMaxCpgCoupling, false}},
+      {"cpg_convergence", {kMinCpgConvergence, kMaxCpgConvergence, false}},
+      {"cpg_feedback", {-kMaxCpgFeedbackGain, kMaxCpgFeedbackGain, false}},
       // The scenario's physical bounds (scenario_schema.h): a genome must
       // not make a body the validator refuses, or a billion modules.
       {"module_count", {1, kMaxModules, false}},
@@ -209,6 +213,25 @@ GenomeSpec ForwardGaitGenome() {
   return spec;
 }
 
+GenomeSpec BuiltInGenome(const std::string& name) {
+  constexpr double kPi = 3.14159265358979323846;
+  GenomeSpec spec;
+  spec.genes = {{"A_pitch", 0, 1.5, 0.5, true, false},
+                {"A_yaw", 0, 1.5, 0.5, true, false},
+                {"phi_pitch", -kPi, kPi, 1.0, true, false},
+                {"phi_yaw", -kPi, kPi, 1.0, true, false},
+                {"T", 1, 6, 3, true, false},
+                {"offset_pitch", -0.3, 0.3, 0, true, false},
+                {"offset_yaw", -0.3, 0.3, 0, true, false}};
+  if (name == "sine") return spec;
+  if (name == "cpg") {
+    spec.genes.push_back({"cpg_coupling", 0.5, 20, 4, true, false});
+    spec.genes.push_back({"cpg_convergence", 1, 40, 10, true, false});
+    return spec;
+  }
+  throw GenomeError("--genes: expected sine or cpg, got '" + name + "'");
+}
+
 GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
                             bool allow_any_name) {
   try {
@@ -248,11 +271,14 @@ GenomeSpec ReadGenomeString(const std::string& xml, const std::string& name,
     gene.name = gene_name;
     const auto& gait = GaitGeneNames();
     const auto& body = BodyGeneNames();
+    const auto& cpg = CpgGeneNames();
     if (!allow_any_name &&
         std::find(gait.begin(), gait.end(), gene.name) == gait.end() &&
+        std::find(cpg.begin(), cpg.end(), gene.name) == cpg.end() &&
         std::find(body.begin(), body.end(), gene.name) == body.end()) {
       std::string known;
       for (const auto& n : gait) known += " " + n;
+      for (const auto& n : cpg) known += " " + n;
       for (const auto& n : body) known += " " + n;
       throw GenomeError(fmt::format("{}: unknown gene '{}'; known genes:{}",
                                     where, gene.name, known));

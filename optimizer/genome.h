@@ -19,6 +19,14 @@ inline const std::vector<std::string>& GaitGeneNames() {
       "T",       "offset_pitch", "offset_yaw"};
   return names;
 }
+// Genes of a CPG gait (CpgParameters: coupling, convergence,
+// feedback_gain): a genome with any of them runs the gait on coupled
+// oscillators (docs/gait.md, "CPG gaits").
+inline const std::vector<std::string>& CpgGeneNames() {
+  static const std::vector<std::string> names = {
+      "cpg_coupling", "cpg_convergence", "cpg_feedback"};
+  return names;
+}
 inline const std::vector<std::string>& BodyGeneNames() {
   static const std::vector<std::string> names = {
       "module_count", "module_mass",   "module_scale",
@@ -82,6 +90,12 @@ struct GenomeSpec {
 // scenarios/forward_gait.genome.xml): pitch amplitude, phase lag, period
 // and offset free; the yaw genes fixed at 0.
 GenomeSpec ForwardGaitGenome();
+
+// The built-in genomes of `mrsim-opt --genes`: "sine" frees all seven gait
+// parameters (A in [0, 1.5], phi in [-pi, pi], T in [1, 6] s, offsets in
+// [-0.3, 0.3]); "cpg" adds cpg_coupling in [0.5, 20] and cpg_convergence
+// in [1, 40] (a CPG gait). Throws GenomeError for another name.
+GenomeSpec BuiltInGenome(const std::string& name);
 
 // Reads and validates a genome file. Unknown gene names are an error unless
 // allow_any_name (test functions use their own names).

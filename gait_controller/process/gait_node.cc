@@ -13,6 +13,7 @@
 
 #include "common/atomic_file.h"
 #include "common/exact_number.h"
+#include "gait_controller/cpg_feedback.h"
 #include "gait_controller/process/gait_command_apply.h"
 #include "gait_controller/process/gait_parameters_message.h"
 #include "gait_controller/process/motion_fit.h"
@@ -20,6 +21,38 @@
 #include "lcmtypes/runtime/usage_error.h"
 
 namespace mrsim {
+
+namespace {
+
+Eigen::Vector3d Position(const pose_t& pose) {
+  return Eigen::Vector3d(pose.position[0], pose.position[1], pose.position[2]);
+}
+
+}  // namespace
+
+void GaitNode::FeedSensors(const robot_state_t& state) {
+  // A CPG gait with feedback takes the sensor modules' readings
+  // (docs/gait.md, "Sensory feedback"); anything else ignores them.
+  const std::optional<CpgParameters>& cpg = controller_->active_gait().cpg;
+  if (!cpg || cpg->feedback_gain == 0) return;
+  RobotState s;
+  s.joints.resize(state.joints.size());
+  for (size_t j = 0; j < state.joints.size(); ++j) {
+    s.joints[j].world.position = Position(state.joints[j].world);
+  }
+  s.sensor_modules.resize(state.sensor_modules.size());
+  for (size_t k = 0; k < state.sensor_modules.size(); ++k) {
+    const sensor_module_state_t& m = state.sensor_modules[k];
+    SensorModuleState& out = s.sensor_modules[k];
+    out.pose.position = Position(m.pose);
+    out.has_force = m.has_force && std::isfinite(m.force);
+    out.force = out.has_force ? m.force : 0.0;
+    for (double d : m.distance) {
+      if (std::isfinite(d)) out.distances.push_back(d);
+    }
+  }
+  controller_->SetFeedback(CpgFeedback(s, *cpg));
+}
 
 namespace {
 
@@ -333,6 +366,7 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
     snapshots_.erase(snapshots_.begin());
   }
   const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;
+  FeedSensors(state);
   const std::vector<double>& targets = controller_->Update(dt);
   for (double t : targets) {
     if (!std::isfinite(t)) {

@@ -142,6 +142,8 @@ class GaitNode {
     double last_time = 0;
   };
   void HandleState(const robot_state_t& state, GaitOutbox* out);
+  // Hands the sensor readings to a CPG gait with feedback.
+  void FeedSensors(const robot_state_t& state);
   void WriteCheckpoint(const std::string& path, double sim_time) const;
   void Restore(const std::string& path);
   void Acknowledge(const gait_command_t& command, int8_t result,

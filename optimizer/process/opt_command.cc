@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "optimizer/local_evaluator.h"
 #include "optimizer/problem_codec.h"
 #include "optimizer/process/opt_progress_reporter.h"
+#include "optimizer/task.h"
 #include "sim_core/scenario_xml.h"
 
 namespace fs = std::filesystem;
@@ -114,9 +116,24 @@ std::string AlgorithmHelp() {
 void AddOptFlags(CLI::App& app, OptCommand& c) {
   AlgorithmSettings& a = c.algorithm;
   EpisodeSettings& e = c.episode;
-  app.add_option("scenario", c.scenario_path, "Scenario XML file")->required();
-  app.add_option("--genome", c.genome_path, "Genome description file")
-      ->required();
+  auto* scenario =
+      app.add_option("scenario", c.scenario_path, "Scenario XML file");
+  auto* task = app.add_option("--task", c.task,
+                              "A task of the suite instead of a scenario: "
+                              "its world and fitness (mrsim tasks lists them)")
+                   ->excludes(scenario);
+  auto* world = app.add_option_group("world");
+  world->add_options(scenario, task);
+  world->require_option(1);
+  auto* genome =
+      app.add_option("--genome", c.genome_path, "Genome description file");
+  auto* genes = app.add_option("--genes", c.genes,
+                               "A built-in genome instead of --genome: sine "
+                               "(the seven gait genes) | cpg (and the CPG's)")
+                    ->excludes(genome);
+  auto* gene_source = app.add_option_group("genes");
+  gene_source->add_options(genome, genes);
+  gene_source->require_option(1);
   app.add_option("--out", c.out_dir,
                  "Output directory (checkpoint, CSVs, best)")
       ->required();
@@ -146,10 +163,11 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "Gait control period (s)")
       ->capture_default_str();
   app.add_option("--gait", c.gait_spec,
-                 "Base gait (preset or file) the gait genes modify")
-      ->capture_default_str();
+                 "Base gait (preset or file) the gait genes modify "
+                 "(default: forward, or the task's own gait)");
   AddEnumOption(app, "--distance", &e.fitness.distance_mode, DistanceModes(),
-                "distance scored, along +x or in any direction");
+                "distance scored: along +x, in any direction, or up (+z); "
+                "--task sets its own");
   app.add_option("--w-distance", e.fitness.w_distance)->capture_default_str();
   app.add_option("--w-speed", e.fitness.w_speed)->capture_default_str();
   app.add_option("--w-energy", e.fitness.w_energy, "Per joule")
@@ -318,11 +336,23 @@ OptSetup PrepareOpt(const OptCommand& c) {
                           : static_cast<int>(std::max(
                                 1u, std::thread::hardware_concurrency()));
     }
-    problem.scenario = ReadScenarioFile(c.scenario_path);
-    EmbedAssets(problem.scenario);
-    problem.genome = ReadGenomeFile(c.genome_path);
     EpisodeSettings e = c.episode;
-    e.base_gait = ResolveGait(c.gait_spec);
+    std::optional<Gait> task_gait;
+    if (!c.task.empty()) {
+      Task task = MakeTask(c.task);
+      problem.scenario = std::move(task.scenario);
+      e.fitness.distance_mode = task.distance_mode;
+      task_gait = task.gait;
+    } else {
+      problem.scenario = ReadScenarioFile(c.scenario_path);
+    }
+    EmbedAssets(problem.scenario);
+    problem.genome = c.genes.empty() ? ReadGenomeFile(c.genome_path)
+                                     : BuiltInGenome(c.genes);
+    // A task starts from its own gait unless --gait names one.
+    e.base_gait = c.gait_spec.empty() && task_gait ? *task_gait
+                  : c.gait_spec.empty()            ? ResolveGait("forward")
+                                                   : ResolveGait(c.gait_spec);
     e.Validate();
     problem.episode = e;
     GenomeRobotIndex(problem.scenario, problem.genome);
@@ -335,7 +365,8 @@ OptSetup PrepareOpt(const OptCommand& c) {
   }
   // Local and farm runs evaluate the same decoded payload.
   setup.payload = EncodeProblem(problem);
-  problem = DecodeProblem(setup.payload, c.scenario_path);
+  problem = DecodeProblem(setup.payload,
+                          c.task.empty() ? c.scenario_path : "task " + c.task);
   setup.hash = HashHex(Fnv1a64(setup.payload));
   std::error_code ec;
   fs::create_directories(c.out_dir, ec);

@@ -30,10 +30,12 @@ namespace mrsim {
 // Everything the command line sets.
 struct OptCommand {
   std::string scenario_path;
+  std::string task;  // a task of the suite instead of a scenario (task.h)
   std::string genome_path;
+  std::string genes;  // a built-in genome instead of --genome: sine | cpg
   std::string out_dir;
   std::string workers = "local:0";  // local:K threads (0: one per core)
-  std::string gait_spec = "forward";
+  std::string gait_spec;            // empty: forward, or the task's own gait
   bool farm = false;
   std::string lcm_url;
   // --progress-url: where opt_progress_t goes (empty: not published).

@@ -14,7 +14,8 @@ mrsim._core); nothing is implemented a second time in Python.
 - Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
 - LCM: ``Node`` (states, commands, lockstep, simulator control; signed
   with a key file, ``KeyFileError`` when it cannot be used).
-- Gymnasium-style environment: ``mrsim.env.ChainEnv``.
+- Gymnasium-style environment: ``mrsim.env.ChainEnv`` (``task="pole"``:
+  a task of the suite, ``task_names()``, ``Scenario.task(name)``).
 """
 
 from ._core import (  # noqa: F401
@@ -33,6 +34,8 @@ from ._core import (  # noqa: F401
     gait_parameter_names,
     gait_presets,
     run_episode,
+    task_info,
+    task_names,
 )
 from .logs import read_csv, read_csv_folder, read_lcm_log  # noqa: F401
 from .node import ControlError, Message, Node  # noqa: F401
@@ -53,4 +56,5 @@ __all__ = [
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
     "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",
+    "task_info", "task_names",
 ]

@@ -70,9 +70,9 @@ _Base = _gym.Env if _gym is not None else object
 #: mass, its velocity and the module orientations).
 OBSERVATIONS = ("joints", "full")
 #: Rewards: "forward" (centre-of-mass travel along +x per step), "net"
-#: (horizontal travel in any direction), or a callable
-#: reward(previous_state, state, action) -> float.
-REWARDS = ("forward", "net")
+#: (horizontal travel in any direction), "up" (rise along +z), or a
+#: callable reward(previous_state, state, action) -> float.
+REWARDS = ("forward", "net", "up")
 
 
 class ChainEnv(_Base):  # type: ignore[misc, valid-type]
@@ -84,15 +84,26 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
                  robot: Union[int, str] = 0, episode_seconds: float = 10.0,
                  control_period: float = 0.05,
                  observation: str = "joints",
-                 reward: Union[str, Callable[..., float]] = "forward",
-                 render_mode: Optional[str] = None) -> None:
+                 reward: Union[str, Callable[..., float], None] = None,
+                 render_mode: Optional[str] = None,
+                 task: Optional[str] = None) -> None:
         """scenario: a Scenario, a scenario file, or None for an 8-module
-        pitch-yaw chain. An action holds joint targets (rad), applied for
+        pitch-yaw chain; task: a task of the suite instead (docs/tasks.md:
+        its world, and its fitness as the default reward). reward: default
+        "forward" (a task's own: "forward" or "up"). An action holds joint targets (rad), applied for
         control_period s; an episode is truncated after episode_seconds.
         A simulation that becomes unstable terminates the episode."""
         if observation not in OBSERVATIONS:
             raise ValueError("observation: expected one of %s, got %r" %
                              (", ".join(OBSERVATIONS), observation))
+        if task is not None:
+            if scenario is not None:
+                raise ValueError("give a scenario or a task, not both")
+            scenario = _core.Scenario.task(task)
+            if reward is None:
+                reward = _core.task_info(task)["fitness"]
+        if reward is None:
+            reward = "forward"
         if not callable(reward) and reward not in REWARDS:
             raise ValueError("reward: expected one of %s or a callable, "
                              "got %r" % (", ".join(REWARDS), reward))
@@ -135,6 +146,8 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
         d = s.com - prev.com
         if self.reward == "forward":
             return float(d[0])
+        if self.reward == "up":
+            return float(d[2])
         return float(np.hypot(d[0], d[1]))
 
     def reset(self, *, seed: Optional[int] = None,

@@ -69,7 +69,7 @@ mrsim-opt scores it:
             - drift*w_drift - fell*w_fall
 Returns a dict with fitness, distance (m), speed (m/s), energy (J),
 drift (m), fell (fraction of time upside down) and failed (unstable).
-distance_mode: 'forward' (+x) or 'net'. The GIL is released meanwhile.)doc");
+distance_mode: 'forward' (+x), 'net' or 'up' (+z). The GIL is released meanwhile.)doc");
 }
 
 }  // namespace mrsim::python

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "optimizer/task.h"
 #include "python/src/bindings.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
@@ -122,6 +123,33 @@ Raises ScenarioError ("file:line: path: what was expected").)doc");
       py::arg("frame") = py::none(), py::arg("length_scale") = 1.0,
       "Reads and validates scenario XML from a string; `name` is used in "
       "error messages, `base_dir` resolves relative mesh and image paths.");
+  c.def_static(
+      "task",
+      [](const std::string& name) {
+        Task t = MakeTask(name);
+        return t.scenario;
+      },
+      py::arg("name"),
+      "The scenario of a task of the suite (docs/tasks.md): flat, slope, "
+      "stairs, pegs, pipe, pole, rubble, water. ValueError for another "
+      "name.");
+  m.def(
+      "task_info",
+      [](const std::string& name) {
+        const Task t = MakeTask(name);
+        py::dict d;
+        d["name"] = t.name;
+        d["description"] = t.description;
+        d["fitness"] = t.distance_mode;
+        d["seconds"] = t.duration;
+        d["gait"] = t.gait.name;
+        return d;
+      },
+      py::arg("name"),
+      "What a task scores (fitness: forward or up), over how many seconds, "
+      "and the gait it starts from.");
+  m.def(
+      "task_names", [] { return TaskNames(); }, "The names of the task suite.");
   c.def_static(
       "chain",
       [](int modules, const std::string& pattern, const std::string& name,

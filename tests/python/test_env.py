@@ -58,3 +58,18 @@ def test_full_observation_and_custom_reward():
     assert obs.shape == env.observation_space.shape
     _, r, _, _, _ = env.step(np.zeros(env.action_space.shape))
     assert r > 0
+
+
+def test_a_task_gives_its_world_and_its_fitness_as_the_reward():
+    import mrsim
+    assert "pole" in mrsim.task_names()
+    env = ChainEnv(task="pole", episode_seconds=0.2, control_period=0.05)
+    assert env.reward == "up"
+    assert mrsim.task_info("pole")["fitness"] == "up"
+    obs, _ = env.reset(seed=1)
+    assert obs.shape == (24,)
+    _, reward, terminated, _, _ = env.step(np.zeros(12))
+    assert not terminated
+    assert abs(reward) < 0.1
+    with pytest.raises(ValueError):
+        ChainEnv(task="moon")

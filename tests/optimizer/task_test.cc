@@ -1,0 +1,111 @@
+// The task suite: every task builds, is the same each time, scores with
+// its own fitness; mrsim-opt takes --task and --genes.
+#include "optimizer/task.h"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+
+#include "gait_controller/gait_presets.h"
+#include "optimizer/process/opt_command.h"
+#include "sim_core/physics.h"
+#include "sim_core/scenario_validate.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+TEST(TaskSuite, EveryTaskBuildsAValidWorldWithTheTaskRobot) {
+  const std::vector<std::string> expected = {
+      "flat", "slope", "stairs", "pegs", "pipe", "pole", "rubble", "water"};
+  EXPECT_EQ(TaskNames(), expected);
+  for (const std::string& name : TaskNames()) {
+    SCOPED_TRACE(name);
+    const Task t = MakeTask(name);
+    EXPECT_EQ(t.name, name);
+    EXPECT_FALSE(t.description.empty());
+    ASSERT_EQ(t.scenario.robots.size(), 1u);
+    EXPECT_EQ(t.scenario.robots[0].name, kTaskRobot);
+    EXPECT_EQ(static_cast<int>(t.scenario.robots[0].modules.size()),
+              kTaskModules);
+    ValidateScenario(t.scenario);
+    const Physics physics(t.scenario);
+    EXPECT_EQ(physics.joint_count(0), kTaskModules);
+    // Same name, same task (the rubble is seeded), through the file too.
+    EXPECT_EQ(WriteScenarioString(MakeTask(name).scenario),
+              WriteScenarioString(t.scenario));
+  }
+}
+
+TEST(TaskSuite, AnUnknownTaskNamesTheKnownOnes) {
+  try {
+    MakeTask("moon");
+    FAIL() << "accepted an unknown task";
+  } catch (const TaskError& e) {
+    EXPECT_NE(std::string(e.what()).find("moon"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("rubble"), std::string::npos);
+  }
+}
+
+TEST(TaskSuite, ThePoleScoresHeightAndTheOthersDistanceAlongX) {
+  for (const std::string& name : TaskNames()) {
+    EXPECT_EQ(MakeTask(name).distance_mode, name == "pole" ? "up" : "forward")
+        << name;
+  }
+  // The forward gait on flat ground moves the robot ahead (+x).
+  const EvalResult r =
+      EvaluateTask(MakeTask("flat"), *FindGaitPreset("forward"), 8.0);
+  EXPECT_FALSE(r.failed);
+  EXPECT_GT(r.distance, 0.05);
+}
+
+TEST(TaskSuite, TheWrappedPoleRobotStartsRoundThePole) {
+  const Task t = MakeTask("pole");
+  const Physics physics(t.scenario);
+  const RobotState s = physics.ReadRobotState(0);
+  const double pole_radius = t.scenario.scene_objects[0].size.x() / 2;
+  for (const Pose& m : s.modules) {
+    const double r = m.position.head<2>().norm();
+    EXPECT_GT(r, pole_radius);
+    EXPECT_LT(r, pole_radius + 0.1);
+  }
+}
+
+OptCommand ParseOpt(std::vector<std::string> args) {
+  CLI::App app;
+  OptCommand command;
+  AddOptFlags(app, command);
+  std::reverse(args.begin(), args.end());
+  app.parse(args);
+  return command;
+}
+
+TEST(TaskSuite, OptTakesATaskAndBuiltInGenes) {
+  const std::string out = testing::TempDir("task_opt");
+  const OptCommand c =
+      ParseOpt({"--task", "pole", "--genes", "cpg", "--out", out});
+  const OptSetup setup = PrepareOpt(c);
+  EXPECT_EQ(setup.problem.episode.fitness.distance_mode, DistanceMode::kUp);
+  EXPECT_EQ(setup.problem.scenario.scene_objects.size(), 1u);
+  EXPECT_GE(setup.problem.genome.Find("cpg_coupling"), 0);
+  const Gait g =
+      GaitOfGenome(setup.problem, setup.problem.genome.StartGenome());
+  ASSERT_TRUE(g.cpg.has_value());
+  EXPECT_EQ(g.cpg->coupling, 4.0);
+  // A scenario and a task at once, or neither, is refused by the parser.
+  EXPECT_THROW(
+      ParseOpt({"--task", "flat", "x.xml", "--genes", "sine", "--out", out}),
+      CLI::ParseError);
+  EXPECT_THROW(ParseOpt({"--genes", "sine", "--out", out}), CLI::ParseError);
+  EXPECT_THROW(PrepareOpt(ParseOpt(
+                   {"--task", "moon", "--genes", "sine", "--out", out + "/2"})),
+               OptInputError);
+  EXPECT_THROW(PrepareOpt(ParseOpt(
+                   {"--task", "flat", "--genes", "walk", "--out", out + "/3"})),
+               OptInputError);
+}
+
+}  // namespace
+}  // namespace mrsim
