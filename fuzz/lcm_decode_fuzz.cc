@@ -51,7 +51,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const uint8_t type = data[0];
   ++data;
   --size;
-  switch (type % 16) {
+  // Every type, in name order (the log_flatten target and the seed
+  // writer use the same order).
+  switch (type % 18) {
     case 0:
       Check<mrsim::gait_command_t>(data, size);
       break;
@@ -77,24 +79,30 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       Check<mrsim::opt_job_t>(data, size);
       break;
     case 8:
-      Check<mrsim::opt_result_t>(data, size);
+      Check<mrsim::opt_progress_t>(data, size);
       break;
     case 9:
-      Check<mrsim::opt_run_t>(data, size);
+      Check<mrsim::opt_result_t>(data, size);
       break;
     case 10:
-      Check<mrsim::pose_t>(data, size);
+      Check<mrsim::opt_run_t>(data, size);
       break;
     case 11:
-      Check<mrsim::robot_state_t>(data, size);
+      Check<mrsim::pose_t>(data, size);
       break;
     case 12:
-      Check<mrsim::scene_state_t>(data, size);
+      Check<mrsim::robot_state_t>(data, size);
       break;
     case 13:
-      Check<mrsim::sensor_module_state_t>(data, size);
+      Check<mrsim::scene_state_t>(data, size);
       break;
     case 14:
+      Check<mrsim::sensor_module_state_t>(data, size);
+      break;
+    case 15:
+      Check<mrsim::sensor_reading_t>(data, size);
+      break;
+    case 16:
       Check<mrsim::sim_control_t>(data, size);
       break;
     default:

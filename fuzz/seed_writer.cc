@@ -15,9 +15,11 @@
 #include "mrsim/opt_chunk_t.hpp"
 #include "mrsim/opt_heartbeat_t.hpp"
 #include "mrsim/opt_job_t.hpp"
+#include "mrsim/opt_progress_t.hpp"
 #include "mrsim/opt_result_t.hpp"
 #include "mrsim/opt_run_t.hpp"
 #include "mrsim/scene_state_t.hpp"
+#include "mrsim/sensor_reading_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
 #include "tests/logger/test_messages.h"
@@ -113,6 +115,17 @@ int main(int argc, char** argv) {
   job.gene_count = 3;
   job.genome = {0.5, 1.0, 0.25};
   Write(dir, "opt_job_t", job);
+  opt_progress_t progress{};
+  progress.seq = 2;
+  progress.run_id = "run";
+  progress.out_dir = "opt";
+  progress.algorithm = "cmaes";
+  progress.generation = 3;
+  progress.generations = 20;
+  progress.best = 1.5;
+  progress.eta = "1m12s";
+  progress.state = opt_progress_t::RUNNING;
+  Write(dir, "opt_progress_t", progress);
   opt_result_t res{};
   res.run_id = "run";
   res.scenario_hash = "0123456789abcdef";
@@ -136,6 +149,12 @@ int main(int argc, char** argv) {
   scene.poses = {state.modules[1]};
   Write(dir, "scene_state_t", scene);
   Write(dir, "sensor_module_state_t", state.sensor_modules[0]);
+  sensor_reading_t reading{};
+  reading.kind = "imu";
+  reading.face = -1;
+  reading.num_values = 6;
+  reading.values = {0, 0, 9.81, 0, 0, 0.5};
+  Write(dir, "sensor_reading_t", reading);
   sim_control_t control{};
   control.seq = 1;
   control.sender = "mrsim-ctl";
