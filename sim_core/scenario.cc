@@ -63,7 +63,8 @@ bool operator==(const Joint& a, const Joint& b) {
 
 bool operator==(const Module& a, const Module& b) {
   return a.mod_nr == b.mod_nr && a.position == b.position && a.axis == b.axis &&
-         a.frames == b.frames && a.joint == b.joint;
+         a.frames == b.frames && a.joint == b.joint &&
+         a.passive_wheels == b.passive_wheels;
 }
 
 bool operator==(const ForceSensor& a, const ForceSensor& b) {
@@ -116,7 +117,13 @@ bool operator==(const SceneObject& a, const SceneObject& b) {
 bool operator==(const ContactFriction& a, const ContactFriction& b) {
   return a.material1 == b.material1 && a.material2 == b.material2 &&
          a.restitution == b.restitution && a.friction == b.friction &&
-         a.youngs_modulus == b.youngs_modulus;
+         a.youngs_modulus == b.youngs_modulus &&
+         a.directional == b.directional &&
+         a.forward_friction == b.forward_friction &&
+         a.backward_friction == b.backward_friction &&
+         a.lateral_friction == b.lateral_friction &&
+         a.torsional_friction == b.torsional_friction &&
+         a.rolling_friction == b.rolling_friction;
 }
 
 bool operator==(const FluidRegion& a, const FluidRegion& b) {
