@@ -30,7 +30,7 @@ Problem RobustProblem(int episodes, const std::string& mode) {
   return p;
 }
 
-TEST(RobustFitness, WorstIsTheLeastAndMeanTheAverageOfThePerturbedWorlds) {
+TEST(RobustFitness, WorstIsNoBetterThanTheMeanAndTheSeedPicksTheWorlds) {
   const Problem mean = RobustProblem(4, "mean");
   const Genome g = mean.genome.StartGenome();
   const EvalResult m = RunEpisode(mean, g);
