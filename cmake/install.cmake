@@ -4,7 +4,7 @@ include(CMakePackageConfigHelpers)
 
 # Exported names drop the mrsim_ prefix, as the build tree's aliases do:
 # mrsim::sim_core, mrsim::sim_bridge, mrsim::gait_lcm, mrsim::optimizer_farm...
-foreach(lib common sim_core sim_bridge gait gait_lcm optimizer optimizer_farm
+foreach(lib common sim_core codec sim_bridge gait gait_lcm optimizer optimizer_farm
             logger viewer lcmtypes runtime warnings)
   set_target_properties(mrsim_${lib} PROPERTIES EXPORT_NAME ${lib})
 endforeach()

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 
 namespace mrsim {
 namespace {

@@ -18,34 +18,12 @@
 #include "common/hash.h"
 #include "sim_core/contact_model.h"
 #include "sim_core/embedded_mesh.h"
+#include "sim_core/face_geometry.h"
+#include "sim_core/part_look.h"
 #include "sim_core/scenario_validate.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
-
-// Hues far apart on the wheel so neighbours in a chain stand out: warm
-// orange pitch, blue yaw, green sensor modules, magenta plates, yellow
-// distance sensors, red scene objects, grey loose frames.
-Eigen::Vector3d PartLookRgb(PartLook kind) {
-  switch (kind) {
-    case PartLook::kPitchModule:
-      return {0.95, 0.55, 0.15};
-    case PartLook::kYawModule:
-      return {0.2, 0.45, 0.9};
-    case PartLook::kLooseFrame:
-      return {0.6, 0.6, 0.6};
-    case PartLook::kSensorModule:
-      return {0.25, 0.75, 0.3};
-    case PartLook::kForcePlate:
-      return {0.8, 0.25, 0.8};
-    case PartLook::kDistanceSensor:
-      return {1.0, 0.9, 0.2};
-    case PartLook::kSceneObject:
-      return {0.85, 0.2, 0.2};
-  }
-  return {0.5, 0.5, 0.5};
-}
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -1133,74 +1111,5 @@ std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
   }
   return Builder(scenario, options, info).Build();
 }
-
-Eigen::Vector3d SensorFaceNormal(int sensor_position) {
-  switch (sensor_position) {
-    case 0:
-      return -Vector3d::UnitZ();
-    case 1:
-      return Vector3d::UnitY();
-    case 2:
-      return Vector3d::UnitZ();
-    case 3:
-      return -Vector3d::UnitY();
-    case 4:
-      return Vector3d::UnitX();
-    case 5:
-      return -Vector3d::UnitX();
-    default:
-      throw std::out_of_range("sensorPosition must be 0..5, got " +
-                              std::to_string(sensor_position));
-  }
-}
-
-PlatePose ForcePlatePose(const SensorModule& sm) {
-  const ForceSensor& plate = *sm.force_sensor;
-  const Vector3d n = SensorFaceNormal(plate.sensor_position);
-  const double h = std::abs(n.dot(sm.size / 2));
-  return {n * (h + plate.size.z() / 2),
-          Quaterniond::FromTwoVectors(Vector3d::UnitZ(), n)};
-}
-
-namespace mjcf_names {
-std::string RobotName(const Scenario& scenario, int robot) {
-  const std::string& name = scenario.robots.at(robot).name;
-  return name.empty() ? "robot" + std::to_string(robot) : name;
-}
-std::string RootJoint(const std::string& robot, int component) {
-  return robot + "/root" + (component == 0 ? "" : std::to_string(component));
-}
-std::string FrameBody(const std::string& robot, int module, int frame) {
-  return robot + "/m" + std::to_string(module) + "/f" + std::to_string(frame);
-}
-std::string Hinge(const std::string& robot, int module) {
-  return robot + "/m" + std::to_string(module) + "/hinge";
-}
-std::string Servo(const std::string& robot, int module) {
-  return robot + "/m" + std::to_string(module) + "/servo";
-}
-std::string SensorModuleBody(const std::string& robot, int sm) {
-  return robot + "/sm" + std::to_string(sm);
-}
-std::string PlateBody(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/plate";
-}
-std::string ForceSite(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/plate_site";
-}
-std::string ForceSensor(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/force";
-}
-std::string DistanceSite(const std::string& robot, int sm, int k) {
-  return SensorModuleBody(robot, sm) + "/d" + std::to_string(k);
-}
-std::string Weld(const std::string& robot, const std::string& lock) {
-  return robot + "/weld/" + lock;
-}
-std::string SceneObject(int index) {
-  return "scene/obj" + std::to_string(index);
-}
-std::string Terrain() { return "scene/terrain"; }
-}  // namespace mjcf_names
 
 }  // namespace mrsim

@@ -1,7 +1,8 @@
 // Turns a Scenario into MuJoCo MJCF text. The output is self-contained apart
 // from mesh and height-field files, which it names by absolute path, so it
 // opens in mujoco-simulate / mujoco-testxml. Names of bodies, joints,
-// actuators, sites and sensors follow MjcfNames below (docs/physics.md).
+// actuators, sites and sensors follow mjcf_names.h (docs/physics.md); part
+// colours are part_look.h, face geometry face_geometry.h.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim_core/mjcf_names.h"
 #include "sim_core/scenario.h"
 
 namespace mrsim {
@@ -81,55 +83,5 @@ std::string BuildMjcf(const Scenario& scenario);
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options);
 std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
                       MjcfInfo* info);
-
-// The kinds of part the MJCF look colours (one hue each, shaded per
-// scenario material), and their hue; for tools that show a kind's colour
-// outside the model, such as the studio's palette.
-enum class PartLook {
-  kPitchModule,
-  kYawModule,
-  kLooseFrame,
-  kSensorModule,
-  kForcePlate,
-  kDistanceSensor,
-  kSceneObject,
-};
-Eigen::Vector3d PartLookRgb(PartLook kind);
-
-// Outward normal of a sensor module face in the module's own frame (the
-// chain runs along +x, z up): 0 bottom -z, 1 left +y, 2 top +z, 3 right -y,
-// 4 front +x, 5 back -x. Force plates use 0..3, distance sensors 0..5.
-// Throws std::out_of_range for anything else.
-Eigen::Vector3d SensorFaceNormal(int sensor_position);
-
-// Where the physics puts a sensor module's force plate, in the module's
-// own frame: flat on its face (sensorPosition), outside the module, its
-// thickness (size.z) along the face normal. The plate's own position in
-// the file is not used. Throws std::out_of_range as SensorFaceNormal.
-struct PlatePose {
-  Eigen::Vector3d position;
-  Eigen::Quaterniond rotation;
-};
-PlatePose ForcePlatePose(const SensorModule& sm);
-
-// The MJCF names of every part. `robot` is Robot::name (or "robot<i>" when
-// empty), indices are positions in the scenario's lists.
-namespace mjcf_names {
-std::string RobotName(const Scenario& scenario, int robot);
-std::string RootJoint(const std::string& robot, int component);  // "r/root"
-std::string FrameBody(const std::string& robot, int module, int frame);
-std::string Hinge(const std::string& robot, int module);         // "r/m3/hinge"
-std::string Servo(const std::string& robot, int module);         // "r/m3/servo"
-std::string SensorModuleBody(const std::string& robot, int sm);  // "r/sm2"
-std::string PlateBody(const std::string& robot, int sm);    // "r/sm2/plate"
-std::string ForceSite(const std::string& robot, int sm);    // ".../plate_site"
-std::string ForceSensor(const std::string& robot, int sm);  // "r/sm2/force"
-std::string DistanceSite(const std::string& robot, int sm,
-                         int k);  // "r/sm2/d0"
-std::string Weld(const std::string& robot,
-                 const std::string& lock);  // "r/weld/<lock name>"
-std::string SceneObject(int index);         // "scene/obj<i>"
-std::string Terrain();                      // "scene/terrain" (hfield or plane)
-}  // namespace mjcf_names
 
 }  // namespace mrsim

@@ -4,6 +4,11 @@
 
 namespace mrsim {
 
+std::string RobotName(const Scenario& scenario, int robot) {
+  const std::string& name = scenario.robots.at(robot).name;
+  return name.empty() ? "robot" + std::to_string(robot) : name;
+}
+
 const char* ToString(Axis axis) {
   return axis == Axis::kPitch ? "Pitch" : "Yaw";
 }

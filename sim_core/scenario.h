@@ -281,6 +281,10 @@ void ConvertZUpToUnity(Scenario* scenario);
 // (scenario_schema.h).
 void ScaleLengths(Scenario* scenario, double factor);
 
+// The name a robot goes by in channels, MJCF and messages: Robot::name, or
+// "robot<i>" when it is empty. Throws std::out_of_range for a bad index.
+std::string RobotName(const Scenario& scenario, int robot);
+
 const char* ToString(Axis axis);
 const char* ToString(JointType type);
 const char* ToString(PrimitiveShape shape);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "sim_core/embedded_mesh.h"
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/terrain.h"
 
@@ -156,7 +156,7 @@ class Validator {
   void Before(const Robot& r) {
     robot_ = static_cast<int>(&r - s_.robots.data());
     module_numbers_.clear();
-    const std::string name = mjcf_names::RobotName(s_, robot_);
+    const std::string name = RobotName(s_, robot_);
     const bool ok = std::all_of(name.begin(), name.end(), [](char ch) {
       return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' ||
              ch == '-' || ch == '.';
@@ -266,7 +266,7 @@ class Validator {
         Fail(path_ + "/" + field,
              fmt::format("no module with mod_Nr {} in robot '{}' (use -1 for "
                          "the chain end)",
-                         nr, mjcf_names::RobotName(s_, robot_)));
+                         nr, RobotName(s_, robot_)));
       }
     }
   }
@@ -415,9 +415,9 @@ class Validator {
                        "join loose frames and sensor modules)";
         }
         const std::string where =
-            use.robot >= 0 ? fmt::format(" in robot '{}'",
-                                         mjcf_names::RobotName(s_, use.robot))
-                           : " among the loose parts";
+            use.robot >= 0
+                ? fmt::format(" in robot '{}'", RobotName(s_, use.robot))
+                : " among the loose parts";
         Fail(use.path + "/" + end,
              fmt::format("no {} with guid '{}'{}{}", what, guid, where, hint));
       }
@@ -482,7 +482,7 @@ class Validator {
         Fail(guids_.at(n),
              fmt::format("part '{}' is not joined to the rest of robot '{}' "
                          "(expected a hinge or a lock in <locks> linking it)",
-                         n, mjcf_names::RobotName(s_, robot)));
+                         n, RobotName(s_, robot)));
       }
     }
   }

@@ -23,7 +23,7 @@
 #include "common/input_limits.h"
 #include "common/trim.h"
 #include "common/xml_error_text.h"
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/xml_writer.h"
 

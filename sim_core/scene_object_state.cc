@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 
 namespace mrsim {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 
 namespace mrsim::studio {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
 #include "studio/chain_edit.h"

@@ -181,6 +181,8 @@ void LivePanel::Poll() {
     }
     layout_->State("live recording", runner_.recording() ? "1" : "0");
     layout_->State("live message", message_);
+    layout_->State("live dropped", fmt::format("{} {}", session_->malformed(),
+                                               session_->foreign()));
     if (const auto& st = session_->sim_status()) {
       char buf[96];
       std::snprintf(buf, sizeof(buf), "%.17g %s", st->sim_time,
@@ -312,6 +314,13 @@ void LivePanel::DrawControls() {
   } else {
     ImGui::TextDisabled(link_ ? "waiting for the simulator..."
                               : "not connected");
+  }
+  // What this window itself dropped: bytes that were not the channel's
+  // type (someone else's traffic, or a hostile host on the group).
+  if (link_ && session_->malformed() + session_->foreign() > 0) {
+    ImGui::TextDisabled("studio dropped %lld malformed, %lld foreign",
+                        static_cast<long long>(session_->malformed()),
+                        static_cast<long long>(session_->foreign()));
   }
   const bool paused = status && status->mode == sim_status_t::PAUSED;
   if (Button(paused ? "Play" : "Pause")) {

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 
 namespace mrsim::studio {
 namespace {

@@ -1,5 +1,5 @@
 // Which scenario part each geom of the compiled preview model shows, found
-// through the MJCF names (sim_core/mjcf_builder.h), so a click in the 3-D
+// through the MJCF names (sim_core/mjcf_names.h), so a click in the 3-D
 // view selects the part and the selection glows.
 #pragma once
 

@@ -13,7 +13,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/part_look.h"
 #include "studio/live_rays.h"
 #include "studio/mujoco_buffer_cache.h"
 

@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "launcher/program_locator.h"
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/codec/state_message.h"
+#include "sim_core/part_look.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
-#include "sim_core/sim_process/state_message.h"
 #include "studio/chain_edit.h"
 #include "studio/gui_setup.h"
 #include "studio/inspector_fields.h"

@@ -14,7 +14,7 @@
 #include "logger/lcm_type_registry.h"
 #include "logger/robot_state_flattener.h"
 #include "python/src/bindings.h"
-#include "sim_core/sim_process/state_message.h"
+#include "sim_core/codec/state_message.h"
 
 namespace py = pybind11;
 

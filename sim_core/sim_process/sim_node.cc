@@ -9,8 +9,8 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/seq_gap.h"
 #include "sim_core/checkpoint.h"
+#include "sim_core/codec/state_message.h"
 #include "sim_core/scene_object_state.h"
-#include "sim_core/sim_process/state_message.h"
 
 namespace mrsim {
 namespace {

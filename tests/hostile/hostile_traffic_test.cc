@@ -4,8 +4,9 @@
 // the simulator, a gait controller, the logger, a viewer and a farm (master
 // and worker) run: all stay alive, the simulator still answers mrsim-ctl
 // status and its states keep flowing, and the logger's part files stay
-// within their cap.
+// within their cap. The studio, attached to a run, gets the same.
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <csignal>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,9 @@
 #include "mrsim/sim_control_t.hpp"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
+#ifdef MRSIM_HOSTILE_STUDIO
+#include "tests/studio/studio_test_util.h"
+#endif
 
 namespace mrsim {
 namespace {
@@ -32,6 +37,14 @@ using testing::SourcePath;
 using testing::TempDir;
 using testing::TestLcmUrl;
 using testing::WaitUntil;
+#ifdef MRSIM_HOSTILE_STUDIO
+using testing::ClickAt;
+using testing::ReadLayout;
+using testing::WaitForLayout;
+using testing::WidgetCentre;
+using testing::Xdotool;
+using testing::XvfbDisplay;
+#endif
 
 // Real datagrams by channel, a few of each.
 class Recorder {
@@ -112,6 +125,29 @@ std::vector<uint8_t> Mutate(const std::vector<uint8_t>& real, int kind,
     }
   }
   return m;
+}
+
+// Sends `count` mutated copies of `samples` (round robin over channels),
+// letting receivers breathe now and then as a real sender would; the flood
+// still comes far faster than any real traffic. Control requests only get
+// the mutations that cannot decode: one that still decoded could be a QUIT
+// or a PAUSE, which any host may send unless messages are signed.
+void Flood(
+    lcm::LCM* lcm,
+    const std::map<std::string, std::vector<std::vector<uint8_t>>>& samples,
+    int count, unsigned seed) {
+  std::mt19937 random(seed);
+  int sent = 0;
+  while (sent < count) {
+    for (const auto& [channel, list] : samples) {
+      const bool may_decode = channel != "MRSIM_SIM_CONTROL";
+      const auto& real = list[static_cast<size_t>(sent) % list.size()];
+      const std::vector<uint8_t> m = Mutate(real, sent % 4, may_decode, random);
+      lcm->publish(channel, m.data(), static_cast<unsigned>(m.size()));
+      ++sent;
+    }
+    if (sent % 200 < static_cast<int>(samples.size())) lcm->handleTimeout(1);
+  }
 }
 
 TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
@@ -195,21 +231,7 @@ TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
     samples["MRSIM_GAIT_snake"].push_back(Encode(command));
   }
 
-  std::mt19937 random(29);
-  const int kDatagrams = 30000;
-  int sent = 0;
-  while (sent < kDatagrams) {
-    for (const auto& [channel, list] : samples) {
-      const bool may_decode = channel != "MRSIM_SIM_CONTROL";
-      const auto& real = list[static_cast<size_t>(sent) % list.size()];
-      const std::vector<uint8_t> m = Mutate(real, sent % 4, may_decode, random);
-      lcm.publish(channel, m.data(), static_cast<unsigned>(m.size()));
-      ++sent;
-    }
-    // Let the receivers breathe now and then, as a real sender would; the
-    // flood still comes far faster than any real traffic.
-    if (sent % 200 < static_cast<int>(samples.size())) lcm.handleTimeout(1);
-  }
+  Flood(&lcm, samples, 30000, 29);
 
   // Everybody alive and serving: the simulator answers and states flow.
   for (const auto& p : all) EXPECT_TRUE(p->running()) << p->Output();
@@ -255,6 +277,91 @@ TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
     EXPECT_LE(files, 8) << channel;
   }
 }
+
+#ifdef MRSIM_HOSTILE_STUDIO
+// The studio, attached to a running simulation as its Attach button does,
+// hears mutated copies of every channel it listens to: it stays up, keeps
+// following the robot, and quits cleanly afterwards.
+TEST(HostileTraffic, AttachedStudioSurvivesMutatedCopiesOfTheRunsTraffic) {
+  namespace fs = std::filesystem;
+  if (!fs::exists("/usr/bin/Xvfb") || !fs::exists("/usr/bin/xdotool")) {
+    GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  }
+  const std::string url = TestLcmUrl(7992);
+  const std::string dir = TempDir("hostile_traffic_studio");
+  const std::string scenario = SourcePath("scenarios/snake11.xml");
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"), scenario,
+                    "--lcm-url", url, "--clock", "realtime", "--rate", "50"},
+                   dir + "/sim.log");
+  ChildProcess gait(
+      {BinaryPath("gait_controller/process/mrsim-gait"), "--robot", "snake",
+       "--scenario", scenario, "--lcm-url", url, "--name", "g"},
+      dir + "/gait.log");
+  XvfbDisplay xvfb(dir);
+  ASSERT_TRUE(xvfb.ok());
+  setenv("XDG_CONFIG_HOME", dir.c_str(), 1);
+  // The Run panel's URL field starts as LCM_DEFAULT_URL: this test's port.
+  setenv("LCM_DEFAULT_URL", url.c_str(), 1);
+  const std::string layout = dir + "/layout.txt";
+  ChildProcess studio(
+      {BinaryPath("studio/mrsim-studio"), "--layout-dump", layout, scenario},
+      dir + "/studio.log");
+  ASSERT_TRUE(WaitForLayout(layout, "revision", "0")) << studio.Output();
+  ASSERT_TRUE(Xdotool({"key", "F5"}));  // the Run panel
+  int x = 0, y = 0;
+  ASSERT_TRUE(
+      WaitUntil([&] { return WidgetCentre(layout, "Attach", &x, &y); }, 60));
+  ASSERT_TRUE(ClickAt(x, y));
+  auto live_time = [&] {
+    std::istringstream in(ReadLayout(layout)["live snake"]);
+    double t = -1;
+    in >> t;
+    return t;
+  };
+  ASSERT_TRUE(WaitUntil([&] { return live_time() > 0; }, 120))
+      << studio.Output();
+
+  lcm::LCM lcm(url);
+  ASSERT_TRUE(lcm.good());
+  Recorder rec;
+  lcm.subscribe(".*", &Recorder::On, &rec);
+  const std::vector<std::string> wanted = {
+      "MRSIM_STATE_snake", "MRSIM_SIM_STATUS", "MRSIM_COMMAND_snake",
+      "MRSIM_GAIT_STATUS_snake"};
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        lcm.handleTimeout(20);
+        for (const std::string& c : wanted) {
+          if (rec.samples().count(c) == 0) return false;
+        }
+        return true;
+      },
+      120));
+  Flood(&lcm, rec.samples(), 20000, 31);
+
+  EXPECT_TRUE(studio.running()) << studio.Output();
+  // It heard the flood: what did not decode was counted and dropped.
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        std::istringstream in(ReadLayout(layout)["live dropped"]);
+        int64_t malformed = 0;
+        in >> malformed;
+        return malformed > 0;
+      },
+      60))
+      << ReadLayout(layout)["live dropped"];
+  const double after_flood = live_time();
+  EXPECT_TRUE(WaitUntil([&] { return live_time() > after_flood + 0.5; }, 60))
+      << "the studio stopped following the robot\n"
+      << studio.Output();
+  ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
+  EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
+  sim.Signal(SIGINT);
+  gait.Signal(SIGINT);
+  EXPECT_EQ(sim.Wait(30), 0) << sim.Output();
+  EXPECT_EQ(gait.Wait(30), 0) << gait.Output();
+}
+#endif  // MRSIM_HOSTILE_STUDIO
 
 }  // namespace
 }  // namespace mrsim

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"

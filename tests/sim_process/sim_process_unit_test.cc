@@ -11,10 +11,10 @@
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/checkpoint.h"
+#include "sim_core/codec/state_message.h"
 #include "sim_core/physics.h"
 #include "sim_core/sim_process/command_filter.h"
 #include "sim_core/sim_process/sim_command_line.h"
-#include "sim_core/sim_process/state_message.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

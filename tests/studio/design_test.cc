@@ -11,7 +11,7 @@
 #include <functional>
 #include <sstream>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/chain_edit.h"

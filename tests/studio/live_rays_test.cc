@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 #include "sim_core/physics.h"
 #include "tests/viewer/viewer_test_util.h"
 

@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 #include "sim_core/scenario_xml.h"
 
 namespace mrsim::testing {

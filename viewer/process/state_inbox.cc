@@ -11,7 +11,7 @@
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/scene_state_t.hpp"
-#include "sim_core/sim_process/state_message.h"
+#include "sim_core/codec/state_message.h"
 
 namespace mrsim {
 

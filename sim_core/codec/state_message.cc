@@ -1,4 +1,4 @@
-#include "sim_core/sim_process/state_message.h"
+#include "sim_core/codec/state_message.h"
 
 #include <cmath>
 #include <stdexcept>
