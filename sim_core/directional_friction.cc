@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf_names.h"
 
 namespace mrsim {
 namespace {
@@ -64,8 +64,7 @@ DirectionalFriction::DirectionalFriction(const Scenario& scenario,
   }
   bool wheels = false;
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
-    const std::string robot =
-        mjcf_names::RobotName(scenario, static_cast<int>(r));
+    const std::string robot = RobotName(scenario, static_cast<int>(r));
     const auto& modules = scenario.robots[r].modules;
     for (size_t i = 0; i < modules.size(); ++i) {
       if (!modules[i].passive_wheels) continue;
