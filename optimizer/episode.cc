@@ -34,12 +34,26 @@ void EpisodeSettings::Validate() const {
   }
   // A value cast from a number, not one of the table's.
   DistanceModes().Parse(ToString(fitness.distance_mode));
+  robust.Validate();
   for (double w : {fitness.w_distance, fitness.w_speed, fitness.w_energy,
                    fitness.w_drift, fitness.w_fall}) {
     if (!std::isfinite(w)) {
       throw std::invalid_argument("fitness weights must be finite");
     }
   }
+}
+
+void RobustSettings::Validate() const {
+  if (episodes < 0 || episodes > kMaxEpisodes) {
+    throw std::invalid_argument("robust episodes must be 0.." +
+                                std::to_string(kMaxEpisodes) + ", got " +
+                                std::to_string(episodes));
+  }
+  if (mode != "mean" && mode != "worst") {
+    throw std::invalid_argument("robust mode: expected mean or worst, got '" +
+                                mode + "'");
+  }
+  gap.Validate();
 }
 
 Gait GaitOfGenome(const Problem& problem, const Genome& genome) {
@@ -74,20 +88,23 @@ void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
   }
 }
 
-EvalResult RunEpisode(const Problem& problem, const Genome& genome,
-                      const std::function<bool()>& stop,
-                      EpisodePhysicsPool* pool) {
-  if (genome.size() != problem.genome.genes.size()) {
-    throw GenomeError("genome has the wrong number of values");
-  }
+namespace {
+
+// One episode; in the world of `gap` when given, else the nominal one.
+EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
+                         const std::function<bool()>& stop,
+                         EpisodePhysicsPool* pool, const RealityGap* gap) {
   const EpisodeSettings& e = problem.episode;
   EvalResult result;
   try {
-    const Scenario scenario =
+    Scenario scenario =
         ApplyBodyGenes(problem.scenario, problem.genome, genome);
+    if (gap) scenario = PerturbScenario(scenario, *gap);
     const int robot = GenomeRobotIndex(scenario, problem.genome);
     PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
+    // Always set: a pooled simulation may come from a perturbed episode.
+    physics.SetRealityGap(gap ? *gap : RealityGap{});
     GaitController controller(JointAxes(physics, robot));
     controller.SetGait(GaitOfGenome(problem, genome));
 
@@ -138,6 +155,46 @@ EvalResult RunEpisode(const Problem& problem, const Genome& genome,
     result.fitness = kFailedFitness;
   }
   return result;
+}
+
+}  // namespace
+
+EvalResult RunEpisode(const Problem& problem, const Genome& genome,
+                      const std::function<bool()>& stop,
+                      EpisodePhysicsPool* pool) {
+  if (genome.size() != problem.genome.genes.size()) {
+    throw GenomeError("genome has the wrong number of values");
+  }
+  const RobustSettings& robust = problem.episode.robust;
+  if (robust.episodes <= 0) {
+    return RunOneEpisode(problem, genome, stop, pool, nullptr);
+  }
+  // K perturbed worlds: the measures are their means, the fitness their
+  // mean or worst; one failed world fails the genome (a robot that breaks
+  // in one of K plausible worlds is not robust).
+  EvalResult sum;
+  double worst = 0;
+  for (int k = 0; k < robust.episodes; ++k) {
+    const RealityGap gap = robust.gap.ForEpisode(k);
+    const EvalResult r = RunOneEpisode(problem, genome, stop, pool, &gap);
+    if (r.failed) return r;
+    sum.fitness += r.fitness;
+    sum.distance += r.distance;
+    sum.speed += r.speed;
+    sum.energy += r.energy;
+    sum.drift += r.drift;
+    sum.fell += r.fell;
+    worst = k == 0 ? r.fitness : std::min(worst, r.fitness);
+  }
+  const double n = robust.episodes;
+  EvalResult mean;
+  mean.fitness = robust.mode == "worst" ? worst : sum.fitness / n;
+  mean.distance = sum.distance / n;
+  mean.speed = sum.speed / n;
+  mean.energy = sum.energy / n;
+  mean.drift = sum.drift / n;
+  mean.fell = sum.fell / n;
+  return mean;
 }
 
 }  // namespace mrsim

@@ -12,6 +12,7 @@
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/eval_result.h"
 #include "optimizer/genome.h"
+#include "sim_core/reality_gap.h"
 #include "sim_core/scenario.h"
 
 namespace mrsim {
@@ -45,6 +46,22 @@ struct FitnessSettings {
 // Fitness of an episode whose simulation became unstable.
 inline constexpr double kFailedFitness = -1e6;
 
+// Robust fitness (`mrsim-opt --robust K`): the episode runs K times, the
+// k-th in the world of gap.ForEpisode(k) (PerturbScenario, then the
+// per-step imperfections of Physics::SetRealityGap), and the fitness is the
+// mean or the worst of the K. Every genome meets the same K worlds, so
+// their fitnesses compare; gap.seed comes from the run's seed and travels
+// in the problem payload to farm workers (docs/optimizer.md).
+struct RobustSettings {
+  static constexpr int kMaxEpisodes = 1000;
+  int episodes = 0;           // K; 0: the nominal episode only
+  std::string mode = "mean";  // "mean" or "worst"
+  RealityGap gap = RealityGap::Typical();
+
+  // Throws std::invalid_argument naming the setting.
+  void Validate() const;
+};
+
 struct EpisodeSettings {
   double duration = 20.0;        // s of simulated time
   double control_period = 0.01;  // s, a whole number of physics steps
@@ -52,6 +69,7 @@ struct EpisodeSettings {
   // The gait whose seven parameters the gait genes replace (genes not in
   // the genome keep this gait's values); its kind selects the motion.
   Gait base_gait;
+  RobustSettings robust;
 
   // Throws std::invalid_argument naming the setting.
   void Validate() const;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -26,13 +28,30 @@ bool IsEmbedded(const std::string& image) {
   return image.empty() || image.rfind("base64:", 0) == 0;
 }
 
+// Robust fitness: only when on, so a nominal problem's payload (and its
+// hash) is what it was. The seed is an integer of 64 bits, exact.
+std::string EncodeRobust(const RobustSettings& r) {
+  if (r.episodes <= 0) return "";
+  const RealityGap& g = r.gap;
+  return fmt::format(
+      "robust_episodes={}\nrobust_mode={}\nrobust_seed={}\n"
+      "gap_sensor_noise={}\ngap_sensor_bias={}\ngap_joint_noise={}\n"
+      "gap_motor_noise={}\ngap_latency={}\ngap_backlash={}\n"
+      "gap_max_accel={}\ngap_friction_range={}\ngap_mass_range={}\n"
+      "gap_gain_range={}\ngap_terrain_range={}\n",
+      r.episodes, r.mode, g.seed, g.sensor_noise, g.sensor_bias, g.joint_noise,
+      g.motor_noise, g.latency, g.backlash, g.max_accel, g.friction_range,
+      g.mass_range, g.gain_range, g.terrain_range);
+}
+
 std::string EncodeEpisode(const EpisodeSettings& e) {
   const FitnessSettings& f = e.fitness;
   return fmt::format(
-      "duration={}\ncontrol_period={}\ndistance_mode={}\nw_distance={}\n"
-      "w_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
-      e.duration, e.control_period, ToString(f.distance_mode), f.w_distance,
-      f.w_speed, f.w_energy, f.w_drift, f.w_fall);
+             "duration={}\ncontrol_period={}\ndistance_mode={}\nw_distance={}\n"
+             "w_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
+             e.duration, e.control_period, ToString(f.distance_mode),
+             f.w_distance, f.w_speed, f.w_energy, f.w_drift, f.w_fall) +
+         EncodeRobust(e.robust);
 }
 
 EpisodeSettings DecodeEpisode(const std::string& text,
@@ -71,6 +90,44 @@ EpisodeSettings DecodeEpisode(const std::string& text,
   e.fitness.w_energy = number("w_energy");
   e.fitness.w_drift = number("w_drift");
   e.fitness.w_fall = number("w_fall");
+  if (kv.count("robust_episodes")) {
+    RobustSettings& r = e.robust;
+    const double episodes = number("robust_episodes");
+    if (episodes != std::floor(episodes) || episodes < 1 ||
+        episodes > RobustSettings::kMaxEpisodes) {
+      throw ProblemError(source + ": episode setting robust_episodes: " +
+                         "expected a whole number 1.." +
+                         std::to_string(RobustSettings::kMaxEpisodes));
+    }
+    r.episodes = static_cast<int>(episodes);
+    r.mode = kv["robust_mode"];
+    const std::string seed = kv["robust_seed"];
+    if (seed.empty() || seed.size() > 20 ||
+        seed.find_first_not_of("0123456789") != std::string::npos) {
+      throw ProblemError(source +
+                         ": episode setting robust_seed: expected a whole "
+                         "number of up to 64 bits");
+    }
+    errno = 0;
+    r.gap.seed = std::strtoull(seed.c_str(), nullptr, 10);
+    if (errno == ERANGE) {
+      throw ProblemError(source + ": episode setting robust_seed: too large");
+    }
+    RealityGap& g = r.gap;
+    g.sensor_noise = number("gap_sensor_noise");
+    g.sensor_bias = number("gap_sensor_bias");
+    g.joint_noise = number("gap_joint_noise");
+    g.motor_noise = number("gap_motor_noise");
+    g.latency = number("gap_latency");
+    g.backlash = number("gap_backlash");
+    g.max_accel = number("gap_max_accel");
+    g.friction_range = number("gap_friction_range");
+    g.mass_range = number("gap_mass_range");
+    g.gain_range = number("gap_gain_range");
+    g.terrain_range = number("gap_terrain_range");
+  } else {
+    e.robust.episodes = 0;
+  }
   try {
     e.Validate();
   } catch (const std::invalid_argument& err) {

@@ -10,8 +10,10 @@
 #include <stdexcept>
 
 #include "common/hash.h"
+#include "sim_core/directional_friction.h"
 #include "sim_core/distance_ray.h"
 #include "sim_core/fluid_forces.h"
+#include "sim_core/forward_pipeline.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/model_compiler.h"
 #include "sim_core/mujoco_handlers.h"
@@ -22,10 +24,14 @@
 namespace mrsim {
 namespace {
 
-// Version 3 adds the lock states; version 2 added the integrated qpos,
-// actuator_force and sensordata. Older blobs still load (all locks
-// attached; resuming a version-1 blob may differ in the last bits).
-constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
+// Version 4 adds the last unconstrained acceleration (qacc_smooth, which
+// directional friction reads); version 3 added the lock states; version 2
+// the integrated qpos, actuator_force and sensordata. Older blobs still
+// load (all locks attached for v1/v2; resuming a version-1 blob, or a
+// version-3 blob of a scenario with directional friction, may differ in
+// the last bits).
+constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '4'};
+constexpr char kStateMagicV3[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
 constexpr char kStateMagicV2[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
 constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
 // Lock flags in a version-3 blob.
@@ -130,6 +136,8 @@ struct Physics::Impl {
   mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
   std::unique_ptr<FluidForces> fluids;
+  // Contacts oriented by their part's frame (empty: MuJoCo's own steps).
+  std::unique_ptr<DirectionalFriction> friction;
   std::array<int, mjNWARNING> warnings{};
   std::vector<mjtByte> eq_active0;  // the model's initial eq_active
   std::vector<double> eq_break;     // per equality: break force, 0 never
@@ -160,7 +168,30 @@ struct Physics::Impl {
     for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
   }
   LockIndex& FindLock(const std::string& robot, const std::string& lock);
-  void ComputeControls(mjData* d) const {
+  // The reality gap's per-step part (SetRealityGap); off by default.
+  RealityGap gap;
+  bool gap_on = false;
+  // Latency: the last latency_steps + 1 target vectors per robot, a ring.
+  int latency_steps = 0;
+  int ring_next = 0;
+  std::vector<std::vector<std::vector<double>>> target_ring;
+  void ResetGapHistory() {
+    ring_next = 0;
+    target_ring.assign(robots.size(), {});
+    for (size_t r = 0; r < robots.size(); ++r) {
+      target_ring[r].assign(latency_steps + 1, robots[r].targets);
+    }
+  }
+  uint64_t StepIndex(const mjData* d) const {
+    return static_cast<uint64_t>(std::llround(d->time / model->opt.timestep));
+  }
+  // advance: a real step (pushes the latency ring); false for the force
+  // readings' private forward, which replays the last commands instead.
+  void ComputeControls(mjData* d, bool advance = true) {
+    if (gap_on) {
+      GapControls(d, advance);
+      return;
+    }
     for (const RobotIndex& r : robots) {
       const size_t n = r.servos.size();
       for (size_t j = 0; j < n; ++j) {
@@ -170,6 +201,7 @@ struct Physics::Impl {
       }
     }
   }
+  void GapControls(mjData* d, bool advance);
   void AfterStateChange() {
     mju_copy(qpos_integrated.data(), data->qpos, model->nq);
     Step1();
@@ -183,7 +215,9 @@ struct Physics::Impl {
   void Step1() {
     const int contacts = data->warning[mjWARN_CONTACTFULL].number;
     const int rows = data->warning[mjWARN_CNSTRFULL].number;
-    mj_step1(model.get(), data.get());
+    // MuJoCo's own mj_step1, or its stages with contacts turned to their
+    // part's frame in between (directional friction).
+    ::mrsim::Step1(model.get(), data.get(), friction.get());
     if (data->warning[mjWARN_CONTACTFULL].number != contacts ||
         data->warning[mjWARN_CNSTRFULL].number != rows) {
       MakeRoom();
@@ -210,6 +244,37 @@ struct Physics::Impl {
   }
 };
 
+void Physics::Impl::GapControls(mjData* d, bool advance) {
+  if (!advance) return;  // d->ctrl holds the commands of the last step
+  const uint64_t step = StepIndex(d);
+  const int oldest = (ring_next + 1) % (latency_steps + 1);
+  const double dt = model->opt.timestep;
+  for (size_t ri = 0; ri < robots.size(); ++ri) {
+    const RobotIndex& r = robots[ri];
+    target_ring[ri][ring_next] = r.targets;
+    const std::vector<double>& targets = target_ring[ri][oldest];
+    for (size_t j = 0; j < r.servos.size(); ++j) {
+      const Servo& s = r.servos[j];
+      double e = targets[j] - d->qpos[s.qpos];
+      // Backlash: the output turns freely within +-backlash/2 of the motor.
+      const double half = gap.backlash / 2;
+      e = std::abs(e) <= half ? 0.0 : e - std::copysign(half, e);
+      double u = s.kp * e;
+      if (gap.motor_noise > 0) {
+        u += gap.motor_noise *
+             GapNormal(gap.seed, step, (ri << 32) | (1ull << 31) | j);
+      }
+      u = std::clamp(u, -s.max_vel, s.max_vel);
+      if (gap.max_accel > 0) {
+        const double prev = d->ctrl[s.actuator];
+        u = std::clamp(u, prev - gap.max_accel * dt, prev + gap.max_accel * dt);
+      }
+      d->ctrl[s.actuator] = u;
+    }
+  }
+  ring_next = (ring_next + 1) % (latency_steps + 1);
+}
+
 void Physics::Impl::Build() {
   std::vector<std::vector<double>> old_targets;
   for (const RobotIndex& r : robots) old_targets.push_back(r.targets);
@@ -235,6 +300,8 @@ void Physics::Impl::Build() {
   scratch.reset();
   qpos_integrated.assign(m->nq, 0);
   fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
+  friction = std::make_unique<DirectionalFriction>(scenario, m);
+  ResetGapHistory();
   AfterStateChange();
 }
 
@@ -456,10 +523,11 @@ void Physics::Impl::MakeRoom() {
     mju_copy(to->userdata, from->userdata, m->nuserdata);
     mju_copy(to->actuator_force, from->actuator_force, m->nu);
     mju_copy(to->sensordata, from->sensordata, m->nsensordata);
+    mju_copy(to->qacc_smooth, from->qacc_smooth, m->nv);  // friction's look
     data = std::move(grown);
     scratch.reset();
     warnings.fill(0);  // the counters of the new mjData
-    mj_step1(m, data.get());
+    ::mrsim::Step1(m, data.get(), friction.get());
   }
 }
 
@@ -553,6 +621,15 @@ void Physics::Step(int n) {
   for (int i = 0; i < n; ++i) Step();
 }
 
+void Physics::SetRealityGap(const RealityGap& gap) {
+  gap.Validate();
+  impl_->gap = gap;
+  impl_->gap_on = gap.any_per_step();
+  impl_->latency_steps =
+      static_cast<int>(std::llround(gap.latency / impl_->model->opt.timestep));
+  impl_->ResetGapHistory();
+}
+
 void Physics::Reset() {
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
@@ -562,6 +639,7 @@ void Physics::Reset() {
       r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
     }
   }
+  impl_->ResetGapHistory();
   impl_->AfterStateChange();
 }
 
@@ -706,8 +784,9 @@ RobotState Physics::ReadRobotState(int robot) const {
       impl_->fluids->Apply(m, d, s->xfrc_applied);  // as the next step will
     }
     mju_copy(s->ctrl, d->ctrl, m->nu);
-    impl_->ComputeControls(s);
-    mj_forward(m, s);
+    mju_copy(s->qacc_smooth, d->qacc_smooth, m->nv);  // directional friction
+    impl_->ComputeControls(s, false);
+    Forward(m, s, impl_->friction.get());
   }
   for (size_t smi = 0; smi < r.sensor_modules.size(); ++smi) {
     const Impl::SensorModuleIndex& si = r.sensor_modules[smi];
@@ -756,6 +835,14 @@ RobotState Physics::ReadRobotState(int robot) const {
   if (mass > 0) {
     state.com /= mass;
     state.com_velocity /= mass;
+  }
+  if (impl_->gap_on) {
+    std::vector<std::vector<double>> max_distance;
+    for (const auto& si : r.sensor_modules) {
+      max_distance.push_back(si.max_distance);
+    }
+    AddSensorNoise(impl_->gap, impl_->StepIndex(d), robot, max_distance,
+                   &state);
   }
   return state;
 }
@@ -819,6 +906,7 @@ std::vector<unsigned char> Physics::SaveState() const {
   Put(out, d->actuator_force, m->nu);
   Put(out, d->sensordata, m->nsensordata);
   Put(out, targets.data(), targets.size());
+  Put(out, d->qacc_smooth, m->nv);
   return out;
 }
 
@@ -834,8 +922,10 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   }
   const bool v1 =
       std::memcmp(bytes.data(), kStateMagicV1, sizeof(kStateMagicV1)) == 0;
-  const bool v3 =
+  const bool v4 =
       std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) == 0;
+  const bool v3 =
+      v4 || std::memcmp(bytes.data(), kStateMagicV3, sizeof(kStateMagic)) == 0;
   if (!v1 && !v3 &&
       std::memcmp(bytes.data(), kStateMagicV2, sizeof(kStateMagicV2)) != 0) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
@@ -885,6 +975,7 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
                    6 * m->nbody + ntargets;
   if (!v1) doubles += m->nq + m->nu + m->nsensordata;
+  if (v4) doubles += m->nv;
   std::vector<int32_t> sizes(expect.size(), -1);
   if (bytes.size() >= header) {
     std::memcpy(sizes.data(), bytes.data() + sizeof(kStateMagic) + lock_bytes,
@@ -949,6 +1040,7 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     get(sensordata.data(), m->nsensordata);
   }
   for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
+  if (v4) get(d->qacc_smooth, m->nv);
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
   size_t li = 0;

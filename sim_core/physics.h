@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim_core/mujoco_ptr.h"
+#include "sim_core/reality_gap.h"
 #include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
 
@@ -80,6 +81,12 @@ class Physics {
   // ray casts, so they are computed here, never in Step(). Uses a private
   // scratch mjData: do not call it on one Physics from two threads at once.
   RobotState ReadRobotState(int robot) const;
+
+  // Per-step imperfections of servos and sensors from now on (motor noise,
+  // latency, backlash, acceleration limit, sensor noise and bias; the
+  // per-episode parts are PerturbScenario's). Reset() keeps it; a default
+  // RealityGap turns it off. Throws std::invalid_argument as Validate.
+  void SetRealityGap(const RealityGap& gap);
   Eigen::Vector3d CenterOfMass(int robot) const;
 
   // The full physics state (lock states, time, qpos and qpos before the

@@ -64,6 +64,9 @@ struct Module {
   Axis axis = Axis::kPitch;
   std::array<Frame, 2> frames;
   Joint joint;
+  // Both frames carry passive wheels: they roll along their x axis (the
+  // chain) and grip across it (docs/physics.md, "Directional friction").
+  bool passive_wheels = false;
 };
 
 // A plate locked to one face of a sensor module; reads the magnitude of the
@@ -177,6 +180,17 @@ struct ContactFriction {
   double restitution = 0.0;
   double friction = 0.5;
   double youngs_modulus = 1e6;
+  // Directional friction (docs/physics.md): when set, sliding friction is
+  // forward_friction / backward_friction along the +x / -x axis of the
+  // material1 part's own frame and lateral_friction across it, instead of
+  // `friction`; torsional (> 0: spin friction) and rolling (> 0: rolling
+  // friction) are lengths in m.
+  bool directional = false;
+  double forward_friction = 0.5;
+  double backward_friction = 0.5;
+  double lateral_friction = 0.5;
+  double torsional_friction = 0.0;
+  double rolling_friction = 0.0;
 };
 
 enum class FluidKind { kWater, kAir };

@@ -131,6 +131,9 @@ struct FieldInfo {
   // records a reading: the tools keep it, so the studio shows it without
   // offering to edit it.
   bool kept = false;
+  // Not written when its value's text is this (an option most files leave
+  // at its default, added after files existed); nullptr: always written.
+  const char* omit_when = nullptr;
 };
 
 // How many of a child part there are.

@@ -197,8 +197,21 @@ void Describe(V& v, Module& m) {
   v.Field(kNr, m.mod_nr);
   v.Field(kPosition, m.position);
   v.Field(kAxis, m.axis);
+  static const FieldInfo kWheels{
+      "passiveWheels",
+      "passive_wheels",
+      "",
+      L::Any(),
+      "Passive wheels on both frames: they roll along the chain and grip "
+      "across it",
+      false,
+      G::kNone,
+      false,
+      false,
+      "false"};
   v.Array(kFrames, m.frames);
   v.Child(kJoint, m.joint);
+  v.Field(kWheels, m.passive_wheels);
 }
 
 template <typename V>
@@ -601,8 +614,83 @@ void Describe(V& v, ContactFriction& f) {
   v.Field(kM1, f.material1);
   v.Field(kM2, f.material2);
   v.Field(kRestitution, f.restitution);
+  // A friction coefficient above 10 is no surface pair there is (rubber on
+  // glass reaches about 4); spin and rolling friction are lengths, at most
+  // a contact patch's size.
+  static const FieldInfo kDirectional{
+      "directional",
+      "directional",
+      "",
+      L::Any(),
+      "Friction by direction in material1's part frame (the fields below) "
+      "instead of friction",
+      false,
+      G::kNone,
+      false,
+      false,
+      "false"};
+  static const FieldInfo kForward{
+      "forwardFriction",
+      "forward_friction",
+      "",
+      L::NonNegative().Within(10),
+      "Directional: sliding friction along the part's +x (forward)",
+      false,
+      G::kNone,
+      false,
+      false,
+      "0.5"};
+  static const FieldInfo kBackward{
+      "backwardFriction",
+      "backward_friction",
+      "",
+      L::NonNegative().Within(10),
+      "Directional: sliding friction along the part's -x (backward)",
+      false,
+      G::kNone,
+      false,
+      false,
+      "0.5"};
+  static const FieldInfo kLateral{
+      "lateralFriction",
+      "lateral_friction",
+      "",
+      L::NonNegative().Within(10),
+      "Directional: sliding friction across the part's x axis",
+      false,
+      G::kNone,
+      false,
+      false,
+      "0.5"};
+  static const FieldInfo kTorsional{
+      "torsionalFriction",
+      "torsional_friction",
+      "m",
+      L::Length().Within(1),
+      "Directional: spin friction about the contact normal; 0 none",
+      false,
+      G::kNone,
+      false,
+      false,
+      "0"};
+  static const FieldInfo kRolling{"rollingFriction",
+                                  "rolling_friction",
+                                  "m",
+                                  L::Length().Within(1),
+                                  "Directional: rolling friction; 0 none",
+                                  false,
+                                  G::kNone,
+                                  false,
+                                  false,
+                                  "0"};
   v.Field(kFriction, f.friction);
   v.Field(kYoung, f.youngs_modulus);
+  v.Field(kDirectional, f.directional);
+  v.Field(kForward, f.forward_friction);
+  v.Field(kBackward, f.backward_friction);
+  v.Field(kLateral, f.lateral_friction);
+  v.Field(kTorsional, f.torsional_friction);
+  v.Field(kRolling, f.rolling_friction);
 }
 
 template <typename V>

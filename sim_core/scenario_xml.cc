@@ -687,7 +687,9 @@ class WriteVisitor {
       w_.Number("w", value.w());
       w_.Close();
     } else {
-      w_.Text(info.xml, FieldRef(info, &value).GetText());
+      const std::string text = FieldRef(info, &value).GetText();
+      if (info.omit_when && text == info.omit_when) return;
+      w_.Text(info.xml, text);
     }
   }
   template <typename P>

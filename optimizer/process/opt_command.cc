@@ -177,6 +177,15 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_option("--w-fall", e.fitness.w_fall,
                  "Per fraction of the episode upside down")
       ->capture_default_str();
+  app.add_option("--robust", e.robust.episodes,
+                 "Fitness over K perturbed episodes (reality gap, "
+                 "docs/optimizer.md); 0: the nominal episode")
+      ->capture_default_str()
+      ->check(CLI::Range(0, RobustSettings::kMaxEpisodes));
+  app.add_option("--robust-mode", e.robust.mode,
+                 "mean | worst of the K perturbed episodes")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"mean", "worst"}));
   AddEnumOption(app, "--selection", &a.selection, SelectionMethods(),
                 "the GA's parent selection");
   app.add_option("--tournament-size", a.tournament_size)->capture_default_str();
@@ -353,6 +362,9 @@ OptSetup PrepareOpt(const OptCommand& c) {
     e.base_gait = c.gait_spec.empty() && task_gait ? *task_gait
                   : c.gait_spec.empty()            ? ResolveGait("forward")
                                                    : ResolveGait(c.gait_spec);
+    // The perturbed worlds follow from the run's seed: same seed, same
+    // worlds, on every worker (the payload carries it).
+    e.robust.gap.seed = c.algorithm.seed;
     e.Validate();
     problem.episode = e;
     GenomeRobotIndex(problem.scenario, problem.genome);
@@ -504,6 +516,10 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
       ToString(e.fitness.distance_mode), e.fitness.w_distance,
       e.fitness.w_speed, e.fitness.w_energy, e.fitness.w_drift,
       e.fitness.w_fall);
+  if (e.robust.episodes > 0) {
+    options.described += fmt::format("robust={}\nrobust_mode={}\n",
+                                     e.robust.episodes, e.robust.mode);
+  }
   options.progress = [&](const GenerationReport& r) {
     if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;

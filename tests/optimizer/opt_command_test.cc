@@ -68,6 +68,14 @@ TEST(OptCommand, FlagsFillTheCommand) {
   EXPECT_EQ(c.out_dir, "out");
 }
 
+TEST(OptCommand, RobustFlagsAskForKPerturbedEpisodes) {
+  const OptCommand c = Parse(
+      With(SnakeArgs("out"), {"--robust", "8", "--robust-mode", "worst"}));
+  EXPECT_EQ(c.episode.robust.episodes, 8);
+  EXPECT_EQ(c.episode.robust.mode, "worst");
+  EXPECT_EQ(Parse(SnakeArgs("out")).episode.robust.episodes, 0);
+}
+
 // Under loss a chunk of many IP fragments is lost whole whenever one of
 // them is: without --chunk-size the farm sends one-frame chunks.
 TEST(OptCommand, FarmPayloadChunksFitOneFrameUnlessAsked) {
