@@ -44,10 +44,10 @@ mrsim::Problem SnakeProblem(int robust) {
 
 mrsim::Genome Optimise(const mrsim::Problem& problem) {
   mrsim::AlgorithmSettings a;
-  a.algorithm = "cmaes";
+  a.algorithm = mrsim::ParseAlgorithm("cmaes");
   a.population = 8;
   a.seed = kTrainSeed;
-  mrsim::RunOptions options;
+  mrsim::OptimizationRunOptions options;
   options.generations = kGenerations;
   mrsim::LocalEvaluator evaluator(
       [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); }, 2);

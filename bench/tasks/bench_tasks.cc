@@ -21,12 +21,12 @@ double BestFitness(const std::string& genes, int seed) {
       mrsim::TaskProblem(task, *mrsim::FindGaitPreset("forward"),
                          mrsim::BuiltInGenome(genes), 10.0);
   mrsim::AlgorithmSettings a;
-  a.algorithm = "cmaes";
+  a.algorithm = mrsim::ParseAlgorithm("cmaes");
   a.population = 8;
   a.seed = seed;
   mrsim::LocalEvaluator evaluator(
       [&](const mrsim::Genome& g) { return mrsim::RunEpisode(problem, g); }, 1);
-  mrsim::RunOptions options;
+  mrsim::OptimizationRunOptions options;
   options.generations = 4;
   return mrsim::RunOptimization(problem.genome, a, evaluator, options)
       .best_result.fitness;

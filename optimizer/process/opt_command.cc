@@ -350,7 +350,7 @@ OptSetup PrepareOpt(const OptCommand& c) {
     if (!c.task.empty()) {
       Task task = MakeTask(c.task);
       problem.scenario = std::move(task.scenario);
-      e.fitness.distance_mode = task.distance_mode;
+      e.fitness.distance_mode = ParseDistanceMode(task.distance_mode);
       task_gait = task.gait;
     } else {
       problem.scenario = ReadScenarioFile(c.scenario_path);

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/part_look.h"
 #include "studio/design/chain_edit.h"
 #include "studio/ui/widgets.h"
 
