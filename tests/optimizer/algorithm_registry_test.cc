@@ -105,7 +105,7 @@ TEST(SettingEnums, ParseAndPrintThroughOneTable) {
   EXPECT_EQ(SelectionMethods().Names(),
             (std::vector<std::string>{"tournament", "truncation"}));
   EXPECT_EQ(DistanceModes().Names(),
-            (std::vector<std::string>{"forward", "net"}));
+            (std::vector<std::string>{"forward", "net", "up"}));
 }
 
 TEST(SettingEnums, BadWordNamesTheFieldAndListsValidWords) {
@@ -117,10 +117,10 @@ TEST(SettingEnums, BadWordNamesTheFieldAndListsValidWords) {
                  "selection: expected tournament or truncation, got 'best'");
   }
   try {
-    ParseDistanceMode("up", "--distance");
+    ParseDistanceMode("sideways", "--distance");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "--distance: expected forward or net, got 'up'");
+    EXPECT_STREQ(e.what(), "--distance: expected forward, net or up, got 'sideways'");
   }
 }
 

@@ -61,7 +61,7 @@ SlurmArraySettings FourWorkers() {
   SlurmArraySettings s;
   s.tasks = 4;
   s.options = {"partition=debug", "--time=1:00:00", "cpus-per-task=2"};
-  s.command = "exec mrsim-worker --lcm-url tcpq://head:7701";
+  s.command = "exec mrsim-worker --lcm-url tcpq://head:5701";
   s.poll_interval = 5.0;
   return s;
 }
@@ -77,7 +77,7 @@ TEST(SlurmArray, SubmitsTheWorkersAsOneRequeueableArrayWithTheUsersOptions) {
   for (const char* arg :
        {"--parsable", "--array=0-3", "--requeue", "--partition=debug",
         "--time=1:00:00", "--cpus-per-task=2",
-        "--wrap=exec mrsim-worker --lcm-url tcpq://head:7701"}) {
+        "--wrap=exec mrsim-worker --lcm-url tcpq://head:5701"}) {
     EXPECT_TRUE(Has(argv, arg)) << arg;
   }
 }
@@ -177,17 +177,17 @@ TEST(SlurmArray, TheRunsOwnJobIsCancelledOnceWhenItEnds) {
 
 TEST(FarmCluster, WorkersGetTheHubsUrlThePrefixAndTheirCpus) {
   FarmClusterOptions o;
-  o.hub_port = 7701;
+  o.hub_port = 5701;
   o.host = "head";
   o.prefix = "RUN1";
   o.worker_program = "/opt/mrsim/bin/mrsim-worker";
-  EXPECT_EQ(WorkerLcmUrl(o), "tcpq://head:7701");
+  EXPECT_EQ(WorkerLcmUrl(o), "tcpq://head:5701");
   EXPECT_EQ(WorkerCommandLine(o),
             "exec '/opt/mrsim/bin/mrsim-worker' --lcm-url "
-            "'tcpq://head:7701' --prefix 'RUN1' --threads "
+            "'tcpq://head:5701' --prefix 'RUN1' --threads "
             "\"${SLURM_CPUS_PER_TASK:-1}\"");
-  o.lcm_url = "tcpq://head.cluster:7701";
-  EXPECT_EQ(WorkerLcmUrl(o), "tcpq://head.cluster:7701");
+  o.lcm_url = "tcpq://head.cluster:5701";
+  EXPECT_EQ(WorkerLcmUrl(o), "tcpq://head.cluster:5701");
   o.lcm_url = "tcpq://head:7702";
   EXPECT_THROW(WorkerLcmUrl(o), std::invalid_argument);
   o.lcm_url = "udpm://239.255.76.67:7667";
