@@ -124,9 +124,8 @@ void LivePanel::Poll() {
     }
     layout_->State("live recording", runner_.recording() ? "1" : "0");
     layout_->State("live message", message_);
-    layout_->State("live dropped",
-                   fmt::format("{} {}", session_->malformed(),
-                               session_->foreign()));
+    layout_->State("live dropped", fmt::format("{} {}", session_->malformed(),
+                                               session_->foreign()));
     if (const auto& st = session_->sim_status()) {
       char buf[96];
       std::snprintf(buf, sizeof(buf), "%.17g %s", st->sim_time,

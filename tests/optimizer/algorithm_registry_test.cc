@@ -120,7 +120,8 @@ TEST(SettingEnums, BadWordNamesTheFieldAndListsValidWords) {
     ParseDistanceMode("sideways", "--distance");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "--distance: expected forward, net or up, got 'sideways'");
+    EXPECT_STREQ(e.what(),
+                 "--distance: expected forward, net or up, got 'sideways'");
   }
 }
 
