@@ -59,10 +59,17 @@ void CheckPng(const std::vector<unsigned char>& bytes,
   std::vector<std::pair<size_t, size_t>> data;  // IDAT (offset, length)
   bool end = false;
   while (!end) {
-    if (bytes.size() - pos < 12) break;  // stb says what is missing
+    const size_t left = bytes.size() - pos;
+    if (left == 0) break;  // no IEND: stb says what is missing
+    // stb reads a cut chunk header as if the missing bytes were zeros, and
+    // its length could still claim gigabytes: a chunk is whole or refused.
+    if (left < 12) {
+      fail("it ends inside the chunk at byte " + std::to_string(pos) + " (" +
+           std::to_string(left) + " of at least 12 bytes)");
+    }
     const uint64_t length = ReadBigEndian32(&bytes[pos]);
     const std::string type(reinterpret_cast<const char*>(&bytes[pos + 4]), 4);
-    if (length > bytes.size() - pos - 12) {
+    if (length > left - 12) {
       fail("chunk '" + type + "' at byte " + std::to_string(pos) + " claims " +
            std::to_string(length) + " bytes; only " +
            std::to_string(bytes.size() - pos - 12) + " are left");

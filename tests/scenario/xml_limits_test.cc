@@ -186,6 +186,12 @@ TEST(ScenarioLimits, APngChunkClaimingMoreBytesThanAreLeftIsRefused) {
   EXPECT_THAT(ImageError(png),
               HasSubstr("not a valid PNG: chunk 'IDAT' at byte 33 claims "
                         "1493172259 bytes; only 4 are left"));
+  // The same chunk cut inside its header: stb would read the missing bytes
+  // as zeros and still find a length of gigabytes.
+  png.resize(33 + 7);
+  EXPECT_THAT(ImageError(png),
+              HasSubstr("not a valid PNG: it ends inside the chunk at byte 33 "
+                        "(7 of at least 12 bytes)"));
 }
 
 TEST(ScenarioLimits, APngWhoseDataInflatesBeyondItsPixelsIsRefused) {
