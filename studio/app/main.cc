@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cli.add_option("--height", options.height, "Window height")
       ->capture_default_str();
+  cli.add_option("--ui-scale", options.ui_scale,
+                 "Text and panel size (1: 15 px text; default: the monitor's "
+                 "content scale)")
+      ->check(CLI::Range(0.0f, 4.0f));
   cli.add_option("--layout-dump", options.layout_dump,
                  "Write widget rectangles and state here (for tests)");
   std::string key_file;

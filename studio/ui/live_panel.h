@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "gait_controller/gait_parameters.h"
+#include "optimizer/algorithm.h"
+#include "optimizer/episode.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
@@ -100,6 +102,8 @@ class LivePanel {
   void DrawPlots(float width);
   void DrawConsole(float height);
   void DrawOptimise(const LiveDesign& design, float width);
+  // Fitness, base gait and the chosen algorithm's own settings.
+  void DrawOptimiseSettings();
   void WatchBest();
   // Plays an optimisation's individual live: its gait sent to the running
   // design, or (body genes, or nothing running) a run of its scenario.
@@ -117,6 +121,11 @@ class LivePanel {
   // The last PNG export's outcome, shown under the plot it is for.
   std::pair<const PlotSeries*, std::string> png_note_;
   int algorithm_ = 3;  // cmaes
+  // The form's fitness, base gait and algorithm settings (each algorithm's
+  // own from the registry, AlgorithmInfo::settings).
+  FitnessSettings fitness_;
+  std::string base_gait_ = "forward";
+  AlgorithmSettings algorithm_settings_;
   int generations_ = 10;
   int population_ = 8;
   int seed_ = 1;
