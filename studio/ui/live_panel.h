@@ -4,13 +4,15 @@
 // face over studio/live (LiveSession, LiveLink, LiveRunner): every button
 // is one LCM message or one process a script could send or start. One file
 // per section: live_panel.cc (connection, keys, overlay, the panel's frame)
-// and live_<section>_section.cc (Run, Simulator, Steering, Recording, Plots,
-// Optimise, Console), sharing live_panel_common.h.
+// and live_<section>_section.cc (Run, Simulator, Steering, Locks, Recording,
+// Plots, Optimise, Console), sharing live_panel_common.h.
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,6 +101,8 @@ class LivePanel {
   void DrawControls();
   void DrawSteering();
   void DrawRecording();
+  // Locks of the followed robot: state, break force, Detach / Attach.
+  void DrawLocks();
   void DrawPlots(float width);
   void DrawConsole(float height);
   void DrawOptimise(const LiveDesign& design, float width);
@@ -141,6 +145,9 @@ class LivePanel {
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;
   std::string followed_;
+  // Per robot, the locks detached from this window (a released lock not
+  // among them broke).
+  std::map<std::string, std::set<std::string>> detached_locks_;
   std::string message_;
   bool message_is_note_ = false;  // "wrote ...": not an error
   // Form state.
