@@ -267,10 +267,16 @@ TEST_F(StudioWindowTest, RecordsThreeSecondsOfTheViewToAPlayableMp4) {
                              static_cast<char>((fourcc >> 24) & 255)};
   EXPECT_TRUE(codec == "avc1" || codec == "h264") << codec;
   int decoded = 0;
-  cv::Mat frame;
-  while (in.read(frame)) ++decoded;
+  cv::Mat frame, last;
+  while (in.read(frame)) {
+    ++decoded;
+    last = frame.clone();
+  }
   EXPECT_NEAR(decoded, frames, 2) << "not every frame decodes";
-  EXPECT_GT(frame.cols, 100);
+  // The 3-D view alone: narrower than the window, as tall as the view.
+  EXPECT_GT(last.cols, 300);
+  EXPECT_LT(last.cols, 1280 - 600);
+  EXPECT_GT(last.rows, 600);
   studio_->Stop();
 }
 
