@@ -73,12 +73,12 @@ TEST(LockStatus, DetachAndAttachAreSimControlRequests) {
   ASSERT_EQ(out.messages.size(), 2u);
   EXPECT_EQ(out.messages[0].first, "TEST_SIM_CONTROL");
   const auto& d = std::get<sim_control_t>(out.messages[0].second);
-  EXPECT_EQ(d.command, sim_control_t::DETACH);
+  EXPECT_EQ(d.command, int8_t{sim_control_t::DETACH});
   EXPECT_EQ(d.robot, "snake");
   EXPECT_EQ(d.lock, "plate");
   EXPECT_EQ(d.seq, seq);
   EXPECT_EQ(std::get<sim_control_t>(out.messages[1].second).command,
-            sim_control_t::ATTACH);
+            int8_t{sim_control_t::ATTACH});
   EXPECT_EQ(session.request(seq)->what, "detach snake/plate");
   EXPECT_THROW(session.SetLockAttached("snake", "", true, now, &out),
                std::invalid_argument);

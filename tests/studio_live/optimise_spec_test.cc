@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "optimizer/algorithm.h"
 #include "optimizer/algorithm_registry.h"
 #include "studio/live/optimise_session.h"
 
