@@ -19,6 +19,7 @@
 #include "common/hash.h"
 #include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
+#include "optimizer/algorithm_registry.h"
 #include "optimizer/body_genes.h"
 #include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_channels.h"
@@ -188,28 +189,20 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
       ->check(CLI::IsMember({"mean", "worst"}));
   AddEnumOption(app, "--selection", &a.selection, SelectionMethods(),
                 "the GA's parent selection");
-  app.add_option("--tournament-size", a.tournament_size)->capture_default_str();
-  app.add_option("--truncation", a.truncation_fraction,
-                 "GA: fraction that may breed")
-      ->capture_default_str();
-  app.add_option("--crossover-rate", a.crossover_rate)->capture_default_str();
-  app.add_option("--mutation-rate", a.mutation_rate)->capture_default_str();
-  app.add_option("--mutation-scale", a.mutation_scale,
-                 "Std dev as a fraction of the gene's range")
-      ->capture_default_str();
-  app.add_option("--elites", a.elites)->capture_default_str();
-  app.add_option("--sa-t0", a.sa_t0, "SA start temperature (0: automatic)")
-      ->capture_default_str();
-  app.add_option("--sa-cooling", a.sa_cooling)->capture_default_str();
-  app.add_option("--sa-rate", a.sa_rate)->capture_default_str();
-  app.add_option("--sa-step", a.sa_step)->capture_default_str();
-  app.add_option("--pso-inertia", a.pso_inertia)->capture_default_str();
-  app.add_option("--pso-c1", a.pso_c1)->capture_default_str();
-  app.add_option("--pso-c2", a.pso_c2)->capture_default_str();
-  app.add_option("--pso-vmax", a.pso_vmax)->capture_default_str();
-  app.add_option("--cmaes-sigma", a.cmaes_sigma,
-                 "CMA-ES start step, fraction of each gene's range")
-      ->capture_default_str();
+  // Each algorithm's own settings, from the registry (the studio's
+  // Optimise section shows the same list).
+  for (const AlgorithmInfo& info : Algorithms()) {
+    for (const AlgorithmSetting& setting : info.settings) {
+      const std::string flag = std::string("--") + setting.flag;
+      if (setting.real) {
+        app.add_option(flag, a.*setting.real, setting.help)
+            ->capture_default_str();
+      } else {
+        app.add_option(flag, a.*setting.whole, setting.help)
+            ->capture_default_str();
+      }
+    }
+  }
   app.add_option("--workers", c.workers,
                  "local:K (K threads; 0 = one per core)")
       ->capture_default_str();

@@ -10,13 +10,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "studio/design/panel_layout.h"
 #include "studio/ui/gui_setup.h"
 
 namespace mrsim::studio {
 
 HeadlessStudio::HeadlessStudio(StudioApp* app, int width, int height)
     : app_(app), width_(width), height_(height) {
-  if (!SetUpImGui()) {
+  const float scale = ChooseUiScale(app->requested_ui_scale(), 1);
+  app->SetUiScale(scale);
+  if (!SetUpImGui(scale)) {
     throw std::runtime_error("cannot start ImGui's OpenGL3 renderer");
   }
 }

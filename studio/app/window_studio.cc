@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "studio/app/frame_pacer.h"
+#include "studio/design/panel_layout.h"
 #include "studio/ui/gui_setup.h"
 
 namespace mrsim::studio {
@@ -33,7 +34,13 @@ void RunWindow(StudioApp* app, int width, int height,
   if (!w.window) throw std::runtime_error("GLFW cannot open a window");
   glfwMakeContextCurrent(w.window);
   glfwSwapInterval(1);
-  if (!SetUpImGui()) {
+  // Text and panels grow with the monitor's content scale (high-DPI), or
+  // as --ui-scale says.
+  float monitor_x = 1, monitor_y = 1;
+  glfwGetWindowContentScale(w.window, &monitor_x, &monitor_y);
+  const float scale = ChooseUiScale(app->requested_ui_scale(), monitor_x);
+  app->SetUiScale(scale);
+  if (!SetUpImGui(scale)) {
     throw std::runtime_error("cannot start ImGui's OpenGL3 renderer");
   }
   // Shortcuts through our own callback (ImGui's chains to it): a key press
@@ -50,7 +57,7 @@ void RunWindow(StudioApp* app, int width, int height,
   int redraws = 3;  // ImGui settles its layout over a couple of frames
   FramePacer pacer;
   while (!app->should_quit() && !(stop && *stop)) {
-    if (app->live().animating()) {
+    if (app->animating()) {
       // Live: a steady frame rate, input handled while waiting.
       for (double wait = pacer.Wait(FramePacer::Clock::now()); wait > 0;
            wait = pacer.Wait(FramePacer::Clock::now())) {

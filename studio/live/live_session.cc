@@ -388,6 +388,22 @@ int64_t LiveSession::SaveCheckpoint(const std::string& path, WallTime now,
   return SendSim(std::move(msg), "save " + path, now, out);
 }
 
+int64_t LiveSession::SetLockAttached(const std::string& robot,
+                                     const std::string& lock, bool attached,
+                                     WallTime now, StudioOutbox* out) {
+  if (robot.empty() || lock.empty()) {
+    throw std::invalid_argument("lock: no robot or lock named");
+  }
+  sim_control_t msg =
+      Control(attached ? sim_control_t::ATTACH : sim_control_t::DETACH);
+  msg.robot = robot;
+  msg.lock = lock;
+  return SendSim(
+      std::move(msg),
+      fmt::format("{} {}/{}", attached ? "attach" : "detach", robot, lock), now,
+      out);
+}
+
 int64_t LiveSession::LoadCheckpoint(const std::string& path, WallTime now,
                                     StudioOutbox* out) {
   if (path.empty()) throw std::invalid_argument("load: no checkpoint path");

@@ -86,6 +86,11 @@ class LiveSession {
                          StudioOutbox* out);
   int64_t LoadCheckpoint(const std::string& path, WallTime now,
                          StudioOutbox* out);
+  // Releases (attached=false, DETACH) or re-makes (ATTACH) the lock named
+  // `lock` (as robot_state_t lists it) of `robot`. Throws
+  // std::invalid_argument for an empty robot or lock name.
+  int64_t SetLockAttached(const std::string& robot, const std::string& lock,
+                          bool attached, WallTime now, StudioOutbox* out);
   // Steering (gait_command_t on <prefix>_GAIT_<robot>): a motion with its
   // strength in [-1, 1], the seven gait parameters, or a gait by name.
   // Throws std::invalid_argument for an unknown motion or a value out of

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -79,6 +80,26 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                fmt::format("{:g}", o.episode_s),
                "--gait",
                o.base_gait};
+  const FitnessSettings& f = o.fitness;
+  spec.args.insert(spec.args.end(),
+                   {"--distance", ToString(f.distance_mode), "--w-distance",
+                    fmt::format("{:g}", f.w_distance), "--w-speed",
+                    fmt::format("{:g}", f.w_speed), "--w-energy",
+                    fmt::format("{:g}", f.w_energy), "--w-drift",
+                    fmt::format("{:g}", f.w_drift), "--w-fall",
+                    fmt::format("{:g}", f.w_fall)});
+  const AlgorithmInfo& info = AlgorithmInfoOf(ParseAlgorithm(o.algorithm));
+  for (const auto& [flag, value] : o.algorithm_settings) {
+    const bool own =
+        std::any_of(info.settings.begin(), info.settings.end(),
+                    [&](const AlgorithmSetting& s) { return flag == s.flag; });
+    if (!own || !std::isfinite(value)) {
+      throw std::invalid_argument(
+          fmt::format("optimise: '{}' = {} is not a setting of {}", flag, value,
+                      info.title));
+    }
+    spec.args.insert(spec.args.end(), {"--" + flag, fmt::format("{}", value)});
+  }
   if (o.farm) {
     spec.args.push_back("--farm");
     if (!o.lcm_url.empty())

@@ -18,6 +18,7 @@
 #include "launcher/process_group.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "mrsim/opt_progress_t.hpp"
+#include "optimizer/episode.h"
 #include "optimizer/genome.h"
 #include "studio/live/opt_progress_link.h"
 #include "studio/live/stall_watch.h"
@@ -33,7 +34,13 @@ struct OptimiseOptions {
   int population = 8;
   unsigned seed = 1;
   double episode_s = 5;
-  std::string base_gait = "forward";
+  std::string base_gait = "forward";  // preset name or gait file (--gait)
+  // The fitness (mrsim-opt --distance, --w-*; docs/optimizer.md).
+  FitnessSettings fitness;
+  // Settings of the chosen algorithm by flag ("pso-c1" -> 2.0), each one
+  // of its registry row's (AlgorithmInfo::settings); the rest keep
+  // mrsim-opt's defaults.
+  std::map<std::string, double> algorithm_settings;
   bool farm = false;    // mrsim-worker processes over LCM
   int islands = 1;      // populations taking turns (mrsim-opt --islands)
   std::string lcm_url;  // for the farm; empty: LCM's default

@@ -8,7 +8,7 @@
 
 namespace mrsim::studio {
 
-bool SetUpImGui() {
+bool SetUpImGui(float ui_scale) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -16,13 +16,17 @@ bool SetUpImGui() {
   io.LogFilename = nullptr;
   const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   if (std::filesystem::exists(kFont)) {
-    io.Fonts->AddFontFromFileTTF(kFont, 15.0f);
+    // Drawn at the scale's size (sharp), not magnified afterwards.
+    io.Fonts->AddFontFromFileTTF(kFont, 15.0f * ui_scale);
+  } else {
+    io.FontGlobalScale = ui_scale;
   }
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 0;
   style.FrameRounding = 3;
   style.ItemSpacing = ImVec2(6, 5);
+  style.ScaleAllSizes(ui_scale);
   return ImGui_ImplOpenGL3_Init("#version 130");
 }
 

@@ -5,8 +5,9 @@
 namespace mrsim::studio {
 
 // Creates the ImGui context and the OpenGL3 renderer backend (a GL context
-// must be current). Returns false when the renderer cannot start.
-bool SetUpImGui();
+// must be current), text and widgets at `ui_scale` (1: 15 px text).
+// Returns false when the renderer cannot start.
+bool SetUpImGui(float ui_scale = 1);
 void ShutDownImGui();
 
 // Asks Mesa's software renderer (llvmpipe) for one render thread unless

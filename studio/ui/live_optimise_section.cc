@@ -1,11 +1,88 @@
 // The Run panel's Optimise section: genome, settings, start, stop, jump,
 // progress curves, and playing an individual live.
 // Part of LivePanel (live_panel.h), one file per section.
+#include "gait_controller/gait_presets.h"
 #include "optimizer/algorithm_registry.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
 
 namespace mrsim::studio {
+
+void LivePanel::DrawOptimiseSettings() {
+  if (!RecordedHeader(layout_, "Fitness and algorithm settings", false)) {
+    return;
+  }
+  ImGui::Indent(8);
+  // Fitness = distance * w_distance + speed * w_speed - energy * w_energy
+  //           - drift * w_drift - fell * w_fall (docs/optimizer.md).
+  // The words of the one distance-mode table: a new mode shows up here.
+  const std::vector<std::string> modes = DistanceModes().Names();
+  int mode = static_cast<int>(
+      std::find(modes.begin(), modes.end(), ToString(fitness_.distance_mode)) -
+      modes.begin());
+  ImGui::SetNextItemWidth(110);
+  if (ImGui::Combo(
+          "distance", &mode,
+          +[](void* data, int i, const char** text) {
+            *text = static_cast<const std::vector<std::string>*>(data)
+                        ->at(i)
+                        .c_str();
+            return true;
+          },
+          const_cast<std::vector<std::string>*>(&modes),
+          static_cast<int>(modes.size()))) {
+    fitness_.distance_mode = ParseDistanceMode(modes.at(mode));
+  }
+  RecordItem(layout_, "distance mode");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "forward: along +x (the chain's head)\nnet: any horizontal "
+        "direction\nup: rise along +z (climbing)");
+  }
+  struct Weight {
+    const char* label;
+    double* value;
+    const char* help;
+  };
+  for (const Weight& w :
+       {Weight{"w distance", &fitness_.w_distance, "per metre"},
+        Weight{"w speed", &fitness_.w_speed, "per m/s"},
+        Weight{"w energy", &fitness_.w_energy, "per joule (subtracted)"},
+        Weight{"w drift", &fitness_.w_drift,
+               "per metre of sideways drift (subtracted)"},
+        Weight{"w fall", &fitness_.w_fall, "if it fell (subtracted)"}}) {
+    ImGui::SetNextItemWidth(90);
+    ImGui::InputDouble(w.label, w.value, 0, 0, "%.4g");
+    RecordItem(layout_, w.label);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", w.help);
+  }
+  ImGui::SetNextItemWidth(-90);
+  ImGui::InputText("base gait", &base_gait_);
+  RecordItem(layout_, "base gait");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "The gait the genes modify: a preset (%s) or a gait "
+        "file",
+        GaitPresetNames().c_str());
+  }
+  // The chosen algorithm's own settings, as the registry lists them.
+  const AlgorithmInfo& info = Algorithms().at(algorithm_);
+  if (info.settings.empty()) {
+    ImGui::TextDisabled("%s has no settings of its own", info.title);
+  }
+  for (const AlgorithmSetting& setting : info.settings) {
+    double value = setting.Get(algorithm_settings_);
+    ImGui::SetNextItemWidth(90);
+    if (ImGui::InputDouble(setting.flag, &value, 0, 0,
+                           setting.whole ? "%.0f" : "%.4g")) {
+      setting.Set(&algorithm_settings_,
+                  std::clamp(value, setting.min, setting.max));
+    }
+    RecordItem(layout_, std::string("setting ") + setting.flag);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", setting.help);
+  }
+  ImGui::Unindent(8);
+}
 
 void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   // The optimiser's registry: a new algorithm shows up here by itself.
@@ -88,6 +165,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::InputInt("seed", &seed_);
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("folder", &opt_dir_);
+  DrawOptimiseSettings();
   auto start = [&](int jump_to) {
     try {
       message_.clear();
@@ -107,6 +185,12 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.population = population_;
       o.seed = static_cast<unsigned>(std::max(0, seed_));
       o.episode_s = episode_;
+      o.fitness = fitness_;
+      o.base_gait = base_gait_;
+      for (const AlgorithmSetting& setting :
+           algorithms.at(algorithm_).settings) {
+        o.algorithm_settings[setting.flag] = setting.Get(algorithm_settings_);
+      }
       o.farm = farm_;
       o.islands = farm_ ? islands_ : 1;
       o.lcm_url = url_;

@@ -4,18 +4,22 @@
 // face over studio/live (LiveSession, LiveLink, LiveRunner): every button
 // is one LCM message or one process a script could send or start. One file
 // per section: live_panel.cc (connection, keys, overlay, the panel's frame)
-// and live_<section>_section.cc (Run, Simulator, Steering, Recording, Plots,
-// Optimise, Console), sharing live_panel_common.h.
+// and live_<section>_section.cc (Run, Simulator, Steering, Locks, Recording,
+// Plots, Optimise, Console), sharing live_panel_common.h.
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gait_controller/gait_parameters.h"
+#include "optimizer/algorithm.h"
+#include "optimizer/episode.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
@@ -97,9 +101,13 @@ class LivePanel {
   void DrawControls();
   void DrawSteering();
   void DrawRecording();
+  // Locks of the followed robot: state, break force, Detach / Attach.
+  void DrawLocks();
   void DrawPlots(float width);
   void DrawConsole(float height);
   void DrawOptimise(const LiveDesign& design, float width);
+  // Fitness, base gait and the chosen algorithm's own settings.
+  void DrawOptimiseSettings();
   void WatchBest();
   // Plays an optimisation's individual live: its gait sent to the running
   // design, or (body genes, or nothing running) a run of its scenario.
@@ -117,6 +125,11 @@ class LivePanel {
   // The last PNG export's outcome, shown under the plot it is for.
   std::pair<const PlotSeries*, std::string> png_note_;
   int algorithm_ = 3;  // cmaes
+  // The form's fitness, base gait and algorithm settings (each algorithm's
+  // own from the registry, AlgorithmInfo::settings).
+  FitnessSettings fitness_;
+  std::string base_gait_ = "forward";
+  AlgorithmSettings algorithm_settings_;
   int generations_ = 10;
   int population_ = 8;
   int seed_ = 1;
@@ -132,6 +145,9 @@ class LivePanel {
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;
   std::string followed_;
+  // Per robot, the locks detached from this window (a released lock not
+  // among them broke).
+  std::map<std::string, std::set<std::string>> detached_locks_;
   std::string message_;
   bool message_is_note_ = false;  // "wrote ...": not an error
   // Form state.

@@ -2,12 +2,45 @@
 
 #include <imgui.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "studio/ui/widgets.h"
 
 namespace mrsim::studio {
+
+void StatusBar::DrawViewMenu(StudioContext& studio) {
+  if (!ImGui::BeginPopup("view menu")) return;
+  PanelSettings& p = studio.panels;
+  ImGui::MenuItem("Design panel", "Tab", &p.show_left);
+  studio.Record("view Design panel");
+  ImGui::MenuItem(studio.show_run ? "Run panel" : "Inspector", "Shift+Tab",
+                  &p.show_right);
+  studio.Record("view right panel");
+  if (ImGui::MenuItem("3-D view only", "F11", !p.show_left && !p.show_right)) {
+    studio.ToggleFullView();
+  }
+  studio.Record("view 3-D only");
+  ImGui::Separator();
+  if (ImGui::MenuItem(studio.video.recording() ? "Stop video" : "Record video",
+                      "Ctrl+R")) {
+    studio.ToggleVideo();
+  }
+  studio.Record("view video");
+  if (!studio.video.videos().empty()) {
+    ImGui::TextDisabled("Videos (3-D view, MP4)");
+    for (const RecordedVideo& v : studio.video.videos()) {
+      ImGui::Text("%s  %s",
+                  std::filesystem::path(v.path).filename().string().c_str(),
+                  DescribeVideo(v).c_str());
+      if (ImGui::IsItemHovered()) WrappedTooltip(v.path);
+    }
+  }
+  ImGui::Separator();
+  ImGui::TextDisabled("Drag a panel's inner edge to resize it");
+  ImGui::EndPopup();
+}
 
 void StatusBar::Draw(StudioContext& studio, const PanelRect& rect) {
   const float x = rect.x, y = rect.y, w = rect.w;
@@ -24,6 +57,20 @@ void StatusBar::Draw(StudioContext& studio, const PanelRect& rect) {
   ImGui::SameLine();
   if (studio.Button(studio.show_run ? "Inspector (F5)" : "Run panel (F5)")) {
     studio.show_run = !studio.show_run;
+  }
+  ImGui::SameLine();
+  if (studio.Button("View")) ImGui::OpenPopup("view menu");
+  DrawViewMenu(studio);
+  if (studio.video.recording()) {
+    ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.1f, 0.1f, 1));
+    char label[48];
+    std::snprintf(label, sizeof(label), "Stop video %.0f s###Stop video",
+                  studio.video.seconds());
+    const bool stop = ImGui::Button(label);
+    studio.Record("Stop video");
+    ImGui::PopStyleColor();
+    if (stop) studio.ToggleVideo();
   }
   ImGui::SameLine();
   if (!studio.build_error.empty()) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -17,9 +18,14 @@
 namespace mrsim::studio {
 namespace {
 
-constexpr float kLeftWidth = 330;
-constexpr float kRightWidth = 400;
-constexpr float kStatusHeight = 30;
+PanelRect ToPanelRect(const LayoutRect& r) { return {r.x, r.y, r.w, r.h}; }
+
+std::string RectText(const LayoutRect& r) {
+  if (r.w <= 0) return "hidden";
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.0f %.0f %.0f %.0f", r.x, r.y, r.w, r.h);
+  return text;
+}
 
 }  // namespace
 
@@ -38,9 +44,12 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
 
   LivePanel& live = *studio_.live;
   live.Poll();
-  const float h = static_cast<float>(height);
-  design_panel_.Draw(studio_, {0, 0, kLeftWidth, h});
-  if (studio_.show_run) {
+  const PanelLayout panels = LayOutPanels(width, height, studio_.panels);
+  HandlePanelEdges(panels, width);
+  if (panels.left.w > 0) {
+    design_panel_.Draw(studio_, ToPanelRect(panels.left));
+  }
+  if (panels.right.w > 0 && studio_.show_run) {
     LiveDesign run;
     run.path = studio_.design.path();
     run.dirty = studio_.design.dirty();
@@ -51,13 +60,12 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
       studio_.SaveFile();
       return studio_.design.dirty() ? std::string() : studio_.design.path();
     };
-    live.Draw(width - kRightWidth, 0, kRightWidth, h, run);
-  } else {
-    inspector_.Draw(studio_, {width - kRightWidth, 0, kRightWidth, h});
+    live.Draw(panels.right.x, 0, panels.right.w, panels.right.h, run);
+  } else if (panels.right.w > 0) {
+    inspector_.Draw(studio_, ToPanelRect(panels.right));
   }
-  status_.Draw(studio_, {kLeftWidth, 0, width - kLeftWidth - kRightWidth,
-                         kStatusHeight});
-  live.DrawOverlay(kLeftWidth + 8, kStatusHeight + 8);
+  status_.Draw(studio_, ToPanelRect(panels.status));
+  live.DrawOverlay(panels.view.x + 8, panels.view.y + 8);
   // The dialogs, in the order they stack.
   file_dialog_.Draw(studio_);
   unsaved_.Draw(studio_);
@@ -66,11 +74,11 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   refusal_.Draw(studio_);
   if (studio_.show_help) help_.Draw(studio_);
 
-  const mjrRect view = {
-      static_cast<int>(kLeftWidth), 0,
-      std::max(16, width - static_cast<int>(kLeftWidth + kRightWidth)),
-      std::max(16, height - static_cast<int>(kStatusHeight))};
-  HandleViewInput(view, kLeftWidth, kStatusHeight);
+  // OpenGL's rectangle: bottom-left origin; the view reaches the bottom.
+  const mjrRect view = {static_cast<int>(panels.view.x), 0,
+                        std::max(16, static_cast<int>(panels.view.w)),
+                        std::max(16, static_cast<int>(panels.view.h))};
+  HandleViewInput(view, panels.view.x, panels.view.y);
   UpdatePreview();
 
   ImGui::Render();
@@ -82,8 +90,33 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   glDisable(GL_SCISSOR_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   preview.Render(view, offscreen, studio_.design.selection());
+  if (studio_.video.recording()) {
+    // The view alone: read before the panels and the overlay go over it.
+    try {
+      studio_.video.Capture(view);
+    } catch (const std::exception& e) {
+      studio_.Refuse(std::string("video stopped: ") + e.what());
+    }
+  }
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
+  if (studio_.layout.enabled()) {
+    LayoutRecorder& layout = studio_.layout;
+    layout.State("panel left", RectText(panels.left));
+    layout.State("panel right", RectText(panels.right));
+    layout.State("panel view", RectText(panels.view));
+    layout.State("panel status", RectText(panels.status));
+    char scale[32];
+    std::snprintf(scale, sizeof(scale), "%.2f", studio_.panels.ui_scale);
+    layout.State("ui scale", scale);
+    layout.State("video", studio_.video.recording() ? "recording" : "stopped");
+    char seconds[32];
+    std::snprintf(seconds, sizeof(seconds), "%.1f", studio_.video.seconds());
+    layout.State("video seconds", seconds);
+    if (!studio_.video.videos().empty()) {
+      layout.State("video last", studio_.video.videos().back().path);
+    }
+  }
   if (studio_.layout.enabled()) RecordState(view, height);
 }
 
@@ -170,6 +203,15 @@ void StudioApp::HandleKeys() {
       continue;  // the text field has the keys
     } else if (key == GLFW_KEY_F5) {
       studio_.show_run = !studio_.show_run;
+    } else if (key == GLFW_KEY_TAB && !ctrl) {
+      // As MuJoCo's simulate: Tab the left panel, Shift+Tab the right.
+      bool& shown =
+          shift ? studio_.panels.show_right : studio_.panels.show_left;
+      shown = !shown;
+    } else if (key == GLFW_KEY_F11) {
+      studio_.ToggleFullView();
+    } else if (ctrl && key == GLFW_KEY_R) {
+      studio_.ToggleVideo();
     } else if (studio_.show_run && studio_.live->OnKey(key)) {
       continue;  // arrows steer the running robot
     } else if (ctrl && key == GLFW_KEY_Z) {
@@ -196,13 +238,40 @@ void StudioApp::HandleKeys() {
   }
 }
 
+void StudioApp::HandlePanelEdges(const PanelLayout& panels, int width) {
+  // A side panel's inner edge dragged sideways widens or narrows it.
+  const ImGuiIO& io = ImGui::GetIO();
+  const float scale = std::max(studio_.panels.ui_scale, 0.5f);
+  const float x = io.MousePos.x, grab = 4 * scale;
+  const bool on_left =
+      panels.left.w > 0 && std::abs(x - panels.left.right()) <= grab;
+  const bool on_right =
+      panels.right.w > 0 && std::abs(x - panels.right.x) <= grab;
+  const bool modal = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId);
+  if (resizing_ == 0 && !modal && ImGui::IsMouseClicked(0) &&
+      io.MousePos.y >= 0 && (on_left || on_right)) {
+    resizing_ = on_left ? 1 : 2;
+  }
+  if (resizing_ != 0 && !ImGui::IsMouseDown(0)) resizing_ = 0;
+  if (resizing_ != 0 || ((on_left || on_right) && !modal)) {
+    ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+  }
+  const float widest = std::max(kMinPanelWidth, width * 0.6f / scale);
+  if (resizing_ == 1) {
+    studio_.panels.left_width = std::clamp(x / scale, kMinPanelWidth, widest);
+  } else if (resizing_ == 2) {
+    studio_.panels.right_width =
+        std::clamp((width - x) / scale, kMinPanelWidth, widest);
+  }
+}
+
 void StudioApp::HandleViewInput(const mjrRect& view, float left, float top) {
   bool& dragging = view_drag_;
   const ImGuiIO& io = ImGui::GetIO();
   const ImVec2 p = io.MousePos;
   const bool inside = p.x >= left && p.x < left + view.width && p.y >= top &&
                       p.y < top + view.height;
-  if (io.WantCaptureMouse && !dragging) return;
+  if ((io.WantCaptureMouse || resizing_ != 0) && !dragging) return;
   const double h = view.height;
   if (inside && io.MouseWheel != 0)
     studio_.preview->Zoom(-0.05 * io.MouseWheel);

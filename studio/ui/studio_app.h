@@ -41,6 +41,13 @@ class StudioApp {
   // handled at the next frame, so a press shorter than a frame still counts.
   void OnKey(int key, int mods) { keys_.push_back({key, mods}); }
   bool should_quit() const { return studio_.quit; }
+  // Frames should come at a steady rate: something live, or a video.
+  bool animating() const {
+    return studio_.live->animating() || studio_.video.recording();
+  }
+  // What --ui-scale asked for (0: the monitor's), and the scale in use.
+  float requested_ui_scale() const { return studio_.options.ui_scale; }
+  void SetUiScale(float scale) { studio_.panels.ui_scale = scale; }
 
   Design& design() { return studio_.design; }
   LivePanel& live() { return *studio_.live; }
@@ -53,6 +60,8 @@ class StudioApp {
   double last_rebuild_ms() const { return last_rebuild_ms_; }
 
  private:
+  // Dragging a side panel's inner edge resizes it.
+  void HandlePanelEdges(const PanelLayout& panels, int width);
   void HandleViewInput(const mjrRect& view, float top_left_x, float top_left_y);
   void HandleKeys();
   // The preview follows the design (or a live run's body): one rebuild per
@@ -73,6 +82,7 @@ class StudioApp {
   HelpOverlay help_;
   int built_live_ = -1;     // live_scenario_revision() shown, -1: the design
   bool view_drag_ = false;  // a drag that started in the 3-D view
+  int resizing_ = 0;        // a panel edge dragged: 1 left, 2 right
   std::vector<std::pair<int, int>> keys_;  // key, mods
   double last_rebuild_ms_ = -1;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "launcher/program_locator.h"
@@ -161,6 +162,36 @@ void StudioContext::SaveFile() {
   } catch (const std::exception& e) {
     Refuse(e.what());
   }
+}
+
+void StudioContext::ToggleVideo() {
+  if (video.recording()) {
+    const std::optional<RecordedVideo> done = video.Stop();
+    if (done) {
+      Note("video " + done->path + " (" + DescribeVideo(*done) + ")");
+    } else {
+      Note("no video: the 3-D view was not drawn while recording");
+    }
+    return;
+  }
+  const std::string stem =
+      design.path().empty()
+          ? std::string("untitled")
+          : std::filesystem::path(design.path()).stem().string();
+  const std::string folder =
+      design.path().empty()
+          ? std::string(".")
+          : std::filesystem::path(design.path()).parent_path().string();
+  Try("record a video", [&] { video.Start(NextVideoPath(folder, stem)); });
+  if (video.recording()) {
+    Note("recording " + video.path() + " (Ctrl+R or Stop video to finish)");
+  }
+}
+
+void StudioContext::ToggleFullView() {
+  const bool show = !panels.show_left && !panels.show_right;
+  panels.show_left = show;
+  panels.show_right = show;
 }
 
 }  // namespace mrsim::studio

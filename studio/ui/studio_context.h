@@ -10,11 +10,13 @@
 #include <string>
 
 #include "studio/design/design.h"
+#include "studio/design/panel_layout.h"
 #include "studio/design/recent_files.h"
 #include "studio/ui/file_browser.h"
 #include "studio/ui/layout_recorder.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/preview.h"
+#include "studio/ui/view_recorder.h"
 
 namespace mrsim::studio {
 
@@ -23,6 +25,7 @@ struct AppOptions {
   int height = 800;
   std::string layout_dump;   // --layout-dump file, "" for none
   std::string recent_store;  // RecentFiles store, "" for the default
+  float ui_scale = 0;  // --ui-scale: text and panel size, 0: the monitor's
 };
 
 // An action that may first ask about unsaved changes.
@@ -43,6 +46,8 @@ struct StudioContext {
   FileBrowser browser;
   BrowseFor browse_for = BrowseFor::kNone;
   bool show_run = false;  // the right column shows Run instead of Inspector
+  PanelSettings panels;   // which side panels show, their widths, UI scale
+  ViewRecorder video;     // the 3-D view to an MP4
   bool show_help = false;
   bool show_template = false;
   bool quit = false;
@@ -75,6 +80,12 @@ struct StudioContext {
   void RequestClose();
   void OpenFile(const std::string& path);
   void SaveFile();
+  // Starts a video of the 3-D view beside the design (else in the
+  // current folder), or stops it and says where it went and its size.
+  void ToggleVideo();
+  // Tab, Shift+Tab and F11: one side panel, or both for the full-window
+  // 3-D view (both come back when both were hidden).
+  void ToggleFullView();
   // Opens the file dialog for Save As.
   void BrowseSaveAs();
   // Where file dialogs open: beside the design, else ./scenarios when

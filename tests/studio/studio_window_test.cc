@@ -8,10 +8,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <sstream>
 
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/studio/studio_test_util.h"
 
 namespace mrsim::testing {
@@ -28,15 +30,17 @@ bool HaveX() {
 // The studio in a window on a private display, with its layout dump.
 class StudioWindowTest : public ::testing::Test {
  protected:
-  void Start(const std::string& name, const std::string& scenario) {
+  void Start(const std::string& name, const std::string& scenario,
+             const std::vector<std::string>& flags = {}) {
     dir_ = TempDir(name);
     layout_ = dir_ + "/layout.txt";
     xvfb_ = std::make_unique<XvfbDisplay>(dir_);
     ASSERT_TRUE(xvfb_->ok()) << "Xvfb did not start, see " << dir_;
     setenv("XDG_CONFIG_HOME", dir_.c_str(), 1);  // recent files stay here
-    studio_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{Studio(), "--layout-dump", layout_, scenario},
-        dir_ + "/studio.log");
+    std::vector<std::string> argv = {Studio(), "--layout-dump", layout_};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    if (!scenario.empty()) argv.push_back(scenario);
+    studio_ = std::make_unique<ChildProcess>(argv, dir_ + "/studio.log");
     ASSERT_TRUE(WaitForLayout(layout_, "revision", "0")) << studio_->Output();
   }
 
@@ -126,6 +130,154 @@ TEST_F(StudioWindowTest, ClosingWithUnsavedChangesAsksFirst) {
   sa << a.rdbuf();
   sb << b.rdbuf();
   EXPECT_TRUE(sa.str() == sb.str()) << "the file changed without Save";
+}
+
+// A rectangle "x y w h" of the layout dump.
+struct Box {
+  double x = 0, y = 0, w = 0, h = 0;
+  double right() const { return x + w; }
+  double bottom() const { return y + h; }
+  bool Holds(const Box& b) const {
+    return b.x >= x - 0.5 && b.right() <= right() + 0.5 && b.y >= y - 0.5 &&
+           b.bottom() <= bottom() + 0.5;
+  }
+};
+
+Box ParseBox(const std::string& text) {
+  Box b;
+  std::istringstream in(text);
+  in >> b.x >> b.y >> b.w >> b.h;
+  return b;
+}
+
+// A copy of the case study in its own folder (videos go beside it).
+std::string CaseStudyCopy(const std::string& name) {
+  const std::string dir = TempDir(name);
+  const std::string file = dir + "/case_study.xml";
+  fs::copy_file(SourcePath("scenarios/case_study.xml"), file,
+                fs::copy_options::overwrite_existing);
+  return file;
+}
+
+TEST_F(StudioWindowTest, TabAndShiftTabHideThePanelsForAFullWindowView) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  Start("studio_window_panels", CaseStudyCopy("studio_window_panels_src"));
+  const auto before = ReadLayout(layout_);
+  ASSERT_NE(before.at("panel left"), "hidden");
+  ASSERT_NE(before.at("panel right"), "hidden");
+  // Keys go to the window under the pointer.
+  ASSERT_TRUE(Xdotool({"mousemove", "640", "400"}));
+  ASSERT_TRUE(Xdotool({"key", "Tab"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "panel left", "hidden"));
+  EXPECT_NE(ReadLayout(layout_)["panel right"], "hidden");
+  ASSERT_TRUE(Xdotool({"key", "shift+Tab"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "panel right", "hidden"));
+  // The 3-D view fills the window under the status bar.
+  const Box view = ParseBox(ReadLayout(layout_)["panel view"]);
+  EXPECT_EQ(view.x, 0);
+  EXPECT_EQ(view.w, 1280);
+  EXPECT_EQ(view.bottom(), 800);
+  // F11 brings both back; again hides both.
+  ASSERT_TRUE(Xdotool({"key", "F11"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "panel left", before.at("panel left")));
+  EXPECT_TRUE(WaitForLayout(layout_, "panel right", before.at("panel right")));
+  ASSERT_TRUE(Xdotool({"key", "F11"}));
+  EXPECT_TRUE(WaitForLayout(layout_, "panel left", "hidden"));
+  EXPECT_TRUE(WaitForLayout(layout_, "panel right", "hidden"));
+  studio_->Stop();
+}
+
+TEST_F(StudioWindowTest, At1024By640NoPanelsOverlap) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  Start("studio_window_small", CaseStudyCopy("studio_window_small_src"),
+        {"--width", "1024", "--height", "640", "--ui-scale", "1"});
+  ASSERT_TRUE(WaitForLayout(layout_, "ui scale", "1.00"));
+  auto l = ReadLayout(layout_);
+  const Box left = ParseBox(l["panel left"]),
+            right = ParseBox(l["panel right"]);
+  const Box view = ParseBox(l["panel view"]),
+            status = ParseBox(l["panel status"]);
+  const Box window{0, 0, 1024, 640};
+  for (const Box& b : {left, right, view, status}) {
+    EXPECT_TRUE(window.Holds(b)) << b.x << " " << b.y << " " << b.w;
+  }
+  EXPECT_LE(left.right(), view.x);
+  EXPECT_LE(view.right(), right.x);
+  EXPECT_GE(view.w, 300) << "the 3-D view squeezed out";
+  // The buttons sit inside their own panel.
+  for (const char* name : {"Save", "Save As", "Help (F1)"}) {
+    int x = 0, y = 0;
+    ASSERT_TRUE(WidgetCentre(layout_, name, &x, &y)) << name;
+    EXPECT_TRUE(left.Holds(ParseBox(l[std::string("widget ") + name])))
+        << name << " " << l[std::string("widget ") + name];
+  }
+  for (const char* name : {"Run panel (F5)", "View"}) {
+    EXPECT_TRUE(status.Holds(ParseBox(l[std::string("widget ") + name])))
+        << name << " " << l[std::string("widget ") + name];
+  }
+  // The Run panel in the right column fits too.
+  ASSERT_TRUE(Xdotool({"mousemove", "500", "400"}));
+  ASSERT_TRUE(Xdotool({"key", "F5"}));
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLayout(layout_).count("widget Run") > 0; }, 60));
+  l = ReadLayout(layout_);
+  EXPECT_TRUE(right.Holds(ParseBox(l["widget Run"]))) << l["widget Run"];
+  studio_->Stop();
+}
+
+TEST_F(StudioWindowTest, RecordsThreeSecondsOfTheViewToAPlayableMp4) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string file = CaseStudyCopy("studio_window_video_src");
+  Start("studio_window_video", file);
+  ASSERT_TRUE(Xdotool({"mousemove", "640", "400"}));
+  ASSERT_TRUE(Xdotool({"key", "ctrl+r"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "video", "recording"))
+      << ReadLayout(layout_)["message"];
+  // The video's own clock says when 3 s are in it.
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        const std::string s = ReadLayout(layout_)["video seconds"];
+        return !s.empty() && std::stod(s) >= 3.0;
+      },
+      120));
+  ASSERT_TRUE(Xdotool({"key", "ctrl+r"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "video", "stopped"));
+  const std::string video = ReadLayout(layout_)["video last"];
+  ASSERT_EQ(fs::path(video).parent_path(), fs::path(file).parent_path());
+  ASSERT_TRUE(fs::exists(video)) << video;
+  // Listed with its size: the note names the file and its megabytes.
+  const std::string note = ReadLayout(layout_)["message"];
+  EXPECT_NE(note.find(video), std::string::npos) << note;
+  EXPECT_TRUE(note.find("MB") != std::string::npos ||
+              note.find("kB") != std::string::npos)
+      << note;
+
+  cv::VideoCapture in(video, cv::CAP_FFMPEG);
+  ASSERT_TRUE(in.isOpened()) << video;
+  const double fps = in.get(cv::CAP_PROP_FPS);
+  const double frames = in.get(cv::CAP_PROP_FRAME_COUNT);
+  ASSERT_NEAR(fps, 30, 0.5);
+  // 3 s, plus the time the stop key took to arrive.
+  EXPECT_GE(frames / fps, 2.95);
+  EXPECT_LE(frames / fps, 5.5);
+  const int fourcc = static_cast<int>(in.get(cv::CAP_PROP_FOURCC));
+  const std::string codec = {static_cast<char>(fourcc & 255),
+                             static_cast<char>((fourcc >> 8) & 255),
+                             static_cast<char>((fourcc >> 16) & 255),
+                             static_cast<char>((fourcc >> 24) & 255)};
+  EXPECT_TRUE(codec == "avc1" || codec == "h264") << codec;
+  int decoded = 0;
+  cv::Mat frame, last;
+  while (in.read(frame)) {
+    ++decoded;
+    last = frame.clone();
+  }
+  EXPECT_NEAR(decoded, frames, 2) << "not every frame decodes";
+  // The 3-D view alone: narrower than the window, as tall as the view.
+  EXPECT_GT(last.cols, 300);
+  EXPECT_LT(last.cols, 1280 - 600);
+  EXPECT_GT(last.rows, 600);
+  studio_->Stop();
 }
 
 TEST(StudioScreenshot, ShowsTheRobotAndThePanels) {

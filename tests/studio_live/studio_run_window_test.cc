@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -196,6 +197,18 @@ TEST_F(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
       << ReadLayout(layout)["live message"] << "\n"
       << studio.Output();
   EXPECT_TRUE(fs::exists(dir + "/optimise/generations.csv"));
+  // The window's fitness and algorithm settings reached mrsim-opt (its
+  // checkpoint records every setting of the run).
+  {
+    std::ifstream in(dir + "/optimise/checkpoint.txt");
+    std::stringstream text;
+    text << in.rdbuf();
+    for (const char* line :
+         {"setting distance_mode=forward", "setting w_distance=1",
+          "setting cmaes_sigma=0.3"}) {
+      EXPECT_NE(text.str().find(line), std::string::npos) << line;
+    }
+  }
 
   auto watching = [&](const std::string& start) {
     return WaitUntil(

@@ -1,0 +1,86 @@
+// The studio's optimisation settings reach mrsim-opt's command line: the
+// fitness, the base gait and the chosen algorithm's own settings from the
+// algorithm registry.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimizer/algorithm.h"
+#include "optimizer/algorithm_registry.h"
+#include "studio/live/optimise_session.h"
+
+namespace mrsim::studio {
+namespace {
+
+OptimiseOptions Options() {
+  OptimiseOptions o;
+  o.scenario_path = "robot.xml";
+  o.out_dir = "opt";
+  return o;
+}
+
+// The value after `flag`, "" when the flag is missing.
+std::string After(const std::vector<std::string>& args,
+                  const std::string& flag) {
+  auto it = std::find(args.begin(), args.end(), flag);
+  return it == args.end() || it + 1 == args.end() ? "" : *(it + 1);
+}
+
+TEST(OptimiseSpec, FitnessWeightsDistanceModeAndBaseGaitReachMrsimOpt) {
+  OptimiseOptions o = Options();
+  o.fitness.distance_mode = DistanceMode::kNet;
+  o.fitness.w_energy = 0.25;
+  o.fitness.w_fall = 3;
+  o.base_gait = "turn_left";
+  const ProcessSpec spec = OptimiseSession::Spec(o, "g.xml");
+  EXPECT_EQ(After(spec.args, "--distance"), "net");
+  EXPECT_EQ(After(spec.args, "--w-distance"), "1");
+  EXPECT_EQ(After(spec.args, "--w-energy"), "0.25");
+  EXPECT_EQ(After(spec.args, "--w-fall"), "3");
+  EXPECT_EQ(After(spec.args, "--gait"), "turn_left");
+}
+
+TEST(OptimiseSpec, TheChosenAlgorithmsOwnSettingsArePassed) {
+  OptimiseOptions o = Options();
+  o.algorithm = "pso";
+  o.algorithm_settings = {{"pso-c1", 2.0}, {"pso-inertia", 0.7298}};
+  const ProcessSpec spec = OptimiseSession::Spec(o, "g.xml");
+  EXPECT_EQ(After(spec.args, "--pso-c1"), "2");
+  EXPECT_EQ(After(spec.args, "--pso-inertia"), "0.7298");
+}
+
+TEST(OptimiseSpec, AnotherAlgorithmsSettingIsRefusedByName) {
+  OptimiseOptions o = Options();
+  o.algorithm = "cmaes";
+  o.algorithm_settings = {{"pso-c1", 2.0}};
+  try {
+    OptimiseSession::Spec(o, "g.xml");
+    FAIL() << "accepted a PSO setting for CMA-ES";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pso-c1"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(AlgorithmRegistrySettings, EveryRowsSettingsReadAndWriteTheirField) {
+  for (const AlgorithmInfo& info : Algorithms()) {
+    for (const AlgorithmSetting& s : info.settings) {
+      SCOPED_TRACE(s.flag);
+      EXPECT_EQ(FindAlgorithmSetting(s.flag), &s);
+      EXPECT_TRUE((s.real == nullptr) != (s.whole == nullptr));
+      EXPECT_LE(s.min, s.max);
+      AlgorithmSettings settings;
+      const double value = s.real ? (s.min + s.max) / 2 : s.min + 1;
+      s.Set(&settings, value);
+      EXPECT_DOUBLE_EQ(s.Get(settings), value);
+    }
+  }
+  EXPECT_EQ(FindAlgorithmSetting("no-such-setting"), nullptr);
+  EXPECT_FALSE(AlgorithmInfoOf(AlgorithmKind::kPso).settings.empty());
+}
+
+}  // namespace
+}  // namespace mrsim::studio
