@@ -47,7 +47,7 @@ OptimiseSession::~OptimiseSession() { Stop(); }
 
 ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                                   const std::string& genome_path) {
-  if (o.scenario_path.empty()) {
+  if (o.scenario_path.empty() && o.task.empty()) {
     throw std::invalid_argument("optimise: save the design to a file first");
   }
   if (o.out_dir.empty()) throw std::invalid_argument("optimise: no folder");
@@ -76,9 +76,14 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                "--seed",
                std::to_string(o.seed),
                "--episode",
-               fmt::format("{:g}", o.episode_s),
-               "--gait",
-               o.base_gait};
+               fmt::format("{:g}", o.episode_s)};
+  if (!o.task.empty()) {
+    spec.args[0] = "--task";
+    spec.args.insert(spec.args.begin() + 1, o.task);
+  }
+  if (o.task.empty() || !o.base_gait.empty()) {
+    spec.args.insert(spec.args.end(), {"--gait", o.base_gait});
+  }
   if (o.farm) {
     spec.args.push_back("--farm");
     if (!o.lcm_url.empty())
