@@ -54,8 +54,10 @@ const std::vector<Gait>& GaitPresets() {
       // The classic snake gaits (docs/gait.md, "Classic gaits", with their
       // formulas and sources), for pitch-yaw chains.
       // Hirose's serpenoid curve: yaw joints only, one wave over the body;
-      // the turn input is Hirose's gamma (a yaw offset).
-      Make("serpenoid", GaitKind::kLinear, {0, 0.8, 0, 1.2, 3, 0, 0}),
+      // the turn input is Hirose's gamma (a yaw offset). The wave runs
+      // from head (joint 0) to tail (phi_y < 0), so the body, pushing
+      // against wheels or scales, moves head first.
+      Make("serpenoid", GaitKind::kLinear, {0, 0.8, 0, -1.2, 3, 0, 0}),
       // Concertina from sinusoids: the body folds and unfolds (small yaw
       // phase step) while a pitch wave a quarter period later lifts the
       // part that slides.
@@ -78,7 +80,7 @@ const std::vector<Gait>& GaitPresets() {
       MakeCpg("cpg-forward",
               Make("", GaitKind::kLinear, {1, 0, 2.5, 0, 4, 0, 0})),
       MakeCpg("cpg-serpenoid",
-              Make("", GaitKind::kLinear, {0, 0.8, 0, 1.2, 3, 0, 0})),
+              Make("", GaitKind::kLinear, {0, 0.8, 0, -1.2, 3, 0, 0})),
   };
   return kPresets;
 }

@@ -203,6 +203,15 @@ Robot WrappedChain(double* arc_radius) {
     if (robot.modules[i].axis == Axis::kYaw) angles[i] = kPoleArcAngle;
   }
   Bend(robot, angles);
+  // The bent pose is the joints' zero, but a module's range is about its
+  // straight pose: the yaw range moves with the bend. Left at +-90 degrees
+  // about the arc, the range stopped the yaw hinges 0.57 rad short of the
+  // reversed bend that rolling needs half a cycle later, the arc opened
+  // and let go of the pole once a cycle (it rose 0.15 m and fell back).
+  for (size_t i = 0; i < angles.size(); ++i) {
+    robot.modules[i].joint.lower_range_limit -= angles[i];
+    robot.modules[i].joint.upper_range_limit -= angles[i];
+  }
   // The yaw hinges are the corners of a regular polygon: the centre of
   // the circle through three of them.
   const Eigen::Vector2d a = robot.modules[1].position.head<2>();

@@ -10,7 +10,8 @@ mrsim._core); nothing is implemented a second time in Python.
   ``detach``/``attach``, checkpoints.
 - Gaits: ``Gait("forward")``, ``gait.targets(t, state)``,
   ``sim.set_controller(gait); sim.run(10)``.
-- Episodes and the optimiser: ``run_episode``, ``mrsim.optimize``.
+- Episodes and the optimiser: ``run_episode``, ``run_task("pole")``,
+  ``mrsim.optimize`` (a scenario file or ``task="pole"``).
 - Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
 - LCM: ``Node`` (states, commands, lockstep, simulator control; signed
   with a key file, ``KeyFileError`` when it cannot be used).
@@ -34,6 +35,7 @@ from ._core import (  # noqa: F401
     gait_parameter_names,
     gait_presets,
     run_episode,
+    run_task,
     task_info,
     task_names,
 )
@@ -56,5 +58,5 @@ __all__ = [
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
     "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",
-    "task_info", "task_names",
+    "run_task", "task_info", "task_names",
 ]

@@ -1,7 +1,8 @@
 """Running mrsim's optimiser (mrsim-opt) from Python and reading its files.
 
 ``optimize(...)`` runs ``mrsim-opt`` (the C++ optimiser, locally on this
-machine's cores or, with ``farm=True``, on mrsim-worker processes) and
+machine's cores or, with ``farm=True``, on mrsim-worker processes) on a
+scenario file or a task of the suite (``task="pole"``) and
 calls ``progress(row)`` with each generation's row of ``generations.csv``
 as it is written. ``read_generations(out_dir)`` reads a run's files.
 """
@@ -48,24 +49,50 @@ def read_generations(out_dir: str) -> Dict[str, Any]:
     return out
 
 
-def optimize(scenario: str, genome: str, out_dir: str,
+def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
+             out_dir: Optional[str] = None,
              algorithm: str = "ga", generations: int = 10,
              population: Optional[int] = None, seed: Optional[int] = None,
              episode: Optional[float] = None, gait: Optional[str] = None,
              farm: bool = False, workers: Optional[int] = None,
              progress: Optional[Callable[[Dict[str, float]], None]] = None,
-             extra_args: tuple = ()) -> Dict[str, Any]:
+             extra_args: tuple = (), task: Optional[str] = None,
+             genes: Optional[str] = None) -> Dict[str, Any]:
     """Runs mrsim-opt on a scenario file and a genome file into out_dir
     (resumed when out_dir holds a checkpoint of the same problem).
+
+    task: a task of the suite (``mrsim.task_names()``, docs/tasks.md)
+    instead of a scenario: its world, its fitness (forward or up) and,
+    unless ``gait`` names one, its gait. genes: a built-in genome instead
+    of a genome file, "sine" (the seven gait genes) or "cpg" (those and
+    the CPG's). Exactly one of scenario and task, and one of genome and
+    genes; a task name that is not in the suite raises ValueError naming
+    the known ones before anything runs.
 
     workers: local threads (default: one per core; not with farm, whose
     mrsim-worker processes join by themselves). progress(row) is called with each new row of generations.csv (a dict
     generation, best, mean, worst, best_so_far, failed and the genes).
     Returns read_generations(out_dir). Raises RuntimeError with mrsim-opt's
     message when it fails (bad input: its exit status 2)."""
-    args = [_program("mrsim-opt"), os.fspath(scenario), "--genome",
-            os.fspath(genome), "--out", os.fspath(out_dir), "--algorithm",
-            algorithm, "--generations", str(int(generations)), "--quiet"]
+    if out_dir is None:
+        raise TypeError("optimize: out_dir is required")
+    if (scenario is None) == (task is None):
+        raise TypeError("optimize: give exactly one of scenario and task")
+    if (genome is None) == (genes is None):
+        raise TypeError("optimize: give exactly one of genome and genes")
+    if task is not None and task.replace("_", "-") not in _core.task_names():
+        raise ValueError("optimize: unknown task '%s': expected one of %s" %
+                         (task, ", ".join(_core.task_names())))
+    if genes is not None and genes not in ("sine", "cpg"):
+        raise ValueError("optimize: unknown genes '%s': expected sine or cpg"
+                         % genes)
+    args = [_program("mrsim-opt")]
+    args += (["--task", task] if task is not None
+             else [os.fspath(scenario)])  # type: ignore[arg-type]
+    args += (["--genes", genes] if genes is not None
+             else ["--genome", os.fspath(genome)])  # type: ignore[arg-type]
+    args += ["--out", os.fspath(out_dir), "--algorithm",
+             algorithm, "--generations", str(int(generations)), "--quiet"]
     if workers is not None and not farm:
         args += ["--workers", "local:%d" % workers]
     for flag, value in (("--population", population), ("--seed", seed),

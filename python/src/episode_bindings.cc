@@ -7,6 +7,7 @@
 #include <string>
 
 #include "optimizer/episode.h"
+#include "optimizer/task.h"
 #include "python/src/bindings.h"
 #include "python/src/gait_object.h"
 
@@ -70,6 +71,29 @@ mrsim-opt scores it:
 Returns a dict with fitness, distance (m), speed (m/s), energy (J),
 drift (m), fell (fraction of time upside down) and failed (unstable).
 distance_mode: 'forward' (+x), 'net' or 'up' (+z). The GIL is released meanwhile.)doc");
+  m.def(
+      "run_task",
+      [](const std::string& task, const py::object& gait, double seconds) {
+        const Task t = MakeTask(task);
+        const Gait g = gait.is_none()
+                           ? t.gait
+                           : gait.cast<std::shared_ptr<GaitObject>>()->gait();
+        EvalResult r;
+        {
+          py::gil_scoped_release release;
+          r = EvaluateTask(t, g, seconds);
+        }
+        return ResultDict(r);
+      },
+      py::arg("task"), py::arg("gait") = py::none(), py::arg("seconds") = 0.0,
+      R"doc(
+Runs one episode of a task of the suite (docs/tasks.md), as
+`mrsim tasks TASK --gait GAIT` does: the task's world and robot, the gait
+(default: the task's own, task_info(task)["gait"]) for `seconds` s of sim
+time (0: the task's episode length), scored by the task's fitness
+(distance along +x, or the rise of the centre of mass on the pole).
+Returns the dict of run_episode. ValueError for an unknown task naming
+the known ones. The GIL is released meanwhile.)doc");
 }
 
 }  // namespace mrsim::python

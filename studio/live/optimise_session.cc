@@ -48,7 +48,7 @@ OptimiseSession::~OptimiseSession() { Stop(); }
 
 ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                                   const std::string& genome_path) {
-  if (o.scenario_path.empty()) {
+  if (o.scenario_path.empty() && o.task.empty()) {
     throw std::invalid_argument("optimise: save the design to a file first");
   }
   if (o.out_dir.empty()) throw std::invalid_argument("optimise: no folder");
@@ -77,9 +77,14 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                "--seed",
                std::to_string(o.seed),
                "--episode",
-               fmt::format("{:g}", o.episode_s),
-               "--gait",
-               o.base_gait};
+               fmt::format("{:g}", o.episode_s)};
+  if (!o.task.empty()) {
+    spec.args[0] = "--task";
+    spec.args.insert(spec.args.begin() + 1, o.task);
+  }
+  if (o.task.empty() || !o.base_gait.empty()) {
+    spec.args.insert(spec.args.end(), {"--gait", o.base_gait});
+  }
   const FitnessSettings& f = o.fitness;
   spec.args.insert(spec.args.end(),
                    {"--distance", ToString(f.distance_mode), "--w-distance",

@@ -27,6 +27,9 @@ namespace mrsim::studio {
 
 struct OptimiseOptions {
   std::string scenario_path;
+  // A task of the suite (mrsim-opt --task) instead of scenario_path; its
+  // gait is the base unless base_gait names one.
+  std::string task;
   std::string out_dir;
   GenomeSpec genome;
   std::string algorithm = "cmaes";  // a name of Algorithms()

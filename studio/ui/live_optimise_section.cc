@@ -3,6 +3,7 @@
 // Part of LivePanel (live_panel.h), one file per section.
 #include "gait_controller/gait_presets.h"
 #include "optimizer/algorithm_registry.h"
+#include "optimizer/task.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
 
@@ -163,13 +164,15 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
   ImGui::InputInt("seed", &seed_);
+  task_picker_.Draw();
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("folder", &opt_dir_);
   DrawOptimiseSettings();
   auto start = [&](int jump_to) {
     try {
       message_.clear();
-      if (design.path.empty() || design.dirty) {
+      const std::string& task = task_picker_.task();
+      if (task.empty() && (design.path.empty() || design.dirty)) {
         throw std::invalid_argument("save the design first");
       }
       if (genome_.genes.empty()) {
@@ -180,6 +183,11 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.out_dir = opt_dir_;
       o.genome = genome_;
       if (!design.robots.empty()) o.genome.robot = design.robots.front();
+      if (!task.empty()) {  // the task's world, robot and own gait
+        o.task = task;
+        o.genome.robot = kTaskRobot;
+        o.base_gait.clear();
+      }
       o.algorithm = algorithms.at(algorithm_).name;
       o.generations = generations_;
       o.population = population_;

@@ -26,6 +26,7 @@
 #include "studio/live/live_session.h"
 #include "studio/live/optimise_session.h"
 #include "studio/ui/layout_recorder.h"
+#include "studio/ui/task_picker.h"
 
 namespace mrsim::studio {
 
@@ -119,6 +120,7 @@ class LivePanel {
   LayoutRecorder* layout_;
   LiveRunner runner_;
   OptimiseSession optimise_;
+  TaskPicker task_picker_;
   GenomeSpec genome_;
   std::string genome_path_ = "scenarios/forward_gait.genome.xml";
   std::string opt_dir_ = "optimise";

@@ -7,7 +7,9 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 
+#include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
+#include "gait_controller/gait_runner.h"
 #include "optimizer/process/opt_command.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_validate.h"
@@ -71,6 +73,30 @@ TEST(TaskSuite, TheWrappedPoleRobotStartsRoundThePole) {
     EXPECT_GT(r, pole_radius);
     EXPECT_LT(r, pole_radius + 0.1);
   }
+}
+
+// The pole task's own gait (helical rolling round the pole, docs/gait.md)
+// with real physics: it climbs, and with its servos limp (no torque: the
+// same world and state, every hinge's stall torque next to nothing) the
+// squeeze is gone and it slides back down.
+TEST(TaskSuite, HelicalRollingClimbsThePoleAndSlidesBackWhenTheServosGoLimp) {
+  const Task t = MakeTask("pole");
+  Physics physics(t.scenario);
+  GaitController controller(JointAxes(physics, 0));
+  controller.SetGait(t.gait);
+  const double z0 = physics.CenterOfMass(0).z();
+  RunGait(physics, 0, controller, 30.0, 0.01);
+  const double climbed = physics.CenterOfMass(0).z() - z0;
+  EXPECT_GE(climbed, 0.3) << "m in 30 s";
+
+  Scenario limp = t.scenario;
+  for (Module& m : limp.robots[0].modules) m.joint.max_torque = 1e-6;
+  Physics limp_physics(limp);
+  limp_physics.LoadState(physics.SaveState());
+  const double t0 = limp_physics.time();
+  while (limp_physics.time() - t0 < 1.0) limp_physics.Step();
+  const double after = limp_physics.CenterOfMass(0).z() - z0;
+  EXPECT_LT(after, climbed - 0.1) << "m after 1 s limp, from " << climbed;
 }
 
 OptCommand ParseOpt(std::vector<std::string> args) {

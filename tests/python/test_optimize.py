@@ -33,3 +33,33 @@ def test_optimize_with_a_bad_genome_raises(tmp_path):
         mrsim.optimize(source("scenarios/case_study.xml"), str(bad),
                        str(tmp_path / "opt"), generations=1)
     assert "bad.genome.xml" in str(e.value)
+
+
+def test_optimize_takes_a_task_and_built_in_genes(tmp_path):
+    out = str(tmp_path / "pole")
+    result = mrsim.optimize(task="pole", genes="sine", out_dir=out,
+                            algorithm="random", generations=1, population=2,
+                            seed=1, episode=0.5, workers=1)
+    assert len(result["generations"]["best"]) == 1
+    # The task's own gait is the base the genes modify.
+    assert result["best_gait"].kind == "roll"
+
+
+def test_optimize_names_the_known_tasks_for_an_unknown_one(tmp_path):
+    with pytest.raises(ValueError) as e:
+        mrsim.optimize(task="moon", genes="sine", out_dir=str(tmp_path / "o"))
+    assert "pole" in str(e.value) and "moon" in str(e.value)
+    with pytest.raises(TypeError):
+        mrsim.optimize(source("scenarios/snake11.xml"), task="flat",
+                       genes="sine", out_dir=str(tmp_path / "o"))
+
+
+def test_run_task_scores_an_episode_like_mrsim_tasks():
+    own = mrsim.run_task("pole", seconds=1.0)
+    assert not own["failed"]
+    same = mrsim.run_task("pole", mrsim.Gait("helical-pole"), seconds=1.0)
+    assert own["fitness"] != same["fitness"]  # not the wrapped gait
+    assert mrsim.run_task("flat", seconds=1.0) == mrsim.run_task(
+        "flat", seconds=1.0)  # deterministic
+    with pytest.raises(ValueError):
+        mrsim.run_task("moon")

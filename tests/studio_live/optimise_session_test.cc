@@ -91,6 +91,23 @@ TEST(OptimiseSession, SpecIsTheMrsimOptCommandLine) {
   EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
 }
 
+TEST(OptimiseSession, SpecWithATaskPassesTheTaskInsteadOfTheDesign) {
+  OptimiseOptions o;
+  o.task = "pole";
+  o.out_dir = "out";
+  o.base_gait.clear();  // the picker's choice: the task's own gait
+  const std::vector<std::string> args = OptimiseSession::Spec(o, "g.xml").args;
+  ASSERT_GE(args.size(), 2u);
+  EXPECT_EQ(args[0], "--task");
+  EXPECT_EQ(args[1], "pole");
+  EXPECT_TRUE(Has(args, "--genome"));
+  EXPECT_FALSE(Has(args, "--gait")) << "mrsim-opt takes the task's gait";
+  o.base_gait = "serpenoid";
+  EXPECT_TRUE(Has(OptimiseSession::Spec(o, "g.xml").args, "serpenoid"));
+  o.task.clear();  // neither a task nor a saved design
+  EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
+}
+
 // The panel's figures come from mrsim-opt's opt_progress_t, not its text:
 // only the messages of the panel's own run folder count, and a generation
 // read back from the checkpoint has workers but no rate or ETA yet.

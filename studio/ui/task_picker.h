@@ -1,0 +1,25 @@
+// The Optimise section's task picker: optimise on the design (the default)
+// or on a task of the suite (docs/tasks.md), whose world, fitness and gait
+// mrsim-opt then takes with --task instead of the design file.
+#pragma once
+
+#include <string>
+
+namespace mrsim::studio {
+
+class TaskPicker {
+ public:
+  // Draws the combo ("the design" and every task name) with a tooltip
+  // saying what the picked task scores.
+  void Draw();
+  // The picked task's name; empty: the design.
+  const std::string& task() const { return task_; }
+
+ private:
+  void Pick(const std::string& name);
+
+  std::string task_;
+  std::string about_;  // the tooltip: what the task scores, its gait
+};
+
+}  // namespace mrsim::studio
