@@ -34,6 +34,10 @@ struct AlgorithmInfo {
 const std::vector<AlgorithmInfo>& Algorithms();
 // The row of `kind` (throws std::invalid_argument for a value not listed).
 const AlgorithmInfo& AlgorithmInfoOf(AlgorithmKind kind);
+// Where `kind`'s row is in Algorithms(), for menus that hold an index (the
+// studio's default is AlgorithmIndex(AlgorithmKind::kCmaes), wherever the
+// registry lists it). Throws as AlgorithmInfoOf.
+int AlgorithmIndex(AlgorithmKind kind);
 // The words of the algorithms (built from Algorithms()).
 const EnumTable<AlgorithmKind>& AlgorithmNames();
 

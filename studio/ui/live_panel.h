@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gait_controller/gait_parameters.h"
+#include "optimizer/algorithm_registry.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
@@ -116,7 +117,7 @@ class LivePanel {
   std::string opt_dir_ = "optimise";
   // The last PNG export's outcome, shown under the plot it is for.
   std::pair<const PlotSeries*, std::string> png_note_;
-  int algorithm_ = 3;  // cmaes
+  int algorithm_ = AlgorithmIndex(AlgorithmKind::kCmaes);
   int generations_ = 10;
   int population_ = 8;
   int seed_ = 1;
@@ -137,7 +138,7 @@ class LivePanel {
   // Form state.
   std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
   std::string prefix_ = "MRSIM";
-  int clock_ = 0;  // realtime, fast, lockstep
+  int clock_ = 0;  // into ClockModes().entries(): realtime
   float rate_ = 100;
   float speed_ = 1;
   bool camera_follows_ = true;
