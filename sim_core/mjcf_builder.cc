@@ -299,8 +299,7 @@ GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name,
 // only: nothing of it collides or weighs.
 void AddCentreMarker(const std::string& site, const SensorKind& kind,
                      const Vector3d& half, BodySpec* body) {
-  const double c =
-      std::clamp(0.35 * std::min(half.x(), half.y()), 0.004, 0.02);
+  const double c = std::clamp(0.35 * std::min(half.x(), half.y()), 0.004, 0.02);
   const double t = 0.25 * c;
   const Vector3d chip(0, 0, half.z() + t);
   auto rgba = [](const Vector3d& rgb) { return Vec(rgb) + " 1"; };

@@ -450,8 +450,8 @@ void Physics::Impl::Index(const MjcfInfo& info) {
             ri.bodies.push_back(plate);
             if (si.plate < 0) si.plate = plate;
           } else if (kind.mount == SensorMount::kRay) {
-            inst.site = Id(mjOBJ_SITE,
-                           mjcf_names::SensorKindSite(ri.name, k, kind.name, i));
+            inst.site = Id(mjOBJ_SITE, mjcf_names::SensorKindSite(
+                                           ri.name, k, kind.name, i));
             inst.max_range = kind.ray(sm, i).max_range;
             si.max_distance.push_back(inst.max_range);
           }
@@ -797,8 +797,8 @@ RobotState Physics::ReadRobotState(int robot) const {
         in.mujoco.push_back(impl_->scratch->sensordata + adr);
       }
       if (inst.site >= 0) {
-        in.ray = CastDistanceRay(m, d, inst.site, si.plate, inst.max_range)
-                     .distance;
+        in.ray =
+            CastDistanceRay(m, d, inst.site, si.plate, inst.max_range).distance;
       }
       in.time = d->time;
       const uint64_t ids[3] = {static_cast<uint64_t>(robot), smi,

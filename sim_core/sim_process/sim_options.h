@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "lcmtypes/runtime/clock_mode.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/clock_mode.h"
 
 namespace mrsim {
 

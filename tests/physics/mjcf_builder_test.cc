@@ -366,12 +366,12 @@ TEST(MjcfBuilder, EveryKindOfPartHasItsOwnColourAndTheSceneMujocosLook) {
                            m->mat_rgba[4 * mat + 2]);
   };
   const std::vector<Eigen::Vector3d> kinds = {
-      rgba("snake/m0/f0"),      // pitch module
-      rgba("snake/m1/f0"),      // yaw module
-      rgba("snake/sm0"),        // sensor module
+      rgba("snake/m0/f0"),           // pitch module
+      rgba("snake/m1/f0"),           // yaw module
+      rgba("snake/sm0"),             // sensor module
       rgba("snake/sm0/force/body"),  // force plate
-      rgba("snake/sm0/distance"),     // distance sensor
-      rgba("scene/obj0"),       // scene object
+      rgba("snake/sm0/distance"),    // distance sensor
+      rgba("scene/obj0"),            // scene object
   };
   for (size_t a = 0; a < kinds.size(); ++a) {
     for (size_t b = a + 1; b < kinds.size(); ++b) {

@@ -46,7 +46,7 @@ TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
   ASSERT_NE(controllers, sim.end());
   EXPECT_EQ(*(controllers + 1), "gait-a");
   EXPECT_EQ(*(controllers + 2), "gait-b");
-  EXPECT_TRUE(Has(sim, "lockstep"));   // the clock's word
+  EXPECT_TRUE(Has(sim, "lockstep"));  // the clock's word
   EXPECT_FALSE(Has(sim, "--speed"));  // realtime only
   EXPECT_TRUE(Has(specs[0].args, o.lcm_url));
 
