@@ -108,9 +108,9 @@ struct SiteSpec {
   bool rangefinder = false;  // a ray along its z axis, export only
   // A marker site (display only, no physics): its MuJoCo type, size
   // parameters and colour; an empty type is the small default sphere.
-  std::string type;
+  std::string type = "";
   Vector3d size = Vector3d::Zero();
-  std::string rgba;
+  std::string rgba = "";
 };
 
 // An element with attributes, e.g. an asset.

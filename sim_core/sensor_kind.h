@@ -59,7 +59,7 @@ struct SensorPlate {
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // full extents
   double mass = 0.0;
-  std::string material;
+  std::string material = "";
 };
 
 // A kRay instance, in its sensor module's frame: from the centre of face
