@@ -138,6 +138,10 @@ const AlgorithmInfo& AlgorithmInfoOf(AlgorithmKind kind) {
                               " is not in the registry");
 }
 
+int AlgorithmIndex(AlgorithmKind kind) {
+  return static_cast<int>(&AlgorithmInfoOf(kind) - Algorithms().data());
+}
+
 const EnumTable<AlgorithmKind>& AlgorithmNames() {
   static const EnumTable<AlgorithmKind> kNames = [] {
     std::vector<EnumTable<AlgorithmKind>::Entry> entries;

@@ -57,6 +57,10 @@ const AlgorithmInfo& AlgorithmInfoOf(AlgorithmKind kind);
 // The setting whose flag is `flag` ("pso-c1") in any algorithm's row, or
 // null.
 const AlgorithmSetting* FindAlgorithmSetting(const std::string& flag);
+// Where `kind`'s row is in Algorithms(), for menus that hold an index (the
+// studio's default is AlgorithmIndex(AlgorithmKind::kCmaes), wherever the
+// registry lists it). Throws as AlgorithmInfoOf.
+int AlgorithmIndex(AlgorithmKind kind);
 // The words of the algorithms (built from Algorithms()).
 const EnumTable<AlgorithmKind>& AlgorithmNames();
 

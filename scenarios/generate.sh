@@ -61,6 +61,15 @@ sed -i -e 's|<height_Image />|<height_Image>terrain.png</height_Image>|' \
 sed -i -e '/<scene>/,/<\/position>/{s|<x>0</x>|<x>-1.6</x>|;s|<y>0</y>|<y>-1.6</y>|}' \
   terrain.xml
 "$tool" convert terrain.xml terrain.xml
+# A 5-module pitch-yaw snake with a sensor module between each pair of
+# modules, each carrying an IMU (<imu/>: accelerometer and gyroscope at the
+# module's centre, no noise), for the IMU's columns, plots and marker.
+"$tool" new --modules 5 --pattern pitch-yaw --sensors between \
+  --friction 0.5 --name imu_snake -o imu_snake.xml
+sed -i -e 's|</SensorModule>|<imu /></SensorModule>|' imu_snake.xml
+"$tool" convert imu_snake.xml imu_snake.xml
+
 "$tool" validate snake11.xml
 "$tool" validate case_study.xml
 "$tool" validate terrain.xml
+"$tool" validate imu_snake.xml

@@ -106,6 +106,11 @@ struct SiteSpec {
   Vector3d pos = Vector3d::Zero();
   Quaterniond quat = Quaterniond::Identity();
   bool rangefinder = false;  // a ray along its z axis, export only
+  // A marker site (display only, no physics): its MuJoCo type, size
+  // parameters and colour; an empty type is the small default sphere.
+  std::string type = "";
+  Vector3d size = Vector3d::Zero();
+  std::string rgba = "";
 };
 
 // An element with attributes, e.g. an asset.
@@ -209,8 +214,6 @@ class Builder {
   std::vector<ActuatorSpec> actuators_;
   std::vector<WeldSpec> welds_;
   std::vector<std::pair<std::string, std::string>> excludes_;
-  std::vector<std::pair<std::string, std::string>>
-      force_sensors_;  // name, site
   std::vector<ElementSpec> assets_;
   std::vector<std::pair<std::string, std::string>> rangefinders_;  // name, site
   std::vector<ElementSpec> kind_sensors_;  // sensor kinds' MuJoCo sensors
@@ -290,73 +293,105 @@ GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name,
   return g;
 }
 
+// What shows a kCentre sensor (the IMU, inside its module) in the viewer
+// and the studio: a chip of the kind's colour on the module's top face
+// with the module's axes as a small triad (x red, y green, z blue). Sites
+// only: nothing of it collides or weighs.
+void AddCentreMarker(const std::string& site, const SensorKind& kind,
+                     const Vector3d& half, BodySpec* body) {
+  const double c = std::clamp(0.35 * std::min(half.x(), half.y()), 0.004, 0.02);
+  const double t = 0.25 * c;
+  const Vector3d chip(0, 0, half.z() + t);
+  auto rgba = [](const Vector3d& rgb) { return Vec(rgb) + " 1"; };
+  SiteSpec look{site + "/look", chip};
+  look.type = "box";
+  look.size = Vector3d(c, c, t);
+  look.rgba = rgba(kind.rgb);
+  body->sites.push_back(look);
+  const double length = 1.8 * c;
+  const char* names[3] = {"/x", "/y", "/z"};
+  for (int i = 0; i < 3; ++i) {
+    const Vector3d axis = Vector3d::Unit(i);
+    SiteSpec arm{site + names[i], chip + axis * (length / 2),
+                 Quaterniond::FromTwoVectors(Vector3d::UnitZ(), axis)};
+    arm.type = "capsule";
+    arm.size = Vector3d(0.15 * c, length / 2, 0);
+    arm.rgba = rgba(0.15 * Vector3d::Ones() + 0.8 * axis);
+    body->sites.push_back(arm);
+  }
+}
+
 void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
                                    const SensorModule& sm, int body) {
+  // Every kind the same way by its mount (sensor_kind.h): a site per
+  // instance (on a plate body of its own, on a face, or at the module's
+  // centre), and the kind's MuJoCo sensors on that site.
   const Vector3d half = sm.size / 2;
-  if (sm.force_sensor) {
-    const ForceSensor& fsr = *sm.force_sensor;
-    const PlatePose local = ForcePlatePose(sm);
-    const BodySpec& parent = bodies_[body];
-    const int plate = AddBody(mjcf_names::PlateBody(robot_name, index),
-                              parent.pos + parent.quat * local.position,
-                              parent.quat * local.rotation);
-    bodies_[plate].parent = body;
-    bodies_[body].children.push_back(plate);
-    GeomSpec g;
-    g.name = bodies_[plate].name;
-    g.type = "box";
-    g.size = fsr.size / 2;
-    g.mass = fsr.mass;
-    g.material = fsr.material_name;
-    g.kind = PartKind::kForcePlate;
-    bodies_[plate].geoms.push_back(g);
-    bodies_[plate].sites.push_back({mjcf_names::ForceSite(robot_name, index),
-                                    Vector3d::Zero(), Quaterniond::Identity()});
-    force_sensors_.push_back({mjcf_names::ForceSensor(robot_name, index),
-                              mjcf_names::ForceSite(robot_name, index)});
-  }
-  for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
-    const DistanceSensor& ds = sm.distance_sensors[k];
-    const Vector3d n = SensorFaceNormal(ds.sensor_position);
-    const double h = std::abs(n.dot(half));
-    Vector3d dir = ds.ray_direction;
-    if (!(dir.norm() > 0) || !dir.allFinite()) dir = n;
-    dir.normalize();
-    const std::string site = mjcf_names::DistanceSite(robot_name, index, k);
-    // Site x axis = ray direction, at the face centre.
-    bodies_[body].sites.push_back(
-        {site, n * h, Quaterniond::FromTwoVectors(Vector3d::UnitX(), dir)});
-    if (options_.rangefinders) {
-      // MuJoCo's own sensor for viewers and other tools: it looks along
-      // its site's z axis and skips the sensor module's body, not its
-      // plate, so Physics keeps its own ray casts.
-      bodies_[body].sites.push_back(
-          {site + "/range", n * h,
-           Quaterniond::FromTwoVectors(Vector3d::UnitZ(), dir), true});
-      rangefinders_.push_back({site, site + "/range"});
-    }
-    if (ds.mass > 0 && ds.size.minCoeff() > 0) {
-      // The sensor's own mass and look; it never collides (the module does).
-      GeomSpec g;
-      g.name = site;
-      g.type = "box";
-      g.size = ds.size / 2;
-      g.pos = n * (h + std::abs(n.dot(ds.size)) / 2);
-      g.mass = ds.mass;
-      g.material = sm.material_name;
-      g.collide = false;
-      g.kind = PartKind::kDistanceSensor;
-      bodies_[body].geoms.push_back(g);
-    }
-  }
-  // Kinds read through MuJoCo's own sensors (sensor_kind.h): a site at the
-  // module's centre with the module's axes, and their sensors on it.
   for (const SensorKind& kind : SensorKinds()) {
-    if (kind.mujoco.empty()) continue;
     for (int k = 0; k < kind.count(sm); ++k) {
       const std::string site =
           mjcf_names::SensorKindSite(robot_name, index, kind.name, k);
-      bodies_[body].sites.push_back({site});
+      switch (kind.mount) {
+        case SensorMount::kCentre:
+          bodies_[body].sites.push_back({site});
+          AddCentreMarker(site, kind, half, &bodies_[body]);
+          break;
+        case SensorMount::kPlate: {
+          const SensorPlate local = kind.plate(sm, k);
+          const BodySpec& parent = bodies_[body];
+          const int plate = AddBody(
+              mjcf_names::SensorKindBody(robot_name, index, kind.name, k),
+              parent.pos + parent.quat * local.position,
+              parent.quat * local.rotation);
+          bodies_[plate].parent = body;
+          bodies_[body].children.push_back(plate);
+          GeomSpec g;
+          g.name = bodies_[plate].name;
+          g.type = "box";
+          g.size = local.size / 2;
+          g.mass = local.mass;
+          g.material = local.material;
+          g.kind = kind.look;
+          bodies_[plate].geoms.push_back(g);
+          bodies_[plate].sites.push_back(
+              {site, Vector3d::Zero(), Quaterniond::Identity()});
+          break;
+        }
+        case SensorMount::kRay: {
+          const SensorRay ray = kind.ray(sm, k);
+          const Vector3d n = SensorFaceNormal(ray.face);
+          const double h = std::abs(n.dot(half));
+          // Site x axis = ray direction, at the face centre.
+          bodies_[body].sites.push_back(
+              {site, n * h,
+               Quaterniond::FromTwoVectors(Vector3d::UnitX(), ray.direction)});
+          if (options_.rangefinders) {
+            // MuJoCo's own sensor for viewers and other tools: it looks
+            // along its site's z axis and skips the sensor module's body,
+            // not its plate, so Physics keeps its own ray casts.
+            bodies_[body].sites.push_back(
+                {site + "/range", n * h,
+                 Quaterniond::FromTwoVectors(Vector3d::UnitZ(), ray.direction),
+                 true});
+            rangefinders_.push_back({site, site + "/range"});
+          }
+          if (ray.look_mass > 0 && ray.look_size.minCoeff() > 0) {
+            // The sensor's own mass and look; it never collides (the
+            // module does).
+            GeomSpec g;
+            g.name = site;
+            g.type = "box";
+            g.size = ray.look_size / 2;
+            g.pos = n * (h + std::abs(n.dot(ray.look_size)) / 2);
+            g.mass = ray.look_mass;
+            g.material = sm.material_name;
+            g.collide = false;
+            g.kind = kind.look;
+            bodies_[body].geoms.push_back(g);
+          }
+          break;
+        }
+      }
       for (const SensorMujoco& ms : kind.mujoco) {
         kind_sensors_.push_back(
             {ms.element,
@@ -854,7 +889,13 @@ void Builder::WriteBody(tinyxml2::XMLPrinter& out, int index) const {
     out.PushAttribute("name", site.name.c_str());
     out.PushAttribute("pos", Vec(site.pos).c_str());
     out.PushAttribute("quat", Quat(site.quat).c_str());
-    out.PushAttribute("size", "0.004");
+    if (site.type.empty()) {
+      out.PushAttribute("size", "0.004");
+    } else {
+      out.PushAttribute("type", site.type.c_str());
+      out.PushAttribute("size", Vec(site.size).c_str());
+      out.PushAttribute("rgba", site.rgba.c_str());
+    }
     if (site.rangefinder) out.PushAttribute("group", "4");
     out.CloseElement();
   }
@@ -1095,12 +1136,8 @@ std::string Builder::Build() {
     }
     out.CloseElement();
   }
-  if (!force_sensors_.empty() || !rangefinders_.empty() ||
-      !kind_sensors_.empty()) {
+  if (!rangefinders_.empty() || !kind_sensors_.empty()) {
     out.OpenElement("sensor");
-    for (const auto& f : force_sensors_) {
-      element({"force", {{"name", f.first}, {"site", f.second}}});
-    }
     for (const auto& r : rangefinders_) {
       element({"rangefinder", {{"name", r.first}, {"site", r.second}}});
     }

@@ -21,18 +21,6 @@ std::string Servo(const std::string& robot, int module) {
 std::string SensorModuleBody(const std::string& robot, int sm) {
   return robot + "/sm" + std::to_string(sm);
 }
-std::string PlateBody(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/plate";
-}
-std::string ForceSite(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/plate_site";
-}
-std::string ForceSensor(const std::string& robot, int sm) {
-  return SensorModuleBody(robot, sm) + "/force";
-}
-std::string DistanceSite(const std::string& robot, int sm, int k) {
-  return SensorModuleBody(robot, sm) + "/d" + std::to_string(k);
-}
 std::string SensorKindSite(const std::string& robot, int sm, const char* kind,
                            int k) {
   return SensorModuleBody(robot, sm) + "/" + kind +
@@ -40,7 +28,18 @@ std::string SensorKindSite(const std::string& robot, int sm, const char* kind,
 }
 std::string SensorKindSensor(const std::string& robot, int sm, const char* kind,
                              int k, const char* suffix) {
+  if (suffix[0] == '\0') return SensorKindSite(robot, sm, kind, k);
   return SensorKindSite(robot, sm, kind, k) + "/" + suffix;
+}
+std::string SensorKindBody(const std::string& robot, int sm, const char* kind,
+                           int k) {
+  return SensorKindSite(robot, sm, kind, k) + "/body";
+}
+std::string PlateBody(const std::string& robot, int sm) {
+  return SensorKindBody(robot, sm, "force", 0);
+}
+std::string DistanceSite(const std::string& robot, int sm, int k) {
+  return SensorKindSite(robot, sm, "distance", k);
 }
 std::string Weld(const std::string& robot, const std::string& lock) {
   return robot + "/weld/" + lock;

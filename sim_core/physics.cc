@@ -96,19 +96,18 @@ struct Physics::Impl {
   };
   struct SensorModuleIndex {
     int body = -1;
-    int plate = -1;
-    int force_adr = -1;
-    std::vector<int> sites;
-    std::vector<int> faces;
-    std::vector<double> max_distance;
-    // Instances of kinds read through MuJoCo sensors (sensor_kind.h).
+    int plate = -1;  // the first kPlate instance's body: rays skip it
+    // Every sensor instance, in SensorKinds() order (sensor_kind.h).
     struct KindInstance {
       const SensorKind* kind = nullptr;
       int k = 0;
       int face = -1;
       std::vector<int> adr;  // sensordata address per SensorKind::mujoco
+      int site = -1;         // kRay: the ray's site
+      double max_range = 0;  // kRay
     };
     std::vector<KindInstance> kinds;
+    std::vector<double> max_distance;  // kRay instances' ranges, in order
   };
   struct LockIndex {
     std::string name;
@@ -436,21 +435,7 @@ void Physics::Impl::Index(const MjcfInfo& info) {
       SensorModuleIndex si;
       si.body = Id(mjOBJ_BODY, mjcf_names::SensorModuleBody(ri.name, k));
       ri.bodies.push_back(si.body);
-      if (sm.force_sensor) {
-        si.plate = Id(mjOBJ_BODY, mjcf_names::PlateBody(ri.name, k));
-        ri.bodies.push_back(si.plate);
-        const int sensor =
-            Id(mjOBJ_SENSOR, mjcf_names::ForceSensor(ri.name, k));
-        si.force_adr = m->sensor_adr[sensor];
-      }
-      for (size_t d = 0; d < sm.distance_sensors.size(); ++d) {
-        si.sites.push_back(
-            Id(mjOBJ_SITE, mjcf_names::DistanceSite(ri.name, k, d)));
-        si.faces.push_back(sm.distance_sensors[d].sensor_position);
-        si.max_distance.push_back(sm.distance_sensors[d].max_ray_distance);
-      }
       for (const SensorKind& kind : SensorKinds()) {
-        if (kind.mujoco.empty()) continue;
         for (int i = 0; i < kind.count(sm); ++i) {
           SensorModuleIndex::KindInstance inst{&kind, i, kind.face(sm, i), {}};
           for (const SensorMujoco& ms : kind.mujoco) {
@@ -458,6 +443,17 @@ void Physics::Impl::Index(const MjcfInfo& info) {
                 Id(mjOBJ_SENSOR, mjcf_names::SensorKindSensor(
                                      ri.name, k, kind.name, i, ms.suffix));
             inst.adr.push_back(m->sensor_adr[sensor]);
+          }
+          if (kind.mount == SensorMount::kPlate) {
+            const int plate = Id(mjOBJ_BODY, mjcf_names::SensorKindBody(
+                                                 ri.name, k, kind.name, i));
+            ri.bodies.push_back(plate);
+            if (si.plate < 0) si.plate = plate;
+          } else if (kind.mount == SensorMount::kRay) {
+            inst.site = Id(mjOBJ_SITE, mjcf_names::SensorKindSite(
+                                           ri.name, k, kind.name, i));
+            inst.max_range = kind.ray(sm, i).max_range;
+            si.max_distance.push_back(inst.max_range);
           }
           si.kinds.push_back(std::move(inst));
         }
@@ -760,10 +756,10 @@ RobotState Physics::ReadRobotState(int robot) const {
     state.joints.push_back(j);
   }
   bool need_forces = false;
-  // Force plates and the kinds read through MuJoCo sensors (accelerations)
-  // need the current state's forces.
+  // Kinds read through MuJoCo sensors (plate forces, accelerations) need
+  // the current state's forces.
   for (const auto& si : r.sensor_modules) {
-    need_forces |= si.force_adr >= 0 || !si.kinds.empty();
+    for (const auto& inst : si.kinds) need_forces |= !inst.adr.empty();
   }
   if (need_forces) {
     // Contact forces of the current state: a full forward pass on a copy,
@@ -792,16 +788,6 @@ RobotState Physics::ReadRobotState(int robot) const {
     const Impl::SensorModuleIndex& si = r.sensor_modules[smi];
     SensorModuleState sm;
     sm.pose = BodyPose(d, si.body);
-    if (si.force_adr >= 0) {
-      sm.has_force = true;
-      sm.force = mju_norm3(impl_->scratch->sensordata + si.force_adr);
-    }
-    for (size_t k = 0; k < si.sites.size(); ++k) {
-      sm.distances.push_back(
-          CastDistanceRay(m, d, si.sites[k], si.plate, si.max_distance[k])
-              .distance);
-      sm.distance_faces.push_back(si.faces[k]);
-    }
     for (const auto& inst : si.kinds) {
       SensorReadInput in;
       in.sensor_module =
@@ -810,14 +796,21 @@ RobotState Physics::ReadRobotState(int robot) const {
       for (int adr : inst.adr) {
         in.mujoco.push_back(impl_->scratch->sensordata + adr);
       }
+      if (inst.site >= 0) {
+        in.ray =
+            CastDistanceRay(m, d, inst.site, si.plate, inst.max_range).distance;
+      }
       in.time = d->time;
       const uint64_t ids[3] = {static_cast<uint64_t>(robot), smi,
                                static_cast<uint64_t>(inst.k)};
       in.key = Fnv1a64(ids, sizeof ids);
-      SensorReading reading{inst.kind->name, inst.face,
-                            std::vector<double>(inst.kind->channels.size())};
-      inst.kind->read(in, reading.values.data());
-      sm.readings.push_back(std::move(reading));
+      std::vector<double> values(inst.kind->channels.size());
+      inst.kind->read(in, values.data());
+      if (inst.kind->store != nullptr) {
+        inst.kind->store(sm, inst.face, values);
+      } else {
+        sm.readings.push_back({inst.kind->name, inst.face, std::move(values)});
+      }
     }
     state.sensor_modules.push_back(std::move(sm));
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sim_core/face_geometry.h"
 #include "sim_core/part_look.h"
 
 namespace mrsim {
@@ -15,6 +16,8 @@ std::uint64_t SplitMix64(std::uint64_t x) {
 }
 
 // --------------------------------------------------------------- force
+// A plate welded to a face; MuJoCo's `force` sensor on it reads what the
+// weld carries (N, plate axes), the reading is its magnitude.
 SensorKind ForceKind() {
   SensorKind k{"force",
                "force plate",
@@ -25,10 +28,45 @@ SensorKind ForceKind() {
   k.face = [](const SensorModule& sm, int) {
     return sm.force_sensor ? sm.force_sensor->sensor_position : -1;
   };
+  k.member = "force_sensor";
+  k.mount = SensorMount::kPlate;
+  k.plate = [](const SensorModule& sm, int) {
+    const ForceSensor& f = sm.force_sensor.value();
+    const PlatePose pose = ForcePlatePose(sm);
+    return SensorPlate{pose.position, pose.rotation, f.size, f.mass,
+                       f.material_name};
+  };
+  k.look = PartLook::kForcePlate;
+  k.mujoco = {{"force", ""}};
+  k.read = [](const SensorReadInput& in, double* out) {
+    const double* f = in.mujoco[0];
+    out[0] = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  };
+  k.store = [](SensorModuleState& state, int,
+               const std::vector<double>& values) {
+    state.has_force = true;
+    state.force = values[0];
+  };
+  k.fields = [](SensorModule& sm, int) {
+    return FieldsOf(sm.force_sensor.value());
+  };
+  k.set = [](SensorModule& sm, bool on) {
+    if (on == sm.force_sensor.has_value()) return;
+    if (on) {
+      ForceSensor plate;
+      plate.material_name = sm.material_name;
+      sm.force_sensor = plate;
+    } else {
+      sm.force_sensor.reset();
+      sm.force_sensor_lock.reset();
+    }
+  };
   return k;
 }
 
 // ------------------------------------------------------------ distance
+// A ray from a face along ray_Direction (the face's normal when that is
+// zero); the physics casts it, skipping the module and its plate.
 SensorKind DistanceKind() {
   SensorKind k{"distance",
                "distance sensor",
@@ -40,6 +78,33 @@ SensorKind DistanceKind() {
   };
   k.face = [](const SensorModule& sm, int i) {
     return sm.distance_sensors.at(i).sensor_position;
+  };
+  k.member = "distance_sensors";
+  k.many = true;
+  k.mount = SensorMount::kRay;
+  k.ray = [](const SensorModule& sm, int i) {
+    const DistanceSensor& ds = sm.distance_sensors.at(i);
+    SensorRay ray;
+    ray.face = ds.sensor_position;
+    ray.direction = ds.ray_direction;
+    if (!(ray.direction.norm() > 0) || !ray.direction.allFinite()) {
+      ray.direction = SensorFaceNormal(ds.sensor_position);
+    }
+    ray.direction.normalize();
+    ray.max_range = ds.max_ray_distance;
+    ray.look_size = ds.size;
+    ray.look_mass = ds.mass;
+    return ray;
+  };
+  k.look = PartLook::kDistanceSensor;
+  k.read = [](const SensorReadInput& in, double* out) { out[0] = in.ray; };
+  k.store = [](SensorModuleState& state, int face,
+               const std::vector<double>& values) {
+    state.distances.push_back(values[0]);
+    state.distance_faces.push_back(face);
+  };
+  k.fields = [](SensorModule& sm, int i) {
+    return FieldsOf(sm.distance_sensors.at(i));
   };
   return k;
 }
@@ -61,6 +126,7 @@ SensorKind ImuKind() {
                 {"gyro.z", "rad/s"}}};
   k.count = [](const SensorModule& sm) { return sm.imu ? 1 : 0; };
   k.face = [](const SensorModule&, int) { return -1; };
+  k.member = "imu";
   k.mujoco = {{"accelerometer", "accel"}, {"gyro", "gyro"}};
   k.read = [](const SensorReadInput& in, double* out) {
     const Imu& imu = *in.sensor_module->imu;

@@ -1,18 +1,23 @@
 // The sensor seam: one description per kind of sensor a sensor module can
 // carry (force plate, distance sensor, IMU). The schema describes a kind's
 // fields (scenario_schema_inl.h); everything else that differs per kind is
-// here, and the MJCF builder, the physics read-back, the state message
-// codec, the logger's CSV columns and the studio consult this table instead
-// of naming kinds. docs/architecture.md, "Adding a sensor kind", is the
-// recipe. No MJCF text and no LCM in here.
+// here: how an instance is mounted (a site at the module's centre, a plate
+// welded to a face, a ray from a face), the MuJoCo sensors it reads, how
+// its values are made and where they land in the state. The MJCF builder,
+// the physics read-back, the logger's CSV columns and the studio's
+// inspector walk this table instead of naming kinds. docs/architecture.md,
+// "Adding a sensor kind", is the recipe. No MJCF text and no LCM in here.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sim_core/part_look.h"
+#include "sim_core/robot_state.h"
 #include "sim_core/scenario.h"
 #include "sim_core/scenario_schema.h"
 
@@ -32,14 +37,52 @@ struct SensorMujoco {
   const char* suffix;   // appended to the site's name: "accel"
 };
 
-// Where a reading comes from when the kind reads MuJoCo sensors: the
-// instance, its MuJoCo sensors' values (in SensorKind::mujoco order), and
-// a key for noise that is the same for the same seed, robot, sensor module,
-// instance and simulation time.
+// How an instance sits on its sensor module; the MJCF builder and the
+// physics handle each mount the same way whatever the kind.
+enum class SensorMount {
+  // A site at the module's centre with the module's axes (the IMU).
+  kCentre,
+  // A body of its own welded to the module (SensorKind::plate), a site at
+  // its centre: the force plate, whose MuJoCo `force` sensor reads what
+  // the weld carries. Its bodies count for the robot's centre of mass and
+  // rays of the same module skip them.
+  kPlate,
+  // A site on a face looking along a direction (SensorKind::ray); the
+  // physics casts a ray from it that skips the module and its plates, and
+  // hands the distance to `read` (the distance sensor).
+  kRay,
+};
+
+// A kPlate instance, in its sensor module's frame.
+struct SensorPlate {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // full extents
+  double mass = 0.0;
+  std::string material = "";
+};
+
+// A kRay instance, in its sensor module's frame: from the centre of face
+// `face` along `direction` (unit), up to `max_range`. A look box of
+// `look_size` and `look_mass` (no collisions) sits on the face when both
+// are positive.
+struct SensorRay {
+  int face = 0;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  double max_range = 0.0;
+  Eigen::Vector3d look_size = Eigen::Vector3d::Zero();
+  double look_mass = 0.0;
+};
+
+// What `read` gets: the instance, its MuJoCo sensors' values (in
+// SensorKind::mujoco order), a ray's distance (kRay), and a key for noise
+// that is the same for the same seed, robot, sensor module, instance and
+// simulation time.
 struct SensorReadInput {
   const SensorModule* sensor_module = nullptr;
   int instance = 0;
   std::vector<const double*> mujoco;
+  double ray = 0.0;       // m, kRay only
   double time = 0.0;      // s
   std::uint64_t key = 0;  // robot, sensor module and instance
 };
@@ -55,19 +98,32 @@ struct SensorKind {
   // or -1 when it sits on no face (the IMU, at the module's centre).
   int (*count)(const SensorModule& sm) = nullptr;
   int (*face)(const SensorModule& sm, int k) = nullptr;
-  // Kinds read through MuJoCo's own sensors: the builder puts a site at
-  // the sensor module's centre (mjcf_names::SensorKindSite) with these
-  // sensors on it, and the physics calls `read` for each instance with
-  // their values, filling channels.size() values. Readings of such kinds
-  // travel in SensorModuleState::readings and the message's `readings`.
-  // Empty for force and distance, whose plate and rays the builder and
-  // physics make themselves and whose readings have fields of their own.
+  // Where the instances live in the scenario: SensorModule's member
+  // ("force_sensor", "distance_sensors", "imu") and whether it is a list
+  // (the studio's inspector group of the k-th is "distance_sensors[k]").
+  const char* member = "";
+  bool many = false;
+  // How an instance is mounted, with the plate or ray of the k-th for
+  // kPlate and kRay kinds, and the look (part_look.h) of their geoms.
+  SensorMount mount = SensorMount::kCentre;
+  SensorPlate (*plate)(const SensorModule& sm, int k) = nullptr;
+  SensorRay (*ray)(const SensorModule& sm, int k) = nullptr;
+  PartLook look = PartLook::kSensorModule;
+  // MuJoCo's own sensors on the instance's site (mjcf_names::SensorKindSite):
+  // the builder adds them, the physics reads their values and calls `read`
+  // for each instance, which fills channels.size() values.
   std::vector<SensorMujoco> mujoco = {};
   void (*read)(const SensorReadInput& in, double* out) = nullptr;
-  // For the studio, kinds with no geometry of their own (the IMU): the
-  // k-th instance's fields (the schema's FieldsOf) and putting one on or
-  // taking it off. nullptr for force and distance, which the studio lays
-  // out on the module's faces itself.
+  // Where the values land in the state. nullptr: a SensorReading in
+  // SensorModuleState::readings (the message's `readings`, any kind).
+  // Force and distance store into fields of their own (`force`,
+  // `distance`), whose wire layout recorded logs and controllers rely on.
+  void (*store)(SensorModuleState& state, int face,
+                const std::vector<double>& values) = nullptr;
+  // For the studio: the k-th instance's fields (the schema's FieldsOf),
+  // and, for kinds a module carries at most one of, putting one on or
+  // taking it off. A kPlate kind changes how the chain rests, so the
+  // studio lays the robot out again after `set`.
   std::vector<FieldRef> (*fields)(SensorModule& sm, int k) = nullptr;
   void (*set)(SensorModule& sm, bool on) = nullptr;
 };

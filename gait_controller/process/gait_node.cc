@@ -344,7 +344,8 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
   }
   // Only lockstep waits for an answer; a paused sim re-sends its newest
   // state whatever its clock, and that one may have been skipped.
-  const bool may_be_lockstep = sim_clock_.empty() || sim_clock_ == "lockstep";
+  const bool may_be_lockstep =
+      !sim_clock_ || *sim_clock_ == ClockMode::kLockstep;
   if (rate_ > 0 && state.seq == last_skipped_seq_ && may_be_lockstep) {
     Log(
         fmt::format("the simulator sent state seq {} again after it was "
@@ -412,7 +413,8 @@ void GaitNode::OnSimControl(const sim_control_t& request) {
 void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
   sim_heard_ = now;
-  sim_clock_ = status.clock;
+  // A word this build does not know (a newer simulator) may be lockstep.
+  sim_clock_ = ClockModes().Find(status.clock);
   if (!status.waiting_for.empty() && !warned_other_name_) {
     // A lockstep simulator waiting for controllers by name, and this one
     // is not among them: most often a --name that is not the one in the

@@ -17,6 +17,7 @@
 
 #include "gait_controller/gait.h"
 #include "gait_controller/gait_controller.h"
+#include "lcmtypes/runtime/clock_mode.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
@@ -160,7 +161,8 @@ class GaitNode {
 
   double rate_ = 0;  // options_.rate until lockstep shows it must be 0
   int64_t last_skipped_seq_ = -1;
-  std::string sim_clock_;  // from the sim's status; empty until heard
+  // From the sim's status; none until heard or when its word is unknown.
+  std::optional<ClockMode> sim_clock_;
   bool sim_stopped_ = false;
   WallTime started_;
   std::optional<WallTime> sim_heard_;  // the last state or status

@@ -3,11 +3,14 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "logger/csv_columns.h"
@@ -86,6 +89,61 @@ Array SensorForces(const RobotState& s) {
                : std::numeric_limits<double>::quiet_NaN();
   }
   return a;
+}
+
+// Three values of each sensor module's first reading of `kind` from
+// `first` on (the IMU's accel at 0, gyro at 3), shape (sensor_modules, 3);
+// NaN rows where a module has no such reading.
+Array ReadingTriples(const RobotState& s, const std::string& kind,
+                     size_t first) {
+  Array a({static_cast<py::ssize_t>(s.sensor_modules.size()),
+           static_cast<py::ssize_t>(3)});
+  double* d = a.mutable_data();
+  for (size_t i = 0; i < s.sensor_modules.size(); ++i) {
+    const SensorReading* found = nullptr;
+    for (const SensorReading& r : s.sensor_modules[i].readings) {
+      if (r.kind == kind && r.values.size() >= first + 3) {
+        found = &r;
+        break;
+      }
+    }
+    for (size_t j = 0; j < 3; ++j) {
+      d[3 * i + j] = found != nullptr
+                         ? found->values[first + j]
+                         : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return a;
+}
+
+// Every reading carried in SensorModuleState::readings (the IMU and any
+// kind after it), per sensor module: {kind: array (instances, values)}.
+py::list SensorReadings(const RobotState& s) {
+  py::list out;
+  for (const SensorModuleState& m : s.sensor_modules) {
+    std::map<std::string, std::vector<const SensorReading*>> by_kind;
+    for (const SensorReading& r : m.readings) by_kind[r.kind].push_back(&r);
+    py::dict kinds;
+    for (const auto& [kind, readings] : by_kind) {
+      size_t width = 0;
+      for (const SensorReading* r : readings) {
+        width = std::max(width, r->values.size());
+      }
+      Array a({static_cast<py::ssize_t>(readings.size()),
+               static_cast<py::ssize_t>(width)});
+      double* d = a.mutable_data();
+      for (size_t k = 0; k < readings.size(); ++k) {
+        for (size_t j = 0; j < width; ++j) {
+          d[k * width + j] = j < readings[k]->values.size()
+                                 ? readings[k]->values[j]
+                                 : std::numeric_limits<double>::quiet_NaN();
+        }
+      }
+      kinds[py::str(kind)] = a;
+    }
+    out.append(kinds);
+  }
+  return out;
 }
 
 // The logger's CSV row of this state: the same flattener mrsim-log uses,
@@ -217,6 +275,25 @@ logger's CSV columns. columns() gives the logger's CSV row itself.)doc");
       },
       "The face (0..5) of each distance sensor, per sensor module.");
   c.def_property_readonly(
+      "imu_accel",
+      [](const StateObject& s) { return ReadingTriples(s.state, "imu", 0); },
+      "IMU accelerometer readings (m/s^2, the sensor module's axes; at rest "
+      "+9.81 along its up), shape (sensor_modules, 3); NaN rows where a "
+      "module has no IMU (CSV: sensor_module<k>.imu.accel.x .. z).");
+  c.def_property_readonly(
+      "imu_gyro",
+      [](const StateObject& s) { return ReadingTriples(s.state, "imu", 3); },
+      "IMU gyroscope readings (rad/s, the sensor module's axes), shape "
+      "(sensor_modules, 3); NaN rows where a module has no IMU (CSV: "
+      "sensor_module<k>.imu.gyro.x .. z).");
+  c.def_property_readonly(
+      "sensor_readings",
+      [](const StateObject& s) { return SensorReadings(s.state); },
+      "Readings of the sensor kinds that travel as readings (the IMU: "
+      "accel.x, accel.y, accel.z, gyro.x, gyro.y, gyro.z), one dict per "
+      "sensor module from kind name to an array of shape (instances, "
+      "values).");
+  c.def_property_readonly(
       "com", [](const StateObject& s) { return Vector3(s.state.com); },
       "Centre of mass (m) (CSV: com.x, com.y, com.z).");
   c.def_property_readonly(
@@ -260,6 +337,8 @@ logger's CSV columns. columns() gives the logger's CSV row itself.)doc");
             r.sensor_modules,
             [](const SensorModuleState& m) -> const Pose& { return m.pose; });
         d["sensor_force"] = SensorForces(r);
+        d["imu_accel"] = ReadingTriples(r, "imu", 0);
+        d["imu_gyro"] = ReadingTriples(r, "imu", 3);
         d["com"] = Vector3(r.com);
         d["com_velocity"] = Vector3(r.com_velocity);
         return d;

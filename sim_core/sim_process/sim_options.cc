@@ -6,14 +6,6 @@
 
 namespace mrsim {
 
-const EnumTable<ClockMode>& ClockModes() {
-  static const EnumTable<ClockMode> kModes(
-      "--clock", {{ClockMode::kRealtime, "realtime"},
-                  {ClockMode::kFast, "fast"},
-                  {ClockMode::kLockstep, "lockstep"}});
-  return kModes;
-}
-
 void SimOptions::Validate() const {
   if (prefix.empty())
     throw std::invalid_argument("--prefix: must not be empty");

@@ -5,23 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "common/enum_table.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/clock_mode.h"
 
 namespace mrsim {
-
-// realtime: paced to the wall clock times `speed`. fast: as fast as the CPU
-// allows. lockstep: each control period waits for an answer to the current
-// state from every controller, so runs are deterministic.
-enum class ClockMode { kRealtime, kFast, kLockstep };
-// The clock's words (sim_status_t.clock carries them too).
-const EnumTable<ClockMode>& ClockModes();
-inline const char* ToString(ClockMode mode) { return ClockModes().Name(mode); }
-// Throws std::invalid_argument naming `field` and the accepted values.
-inline ClockMode ParseClockMode(const std::string& text,
-                                const std::string& field = "--clock") {
-  return ClockModes().Parse(text, field);
-}
 
 inline constexpr int kMaxActuationDelay = 8;
 

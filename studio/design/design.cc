@@ -369,36 +369,35 @@ void Design::SetSensorKind(const SensorKind& kind, bool on) {
   Scenario next = scenario_;
   SensorModule& sm = SelectedSensorModule(&next);
   if (kind.set == nullptr || on == (kind.count(sm) > 0)) return;
-  kind.set(sm, on);
-  Commit(std::move(next), selection_);
-}
-
-void Design::SetForcePlate(bool on) {
-  Scenario next = scenario_;
-  SensorModule& sm = SelectedSensorModule(&next);
-  if (on == sm.force_sensor.has_value()) return;
+  if (kind.mount != SensorMount::kPlate) {
+    kind.set(sm, on);
+    Commit(std::move(next), selection_);
+    return;
+  }
+  // A plate changes how the chain rests: laid out again, plates and their
+  // locks named as MakeChain names them, the chain on its plates or on the
+  // ground.
   Robot& robot = next.robots[selection_.robot];
   ChainOptions options = OptionsOf(robot);  // the origin under the old lift
-  if (on) {
-    ForceSensor plate;
-    plate.material_name = sm.material_name;
-    sm.force_sensor = plate;
-  } else {
-    sm.force_sensor.reset();
-    sm.force_sensor_lock.reset();
-  }
+  kind.set(sm, on);
   options.force_sensors = false;
   for (const SensorModule& s : robot.sensor_modules) {
-    if (s.force_sensor) options.force_sensors = true;
+    for (const SensorKind& k : SensorKinds()) {
+      if (k.mount == SensorMount::kPlate && k.count(s) > 0) {
+        options.force_sensors = true;
+      }
+    }
   }
-  // Laid out again: plates and their locks named as MakeChain names them,
-  // the chain on its plates or on the ground.
   try {
     robot = Relayout(robot, ChainOrder(robot), options);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
   Commit(std::move(next), selection_);
+}
+
+void Design::SetForcePlate(bool on) {
+  SetSensorKind(*FindSensorKind("force"), on);
 }
 
 void Design::AddDistanceSensor(int face) {

@@ -80,13 +80,13 @@ class Design {
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);
-  // The selected sensor module gets a force plate (on its bottom face) or
-  // loses it; the chain rises onto plates or comes down when the first
-  // arrives or the last goes.
-  void SetForcePlate(bool on);
-  // The selected sensor module gets a sensor of `kind` (sensor_kind.h,
-  // a kind with SensorKind::set: the IMU) or loses it.
+  // The selected sensor module gets a sensor of `kind` (sensor_kind.h, a
+  // kind with SensorKind::set: the force plate, the IMU) or loses it. A
+  // plate kind lays the chain out again: it rises onto plates or comes
+  // down when the first arrives or the last goes.
   void SetSensorKind(const SensorKind& kind, bool on);
+  // SetSensorKind of the force plate (on its bottom face).
+  void SetForcePlate(bool on);
   // A distance sensor on face `face` (0..5: bottom, left, top, right,
   // front, back) of the selected sensor module, looking out of that face;
   // one per face, at most six.

@@ -36,22 +36,21 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
           in(sel.index, s.robots[sel.robot].sensor_modules.size())) {
         SensorModule& sm = s.robots[sel.robot].sensor_modules[sel.index];
         groups.push_back({"", "Sensor module", FieldsOf(sm)});
-        if (sm.force_sensor) {
-          groups.push_back(
-              {"force_sensor", "Force plate", FieldsOf(*sm.force_sensor)});
-        }
-        for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
+        // One group per sensor, named by its member in the scenario
+        // ("force_sensor", "distance_sensors[1]", "imu") and titled by
+        // its kind's label ("Force plate", "Distance sensor 1", "IMU").
+        for (const SensorKind& kind : SensorKinds()) {
           if (kind.fields == nullptr) continue;
           for (int k = 0; k < kind.count(sm); ++k) {
-            const std::string n = k == 0 ? "" : std::to_string(k);
-            groups.push_back(
-                {kind.name + n, kind.label + n, kind.fields(sm, k)});
+            std::string id = kind.member;
+            std::string title = kind.label;
+            title[0] = static_cast<char>(std::toupper(title[0]));
+            if (kind.many) {
+              id += "[" + std::to_string(k) + "]";
+              title += " " + std::to_string(k);
+            }
+            groups.push_back({id, title, kind.fields(sm, k)});
           }
-        }
-        for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
-          groups.push_back({"distance_sensors[" + std::to_string(k) + "]",
-                            "Distance sensor " + std::to_string(k),
-                            FieldsOf(sm.distance_sensors[k])});
         }
       }
       break;

@@ -43,9 +43,10 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
   if (o.scenario_path.empty()) {
     throw std::invalid_argument("run: save the design to a file first");
   }
-  if (o.clock != "realtime" && o.clock != "fast" && o.clock != "lockstep") {
-    throw std::invalid_argument("run: clock '" + o.clock +
-                                "' (expected realtime, fast or lockstep)");
+  if (std::string(ToString(o.clock)) == "?") {
+    throw std::invalid_argument("run: clock " +
+                                std::to_string(static_cast<int>(o.clock)) +
+                                " (expected " + ClockModes().Choices() + ")");
   }
   if (!(o.rate > 0) || !std::isfinite(o.rate)) {
     throw std::invalid_argument(
@@ -72,12 +73,12 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
   sim.name = "sim";
   sim.program = "mrsim-sim";
   sim.required = true;
-  sim.args = {o.scenario_path, "--clock", o.clock, "--rate",
+  sim.args = {o.scenario_path, "--clock", ToString(o.clock), "--rate",
               fmt::format("{:g}", o.rate)};
-  if (o.clock == "realtime") {
+  if (o.clock == ClockMode::kRealtime) {
     sim.args.insert(sim.args.end(), {"--speed", fmt::format("{:g}", o.speed)});
   }
-  if (o.clock == "lockstep" && !senders.empty()) {
+  if (o.clock == ClockMode::kLockstep && !senders.empty()) {
     sim.args.push_back("--controllers");
     sim.args.insert(sim.args.end(), senders.begin(), senders.end());
   }

@@ -13,6 +13,7 @@
 
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
+#include "lcmtypes/runtime/clock_mode.h"
 
 namespace mrsim::studio {
 
@@ -21,10 +22,10 @@ struct RunOptions {
   std::vector<std::string> robots;  // one mrsim-gait each
   std::string lcm_url;              // empty: LCM's default
   std::string prefix = "MRSIM";
-  std::string clock = "realtime";  // realtime | fast | lockstep
-  double rate = 100;               // Hz
-  double speed = 1;                // real-time factor (realtime clock)
-  std::string gait = "forward";    // each robot's starting gait
+  ClockMode clock = ClockMode::kRealtime;
+  double rate = 100;             // Hz
+  double speed = 1;              // real-time factor (realtime clock)
+  std::string gait = "forward";  // each robot's starting gait
   bool paused = false;
 };
 

@@ -180,13 +180,9 @@ void InspectorPanel::DrawSensorMounts(StudioContext& studio,
                                       const Selection& sel) {
   const SensorModule& sm =
       view.robots.at(sel.robot).sensor_modules.at(sel.index);
-  bool plate = sm.force_sensor.has_value();
-  if (ImGui::Checkbox("force plate", &plate)) {
-    studio.Try(plate ? "add the force plate" : "remove the force plate",
-               [&] { studio.design.SetForcePlate(plate); });
-  }
-  studio.Record("force plate");
-  for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
+  // A checkbox per kind a module carries at most one of (force plate,
+  // IMU); distance sensors are added per face below.
+  for (const SensorKind& kind : SensorKinds()) {
     if (kind.set == nullptr) continue;
     bool on = kind.count(sm) > 0;
     if (ImGui::Checkbox(kind.label, &on)) {

@@ -19,6 +19,7 @@
 
 #include "gait_controller/gait_parameters.h"
 #include "optimizer/algorithm.h"
+#include "optimizer/algorithm_registry.h"
 #include "optimizer/episode.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
@@ -126,7 +127,7 @@ class LivePanel {
   std::string opt_dir_ = "optimise";
   // The last PNG export's outcome, shown under the plot it is for.
   std::pair<const PlotSeries*, std::string> png_note_;
-  int algorithm_ = 3;  // cmaes
+  int algorithm_ = AlgorithmIndex(AlgorithmKind::kCmaes);
   // The form's fitness, base gait and algorithm settings (each algorithm's
   // own from the registry, AlgorithmInfo::settings).
   FitnessSettings fitness_;
@@ -155,7 +156,7 @@ class LivePanel {
   // Form state.
   std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
   std::string prefix_ = "MRSIM";
-  int clock_ = 0;  // realtime, fast, lockstep
+  int clock_ = 0;  // into ClockModes().entries(): realtime
   float rate_ = 100;
   float speed_ = 1;
   bool camera_follows_ = true;

@@ -10,7 +10,7 @@ namespace mrsim::studio {
 void LivePanel::DrawRun(const LiveDesign& design) {
   ImGui::TextUnformatted("Run this design");
   ImGui::SetNextItemWidth(110);
-  ImGui::Combo("clock", &clock_, kClocks, IM_ARRAYSIZE(kClocks));
+  EnumCombo("clock", &clock_, ClockModes());
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputFloat("Hz", &rate_, 0, 0, "%.0f");
@@ -80,7 +80,7 @@ RunOptions LivePanel::FormRun() const {
   RunOptions o;
   o.lcm_url = url_;
   o.prefix = prefix_;
-  o.clock = kClocks[clock_];
+  o.clock = ClockModes().entries().at(clock_).value;
   o.rate = rate_;
   o.speed = speed_;
   return o;

@@ -34,6 +34,8 @@ TEST(AlgorithmRegistry, EveryRowBuildsItsAlgorithmAndRoundTripsItsName) {
     EXPECT_EQ(ParseAlgorithm(info.name), info.kind) << info.name;
     EXPECT_STREQ(ToString(info.kind), info.name);
     EXPECT_EQ(&AlgorithmInfoOf(info.kind), &info);
+    // Menus holding an index (the studio's default) find the row by kind.
+    EXPECT_EQ(&Algorithms().at(AlgorithmIndex(info.kind)), &info);
     AlgorithmSettings settings;
     settings.algorithm = info.kind;
     settings.population = std::max(4, info.min_population);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/physics.h"
@@ -142,6 +144,34 @@ TEST(PhysicsImu, ModelHasMujocosAccelerometerAndGyroOnTheModulesCentre) {
       std::string::npos);
 }
 
+TEST(PhysicsImu, IsDrawnAsAChipWithTheModulesAxesOnItsTopFace) {
+  // Sites only: what the viewer and the studio show, nothing that weighs
+  // or collides. The chip sits on the top face (the IMU itself is inside).
+  const Scenario s = ImuScenario(Imu{}, Eigen::Vector3d(0, 0, 0.03));
+  const std::string mjcf = BuildMjcf(s);
+  const double top = s.robots[0].sensor_modules[0].size.z() / 2;
+  for (const char* part : {"look", "x", "y", "z"}) {
+    const std::string name = std::string("probe/sm0/imu/") + part;
+    const size_t at = mjcf.find("<site name=\"" + name + "\"");
+    ASSERT_NE(at, std::string::npos) << name << "\n" << mjcf;
+    const std::string element = mjcf.substr(at, mjcf.find('>', at) - at);
+    EXPECT_NE(element.find("rgba=\""), std::string::npos) << element;
+    EXPECT_EQ(element.find("group="), std::string::npos) << element;  // shown
+    double x = 0, y = 0, z = 0;
+    const size_t pos = element.find("pos=\"");
+    ASSERT_NE(pos, std::string::npos) << element;
+    ASSERT_EQ(
+        std::sscanf(element.c_str() + pos, "pos=\"%lf %lf %lf", &x, &y, &z), 3)
+        << element;
+    EXPECT_GT(z, top) << element;
+  }
+  EXPECT_NE(mjcf.find("name=\"probe/sm0/imu/look\" pos=\"0 0"),
+            std::string::npos);
+  // The marker changes no reading: the same as a model without it would
+  // give is checked by ModuleAtRestReadsGravityUpAndNoRate; here, no geom.
+  EXPECT_EQ(mjcf.find("<geom name=\"probe/sm0/imu"), std::string::npos);
+}
+
 TEST(PhysicsImu, ModuleWithoutImuHasNoReadings) {
   Scenario s = ImuScenario(Imu{}, Eigen::Vector3d(0, 0, 0.03));
   s.robots[0].sensor_modules[0].imu.reset();
@@ -150,14 +180,30 @@ TEST(PhysicsImu, ModuleWithoutImuHasNoReadings) {
   EXPECT_TRUE(physics.ReadRobotState(0).sensor_modules[0].readings.empty());
 }
 
-TEST(SensorKinds, EveryKindHasANameChannelsAndACount) {
+TEST(SensorKinds, EveryKindHasWhatTheBuilderPhysicsAndStudioNeed) {
   for (const SensorKind& kind : SensorKinds()) {
     EXPECT_EQ(FindSensorKind(kind.name), &kind);
     EXPECT_FALSE(kind.channels.empty()) << kind.name;
     EXPECT_NE(kind.count, nullptr) << kind.name;
     EXPECT_NE(kind.face, nullptr) << kind.name;
-    EXPECT_EQ(kind.mujoco.empty(), kind.read == nullptr) << kind.name;
+    // Every kind is read by the physics the same way.
+    EXPECT_NE(kind.read, nullptr) << kind.name;
+    EXPECT_EQ(kind.mount == SensorMount::kPlate, kind.plate != nullptr)
+        << kind.name;
+    EXPECT_EQ(kind.mount == SensorMount::kRay, kind.ray != nullptr)
+        << kind.name;
+    // A centre kind has nothing but MuJoCo's sensors to read.
+    if (kind.mount == SensorMount::kCentre) {
+      EXPECT_FALSE(kind.mujoco.empty()) << kind.name;
+    }
+    // The studio's inspector shows every kind.
+    EXPECT_NE(kind.fields, nullptr) << kind.name;
+    EXPECT_NE(std::string(kind.member), "") << kind.name;
   }
+  // The three kinds a sensor module carries, by their mounts.
+  EXPECT_EQ(FindSensorKind("force")->mount, SensorMount::kPlate);
+  EXPECT_EQ(FindSensorKind("distance")->mount, SensorMount::kRay);
+  EXPECT_EQ(FindSensorKind("imu")->mount, SensorMount::kCentre);
   EXPECT_EQ(FindSensorKind("sonar"), nullptr);
 }
 

@@ -83,7 +83,7 @@ TEST(MjcfBuilder, NamesFollowTheChain) {
   }
   EXPECT_GE(mj_name2id(m.get(), mjOBJ_SENSOR, "snake/sm0/force"), 0);
   EXPECT_GE(mj_name2id(m.get(), mjOBJ_SENSOR, "snake/sm1/force"), 0);
-  EXPECT_GE(mj_name2id(m.get(), mjOBJ_SITE, "snake/sm0/d0"), 0);
+  EXPECT_GE(mj_name2id(m.get(), mjOBJ_SITE, "snake/sm0/distance"), 0);
   EXPECT_GE(mj_name2id(m.get(), mjOBJ_GEOM, "scene/terrain"), 0);
   // One free root, hinges for the rest; locks add no joints.
   EXPECT_EQ(m->njnt, 12);
@@ -366,12 +366,12 @@ TEST(MjcfBuilder, EveryKindOfPartHasItsOwnColourAndTheSceneMujocosLook) {
                            m->mat_rgba[4 * mat + 2]);
   };
   const std::vector<Eigen::Vector3d> kinds = {
-      rgba("snake/m0/f0"),      // pitch module
-      rgba("snake/m1/f0"),      // yaw module
-      rgba("snake/sm0"),        // sensor module
-      rgba("snake/sm0/plate"),  // force plate
-      rgba("snake/sm0/d0"),     // distance sensor
-      rgba("scene/obj0"),       // scene object
+      rgba("snake/m0/f0"),           // pitch module
+      rgba("snake/m1/f0"),           // yaw module
+      rgba("snake/sm0"),             // sensor module
+      rgba("snake/sm0/force/body"),  // force plate
+      rgba("snake/sm0/distance"),    // distance sensor
+      rgba("scene/obj0"),            // scene object
   };
   for (size_t a = 0; a < kinds.size(); ++a) {
     for (size_t b = a + 1; b < kinds.size(); ++b) {
@@ -391,7 +391,7 @@ TEST(MjcfBuilder, EveryKindOfPartHasItsOwnColourAndTheSceneMujocosLook) {
   ASSERT_GE(m->geom_matid[floor], 0);
   EXPECT_GE(m->mat_texid[m->geom_matid[floor]], 0);
   // Distance sensors are MuJoCo rangefinders too.
-  const int range = mj_name2id(m.get(), mjOBJ_SENSOR, "snake/sm0/d0");
+  const int range = mj_name2id(m.get(), mjOBJ_SENSOR, "snake/sm0/distance");
   ASSERT_GE(range, 0);
   EXPECT_EQ(m->sensor_type[range], mjSENS_RANGEFINDER);
 }

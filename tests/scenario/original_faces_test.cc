@@ -4,12 +4,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <CLI/CLI.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
+#include "sim_core/scenario_tool/scenario_command.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
 
@@ -75,6 +78,36 @@ TEST(OriginalFaces, FrontSensorOfAnOriginalFileReadsTheBallAheadOfIt) {
   ASSERT_EQ(state.sensor_modules.size(), 1u);
   ASSERT_EQ(state.sensor_modules[0].distances.size(), 2u);
   // Four units of 1 cm.
+  EXPECT_NEAR(state.sensor_modules[0].distances[0], 0.04, 1e-6);
+}
+
+// The regression as a user met it: `mrsim-scenario convert --from
+// unity-y-up --scale 0.01` of that file converts (no "the ray of face 4
+// (front) runs into ..."), and the converted file's front sensor reads the
+// ball 4 cm ahead.
+TEST(OriginalFaces, ConvertFromUnityYUpKeepsTheFrontSensorOnTheBall) {
+  const std::string dir = TempDir("original_front_convert");
+  const std::string in = FrontSensorFacingABall(dir);
+  const std::string out = dir + "/converted.xml";
+  std::vector<std::string> args = {"mrsim-scenario", "convert", "--from",
+                                   "unity-y-up",     in,        out,
+                                   "--scale",        "0.01"};
+  CLI::App app;
+  ScenarioCommand command;
+  AddScenarioFlags(app, command);
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  std::ostringstream text, info;
+  ASSERT_NO_THROW(RunScenarioCommand(command, text, info)) << info.str();
+
+  const Scenario s = ReadScenarioFile(out);  // a native file now
+  const SensorModule& sm = s.robots.at(0).sensor_modules.at(0);
+  EXPECT_TRUE(SensorFaceNormal(sm.distance_sensors.at(0).sensor_position)
+                  .isApprox(sm.distance_sensors.at(0).ray_direction));
+  Physics physics(s);
+  const RobotState state = physics.ReadRobotState(0);
+  ASSERT_EQ(state.sensor_modules.at(0).distances.size(), 2u);
   EXPECT_NEAR(state.sensor_modules[0].distances[0], 0.04, 1e-6);
 }
 

@@ -64,10 +64,10 @@ TEST(StudioBestReplay, WritesTheFilesTheRunStartsFrom) {
   const BestReplay best = MakeBestReplay(o, row);
   const std::string dir = TempDir("best_replay") + "/watch";
   RunOptions form;
-  form.clock = "fast";
+  form.clock = ClockMode::kFast;
   form.lcm_url = "udpm://239.255.76.67:7001?ttl=0";
   const RunOptions run = WriteBestReplay(best, dir, form);
-  EXPECT_EQ(run.clock, "fast");
+  EXPECT_EQ(run.clock, ClockMode::kFast);
   EXPECT_EQ(run.lcm_url, form.lcm_url);
   EXPECT_EQ(run.robots, std::vector<std::string>{"snake"});
   ASSERT_TRUE(std::filesystem::path(run.scenario_path).is_absolute());

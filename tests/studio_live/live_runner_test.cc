@@ -31,7 +31,7 @@ TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
   RunOptions o;
   o.scenario_path = "robots.xml";
   o.robots = {"a", "b"};
-  o.clock = "lockstep";
+  o.clock = ClockMode::kLockstep;
   o.lcm_url = "udpm://239.255.76.67:7000?ttl=0";
   const auto specs = LiveRunner::RunSpecs(o);
   ASSERT_EQ(specs.size(), 3u);
@@ -46,10 +46,11 @@ TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
   ASSERT_NE(controllers, sim.end());
   EXPECT_EQ(*(controllers + 1), "gait-a");
   EXPECT_EQ(*(controllers + 2), "gait-b");
+  EXPECT_TRUE(Has(sim, "lockstep"));  // the clock's word
   EXPECT_FALSE(Has(sim, "--speed"));  // realtime only
   EXPECT_TRUE(Has(specs[0].args, o.lcm_url));
 
-  o.clock = "realtime";
+  o.clock = ClockMode::kRealtime;
   o.speed = 0.5;
   o.paused = true;
   const auto rt = LiveRunner::RunSpecs(o)[2].args;
@@ -57,9 +58,9 @@ TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
   EXPECT_TRUE(Has(rt, "--paused"));
 
   EXPECT_TRUE(Has(LiveRunner::RecordSpec(o, "rec").args, "rec"));
-  o.clock = "wallclock";
+  o.clock = static_cast<ClockMode>(7);  // not a clock the simulator knows
   EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
-  o.clock = "fast";
+  o.clock = ClockMode::kFast;
   o.rate = 0;
   EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
   o.rate = 100;

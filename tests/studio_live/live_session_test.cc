@@ -114,6 +114,41 @@ TEST_F(LiveSessionTest, PlotBufferHoldsExactlyTheValuesTheStatesCarried) {
   EXPECT_EQ(std::find(cols.begin(), cols.end(), "seq"), cols.end());
 }
 
+TEST_F(LiveSessionTest, ImuReadingsArePlottedLiveByTheirLogColumns) {
+  // The IMU's six values travel as a reading; the plot names them as the
+  // logger's CSV does and holds what the states carried.
+  PlotSeries& accel_z =
+      session_.AddPlot("TEST_STATE_snake", "sensor_module0.imu.accel.z", 100);
+  PlotSeries& gyro_x =
+      session_.AddPlot("TEST_STATE_snake", "sensor_module0.imu.gyro.x", 100);
+  std::vector<double> sent_accel_z, sent_gyro_x;
+  for (int64_t seq = 0; seq < 10; ++seq) {
+    robot_state_t s = testing::KnownRobotState(seq, 4, 1, "snake");
+    sensor_reading_t imu{};
+    imu.kind = "imu";
+    imu.face = -1;
+    imu.values = {0.1, -0.2, 9.81 + 0.01 * seq, 0.5 * seq, 0.0, -0.3};
+    imu.num_values = static_cast<int32_t>(imu.values.size());
+    s.sensor_modules[0].readings = {imu};
+    s.sensor_modules[0].num_readings = 1;
+    sent_accel_z.push_back(imu.values[2]);
+    sent_gyro_x.push_back(imu.values[3]);
+    Hear("TEST_STATE_snake", s);
+  }
+  const auto cols = session_.Columns("TEST_STATE_snake");
+  for (const char* c :
+       {"sensor_module0.imu.accel.x", "sensor_module0.imu.accel.z",
+        "sensor_module0.imu.gyro.x", "sensor_module0.imu.gyro.z"}) {
+    EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  }
+  ASSERT_EQ(accel_z.values().size(), 10u);
+  ASSERT_EQ(gyro_x.values().size(), 10u);
+  for (size_t i = 0; i < 10; ++i) {
+    EXPECT_EQ(accel_z.values()[i], sent_accel_z[i]) << i;
+    EXPECT_EQ(gyro_x.values()[i], sent_gyro_x[i]) << i;
+  }
+}
+
 TEST_F(LiveSessionTest, PausedPlotTakesNothingAndAResetStartsItAfresh) {
   PlotSeries& p = session_.AddPlot("TEST_STATE_snake", "com.x", 10);
   Hear("TEST_STATE_snake", testing::KnownRobotState(5, 2, 0, "snake"));
