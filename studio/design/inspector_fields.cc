@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "sim_core/sensor_kind.h"
+#include "studio/design/inert_fields.h"
 
 namespace mrsim::studio {
 
@@ -26,19 +27,26 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       if (robot_ok() && in(sel.index, s.robots[sel.robot].modules.size())) {
         Module& m = s.robots[sel.robot].modules[sel.index];
         groups.push_back({"", "Module", FieldsOf(m)});
-        groups.push_back({"joint", "Joint", FieldsOf(m.joint)});
-        groups.push_back({"frames[0]", "Front frame", FieldsOf(m.frames[0])});
-        groups.push_back({"frames[1]", "Back frame", FieldsOf(m.frames[1])});
+        groups.push_back({"joint", "Joint",
+                          WithoutInert(FieldsOf(m.joint), {"breakForce"})});
+        groups.push_back({"frames[0]", "Front frame",
+                          WithoutInert(FieldsOf(m.frames[0]), {"rotation"})});
+        groups.push_back({"frames[1]", "Back frame",
+                          WithoutInert(FieldsOf(m.frames[1]), {"rotation"})});
       }
       break;
     case PartKind::kSensorModule:
       if (robot_ok() &&
           in(sel.index, s.robots[sel.robot].sensor_modules.size())) {
         SensorModule& sm = s.robots[sel.robot].sensor_modules[sel.index];
-        groups.push_back({"", "Sensor module", FieldsOf(sm)});
+        groups.push_back(
+            {"", "Sensor module",
+             WithoutInert(FieldsOf(sm), {"rotation", "forceLockPosition",
+                                         "distanceLockPosition"})});
         if (sm.force_sensor) {
-          groups.push_back(
-              {"force_sensor", "Force plate", FieldsOf(*sm.force_sensor)});
+          groups.push_back({"force_sensor", "Force plate",
+                            WithoutInert(FieldsOf(*sm.force_sensor),
+                                         {"position", "rotation"})});
         }
         for (const SensorKind& kind : SensorKinds()) {  // the IMU, ...
           if (kind.fields == nullptr) continue;
@@ -51,14 +59,16 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
         for (size_t k = 0; k < sm.distance_sensors.size(); ++k) {
           groups.push_back({"distance_sensors[" + std::to_string(k) + "]",
                             "Distance sensor " + std::to_string(k),
-                            FieldsOf(sm.distance_sensors[k])});
+                            WithoutInert(FieldsOf(sm.distance_sensors[k]),
+                                         {"rotation", "ray_Resolution"})});
         }
       }
       break;
     case PartKind::kObject:
       if (in(sel.index, s.scene_objects.size())) {
         groups.push_back(
-            {"", "Scene object", FieldsOf(s.scene_objects[sel.index])});
+            {"", "Scene object",
+             WithoutInert(FieldsOf(s.scene_objects[sel.index]), {"rotation"})});
       }
       break;
     case PartKind::kScene:

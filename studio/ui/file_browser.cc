@@ -42,7 +42,9 @@ void FileBrowser::List() {
     if (name.empty() || name[0] == '.') continue;
     if (e.is_directory(ec)) {
       dirs_.push_back(name);
-    } else if (e.path().extension() == extension_) {
+    } else if (("|" + extension_ + "|")
+                   .find("|" + e.path().extension().string() + "|") !=
+               std::string::npos) {
       files_.push_back(name);
     }
   }

@@ -13,6 +13,7 @@ class LayoutRecorder;
 class FileBrowser {
  public:
   // Opens the dialog in `dir`. save: the name may be a new file.
+  // `extension` may list several, ".stl|.obj".
   void Open(const std::string& title, const std::string& dir,
             const std::string& extension, bool save);
   bool is_open() const { return open_; }
