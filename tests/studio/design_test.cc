@@ -557,11 +557,11 @@ TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
   // Pitch modules are 160 mm long now, the yaw module 100 mm: hinges
   // 0.16 / 2 + 0.1 / 2 apart.
   EXPECT_NEAR(r.modules[0].position.x() - r.modules[1].position.x(),
-              0.08 + 0.05, 1e-9);
+              0.08 + 0.05, 1e-6);  // STL stores float32
   EXPECT_NEAR(r.modules[1].position.x() - r.modules[2].position.x(),
-              0.05 + 0.08, 1e-9);
+              0.05 + 0.08, 1e-6);  // STL stores float32
   EXPECT_NEAR(r.modules[0].frames[0].position.x() - r.modules[0].position.x(),
-              0.04, 1e-9);
+              0.04, 1e-6);  // STL stores float32
   // One undo step.
   d.Undo();
   EXPECT_EQ(d.scenario().robots[0].modules[0].frames[0].shape, "Box");
@@ -572,7 +572,7 @@ TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
   ASSERT_EQ(grown.modules.size(), 4u);
   EXPECT_EQ(grown.modules[3].frames[0].shape, "link.stl");
   EXPECT_NEAR(grown.modules[2].position.x() - grown.modules[3].position.x(),
-              0.08 + 0.08, 1e-9);
+              0.08 + 0.08, 1e-6);  // STL stores float32
   // The physics builds it, and the saved file reads back.
   d.SaveAs(dir + "/robot_mesh.xml");
   const Scenario back = ReadScenarioFile(dir + "/robot_mesh.xml");
