@@ -51,17 +51,20 @@ void DrawPrintSection(StudioContext& studio) {
 
 void UsePrintFile(StudioContext& studio, const std::string& chosen) {
   switch (studio.browse_for) {
-    case BrowseFor::kExportStl:
+    case BrowseFor::kExportStl: {
+      std::string done;
       studio.Try("export STL", [&] {
         const StlExport result = ExportStl(studio.design.scenario());
         WriteStlExport(result, chosen);
         int count = 0;
         for (const PrintedPart& p : result.parts) count += p.count;
-        studio.Note("exported " + std::to_string(count) + " parts (" +
-                    std::to_string(result.parts.size()) + " distinct) to " +
-                    chosen);
+        done = "exported " + std::to_string(count) + " parts (" +
+               std::to_string(result.parts.size()) + " distinct) to " + chosen;
       });
+      // Said after Try, which clears the message when the edit succeeds.
+      if (!done.empty()) studio.Note(done);
       break;
+    }
     case BrowseFor::kFrameMesh:
     case BrowseFor::kKindMesh:
       studio.Try("use the mesh", [&] {

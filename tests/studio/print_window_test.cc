@@ -56,11 +56,17 @@ class StudioPrintTest : public ::testing::Test {
   // Types `name` into the open file dialog and presses its OK button.
   void ChooseInDialog(const std::string& name) {
     ASSERT_TRUE(WaitForLayout(layout_, "modal", "file"));
-    Click("file name");
-    ASSERT_TRUE(Xdotool({"type", "--delay", "20", name}));
-    Click("file ok");
-    ASSERT_TRUE(WaitForLayout(layout_, "modal", "none"))
-        << ReadLayout(layout_)["message"];
+    // A popup's first frames may not take the click yet: click, replace
+    // the whole text (ctrl+a) and press Enter until the dialog closes.
+    bool closed = false;
+    for (int attempt = 0; attempt < 5 && !closed; ++attempt) {
+      Click("file name");
+      ASSERT_TRUE(Xdotool({"key", "ctrl+a"}));
+      ASSERT_TRUE(Xdotool({"type", "--delay", "20", name}));
+      ASSERT_TRUE(Xdotool({"key", "Return"}));
+      closed = WaitForLayout(layout_, "modal", "none", 15);
+    }
+    ASSERT_TRUE(closed) << ReadLayout(layout_)["message"];
   }
 
   std::string dir_, file_, layout_;
