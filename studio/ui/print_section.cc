@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,12 @@ void DrawPrintSection(StudioContext& studio) {
   }
   if (studio.Button("Export STL...", -1)) {
     studio.browse_for = BrowseFor::kExportStl;
+    // A folder named after the design, beside it, unless another is typed.
+    const std::string path = studio.design.path();
+    const std::string stem =
+        path.empty() ? "robot" : std::filesystem::path(path).stem().string();
     studio.browser.Open("Export STL into a folder (type its name)",
-                        studio.StartFolder(), "", true);
+                        studio.StartFolder(), "", true, stem + "_stl");
   }
 }
 
