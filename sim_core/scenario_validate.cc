@@ -46,6 +46,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Mesh files are hostile input: larger ones are refused before anything
+// (this check or MuJoCo's reader) reads them.
+constexpr std::uintmax_t kMaxMeshFileBytes = 64u << 20;
+
 std::string Lower(std::string s) {
   for (char& c : s) {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -353,6 +357,13 @@ class Validator {
     std::error_code ec;
     if (!in || !fs::is_regular_file(resolved, ec)) {
       Fail(path, "cannot read mesh file '" + resolved + "'");
+    }
+    // A mesh file is hostile input: its size is checked before anything
+    // reads it, here or in MuJoCo.
+    const std::uintmax_t size = fs::file_size(resolved, ec);
+    if (ec || size > kMaxMeshFileBytes) {
+      Fail(path, "mesh file '" + resolved + "' is larger than " +
+                     std::to_string(kMaxMeshFileBytes >> 20) + " MB");
     }
     const std::string bytes((std::istreambuf_iterator<char>(in)),
                             std::istreambuf_iterator<char>());

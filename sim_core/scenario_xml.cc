@@ -663,6 +663,7 @@ Scenario Reader::Read(const std::string& xml) {
   }
   s.base_dir = base_dir_;
   ValidateScenario(s, &source_);
+  if (options_.source_out) *options_.source_out = source_;
   return s;
 }
 

@@ -23,6 +23,9 @@ struct ScenarioReadOptions {
   // file in centimetres. Fields the file leaves out take the model's
   // defaults, which are already in metres.
   double length_scale = 1.0;
+  // When set, receives the file and the line of every element read, so a
+  // later check (overlap_check.h) can name lines as the reader does.
+  ScenarioSource* source_out = nullptr;
 };
 
 // What the original MRSim wrote (its .NET namespaces and no frame

@@ -29,6 +29,7 @@ SensorKind ForceKind() {
     return sm.force_sensor ? sm.force_sensor->sensor_position : -1;
   };
   k.member = "force_sensor";
+  k.inert_fields = {"position", "rotation"};
   k.mount = SensorMount::kPlate;
   k.plate = [](const SensorModule& sm, int) {
     const ForceSensor& f = sm.force_sensor.value();
@@ -81,6 +82,7 @@ SensorKind DistanceKind() {
   };
   k.member = "distance_sensors";
   k.many = true;
+  k.inert_fields = {"rotation", "ray_Resolution"};
   k.mount = SensorMount::kRay;
   k.ray = [](const SensorModule& sm, int i) {
     const DistanceSensor& ds = sm.distance_sensors.at(i);

@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
     const std::string nearest = mrsim::NearestSubcommand(app, argv[1]);
     std::cerr << "error: unknown subcommand '" << argv[1] << "'"
               << (nearest.empty() ? "" : " (did you mean " + nearest + "?)")
-              << "; expected validate, info, schema, export-mjcf, convert "
-                 "or new (--help)\n";
+              << "; expected validate, info, schema, export-mjcf, "
+                 "export-stl, convert or new (--help)\n";
     return 2;
   }
   try {

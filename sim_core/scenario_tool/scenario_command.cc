@@ -9,10 +9,12 @@
 
 #include "common/atomic_file.h"
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/overlap_check.h"
 #include "sim_core/scenario.h"
 #include "sim_core/scenario_tool/scenario_summary.h"
 #include "sim_core/scenario_tool/schema_table.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/stl_export.h"
 
 namespace mrsim {
 namespace {
@@ -55,12 +57,35 @@ FrameConvention FrameNamed(const std::string& name) {
                               : FrameConvention::kZUp;
 }
 
+// The second step of validate: parts overlapping at the start, all of
+// them named, one per line.
+void CheckNoOverlaps(const Scenario& s, const ScenarioSource& source) {
+  std::vector<PartOverlap> overlaps;
+  try {
+    overlaps = FindOverlaps(s);
+  } catch (const std::exception& e) {
+    throw ScenarioInputError(source.file +
+                             ": cannot build the MuJoCo model: " + e.what());
+  }
+  if (overlaps.empty()) return;
+  std::string text;
+  for (const PartOverlap& o : overlaps) {
+    if (!text.empty()) text += "\n";
+    text += DescribeOverlap(o, &source);
+  }
+  throw ScenarioInputError(text);
+}
+
 void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
   switch (c.action) {
     case ScenarioAction::kNone:
       throw ScenarioInputError("no subcommand given");
     case ScenarioAction::kValidate: {
-      const Scenario s = ReadScenarioFile(c.file);
+      ScenarioSource source;
+      ScenarioReadOptions read;
+      read.source_out = &source;
+      const Scenario s = ReadScenarioFile(c.file, read);
+      CheckNoOverlaps(s, source);
       out << fmt::format("{}: ok ({}, {})\n", c.file,
                          Counted(s.robots.size(), "robot"),
                          Counted(s.scene_objects.size(), "scene object"));
@@ -91,6 +116,26 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
             c.file + ": cannot build the MuJoCo model: " + e.what());
       }
       WriteOutput(mjcf, c.out_path, out, info);
+      return;
+    }
+    case ScenarioAction::kExportStl: {
+      const Scenario s = ReadScenarioFile(c.file);
+      StlExport result;
+      try {
+        result = ExportStl(s);
+      } catch (const std::exception& e) {
+        throw ScenarioInputError(c.file + ": " + e.what());
+      }
+      WriteStlExport(result, c.out_path);
+      int printed = 0;
+      for (const PrintedPart& p : result.parts) printed += p.count;
+      out << fmt::format("{}: {} ({} distinct) in {}\n", c.file,
+                         Counted(static_cast<size_t>(printed), "part"),
+                         result.parts.size(), c.out_path);
+      for (const PrintedPart& p : result.parts) {
+        out << fmt::format("  {} x {}\n", p.count,
+                           p.file.empty() ? p.name + " (not printed)" : p.file);
+      }
       return;
     }
     case ScenarioAction::kConvert: {
@@ -169,6 +214,14 @@ void AddScenarioFlags(CLI::App& app, ScenarioCommand& c) {
   export_mjcf->add_option("FILE", c.file, "Scenario file")->required();
   export_mjcf->add_option("-o,--output", c.out_path,
                           "Output file (default: stdout)");
+
+  auto* export_stl =
+      on(app.add_subcommand("export-stl",
+                            "Write each distinct robot part as a binary STL "
+                            "in mm, each robot assembled and parts.csv"),
+         ScenarioAction::kExportStl);
+  export_stl->add_option("FILE", c.file, "Scenario file")->required();
+  export_stl->add_option("OUT_DIR", c.out_path, "Output directory")->required();
 
   auto* convert = on(app.add_subcommand("convert",
                                         "Rewrite a scenario (e.g. a Unity "

@@ -23,14 +23,15 @@ enum class ScenarioAction {
   kSchema,
   kExport,
   kConvert,
-  kNew
+  kNew,
+  kExportStl
 };
 
 // Everything the command line sets.
 struct ScenarioCommand {
   ScenarioAction action = ScenarioAction::kNone;
   std::string file;      // validate, info, export-mjcf; convert's IN
-  std::string out_path;  // "" or "-": stdout
+  std::string out_path;  // "" or "-": stdout; export-stl: the directory
   // convert
   double scale = 1.0;
   std::string from_frame;  // "": the file's own frame attribute

@@ -1,9 +1,12 @@
 #include "studio/design/chain_edit.h"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "sim_core/face_geometry.h"
+#include "sim_core/frame_mesh.h"
 
 namespace mrsim::studio {
 namespace {
@@ -14,6 +17,21 @@ std::string Renamed(const std::string& guid, const std::string& from,
     return to + guid.substr(from.size());
   }
   return guid;
+}
+
+// A new module of `axis` looks like the existing ones of its kind: the
+// mesh frames of the first such module that has them.
+void CarryMeshOfKind(const Robot& old, Axis axis, Module* to) {
+  for (const Module& m : old.modules) {
+    if (m.axis != axis || !(m.frames[0].is_mesh() || m.frames[1].is_mesh())) {
+      continue;
+    }
+    for (int f = 0; f < 2; ++f) {
+      to->frames[f].shape = m.frames[f].shape;
+      to->frames[f].scale = m.frames[f].scale;
+    }
+    return;
+  }
 }
 
 void CarryModule(const Module& from, Module* to) {
@@ -149,7 +167,7 @@ ChainOptions OptionsOf(const Robot& robot) {
 }
 
 Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
-               const ChainOptions& options) {
+               const ChainOptions& options, const std::string& base_dir) {
   ChainOptions chain = options;
   chain.modules = 0;
   chain.pattern = ChainPattern::kPitch;
@@ -199,19 +217,47 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
     } else {
       Module& m = robot.modules[module++];
       m.axis = slot.axis;
-      if (slot.source >= 0) CarryModule(old.modules.at(slot.source), &m);
+      if (slot.source >= 0) {
+        CarryModule(old.modules.at(slot.source), &m);
+      } else {
+        CarryMeshOfKind(old, slot.axis, &m);
+      }
     }
   }
-  Restack(&robot);
+  Restack(&robot, base_dir);
   return robot;
 }
 
-void Restack(Robot* robot) {
+void Restack(Robot* robot, const std::string& base_dir) {
   constexpr double kTouching = 1e-9;  // m
   if (robot->modules.empty()) return;
-  for (const Module& m : robot->modules) {
-    if (m.frames[0].is_mesh() || m.frames[1].is_mesh()) return;
+  // Each frame's extent along x in its own coordinates: lo (behind its
+  // origin, negative) and hi. A box spans +-scale/2.
+  std::map<std::string, std::pair<double, double>> measured;
+  auto extent = [&](const Frame& f) {
+    if (!f.is_mesh()) return std::make_pair(-f.scale.x() / 2, f.scale.x() / 2);
+    const std::string key = f.shape + "|" + std::to_string(f.scale.x()) + "|" +
+                            std::to_string(f.scale.y()) + "|" +
+                            std::to_string(f.scale.z());
+    auto it = measured.find(key);
+    if (it == measured.end()) {
+      const Eigen::AlignedBox3d box = FrameBounds(f, base_dir);
+      it = measured.emplace(key, std::make_pair(box.min().x(), box.max().x()))
+               .first;
+    }
+    return it->second;
+  };
+  try {
+    for (const Module& m : robot->modules) {
+      for (const Frame& f : m.frames) extent(f);
+    }
+  } catch (const std::exception&) {
+    return;  // a mesh that cannot be read: the validator says why
   }
+  auto length = [&](const Frame& f) {
+    const auto [lo, hi] = extent(f);
+    return hi - lo;
+  };
   // Front faces from the front going towards -x, relative to the first.
   const std::vector<ChainSlot> slots = ChainOrder(*robot);
   std::vector<double> front(slots.size());
@@ -223,8 +269,8 @@ void Restack(Robot* robot) {
       cursor -= robot->sensor_modules[slots[i].source].size.x();
     } else {
       const Module& m = robot->modules[slots[i].source];
-      if (slots[i].source == 0) hinge0 = cursor - m.frames[0].scale.x();
-      cursor -= m.frames[0].scale.x() + m.frames[1].scale.x();
+      if (slots[i].source == 0) hinge0 = cursor - length(m.frames[0]);
+      cursor -= length(m.frames[0]) + length(m.frames[1]);
     }
   }
   const double shift = robot->modules[0].position.x() - hinge0;
@@ -239,10 +285,12 @@ void Restack(Robot* robot) {
       PlaceMounted(&sm);
     } else {
       Module& m = robot->modules[slots[i].source];
-      const double hinge = face - m.frames[0].scale.x();
+      const double hinge = face - length(m.frames[0]);
       place(&m.position.x(), hinge);
-      place(&m.frames[0].position.x(), hinge + m.frames[0].scale.x() / 2);
-      place(&m.frames[1].position.x(), hinge - m.frames[1].scale.x() / 2);
+      // The front frame spans [hinge, hinge + length], the back one
+      // [hinge - length, hinge].
+      place(&m.frames[0].position.x(), hinge - extent(m.frames[0]).first);
+      place(&m.frames[1].position.x(), hinge - extent(m.frames[1]).second);
     }
   }
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sim_core/chain_builder.h"
@@ -34,8 +35,11 @@ ChainOptions OptionsOf(const Robot& robot);
 // carries the edited fields of the parts `slots` take from `old`. Throws
 // std::invalid_argument when the chain cannot be built: no module, or two
 // sensor modules next to each other.
+// A new module takes the mesh frames (shape and scale) of the first
+// module of its kind in `old` that has them. Mesh frames are measured with
+// `base_dir` (Restack).
 Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
-               const ChainOptions& options);
+               const ChainOptions& options, const std::string& base_dir = "");
 
 // Puts the force plate and distance sensors of `sm` on the centres of
 // their faces (sensorPosition) of the module as it is now, as the physics
@@ -45,8 +49,9 @@ void PlaceMounted(SensorModule* sm);
 // Slides the parts of `robot` along the chain (x) so each touches the one
 // in front with its own length (its frames' scale, a sensor module's size),
 // module 0's hinge staying put; what is mounted on a sensor module moves
-// with it. Parts that already touch keep their exact coordinates. Robots
-// with mesh frames (length unknown here) are left as they are.
-void Restack(Robot* robot);
+// with it. Parts that already touch keep their exact coordinates. A mesh
+// frame's length is its mesh's bounds along x (read with `base_dir`, the
+// design's folder); a robot whose mesh cannot be read is left as it is.
+void Restack(Robot* robot, const std::string& base_dir = "");
 
 }  // namespace mrsim::studio

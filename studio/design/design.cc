@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "sim_core/face_geometry.h"
+#include "sim_core/frame_mesh.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
 #include "studio/design/chain_edit.h"
@@ -182,7 +183,7 @@ void Design::AddPart(NextPart part, Where where) {
   slot.axis = part == NextPart::kYawModule ? Axis::kYaw : Axis::kPitch;
   slots.insert(slots.begin() + at, slot);
   try {
-    next.robots[r] = Relayout(old, slots, OptionsOf(old));
+    next.robots[r] = Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
@@ -312,7 +313,8 @@ void Design::RemoveSelected() {
         break;
       }
       try {
-        next.robots[sel.robot] = Relayout(old, slots, OptionsOf(old));
+        next.robots[sel.robot] =
+            Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
       } catch (const std::invalid_argument& e) {
         throw DesignError("cannot remove it: " + std::string(e.what()));
       }
@@ -351,7 +353,8 @@ void Design::MoveSelected(int steps) {
   slots.erase(slots.begin() + at);
   slots.insert(slots.begin() + to, moved);
   try {
-    next.robots[selection_.robot] = Relayout(old, slots, OptionsOf(old));
+    next.robots[selection_.robot] =
+        Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError("cannot move it: " + std::string(e.what()));
   }
@@ -389,7 +392,7 @@ void Design::SetSensorKind(const SensorKind& kind, bool on) {
     }
   }
   try {
-    robot = Relayout(robot, ChainOrder(robot), options);
+    robot = Relayout(robot, ChainOrder(robot), options, scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
@@ -511,7 +514,7 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
       (address.field == "scale" && address.sub.rfind("frames[", 0) == 0) ||
       (address.field == "size" && address.sub.empty());
   if (length && IsChainPart(address.part)) {
-    Restack(&next.robots.at(address.part.robot));
+    Restack(&next.robots.at(address.part.robot), scenario_.base_dir);
   }
   // A plate or ray moved to another face sits on that face; a ray that
   // looked straight out of its old face looks out of the new one.
@@ -555,6 +558,45 @@ void Design::SetTerrain(const std::string& image, double height,
   next.scene.height = height;
   next.scene.meters_per_pixel = meters_per_pixel;
   Commit(std::move(next), {PartKind::kScene, 0, 0});
+}
+
+void Design::SetModuleMesh(const std::string& mesh, bool every_of_kind) {
+  if (selection_.kind != PartKind::kModule) {
+    throw DesignError("select a module first");
+  }
+  Scenario next = scenario_;
+  Robot& robot = next.robots.at(selection_.robot);
+  const Module& chosen = robot.modules.at(selection_.index);
+  // Named relative to the design's folder when inside it, so the design
+  // and its meshes move together.
+  std::string shape = mesh;
+  if (!scenario_.base_dir.empty()) {
+    const std::filesystem::path rel =
+        std::filesystem::path(mesh).lexically_normal().lexically_relative(
+            scenario_.base_dir);
+    if (!rel.empty() && rel.native().rfind("..", 0) != 0) shape = rel.string();
+  }
+  const Axis axis = chosen.axis;
+  const int index = selection_.index;
+  for (int i = 0; i < static_cast<int>(robot.modules.size()); ++i) {
+    Module& m = robot.modules[i];
+    if (every_of_kind ? m.axis != axis : i != index) continue;
+    for (Frame& f : m.frames) {
+      // A box's scale is its size; a mesh's multiplies the file's units.
+      if (!f.is_mesh()) f.scale = Eigen::Vector3d::Ones();
+      f.shape = shape;
+    }
+  }
+  // The mesh is measured now: an unreadable one is refused here.
+  try {
+    for (Frame& f : robot.modules.at(index).frames) {
+      FrameBounds(f, next.base_dir);
+    }
+  } catch (const std::exception& e) {
+    throw DesignError(e.what());
+  }
+  Restack(&robot, next.base_dir);
+  Commit(std::move(next), selection_);
 }
 
 void Design::ApplyTemplate(const TemplateOptions& options) {

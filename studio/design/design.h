@@ -102,6 +102,11 @@ class Design {
   // metres per pixel, as one edit.
   void SetTerrain(const std::string& image, double height,
                   double meters_per_pixel);
+  // The selected module's frames (every_of_kind: those of every module of
+  // its axis) become the OBJ/STL `mesh`, as one edit; the chain restacks
+  // to the mesh's length and new modules of that kind reuse it. Throws
+  // DesignError when nothing is selected or the mesh cannot be read.
+  void SetModuleMesh(const std::string& mesh, bool every_of_kind);
   // Replaces everything with a template (undoable).
   void ApplyTemplate(const TemplateOptions& options);
   // Replaces everything with an empty scenario (undoable; path kept).

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "sim_core/sensor_kind.h"
+#include "studio/design/inert_fields.h"
 
 namespace mrsim::studio {
 
@@ -26,16 +27,22 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       if (robot_ok() && in(sel.index, s.robots[sel.robot].modules.size())) {
         Module& m = s.robots[sel.robot].modules[sel.index];
         groups.push_back({"", "Module", FieldsOf(m)});
-        groups.push_back({"joint", "Joint", FieldsOf(m.joint)});
-        groups.push_back({"frames[0]", "Front frame", FieldsOf(m.frames[0])});
-        groups.push_back({"frames[1]", "Back frame", FieldsOf(m.frames[1])});
+        groups.push_back({"joint", "Joint",
+                          WithoutInert(FieldsOf(m.joint), {"breakForce"})});
+        groups.push_back({"frames[0]", "Front frame",
+                          WithoutInert(FieldsOf(m.frames[0]), {"rotation"})});
+        groups.push_back({"frames[1]", "Back frame",
+                          WithoutInert(FieldsOf(m.frames[1]), {"rotation"})});
       }
       break;
     case PartKind::kSensorModule:
       if (robot_ok() &&
           in(sel.index, s.robots[sel.robot].sensor_modules.size())) {
         SensorModule& sm = s.robots[sel.robot].sensor_modules[sel.index];
-        groups.push_back({"", "Sensor module", FieldsOf(sm)});
+        groups.push_back(
+            {"", "Sensor module",
+             WithoutInert(FieldsOf(sm), {"rotation", "forceLockPosition",
+                                         "distanceLockPosition"})});
         // One group per sensor, named by its member in the scenario
         // ("force_sensor", "distance_sensors[1]", "imu") and titled by
         // its kind's label ("Force plate", "Distance sensor 1", "IMU").
@@ -49,7 +56,9 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
               id += "[" + std::to_string(k) + "]";
               title += " " + std::to_string(k);
             }
-            groups.push_back({id, title, kind.fields(sm, k)});
+            groups.push_back(
+                {id, title,
+                 WithoutInert(kind.fields(sm, k), kind.inert_fields)});
           }
         }
       }
@@ -57,7 +66,8 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
     case PartKind::kObject:
       if (in(sel.index, s.scene_objects.size())) {
         groups.push_back(
-            {"", "Scene object", FieldsOf(s.scene_objects[sel.index])});
+            {"", "Scene object",
+             WithoutInert(FieldsOf(s.scene_objects[sel.index]), {"rotation"})});
       }
       break;
     case PartKind::kScene:

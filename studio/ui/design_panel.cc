@@ -6,6 +6,7 @@
 
 #include "sim_core/part_look.h"
 #include "studio/design/chain_edit.h"
+#include "studio/ui/print_section.h"
 #include "studio/ui/widgets.h"
 
 namespace mrsim::studio {
@@ -243,6 +244,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       studio.design.Select(sel);
     }
   }
+  DrawPrintSection(studio);
   if (studio.Button("Simulation settings", -1)) {
     studio.design.Select({PartKind::kSettings, 0, 0});
   }

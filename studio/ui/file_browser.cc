@@ -13,7 +13,8 @@ namespace mrsim::studio {
 namespace fs = std::filesystem;
 
 void FileBrowser::Open(const std::string& title, const std::string& dir,
-                       const std::string& extension, bool save) {
+                       const std::string& extension, bool save,
+                       const std::string& name) {
   title_ = title;
   std::error_code ec;
   // A folder that is gone (or never was, like ./scenarios outside the
@@ -25,7 +26,7 @@ void FileBrowser::Open(const std::string& title, const std::string& dir,
   dir_ = start.string();
   extension_ = extension;
   save_ = save;
-  name_.clear();
+  name_ = name;
   error_.clear();
   open_ = true;
   opening_ = true;
@@ -42,7 +43,9 @@ void FileBrowser::List() {
     if (name.empty() || name[0] == '.') continue;
     if (e.is_directory(ec)) {
       dirs_.push_back(name);
-    } else if (e.path().extension() == extension_) {
+    } else if (("|" + extension_ + "|")
+                   .find("|" + e.path().extension().string() + "|") !=
+               std::string::npos) {
       files_.push_back(name);
     }
   }
@@ -85,6 +88,7 @@ bool FileBrowser::Draw(std::string* chosen, LayoutRecorder* layout) {
         name_ = f;
         if (ImGui::IsMouseDoubleClicked(0)) done = true;
       }
+      RecordItem(layout, "entry " + f);
     }
     ImGui::EndChild();
     ImGui::SetNextItemWidth(-1);

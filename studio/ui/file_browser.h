@@ -13,8 +13,11 @@ class LayoutRecorder;
 class FileBrowser {
  public:
   // Opens the dialog in `dir`. save: the name may be a new file.
+  // `extension` may list several, ".stl|.obj".
+  // `name` fills the name field.
   void Open(const std::string& title, const std::string& dir,
-            const std::string& extension, bool save);
+            const std::string& extension, bool save,
+            const std::string& name = "");
   bool is_open() const { return open_; }
   // Draws it when open; returns true once with the chosen path.
   bool Draw(std::string* chosen, LayoutRecorder* layout);

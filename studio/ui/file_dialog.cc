@@ -3,6 +3,8 @@
 #include <exception>
 #include <string>
 
+#include "studio/ui/print_section.h"
+
 namespace mrsim::studio {
 
 void FileDialog::Draw(StudioContext& studio) {
@@ -29,6 +31,11 @@ void FileDialog::Draw(StudioContext& studio) {
                                    scene.height > 0 ? scene.height : 0.3,
                                    scene.meters_per_pixel);
         });
+        break;
+      case BrowseFor::kExportStl:
+      case BrowseFor::kFrameMesh:
+      case BrowseFor::kKindMesh:
+        UsePrintFile(studio, chosen);
         break;
       case BrowseFor::kNone:
         break;

@@ -239,6 +239,12 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
   const int drawn = scene_.ngeom;
   for (int i = 0; i < drawn; ++i) {
     mjvGeom& g = scene_.geoms[i];
+    if (g.objtype == mjOBJ_GEOM && g.objid >= 0 && g.objid < m->ngeom &&
+        std::find(flagged_.begin(), flagged_.end(), m->geom_bodyid[g.objid]) !=
+            flagged_.end()) {
+      g.rgba[0] = 0.9f;  // overlapping at the start: red
+      g.rgba[1] = g.rgba[2] = 0.1f;
+    }
     if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
         g.objid < static_cast<int>(geoms_.size()) &&
         geoms_[g.objid].part.kind != PartKind::kNone &&

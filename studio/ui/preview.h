@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/physics.h"
@@ -92,6 +93,12 @@ class Preview {
   void SetTracking(bool on) { tracking_ = on; }
   const mjvCamera& camera() const { return camera_; }
 
+  // Bodies drawn red (parts overlapping at the start, overlap_check.h);
+  // MuJoCo body ids of the current model.
+  void SetFlaggedBodies(std::vector<int> bodies) {
+    flagged_ = std::move(bodies);
+  }
+
  private:
   void AddRays();
 
@@ -100,6 +107,7 @@ class Preview {
   std::unique_ptr<Physics> physics_;
   mjData* data_ = nullptr;  // owned by physics_
   std::vector<GeomPart> geoms_;
+  std::vector<int> flagged_;
   std::vector<RaySite> rays_;
   // Live: the measured rays, and which robots they stand for (the others
   // keep their designed rays).

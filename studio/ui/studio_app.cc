@@ -14,6 +14,7 @@
 
 #include "sim_core/codec/state_message.h"
 #include "studio/ui/gui_setup.h"
+#include "studio/ui/print_section.h"
 
 namespace mrsim::studio {
 namespace {
@@ -137,6 +138,7 @@ void StudioApp::UpdatePreview() {
     if (shown_live != built_live_) preview.Reframe();
     studio_.build_error = preview.Rebuild(shown);
     preview.ShowDesign();
+    CheckOverlaps(studio_, shown);
     last_rebuild_ms_ = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - start)
                            .count();
@@ -179,6 +181,7 @@ void StudioApp::RecordState(const mjrRect& view, int height) {
                         : studio_.show_template                 ? "template"
                                                                 : "none");
   layout.State("message", studio_.message);
+  layout.State("overlaps", std::to_string(studio_.overlaps.size()));
   for (const PartMarker& m : studio_.preview->Markers(view, height)) {
     char xy[64];
     std::snprintf(xy, sizeof(xy), "%.0f %.0f", m.x, m.y);

@@ -8,7 +8,9 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "sim_core/overlap_check.h"
 #include "studio/design/design.h"
 #include "studio/design/panel_layout.h"
 #include "studio/design/recent_files.h"
@@ -31,7 +33,15 @@ struct AppOptions {
 // An action that may first ask about unsaved changes.
 enum class Pending { kNone, kNew, kOpen, kTemplate, kQuit };
 // What the open file dialog is choosing a file for.
-enum class BrowseFor { kNone, kOpen, kSaveAs, kHeightImage };
+enum class BrowseFor {
+  kNone,
+  kOpen,
+  kSaveAs,
+  kHeightImage,
+  kExportStl,  // a folder for the STL files (print_section.h)
+  kFrameMesh,  // an OBJ/STL for the selected module's frames
+  kKindMesh,   // an OBJ/STL for every module of the selected one's kind
+};
 
 struct StudioContext {
   StudioContext(Design design, const AppOptions& options);
@@ -51,9 +61,10 @@ struct StudioContext {
   bool show_help = false;
   bool show_template = false;
   bool quit = false;
-  long built_revision = -1;  // the design revision the preview shows
-  std::string build_error;   // why the preview could not be built
-  std::string message;       // last note, refusal or error, in the status bar
+  long built_revision = -1;           // the design revision the preview shows
+  std::string build_error;            // why the preview could not be built
+  std::vector<PartOverlap> overlaps;  // in the design shown, at the start
+  std::string message;  // last note, refusal or error, in the status bar
   bool message_is_error = false;  // red, else a plain note ("saved ...")
   Pending pending = Pending::kNone;
   std::string pending_path;  // a recent file to open once asked

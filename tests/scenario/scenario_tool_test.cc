@@ -242,5 +242,35 @@ TEST(ScenarioTool, ValidateRefusesAStaticFrameOfMassZero) {
                         "mass: expected a positive value, got 0"));
 }
 
+TEST(ScenarioTool, ValidateExitsTwoNamingPartsThatOverlapAtTheStart) {
+  const std::string dir = TempDir("tool_validate_overlap");
+  Scenario s = ReadScenarioFile(Example("case_study.xml"));
+  SceneObject crate;
+  crate.guid = "crate";
+  crate.is_static = true;
+  crate.size = Eigen::Vector3d(0.3, 0.3, 0.3);
+  crate.position = s.robots[0].modules[2].position;
+  s.scene_objects.push_back(crate);
+  WriteScenarioFile(s, dir + "/boxed.xml");
+  const Result r = RunTool({"validate", dir + "/boxed.xml"}, dir);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: " + dir + "/boxed.xml:"));
+  EXPECT_THAT(r.output, HasSubstr("module 2 frame 0 overlaps scene object "));
+}
+
+TEST(ScenarioTool, ExportStlWritesThePartsAndTheListIntoTheFolder) {
+  const std::string dir = TempDir("tool_export_stl");
+  const Result r =
+      RunTool({"export-stl", Example("case_study.xml"), dir + "/out"}, dir);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("distinct) in " + dir + "/out"));
+  const std::string csv = ReadText(dir + "/out/parts.csv");
+  EXPECT_THAT(csv, HasSubstr("part,file,count,"));
+  EXPECT_THAT(csv, HasSubstr(".stl,"));
+  const Result missing =
+      RunTool({"export-stl", dir + "/missing.xml", dir + "/out2"}, dir);
+  EXPECT_EQ(missing.code, 2) << missing.output;
+}
+
 }  // namespace
 }  // namespace mrsim

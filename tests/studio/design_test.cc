@@ -9,11 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 
+#include "sim_core/chain_builder.h"
 #include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
+#include "sim_core/triangle_mesh.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/inspector_fields.h"
 #include "tests/common/child_process.h"
@@ -455,6 +458,141 @@ TEST(StudioDesign, DirtyUntilSavedAndAfterUndoingBackToSaved) {
   EXPECT_TRUE(d.dirty());
   d.Undo();
   EXPECT_FALSE(d.dirty());
+}
+
+TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
+  ChainScenarioOptions options;
+  options.chain.modules = 2;
+  options.chain.sensor_after = {-1};
+  options.chain.force_sensors = true;
+  options.chain.front_distance_sensor = true;
+  Scenario s = MakeChainScenario(options);
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.position = Eigen::Vector3d(1, 0, 0.1);
+  s.scene_objects.push_back(ball);
+  const std::map<std::string, std::vector<std::string>> inert = {
+      {"joint", {"breakForce"}},
+      {"frames[0]", {"rotation"}},
+      {"frames[1]", {"rotation"}},
+      {"", {"rotation", "forceLockPosition", "distanceLockPosition"}},
+      {"force_sensor", {"position", "rotation"}},
+      {"distance_sensors[0]", {"rotation", "ray_Resolution"}}};
+  int groups = 0;
+  for (const Selection& sel : {Selection{PartKind::kModule, 0, 0},
+                               Selection{PartKind::kSensorModule, 0, 0},
+                               Selection{PartKind::kObject, 0, 0}}) {
+    for (const FieldGroup& g : InspectorFields(s, sel)) {
+      ++groups;
+      auto it = inert.find(g.sub);
+      if (it == inert.end()) continue;
+      for (const FieldRef& f : g.fields) {
+        for (const std::string& name : it->second) {
+          EXPECT_NE(name, f.info().xml) << g.title << " offers " << name;
+        }
+      }
+    }
+  }
+  EXPECT_GE(groups, 7);
+  // The quaternion that does place the part is still offered.
+  bool quat = false;
+  for (const FieldGroup& g :
+       InspectorFields(s, Selection{PartKind::kModule, 0, 0})) {
+    for (const FieldRef& f : g.fields) {
+      quat |= std::string(f.info().xml) == "quatRotation";
+    }
+  }
+  EXPECT_TRUE(quat);
+}
+
+TEST(StudioInspector, FilesWithFieldsThatDoNothingStillLoadAndKeepThem) {
+  ChainScenarioOptions options;
+  options.chain.modules = 2;
+  options.chain.sensor_after = {-1};
+  options.chain.force_sensors = true;
+  options.chain.front_distance_sensor = true;
+  Scenario s = MakeChainScenario(options);
+  Robot& r = s.robots[0];
+  r.modules[0].frames[0].rotation = Eigen::Vector3d(10, 20, 30);
+  r.modules[0].joint.break_force = 50;
+  SensorModule& sm = r.sensor_modules[0];
+  sm.force_lock_position = Eigen::Vector3d(1, 2, 3);
+  sm.distance_lock_position = Eigen::Vector3d(4, 5, 6);
+  sm.force_sensor->position = Eigen::Vector3d(7, 8, 9);
+  sm.distance_sensors[0].ray_resolution = 0.25;
+  const std::string dir = TempDir("studio_inert_fields");
+  const std::string file = dir + "/inert.xml";
+  WriteScenarioFile(s, file);
+  const Design d = Design::Open(file);
+  const Scenario& back = d.scenario();
+  EXPECT_EQ(back.robots[0].modules[0].frames[0].rotation,
+            Eigen::Vector3d(10, 20, 30));
+  EXPECT_EQ(back.robots[0].modules[0].joint.break_force, 50);
+  EXPECT_EQ(back.robots[0].sensor_modules[0].distance_sensors[0].ray_resolution,
+            0.25);
+  EXPECT_EQ(back.robots[0].sensor_modules[0].force_sensor->position,
+            Eigen::Vector3d(7, 8, 9));
+}
+
+TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
+  const std::string dir = TempDir("studio_mesh_kind");
+  {
+    // An 80 x 50 x 40 mm block, its own origin at its centre.
+    std::ofstream out(dir + "/link.stl", std::ios::binary);
+    out << BinaryStl(BoxMesh(Eigen::Vector3d(0.08, 0.05, 0.04)), 1.0, "link");
+  }
+  ChainScenarioOptions options;
+  options.chain.modules = 3;
+  options.chain.pattern = ChainPattern::kPitchYaw;
+  WriteScenarioFile(MakeChainScenario(options), dir + "/robot.xml");
+  Design d = Design::Open(dir + "/robot.xml");
+  d.Select({PartKind::kModule, 0, 0});
+  d.SetModuleMesh(dir + "/link.stl", true);
+  const Robot& r = d.scenario().robots[0];
+  for (const Module& m : r.modules) {
+    for (const Frame& f : m.frames) {
+      EXPECT_EQ(f.shape, m.axis == Axis::kPitch ? "link.stl" : "Box");
+    }
+  }
+  // Pitch modules are 160 mm long now, the yaw module 100 mm: hinges
+  // 0.16 / 2 + 0.1 / 2 apart.
+  EXPECT_NEAR(r.modules[0].position.x() - r.modules[1].position.x(),
+              0.08 + 0.05, 1e-6);  // STL stores float32
+  EXPECT_NEAR(r.modules[1].position.x() - r.modules[2].position.x(),
+              0.05 + 0.08, 1e-6);  // STL stores float32
+  EXPECT_NEAR(r.modules[0].frames[0].position.x() - r.modules[0].position.x(),
+              0.04, 1e-6);  // STL stores float32
+  // One undo step.
+  d.Undo();
+  EXPECT_EQ(d.scenario().robots[0].modules[0].frames[0].shape, "Box");
+  d.Redo();
+  d.Select({PartKind::kModule, 0, 2});
+  d.AddPart(NextPart::kPitchModule);
+  const Robot& grown = d.scenario().robots[0];
+  ASSERT_EQ(grown.modules.size(), 4u);
+  EXPECT_EQ(grown.modules[3].frames[0].shape, "link.stl");
+  EXPECT_NEAR(grown.modules[2].position.x() - grown.modules[3].position.x(),
+              0.08 + 0.08, 1e-6);  // STL stores float32
+  // The physics builds it, and the saved file reads back.
+  d.SaveAs(dir + "/robot_mesh.xml");
+  const Scenario back = ReadScenarioFile(dir + "/robot_mesh.xml");
+  EXPECT_EQ(back.robots[0].modules[3].frames[1].shape, "link.stl");
+  Physics physics(back);
+  EXPECT_GT(physics.model()->nmesh, 0);
+}
+
+TEST(StudioMesh, AnUnreadableMeshIsRefusedAndChangesNothing) {
+  const std::string dir = TempDir("studio_mesh_bad");
+  {
+    std::ofstream out(dir + "/bad.stl", std::ios::binary);
+    out << "solid nothing here";
+  }
+  WriteScenarioFile(MakeChainScenario({}), dir + "/robot.xml");
+  Design d = Design::Open(dir + "/robot.xml");
+  d.Select({PartKind::kModule, 0, 0});
+  const long revision = d.revision();
+  EXPECT_THROW(d.SetModuleMesh(dir + "/bad.stl", false), DesignError);
+  EXPECT_EQ(d.revision(), revision);
 }
 
 }  // namespace
