@@ -316,10 +316,10 @@ Selection Preview::Pick(const mjrRect& viewport, double x, double y) const {
   return geoms_[geom].part;
 }
 
-std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
-                                         int window_height) const {
-  std::vector<PartMarker> markers;
-  if (!physics_ || scene_.ngeom == 0) return markers;
+bool Preview::ScreenPoint(const mjrRect& viewport, int window_height,
+                          const Eigen::Vector3d& world, double* x,
+                          double* y) const {
+  if (!physics_ || scene_.ngeom == 0) return false;
   // The scene's camera as mjr_render used it (average of the two eyes).
   const mjvGLCamera& c = scene_.camera[0];
   const Eigen::Vector3d pos(c.pos[0], c.pos[1], c.pos[2]);
@@ -330,6 +330,47 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
   const double centre_y = (c.frustum_top + c.frustum_bottom) / 2;
   const double half_w =
       half_h * static_cast<double>(viewport.width) / viewport.height;
+  const Eigen::Vector3d v = world - pos;
+  const double z = v.dot(forward);
+  if (z <= c.frustum_near) return false;
+  const double sx = v.dot(right) * c.frustum_near / z;
+  const double sy = v.dot(up) * c.frustum_near / z;
+  const double nx = (sx - c.frustum_center) / half_w;
+  const double ny = (sy - centre_y) / half_h;
+  *x = viewport.left + (nx + 1) / 2 * viewport.width;
+  *y = window_height - (viewport.bottom + (ny + 1) / 2 * viewport.height);
+  return true;
+}
+
+bool Preview::GroundPoint(const mjrRect& viewport, int window_height, double x,
+                          double y, double z, Eigen::Vector3d* point) const {
+  if (!physics_ || scene_.ngeom == 0) return false;
+  const mjvGLCamera& c = scene_.camera[0];
+  const Eigen::Vector3d pos(c.pos[0], c.pos[1], c.pos[2]);
+  const Eigen::Vector3d forward(c.forward[0], c.forward[1], c.forward[2]);
+  const Eigen::Vector3d up(c.up[0], c.up[1], c.up[2]);
+  const Eigen::Vector3d right = forward.cross(up);
+  const double half_h = (c.frustum_top - c.frustum_bottom) / 2;
+  const double centre_y = (c.frustum_top + c.frustum_bottom) / 2;
+  const double half_w =
+      half_h * static_cast<double>(viewport.width) / viewport.height;
+  const double nx = (x - viewport.left) / viewport.width * 2 - 1;
+  const double ny =
+      (window_height - y - viewport.bottom) / viewport.height * 2 - 1;
+  const Eigen::Vector3d dir = forward * c.frustum_near +
+                              right * (nx * half_w + c.frustum_center) +
+                              up * (ny * half_h + centre_y);
+  if (std::abs(dir.z()) < 1e-12) return false;
+  const double t = (z - pos.z()) / dir.z();
+  if (t <= 0) return false;
+  *point = pos + t * dir;
+  return true;
+}
+
+std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
+                                         int window_height) const {
+  std::vector<PartMarker> markers;
+  if (!physics_ || scene_.ngeom == 0) return markers;
   const mjModel* m = physics_->model();
   for (int g = 0; g < m->ngeom; ++g) {
     const GeomPart& part = geoms_[g];
@@ -337,19 +378,46 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
         part.look != Look::kSensorModule) {
       continue;
     }
-    const Eigen::Vector3d p(data_->geom_xpos + 3 * g);
-    const Eigen::Vector3d v = p - pos;
-    const double z = v.dot(forward);
-    if (z <= c.frustum_near) continue;
-    const double sx = v.dot(right) * c.frustum_near / z;
-    const double sy = v.dot(up) * c.frustum_near / z;
-    const double nx = (sx - c.frustum_center) / half_w;
-    const double ny = (sy - centre_y) / half_h;
-    const double px = viewport.left + (nx + 1) / 2 * viewport.width;
-    const double py = viewport.bottom + (ny + 1) / 2 * viewport.height;
-    markers.push_back({part.part, px, window_height - py});
+    double x = 0, y = 0;
+    if (ScreenPoint(viewport, window_height,
+                    Eigen::Vector3d(data_->geom_xpos + 3 * g), &x, &y)) {
+      markers.push_back({part.part, x, y});
+    }
   }
   return markers;
+}
+
+void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
+  if (!physics_ || live_) return;
+  const mjModel* m = physics_->model();
+  mj_kinematics(m, data_);  // from the design's pose each time
+  const bool robot = what.kind == PartKind::kRobot ||
+                     what.kind == PartKind::kModule ||
+                     what.kind == PartKind::kSensorModule;
+  const Eigen::Matrix3d r = t.linear();
+  for (int g = 0; g < m->ngeom && g < static_cast<int>(geoms_.size()); ++g) {
+    const Selection& p = geoms_[g].part;
+    const bool moves =
+        robot ? (p.kind == PartKind::kModule ||
+                 p.kind == PartKind::kSensorModule ||
+                 p.kind == PartKind::kRobot) &&
+                    p.robot == what.robot
+              : p.kind == PartKind::kObject && p.index == what.index;
+    if (!moves) continue;
+    Eigen::Map<Eigen::Vector3d> pos(data_->geom_xpos + 3 * g);
+    pos = t * Eigen::Vector3d(pos);
+    // geom_xmat is row-major.
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> mat(
+        data_->geom_xmat + 9 * g);
+    mat = r * Eigen::Matrix3d(mat);
+  }
+  dragging_ = true;
+}
+
+void Preview::EndDrag() {
+  if (!dragging_) return;
+  dragging_ = false;
+  if (physics_ && !live_) mj_kinematics(physics_->model(), data_);
 }
 
 void Preview::ShowStates(const Scenario& scenario,
