@@ -93,6 +93,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   }
   physics_ = std::move(physics);
   data_ = physics_->mutable_data();
+  dragging_ = false;  // a drag's saved poses were the old model's
   // Poses only: the preview draws the initial state, no dynamics needed.
   mj_kinematics(m, data_);
   mj_camlight(m, data_);
@@ -390,7 +391,12 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
 void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
   if (!physics_ || live_) return;
   const mjModel* m = physics_->model();
-  mj_kinematics(m, data_);  // from the design's pose each time
+  // From the design's pose each time, kept at the drag's start (cheaper
+  // than the kinematics again every frame).
+  if (!dragging_) {
+    drag_xpos_.assign(data_->geom_xpos, data_->geom_xpos + 3 * m->ngeom);
+    drag_xmat_.assign(data_->geom_xmat, data_->geom_xmat + 9 * m->ngeom);
+  }
   const bool robot = what.kind == PartKind::kRobot ||
                      what.kind == PartKind::kModule ||
                      what.kind == PartKind::kSensorModule;
@@ -404,12 +410,12 @@ void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
                     p.robot == what.robot
               : p.kind == PartKind::kObject && p.index == what.index;
     if (!moves) continue;
-    Eigen::Map<Eigen::Vector3d> pos(data_->geom_xpos + 3 * g);
-    pos = t * Eigen::Vector3d(pos);
+    using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+    Eigen::Map<Eigen::Vector3d>(data_->geom_xpos + 3 * g) =
+        t * Eigen::Vector3d(drag_xpos_.data() + 3 * g);
     // geom_xmat is row-major.
-    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> mat(
-        data_->geom_xmat + 9 * g);
-    mat = r * Eigen::Matrix3d(mat);
+    Eigen::Map<RowMajor>(data_->geom_xmat + 9 * g) =
+        r * Eigen::Map<const RowMajor>(drag_xmat_.data() + 9 * g);
   }
   dragging_ = true;
 }
@@ -417,7 +423,11 @@ void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
 void Preview::EndDrag() {
   if (!dragging_) return;
   dragging_ = false;
-  if (physics_ && !live_) mj_kinematics(physics_->model(), data_);
+  if (physics_ && !live_ &&
+      drag_xpos_.size() == 3 * static_cast<size_t>(physics_->model()->ngeom)) {
+    std::copy(drag_xpos_.begin(), drag_xpos_.end(), data_->geom_xpos);
+    std::copy(drag_xmat_.begin(), drag_xmat_.end(), data_->geom_xmat);
+  }
 }
 
 void Preview::ShowStates(const Scenario& scenario,

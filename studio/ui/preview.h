@@ -131,7 +131,9 @@ class Preview {
   bool camera_moved_ = false;  // by the user since the last FrameAll
   std::unique_ptr<StatePoseMapper> mapper_;  // for the current model
   bool live_ = false;
-  bool dragging_ = false;  // ShowDrag moved geoms away from the design
+  bool dragging_ = false;          // ShowDrag moved geoms away from the design
+  std::vector<double> drag_xpos_;  // the design's geom poses at its start
+  std::vector<double> drag_xmat_;
   bool tracking_ = true;
   bool tracked_ = false;  // tracked_centre_ holds the last frame's centre
   Eigen::Vector3d tracked_centre_ = Eigen::Vector3d::Zero();
