@@ -9,6 +9,7 @@
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
 #include "studio/design/chain_edit.h"
+#include "studio/design/ground_move.h"
 #include "studio/design/inspector_fields.h"
 #include "studio/design/schema.h"
 
@@ -73,6 +74,21 @@ std::string UniqueGuid(const Scenario& s, const std::string& base) {
     const std::string g = base + std::to_string(i);
     if (!used(g)) return g;
   }
+}
+
+// Relayout for a robot that may have been turned on the ground: laid out
+// facing +x about module 0's hinge, then turned back, so reordering a turned
+// robot keeps its heading. A robot facing +x is laid out as before.
+Robot RelayoutFacing(const Robot& old, const std::vector<ChainSlot>& slots,
+                     const ChainOptions& options, const std::string& base_dir) {
+  const double heading = RobotHeading(old);
+  if (heading == 0.0) return Relayout(old, slots, options, base_dir);
+  const Eigen::Vector3d pivot = old.modules[0].position;
+  Robot straight = old;
+  TransformRobot(&straight, GroundTransform(pivot, {{0, 0}, -heading}));
+  Robot out = Relayout(straight, slots, options, base_dir);
+  TransformRobot(&out, GroundTransform(pivot, {{0, 0}, heading}));
+  return out;
 }
 
 }  // namespace
@@ -163,31 +179,78 @@ void Design::Changed() {
 }
 
 void Design::AddPart(NextPart part, Where where) {
-  Scenario next = scenario_;
   int r = TargetRobot();
+  int at = 0;
   if (r < 0) {
+    r = 0;
+  } else {
+    const std::vector<ChainSlot> slots = ChainOrder(scenario_.robots[r]);
+    at = where == Where::kFront ? 0 : static_cast<int>(slots.size());
+    if (where == Where::kAfterSelection && IsChainPart(selection_) &&
+        selection_.robot == r) {
+      const int selected = SlotOf(slots, selection_);
+      if (selected >= 0) at = selected + 1;
+    }
+  }
+  InsertPart(part, r, at);
+}
+
+void Design::InsertPart(NextPart part, int robot, int at) {
+  Scenario next = scenario_;
+  if (next.robots.empty() && robot == 0) {
     next.robots.push_back(Robot{});
     next.robots.back().name = ChainOptions().name;
-    r = 0;
   }
-  const Robot& old = next.robots[r];
+  if (robot < 0 || robot >= static_cast<int>(next.robots.size())) {
+    throw DesignError("there is no robot " + std::to_string(robot));
+  }
+  const Robot& old = next.robots[robot];
   std::vector<ChainSlot> slots = ChainOrder(old);
-  int at = where == Where::kFront ? 0 : static_cast<int>(slots.size());
-  if (where == Where::kAfterSelection && IsChainPart(selection_) &&
-      selection_.robot == r) {
-    const int selected = SlotOf(slots, selection_);
-    if (selected >= 0) at = selected + 1;
-  }
+  at = std::clamp(at, 0, static_cast<int>(slots.size()));
   ChainSlot slot;
   slot.sensor = part == NextPart::kSensorModule;
   slot.axis = part == NextPart::kYawModule ? Axis::kYaw : Axis::kPitch;
   slots.insert(slots.begin() + at, slot);
   try {
-    next.robots[r] = Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
+    next.robots[robot] =
+        RelayoutFacing(old, slots, OptionsOf(old), scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }
-  Commit(std::move(next), SelectionAt(slots, r, at));
+  Commit(std::move(next), SelectionAt(slots, robot, at));
+}
+
+void Design::AddRobot() {
+  if (scenario_.robots.empty()) {
+    InsertPart(NextPart::kPitchModule, 0, 0);
+    return;
+  }
+  Scenario next = scenario_;
+  ChainOptions options = OptionsOf(next.robots[0]);
+  options.modules = 1;
+  options.sensor_after.clear();
+  options.force_sensors = false;
+  options.front_distance_sensor = false;
+  double left = -INFINITY;
+  for (const Robot& r : next.robots) {
+    for (const Module& m : r.modules) left = std::max(left, m.position.y());
+    for (const SensorModule& sm : r.sensor_modules)
+      left = std::max(left, sm.position.y());
+  }
+  options.origin.y() = (std::isfinite(left) ? left : 0.0) + 0.3;
+  for (int i = static_cast<int>(next.robots.size()) + 1;; ++i) {
+    options.name = "robot" + std::to_string(i);
+    bool used = false;
+    for (const Robot& r : next.robots) used = used || r.name == options.name;
+    if (!used) break;
+  }
+  try {
+    next.robots.push_back(MakeChain(options));
+  } catch (const std::invalid_argument& e) {
+    throw DesignError(e.what());
+  }
+  const int r = static_cast<int>(next.robots.size()) - 1;
+  Commit(std::move(next), {PartKind::kRobot, r, 0});
 }
 
 void Design::AddObject(ObjectKind kind) {
@@ -314,7 +377,7 @@ void Design::RemoveSelected() {
       }
       try {
         next.robots[sel.robot] =
-            Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
+            RelayoutFacing(old, slots, OptionsOf(old), scenario_.base_dir);
       } catch (const std::invalid_argument& e) {
         throw DesignError("cannot remove it: " + std::string(e.what()));
       }
@@ -341,24 +404,61 @@ void Design::MoveSelected(int steps) {
   if (!IsChainPart(selection_)) {
     throw DesignError("select a module or sensor module to move");
   }
-  Scenario next = scenario_;
-  const Robot& old = next.robots.at(selection_.robot);
-  std::vector<ChainSlot> slots = ChainOrder(old);
-  const int at = SlotOf(slots, selection_);
+  const Robot& robot = scenario_.robots.at(selection_.robot);
+  const int at = SlotOf(ChainOrder(robot), selection_);
   const int to = at + steps;
-  if (at < 0 || to < 0 || to >= static_cast<int>(slots.size())) {
+  if (at < 0 || to < 0 || to >= static_cast<int>(ChainOrder(robot).size())) {
     throw DesignError("it is already at the end of the chain");
   }
-  const ChainSlot moved = slots[at];
-  slots.erase(slots.begin() + at);
+  MovePart(selection_.robot, at, to);
+}
+
+void Design::MovePart(int robot, int from, int to) {
+  if (robot < 0 || robot >= static_cast<int>(scenario_.robots.size())) {
+    throw DesignError("there is no robot " + std::to_string(robot));
+  }
+  Scenario next = scenario_;
+  const Robot& old = next.robots[robot];
+  std::vector<ChainSlot> slots = ChainOrder(old);
+  const int n = static_cast<int>(slots.size());
+  if (from < 0 || from >= n || to < 0 || to >= n) {
+    throw DesignError("the chain has no place " +
+                      std::to_string(from < 0 || from >= n ? from : to));
+  }
+  if (from == to) return;
+  const ChainSlot moved = slots[from];
+  slots.erase(slots.begin() + from);
   slots.insert(slots.begin() + to, moved);
   try {
-    next.robots[selection_.robot] =
-        Relayout(old, slots, OptionsOf(old), scenario_.base_dir);
+    next.robots[robot] =
+        RelayoutFacing(old, slots, OptionsOf(old), scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError("cannot move it: " + std::string(e.what()));
   }
-  Commit(std::move(next), SelectionAt(slots, selection_.robot, to));
+  Commit(std::move(next), SelectionAt(slots, robot, to));
+}
+
+void Design::MoveOnGround(const Selection& what, const GroundMove& move) {
+  if (move.empty()) return;
+  Scenario next = scenario_;
+  switch (what.kind) {
+    case PartKind::kRobot:
+    case PartKind::kModule:
+    case PartKind::kSensorModule:
+      if (what.robot < 0 || what.robot >= static_cast<int>(next.robots.size()))
+        throw DesignError("there is no robot " + std::to_string(what.robot));
+      MoveRobot(&next.robots[what.robot], move);
+      break;
+    case PartKind::kObject:
+      if (what.index < 0 ||
+          what.index >= static_cast<int>(next.scene_objects.size()))
+        throw DesignError("there is no object " + std::to_string(what.index));
+      MoveObject(&next.scene_objects[what.index], move);
+      break;
+    default:
+      throw DesignError("only robots and objects move on the ground");
+  }
+  Commit(std::move(next), selection_);
 }
 
 SensorModule& Design::SelectedSensorModule(Scenario* next) const {
@@ -392,7 +492,8 @@ void Design::SetSensorKind(const SensorKind& kind, bool on) {
     }
   }
   try {
-    robot = Relayout(robot, ChainOrder(robot), options, scenario_.base_dir);
+    robot =
+        RelayoutFacing(robot, ChainOrder(robot), options, scenario_.base_dir);
   } catch (const std::invalid_argument& e) {
     throw DesignError(e.what());
   }

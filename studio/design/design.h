@@ -10,6 +10,7 @@
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
 #include "sim_core/sensor_kind.h"
+#include "studio/design/ground_move.h"
 #include "studio/design/selection.h"
 
 namespace mrsim::studio {
@@ -72,6 +73,20 @@ class Design {
   void AddPart(NextPart part, Where where = Where::kAfterSelection);
   // In front of the first robot, next to earlier objects; selects it.
   void AddObject(ObjectKind kind);
+  // Drag and drop. Inserts a new part at place `at` (front to back as the
+  // chain list shows it, 0 = front, the part count = tail) of robot
+  // `robot` (0 starts the first robot); selects it.
+  void InsertPart(NextPart part, int robot, int at);
+  // Moves the chain part at place `from` of robot `robot` to place `to`
+  // (where it is once moved); selects it.
+  void MovePart(int robot, int from, int to);
+  // Moves a whole robot (a robot, module or sensor module selection names
+  // it) or an object on the ground: shifted and turned about its pivot
+  // (ground_move.h). Only poses change.
+  void MoveOnGround(const Selection& what, const GroundMove& move);
+  // A second (third, ...) robot: one pitch module, named robot2, ...,
+  // beside the others (0.3 m to the left of the leftmost); selects it.
+  void AddRobot();
   void AddFluid(FluidKind kind);
   void AddContact();
   // Removes the selected module, sensor module, object, fluid region or

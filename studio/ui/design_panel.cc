@@ -6,6 +6,7 @@
 
 #include "sim_core/part_look.h"
 #include "studio/design/chain_edit.h"
+#include "studio/ui/chain_drag.h"
 #include "studio/ui/print_section.h"
 #include "studio/ui/widgets.h"
 
@@ -104,8 +105,12 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       studio.Try(std::string("add the ") + p.label,
                  [&] { studio.design.AddPart(p.part, where_); });
     }
+    PaletteDragSource(p.part, p.label);
     ImGui::PopStyleColor(2);
     if (&p != &parts[2]) ImGui::SameLine();
+  }
+  if (studio.Button("another robot", -1)) {
+    studio.Try("add a robot", [&] { studio.design.AddRobot(); });
   }
 
   // The chain, front to back. Rows are written in their part's colour, so
@@ -123,6 +128,8 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
                           studio.design.selection() == robot_sel)) {
       studio.design.Select(robot_sel);
     }
+    studio.Record("row robot " + std::to_string(r));
+    int place = 0;
     for (const ChainSlot& slot : ChainOrder(robot)) {
       const Selection sel{
           slot.sensor ? PartKind::kSensorModule : PartKind::kModule, r,
@@ -148,6 +155,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       ImGui::PopStyleColor();
       studio.Record("row " + std::string(ToString(sel.kind)) + " " +
                     std::to_string(r) + " " + std::to_string(sel.index));
+      ChainRowDragDrop(studio, r, place++, label.c_str());
     }
   }
   if (s.robots.empty()) {
@@ -196,6 +204,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
             studio.design.selection() == sel)) {
       studio.design.Select(sel);
     }
+    studio.Record("row object " + std::to_string(i));
     ImGui::PopStyleColor();
   }
 

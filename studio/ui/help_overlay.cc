@@ -17,6 +17,8 @@ void HelpOverlay::Draw(StudioContext& studio) {
       {"right drag, shift+left drag", "pan"},
       {"wheel", "zoom"},
       {"click a part", "select it (inspector)"},
+      {"drag disc / ring knob", "move / turn the selected robot or object"},
+      {"drag a row or a module", "reorder / insert (list or robot)"},
       {"F", "frame the whole scene"},
       {"Delete", "remove the selected part"},
       {"Ctrl+Z / Ctrl+Y", "undo / redo"},

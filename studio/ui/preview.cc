@@ -93,6 +93,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   }
   physics_ = std::move(physics);
   data_ = physics_->mutable_data();
+  dragging_ = false;  // a drag's saved poses were the old model's
   // Poses only: the preview draws the initial state, no dynamics needed.
   mj_kinematics(m, data_);
   mj_camlight(m, data_);
@@ -322,10 +323,10 @@ Selection Preview::Pick(const mjrRect& viewport, double x, double y) const {
   return geoms_[geom].part;
 }
 
-std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
-                                         int window_height) const {
-  std::vector<PartMarker> markers;
-  if (!physics_ || scene_.ngeom == 0) return markers;
+bool Preview::ScreenPoint(const mjrRect& viewport, int window_height,
+                          const Eigen::Vector3d& world, double* x,
+                          double* y) const {
+  if (!physics_ || scene_.ngeom == 0) return false;
   // The scene's camera as mjr_render used it (average of the two eyes).
   const mjvGLCamera& c = scene_.camera[0];
   const Eigen::Vector3d pos(c.pos[0], c.pos[1], c.pos[2]);
@@ -336,6 +337,47 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
   const double centre_y = (c.frustum_top + c.frustum_bottom) / 2;
   const double half_w =
       half_h * static_cast<double>(viewport.width) / viewport.height;
+  const Eigen::Vector3d v = world - pos;
+  const double z = v.dot(forward);
+  if (z <= c.frustum_near) return false;
+  const double sx = v.dot(right) * c.frustum_near / z;
+  const double sy = v.dot(up) * c.frustum_near / z;
+  const double nx = (sx - c.frustum_center) / half_w;
+  const double ny = (sy - centre_y) / half_h;
+  *x = viewport.left + (nx + 1) / 2 * viewport.width;
+  *y = window_height - (viewport.bottom + (ny + 1) / 2 * viewport.height);
+  return true;
+}
+
+bool Preview::GroundPoint(const mjrRect& viewport, int window_height, double x,
+                          double y, double z, Eigen::Vector3d* point) const {
+  if (!physics_ || scene_.ngeom == 0) return false;
+  const mjvGLCamera& c = scene_.camera[0];
+  const Eigen::Vector3d pos(c.pos[0], c.pos[1], c.pos[2]);
+  const Eigen::Vector3d forward(c.forward[0], c.forward[1], c.forward[2]);
+  const Eigen::Vector3d up(c.up[0], c.up[1], c.up[2]);
+  const Eigen::Vector3d right = forward.cross(up);
+  const double half_h = (c.frustum_top - c.frustum_bottom) / 2;
+  const double centre_y = (c.frustum_top + c.frustum_bottom) / 2;
+  const double half_w =
+      half_h * static_cast<double>(viewport.width) / viewport.height;
+  const double nx = (x - viewport.left) / viewport.width * 2 - 1;
+  const double ny =
+      (window_height - y - viewport.bottom) / viewport.height * 2 - 1;
+  const Eigen::Vector3d dir = forward * c.frustum_near +
+                              right * (nx * half_w + c.frustum_center) +
+                              up * (ny * half_h + centre_y);
+  if (std::abs(dir.z()) < 1e-12) return false;
+  const double t = (z - pos.z()) / dir.z();
+  if (t <= 0) return false;
+  *point = pos + t * dir;
+  return true;
+}
+
+std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
+                                         int window_height) const {
+  std::vector<PartMarker> markers;
+  if (!physics_ || scene_.ngeom == 0) return markers;
   const mjModel* m = physics_->model();
   for (int g = 0; g < m->ngeom; ++g) {
     const GeomPart& part = geoms_[g];
@@ -343,19 +385,55 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
         part.look != Look::kSensorModule) {
       continue;
     }
-    const Eigen::Vector3d p(data_->geom_xpos + 3 * g);
-    const Eigen::Vector3d v = p - pos;
-    const double z = v.dot(forward);
-    if (z <= c.frustum_near) continue;
-    const double sx = v.dot(right) * c.frustum_near / z;
-    const double sy = v.dot(up) * c.frustum_near / z;
-    const double nx = (sx - c.frustum_center) / half_w;
-    const double ny = (sy - centre_y) / half_h;
-    const double px = viewport.left + (nx + 1) / 2 * viewport.width;
-    const double py = viewport.bottom + (ny + 1) / 2 * viewport.height;
-    markers.push_back({part.part, px, window_height - py});
+    double x = 0, y = 0;
+    if (ScreenPoint(viewport, window_height,
+                    Eigen::Vector3d(data_->geom_xpos + 3 * g), &x, &y)) {
+      markers.push_back({part.part, x, y});
+    }
   }
   return markers;
+}
+
+void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
+  if (!physics_ || live_) return;
+  const mjModel* m = physics_->model();
+  // From the design's pose each time, kept at the drag's start (cheaper
+  // than the kinematics again every frame).
+  if (!dragging_) {
+    drag_xpos_.assign(data_->geom_xpos, data_->geom_xpos + 3 * m->ngeom);
+    drag_xmat_.assign(data_->geom_xmat, data_->geom_xmat + 9 * m->ngeom);
+  }
+  const bool robot = what.kind == PartKind::kRobot ||
+                     what.kind == PartKind::kModule ||
+                     what.kind == PartKind::kSensorModule;
+  const Eigen::Matrix3d r = t.linear();
+  for (int g = 0; g < m->ngeom && g < static_cast<int>(geoms_.size()); ++g) {
+    const Selection& p = geoms_[g].part;
+    const bool moves =
+        robot ? (p.kind == PartKind::kModule ||
+                 p.kind == PartKind::kSensorModule ||
+                 p.kind == PartKind::kRobot) &&
+                    p.robot == what.robot
+              : p.kind == PartKind::kObject && p.index == what.index;
+    if (!moves) continue;
+    using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+    Eigen::Map<Eigen::Vector3d>(data_->geom_xpos + 3 * g) =
+        t * Eigen::Vector3d(drag_xpos_.data() + 3 * g);
+    // geom_xmat is row-major.
+    Eigen::Map<RowMajor>(data_->geom_xmat + 9 * g) =
+        r * Eigen::Map<const RowMajor>(drag_xmat_.data() + 9 * g);
+  }
+  dragging_ = true;
+}
+
+void Preview::EndDrag() {
+  if (!dragging_) return;
+  dragging_ = false;
+  if (physics_ && !live_ &&
+      drag_xpos_.size() == 3 * static_cast<size_t>(physics_->model()->ngeom)) {
+    std::copy(drag_xpos_.begin(), drag_xpos_.end(), data_->geom_xpos);
+    std::copy(drag_xmat_.begin(), drag_xmat_.end(), data_->geom_xmat);
+  }
 }
 
 void Preview::ShowStates(const Scenario& scenario,

@@ -8,6 +8,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <map>
 #include <memory>
 #include <string>
@@ -77,6 +78,22 @@ class Preview {
   std::vector<PartMarker> Markers(const mjrRect& viewport,
                                   int window_height) const;
 
+  // Dragging on the ground (ground_handles.h): the part `what` names (a
+  // whole robot for a robot, module or sensor module; an object) drawn
+  // moved by `transform`, no rebuild; EndDrag puts it back where the design
+  // has it (the rebuild after the edit shows the moved design).
+  void ShowDrag(const Selection& what, const Eigen::Isometry3d& transform);
+  void EndDrag();
+  // The point on the horizontal plane at height `z` under window pixel
+  // (x, y) (top-left origin, window of height window_height), as the last
+  // frame's camera sees it; false when the ray misses the plane.
+  bool GroundPoint(const mjrRect& viewport, int window_height, double x,
+                   double y, double z, Eigen::Vector3d* point) const;
+  // Where a world point appears in the window (top-left origin); false
+  // when it is behind the camera.
+  bool ScreenPoint(const mjrRect& viewport, int window_height,
+                   const Eigen::Vector3d& world, double* x, double* y) const;
+
   // Live view: poses the robots named in `states` (and the movable objects
   // in `scene`, when given) as a running simulation reports them, with the
   // viewer's StatePoseMapper, their distance rays at the measured length
@@ -122,6 +139,9 @@ class Preview {
   bool camera_moved_ = false;  // by the user since the last FrameAll
   std::unique_ptr<StatePoseMapper> mapper_;  // for the current model
   bool live_ = false;
+  bool dragging_ = false;          // ShowDrag moved geoms away from the design
+  std::vector<double> drag_xpos_;  // the design's geom poses at its start
+  std::vector<double> drag_xmat_;
   bool tracking_ = true;
   bool tracked_ = false;  // tracked_centre_ holds the last frame's centre
   Eigen::Vector3d tracked_centre_ = Eigen::Vector3d::Zero();

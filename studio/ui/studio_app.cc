@@ -79,6 +79,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   const mjrRect view = {static_cast<int>(panels.view.x), 0,
                         std::max(16, static_cast<int>(panels.view.w)),
                         std::max(16, static_cast<int>(panels.view.h))};
+  view_ = view;
   HandleViewInput(view, panels.view.x, panels.view.y);
   UpdatePreview();
 
@@ -182,6 +183,12 @@ void StudioApp::RecordState(const mjrRect& view, int height) {
                                                                 : "none");
   layout.State("message", studio_.message);
   layout.State("overlaps", std::to_string(studio_.overlaps.size()));
+  // Where ImGui has the mouse, so a test presses only once it is there.
+  char mouse[64];
+  std::snprintf(mouse, sizeof(mouse), "%.0f %.0f%s", ImGui::GetIO().MousePos.x,
+                ImGui::GetIO().MousePos.y,
+                ImGui::IsMouseDown(0) ? " down" : "");
+  layout.State("mouse", mouse);
   for (const PartMarker& m : studio_.preview->Markers(view, height)) {
     char xy[64];
     std::snprintf(xy, sizeof(xy), "%.0f %.0f", m.x, m.y);
@@ -274,6 +281,10 @@ void StudioApp::HandleViewInput(const mjrRect& view, float left, float top) {
   const ImVec2 p = io.MousePos;
   const bool inside = p.x >= left && p.x < left + view.width && p.y >= top &&
                       p.y < top + view.height;
+  // The handles first: a press on one moves the part, not the camera.
+  if (handles_.Update(studio_, view, static_cast<int>(top) + view.height)) {
+    return;
+  }
   if ((io.WantCaptureMouse || resizing_ != 0) && !dragging) return;
   const double h = view.height;
   if (inside && io.MouseWheel != 0)

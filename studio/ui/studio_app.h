@@ -16,6 +16,7 @@
 #include "studio/ui/busy_quit_dialog.h"
 #include "studio/ui/design_panel.h"
 #include "studio/ui/file_dialog.h"
+#include "studio/ui/ground_handles.h"
 #include "studio/ui/help_overlay.h"
 #include "studio/ui/inspector_panel.h"
 #include "studio/ui/refusal_dialog.h"
@@ -54,6 +55,8 @@ class StudioApp {
   // The right column shows the Run panel (F5) instead of the Inspector.
   void ShowRunPanel(bool show) { studio_.show_run = show; }
   Preview& preview() { return *studio_.preview; }
+  // The 3-D view's OpenGL viewport in the last frame (benchmarks).
+  const mjrRect& view() const { return view_; }
   // Why the preview could not be built from the design ("" when it was).
   const std::string& build_error() const { return studio_.build_error; }
   // Time the last model rebuild took (ms), -1 before the first.
@@ -81,8 +84,10 @@ class StudioApp {
   RefusalDialog refusal_;
   HelpOverlay help_;
   int built_live_ = -1;     // live_scenario_revision() shown, -1: the design
+  GroundHandles handles_;   // move handle, heading ring, drops on the robot
   bool view_drag_ = false;  // a drag that started in the 3-D view
-  int resizing_ = 0;        // a panel edge dragged: 1 left, 2 right
+  mjrRect view_ = {0, 0, 16, 16};  // where the 3-D view was last drawn
+  int resizing_ = 0;               // a panel edge dragged: 1 left, 2 right
   std::vector<std::pair<int, int>> keys_;  // key, mods
   double last_rebuild_ms_ = -1;
 };
