@@ -1,5 +1,6 @@
 #include "lua_controller/process/lua_command_line.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,7 +23,9 @@ std::unique_ptr<LuaScript> LoadLuaScriptFile(const std::string& path,
     throw UsageError("--script: " + path + " is longer than " +
                      std::to_string(limits.max_source_bytes) + " bytes");
   }
-  return std::make_unique<LuaScript>(source, path, limits);
+  // Lua cuts chunk names at 60 characters: messages name the file alone.
+  return std::make_unique<LuaScript>(
+      source, std::filesystem::path(path).filename().string(), limits);
 }
 
 void LuaCommandLine::AddFlags(CLI::App& app) {

@@ -39,7 +39,7 @@ struct LuaCommandLine {
 };
 
 // Reads a script file of at most limits.max_source_bytes and loads it
-// (named by its path in messages). Throws UsageError when it cannot be
+// (named by its file name in messages). Throws UsageError when it cannot be
 // read or is too long, LuaScriptError when it does not load.
 std::unique_ptr<LuaScript> LoadLuaScriptFile(const std::string& path,
                                              LuaLimits limits = {});
