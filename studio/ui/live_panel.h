@@ -21,6 +21,7 @@
 #include "studio/live/live_runner.h"
 #include "studio/live/live_session.h"
 #include "studio/live/optimise_session.h"
+#include "studio/ui/controller_panel.h"
 #include "studio/ui/layout_recorder.h"
 
 namespace mrsim::studio {
@@ -110,6 +111,7 @@ class LivePanel {
 
   LayoutRecorder* layout_;
   LiveRunner runner_;
+  ControllerPanel controller_;  // who drives the robots on Run
   OptimiseSession optimise_;
   GenomeSpec genome_;
   std::string genome_path_ = "scenarios/forward_gait.genome.xml";
