@@ -44,6 +44,8 @@ struct StudioContext {
   BrowseFor browse_for = BrowseFor::kNone;
   bool show_run = false;  // the right column shows Run instead of Inspector
   bool show_help = false;
+  // Save and Save As write the terrain and meshes into the file (base64).
+  bool embed_on_save = false;
   bool show_template = false;
   bool quit = false;
   long built_revision = -1;  // the design revision the preview shows
