@@ -91,10 +91,11 @@ void ControllerPanel::Draw(LayoutRecorder* layout) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextDisabled(
         "Run starts the simulator in lockstep: it waits at every step for "
-        "joint commands whose sender is '%s'. Start your program (Python: "
-        "mrsim.Controller, C++: joint_command_t on <prefix>_COMMAND_<robot>) "
-        "with that name.",
-        external_.c_str());
+        "joint commands whose sender is '%s'. Start your program with that "
+        "name, e.g. examples/python/controller.py --name %s (Python: "
+        "mrsim.Node(name=...); C++: joint_command_t on "
+        "<prefix>_COMMAND_<robot>).",
+        external_.c_str(), external_.c_str());
     ImGui::PopTextWrapPos();
     if (!ValidControllerName(external_)) {
       ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1),
