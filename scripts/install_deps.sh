@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  liblcm-dev liblcm-bin liblcm-java libjchart2d-java liblcm-lua lua5.2 libglib2.0-dev default-jdk-headless
+  liblcm-dev liblcm-bin liblcm-java libjchart2d-java liblcm-lua lua5.2 liblua5.4-dev libglib2.0-dev default-jdk-headless
   libmujoco-dev libqhull-dev libmujoco-samples
   libeigen3-dev libtinyxml2-dev libstb-dev zlib1g-dev libopencv-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "sim_core/embed_assets.h"
 #include "sim_core/face_geometry.h"
 #include "sim_core/frame_mesh.h"
 #include "sim_core/scenario_xml.h"
@@ -730,18 +731,27 @@ void Design::Redo() {
   Changed();
 }
 
-void Design::Save() {
+void Design::Save(bool embed_assets) {
   if (path_.empty()) throw std::runtime_error("no file name: use Save As");
-  WriteScenarioFile(scenario_, path_);
+  if (embed_assets) {
+    Scenario copy = scenario_;
+    if (copy.base_dir.empty()) {
+      copy.base_dir = std::filesystem::path(path_).parent_path().string();
+    }
+    EmbedAssetFiles(copy);
+    WriteScenarioFile(copy, path_);
+  } else {
+    WriteScenarioFile(scenario_, path_);
+  }
   saved_text_ = WriteScenarioString(scenario_);
   dirty_ = false;
 }
 
-void Design::SaveAs(const std::string& path) {
+void Design::SaveAs(const std::string& path, bool embed_assets) {
   const std::string previous = path_;
   path_ = path;
   try {
-    Save();
+    Save(embed_assets);
   } catch (...) {
     path_ = previous;
     throw;

@@ -133,8 +133,11 @@ class Design {
   void Redo();
 
   // Writes the file (atomically); throws std::runtime_error naming it.
-  void Save();
-  void SaveAs(const std::string& path);
+  // With embed_assets, the file carries the terrain image and mesh files
+  // as base64 (sim_core/embed_assets.h), the design on screen keeps its
+  // paths.
+  void Save(bool embed_assets = false);
+  void SaveAs(const std::string& path, bool embed_assets = false);
 
   // The current value of a field as text, or throws DesignError.
   std::string FieldText(const FieldAddress& address) const;

@@ -34,6 +34,18 @@ int64_t DataRows(const std::string& path) {
 
 }  // namespace
 
+bool ValidControllerName(const std::string& name) {
+  if (name.empty() || name.size() > 64 || name[0] == '-' || name[0] == '.') {
+    return false;  // never taken for a flag
+  }
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                    (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
 LiveRunner::LiveRunner(std::vector<std::string> search_path)
     : search_path_(std::move(search_path)) {}
 
@@ -58,27 +70,55 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
   }
   std::vector<ProcessSpec> specs;
   std::vector<std::string> senders;
-  for (const std::string& robot : o.robots) {
-    ProcessSpec gait;
-    gait.name = "gait-" + robot;
-    gait.program = "mrsim-gait";
-    gait.args = {"--robot", robot,  "--scenario", o.scenario_path,
-                 "--gait",  o.gait, "--name",     gait.name};
-    const auto lcm = LcmArgs(o);
-    gait.args.insert(gait.args.end(), lcm.begin(), lcm.end());
-    specs.push_back(std::move(gait));
-    senders.push_back("gait-" + robot);
+  ClockMode clock = o.clock;
+  if (o.controller == "external") {
+    if (!ValidControllerName(o.external_name)) {
+      throw std::invalid_argument(
+          "run: external controller name '" + o.external_name +
+          "' (expected 1-64 letters, digits, '-', '_' or '.', starting with "
+          "a letter or digit)");
+    }
+    // The simulator waits for the user's program at every step.
+    clock = ClockMode::kLockstep;
+    senders.push_back(o.external_name);
+  } else if (o.controller == "gait" || o.controller == "lua") {
+    const bool lua = o.controller == "lua";
+    if (lua && o.lua_script.empty()) {
+      throw std::invalid_argument("run: no Lua script to run");
+    }
+    for (const std::string& robot : o.robots) {
+      ProcessSpec node;
+      node.name = (lua ? "lua-" : "gait-") + robot;
+      node.program = lua ? "mrsim-lua" : "mrsim-gait";
+      if (lua) {
+        node.args = {"--robot",    robot,
+                     "--scenario", o.scenario_path,
+                     "--script",   o.lua_script,
+                     "--name",     node.name,
+                     "--rate",     fmt::format("{:g}", o.rate)};
+      } else {
+        node.args = {"--robot", robot,  "--scenario", o.scenario_path,
+                     "--gait",  o.gait, "--name",     node.name};
+      }
+      const auto lcm = LcmArgs(o);
+      node.args.insert(node.args.end(), lcm.begin(), lcm.end());
+      senders.push_back(node.name);
+      specs.push_back(std::move(node));
+    }
+  } else {
+    throw std::invalid_argument("run: controller '" + o.controller +
+                                "' (expected gait, lua or external)");
   }
   ProcessSpec sim;
   sim.name = "sim";
   sim.program = "mrsim-sim";
   sim.required = true;
-  sim.args = {o.scenario_path, "--clock", ToString(o.clock), "--rate",
+  sim.args = {o.scenario_path, "--clock", ToString(clock), "--rate",
               fmt::format("{:g}", o.rate)};
-  if (o.clock == ClockMode::kRealtime) {
+  if (clock == ClockMode::kRealtime) {
     sim.args.insert(sim.args.end(), {"--speed", fmt::format("{:g}", o.speed)});
   }
-  if (o.clock == ClockMode::kLockstep && !senders.empty()) {
+  if (clock == ClockMode::kLockstep && !senders.empty()) {
     sim.args.push_back("--controllers");
     sim.args.insert(sim.args.end(), senders.begin(), senders.end());
   }

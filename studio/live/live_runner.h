@@ -1,7 +1,9 @@
 // What the studio's Run and Record buttons start: mrsim-sim and one
-// mrsim-gait per robot for the current design, and mrsim-log into a folder,
-// as ordinary child processes (the launcher's ProcessGroup), their output
-// kept for the console panel. Every command line is one a user could type.
+// mrsim-gait (or mrsim-lua) per robot for the current design, or the
+// simulator alone waiting for an external controller, and mrsim-log into a
+// folder, as ordinary child processes (the launcher's ProcessGroup), their
+// output kept for the console panel. Every command line is one a user could
+// type.
 #pragma once
 
 #include <cstdint>
@@ -26,6 +28,12 @@ struct RunOptions {
   double rate = 100;             // Hz
   double speed = 1;              // real-time factor (realtime clock)
   std::string gait = "forward";  // each robot's starting gait
+  // Who drives the robots: "gait" (mrsim-gait each), "lua" (mrsim-lua
+  // each, running lua_script) or "external" (nothing started: mrsim-sim
+  // runs in lockstep waiting for the controller named external_name).
+  std::string controller = "gait";
+  std::string lua_script;     // a .lua file, for "lua"
+  std::string external_name;  // for "external"
   bool paused = false;
 };
 
@@ -83,6 +91,10 @@ class LiveRunner {
   std::string record_dir_;
   std::deque<std::string> console_;
 };
+
+// A controller name mrsim-sim --controllers can list: 1-64 letters,
+// digits, '-', '_' or '.', not starting with '-' or '.'.
+bool ValidControllerName(const std::string& name);
 
 // A folder of its own for one recording under `base`, named by the local
 // time it starts ("base/2026-11-26_14-05-09", then "..._2" if taken), so

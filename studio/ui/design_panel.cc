@@ -60,6 +60,13 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   if (studio.Button("Save As", third / 1.5f + 4)) {
     studio.BrowseSaveAs();
   }
+  ImGui::Checkbox("Embed terrain and meshes", &studio.embed_on_save);
+  studio.Record("embed on save");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "Save writes the height image and mesh files into the design "
+        "(base64), so it opens and runs on another computer alone");
+  }
   if (studio.Button("Undo", third)) studio.design.Undo();
   ImGui::SameLine();
   if (studio.Button("Redo", third)) studio.design.Redo();

@@ -26,6 +26,7 @@
 #include "studio/live/live_runner.h"
 #include "studio/live/live_session.h"
 #include "studio/live/optimise_session.h"
+#include "studio/ui/controller_panel.h"
 #include "studio/ui/layout_recorder.h"
 #include "studio/ui/task_picker.h"
 
@@ -120,6 +121,7 @@ class LivePanel {
 
   LayoutRecorder* layout_;
   LiveRunner runner_;
+  ControllerPanel controller_;  // who drives the robots on Run
   OptimiseSession optimise_;
   TaskPicker task_picker_;
   GenomeSpec genome_;

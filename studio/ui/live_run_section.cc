@@ -17,6 +17,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputFloat("speed", &speed_, 0, 0, "%.2f");
+  controller_.Draw(layout_);
   if (!runner_.running()) {
     // mrsim-sim runs the file: what is on screen is saved first.
     const bool saved = !design.path.empty() && !design.dirty;
@@ -33,6 +34,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           RunOptions o = FormRun();
           o.scenario_path = path;
           o.robots = design.robots;
+          controller_.Fill(&o, path);
           runner_.Start(o);
           Connect(url_, prefix_);
           EndReplay();

@@ -156,7 +156,7 @@ void StudioContext::SaveFile() {
     return;
   }
   try {
-    design.Save();
+    design.Save(embed_on_save);
     recent.Add(design.path());
     Note("saved " + design.path());
   } catch (const std::exception& e) {

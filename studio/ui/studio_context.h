@@ -59,6 +59,8 @@ struct StudioContext {
   PanelSettings panels;   // which side panels show, their widths, UI scale
   ViewRecorder video;     // the 3-D view to an MP4
   bool show_help = false;
+  // Save and Save As write the terrain and meshes into the file (base64).
+  bool embed_on_save = false;
   bool show_template = false;
   bool quit = false;
   long built_revision = -1;           // the design revision the preview shows

@@ -68,6 +68,40 @@ TEST(LiveRunner, RunSpecsAreCommandLinesAUserCouldType) {
   EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
 }
 
+TEST(LiveRunner, LuaAndExternalControllersStartWhatTheyShould) {
+  RunOptions o;
+  o.scenario_path = "robots.xml";
+  o.robots = {"a"};
+  o.controller = "lua";
+  o.lua_script = "ctl.lua";
+  o.clock = ClockMode::kLockstep;
+  auto specs = LiveRunner::RunSpecs(o);
+  ASSERT_EQ(specs.size(), 2u);
+  EXPECT_EQ(specs[0].program, "mrsim-lua");
+  EXPECT_TRUE(Has(specs[0].args, "ctl.lua"));
+  EXPECT_TRUE(Has(specs[1].args, "lua-a"));  // --controllers lua-a
+  o.lua_script.clear();
+  EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
+
+  // External: nothing but the simulator, in lockstep whatever the form
+  // says, waiting for the named program.
+  o.controller = "external";
+  o.external_name = "my-python";
+  o.clock = ClockMode::kRealtime;
+  specs = LiveRunner::RunSpecs(o);
+  ASSERT_EQ(specs.size(), 1u);
+  EXPECT_EQ(specs[0].program, "mrsim-sim");
+  EXPECT_TRUE(Has(specs[0].args, "lockstep"));
+  EXPECT_TRUE(Has(specs[0].args, "my-python"));
+  EXPECT_FALSE(Has(specs[0].args, "--speed"));
+  for (const std::string bad : {"", "two words", "a;rm", "-x", "--paused"}) {
+    o.external_name = bad;
+    EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument) << bad;
+  }
+  o.controller = "teleport";
+  EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
+}
+
 bool PollUntil(LiveLink& link, LiveRunner& runner,
                const std::function<bool()>& done, double timeout_s) {
   const auto end = std::chrono::steady_clock::now() +

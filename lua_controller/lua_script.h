@@ -1,0 +1,102 @@
+// A user's controller written in Lua, run in a sandbox: the script defines
+// `function step(t, state) ... return {angle, ...} end` and is asked for
+// one joint target per hinge joint (radians) at each control step
+// (docs/gait.md, "Lua controllers"). The sandbox has no io, os, package,
+// debug, coroutine, load or string.dump; every call is bounded by an
+// instruction count, and the whole interpreter by a memory limit, so an
+// endless loop or a runaway table ends in a LuaScriptError instead of a
+// hung or crashed controller. print() is kept: its lines are collected
+// (TakePrinted) for the caller to show. No LCM here: the state is a plain
+// struct (mrsim-lua fills it from robot_state_t, tests by hand).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mrsim {
+
+struct LuaLimits {
+  // Lua VM instructions per call (the script's top level counts as one
+  // call): about 0.1-1 s of work, far above any sensible step.
+  int64_t instructions = 50'000'000;
+  size_t memory_bytes = size_t{64} << 20;
+  size_t max_source_bytes = size_t{1} << 20;
+  size_t max_printed_lines = 1000;
+};
+
+// Thrown for a script that does not compile, fails at run time, runs out of
+// instructions or memory, or returns the wrong thing. line() is the script
+// line the message points at (0 when it names none); what() is the whole
+// message, "NAME:LINE: ...".
+class LuaScriptError : public std::runtime_error {
+ public:
+  LuaScriptError(const std::string& message, int line)
+      : std::runtime_error(message), line_(line) {}
+  int line() const { return line_; }
+
+ private:
+  int line_;
+};
+
+// What step() is given as `state` besides `t` (the sim time): the robot's
+// joints in chain order (rad, rad/s, N m), its centre of mass (m, m/s) and
+// each sensor module's force (N, when it has one) and distances (m), and
+// each joint's axis ("pitch" or "yaw"; empty when unknown).
+struct LuaRobotState {
+  std::vector<std::string> axes;
+  std::vector<double> angles;
+  std::vector<double> speeds;
+  std::vector<double> torques;
+  double com[3] = {0, 0, 0};
+  double com_velocity[3] = {0, 0, 0};
+  struct Sensor {
+    double force = 0;
+    bool has_force = false;
+    std::vector<double> distances;
+  };
+  std::vector<Sensor> sensors;
+};
+
+class LuaScript {
+ public:
+  // Compiles `source` and runs its top level (defining step). `name` is
+  // the chunk name error messages start with (the file name). Throws
+  // LuaScriptError with the line for a syntax error, an error at the top
+  // level, or no `step` function.
+  LuaScript(const std::string& source, const std::string& name,
+            LuaLimits limits = {});
+  ~LuaScript();
+  LuaScript(const LuaScript&) = delete;
+  LuaScript& operator=(const LuaScript&) = delete;
+
+  // The error LuaScript(source, name) would throw, or nothing: what the
+  // studio shows before Run.
+  static std::optional<LuaScriptError> Check(const std::string& source,
+                                             const std::string& name);
+
+  // Calls step(t, state) and returns its targets: exactly one finite
+  // number per joint of `state`. Throws LuaScriptError (line included when
+  // the script's) for an error in step, the instruction or memory limit,
+  // or a result of the wrong shape. The script's globals persist between
+  // calls.
+  std::vector<double> Step(double t, const LuaRobotState& state);
+
+  // Lines the script printed since the last call (at most
+  // max_printed_lines are kept).
+  std::vector<std::string> TakePrinted();
+
+  const std::string& name() const { return name_; }
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+  std::string name_;
+};
+
+}  // namespace mrsim

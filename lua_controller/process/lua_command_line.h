@@ -1,0 +1,47 @@
+// mrsim-lua's command line: the flags (CLI11) and what they build (the
+// node options, the loaded script, where the joint axes come from), so
+// main only parses, wires and runs.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/auth_flags.h"
+#include "lua_controller/lua_script.h"
+#include "lua_controller/process/lua_node.h"
+
+namespace mrsim {
+
+struct LuaCommandLine {
+  std::string robot;
+  std::string script_path;
+  std::string lcm_url;
+  AuthFlags auth;
+  std::string scenario_path;
+  std::string axes_text;
+  std::string name;
+  bool check_only = false;
+  LuaNodeOptions options;
+
+  // Filled by Finish().
+  std::unique_ptr<LuaScript> script;
+  std::function<std::vector<Axis>(int)> axes_for;
+  std::string warning;  // for stderr, or empty
+
+  void AddFlags(CLI::App& app);
+  // Loads the script (throws LuaScriptError with its line) and resolves the
+  // joint axes; throws UsageError naming the flag for the rest.
+  void Finish();
+  std::string StartLine() const;
+};
+
+// Reads a script file of at most limits.max_source_bytes and loads it
+// (named by its file name in messages). Throws UsageError when it cannot be
+// read or is too long, LuaScriptError when it does not load.
+std::unique_ptr<LuaScript> LoadLuaScriptFile(const std::string& path,
+                                             LuaLimits limits = {});
+
+}  // namespace mrsim

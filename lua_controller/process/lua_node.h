@@ -1,0 +1,107 @@
+// mrsim-lua's logic as a plain state machine: answers each state of one
+// robot with the joint targets of the user's Lua script (the state's sim
+// time is the script's t, so a lockstep run is the same every time), the
+// way GaitNode answers with a gait. Decoded messages and the wall time in,
+// joint commands out; LuaServer is the LCM adapter. A script error stops
+// the node (error() names the script line): every later step would fail
+// the same way.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/outbox.h"
+#include "lua_controller/lua_script.h"
+#include "mrsim/joint_command_t.hpp"
+#include "mrsim/robot_state_t.hpp"
+#include "mrsim/sim_status_t.hpp"
+#include "sim_core/scenario.h"
+
+namespace mrsim {
+
+using LuaOutbox = Outbox<joint_command_t>;
+
+struct LuaNodeOptions {
+  std::string robot;
+  std::string prefix = "MRSIM";
+  std::string sender;  // joint_command_t.sender
+  // Hz of sim time: states closer together than 1/rate are not answered
+  // (0: every state). As in mrsim-gait, a skipped state the simulator
+  // sends again (lockstep) makes the node answer every state.
+  double rate = 100.0;
+  bool exit_with_sim = false;
+};
+
+struct LuaNodeCounters {
+  int64_t states_answered = 0;
+  int64_t states_repeated = 0;
+  int64_t states_skipped = 0;
+  int64_t states_foreign = 0;
+  int64_t messages_malformed = 0;
+};
+
+class LuaNode {
+ public:
+  static constexpr double kNoSimulatorWarning = 5.0;  // wall s
+  static constexpr double kSimulatorSilence = 5.0;    // wall s
+  static constexpr double kNoSimulatorGiveUp = 30.0;  // wall s
+  static constexpr size_t kRecentAnswers = 8;
+  static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
+
+  // `script` is already loaded (its syntax checked). axes_for(joint_count)
+  // gives the hinge axes once the first state says how many joints there
+  // are (may throw std::invalid_argument: the node fails). Throws
+  // std::invalid_argument on a bad rate.
+  LuaNode(LuaNodeOptions options, std::unique_ptr<LuaScript> script,
+          std::function<std::vector<Axis>(int)> axes_for, WallTime now);
+
+  void OnState(const robot_state_t& state, WallTime now, LuaOutbox* out);
+  void OnMalformedState() { ++counters_.messages_malformed; }
+  void OnSimStatus(const sim_status_t& status, WallTime now);
+  // Warnings and, with exit_with_sim, a silent simulator; returns when it
+  // wants to be called again.
+  WallTime Tick(WallTime now);
+
+  bool done() const { return options_.exit_with_sim && sim_stopped_; }
+  bool gave_up() const { return gave_up_; }
+  // Set when the script failed (with its line) or the axes do not fit.
+  const std::string& error() const { return error_; }
+  std::vector<std::string> TakeLog();
+  const LuaNodeCounters& counters() const { return counters_; }
+  std::string Summary() const;
+
+ private:
+  void HandleState(const robot_state_t& state, LuaOutbox* out);
+  void Log(std::string line);
+
+  LuaNodeOptions options_;
+  std::unique_ptr<LuaScript> script_;
+  std::function<std::vector<Axis>(int)> axes_for_;
+  std::optional<std::vector<std::string>> axes_;  // set by the first state
+  LuaRobotState input_;                           // reused each step
+
+  double rate_ = 0;
+  int64_t last_skipped_seq_ = -1;
+  std::string sim_clock_;
+  bool sim_stopped_ = false;
+  bool gave_up_ = false;
+  WallTime started_;
+  std::optional<WallTime> sim_heard_;
+  bool warned_no_simulator_ = false;
+  bool have_last_ = false;
+  int64_t last_state_seq_ = -1;
+  double last_time_ = 0;
+  int64_t command_seq_ = 0;
+  std::map<int64_t, joint_command_t> recent_;
+
+  LuaNodeCounters counters_;
+  std::vector<std::string> log_;
+  std::string error_;
+};
+
+}  // namespace mrsim

@@ -1,0 +1,73 @@
+#include "lua_controller/process/lua_server.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/decode.h"
+#include "lcmtypes/runtime/lcm_loop.h"
+
+namespace mrsim {
+
+LuaServer::LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node)
+    : lcm_(lcm), node_(std::move(node)) {
+  lcm::Subscription* state = lcm_.subscribe(
+      StateChannel(options.prefix, options.robot), &LuaServer::OnState, this);
+  lcm::Subscription* status = lcm_.subscribe(SimStatusChannel(options.prefix),
+                                             &LuaServer::OnSimStatus, this);
+  if (state == nullptr || status == nullptr) {
+    throw std::runtime_error("cannot subscribe to the LCM channels");
+  }
+  state->setQueueCapacity(100);
+  status->setQueueCapacity(100);
+  subscriptions_ = {state, status};
+}
+
+LuaServer::~LuaServer() {
+  for (lcm::Subscription* s : subscriptions_) lcm_.unsubscribe(s);
+}
+
+// LCM calls the handlers from C: nothing may escape them.
+void LuaServer::OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  try {
+    if (!DecodeMessage(rbuf, &state_)) {
+      node_.OnMalformedState();
+      return;
+    }
+    node_.OnState(state_, WallClock::now(), &outbox_);
+    PublishAll(lcm_, &outbox_, &buffer_);
+  } catch (...) {
+    node_.OnMalformedState();
+  }
+}
+
+// Foreign traffic on the simulator's channel is the simulator's to count.
+void LuaServer::OnSimStatus(const lcm::ReceiveBuffer* rbuf,
+                            const std::string&) {
+  try {
+    if (DecodeMessage(rbuf, &status_)) {
+      node_.OnSimStatus(status_, WallClock::now());
+    }
+  } catch (...) {
+  }
+}
+
+void LuaServer::Run(const std::function<bool()>& stop_requested,
+                    std::ostream& log) {
+  while (!stop_requested() && node_.error().empty() && !node_.done()) {
+    const WallTime due = node_.Tick(WallClock::now());
+    const double wait = SecondsBetween(WallClock::now(), due);
+    HandleFor(lcm_,
+              std::clamp(static_cast<int>(std::ceil(wait * 1e3)), 0, 100));
+    for (const std::string& line : node_.TakeLog()) {
+      log << "mrsim-lua: " << line << "\n";
+    }
+    log.flush();
+  }
+  for (const std::string& line : node_.TakeLog()) {
+    log << "mrsim-lua: " << line << "\n";
+  }
+}
+
+}  // namespace mrsim

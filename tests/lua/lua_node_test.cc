@@ -1,0 +1,161 @@
+// mrsim-lua's node in process with a fake clock: it answers states with the
+// script's targets, repeats lost answers, keeps the rate, and stops with
+// the script's line when the script fails.
+#include "lua_controller/process/lua_node.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lcmtypes/runtime/channels.h"
+
+namespace mrsim {
+namespace {
+
+robot_state_t State(int64_t seq, double t, int joints = 4) {
+  robot_state_t s{};
+  s.seq = seq;
+  s.sim_time = t;
+  s.utime = static_cast<int64_t>(std::llround(t * 1e6));
+  s.robot = "snake";
+  s.num_joints = joints;
+  s.joints.resize(joints);
+  return s;
+}
+
+const char* kRamp =
+    "function step(t, state)\n"
+    "  local out = {}\n"
+    "  for i = 1, state.n do\n"
+    "    out[i] = state.axes[i] == 'yaw' and -t or t\n"
+    "  end\n"
+    "  return out\n"
+    "end\n";
+
+class LuaNodeTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<LuaNode> Make(const std::string& source, double rate = 0) {
+    LuaNodeOptions o;
+    o.robot = "snake";
+    o.sender = "lua-snake";
+    o.rate = rate;
+    return std::make_unique<LuaNode>(
+        o, std::make_unique<LuaScript>(source, "ctl.lua"),
+        [](int n) {
+          std::vector<Axis> axes;
+          for (int i = 0; i < n; ++i)
+            axes.push_back(i % 2 ? Axis::kYaw : Axis::kPitch);
+          return axes;
+        },
+        now_);
+  }
+  std::vector<joint_command_t> Send(LuaNode& node, const robot_state_t& s) {
+    node.OnState(s, now_, &out_);
+    std::vector<joint_command_t> got;
+    for (auto& [channel, msg] : out_.messages) {
+      EXPECT_EQ(channel, CommandChannel("MRSIM", "snake"));
+      got.push_back(std::get<joint_command_t>(msg));
+    }
+    out_.clear();
+    return got;
+  }
+  WallTime now_{};
+  LuaOutbox out_;
+};
+
+TEST_F(LuaNodeTest, AnswersEachStateWithTheScriptsTargets) {
+  auto node = Make(kRamp);
+  for (int k = 0; k < 5; ++k) {
+    const auto got = Send(*node, State(k, k * 0.01));
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got[0].state_seq, k);
+    EXPECT_EQ(got[0].sender, "lua-snake");
+    EXPECT_EQ(got[0].target,
+              (std::vector<double>{k * 0.01, -k * 0.01, k * 0.01, -k * 0.01}));
+  }
+  EXPECT_EQ(node->counters().states_answered, 5);
+  EXPECT_TRUE(node->error().empty());
+}
+
+TEST_F(LuaNodeTest, RepeatedStateGetsTheSameAnswerAndForeignOnesNone) {
+  auto node = Make(kRamp);
+  const auto first = Send(*node, State(7, 0.5));
+  const auto again = Send(*node, State(7, 0.5));
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].target, first[0].target);
+  EXPECT_EQ(again[0].seq, first[0].seq);
+  robot_state_t other = State(8, 0.51);
+  other.robot = "other";
+  EXPECT_TRUE(Send(*node, other).empty());
+  EXPECT_EQ(node->counters().states_repeated, 1);
+  EXPECT_EQ(node->counters().states_foreign, 1);
+}
+
+TEST_F(LuaNodeTest, RateSkipsStatesUntilLockstepSendsOneAgain) {
+  auto node = Make(kRamp, 50);  // every 0.02 s
+  EXPECT_EQ(Send(*node, State(0, 0.00)).size(), 1u);
+  EXPECT_TRUE(Send(*node, State(1, 0.01)).empty());
+  EXPECT_EQ(Send(*node, State(2, 0.02)).size(), 1u);
+  EXPECT_TRUE(Send(*node, State(3, 0.03)).empty());
+  // Lockstep waits for seq 3: the node answers it and every later state.
+  EXPECT_EQ(Send(*node, State(3, 0.03)).size(), 1u);
+  EXPECT_EQ(Send(*node, State(4, 0.04)).size(), 1u);
+}
+
+TEST_F(LuaNodeTest, ScriptErrorStopsTheNodeWithItsLine) {
+  auto node = Make(
+      "function step(t, state)\n"
+      "  if t > 0.015 then error('too late') end\n"
+      "  return {0, 0, 0, 0}\n"
+      "end\n");
+  EXPECT_EQ(Send(*node, State(0, 0.00)).size(), 1u);
+  EXPECT_EQ(Send(*node, State(1, 0.01)).size(), 1u);
+  EXPECT_TRUE(Send(*node, State(2, 0.02)).empty());
+  EXPECT_NE(node->error().find("ctl.lua:2: too late"), std::string::npos)
+      << node->error();
+  EXPECT_TRUE(Send(*node, State(3, 0.03)).empty());
+}
+
+TEST_F(LuaNodeTest, WrongJointCountIsAnErrorNamingTheStepLine) {
+  auto node = Make("\nfunction step() return {1} end");
+  EXPECT_TRUE(Send(*node, State(0, 0)).empty());
+  EXPECT_NE(node->error().find("ctl.lua:2:"), std::string::npos)
+      << node->error();
+}
+
+TEST_F(LuaNodeTest, ForgedTimesAndJointCountsAreCountedAndDropped) {
+  auto node = Make(kRamp);
+  EXPECT_TRUE(Send(*node, State(0, std::nan(""))).empty());
+  EXPECT_TRUE(Send(*node, State(1, 2e9)).empty());
+  robot_state_t lying = State(2, 0.1);
+  lying.num_joints = 9;
+  EXPECT_TRUE(Send(*node, lying).empty());
+  EXPECT_EQ(node->counters().messages_malformed, 3);
+  EXPECT_EQ(Send(*node, State(3, 0.2)).size(), 1u);
+}
+
+TEST_F(LuaNodeTest, PrintedLinesReachTheLog) {
+  auto node = Make("function step(t, s) print('t=' .. t) return {0,0,0,0} end");
+  Send(*node, State(0, 0.5));
+  const auto log = node->TakeLog();
+  ASSERT_FALSE(log.empty());
+  EXPECT_EQ(log.back(), "print: t=0.5");
+}
+
+TEST_F(LuaNodeTest, ExitsWithASilentSimulator) {
+  LuaNodeOptions o;
+  o.robot = "snake";
+  o.exit_with_sim = true;
+  LuaNode node(
+      o, std::make_unique<LuaScript>(kRamp, "ctl.lua"),
+      [](int n) { return std::vector<Axis>(n, Axis::kPitch); }, now_);
+  node.OnState(State(0, 0), now_, &out_);
+  node.Tick(AfterSeconds(now_, 1));
+  EXPECT_FALSE(node.done());
+  node.Tick(AfterSeconds(now_, LuaNode::kSimulatorSilence + 0.1));
+  EXPECT_TRUE(node.done());
+  EXPECT_FALSE(node.gave_up());
+}
+
+}  // namespace
+}  // namespace mrsim
