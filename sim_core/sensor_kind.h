@@ -106,7 +106,7 @@ struct SensorKind {
   // Fields the files of the original carry but the physics ignores (a
   // plate's own pose, a ray's resolution): files keep them, the studio does
   // not offer them.
-  std::vector<std::string> inert_fields;
+  std::vector<std::string> inert_fields = {};
   // How an instance is mounted, with the plate or ray of the k-th for
   // kPlate and kRay kinds, and the look (part_look.h) of their geoms.
   SensorMount mount = SensorMount::kCentre;
