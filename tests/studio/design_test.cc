@@ -593,25 +593,25 @@ TEST(StudioMesh, AnUnreadableMeshIsRefusedAndChangesNothing) {
   const long revision = d.revision();
   EXPECT_THROW(d.SetModuleMesh(dir + "/bad.stl", false), DesignError);
   EXPECT_EQ(d.revision(), revision);
+}
 
-  TEST(StudioDesign,
-       SaveWithEmbeddingCarriesTheTerrainAndKeepsThePathOnScreen) {
-    const std::string dir = TempDir("studio_design_embed");
-    std::filesystem::copy_file(
-        SourcePath("scenarios/terrain.png"), dir + "/ground.png",
-        std::filesystem::copy_options::overwrite_existing);
-    Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
-    s.scene.height_image = "ground.png";
-    WriteScenarioFile(s, dir + "/design.xml");
-    Design d = Design::Open(dir + "/design.xml");
-    d.Save(/*embed_assets=*/true);
-    EXPECT_FALSE(d.dirty());
-    EXPECT_EQ(d.scenario().scene.height_image, "ground.png");
-    std::filesystem::remove(dir + "/ground.png");
-    const Scenario saved = ReadScenarioFile(dir + "/design.xml");
-    EXPECT_EQ(saved.scene.height_image.rfind("base64:", 0), 0u);
-    EXPECT_NO_THROW(Physics physics(saved));
-  }
+TEST(StudioDesign, SaveWithEmbeddingCarriesTheTerrainAndKeepsThePathOnScreen) {
+  const std::string dir = TempDir("studio_design_embed");
+  std::filesystem::copy_file(SourcePath("scenarios/terrain.png"),
+                             dir + "/ground.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
+  s.scene.height_image = "ground.png";
+  WriteScenarioFile(s, dir + "/design.xml");
+  Design d = Design::Open(dir + "/design.xml");
+  d.Save(/*embed_assets=*/true);
+  EXPECT_FALSE(d.dirty());
+  EXPECT_EQ(d.scenario().scene.height_image, "ground.png");
+  std::filesystem::remove(dir + "/ground.png");
+  const Scenario saved = ReadScenarioFile(dir + "/design.xml");
+  EXPECT_EQ(saved.scene.height_image.rfind("base64:", 0), 0u);
+  EXPECT_NO_THROW(Physics physics(saved));
+}
 
 }  // namespace
 }  // namespace mrsim::studio
