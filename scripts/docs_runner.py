@@ -57,7 +57,8 @@ FENCE = re.compile(r"^```([A-Za-z0-9_+-]*)[^\n]*\n(.*?)^```[ \t]*$", re.M | re.S
 DEFAULT_URL = re.compile(r"udpm://239\.255\.76\.67:7667(\?ttl=\d+)?")
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # What the docs refer to relative to the repository root.
-LINKED = ["scenarios", "launch", "examples", "scripts", "lcmtypes", "gaits"]
+LINKED = ["scenarios", "launch", "examples", "scripts", "lcmtypes", "gaits",
+          "lua_controller"]
 
 
 class Block:
