@@ -94,7 +94,10 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                     fmt::format("{:g}", f.w_drift), "--w-fall",
                     fmt::format("{:g}", f.w_fall)});
   const AlgorithmInfo& info = AlgorithmInfoOf(ParseAlgorithm(o.algorithm));
-  for (const auto& [flag, value] : o.algorithm_settings) {
+  for (const auto& setting : o.algorithm_settings) {
+    // A named copy: C++17 lambdas cannot capture a structured binding.
+    const std::string& flag = setting.first;
+    const double value = setting.second;
     const bool own =
         std::any_of(info.settings.begin(), info.settings.end(),
                     [&](const AlgorithmSetting& s) { return flag == s.flag; });
