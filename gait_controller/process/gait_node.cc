@@ -76,13 +76,12 @@ GaitNode::GaitNode(GaitNodeOptions options,
     : options_(std::move(options)),
       axes_for_(std::move(axes_for)),
       initial_(std::move(initial)),
-      started_(now),
-      last_status_(now) {
-  if (!(options_.rate >= 0) || !std::isfinite(options_.rate)) {
-    throw std::invalid_argument("--rate must be >= 0");
-  }
-  rate_ = options_.rate;
-}
+      pacer_(options_.robot, options_.sender, options_.rate),
+      watch_(
+          fmt::format("{} or {}", StateChannel(options_.prefix, options_.robot),
+                      SimStatusChannel(options_.prefix)),
+          options_.exit_with_sim, now),
+      last_status_(now) {}
 
 void GaitNode::Log(std::string line) {
   if (log_.size() < kMaxLogLines) log_.push_back(std::move(line));
@@ -111,11 +110,11 @@ std::string GaitNode::Describe() const {
 
 gait_status_t GaitNode::status() const {
   gait_status_t s{};
-  s.utime = static_cast<int64_t>(std::llround(last_time_ * 1e6));
+  s.utime = static_cast<int64_t>(std::llround(pacer_.last_time() * 1e6));
   s.seq = status_seq_;
   s.robot = options_.robot;
   s.sender = options_.sender;
-  s.sim_time = have_last_ ? last_time_ : 0.0;
+  s.sim_time = pacer_.have_last() ? pacer_.last_time() : 0.0;
   s.running = controller_ != nullptr;
   const Gait& gait = controller_ ? controller_->active_gait() : initial_;
   s.gait = gait.name;
@@ -148,33 +147,9 @@ void GaitNode::PublishStatus(WallTime now, GaitOutbox* out) {
 void GaitNode::Start(WallTime now, GaitOutbox* out) { PublishStatus(now, out); }
 
 WallTime GaitNode::Tick(WallTime now, GaitOutbox* out) {
-  if (!sim_heard_ && !warned_no_simulator_ &&
-      SecondsBetween(started_, now) >= kNoSimulatorWarning) {
-    warned_no_simulator_ = true;
-    Log(fmt::format(
-        "warning: nothing from a simulator after {:.0f} s on {} or {} (is "
-        "mrsim-sim running, with the same --lcm-url and --prefix?)",
-        kNoSimulatorWarning, StateChannel(options_.prefix, options_.robot),
-        SimStatusChannel(options_.prefix)));
-  }
-  if (options_.exit_with_sim && !sim_heard_ && !sim_stopped_ &&
-      SecondsBetween(started_, now) >= kNoSimulatorGiveUp) {
-    sim_stopped_ = true;
-    gave_up_ = true;
-    Log(fmt::format(
-        "no simulator heard in {:.0f} s (--exit-with-sim): giving up (did "
-        "mrsim-sim fail to start, or does it use another --lcm-url or "
-        "--prefix?)",
-        kNoSimulatorGiveUp));
-  }
-  if (options_.exit_with_sim && sim_heard_ && !sim_stopped_ &&
-      SecondsBetween(*sim_heard_, now) >= kSimulatorSilence) {
-    sim_stopped_ = true;
-    Log(fmt::format(
-        "the simulator has been silent for {:.0f} s (--exit-with-sim): "
-        "stopping",
-        kSimulatorSilence));
-  }
+  std::vector<std::string> lines;
+  watch_.Tick(now, &lines);
+  for (std::string& line : lines) Log(std::move(line));
   WallTime due = AfterSeconds(last_status_, kHeartbeatInterval);
   if (now >= due) {
     PublishStatus(now, out);
@@ -260,7 +235,7 @@ void GaitNode::OnMalformedGait(WallTime now, GaitOutbox* out) {
 
 void GaitNode::OnState(const robot_state_t& state, WallTime now,
                        GaitOutbox* out) {
-  sim_heard_ = now;
+  watch_.Heard(now);
   const bool had_controller = controller_ != nullptr;
   try {
     HandleState(state, out);
@@ -323,50 +298,36 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
                     state.num_joints, controller_->joint_count()));
     return;
   }
-  const auto recent = recent_.find(state.seq);
-  if (recent != recent_.end()) {
+  std::string note;
+  const StatePacer::Decision decision =
+      pacer_.Decide(state, watch_.may_be_lockstep(), &note);
+  if (!note.empty()) Log(std::move(note));
+  if (decision.verdict == StatePacer::Verdict::kRepeat) {
     // The simulator sent the state again (our answer may have been lost).
     ++counters_.states_repeated;
-    out->Add(CommandChannel(options_.prefix, options_.robot), recent->second);
+    out->Add(CommandChannel(options_.prefix, options_.robot), *decision.repeat);
     return;
   }
-  if (have_last_ && state.seq < last_state_seq_) {
-    ++counters_.states_skipped;
-    return;
-  }
-  if (have_last_ && state.sim_time < last_time_) {
+  if (decision.restarted) {
     Log(
         fmt::format("sim time went back to {} s (reset or checkpoint): the "
                     "gait starts again from rest",
                     state.sim_time));
     controller_->Reset();
-    have_last_ = false;
   }
-  // Only lockstep waits for an answer; a paused sim re-sends its newest
-  // state whatever its clock, and that one may have been skipped.
-  const bool may_be_lockstep =
-      !sim_clock_ || *sim_clock_ == ClockMode::kLockstep;
-  if (rate_ > 0 && state.seq == last_skipped_seq_ && may_be_lockstep) {
-    Log(
-        fmt::format("the simulator sent state seq {} again after it was "
-                    "skipped (lockstep at more than --rate {} Hz): answering "
-                    "every state from now on",
-                    state.seq, rate_));
-    rate_ = 0;
-  }
-  if (have_last_ && rate_ > 0 &&
-      state.sim_time - last_time_ < 1.0 / rate_ - 1e-9) {
+  if (decision.verdict == StatePacer::Verdict::kSkip) {
     ++counters_.states_skipped;
-    last_skipped_seq_ = state.seq;
     return;
   }
-  snapshots_.insert_or_assign(state.sim_time,
-                              Snapshot{*controller_, have_last_, last_time_});
+  snapshots_.insert_or_assign(
+      state.sim_time,
+      Snapshot{*controller_, pacer_.have_last(), pacer_.last_time()});
   while (snapshots_.size() > kMaxSnapshots) {
     // Drop the oldest in sim time; after a reset that is the stale future.
     snapshots_.erase(snapshots_.begin());
   }
-  const double dt = have_last_ ? state.sim_time - last_time_ : 0.0;
+  const double dt =
+      pacer_.have_last() ? state.sim_time - pacer_.last_time() : 0.0;
   FeedSensors(state);
   const std::vector<double>& targets = controller_->Update(dt);
   for (double t : targets) {
@@ -378,26 +339,13 @@ void GaitNode::HandleState(const robot_state_t& state, GaitOutbox* out) {
                       "starts again from rest",
                       state.seq));
       controller_->Reset();
-      have_last_ = false;
+      pacer_.Restart();
       return;
     }
   }
 
-  joint_command_t command;
-  command.utime = state.utime;
-  command.seq = command_seq_++;
-  command.robot = options_.robot;
-  command.sender = options_.sender;
-  command.state_seq = state.seq;
-  command.num_joints = static_cast<int32_t>(targets.size());
-  command.target = targets;
-  out->Add(CommandChannel(options_.prefix, options_.robot), command);
-
-  recent_[state.seq] = std::move(command);
-  while (recent_.size() > kRecentAnswers) recent_.erase(recent_.begin());
-  last_state_seq_ = state.seq;
-  last_time_ = state.sim_time;
-  have_last_ = true;
+  out->Add(CommandChannel(options_.prefix, options_.robot),
+           pacer_.Answer(state, targets));
   ++counters_.states_answered;
 }
 
@@ -412,9 +360,9 @@ void GaitNode::OnSimControl(const sim_control_t& request) {
 
 void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
                            GaitOutbox* out) {
-  sim_heard_ = now;
-  // A word this build does not know (a newer simulator) may be lockstep.
-  sim_clock_ = ClockModes().Find(status.clock);
+  std::vector<std::string> lines;
+  watch_.OnStatus(status, now, &lines);
+  for (std::string& line : lines) Log(std::move(line));
   if (!status.waiting_for.empty() && !warned_other_name_) {
     // A lockstep simulator waiting for controllers by name, and this one
     // is not among them: most often a --name that is not the one in the
@@ -432,10 +380,6 @@ void GaitNode::OnSimStatus(const sim_status_t& status, WallTime now,
           "--controllers {}",
           status.waiting_for, options_.sender, names.front(), options_.sender));
     }
-  }
-  if (status.mode == sim_status_t::STOPPING && !sim_stopped_) {
-    sim_stopped_ = true;
-    if (options_.exit_with_sim) Log("the simulator stopped (--exit-with-sim)");
   }
   const auto it = requests_.find({status.control_sender, status.control_seq});
   if (it == requests_.end()) return;
@@ -476,11 +420,12 @@ void GaitNode::Resume(const std::string& checkpoint) {
 void GaitNode::WriteCheckpoint(const std::string& path, double sim_time) const {
   const Snapshot* snap = nullptr;
   Snapshot current{controller_ ? *controller_ : GaitController({Axis::kPitch}),
-                   have_last_, last_time_};
+                   pacer_.have_last(), pacer_.last_time()};
   const auto found = snapshots_.find(sim_time);
   if (found != snapshots_.end()) {
     snap = &found->second;
-  } else if (controller_ && (!have_last_ || last_time_ < sim_time)) {
+  } else if (controller_ &&
+             (!pacer_.have_last() || pacer_.last_time() < sim_time)) {
     snap = &current;  // the saved state is not answered yet: now is right
   }
   if (snap == nullptr) {
@@ -536,9 +481,7 @@ void GaitNode::Restore(const std::string& checkpoint) {
   const double saved_time = time_of(time_text, "sim_time");
   const double last_time = time_of(last_text, "last_time");
   *controller_ = std::move(restored);
-  have_last_ = have_last != 0;
-  last_time_ = last_time;
-  recent_.clear();
+  pacer_.Restore(have_last != 0, last_time);
   snapshots_.clear();
   Log(fmt::format("restored the gait saved at sim time {:.3f} s from {}",
                   saved_time, path));

@@ -19,6 +19,8 @@
 #include "gait_controller/gait_controller.h"
 #include "lcmtypes/runtime/clock_mode.h"
 #include "lcmtypes/runtime/outbox.h"
+#include "lcmtypes/runtime/simulator_watch.h"
+#include "lcmtypes/runtime/state_pacer.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
@@ -62,20 +64,11 @@ struct GaitNodeCounters {
 class GaitNode {
  public:
   static constexpr double kHeartbeatInterval = 1.0;  // wall s
-  // Nothing from the simulator this long after starting: the prefix or
-  // the LCM URL is probably wrong, said once (wall s).
-  static constexpr double kNoSimulatorWarning = 5.0;
-  // With exit_with_sim, a simulator silent this long is gone (killed, or
-  // its host lost) and the node stops; it sends a status every 0.5 s even
-  // when paused (wall s).
-  static constexpr double kSimulatorSilence = 5.0;
-  // With exit_with_sim, no simulator heard at all this long after starting:
-  // it failed to start (or the URL or prefix is wrong) and the node stops
-  // rather than wait forever in a batch script (wall s; docs/gait.md).
-  static constexpr double kNoSimulatorGiveUp = 30.0;
-  // Answers kept for states the simulator may send again (pipelined
-  // lockstep re-sends the two states it waits for).
-  static constexpr size_t kRecentAnswers = 8;
+  static constexpr double kNoSimulatorWarning =
+      SimulatorWatch::kNoSimulatorWarning;
+  static constexpr double kSimulatorSilence = SimulatorWatch::kSimulatorSilence;
+  static constexpr double kNoSimulatorGiveUp =
+      SimulatorWatch::kNoSimulatorGiveUp;
   static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
 
   // axes_for(joint_count) gives the hinge axes once the first state says
@@ -112,10 +105,10 @@ class GaitNode {
   void OnSimStatus(const sim_status_t& status, WallTime now, GaitOutbox* out);
   // With exit_with_sim: the simulator stopped (or went silent for
   // kSimulatorSilence), so should this node.
-  bool done() const { return options_.exit_with_sim && sim_stopped_; }
+  bool done() const { return options_.exit_with_sim && watch_.stopped(); }
   // done() because no simulator was heard within kNoSimulatorGiveUp: the
   // run did not happen (mrsim-gait exits 1).
-  bool gave_up() const { return gave_up_; }
+  bool gave_up() const { return watch_.gave_up(); }
   // mrsim-gait --resume CHECKPOINT: restores the state saved beside that
   // checkpoint when the first state comes. Throws std::runtime_error
   // naming the file when it cannot be read.
@@ -159,26 +152,13 @@ class GaitNode {
   std::unique_ptr<GaitController> controller_;
   std::deque<std::pair<gait_command_t, std::string>> queued_;
 
-  double rate_ = 0;  // options_.rate until lockstep shows it must be 0
-  int64_t last_skipped_seq_ = -1;
-  // From the sim's status; none until heard or when its word is unknown.
-  std::optional<ClockMode> sim_clock_;
-  bool sim_stopped_ = false;
-  WallTime started_;
-  std::optional<WallTime> sim_heard_;  // the last state or status
-  bool warned_no_simulator_ = false;
-  bool gave_up_ = false;
+  StatePacer pacer_;
+  SimulatorWatch watch_;
   bool warned_other_name_ = false;
-  bool have_last_ = false;
-  int64_t last_state_seq_ = -1;
-  double last_time_ = 0;
-  std::map<int64_t, joint_command_t> recent_;  // answers by state seq
   // The controller just before answering the state of each sim time.
   std::map<double, Snapshot> snapshots_;
   std::map<std::pair<std::string, int64_t>, sim_control_t> requests_;
   std::string resume_path_;  // restore when the controller is built
-  int64_t command_seq_ = 0;
-
   WallTime last_status_;
   int64_t status_seq_ = 0;
   int64_t ack_seq_ = -1;

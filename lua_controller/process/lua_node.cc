@@ -19,12 +19,12 @@ LuaNode::LuaNode(LuaNodeOptions options, std::unique_ptr<LuaScript> script,
     : options_(std::move(options)),
       script_(std::move(script)),
       axes_for_(std::move(axes_for)),
-      started_(now) {
-  if (!(options_.rate >= 0) || !std::isfinite(options_.rate)) {
-    throw std::invalid_argument("--rate must be >= 0");
-  }
+      pacer_(options_.robot, options_.sender, options_.rate),
+      watch_(
+          fmt::format("{} or {}", StateChannel(options_.prefix, options_.robot),
+                      SimStatusChannel(options_.prefix)),
+          options_.exit_with_sim, now) {
   if (!script_) throw std::invalid_argument("LuaNode: no script");
-  rate_ = options_.rate;
 }
 
 void LuaNode::Log(std::string line) {
@@ -38,44 +38,21 @@ std::vector<std::string> LuaNode::TakeLog() {
 }
 
 WallTime LuaNode::Tick(WallTime now) {
-  if (!sim_heard_ && !warned_no_simulator_ &&
-      SecondsBetween(started_, now) >= kNoSimulatorWarning) {
-    warned_no_simulator_ = true;
-    Log(fmt::format(
-        "warning: nothing from a simulator after {:.0f} s on {} (is "
-        "mrsim-sim running, with the same --lcm-url and --prefix?)",
-        kNoSimulatorWarning, StateChannel(options_.prefix, options_.robot)));
-  }
-  if (options_.exit_with_sim && !sim_stopped_) {
-    if (!sim_heard_ && SecondsBetween(started_, now) >= kNoSimulatorGiveUp) {
-      sim_stopped_ = true;
-      gave_up_ = true;
-      Log(fmt::format("no simulator heard in {:.0f} s (--exit-with-sim)",
-                      kNoSimulatorGiveUp));
-    } else if (sim_heard_ &&
-               SecondsBetween(*sim_heard_, now) >= kSimulatorSilence) {
-      sim_stopped_ = true;
-      Log(
-          fmt::format("the simulator has been silent for {:.0f} s "
-                      "(--exit-with-sim): stopping",
-                      kSimulatorSilence));
-    }
-  }
+  std::vector<std::string> lines;
+  watch_.Tick(now, &lines);
+  for (std::string& line : lines) Log(std::move(line));
   return AfterSeconds(now, 0.5);
 }
 
 void LuaNode::OnSimStatus(const sim_status_t& status, WallTime now) {
-  sim_heard_ = now;
-  sim_clock_ = status.clock;
-  if (status.mode == sim_status_t::STOPPING && !sim_stopped_) {
-    sim_stopped_ = true;
-    if (options_.exit_with_sim) Log("the simulator stopped (--exit-with-sim)");
-  }
+  std::vector<std::string> lines;
+  watch_.OnStatus(status, now, &lines);
+  for (std::string& line : lines) Log(std::move(line));
 }
 
 void LuaNode::OnState(const robot_state_t& state, WallTime now,
                       LuaOutbox* out) {
-  sim_heard_ = now;
+  watch_.Heard(now);
   if (!error_.empty()) return;
   try {
     HandleState(state, out);
@@ -125,33 +102,19 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
                     state.num_joints, axes_->size()));
     return;
   }
-  const auto recent = recent_.find(state.seq);
-  if (recent != recent_.end()) {
+  std::string note;
+  const StatePacer::Decision decision =
+      pacer_.Decide(state, watch_.may_be_lockstep(), &note);
+  if (!note.empty()) Log(std::move(note));
+  // A reset or a loaded checkpoint (decision.restarted): the script's t
+  // starts again with the state's sim time.
+  if (decision.verdict == StatePacer::Verdict::kRepeat) {
     ++counters_.states_repeated;
-    out->Add(CommandChannel(options_.prefix, options_.robot), recent->second);
+    out->Add(CommandChannel(options_.prefix, options_.robot), *decision.repeat);
     return;
   }
-  if (have_last_ && state.seq < last_state_seq_) {
+  if (decision.verdict == StatePacer::Verdict::kSkip) {
     ++counters_.states_skipped;
-    return;
-  }
-  if (have_last_ && state.sim_time < last_time_) {
-    // A reset or a loaded checkpoint: the script's t starts again.
-    have_last_ = false;
-  }
-  const bool may_be_lockstep = sim_clock_.empty() || sim_clock_ == "lockstep";
-  if (rate_ > 0 && state.seq == last_skipped_seq_ && may_be_lockstep) {
-    Log(
-        fmt::format("the simulator sent state seq {} again after it was "
-                    "skipped (lockstep at more than --rate {} Hz): answering "
-                    "every state from now on",
-                    state.seq, rate_));
-    rate_ = 0;
-  }
-  if (have_last_ && rate_ > 0 &&
-      state.sim_time - last_time_ < 1.0 / rate_ - 1e-9) {
-    ++counters_.states_skipped;
-    last_skipped_seq_ = state.seq;
     return;
   }
   const size_t n = state.joints.size();
@@ -181,20 +144,8 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
   }
   std::vector<double> targets = script_->Step(state.sim_time, input_);
 
-  joint_command_t command;
-  command.utime = state.utime;
-  command.seq = command_seq_++;
-  command.robot = options_.robot;
-  command.sender = options_.sender;
-  command.state_seq = state.seq;
-  command.num_joints = static_cast<int32_t>(targets.size());
-  command.target = std::move(targets);
-  out->Add(CommandChannel(options_.prefix, options_.robot), command);
-  recent_[state.seq] = std::move(command);
-  while (recent_.size() > kRecentAnswers) recent_.erase(recent_.begin());
-  last_state_seq_ = state.seq;
-  last_time_ = state.sim_time;
-  have_last_ = true;
+  out->Add(CommandChannel(options_.prefix, options_.robot),
+           pacer_.Answer(state, std::move(targets)));
   ++counters_.states_answered;
 }
 

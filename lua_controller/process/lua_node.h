@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "lcmtypes/runtime/outbox.h"
+#include "lcmtypes/runtime/simulator_watch.h"
+#include "lcmtypes/runtime/state_pacer.h"
 #include "lua_controller/lua_script.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
@@ -47,10 +49,7 @@ struct LuaNodeCounters {
 
 class LuaNode {
  public:
-  static constexpr double kNoSimulatorWarning = 5.0;  // wall s
-  static constexpr double kSimulatorSilence = 5.0;    // wall s
-  static constexpr double kNoSimulatorGiveUp = 30.0;  // wall s
-  static constexpr size_t kRecentAnswers = 8;
+  static constexpr double kSimulatorSilence = SimulatorWatch::kSimulatorSilence;
   static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
 
   // `script` is already loaded (its syntax checked). axes_for(joint_count)
@@ -67,8 +66,8 @@ class LuaNode {
   // wants to be called again.
   WallTime Tick(WallTime now);
 
-  bool done() const { return options_.exit_with_sim && sim_stopped_; }
-  bool gave_up() const { return gave_up_; }
+  bool done() const { return options_.exit_with_sim && watch_.stopped(); }
+  bool gave_up() const { return watch_.gave_up(); }
   // Set when the script failed (with its line) or the axes do not fit.
   const std::string& error() const { return error_; }
   std::vector<std::string> TakeLog();
@@ -85,19 +84,8 @@ class LuaNode {
   std::optional<std::vector<std::string>> axes_;  // set by the first state
   LuaRobotState input_;                           // reused each step
 
-  double rate_ = 0;
-  int64_t last_skipped_seq_ = -1;
-  std::string sim_clock_;
-  bool sim_stopped_ = false;
-  bool gave_up_ = false;
-  WallTime started_;
-  std::optional<WallTime> sim_heard_;
-  bool warned_no_simulator_ = false;
-  bool have_last_ = false;
-  int64_t last_state_seq_ = -1;
-  double last_time_ = 0;
-  int64_t command_seq_ = 0;
-  std::map<int64_t, joint_command_t> recent_;
+  StatePacer pacer_;
+  SimulatorWatch watch_;
 
   LuaNodeCounters counters_;
   std::vector<std::string> log_;
