@@ -7,21 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include "sim_core/mujoco_compile_lock.h"
 #include "sim_core/mujoco_handlers.h"
 #include "sim_core/terrain.h"
 
 namespace mrsim {
-namespace {
-
-void AddFile(mjVFS* vfs, const std::string& name, const void* bytes,
-             size_t size) {
-  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(size)) != 0) {
-    throw std::runtime_error("cannot hold '" + name + "' in memory");
-  }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], bytes, size);
-}
-
-}  // namespace
 
 MjModelPtr CompileScenarioModel(const Scenario& scenario, MjcfOptions options,
                                 MjcfInfo* info) {
@@ -34,16 +24,13 @@ MjModelPtr CompileScenarioModel(const Scenario& scenario, MjcfOptions options,
   InstallMujocoHandlers();  // before any MuJoCo call: never print or exit
   MjModelPtr model;
   {
-    // MuJoCo 2.2's XML parser and compiler keep global state: one at a
-    // time, so models can be built from several threads.
-    static std::mutex compile_mutex;
-    std::lock_guard<std::mutex> lock(compile_mutex);
+    std::lock_guard<std::mutex> lock(MujocoCompileMutex());
     MjVfsPtr vfs = MakeMjVfs();
     const std::string kName = "mrsim_scenario.xml";
-    AddFile(vfs.get(), kName, xml.data(), xml.size());
+    AddMjVfsFile(vfs.get(), kName, xml.data(), xml.size());
     for (const auto& [name, bytes] : info->memory_files) {
       if (mj_findFileVFS(vfs.get(), name.c_str()) >= 0) continue;
-      AddFile(vfs.get(), name, bytes.data(), bytes.size());
+      AddMjVfsFile(vfs.get(), name, bytes.data(), bytes.size());
     }
     char error[1024] = {0};
     model.reset(mj_loadXML(kName.c_str(), vfs.get(), error, sizeof(error)));

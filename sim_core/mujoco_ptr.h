@@ -3,7 +3,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include <cstring>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace mrsim {
 
@@ -30,6 +33,16 @@ inline MjVfsPtr MakeMjVfs() {
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   return MjVfsPtr(vfs.release());
+}
+
+// Adds `size` bytes as file `name`. Throws std::runtime_error when the file
+// system is full (MuJoCo 2.2 holds up to 2000 files).
+inline void AddMjVfsFile(mjVFS* vfs, const std::string& name, const void* bytes,
+                         size_t size) {
+  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(size)) != 0) {
+    throw std::runtime_error("cannot hold '" + name + "' in memory");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], bytes, size);
 }
 
 }  // namespace mrsim

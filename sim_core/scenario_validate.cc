@@ -16,6 +16,7 @@
 
 #include "sim_core/embedded_mesh.h"
 #include "sim_core/face_geometry.h"
+#include "sim_core/mesh_check.h"
 #include "sim_core/scenario_schema_inl.h"
 #include "sim_core/terrain.h"
 
@@ -347,9 +348,23 @@ class Validator {
       Fail(path, "expected Box or a mesh file ending in .obj or .stl, got '" +
                      frame.shape + "'");
     }
-    // A mesh carried inside the scenario (the optimiser's payload) names no
-    // file; MuJoCo checks its bytes when the model is built.
-    if (IsEmbeddedMesh(frame.shape)) return;
+    // A mesh carried inside the scenario (the optimiser's payload, a design
+    // saved with its assets) names no file: its bytes are checked alike.
+    if (IsEmbeddedMesh(frame.shape)) {
+      EmbeddedMesh mesh;
+      try {
+        mesh = DecodeEmbeddedMesh(frame.shape);
+      } catch (const std::exception& e) {
+        Fail(path, std::string("embedded mesh: ") + e.what());
+      }
+      if (mesh.bytes.size() > kMaxMeshFileBytes) {
+        Fail(path, "embedded mesh '" + mesh.file_name + "' is larger than " +
+                       std::to_string(kMaxMeshFileBytes >> 20) + " MB");
+      }
+      CheckMeshBytes(path, "embedded mesh '" + mesh.file_name + "'", mesh.bytes,
+                     mesh.file_name, frame.scale);
+      return;
+    }
     fs::path p(frame.shape);
     if (p.is_relative() && !s_.base_dir.empty()) p = fs::path(s_.base_dir) / p;
     const std::string resolved = p.string();
@@ -365,8 +380,20 @@ class Validator {
       Fail(path, "mesh file '" + resolved + "' is larger than " +
                      std::to_string(kMaxMeshFileBytes >> 20) + " MB");
     }
-    const std::string bytes((std::istreambuf_iterator<char>(in)),
-                            std::istreambuf_iterator<char>());
+    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                           std::istreambuf_iterator<char>());
+    CheckMeshBytes(path, "mesh file '" + resolved + "'", bytes, frame.shape,
+                   frame.scale);
+  }
+
+  // The cheap shape of an OBJ or STL first (a clear word on what a file of
+  // the wrong kind lacks), then MuJoCo's own reader at the frame's scale.
+  void CheckMeshBytes(const std::string& path, const std::string& what,
+                      const std::vector<unsigned char>& data,
+                      const std::string& file_name,
+                      const Eigen::Vector3d& scale) {
+    const std::string ext = Lower(fs::path(file_name).extension().string());
+    const std::string bytes(data.begin(), data.end());
     bool ok = false;
     const bool ascii_stl = bytes.rfind("solid", 0) == 0 &&
                            bytes.find("facet") != std::string::npos;
@@ -388,9 +415,14 @@ class Validator {
       ok = ascii_stl;
     }
     if (!ok) {
-      Fail(path, "mesh file '" + resolved + "' is not a valid " +
+      Fail(path, what + " is not a valid " +
                      (ext == ".obj" ? "OBJ (needs v and f lines)"
                                     : "STL (binary or ASCII)"));
+    }
+    try {
+      CheckMeshReadable(data, file_name, scale);
+    } catch (const std::exception& e) {
+      Fail(path, what + ": MuJoCo cannot read it: " + e.what());
     }
   }
 

@@ -245,7 +245,9 @@ Scenario EveryFieldScenario(const std::string& mesh) {
 }
 
 std::string WriteMesh(const std::string& dir) {
-  std::ofstream(dir + "/part.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  // A closed tetrahedron: MuJoCo refuses a mesh without volume.
+  std::ofstream(dir + "/part.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                      "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   return "part.obj";
 }
 
@@ -638,9 +640,14 @@ TEST(ScenarioXml, UnreadableMeshIsRejected) {
   std::ofstream(dir + "/junk.stl") << "not a mesh at all";
   std::ofstream(dir + "/empty.obj") << "# nothing\n";
   std::ofstream(dir + "/model.dae") << "<COLLADA/>";
+  // v and f lines, but a face index of 0 (OBJ counts from 1): only MuJoCo's
+  // own reader finds it, and the validator asks it.
+  std::ofstream(dir + "/zero_index.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                            "v 0 0 1\nf 0 1 2\n";
   WriteMesh(dir);
   const std::pair<const char*, const char*> cases[] = {
       {"missing.obj", "cannot read mesh file"},
+      {"zero_index.obj", "zero_index.obj': MuJoCo cannot read it: "},
       {"junk.stl", "is not a valid STL"},
       {"empty.obj", "is not a valid OBJ"},
       {"model.dae", "expected Box or a mesh file ending in .obj or .stl"}};
@@ -657,6 +664,24 @@ TEST(ScenarioXml, UnreadableMeshIsRejected) {
                                    "<Frame><guid>f0</guid><shape>part.obj"
                                    "</shape>");
   EXPECT_NO_THROW(ReadScenarioString(good, "t.xml", dir));
+}
+
+// An embedded mesh is checked as a file is: a design that validates
+// compiles (found by the scenario_xml fuzz target).
+TEST(ScenarioXml, BrokenEmbeddedMeshIsRejectedAtItsFrame) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 1 2\n";
+  const std::string shape =
+      "base64:" +
+      Base64Encode(std::vector<unsigned char>(obj.begin(), obj.end())) +
+      ":cube.obj";
+  const std::string xml =
+      Replace(kTemplate, "<Frame><guid>f0</guid>",
+              "<Frame><guid>f0</guid><shape>" + shape + "</shape>");
+  EXPECT_THAT(ErrorOf(xml, "/nonexistent"),
+              StartsWith(At(xml, "<shape>") + kModulePath +
+                         "/frames/Frame[1]/shape: embedded mesh 'cube.obj': "
+                         "MuJoCo cannot read it: "));
+  EXPECT_THAT(ErrorOf(xml, "/nonexistent"), HasSubstr("cube.obj"));
 }
 
 TEST(ScenarioXml, MissingFileNamesThePath) {
