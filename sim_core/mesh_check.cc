@@ -14,6 +14,7 @@
 #include "sim_core/mujoco_compile_lock.h"
 #include "sim_core/mujoco_handlers.h"
 #include "sim_core/mujoco_ptr.h"
+#include "sim_core/obj_check.h"
 
 namespace mrsim {
 namespace {
@@ -51,7 +52,7 @@ std::string CompileError(const std::vector<unsigned char>& bytes,
   }
   // MuJoCo's message names the generated file and asset: only its reason
   // means something to the user.
-  if (const size_t at = text.find("\n\nObject name"); at != std::string::npos) {
+  if (const size_t at = text.find("\nObject name"); at != std::string::npos) {
     text.resize(at);
   }
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) {
@@ -89,7 +90,15 @@ void CheckMeshReadable(const std::vector<unsigned char>& bytes,
     }
   }
   if (!known) {
-    error = CompileError(bytes, ext, shown_name, scale);
+    if (ext == ".obj") {
+      // MuJoCo's OBJ loader trusts the file: ours reads it first.
+      try {
+        CheckObjText(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+      } catch (const std::exception& e) {
+        error = shown_name + ": " + e.what();
+      }
+    }
+    if (error.empty()) error = CompileError(bytes, ext, shown_name, scale);
     std::lock_guard<std::mutex> lock(remembered_mutex);
     if (remembered.size() >= kMaxRemembered) remembered.clear();
     remembered.emplace(key, error);

@@ -395,8 +395,6 @@ class Validator {
     const std::string ext = Lower(fs::path(file_name).extension().string());
     const std::string bytes(data.begin(), data.end());
     bool ok = false;
-    const bool ascii_stl = bytes.rfind("solid", 0) == 0 &&
-                           bytes.find("facet") != std::string::npos;
     if (ext == ".obj") {
       std::istringstream lines(bytes);
       std::string line;
@@ -409,15 +407,19 @@ class Validator {
     } else if (bytes.size() >= 84) {
       std::uint32_t triangles = 0;
       std::memcpy(&triangles, bytes.data() + 80, 4);
-      ok = (triangles > 0 && bytes.size() == 84 + 50ull * triangles) ||
-           ascii_stl;
-    } else {
-      ok = ascii_stl;
+      ok = triangles > 0 && bytes.size() == 84 + 50ull * triangles;
+    }
+    if (!ok && ext == ".stl" && bytes.rfind("solid", 0) == 0 &&
+        bytes.find("facet") != std::string::npos) {
+      Fail(path, what +
+                     " is an ASCII STL: MuJoCo reads binary STL only (export "
+                     "it as binary STL)");
     }
     if (!ok) {
       Fail(path, what + " is not a valid " +
                      (ext == ".obj" ? "OBJ (needs v and f lines)"
-                                    : "STL (binary or ASCII)"));
+                                    : "binary STL (80-byte header, triangle "
+                                      "count, 50 bytes a triangle)"));
     }
     try {
       CheckMeshReadable(data, file_name, scale);

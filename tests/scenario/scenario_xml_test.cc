@@ -638,6 +638,9 @@ TEST(ScenarioXml, EmbeddedBase64ImageLoadsAndRoundTrips) {
 TEST(ScenarioXml, UnreadableMeshIsRejected) {
   const std::string dir = TempDir("scenario_bad_mesh");
   std::ofstream(dir + "/junk.stl") << "not a mesh at all";
+  std::ofstream(dir + "/ascii.stl")
+      << "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+         "   vertex 1 0 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid\n";
   std::ofstream(dir + "/empty.obj") << "# nothing\n";
   std::ofstream(dir + "/model.dae") << "<COLLADA/>";
   // v and f lines, but a face index of 0 (OBJ counts from 1): only MuJoCo's
@@ -648,7 +651,8 @@ TEST(ScenarioXml, UnreadableMeshIsRejected) {
   const std::pair<const char*, const char*> cases[] = {
       {"missing.obj", "cannot read mesh file"},
       {"zero_index.obj", "zero_index.obj': MuJoCo cannot read it: "},
-      {"junk.stl", "is not a valid STL"},
+      {"junk.stl", "is not a valid binary STL"},
+      {"ascii.stl", "is an ASCII STL: MuJoCo reads binary STL only"},
       {"empty.obj", "is not a valid OBJ"},
       {"model.dae", "expected Box or a mesh file ending in .obj or .stl"}};
   for (const auto& [mesh, what] : cases) {
