@@ -120,6 +120,7 @@ void CheckObjText(const char* data, std::size_t size) {
         const int64_t have[3] = {total.v, total.vt, total.vn};
         const int64_t before[3] = {sofar.v, sofar.vt, sofar.vn};
         const char* names[3] = {"vertex", "texture coordinate", "normal"};
+        bool named_normal = false;
         for (int part = 0; part < 3 && !corner.empty(); ++part) {
           const size_t slash = corner.find('/');
           const std::string_view field = corner.substr(0, slash);
@@ -137,6 +138,15 @@ void CheckObjText(const char* data, std::size_t size) {
             fail(fmt::format("face corner '{}': no {} {} (the file has {})",
                              t[k], names[part], i, have[part]));
           }
+          if (part == 2) named_normal = true;
+        }
+        // MuJoCo 2.2 reads a normal for every corner once the file has
+        // any (a corner without one read past its buffers).
+        if (total.vn > 0 && !named_normal) {
+          fail(
+              fmt::format("face corner '{}': the file has normals (vn), so "
+                          "every corner must name one (v//vn or v/vt/vn)",
+                          t[k]));
         }
         if (!corner.empty()) {
           fail(

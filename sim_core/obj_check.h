@@ -12,7 +12,8 @@ namespace mrsim {
 // Throws std::runtime_error "line N: <what was expected>" unless every line
 // is blank, a comment, or one of v (3 to 7 finite numbers), vt, vn, f (at
 // least three corners `v`, `v/vt`, `v//vn` or `v/vt/vn`, each index non-zero
-// and naming a vertex, texture or normal the file has), o, g, s or usemtl;
+// and naming a vertex, texture or normal the file has; when the file has
+// normals, every corner names one), o, g, s or usemtl;
 // at least one face. mtllib and other statements are refused (MuJoCo would
 // ignore or, worse, open them).
 void CheckObjText(const char* data, std::size_t size);

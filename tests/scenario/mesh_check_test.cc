@@ -45,7 +45,7 @@ TEST(ObjCheck, TakesTheFormsOfFaceCornersOBJWrites) {
                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\r\n"
                      "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
                      "f 1/1/1 3/3/1 2/2/1\nf 1//1 2//1 4//1\n"
-                     "f -4/-3 -1/-2 -2/-1\nf 2 3 4 1\n"),
+                     "f -4/-3/1 -1/-2/1 -2/-1/1\nf 2/1/1 3//1 4//1 1//1\n"),
             "");
 }
 
@@ -63,6 +63,9 @@ TEST(ObjCheck, AFaceIndexPastTheLastVertexIsRefusedWithItsLine) {
               HasSubstr("no texture coordinate 1 (the file has 0)"));
   EXPECT_THAT(ObjError(Replace(kCube, "f 1 3 2", "f 1//2 3 2")),
               HasSubstr("no normal 2 (the file has 0)"));
+  // With normals in the file, MuJoCo 2.2 reads one for every corner.
+  EXPECT_THAT(ObjError(std::string("vn 0 0 1\n") + kCube),
+              HasSubstr("line 10: face corner '1': the file has normals"));
 }
 
 TEST(ObjCheck, RefusesWhatIsNotAMeshStatement) {
