@@ -11,6 +11,7 @@
 #include "studio/app/frame_pacer.h"
 #include "studio/design/panel_layout.h"
 #include "studio/ui/gui_setup.h"
+#include "studio/ui/software_gl.h"
 
 namespace mrsim::studio {
 namespace {
@@ -30,9 +31,22 @@ void RunWindow(StudioApp* app, int width, int height,
   if (!glfwInit()) throw std::runtime_error("GLFW cannot initialise");
   GlfwWindow w;
   glfwWindowHint(GLFW_SAMPLES, 4);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   w.window = glfwCreateWindow(width, height, "mrsim-studio", nullptr, nullptr);
   if (!w.window) throw std::runtime_error("GLFW cannot open a window");
   glfwMakeContextCurrent(w.window);
+  if (IsSoftwareGl()) {
+    // Mesa's software renderer multisamples too: every pixel of the
+    // window drawn four times over, on the CPU. The window again, without
+    // (as the preview's off-screen buffer there; docs/studio.md).
+    glfwDestroyWindow(w.window);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    w.window =
+        glfwCreateWindow(width, height, "mrsim-studio", nullptr, nullptr);
+    if (!w.window) throw std::runtime_error("GLFW cannot open a window");
+    glfwMakeContextCurrent(w.window);
+  }
+  glfwShowWindow(w.window);
   glfwSwapInterval(1);
   // Text and panels grow with the monitor's content scale (high-DPI), or
   // as --ui-scale says.

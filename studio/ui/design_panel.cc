@@ -7,6 +7,7 @@
 #include "sim_core/part_look.h"
 #include "studio/design/chain_edit.h"
 #include "studio/ui/chain_drag.h"
+#include "studio/ui/panel_background.h"
 #include "studio/ui/print_section.h"
 #include "studio/ui/widgets.h"
 
@@ -49,6 +50,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   const float x = rect.x, y = rect.y, w = rect.w, h = rect.h;
   ImGui::SetNextWindowPos(ImVec2(x, y));
   ImGui::SetNextWindowSize(ImVec2(w, h));
+  SkipPanelBackground();
   ImGui::Begin("Design", nullptr, kPanelFlags);
   const float third = (w - 32) / 3;
   if (studio.Button("New", third / 1.5f)) studio.Guard(Pending::kNew);

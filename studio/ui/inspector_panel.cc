@@ -14,6 +14,7 @@
 #include "sim_core/sensor_face.h"
 #include "sim_core/sensor_kind.h"
 #include "studio/design/inspector_fields.h"
+#include "studio/ui/panel_background.h"
 #include "studio/ui/widgets.h"
 
 namespace mrsim::studio {
@@ -43,6 +44,7 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   const float x = rect.x, y = rect.y, w = rect.w, h = rect.h;
   ImGui::SetNextWindowPos(ImVec2(x, y));
   ImGui::SetNextWindowSize(ImVec2(w, h));
+  SkipPanelBackground();
   ImGui::Begin("Inspector", nullptr, kPanelFlags);
   Scenario view = studio.design.scenario();
   const Selection sel = studio.design.selection();

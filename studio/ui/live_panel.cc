@@ -9,6 +9,7 @@
 
 #include "lcmtypes/runtime/message_key.h"
 #include "studio/ui/live_panel_common.h"
+#include "studio/ui/panel_background.h"
 
 namespace mrsim::studio {
 
@@ -174,6 +175,7 @@ void LivePanel::Draw(float x, float y, float w, float h,
                      const LiveDesign& design) {
   ImGui::SetNextWindowPos(ImVec2(x, y));
   ImGui::SetNextWindowSize(ImVec2(w, h));
+  SkipPanelBackground();
   ImGui::Begin("Run", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                    ImGuiWindowFlags_NoCollapse);

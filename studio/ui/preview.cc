@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <functional>
 #include <string_view>
 
@@ -16,6 +15,7 @@
 #include "sim_core/part_look.h"
 #include "studio/ui/live_rays.h"
 #include "studio/ui/mujoco_buffer_cache.h"
+#include "studio/ui/software_gl.h"
 
 namespace mrsim::studio {
 namespace {
@@ -119,11 +119,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   sized.vis.quality.shadowsize = 2048;
   // Software OpenGL (llvmpipe, no GPU): multisampling and shadows cost
   // most of the frame, so they go (docs/studio.md).
-  const char* renderer =
-      reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  software_ =
-      renderer != nullptr && (std::strstr(renderer, "llvmpipe") != nullptr ||
-                              std::strstr(renderer, "softpipe") != nullptr);
+  software_ = IsSoftwareGl();
   if (software_) sized.vis.quality.offsamples = 0;
   // Uploading textures (the 512x3072 sky) and buffers again costs more
   // than the compile on software GL: only when they changed. What the
@@ -266,6 +262,10 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
     }
   }
   if (software_) scene_.flags[mjRND_SHADOW] = 0;
+  // The floor's reflection draws the floor twice more (stencil, blend):
+  // on software GL a third of the view's time, so a drag (where the frame
+  // rate is what the user feels) goes without it (docs/studio.md).
+  scene_.flags[mjRND_REFLECTION] = software_ && dragging_ ? 0 : 1;
   for (int i = 0; i < scene_.ngeom; ++i) {
     mjvGeom& g = scene_.geoms[i];
     if (g.objtype != mjOBJ_GEOM) continue;
@@ -276,6 +276,7 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
     }
   }
   AddRays();
+  if (software_) CoarsenInfinitePlanes(m, context_, &scene_);
   mjr_render(viewport, &scene_, &context_);
 }
 

@@ -14,6 +14,7 @@
 
 #include "sim_core/codec/state_message.h"
 #include "studio/ui/gui_setup.h"
+#include "studio/ui/panel_background.h"
 #include "studio/ui/print_section.h"
 
 namespace mrsim::studio {
@@ -88,9 +89,13 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   Preview& preview = *studio_.preview;
   preview.Bind(offscreen);
   glViewport(0, 0, width, height);
-  glClearColor(0.12f, 0.13f, 0.15f, 1.0f);
+  // The panels' background colour: they draw none (panel_background.h).
+  const ImVec4 clear = PanelClearColour();
+  glClearColor(clear.x, clear.y, clear.z, 1.0f);
   glDisable(GL_SCISSOR_TEST);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  // Stencil too: a depth-stencil buffer cleared whole is a fast clear,
+  // depth alone a read-modify-write of every pixel on software GL.
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   preview.Render(view, offscreen, studio_.design.selection());
   if (studio_.video.recording()) {
     // The view alone: read before the panels and the overlay go over it.
