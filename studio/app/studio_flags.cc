@@ -29,6 +29,9 @@ void AddStudioFlags(CLI::App* cli, StudioFlags* f) {
                   "Text and panel size (1: 15 px text; default: the "
                   "monitor's content scale)")
       ->check(CLI::Range(0.0f, 4.0f));
+  cli->add_flag("--full-view", o.full_view,
+                "Start with both side panels hidden: the 3-D view alone "
+                "(F11 or the View menu brings them back)");
   cli->add_option("--layout-dump", o.layout_dump,
                   "Write widget rectangles and state here (for tests)");
   cli->add_option("--key-file", f->key_file,

@@ -88,6 +88,13 @@ TEST(StudioScreenshotFlags, DragOnTheMoveHandleMovesTheObjectInThePicture) {
   EXPECT_EQ(moving["dirty"], "0") << "a drag is one edit, on release";
 }
 
+TEST(StudioScreenshotFlags, FullViewHidesBothPanels) {
+  auto layout = Shot("studio_shot_full", {"--full-view"});
+  EXPECT_EQ(layout["panel left"], "hidden");
+  EXPECT_EQ(layout["panel right"], "hidden");
+  EXPECT_EQ(layout["panel view"].substr(0, 2), "0 ") << layout["panel view"];
+}
+
 TEST(StudioScreenshotFlags, BadSelectExits2AndDragNeedsAScreenshot) {
   const std::string dir = TempDir("studio_shot_bad");
   unsetenv("DISPLAY");
