@@ -45,7 +45,8 @@ void HeadlessStudio::SavePng(const std::string& path) {
   cv::cvtColor(flipped, bgr, cv::COLOR_RGB2BGR);
   bool ok = false;
   try {
-    ok = cv::imwrite(path, bgr);
+    // Smallest file (docs keep these): zlib level 9.
+    ok = cv::imwrite(path, bgr, {cv::IMWRITE_PNG_COMPRESSION, 9});
   } catch (const cv::Exception&) {
     ok = false;
   }
@@ -53,9 +54,29 @@ void HeadlessStudio::SavePng(const std::string& path) {
 }
 
 void SaveScreenshot(StudioApp* app, int width, int height,
-                    const std::string& path) {
+                    const std::string& path, const std::vector<int>& drag) {
   HeadlessStudio headless(app, width, height);
   for (int i = 0; i < 3; ++i) headless.Frame();
+  if (drag.size() == 4) {
+    ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 from(static_cast<float>(drag[0]), static_cast<float>(drag[1]));
+    const ImVec2 to(static_cast<float>(drag[2]), static_cast<float>(drag[3]));
+    // Hover first (ImGui finds the item under the mouse from the frame
+    // before), press, then small steps: past the drag threshold, and each
+    // move seen by the drag source and the targets on the way.
+    io.MousePos = from;
+    headless.Frame();
+    io.MouseDown[0] = true;
+    headless.Frame();
+    constexpr int kSteps = 12;
+    for (int i = 1; i <= kSteps; ++i) {
+      const float t = static_cast<float>(i) / kSteps;
+      io.MousePos =
+          ImVec2(from.x + t * (to.x - from.x), from.y + t * (to.y - from.y));
+      headless.Frame();
+    }
+    headless.Frame();  // the last place drawn with everything settled
+  }
   headless.SavePng(path);
 }
 

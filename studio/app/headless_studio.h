@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "studio/ui/studio_app.h"
 #include "viewer/gl_context.h"
@@ -33,8 +34,11 @@ class HeadlessStudio {
 };
 
 // mrsim-studio --screenshot: the whole window once, after the frames ImGui
-// needs to lay itself out, written to `path` (PNG).
+// needs to lay itself out, written to `path` (PNG). `drag` (x0 y0 x1 y1 or
+// empty): the left button pressed at the first point and moved to the
+// second in steps, as a hand would, still held for the picture (a palette
+// drag, a handle drag in progress).
 void SaveScreenshot(StudioApp* app, int width, int height,
-                    const std::string& path);
+                    const std::string& path, const std::vector<int>& drag = {});
 
 }  // namespace mrsim::studio

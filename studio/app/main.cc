@@ -39,15 +39,17 @@ int main(int argc, char** argv) {
   }
   try {
     const AppOptions& options = flags.options;
-    StudioApp app(
-        flags.scenario.empty() ? Design() : Design::Open(flags.scenario),
-        options);
+    StudioApp app(OpenDesign(flags), options);
     if (!flags.screenshot.empty()) {
-      SaveScreenshot(&app, options.width, options.height, flags.screenshot);
+      SaveScreenshot(&app, options.width, options.height, flags.screenshot,
+                     flags.drag);
     } else {
       RunWindow(&app, options.width, options.height, &g_stop);
     }
   } catch (const mrsim::ScenarioError& e) {
+    std::cerr << "mrsim-studio: " << e.what() << "\n";
+    return 2;
+  } catch (const mrsim::UsageError& e) {  // --select names nothing
     std::cerr << "mrsim-studio: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

@@ -27,6 +27,7 @@ class FileBrowser {
 
   bool open_ = false;
   bool opening_ = false;
+  int frames_shown_ = 0;  // frames drawn since it opened, up to 2
   bool save_ = false;
   std::string title_;
   std::string dir_;

@@ -20,6 +20,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
       live(std::make_unique<LivePanel>(ProgramSearchPath(""), &layout)),
       recent(options_in.recent_store) {
   Note(design.note());
+  if (options.full_view) ToggleFullView();
   if (!design.path().empty() && std::filesystem::exists(design.path())) {
     recent.Add(design.path());
   }

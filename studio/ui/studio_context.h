@@ -28,6 +28,8 @@ struct AppOptions {
   std::string layout_dump;   // --layout-dump file, "" for none
   std::string recent_store;  // RecentFiles store, "" for the default
   float ui_scale = 0;  // --ui-scale: text and panel size, 0: the monitor's
+  // --full-view: both side panels hidden at the start (F11).
+  bool full_view = false;
 };
 
 // An action that may first ask about unsaved changes.

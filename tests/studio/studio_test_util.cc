@@ -79,4 +79,11 @@ bool ClickAt(int x, int y) {
       {"mousemove", std::to_string(x), std::to_string(y), "click", "1"});
 }
 
+bool ClickWhenThere(const std::string& layout, int x, int y) {
+  const std::string xs = std::to_string(x), ys = std::to_string(y);
+  return Xdotool({"mousemove", xs, ys}) &&
+         WaitForLayout(layout, "mouse", xs + " " + ys) &&
+         Xdotool({"click", "1"});
+}
+
 }  // namespace mrsim::testing

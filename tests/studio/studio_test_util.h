@@ -40,5 +40,9 @@ bool WidgetCentre(const std::string& layout, const std::string& name, int* x,
 bool Xdotool(const std::vector<std::string>& args);
 // Moves the pointer to (x, y) and clicks the left button.
 bool ClickAt(int x, int y);
+// Moves the pointer to (x, y), waits until the window has drawn a frame
+// with the mouse there (the layout's "mouse" line), then clicks: a click
+// is never taken for one at the pointer's previous place.
+bool ClickWhenThere(const std::string& layout, int x, int y);
 
 }  // namespace mrsim::testing

@@ -1,0 +1,23 @@
+# Every image a Markdown file shows (![text](file.png)) is in the tree:
+# a screenshot renamed or never committed is found before a reader does.
+# Usage: cmake -DMRSIM_DOCS=<file;...> -P check_docs_images.cmake
+set(missing "")
+foreach(doc IN LISTS MRSIM_DOCS)
+  get_filename_component(dir "${doc}" DIRECTORY)
+  file(STRINGS "${doc}" lines REGEX "!\\[[^]]*\\]\\([^)]+\\)")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCHALL "!\\[[^]]*\\]\\([^)]+\\)" images "${line}")
+    foreach(image IN LISTS images)
+      string(REGEX REPLACE ".*\\]\\(([^) ]+).*" "\\1" path "${image}")
+      if(path MATCHES "^https?:")
+        continue()
+      endif()
+      if(NOT EXISTS "${dir}/${path}")
+        string(APPEND missing "\n  ${doc}: ${path}")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(missing)
+  message(FATAL_ERROR "images shown but not in the tree:${missing}")
+endif()
