@@ -74,10 +74,8 @@ TEST_F(StudioPrintTest, PickAMeshForAllPitchModules) {
     std::ofstream out(dir_ + "/link.stl", std::ios::binary);
     out << BinaryStl(BoxMesh(Eigen::Vector3d(0.07, 0.05, 0.05)), 1.0, "link");
   }
-  std::istringstream front(ReadLayout(layout_)["part module 0 0"]);
-  int x = 0, y = 0;
-  ASSERT_TRUE(front >> x >> y) << "module 0 not on screen";
-  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
+  // Selected in the chain list, as a student picks a part to change.
+  Click("row module 0 0");
   ASSERT_TRUE(WaitForLayout(layout_, "selected", "module 0 0"));
   OpenFileDialog("Mesh for all of kind...");
   ASSERT_EQ(ReadLayout(layout_)["file folder"], dir_);
