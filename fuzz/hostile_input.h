@@ -163,13 +163,15 @@ class HostileInput {
     }
     for (double& v : m.com) v = Double();
     for (double& v : m.com_velocity) v = Double();
-    for (double& v : m.orientation) v = Double();
-    m.heading = Double();
     m.num_locks = Length(modules > 0 ? modules - 1 : 0, 64);
     for (int i = 0; i < m.num_locks; ++i) {
       m.lock_names.push_back(Text({"snake/lock0", "lock1"}));
       m.lock_attached.push_back(Bool());
     }
+    // Drawn last, so the seeds written before these fields keep their
+    // meaning for everything above.
+    for (double& v : m.orientation) v = Double();
+    m.heading = Double();
     return m;
   }
 
