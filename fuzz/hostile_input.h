@@ -168,6 +168,10 @@ class HostileInput {
       m.lock_names.push_back(Text({"snake/lock0", "lock1"}));
       m.lock_attached.push_back(Bool());
     }
+    // Drawn last, so the seeds written before these fields keep their
+    // meaning for everything above.
+    for (double& v : m.orientation) v = Double();
+    m.heading = Double();
     return m;
   }
 

@@ -8,6 +8,7 @@ std::string ColumnUnit(const std::string& column) {
       dot == std::string::npos ? column : column.substr(dot + 1);
   if (column == "time" || column == "sim_time") return "s";
   if (column.rfind("com_velocity.", 0) == 0) return "m/s";
+  if (column == "heading") return "rad";
   if (last == "x" || last == "y" || last == "z") return "m";
   if (last == "angle") return "rad";
   if (last == "speed") return "rad/s";

@@ -126,6 +126,10 @@ bool RobotStateFlattener::Flatten(const uint8_t* data, size_t size,
   for (double v : m.com_velocity) {
     cells.CommaDouble(v);
   }
+  for (double v : m.orientation) {
+    cells.CommaDouble(v);
+  }
+  cells.CommaDouble(m.heading);
   cells.Flush();
   for (bool attached : m.lock_attached) out.append(attached ? ",1" : ",0");
   row->has_seq = true;
@@ -203,6 +207,11 @@ std::vector<std::string> RobotStateFlattener::ColumnNames() const {
   }
   for (const char* n : {"com.x", "com.y", "com.z", "com_velocity.x",
                         "com_velocity.y", "com_velocity.z"}) {
+    names.push_back(n);
+  }
+  // The robot's orientation (w, x, y, z as in every pose) and heading.
+  for (const char* n : {"orientation.qw", "orientation.qx", "orientation.qy",
+                        "orientation.qz", "heading"}) {
     names.push_back(n);
   }
   // Named by the lock (guid or robot/lockN) so a column keeps its meaning

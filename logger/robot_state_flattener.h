@@ -3,7 +3,8 @@
 // `module3.joint.angle/speed/torque/x..qz`, `sensor_module0.x ..`,
 // `sensor_module0.force`, `sensor_module0.distance4` (4 = face),
 // `sensor_module0.imu.accel.x` (the sensor kinds' table, sensor_kind.h),
-// `com.x`, `com_velocity.x`, `lock.snake/lock3.attached` (1 holds, 0 released).
+// `com.x`, `com_velocity.x`, `orientation.qw .. qz`, `heading`,
+// `lock.snake/lock3.attached` (1 holds, 0 released).
 // SI units throughout.
 #pragma once
 

@@ -301,6 +301,14 @@ int CallStep(lua_State* L, StepCall* call) {
   lua_setfield(L, -2, "com");
   PushVector3(L, s.com_velocity);
   lua_setfield(L, -2, "com_velocity");
+  lua_createtable(L, 4, 0);
+  for (int i = 0; i < 4; ++i) {
+    lua_pushnumber(L, s.orientation[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_setfield(L, -2, "orientation");
+  lua_pushnumber(L, s.heading);
+  lua_setfield(L, -2, "heading");
   lua_createtable(L, static_cast<int>(s.sensors.size()), 0);
   for (size_t i = 0; i < s.sensors.size(); ++i) {
     lua_createtable(L, 0, 2);

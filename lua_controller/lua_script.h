@@ -44,7 +44,8 @@ class LuaScriptError : public std::runtime_error {
 };
 
 // What step() is given as `state` besides `t` (the sim time): the robot's
-// joints in chain order (rad, rad/s, N m), its centre of mass (m, m/s) and
+// joints in chain order (rad, rad/s, N m), its centre of mass (m, m/s), its
+// orientation (quaternion w, x, y, z) and heading (rad; docs/sim.md), and
 // each sensor module's force (N, when it has one) and distances (m), and
 // each joint's axis ("pitch" or "yaw"; empty when unknown).
 struct LuaRobotState {
@@ -54,6 +55,8 @@ struct LuaRobotState {
   std::vector<double> torques;
   double com[3] = {0, 0, 0};
   double com_velocity[3] = {0, 0, 0};
+  double orientation[4] = {1, 0, 0, 0};  // w, x, y, z
+  double heading = 0;
   struct Sensor {
     double force = 0;
     bool has_force = false;

@@ -17,6 +17,7 @@
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/model_compiler.h"
 #include "sim_core/mujoco_handlers.h"
+#include "sim_core/robot_orientation.h"
 #include "sim_core/scenario_validate.h"
 #include "sim_core/sensor_kind.h"
 #include "sim_core/terrain.h"
@@ -829,6 +830,7 @@ RobotState Physics::ReadRobotState(int robot) const {
     state.com /= mass;
     state.com_velocity /= mass;
   }
+  FillRobotOrientation(&state);
   if (impl_->gap_on) {
     std::vector<std::vector<double>> max_distance;
     for (const auto& si : r.sensor_modules) {

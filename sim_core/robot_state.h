@@ -50,6 +50,13 @@ struct RobotState {
   std::vector<SensorModuleState> sensor_modules;
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  // The robot's orientation in the world: that of its head frame (module
+  // 0's front frame, or the first sensor module when it has no modules),
+  // so at t=0 it is the head frame's quatRotation in the design (which the
+  // studio's heading ring turns). heading: yaw of the head frame's +x axis
+  // about world z (rad, -pi..pi; 0 when that axis points straight up/down).
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  double heading = 0.0;
 };
 
 }  // namespace mrsim

@@ -131,6 +131,8 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
     input_.com[i] = state.com[i];
     input_.com_velocity[i] = state.com_velocity[i];
   }
+  for (int i = 0; i < 4; ++i) input_.orientation[i] = state.orientation[i];
+  input_.heading = state.heading;
   input_.sensors.resize(state.sensor_modules.size());
   for (size_t k = 0; k < state.sensor_modules.size(); ++k) {
     const sensor_module_state_t& m = state.sensor_modules[k];

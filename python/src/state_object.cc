@@ -80,6 +80,17 @@ Array Vector3(const Eigen::Vector3d& v) {
   return a;
 }
 
+// w, x, y, z as the logger writes it.
+Array Quaternion(const Eigen::Quaterniond& q) {
+  Array a(4);
+  double* d = a.mutable_data();
+  d[0] = q.w();
+  d[1] = q.x();
+  d[2] = q.y();
+  d[3] = q.z();
+  return a;
+}
+
 Array SensorForces(const RobotState& s) {
   Array a(static_cast<py::ssize_t>(s.sensor_modules.size()));
   double* d = a.mutable_data();
@@ -301,6 +312,17 @@ logger's CSV columns. columns() gives the logger's CSV row itself.)doc");
       [](const StateObject& s) { return Vector3(s.state.com_velocity); },
       "Centre-of-mass velocity (m/s) (CSV: com_velocity.x ..).");
   c.def_property_readonly(
+      "orientation",
+      [](const StateObject& s) { return Quaternion(s.state.orientation); },
+      "The robot's orientation in the world, quaternion (w, x, y, z): its "
+      "head frame's (module 0's front frame; docs/sim.md, \"The robot's "
+      "orientation\"). At t=0 the head frame's quatRotation in the design "
+      "(CSV: orientation.qw, orientation.qx ..).");
+  c.def_property_readonly(
+      "heading", [](const StateObject& s) { return s.state.heading; },
+      "Yaw of the head frame's forward (+x) axis about world z (rad, "
+      "-pi..pi: 0 facing +x, pi/2 facing +y) (CSV: heading).");
+  c.def_property_readonly(
       "locks", [](const StateObject& s) { return s.locks; },
       "(name, attached) of every lock of the robot, scenario order (CSV: "
       "lock.<name>.attached).");
@@ -341,6 +363,8 @@ logger's CSV columns. columns() gives the logger's CSV row itself.)doc");
         d["imu_gyro"] = ReadingTriples(r, "imu", 3);
         d["com"] = Vector3(r.com);
         d["com_velocity"] = Vector3(r.com_velocity);
+        d["orientation"] = Quaternion(r.orientation);
+        d["heading"] = r.heading;
         return d;
       },
       "Every array property above in one dict (what a policy or a log "

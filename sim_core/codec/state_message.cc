@@ -100,6 +100,11 @@ robot_state_t ToRobotStateMessage(const RobotState& state, int64_t seq) {
     msg.com[i] = state.com[i];
     msg.com_velocity[i] = state.com_velocity[i];
   }
+  msg.orientation[0] = state.orientation.w();
+  msg.orientation[1] = state.orientation.x();
+  msg.orientation[2] = state.orientation.y();
+  msg.orientation[3] = state.orientation.z();
+  msg.heading = state.heading;
   return msg;
 }
 
@@ -132,6 +137,10 @@ RobotState FromRobotStateMessage(const robot_state_t& msg) {
   state.com = Eigen::Vector3d(msg.com[0], msg.com[1], msg.com[2]);
   state.com_velocity = Eigen::Vector3d(msg.com_velocity[0], msg.com_velocity[1],
                                        msg.com_velocity[2]);
+  state.orientation =
+      Eigen::Quaterniond(msg.orientation[0], msg.orientation[1],
+                         msg.orientation[2], msg.orientation[3]);
+  state.heading = msg.heading;
   return state;
 }
 

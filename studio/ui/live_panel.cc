@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <utility>
@@ -225,6 +226,8 @@ void LivePanel::DrawOverlay(float x, float y) {
     const auto& v = robot->state.com_velocity;
     ImGui::Text("speed  %.3f m/s",
                 std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    // Where the head faces (docs/sim.md): 0 along +x, 90 along +y.
+    ImGui::Text("heading %.0f deg", robot->state.heading * 180.0 / M_PI);
   }
   if (robot != nullptr && robot->gait) {
     ImGui::Text("gait   %s (%s)", robot->gait->gait.c_str(),

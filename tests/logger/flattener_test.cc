@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "logger/column_units.h"
 #include "logger/generic_flattener.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/robot_state_flattener.h"
@@ -70,6 +71,34 @@ TEST(LoggerFlatten, RobotStateColumnsAreNamedAndValuesExact) {
   EXPECT_EQ(cell("lock.snake/lock0.attached"), "1");
   EXPECT_EQ(cell("lock.snake/lock3.attached"), "0");
   EXPECT_EQ(cols.back(), "lock.snake/lock3.attached");
+}
+
+// The orientation columns come right after the centre of mass, so every
+// column a script already reads keeps its name.
+TEST(LoggerFlatten, RobotOrientationColumnsFollowTheCentreOfMass) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  RobotStateFlattener flattener(registry);
+  const robot_state_t msg = testing::KnownRobotState(7, 3, 0);
+  const auto bytes = Encode(msg);
+  FlatRow row;
+  ASSERT_TRUE(flattener.Flatten(bytes.data(), bytes.size(), &row));
+  const auto& cols = flattener.columns();
+  const auto cells = testing::SplitCsvLine(row.values);
+  ASSERT_EQ(cells.size(), cols.size());
+  const auto at = std::find(cols.begin(), cols.end(), "com_velocity.z");
+  ASSERT_NE(at, cols.end());
+  const size_t i = static_cast<size_t>(at - cols.begin()) + 1;
+  ASSERT_LE(i + 5, cols.size());
+  const std::vector<std::string> want = {"orientation.qw", "orientation.qx",
+                                         "orientation.qy", "orientation.qz",
+                                         "heading"};
+  for (size_t k = 0; k < want.size(); ++k) {
+    EXPECT_EQ(cols[i + k], want[k]);
+    const double value = k < 4 ? msg.orientation[k] : msg.heading;
+    EXPECT_EQ(Parse(cells[i + k]), value) << want[k];
+  }
+  EXPECT_EQ(ColumnUnit("heading"), "rad");
+  EXPECT_EQ(ColumnUnit("orientation.qx"), "");
 }
 
 TEST(LoggerFlatten, RenamedLocksGetNewColumns) {

@@ -63,6 +63,8 @@ inline robot_state_t KnownRobotState(int64_t seq, int modules,
     m.com[k] = KnownValue(seq, 200, k);
     m.com_velocity[k] = KnownValue(seq, 200, 3 + k);
   }
+  for (int k = 0; k < 4; ++k) m.orientation[k] = KnownValue(seq, 200, 6 + k);
+  m.heading = KnownValue(seq, 200, 10);
   m.num_locks = modules > 0 ? modules - 1 : 0;  // a chain's locks
   for (int k = 0; k < m.num_locks; ++k) {
     m.lock_names.push_back(robot + "/lock" + std::to_string(k));

@@ -77,6 +77,22 @@ TEST_F(LuaNodeTest, AnswersEachStateWithTheScriptsTargets) {
   EXPECT_TRUE(node->error().empty());
 }
 
+TEST_F(LuaNodeTest, ScriptSeesTheRobotsOrientationAndHeading) {
+  auto node = Make(
+      "function step(t, state)\n"
+      "  local q = state.orientation\n"
+      "  return {state.heading, q[1], q[2], q[4]}\n"
+      "end\n");
+  robot_state_t s = State(0, 0);
+  s.orientation[0] = std::cos(M_PI / 4);  // w: turned 90 degrees about z
+  s.orientation[3] = std::sin(M_PI / 4);
+  s.heading = M_PI / 2;
+  const auto got = Send(*node, s);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].target, (std::vector<double>{M_PI / 2, std::cos(M_PI / 4),
+                                                0.0, std::sin(M_PI / 4)}));
+}
+
 TEST_F(LuaNodeTest, RepeatedStateGetsTheSameAnswerAndForeignOnesNone) {
   auto node = Make(kRamp);
   const auto first = Send(*node, State(7, 0.5));

@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
     }
     for (int k = 0; k < 3; ++k) Print("com", k, s.com[k]);
     for (int k = 0; k < 3; ++k) Print("com_velocity", k, s.com_velocity[k]);
+    const Eigen::Quaterniond& q = s.orientation;
+    const double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
+    for (int k = 0; k < 4; ++k) Print("orientation", k, wxyz[k]);
+    Print("heading", 0, s.heading);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "python_state_reference: %s\n", e.what());
     return 1;

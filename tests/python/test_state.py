@@ -34,7 +34,7 @@ def test_state_arrays_equal_the_cpp_state_bit_for_bit():
     want = reference_state(scenario, periods)
     assert s.time == want["time"][0]
     for name in ("joint_angle", "joint_speed", "joint_torque", "com",
-                 "com_velocity"):
+                 "com_velocity", "orientation"):
         assert np.array_equal(getattr(s, name), want[name]), name
     for name in ("joint_pose", "module_pose", "frame_pose", "sensor_pose"):
         assert np.array_equal(getattr(s, name).ravel(), want[name]), name
@@ -42,6 +42,7 @@ def test_state_arrays_equal_the_cpp_state_bit_for_bit():
     for i, d in enumerate(s.sensor_distance):
         assert np.array_equal(d, want.get("sensor_distance%d" % i,
                                           np.array([]))), i
+    assert s.heading == want["heading"][0]
     assert s.joint_speed.any(), "the robot moved"
 
 
@@ -59,6 +60,9 @@ def test_columns_are_the_loggers_csv_row():
     assert c["module1.frame1.y"] == s.frame_pose[3, 1]
     assert c["sensor_module0.force"] == s.sensor_force[0]
     assert c["com_velocity.z"] == s.com_velocity[2]
+    assert c["orientation.qw"] == s.orientation[0]
+    assert c["orientation.qz"] == s.orientation[3]
+    assert c["heading"] == s.heading
     assert any(n.startswith("lock.") and n.endswith(".attached") for n in names)
     assert mrsim.POSE_FIELDS == ("x", "y", "z", "qw", "qx", "qy", "qz")
 

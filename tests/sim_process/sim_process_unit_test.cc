@@ -63,6 +63,9 @@ TEST(SimProcessStateMessage, RoundTripsThroughEncodeAndBack) {
   state.sensor_modules = {sensor};
   state.com = Eigen::Vector3d(1, 2, 3);
   state.com_velocity = Eigen::Vector3d(-1, 0, 0.5);
+  state.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  state.heading = M_PI / 2;
 
   const robot_state_t msg = ToRobotStateMessage(state, 42);
   EXPECT_EQ(msg.seq, 42);
@@ -85,6 +88,10 @@ TEST(SimProcessStateMessage, RoundTripsThroughEncodeAndBack) {
   EXPECT_EQ(back.sensor_modules[0].force, 2.5);
   EXPECT_EQ(back.com, state.com);
   EXPECT_EQ(back.com_velocity, state.com_velocity);
+  EXPECT_EQ(msg.orientation[0], state.orientation.w());  // w first on the wire
+  EXPECT_EQ(msg.orientation[3], state.orientation.z());
+  EXPECT_EQ(back.orientation.coeffs(), state.orientation.coeffs());
+  EXPECT_EQ(back.heading, M_PI / 2);
 }
 
 joint_command_t Command(int64_t seq, int64_t state_seq,
