@@ -391,6 +391,9 @@ bool WorldSplit::IsSplitState(const std::vector<unsigned char>& bytes) {
 }
 
 std::vector<unsigned char> WorldSplit::SaveState() const {
+  // One world holds the whole scene: its blob is that of the scene run as
+  // one world (same model, same names).
+  if (worlds_.size() == 1) return worlds_[0].physics->SaveState();
   std::vector<unsigned char> out;
   Put(out, kSplitMagic, sizeof(kSplitMagic));
   const int32_t nworlds = static_cast<int32_t>(worlds_.size());
