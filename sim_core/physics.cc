@@ -135,6 +135,7 @@ struct Physics::Impl {
   // In a world of a split scene: the robots' indices in the whole
   // scenario (noise and sensor keys), and the rays of the other worlds.
   std::vector<int> global_ids;
+  std::vector<bool> skip_objects;  // the other worlds' scene objects
   RayCast other_rays;
   uint64_t GlobalId(size_t r) const {
     return global_ids.empty() ? r : static_cast<uint64_t>(global_ids[r]);
@@ -302,6 +303,7 @@ void Physics::Impl::Build() {
   MjcfOptions options;
   options.rangefinders = false;
   options.weld_locks = runtime_welds;
+  options.skip_scene_objects = skip_objects;
   MjcfInfo info;
   model = CompileScenarioModel(scenario, options, &info);
   mjModel* m = model.get();
@@ -638,10 +640,12 @@ Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
   }
 }
 
-Physics::Physics(const Scenario& part, std::vector<int> global_ids)
+Physics::Physics(const Scenario& part, std::vector<int> global_ids,
+                 std::vector<bool> skip_objects)
     : impl_(std::make_unique<Impl>()) {
   impl_->scenario = part;
   impl_->global_ids = std::move(global_ids);
+  impl_->skip_objects = std::move(skip_objects);
   impl_->Build();
 }
 

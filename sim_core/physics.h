@@ -113,8 +113,10 @@ class Physics {
   // (world_split.h); each world is a Physics of its own, built here.
   friend class WorldSplit;
   // One world of a split scene: `part` holds the robots `global_ids` of
-  // the whole scenario (noise and sensor keys use those indices).
-  Physics(const Scenario& part, std::vector<int> global_ids);
+  // the whole scenario (noise and sensor keys use those indices) and the
+  // scene objects not in `skip_objects`.
+  Physics(const Scenario& part, std::vector<int> global_ids,
+          std::vector<bool> skip_objects);
   // Takes the state of `parts` (worlds whose robots this freshly built
   // world holds) by name: positions, speeds, warm start, forces, controls,
   // locks, targets and the reality gap's history.

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim_core/mjcf_names.h"
+
 namespace mrsim {
 namespace {
 
@@ -70,26 +72,31 @@ int Find(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-WorldSplit::WorldSplit(const Scenario& scenario) : scenario_(scenario) {}
+WorldSplit::WorldSplit(const Scenario& scenario)
+    : scenario_(scenario), nrobots_(static_cast<int>(scenario.robots.size())) {
+  for (int r = 0; r < nrobots_; ++r) entities_.push_back(r);
+  for (size_t i = 0; i < scenario.scene_objects.size(); ++i) {
+    if (!scenario.scene_objects[i].is_static) {
+      entities_.push_back(nrobots_ + static_cast<int>(i));
+    }
+  }
+}
 WorldSplit::~WorldSplit() = default;
 
 std::unique_ptr<WorldSplit> WorldSplit::Make(const Scenario& scenario) {
   const int n = static_cast<int>(scenario.robots.size());
-  if (n < 2 || !scenario.loose_frames.empty() ||
-      !scenario.loose_joints.empty() ||
+  if (!scenario.loose_frames.empty() || !scenario.loose_joints.empty() ||
       !scenario.loose_sensor_modules.empty()) {
     return nullptr;
-  }
-  for (const SceneObject& o : scenario.scene_objects) {
-    if (!o.is_static) return nullptr;
   }
   std::set<std::string> names;
   for (int r = 0; r < n; ++r) {
     if (!names.insert(RobotName(scenario, r)).second) return nullptr;
   }
   std::unique_ptr<WorldSplit> split(new WorldSplit(scenario));
+  if (split->entities_.size() < 2) return nullptr;
   std::vector<std::vector<int>> groups;
-  for (int r = 0; r < n; ++r) groups.push_back({r});
+  for (int e : split->entities_) groups.push_back({e});
   split->BuildWorlds(groups);
   bool merged = false;
   while (split->MergeTouching()) merged = true;
@@ -100,29 +107,58 @@ std::unique_ptr<WorldSplit> WorldSplit::Make(const Scenario& scenario) {
   return split;
 }
 
-WorldSplit::World WorldSplit::MakeWorld(const std::vector<int>& robots) const {
+WorldSplit::World WorldSplit::MakeWorld(
+    const std::vector<int>& entities) const {
   Scenario part = scenario_;
   part.robots.clear();
-  for (int g : robots) {
-    part.robots.push_back(scenario_.robots[g]);
-    part.robots.back().name = RobotName(scenario_, g);
-  }
   World w;
-  w.robots = robots;
-  w.physics.reset(new Physics(part, robots));
+  w.entities = entities;
+  // Dynamic scene objects of other worlds are left out; static ones are
+  // in every world.
+  std::vector<bool> skip(scenario_.scene_objects.size(), false);
+  for (size_t i = 0; i < skip.size(); ++i) {
+    skip[i] = !scenario_.scene_objects[i].is_static;
+  }
+  for (int e : entities) {
+    if (e < nrobots_) {
+      part.robots.push_back(scenario_.robots[e]);
+      part.robots.back().name = RobotName(scenario_, e);
+      w.robots.push_back(e);
+    } else {
+      skip[e - nrobots_] = false;
+    }
+  }
+  w.physics.reset(new Physics(part, w.robots, skip));
   const mjModel* m = w.physics->model();
-  for (int g : robots) {
-    const std::string prefix = RobotName(scenario_, g) + "/";
+  for (int e : entities) {
+    // A robot's bodies are "<robot>/...", an object's "scene/obj<i>".
+    const std::string prefix = e < nrobots_
+                                   ? RobotName(scenario_, e) + "/"
+                                   : mjcf_names::SceneObject(e - nrobots_);
+    const bool exact = e >= nrobots_;
     std::vector<int> geoms;
     for (int i = 0; i < m->ngeom; ++i) {
       const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[i]);
-      if (body && std::strncmp(body, prefix.c_str(), prefix.size()) == 0) {
+      if (body &&
+          (exact ? prefix == body
+                 : std::strncmp(body, prefix.c_str(), prefix.size()) == 0)) {
         geoms.push_back(i);
       }
     }
     w.geoms.push_back(std::move(geoms));
   }
   return w;
+}
+
+void WorldSplit::IndexRobots() {
+  world_of_robot_.assign(nrobots_, -1);
+  local_of_robot_.assign(nrobots_, -1);
+  for (size_t w = 0; w < worlds_.size(); ++w) {
+    for (size_t k = 0; k < worlds_[w].robots.size(); ++k) {
+      world_of_robot_[worlds_[w].robots[k]] = static_cast<int>(w);
+      local_of_robot_[worlds_[w].robots[k]] = static_cast<int>(k);
+    }
+  }
 }
 
 void WorldSplit::Install(World* world, bool with_gap) {
@@ -141,20 +177,13 @@ void WorldSplit::BuildWorlds(const std::vector<std::vector<int>>& groups) {
     Install(&fresh.back());
   }
   worlds_ = std::move(fresh);
-  world_of_robot_.assign(scenario_.robots.size(), -1);
-  local_of_robot_.assign(scenario_.robots.size(), -1);
-  for (size_t w = 0; w < worlds_.size(); ++w) {
-    for (size_t k = 0; k < worlds_[w].robots.size(); ++k) {
-      world_of_robot_[worlds_[w].robots[k]] = static_cast<int>(w);
-      local_of_robot_[worlds_[w].robots[k]] = static_cast<int>(k);
-    }
-  }
+  IndexRobots();
   view_stale_ = true;
 }
 
 std::vector<std::vector<int>> WorldSplit::Groups() const {
   std::vector<std::vector<int>> groups;
-  for (const World& w : worlds_) groups.push_back(w.robots);
+  for (const World& w : worlds_) groups.push_back(w.entities);
   return groups;
 }
 
@@ -203,16 +232,16 @@ bool WorldSplit::MergeTouching() {
   std::vector<bool> gone(worlds_.size(), false);
   std::vector<World> next;
   for (const std::vector<int>& group : touching) {
-    std::vector<int> robots;
+    std::vector<int> entities;
     std::vector<const Physics*> parts;
     for (int w : group) {
-      robots.insert(robots.end(), worlds_[w].robots.begin(),
-                    worlds_[w].robots.end());
+      entities.insert(entities.end(), worlds_[w].entities.begin(),
+                      worlds_[w].entities.end());
       parts.push_back(worlds_[w].physics.get());
       gone[w] = true;
     }
-    std::sort(robots.begin(), robots.end());
-    World merged = MakeWorld(robots);
+    std::sort(entities.begin(), entities.end());
+    World merged = MakeWorld(entities);
     Install(&merged);
     merged.physics->AbsorbState(parts);
     next.push_back(std::move(merged));
@@ -220,17 +249,12 @@ bool WorldSplit::MergeTouching() {
   for (size_t w = 0; w < worlds_.size(); ++w) {
     if (!gone[w]) next.push_back(std::move(worlds_[w]));
   }
-  // Worlds in the order of their first robot, whatever merged when.
+  // Worlds in the order of their first entity, whatever merged when.
   std::sort(next.begin(), next.end(), [](const World& a, const World& b) {
-    return a.robots.front() < b.robots.front();
+    return a.entities.front() < b.entities.front();
   });
   worlds_ = std::move(next);
-  for (size_t w = 0; w < worlds_.size(); ++w) {
-    for (size_t k = 0; k < worlds_[w].robots.size(); ++k) {
-      world_of_robot_[worlds_[w].robots[k]] = static_cast<int>(w);
-      local_of_robot_[worlds_[w].robots[k]] = static_cast<int>(k);
-    }
-  }
+  IndexRobots();
   view_stale_ = true;
   return true;
 }
@@ -399,9 +423,9 @@ std::vector<unsigned char> WorldSplit::SaveState() const {
   const int32_t nworlds = static_cast<int32_t>(worlds_.size());
   Put(out, &nworlds, 1);
   for (const World& w : worlds_) {
-    const int32_t n = static_cast<int32_t>(w.robots.size());
+    const int32_t n = static_cast<int32_t>(w.entities.size());
     Put(out, &n, 1);
-    std::vector<int32_t> ids(w.robots.begin(), w.robots.end());
+    std::vector<int32_t> ids(w.entities.begin(), w.entities.end());
     Put(out, ids.data(), ids.size());
     const std::vector<unsigned char> blob = w.physics->SaveState();
     const uint64_t size = blob.size();
@@ -412,14 +436,13 @@ std::vector<unsigned char> WorldSplit::SaveState() const {
 }
 
 void WorldSplit::LoadState(const std::vector<unsigned char>& bytes) {
-  const int nrobots = static_cast<int>(scenario_.robots.size());
+  const int nentities = static_cast<int>(entities_.size());
   std::vector<std::vector<int>> groups;
   std::vector<std::vector<unsigned char>> blobs;
   if (!IsSplitState(bytes)) {
     // A blob of the whole scene as one world (saved before worlds split,
     // or by a scene that merged into one).
-    groups.emplace_back(nrobots);
-    std::iota(groups[0].begin(), groups[0].end(), 0);
+    groups.push_back(entities_);
     blobs.push_back(bytes);
   } else {
     size_t at = sizeof(kSplitMagic);
@@ -434,31 +457,31 @@ void WorldSplit::LoadState(const std::vector<unsigned char>& bytes) {
     };
     int32_t nworlds = 0;
     read(&nworlds, sizeof nworlds, "the world count");
-    if (nworlds < 1 || nworlds > nrobots) {
+    if (nworlds < 1 || nworlds > nentities) {
       throw std::invalid_argument(fmt::format(
-          "physics state: {} worlds saved; this scene has {} robots", nworlds,
-          nrobots));
+          "physics state: {} worlds saved; this scene has {} robots and "
+          "dynamic scene objects",
+          nworlds, nentities));
     }
-    std::vector<bool> seen(nrobots, false);
+    std::set<int> seen;
     for (int w = 0; w < nworlds; ++w) {
       int32_t n = 0;
-      read(&n, sizeof n, "a world's robot count");
-      if (n < 1 || n > nrobots) {
+      read(&n, sizeof n, "a world's part count");
+      if (n < 1 || n > nentities) {
         throw std::invalid_argument(fmt::format(
-            "physics state: world {} holds {} robots; this scene has {}", w, n,
-            nrobots));
+            "physics state: world {} holds {} parts; this scene has {}", w, n,
+            nentities));
       }
       std::vector<int32_t> ids(n);
-      read(ids.data(), n * sizeof(int32_t), "a world's robot list");
+      read(ids.data(), n * sizeof(int32_t), "a world's part list");
       for (int32_t i = 0; i < n; ++i) {
-        if (ids[i] < 0 || ids[i] >= nrobots || seen[ids[i]] ||
-            (i > 0 && ids[i] <= ids[i - 1])) {
+        if (!std::binary_search(entities_.begin(), entities_.end(), ids[i]) ||
+            !seen.insert(ids[i]).second || (i > 0 && ids[i] <= ids[i - 1])) {
           throw std::invalid_argument(fmt::format(
-              "physics state: world {} names robot {} (expected each of 0..{} "
-              "once, ascending)",
-              w, ids[i], nrobots - 1));
+              "physics state: world {} names part {} (expected robots 0..{} "
+              "and dynamic scene objects {} + index, each once, ascending)",
+              w, ids[i], nrobots_ - 1, nrobots_));
         }
-        seen[ids[i]] = true;
       }
       uint64_t size = 0;
       read(&size, sizeof size, "a world's size");
@@ -471,11 +494,10 @@ void WorldSplit::LoadState(const std::vector<unsigned char>& bytes) {
       at += size;
       groups.emplace_back(ids.begin(), ids.end());
     }
-    if (at != bytes.size() ||
-        std::find(seen.begin(), seen.end(), false) != seen.end()) {
+    if (at != bytes.size() || static_cast<int>(seen.size()) != nentities) {
       throw std::invalid_argument(
-          "physics state: the worlds section does not hold every robot "
-          "exactly once, or has bytes after it");
+          "physics state: the worlds section does not hold every robot and "
+          "dynamic scene object, or has bytes after it");
     }
   }
   // Fresh worlds, loaded before they replace the running ones: a blob
@@ -488,12 +510,7 @@ void WorldSplit::LoadState(const std::vector<unsigned char>& bytes) {
   }
   worlds_ = std::move(fresh);
   for (World& w : worlds_) Install(&w, false);
-  for (size_t w = 0; w < worlds_.size(); ++w) {
-    for (size_t k = 0; k < worlds_[w].robots.size(); ++k) {
-      world_of_robot_[worlds_[w].robots[k]] = static_cast<int>(w);
-      local_of_robot_[worlds_[w].robots[k]] = static_cast<int>(k);
-    }
-  }
+  IndexRobots();
   view_stale_ = true;
 }
 

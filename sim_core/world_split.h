@@ -22,8 +22,10 @@ namespace mrsim {
 class WorldSplit {
  public:
   // The worlds of `scenario`, or null when it runs as one world: fewer
-  // than two robots, dynamic scene objects or loose parts (they may reach
-  // any robot), or every robot close to another from the start.
+  // than two robots and dynamic scene objects, loose parts (they may reach
+  // any robot), or everything close together from the start. A world
+  // holds robots and dynamic scene objects ("entities": robot r is r,
+  // scene object i is robots + i).
   static std::unique_ptr<WorldSplit> Make(const Scenario& scenario);
   ~WorldSplit();
   WorldSplit(const WorldSplit&) = delete;
@@ -65,13 +67,15 @@ class WorldSplit {
   using Run = std::array<int, 3>;
   struct World {
     std::unique_ptr<Physics> physics;
+    std::vector<int> entities;            // ascending
     std::vector<int> robots;              // global indices, ascending
-    std::vector<std::vector<int>> geoms;  // per robot: its geoms
+    std::vector<std::vector<int>> geoms;  // per entity: its geoms
     std::vector<Run> qpos, dof, ctrl, body, sensor;  // into the view
     bool mapped = false;
   };
   explicit WorldSplit(const Scenario& scenario);
-  World MakeWorld(const std::vector<int>& robots) const;
+  World MakeWorld(const std::vector<int>& entities) const;
+  void IndexRobots();
   // Gives the world its view of the other worlds' rays and, with_gap,
   // the reality gap.
   void Install(World* world, bool with_gap = true);
@@ -87,6 +91,8 @@ class WorldSplit {
                    double range) const;
 
   Scenario scenario_;
+  int nrobots_ = 0;
+  std::vector<int> entities_;  // every robot and dynamic scene object
   std::vector<World> worlds_;
   std::vector<int> world_of_robot_, local_of_robot_;
   std::vector<std::vector<int>> initial_groups_;

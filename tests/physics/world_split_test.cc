@@ -13,6 +13,7 @@
 #include "sim_core/chain_builder.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/physics.h"
+#include "sim_core/scene_object_state.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"
 
@@ -48,16 +49,14 @@ Scenario Falling() {
   return s;
 }
 
-// The same scene forced into one world: a dynamic scene object may reach
-// any robot, so a scene with one runs as one world.
+// The same scene forced into one world: a loose part may reach any robot,
+// so a scene with one runs as one world.
 Scenario OneWorld(Scenario s) {
-  SceneObject ball;
-  ball.guid = "ball";
-  ball.shape = PrimitiveShape::kSphere;
-  ball.size = Eigen::Vector3d(0.02, 0.02, 0.02);
-  ball.position = Eigen::Vector3d(10, 10, 0.02);
-  ball.is_static = false;
-  s.scene_objects.push_back(ball);
+  Frame loose;
+  loose.guid = "loose";
+  loose.position = Eigen::Vector3d(10, 10, 0.025);
+  loose.is_static = true;
+  s.loose_frames.push_back(loose);
   return s;
 }
 
@@ -142,6 +141,34 @@ TEST(WorldSplit, ARobotDrivenIntoAnotherPushesItAndNeverPassesThrough) {
   }
   EXPECT_GT(gap, 0.045);  // two 5 cm boxes: touching, not overlapping
   EXPECT_GT(physics.CenterOfMass(0).x() - a_start, 0.01);  // a was pushed
+}
+
+TEST(WorldSplit, ARobotDrivenIntoABallPushesIt) {
+  // The ball starts in a world of its own and joins the robot's when the
+  // robot reaches it.
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(Chain("a", Eigen::Vector3d(0, 0, 0)));
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.shape = PrimitiveShape::kSphere;
+  ball.size = Eigen::Vector3d(0.1, 0.1, 0.1);  // 5 cm radius
+  ball.position = Eigen::Vector3d(0.25, 0, 0.05);
+  ball.mass = 0.05;
+  ball.is_static = false;
+  s.scene_objects.push_back(ball);
+  Physics physics(s);
+  const int root = mj_name2id(physics.model(), mjOBJ_JOINT, "a/root");
+  ASSERT_GE(root, 0);
+  physics.mutable_data()->qvel[physics.model()->jnt_dofadr[root]] = 2.0;
+  physics.Step(300);
+  const std::vector<SceneObjectState> objects = ReadSceneObjects(physics);
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_GT(objects[0].pose.position.x(), 0.3);  // pushed along +x
+  double front = -1e9;
+  for (const Pose& f : physics.ReadRobotState(0).frames)
+    front = std::max(front, f.position.x());
+  // The robot's front box (2.5 cm half length) never went into the ball.
+  EXPECT_LT(front + 0.025, objects[0].pose.position.x() - 0.05 + 0.002);
 }
 
 TEST(WorldSplit, SameInputsSameResultAcrossCheckpointsAndReset) {
