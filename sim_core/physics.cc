@@ -1235,7 +1235,9 @@ void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
     return i;
   };
   // Copied after the kinematics pass, which recomputes neither.
-  std::vector<std::pair<const mjtNum*, mjtNum*>> later;
+  // (source value, index in the merged world's array); indices, since
+  // Refresh may give the world a bigger mjData (MakeRoom).
+  std::vector<std::pair<const mjtNum*, int>> later_force, later_sensor;
   for (const Physics* p : parts) {
     const Impl& from = *p->impl_;
     const mjModel* om = from.model.get();
@@ -1289,18 +1291,20 @@ void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
     // computed from its integrated qpos, as in its own world.
     for (int a = 0; a < om->nu; ++a) {
       const int na = id(mjOBJ_ACTUATOR, mj_id2name(om, mjOBJ_ACTUATOR, a));
-      later.emplace_back(od->actuator_force + a, d->actuator_force + na);
+      later_force.emplace_back(od->actuator_force + a, na);
     }
     for (int s = 0; s < om->nsensor; ++s) {
       const int ns = id(mjOBJ_SENSOR, mj_id2name(om, mjOBJ_SENSOR, s));
       for (int i = 0; i < om->sensor_dim[s]; ++i) {
-        later.emplace_back(od->sensordata + om->sensor_adr[s] + i,
-                           d->sensordata + m->sensor_adr[ns] + i);
+        later_sensor.emplace_back(od->sensordata + om->sensor_adr[s] + i,
+                                  m->sensor_adr[ns] + i);
       }
     }
   }
   to.Refresh();
-  for (const auto& [from, into] : later) *into = *from;
+  d = to.data.get();
+  for (const auto& [from, i] : later_force) d->actuator_force[i] = *from;
+  for (const auto& [from, i] : later_sensor) d->sensordata[i] = *from;
   // A qpos poked after its world's step is kept, as LoadState does.
   for (const Physics* p : parts) {
     const mjModel* om = p->impl_->model.get();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -85,7 +86,10 @@ WorldSplit::~WorldSplit() = default;
 
 std::unique_ptr<WorldSplit> WorldSplit::Make(const Scenario& scenario) {
   const int n = static_cast<int>(scenario.robots.size());
-  if (!scenario.loose_frames.empty() || !scenario.loose_joints.empty() ||
+  // One robot (the common case) runs as one world with its objects, bit
+  // for bit as it always did: splitting off a ball saves next to nothing.
+  if (n < 2 || !scenario.loose_frames.empty() ||
+      !scenario.loose_joints.empty() ||
       !scenario.loose_sensor_modules.empty()) {
     return nullptr;
   }
@@ -260,8 +264,18 @@ bool WorldSplit::MergeTouching() {
 }
 
 void WorldSplit::Step() {
-  for (World& w : worlds_) w.physics->Step();
+  // Every world takes its step even when one fails, so all keep one time;
+  // the first failure is reported after.
+  std::exception_ptr failure;
+  for (World& w : worlds_) {
+    try {
+      w.physics->Step();
+    } catch (const PhysicsError&) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
   view_stale_ = true;
+  if (failure) std::rethrow_exception(failure);
   MergeTouching();
 }
 

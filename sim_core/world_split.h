@@ -22,7 +22,7 @@ namespace mrsim {
 class WorldSplit {
  public:
   // The worlds of `scenario`, or null when it runs as one world: fewer
-  // than two robots and dynamic scene objects, loose parts (they may reach
+  // than two robots, loose parts (they may reach
   // any robot), or everything close together from the start. A world
   // holds robots and dynamic scene objects ("entities": robot r is r,
   // scene object i is robots + i).

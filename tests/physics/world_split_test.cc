@@ -148,6 +148,7 @@ TEST(WorldSplit, ARobotDrivenIntoABallPushesIt) {
   // robot reaches it.
   Scenario s = testing::FlatScenario();
   s.robots.push_back(Chain("a", Eigen::Vector3d(0, 0, 0)));
+  s.robots.push_back(Chain("far", Eigen::Vector3d(0, 3, 0)));
   SceneObject ball;
   ball.guid = "ball";
   ball.shape = PrimitiveShape::kSphere;
