@@ -697,6 +697,10 @@ void Builder::ConnectTree(const std::string& robot_name,
 
 void Builder::AddSceneObjects() {
   for (size_t i = 0; i < s_.scene_objects.size(); ++i) {
+    if (i < options_.skip_scene_objects.size() &&
+        options_.skip_scene_objects[i]) {
+      continue;
+    }
     const SceneObject& o = s_.scene_objects[i];
     const std::string name = mjcf_names::SceneObject(i);
     GeomSpec g;

@@ -69,6 +69,9 @@ struct MjcfOptions {
   // constraints even where they could be rigid tree links, so they can be
   // released at run time (Physics::SetLockAttached).
   std::set<std::string> weld_locks;
+  // Scene objects (by index) left out; the others keep their names. A
+  // world of a split scene (world_split.h) holds only its own objects.
+  std::vector<bool> skip_scene_objects;
 };
 
 // One lock of a robot as the model holds it.

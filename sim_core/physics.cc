@@ -21,6 +21,7 @@
 #include "sim_core/scenario_validate.h"
 #include "sim_core/sensor_kind.h"
 #include "sim_core/terrain.h"
+#include "sim_core/world_split.h"
 
 namespace mrsim {
 namespace {
@@ -125,6 +126,21 @@ struct Physics::Impl {
   };
 
   Scenario scenario;
+  // Set when the scene runs as several worlds (world_split.h); model and
+  // data are then a view of the whole scene that the worlds fill in.
+  std::unique_ptr<WorldSplit> split;
+  // Set once mutable_data() handed out the view: what is written there
+  // goes back into the worlds before a step, and the view follows every
+  // step.
+  bool view_poked = false;
+  // In a world of a split scene: the robots' indices in the whole
+  // scenario (noise and sensor keys), and the rays of the other worlds.
+  std::vector<int> global_ids;
+  std::vector<bool> skip_objects;  // the other worlds' scene objects
+  RayCast other_rays;
+  uint64_t GlobalId(size_t r) const {
+    return global_ids.empty() ? r : static_cast<uint64_t>(global_ids[r]);
+  }
   // Locks ("<robot>/<lock>") released at run time that the scenario's
   // model held as rigid tree links; the model is rebuilt with them as
   // welds (MjcfOptions::weld_locks).
@@ -157,6 +173,13 @@ struct Physics::Impl {
     return id;
   }
   void Build();
+  // The one-world model of a split scene, for model()/data() and the
+  // robots' index; never stepped, so its constraint buffers stay small.
+  void BuildView();
+  // Pokes into the view go to the worlds (see view_poked).
+  void PushView() {
+    if (split && view_poked) split->PushView(data.get());
+  }
   void Index(const MjcfInfo& info);
   void TransferState(const mjModel* om, const mjData* od);
   void BreakOverloadedLocks();
@@ -262,7 +285,7 @@ void Physics::Impl::GapControls(mjData* d, bool advance) {
       double u = s.kp * e;
       if (gap.motor_noise > 0) {
         u += gap.motor_noise *
-             GapNormal(gap.seed, step, (ri << 32) | (1ull << 31) | j);
+             GapNormal(gap.seed, step, (GlobalId(ri) << 32) | (1ull << 31) | j);
       }
       u = std::clamp(u, -s.max_vel, s.max_vel);
       if (gap.max_accel > 0) {
@@ -281,6 +304,7 @@ void Physics::Impl::Build() {
   MjcfOptions options;
   options.rangefinders = false;
   options.weld_locks = runtime_welds;
+  options.skip_scene_objects = skip_objects;
   MjcfInfo info;
   model = CompileScenarioModel(scenario, options, &info);
   mjModel* m = model.get();
@@ -303,6 +327,22 @@ void Physics::Impl::Build() {
   friction = std::make_unique<DirectionalFriction>(scenario, m);
   ResetGapHistory();
   AfterStateChange();
+}
+
+void Physics::Impl::BuildView() {
+  MjcfOptions options;
+  options.rangefinders = false;
+  MjcfInfo info;
+  model = CompileScenarioModel(scenario, options, &info);
+  mjModel* m = model.get();
+  Index(info);
+  eq_active0.assign(m->eq_active, m->eq_active + m->neq);
+  // Kinematics only: no contacts or constraint rows are ever computed here.
+  m->nconmax = 1;
+  m->njmax = 1;
+  m->nstack = std::min(m->nstack, 100000 + 100 * m->nv);
+  data.reset(mj_makeData(m));
+  if (!data) throw std::runtime_error("MuJoCo cannot allocate data");
 }
 
 void Physics::Impl::TransferState(const mjModel* om, const mjData* od) {
@@ -593,6 +633,20 @@ void Physics::Impl::CheckStability(double time_before) {
 Physics::Physics(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
   ValidateScenario(scenario);
   impl_->scenario = scenario;
+  impl_->split = WorldSplit::Make(scenario);
+  if (impl_->split) {
+    impl_->BuildView();
+  } else {
+    impl_->Build();
+  }
+}
+
+Physics::Physics(const Scenario& part, std::vector<int> global_ids,
+                 std::vector<bool> skip_objects)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->scenario = part;
+  impl_->global_ids = std::move(global_ids);
+  impl_->skip_objects = std::move(skip_objects);
   impl_->Build();
 }
 
@@ -602,6 +656,12 @@ Physics::~Physics() = default;
 // step2 (dynamics + integration of the current state) then step1 (the new
 // state's kinematics), so poses read between steps are current.
 void Physics::Step() {
+  if (impl_->split) {
+    impl_->PushView();
+    impl_->split->Step();
+    if (impl_->view_poked) impl_->split->SyncView(model(), impl_->data.get());
+    return;
+  }
   mjModel* m = impl_->model.get();
   mjData* d = impl_->data.get();
   const double time_before = d->time;
@@ -620,6 +680,10 @@ void Physics::Step(int n) {
 
 void Physics::SetRealityGap(const RealityGap& gap) {
   gap.Validate();
+  if (impl_->split) {
+    impl_->split->SetRealityGap(gap);
+    return;
+  }
   impl_->gap = gap;
   impl_->gap_on = gap.any_per_step();
   impl_->latency_steps =
@@ -628,6 +692,16 @@ void Physics::SetRealityGap(const RealityGap& gap) {
 }
 
 void Physics::Reset() {
+  if (impl_->split) {
+    impl_->split->Reset();
+    for (Impl::RobotIndex& r : impl_->robots) {
+      for (size_t j = 0; j < r.servos.size(); ++j) {
+        r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
+      }
+    }
+    if (impl_->view_poked) impl_->split->SyncView(model(), impl_->data.get());
+    return;
+  }
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
   mj_resetData(impl_->model.get(), impl_->data.get());
@@ -640,7 +714,9 @@ void Physics::Reset() {
   impl_->AfterStateChange();
 }
 
-double Physics::time() const { return impl_->data->time; }
+double Physics::time() const {
+  return impl_->split ? impl_->split->time() : impl_->data->time;
+}
 double Physics::timestep() const { return impl_->model->opt.timestep; }
 
 int Physics::robot_count() const {
@@ -679,6 +755,13 @@ int Physics::sensor_module_count(int robot) const {
 
 void Physics::SetLockAttached(const std::string& robot, const std::string& lock,
                               bool attached) {
+  if (impl_->split && robot_index(robot) >= 0) {
+    int local = 0;
+    impl_->split->world_of(robot_index(robot), &local)
+        .SetLockAttached(robot, lock, attached);
+    impl_->split->MarkStale();
+    return;
+  }
   Impl::LockIndex* l = &impl_->FindLock(robot, lock);
   if (l->eq < 0) {
     if (attached) return;  // a rigid link is attached
@@ -700,6 +783,10 @@ std::vector<std::pair<std::string, bool>> Physics::LockStates(
     const std::string& robot) const {
   const int r = robot_index(robot);
   if (r < 0) throw PhysicsError(fmt::format("no robot named '{}'", robot));
+  if (impl_->split) {
+    int local = 0;
+    return impl_->split->world_of(r, &local).LockStates(robot);
+  }
   std::vector<std::pair<std::string, bool>> out;
   for (const Impl::LockIndex& l : impl_->robots[r].locks) {
     out.emplace_back(l.name, l.eq < 0 || impl_->model->eq_active[l.eq] != 0);
@@ -709,6 +796,11 @@ std::vector<std::pair<std::string, bool>> Physics::LockStates(
 
 void Physics::SetJointTargets(int robot, const std::vector<double>& targets) {
   impl_->robot(robot);  // range check
+  if (impl_->split) {
+    int local = 0;
+    impl_->split->world_of(robot, &local).SetJointTargets(local, targets);
+    return;
+  }
   Impl::RobotIndex& r = impl_->robots[robot];
   if (targets.size() != r.servos.size()) {
     throw std::invalid_argument(
@@ -727,10 +819,21 @@ void Physics::SetJointTargets(int robot, const std::vector<double>& targets) {
 }
 
 const std::vector<double>& Physics::joint_targets(int robot) const {
+  if (impl_->split) {
+    impl_->robot(robot);  // range check
+    int local = 0;
+    return impl_->split->world_of(robot, &local).joint_targets(local);
+  }
   return impl_->robot(robot).targets;
 }
 
 RobotState Physics::ReadRobotState(int robot) const {
+  if (impl_->split) {
+    impl_->robot(robot);  // range check
+    impl_->PushView();
+    int local = 0;
+    return impl_->split->world_of(robot, &local).ReadRobotState(local);
+  }
   const Impl::RobotIndex& r = impl_->robot(robot);
   const mjModel* m = impl_->model.get();
   const mjData* d = impl_->data.get();
@@ -800,9 +903,15 @@ RobotState Physics::ReadRobotState(int robot) const {
       if (inst.site >= 0) {
         in.ray =
             CastDistanceRay(m, d, inst.site, si.plate, inst.max_range).distance;
+        if (impl_->other_rays) {  // the robots in the scene's other worlds
+          in.ray =
+              std::min(in.ray, impl_->other_rays(d->site_xpos + 3 * inst.site,
+                                                 d->site_xmat + 9 * inst.site,
+                                                 inst.max_range));
+        }
       }
       in.time = d->time;
-      const uint64_t ids[3] = {static_cast<uint64_t>(robot), smi,
+      const uint64_t ids[3] = {impl_->GlobalId(robot), smi,
                                static_cast<uint64_t>(inst.k)};
       in.key = Fnv1a64(ids, sizeof ids);
       std::vector<double> values(inst.kind->channels.size());
@@ -836,13 +945,20 @@ RobotState Physics::ReadRobotState(int robot) const {
     for (const auto& si : r.sensor_modules) {
       max_distance.push_back(si.max_distance);
     }
-    AddSensorNoise(impl_->gap, impl_->StepIndex(d), robot, max_distance,
+    AddSensorNoise(impl_->gap, impl_->StepIndex(d),
+                   static_cast<int>(impl_->GlobalId(robot)), max_distance,
                    &state);
   }
   return state;
 }
 
 Eigen::Vector3d Physics::CenterOfMass(int robot) const {
+  if (impl_->split) {
+    impl_->robot(robot);  // range check
+    impl_->PushView();
+    int local = 0;
+    return impl_->split->world_of(robot, &local).CenterOfMass(local);
+  }
   const Impl::RobotIndex& r = impl_->robot(robot);
   const mjModel* m = impl_->model.get();
   const mjData* d = impl_->data.get();
@@ -857,6 +973,10 @@ Eigen::Vector3d Physics::CenterOfMass(int robot) const {
 }
 
 std::vector<unsigned char> Physics::SaveState() const {
+  if (impl_->split) {
+    impl_->PushView();
+    return impl_->split->SaveState();
+  }
   const mjModel* m = impl_->model.get();
   const mjData* d = impl_->data.get();
   std::vector<double> targets;
@@ -906,6 +1026,16 @@ std::vector<unsigned char> Physics::SaveState() const {
 }
 
 void Physics::LoadState(const std::vector<unsigned char>& bytes) {
+  if (impl_->split) {
+    impl_->split->LoadState(bytes);
+    if (impl_->view_poked) impl_->split->SyncView(model(), impl_->data.get());
+    return;
+  }
+  if (WorldSplit::IsSplitState(bytes)) {
+    throw std::invalid_argument(
+        "physics state: saved for a scene of several worlds; this scene runs "
+        "as one");
+  }
   size_t ntargets = 0;
   size_t nlocks = 0;
   for (const auto& r : impl_->robots) {
@@ -1065,7 +1195,129 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
 
 const Scenario& Physics::scenario() const { return impl_->scenario; }
 const mjModel* Physics::model() const { return impl_->model.get(); }
-const mjData* Physics::data() const { return impl_->data.get(); }
-mjData* Physics::mutable_data() { return impl_->data.get(); }
+const mjData* Physics::data() const {
+  if (impl_->split) impl_->split->SyncView(model(), impl_->data.get());
+  return impl_->data.get();
+}
+mjData* Physics::mutable_data() {
+  if (impl_->split) {
+    impl_->split->SyncView(model(), impl_->data.get());
+    impl_->view_poked = true;
+  }
+  return impl_->data.get();
+}
+
+void Physics::SetOtherWorldsRay(RayCast cast) {
+  impl_->other_rays = std::move(cast);
+}
+
+void Physics::AfterPoke() { impl_->AfterStateChange(); }
+
+void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
+  Impl& to = *impl_;
+  std::set<std::string> welds;
+  for (const Physics* p : parts) {
+    welds.insert(p->impl_->runtime_welds.begin(),
+                 p->impl_->runtime_welds.end());
+  }
+  if (welds != to.runtime_welds) {
+    to.runtime_welds = welds;
+    to.Build();
+  }
+  const mjModel* m = to.model.get();
+  mjData* d = to.data.get();
+  std::copy(to.eq_active0.begin(), to.eq_active0.end(), to.model->eq_active);
+  auto id = [m](mjtObj type, const char* name) {
+    const int i = name ? mj_name2id(m, type, name) : -1;
+    if (i < 0) {
+      throw std::logic_error(fmt::format("merged world has no {} '{}'",
+                                         mju_type2Str(type),
+                                         name ? name : "(unnamed)"));
+    }
+    return i;
+  };
+  // Copied after the kinematics pass, which recomputes neither.
+  // (source value, index in the merged world's array); indices, since
+  // Refresh may give the world a bigger mjData (MakeRoom).
+  std::vector<std::pair<const mjtNum*, int>> later_force, later_sensor;
+  for (const Physics* p : parts) {
+    const Impl& from = *p->impl_;
+    const mjModel* om = from.model.get();
+    const mjData* od = from.data.get();
+    d->time = od->time;
+    for (int j = 0; j < om->njnt; ++j) {
+      const int nj = id(mjOBJ_JOINT, mj_id2name(om, mjOBJ_JOINT, j));
+      const int type = om->jnt_type[j];
+      const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+      const int nv = type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
+      const int qa = m->jnt_qposadr[nj], oqa = om->jnt_qposadr[j];
+      const int va = m->jnt_dofadr[nj], ova = om->jnt_dofadr[j];
+      mju_copy(to.qpos_integrated.data() + qa,
+               from.qpos_integrated.data() + oqa, nq);
+      mju_copy(d->qvel + va, od->qvel + ova, nv);
+      mju_copy(d->qacc_warmstart + va, od->qacc_warmstart + ova, nv);
+      mju_copy(d->qfrc_applied + va, od->qfrc_applied + ova, nv);
+      mju_copy(d->qacc_smooth + va, od->qacc_smooth + ova, nv);
+    }
+    for (int a = 0; a < om->nu; ++a) {
+      const int na = id(mjOBJ_ACTUATOR, mj_id2name(om, mjOBJ_ACTUATOR, a));
+      d->ctrl[na] = od->ctrl[a];
+      // MuJoCo 2.2 keeps the activations of the last na actuators.
+      if (om->na > 0 && a >= om->nu - om->na) {
+        d->act[na - (m->nu - m->na)] = od->act[a - (om->nu - om->na)];
+      }
+    }
+    for (int b = 1; b < om->nbody; ++b) {
+      const char* name = mj_id2name(om, mjOBJ_BODY, b);
+      if (name) {
+        mju_copy(d->xfrc_applied + 6 * id(mjOBJ_BODY, name),
+                 od->xfrc_applied + 6 * b, 6);
+      }
+    }
+    for (int e = 0; e < om->neq; ++e) {
+      to.model
+          ->eq_active[id(mjOBJ_EQUALITY, mj_id2name(om, mjOBJ_EQUALITY, e))] =
+          om->eq_active[e];
+    }
+    for (size_t r = 0; r < from.robots.size(); ++r) {
+      for (size_t k = 0; k < to.robots.size(); ++k) {
+        if (to.robots[k].name != from.robots[r].name) continue;
+        to.robots[k].targets = from.robots[r].targets;
+        if (k < to.target_ring.size() && r < from.target_ring.size()) {
+          to.target_ring[k] = from.target_ring[r];
+        }
+      }
+    }
+    to.ring_next = from.ring_next;
+    // In the merged world's Refresh below, the pose of every part is
+    // computed from its integrated qpos, as in its own world.
+    for (int a = 0; a < om->nu; ++a) {
+      const int na = id(mjOBJ_ACTUATOR, mj_id2name(om, mjOBJ_ACTUATOR, a));
+      later_force.emplace_back(od->actuator_force + a, na);
+    }
+    for (int s = 0; s < om->nsensor; ++s) {
+      const int ns = id(mjOBJ_SENSOR, mj_id2name(om, mjOBJ_SENSOR, s));
+      for (int i = 0; i < om->sensor_dim[s]; ++i) {
+        later_sensor.emplace_back(od->sensordata + om->sensor_adr[s] + i,
+                                  m->sensor_adr[ns] + i);
+      }
+    }
+  }
+  to.Refresh();
+  d = to.data.get();
+  for (const auto& [from, i] : later_force) d->actuator_force[i] = *from;
+  for (const auto& [from, i] : later_sensor) d->sensordata[i] = *from;
+  // A qpos poked after its world's step is kept, as LoadState does.
+  for (const Physics* p : parts) {
+    const mjModel* om = p->impl_->model.get();
+    const mjData* od = p->impl_->data.get();
+    for (int j = 0; j < om->njnt; ++j) {
+      const int nj = id(mjOBJ_JOINT, mj_id2name(om, mjOBJ_JOINT, j));
+      const int type = om->jnt_type[j];
+      const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
+      mju_copy(d->qpos + m->jnt_qposadr[nj], od->qpos + om->jnt_qposadr[j], nq);
+    }
+  }
+}
 
 }  // namespace mrsim

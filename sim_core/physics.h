@@ -4,6 +4,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -108,6 +109,26 @@ class Physics {
   mjData* mutable_data();
 
  private:
+  // Scenes whose robots cannot touch run as several MuJoCo worlds
+  // (world_split.h); each world is a Physics of its own, built here.
+  friend class WorldSplit;
+  // One world of a split scene: `part` holds the robots `global_ids` of
+  // the whole scenario (noise and sensor keys use those indices) and the
+  // scene objects not in `skip_objects`.
+  Physics(const Scenario& part, std::vector<int> global_ids,
+          std::vector<bool> skip_objects);
+  // Takes the state of `parts` (worlds whose robots this freshly built
+  // world holds) by name: positions, speeds, warm start, forces, controls,
+  // locks, targets and the reality gap's history.
+  void AbsorbState(const std::vector<const Physics*>& parts);
+  // Distance rays also see what this function returns (the other worlds):
+  // arguments are the ray's origin, its site's xmat and its range.
+  using RayCast =
+      std::function<double(const double* point, const double* xmat, double)>;
+  void SetOtherWorldsRay(RayCast cast);
+  // Recomputes the current state after qpos or qvel were written directly.
+  void AfterPoke();
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
