@@ -25,7 +25,7 @@ inline const char* ToString(ControllerKind kind) {
 
 // Bounds on the text a <run> element carries (docs/scenario.md, "Limits").
 inline constexpr size_t kMaxLuaScriptBytes = size_t{64} << 10;  // 64 KiB
-inline constexpr size_t kMaxRunNameBytes = 64;  // gait and controller names
+inline constexpr size_t kMaxRunNameBytes = 64;    // gait and controller names
 inline constexpr double kMaxControlRate = 10000;  // Hz
 inline constexpr double kMaxRealtimeFactor = 1000;
 

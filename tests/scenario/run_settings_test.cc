@@ -60,7 +60,8 @@ TEST(RunSettingsXml, RoundTripKeepsEveryField) {
 }
 
 TEST(RunSettingsXml, FileWithoutRunSettingsHasNone) {
-  const Scenario back = ReadScenarioString(WriteScenarioString(Chain()), "a", "");
+  const Scenario back =
+      ReadScenarioString(WriteScenarioString(Chain()), "a", "");
   EXPECT_FALSE(back.run.has_value());
   EXPECT_EQ(WriteScenarioString(back).find("<run>"), std::string::npos);
 }
