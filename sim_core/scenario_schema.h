@@ -188,10 +188,10 @@ struct ChildInfo {
 };
 
 // A field's value, the variant of all member types a field can have.
-using FieldPtr = std::variant<std::string*, double*, int*, bool*,
-                              Eigen::Vector3d*, Eigen::Quaterniond*, Axis*,
-                              JointType*, PrimitiveShape*, FluidKind*,
-                              ClockMode*, ControllerKind*>;
+using FieldPtr =
+    std::variant<std::string*, double*, int*, bool*, Eigen::Vector3d*,
+                 Eigen::Quaterniond*, Axis*, JointType*, PrimitiveShape*,
+                 FluidKind*, ClockMode*, ControllerKind*>;
 
 // A value that does not parse or is outside a field's limits. what() is the
 // schema's message, e.g. "expected a positive value, got 0".

@@ -58,9 +58,8 @@ void XmlWriter::CData(const std::string& name, const std::string& text) {
   size_t from = 0;
   while (true) {
     const size_t end = text.find("]]>", from);
-    const std::string piece =
-        text.substr(from, end == std::string::npos ? std::string::npos
-                                                   : end + 2 - from);
+    const std::string piece = text.substr(
+        from, end == std::string::npos ? std::string::npos : end + 2 - from);
     printer_->PushText(piece.c_str(), true);
     if (end == std::string::npos) break;
     from = end + 2;
