@@ -69,7 +69,25 @@ sed -i -e '/<scene>/,/<\/position>/{s|<x>0</x>|<x>-1.6</x>|;s|<y>0</y>|<y>-1.6</
 sed -i -e 's|</SensorModule>|<imu /></SensorModule>|' imu_snake.xml
 "$tool" convert imu_snake.xml imu_snake.xml
 
+# snake11 with how to run it saved (<run>): lockstep at 100 Hz, driven by
+# the serpenoid Lua template carried in the file (docs/sim.md, "A design's
+# saved run settings").
+script=$here/../lua_controller/templates/serpenoid.lua
+{
+  echo '  <run>'
+  echo '    <clock>lockstep</clock>'
+  echo '    <controller>lua</controller>'
+  printf '    <luaScript><![CDATA['
+  cat "$script"
+  echo ']]></luaScript>'
+  echo '  </run>'
+} >run.part
+sed -e '/<\/settings>/r run.part' snake11.xml >lua_serpenoid.xml
+rm -f run.part
+"$tool" convert lua_serpenoid.xml lua_serpenoid.xml
+
 "$tool" validate snake11.xml
+"$tool" validate lua_serpenoid.xml
 "$tool" validate case_study.xml
 "$tool" validate terrain.xml
 "$tool" validate imu_snake.xml

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/run_settings.h"
+
 namespace mrsim {
 
 // Which axis convention positions and rotations in a file use. Files say it
@@ -226,6 +228,8 @@ struct Scenario {
   std::vector<ContactFriction> contact_frictions;
   std::vector<FluidRegion> fluid_regions;
   SimulationSettings settings;
+  // How to run it (clock, rate, controller); none: as mrsim-sim defaults.
+  std::optional<RunSettings> run;
   std::vector<Frame> loose_frames;
   std::vector<Joint> loose_joints;
   std::vector<SensorModule> loose_sensor_modules;

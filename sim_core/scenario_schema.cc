@@ -29,7 +29,8 @@ std::string OrList(const std::vector<std::string>& names) {
 template <typename E>
 constexpr bool kIsChoice =
     std::is_same_v<E, Axis> || std::is_same_v<E, JointType> ||
-    std::is_same_v<E, PrimitiveShape> || std::is_same_v<E, FluidKind>;
+    std::is_same_v<E, PrimitiveShape> || std::is_same_v<E, FluidKind> ||
+    std::is_same_v<E, ClockMode> || std::is_same_v<E, ControllerKind>;
 
 // A value beyond the field's physical bound (FieldLimits::magnitude).
 std::string MagnitudeMessage(const FieldLimits& l, double v) {
@@ -83,8 +84,12 @@ template <typename T>
 std::string LimitMessage(const FieldInfo& info, const T& v) {
   const FieldLimits& l = info.limits;
   if constexpr (std::is_same_v<T, std::string>) {
-    return l.nonempty && v.empty()
-               ? fmt::format("expected a non-empty {}", info.xml)
+    if (l.nonempty && v.empty()) {
+      return fmt::format("expected a non-empty {}", info.xml);
+    }
+    return l.max_bytes > 0 && v.size() > l.max_bytes
+               ? fmt::format("expected at most {} bytes, got {}", l.max_bytes,
+                             v.size())
                : "";
   } else if constexpr (std::is_same_v<T, double> || std::is_same_v<T, int>) {
     return NumberLimitMessage(l, v);
@@ -275,6 +280,7 @@ const std::pair<std::vector<FieldSpec>, std::vector<ChildSpec>>& SpecsOf(
     t[PartKind::kContactFriction] = Specs<ContactFriction>();
     t[PartKind::kFluidRegion] = Specs<FluidRegion>();
     t[PartKind::kSettings] = Specs<SimulationSettings>();
+    t[PartKind::kRunSettings] = Specs<RunSettings>();
     return t;
   }();
   return table.at(kind);
@@ -332,6 +338,8 @@ const char* ToString(PartKind kind) {
       return "FluidRegion";
     case PartKind::kSettings:
       return "settings";
+    case PartKind::kRunSettings:
+      return "run";
   }
   return "?";
 }
@@ -443,6 +451,7 @@ std::vector<FieldRef> FieldsOf(FluidRegion& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(SimulationSettings& part) {
   return Collect(part);
 }
+std::vector<FieldRef> FieldsOf(RunSettings& part) { return Collect(part); }
 
 const std::vector<FieldSpec>& FieldSpecsOf(PartKind kind) {
   return SpecsOf(kind).first;

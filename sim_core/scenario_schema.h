@@ -68,6 +68,7 @@ struct FieldLimits {
   bool nonzero = false;        // vector or quaternion: not all zeros
   bool nonempty = false;       // text: not empty
   const char* meaning = "";    // names of an integer range's values
+  size_t max_bytes = 0;        // text: at most this long; 0: any
 
   static FieldLimits Any() { return {}; }
   static FieldLimits Positive() {
@@ -101,6 +102,13 @@ struct FieldLimits {
   static FieldLimits NonEmpty() {
     FieldLimits l;
     l.nonempty = true;
+    return l;
+  }
+  // Text of at most `max` bytes (`nonempty`: and at least one).
+  static FieldLimits TextUpTo(size_t max, bool nonempty = false) {
+    FieldLimits l;
+    l.max_bytes = max;
+    l.nonempty = nonempty;
     return l;
   }
   // The same limits with a physical bound: |value| <= bound.
@@ -161,6 +169,7 @@ enum class PartKind {
   kContactFriction,
   kFluidRegion,
   kSettings,
+  kRunSettings,
 };
 // The part's element name in files, e.g. "Frame", "SensorModule".
 const char* ToString(PartKind kind);
@@ -179,9 +188,10 @@ struct ChildInfo {
 };
 
 // A field's value, the variant of all member types a field can have.
-using FieldPtr = std::variant<std::string*, double*, int*, bool*,
-                              Eigen::Vector3d*, Eigen::Quaterniond*, Axis*,
-                              JointType*, PrimitiveShape*, FluidKind*>;
+using FieldPtr =
+    std::variant<std::string*, double*, int*, bool*, Eigen::Vector3d*,
+                 Eigen::Quaterniond*, Axis*, JointType*, PrimitiveShape*,
+                 FluidKind*, ClockMode*, ControllerKind*>;
 
 // A value that does not parse or is outside a field's limits. what() is the
 // schema's message, e.g. "expected a positive value, got 0".
@@ -234,6 +244,7 @@ std::vector<FieldRef> FieldsOf(SceneObject& part);
 std::vector<FieldRef> FieldsOf(ContactFriction& part);
 std::vector<FieldRef> FieldsOf(FluidRegion& part);
 std::vector<FieldRef> FieldsOf(SimulationSettings& part);
+std::vector<FieldRef> FieldsOf(RunSettings& part);
 
 // A field of a kind of part, without an instance: for listings and docs.
 struct FieldSpec {

@@ -746,6 +746,55 @@ void Describe(V& v, SimulationSettings& s) {
 }
 
 template <typename V>
+void Describe(V& v, RunSettings& r) {
+  static const FieldInfo kClock{
+      "clock", "clock", "", L::Any(),
+      "How simulated time runs: realtime, fast or lockstep (mrsim-sim "
+      "--clock)"};
+  static const FieldInfo kRate{
+      "rate", "rate", "Hz", L::Positive().Within(kMaxControlRate),
+      "State publication rate = control rate (mrsim-sim --rate)"};
+  static const FieldInfo kSpeed{
+      "speed", "speed", "", L::Positive().Within(kMaxRealtimeFactor),
+      "Real-time factor of the realtime clock (mrsim-sim --speed)"};
+  static const FieldInfo kController{
+      "controller", "controller", "", L::Any(),
+      "Who drives the robots: gait (mrsim-gait), lua (mrsim-lua running "
+      "luaScript) or external (lockstep, waiting for externalName)"};
+  static const FieldInfo kGait{
+      "gait", "gait", "", L::TextUpTo(kMaxRunNameBytes, true),
+      "The gait each robot starts with (controller gait)"};
+  static const FieldInfo kLua{"luaScript",
+                              "lua_script",
+                              "",
+                              L::TextUpTo(kMaxLuaScriptBytes),
+                              "The Lua controller's source (controller lua)",
+                              false,
+                              G::kNone,
+                              false,
+                              false,
+                              ""};
+  static const FieldInfo kExternal{
+      "externalName",
+      "external_name",
+      "",
+      L::TextUpTo(kMaxRunNameBytes),
+      "The sender the simulator waits for (controller external)",
+      false,
+      G::kNone,
+      false,
+      false,
+      ""};
+  v.Field(kClock, r.clock);
+  v.Field(kRate, r.rate);
+  v.Field(kSpeed, r.speed);
+  v.Field(kController, r.controller);
+  v.Field(kGait, r.gait);
+  v.Field(kLua, r.lua_script);
+  v.Field(kExternal, r.external_name);
+}
+
+template <typename V>
 void Describe(V& v, Scenario& s) {
   static const ChildInfo kRobot{"robot", "", "robots",
                                 "Robots (repeat <robot>)"};
@@ -764,6 +813,9 @@ void Describe(V& v, Scenario& s) {
   }();
   static const ChildInfo kSettings{"settings", "", "settings",
                                    "Timestep and gravity"};
+  static const ChildInfo kRun{
+      "run", "", "run",
+      "How to run it: clock, rate, controller (mrsim-sim FILE uses it)"};
   static const ChildInfo kFrames = [] {
     ChildInfo c = Wrapper("frames", "Frame", "loose_frames",
                           "Frames without a robot", false);
@@ -790,6 +842,7 @@ void Describe(V& v, Scenario& s) {
   v.List(kFrictions, s.contact_frictions);
   v.List(kFluids, s.fluid_regions);
   v.Child(kSettings, s.settings);
+  v.Optional(kRun, s.run);
   v.List(kFrames, s.loose_frames);
   v.List(kSensorModules, s.loose_sensor_modules);
   v.List(kJoints, s.loose_joints);
@@ -816,6 +869,7 @@ MRSIM_KIND_OF(SceneObject, kSceneObject);
 MRSIM_KIND_OF(ContactFriction, kContactFriction);
 MRSIM_KIND_OF(FluidRegion, kFluidRegion);
 MRSIM_KIND_OF(SimulationSettings, kSettings);
+MRSIM_KIND_OF(RunSettings, kRunSettings);
 #undef MRSIM_KIND_OF
 
 // The names of a choice field's values, in enum order.
@@ -834,6 +888,17 @@ inline const std::vector<std::string>& ChoiceNames(const PrimitiveShape*) {
 }
 inline const std::vector<std::string>& ChoiceNames(const FluidKind*) {
   static const std::vector<std::string> k{"Water", "Air"};
+  return k;
+}
+
+// The words of the run settings' choices: their enum tables' words, in
+// table order, which is enum order.
+inline const std::vector<std::string>& ChoiceNames(const ClockMode*) {
+  static const std::vector<std::string> k = ClockModes().Names();
+  return k;
+}
+inline const std::vector<std::string>& ChoiceNames(const ControllerKind*) {
+  static const std::vector<std::string> k = ControllerKinds().Names();
   return k;
 }
 

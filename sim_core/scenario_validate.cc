@@ -309,6 +309,22 @@ class Validator {
     }
   }
 
+  // What the chosen controller needs is there: a script to run, a name
+  // to wait for.
+  void After(const RunSettings& run, bool) {
+    if (run.controller == ControllerKind::kLua && run.lua_script.empty()) {
+      Fail(path_ + "/luaScript",
+           "expected the Lua script's source for controller lua");
+    }
+    if (run.controller == ControllerKind::kExternal &&
+        !ValidControllerName(run.external_name)) {
+      Fail(path_ + "/externalName",
+           "expected 1-64 letters, digits, '-', '_' or '.', starting with a "
+           "letter or digit, for controller external, got '" +
+               run.external_name + "'");
+    }
+  }
+
   void Before(const SceneObject&) {}
   void After(const SceneObject& o, bool) {
     AddGuid(o.guid, false);

@@ -690,7 +690,12 @@ class WriteVisitor {
     } else {
       const std::string text = FieldRef(info, &value).GetText();
       if (info.omit_when && text == info.omit_when) return;
-      w_.Text(info.xml, text);
+      // A script reads as written, not as &lt; and &amp;.
+      if (text.find('\n') != std::string::npos) {
+        w_.CData(info.xml, text);
+      } else {
+        w_.Text(info.xml, text);
+      }
     }
   }
   template <typename P>

@@ -51,6 +51,22 @@ void XmlWriter::Text(const std::string& name, const std::string& text) {
   Close();
 }
 
+void XmlWriter::CData(const std::string& name, const std::string& text) {
+  Open(name);
+  // "]]>" would end the section: each one ends a section after its "]]"
+  // and the next starts with ">".
+  size_t from = 0;
+  while (true) {
+    const size_t end = text.find("]]>", from);
+    const std::string piece = text.substr(
+        from, end == std::string::npos ? std::string::npos : end + 2 - from);
+    printer_->PushText(piece.c_str(), true);
+    if (end == std::string::npos) break;
+    from = end + 2;
+  }
+  Close();
+}
+
 void XmlWriter::Number(const std::string& name, double value) {
   Text(name, FormatShortest(value));
 }

@@ -24,6 +24,9 @@ class XmlWriter {
   void Close();
   // <name>text</name>, or <name /> when text is empty.
   void Text(const std::string& name, const std::string& text);
+  // <name><![CDATA[text]]></name>, so multi-line text (a script) reads
+  // as written; text holding "]]>" is split over two CDATA sections.
+  void CData(const std::string& name, const std::string& text);
   void Number(const std::string& name, double value);
   void Comment(const std::string& text);
 

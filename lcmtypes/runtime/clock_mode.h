@@ -1,26 +1,6 @@
-// The simulator's clock as an enum with one table of words: mrsim-sim's
-// --clock flag, sim_status_t.clock, the studio's run form and the gait
-// controller (which only answers every state under lockstep) parse and
-// print it here, so the words are written once.
+// The simulator's clock: the enum and its words live in common/ (a
+// scenario's saved run settings use them too, and sim_core has no LCM);
+// this header keeps the runtime's include path.
 #pragma once
 
-#include <string>
-
-#include "common/enum_table.h"
-
-namespace mrsim {
-
-// realtime: paced to the wall clock times `speed`. fast: as fast as the CPU
-// allows. lockstep: each control period waits for an answer to the current
-// state from every controller, so runs are deterministic.
-enum class ClockMode { kRealtime, kFast, kLockstep };
-// The clock's words (sim_status_t.clock carries them too).
-const EnumTable<ClockMode>& ClockModes();
-inline const char* ToString(ClockMode mode) { return ClockModes().Name(mode); }
-// Throws std::invalid_argument naming `field` and the accepted values.
-inline ClockMode ParseClockMode(const std::string& text,
-                                const std::string& field = "--clock") {
-  return ClockModes().Parse(text, field);
-}
-
-}  // namespace mrsim
+#include "common/clock_mode.h"

@@ -8,6 +8,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
+#include "sim_core/scenario_xml.h"
 
 namespace mrsim {
 
@@ -28,13 +29,35 @@ std::unique_ptr<LuaScript> LoadLuaScriptFile(const std::string& path,
       source, std::filesystem::path(path).filename().string(), limits);
 }
 
+std::unique_ptr<LuaScript> LoadScenarioLuaScript(const std::string& path,
+                                                 LuaLimits limits) {
+  Scenario scenario;
+  try {
+    scenario = ReadScenarioFile(path);
+  } catch (const std::exception& e) {
+    throw UsageError(std::string("--scenario: ") + e.what());
+  }
+  if (!scenario.run || scenario.run->lua_script.empty()) {
+    throw UsageError("no --script, and " + path +
+                     " carries no Lua script (<run><luaScript>): give "
+                     "--script FILE");
+  }
+  if (scenario.run->lua_script.size() > limits.max_source_bytes) {
+    throw UsageError("--scenario: the Lua script in " + path +
+                     " is longer than " +
+                     std::to_string(limits.max_source_bytes) + " bytes");
+  }
+  return std::make_unique<LuaScript>(scenario.run->lua_script, "luaScript",
+                                     limits);
+}
+
 void LuaCommandLine::AddFlags(CLI::App& app) {
   app.set_version_flag("--version", VersionLine("mrsim-lua"));
   app.add_option("--robot", robot, "Robot name (as in the scenario)")
       ->required();
   app.add_option("--script", script_path,
-                 "Lua file defining step(t, state) (docs/gait.md)")
-      ->required();
+                 "Lua file defining step(t, state) (docs/gait.md); default: "
+                 "the script saved in --scenario (<run><luaScript>)");
   app.add_option("--lcm-url", lcm_url, "LCM URL (default: LCM's default)");
   AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
@@ -61,7 +84,8 @@ void LuaCommandLine::AddFlags(CLI::App& app) {
 void LuaCommandLine::Finish() {
   options.robot = robot;
   options.sender = name.empty() ? "lua-" + robot : name;
-  script = LoadLuaScriptFile(script_path);
+  script = script_path.empty() ? LoadScenarioLuaScript(scenario_path)
+                               : LoadLuaScriptFile(script_path);
   try {
     if (!scenario_path.empty() && !axes_text.empty()) {
       throw std::invalid_argument("give --scenario or --axes, not both");
@@ -90,8 +114,9 @@ void LuaCommandLine::Finish() {
 
 std::string LuaCommandLine::StartLine() const {
   return "mrsim-lua: robot " + options.robot + ", sender " + options.sender +
-         ", script " + script_path + ", listening on " +
-         StateChannel(options.prefix, options.robot);
+         ", script " +
+         (script_path.empty() ? "saved in " + scenario_path : script_path) +
+         ", listening on " + StateChannel(options.prefix, options.robot);
 }
 
 }  // namespace mrsim

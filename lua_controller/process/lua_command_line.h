@@ -43,5 +43,11 @@ struct LuaCommandLine {
 // read or is too long, LuaScriptError when it does not load.
 std::unique_ptr<LuaScript> LoadLuaScriptFile(const std::string& path,
                                              LuaLimits limits = {});
+// The Lua script a scenario file carries in its run settings
+// (<run><luaScript>, named "luaScript" in messages). Throws UsageError
+// when the file does not read or carries none, LuaScriptError when it
+// does not load.
+std::unique_ptr<LuaScript> LoadScenarioLuaScript(const std::string& path,
+                                                 LuaLimits limits = {});
 
 }  // namespace mrsim

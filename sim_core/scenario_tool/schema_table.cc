@@ -32,6 +32,7 @@ std::string LimitsText(const FieldLimits& l, FieldType type) {
   }
   if (l.nonzero) add("not all zero");
   if (l.nonempty) add("not empty");
+  if (l.max_bytes > 0) add(fmt::format("at most {} bytes", l.max_bytes));
   return text;
 }
 
@@ -58,7 +59,7 @@ const char* CountText(ChildCount count) {
 std::string SchemaMarkdown() {
   std::string out;
   // Every part, in the enum's order (a new part kind is listed by itself).
-  for (int k = 0; k <= static_cast<int>(PartKind::kSettings); ++k) {
+  for (int k = 0; k <= static_cast<int>(PartKind::kRunSettings); ++k) {
     const PartKind kind = static_cast<PartKind>(k);
     out += fmt::format("### {}\n\n", ToString(kind));
     const auto& fields = FieldSpecsOf(kind);

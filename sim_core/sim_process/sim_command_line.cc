@@ -17,17 +17,19 @@ void SimCommandLine::AddFlags(CLI::App& app) {
   AddAuthFlags(app, auth);
   app.add_option("--prefix", options.prefix, "Channel prefix")
       ->capture_default_str();
-  AddEnumOption(app, "--clock", &options.clock, ClockModes(),
-                "how simulated time runs against the wall clock");
-  app.add_option("--speed", options.speed,
-                 "Real-time factor for the realtime clock")
-      ->capture_default_str();
-  app.add_option("--rate", options.rate,
-                 "State publication rate = control rate (Hz)")
-      ->capture_default_str();
-  app.add_option("--controllers", options.controllers,
-                 "Lockstep: sender names to wait for")
-      ->delimiter(',');
+  clock_flag_ = AddEnumOption(
+      app, "--clock", &options.clock, ClockModes(),
+      "how simulated time runs against the wall clock (default: the "
+      "scenario's <run>, else realtime)");
+  speed_flag_ = app.add_option("--speed", options.speed,
+                               "Real-time factor for the realtime clock")
+                    ->capture_default_str();
+  rate_flag_ = app.add_option("--rate", options.rate,
+                              "State publication rate = control rate (Hz)")
+                   ->capture_default_str();
+  controllers_flag_ = app.add_option("--controllers", options.controllers,
+                                     "Lockstep: sender names to wait for")
+                          ->delimiter(',');
   app.add_option("--lockstep-timeout", options.lockstep_timeout,
                  "Lockstep: seconds before warning about a late controller")
       ->capture_default_str();
@@ -57,7 +59,12 @@ void SimCommandLine::Finish() {
     options.spin = !no_spin;
     options.Validate();
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    // The scenario's saved clock may complete the flags (--controllers
+    // with a lockstep clock): ApplyRunSettings checks again.
+    if (scenario_path.empty() || clock_flag_ == nullptr ||
+        clock_flag_->count() > 0) {
+      throw UsageError(e.what());
+    }
   }
   if (scenario_path.empty() && load_checkpoint.empty()) {
     throw UsageError("expected a SCENARIO file or --load-checkpoint PATH");
@@ -80,7 +87,65 @@ std::string SimCommandLine::LoadLine(const Physics& physics) const {
       scenario_path.empty() ? "" : " (same scenario as " + scenario_path + ")");
 }
 
-std::unique_ptr<Physics> SimCommandLine::LoadPhysics() const {
+void SimCommandLine::ApplyRunSettings(const Scenario& scenario) {
+  if (!scenario.run) {
+    try {
+      options.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    return;
+  }
+  const RunSettings& run = *scenario.run;
+  const auto given = [](const CLI::Option* flag) {
+    return flag != nullptr && flag->count() > 0;
+  };
+  const bool external = run.controller == ControllerKind::kExternal;
+  if (!given(clock_flag_)) {
+    // An external controller is waited for at every step, as in the studio.
+    options.clock = external ? ClockMode::kLockstep : run.clock;
+  }
+  if (!given(rate_flag_)) options.rate = run.rate;
+  if (!given(speed_flag_)) options.speed = run.speed;
+  std::vector<std::string> names;
+  for (int r = 0; r < static_cast<int>(scenario.robots.size()); ++r) {
+    const std::string robot = RobotName(scenario, r);
+    names.push_back(
+        (run.controller == ControllerKind::kLua ? "lua-" : "gait-") + robot);
+  }
+  if (external) names = {run.external_name};
+  if (!given(controllers_flag_) && options.clock == ClockMode::kLockstep) {
+    options.controllers = names;
+  }
+  try {
+    options.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string(e.what()) + " (with the run settings of " +
+                     scenario_path + ")");
+  }
+  std::string start;
+  if (external) {
+    start =
+        fmt::format("start the controller named '{}' (lockstep waits for it)",
+                    run.external_name);
+  } else {
+    const bool lua = run.controller == ControllerKind::kLua;
+    for (size_t r = 0; r < scenario.robots.size(); ++r) {
+      const std::string robot = RobotName(scenario, static_cast<int>(r));
+      start += fmt::format("{}`{} --robot {} --scenario {}{} --name {}`",
+                           r == 0 ? "" : ", ", lua ? "mrsim-lua" : "mrsim-gait",
+                           robot, scenario_path,
+                           lua ? "" : " --gait " + run.gait, names[r]);
+    }
+    start = start.empty() ? "no robot to control" : "start " + start;
+  }
+  run_note = fmt::format(
+      "mrsim-sim: run settings of {}: clock {}, {:g} Hz, controller {}; {}",
+      scenario_path, ToString(options.clock), options.rate,
+      ToString(run.controller), start);
+}
+
+std::unique_ptr<Physics> SimCommandLine::LoadPhysics() {
   std::unique_ptr<Physics> physics;
   try {
     if (!load_checkpoint.empty()) physics = LoadCheckpoint(load_checkpoint);
@@ -100,6 +165,7 @@ std::unique_ptr<Physics> SimCommandLine::LoadPhysics() const {
   if (scenario_path.empty()) return physics;
   try {
     Scenario scenario = ReadScenarioFile(scenario_path);
+    ApplyRunSettings(scenario);
     if (!physics) return std::make_unique<Physics>(scenario);
     Scenario saved = physics->scenario();
     saved.base_dir = scenario.base_dir;

@@ -731,6 +731,19 @@ void Design::Redo() {
   Changed();
 }
 
+void Design::SetRunSettings(const RunSettings& run) {
+  if (scenario_.run && *scenario_.run == run) return;
+  Scenario probe;  // the rules of <run> alone: no meshes to load
+  probe.run = run;
+  try {
+    ValidateScenario(probe);
+  } catch (const ScenarioError& e) {
+    throw DesignError("run settings: " + e.path() + ": " + e.message());
+  }
+  scenario_.run = run;
+  dirty_ = WriteScenarioString(scenario_) != saved_text_;
+}
+
 void Design::Save(bool embed_assets) {
   if (path_.empty()) throw std::runtime_error("no file name: use Save As");
   if (embed_assets) {

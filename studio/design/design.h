@@ -132,6 +132,12 @@ class Design {
   void Undo();
   void Redo();
 
+  // How to run the design (saved with it, <run>). Not an undo step and no
+  // rebuild of the preview: the model is unchanged; the design is dirty
+  // when they differ from the file's. Throws DesignError for settings no
+  // run could use (a Lua controller without a script, a bad name).
+  void SetRunSettings(const RunSettings& run);
+
   // Writes the file (atomically); throws std::runtime_error naming it.
   // With embed_assets, the file carries the terrain image and mesh files
   // as base64 (sim_core/embed_assets.h), the design on screen keeps its

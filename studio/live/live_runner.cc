@@ -34,18 +34,6 @@ int64_t DataRows(const std::string& path) {
 
 }  // namespace
 
-bool ValidControllerName(const std::string& name) {
-  if (name.empty() || name.size() > 64 || name[0] == '-' || name[0] == '.') {
-    return false;  // never taken for a flag
-  }
-  for (char c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                    (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
-    if (!ok) return false;
-  }
-  return true;
-}
-
 LiveRunner::LiveRunner(std::vector<std::string> search_path)
     : search_path_(std::move(search_path)) {}
 
@@ -71,7 +59,7 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
   std::vector<ProcessSpec> specs;
   std::vector<std::string> senders;
   ClockMode clock = o.clock;
-  if (o.controller == "external") {
+  if (o.controller == ControllerKind::kExternal) {
     if (!ValidControllerName(o.external_name)) {
       throw std::invalid_argument(
           "run: external controller name '" + o.external_name +
@@ -81,8 +69,9 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
     // The simulator waits for the user's program at every step.
     clock = ClockMode::kLockstep;
     senders.push_back(o.external_name);
-  } else if (o.controller == "gait" || o.controller == "lua") {
-    const bool lua = o.controller == "lua";
+  } else if (o.controller == ControllerKind::kGait ||
+             o.controller == ControllerKind::kLua) {
+    const bool lua = o.controller == ControllerKind::kLua;
     if (lua && o.lua_script.empty()) {
       throw std::invalid_argument("run: no Lua script to run");
     }
@@ -106,8 +95,9 @@ std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
       specs.push_back(std::move(node));
     }
   } else {
-    throw std::invalid_argument("run: controller '" + o.controller +
-                                "' (expected gait, lua or external)");
+    throw std::invalid_argument(
+        "run: controller " + std::to_string(static_cast<int>(o.controller)) +
+        " (expected " + ControllerKinds().Choices() + ")");
   }
   ProcessSpec sim;
   sim.name = "sim";

@@ -16,6 +16,7 @@
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
 #include "lcmtypes/runtime/clock_mode.h"
+#include "sim_core/run_settings.h"
 
 namespace mrsim::studio {
 
@@ -28,12 +29,12 @@ struct RunOptions {
   double rate = 100;             // Hz
   double speed = 1;              // real-time factor (realtime clock)
   std::string gait = "forward";  // each robot's starting gait
-  // Who drives the robots: "gait" (mrsim-gait each), "lua" (mrsim-lua
-  // each, running lua_script) or "external" (nothing started: mrsim-sim
-  // runs in lockstep waiting for the controller named external_name).
-  std::string controller = "gait";
-  std::string lua_script;     // a .lua file, for "lua"
-  std::string external_name;  // for "external"
+  // Who drives the robots: kGait (mrsim-gait each), kLua (mrsim-lua each,
+  // running lua_script) or kExternal (nothing started: mrsim-sim runs in
+  // lockstep waiting for the controller named external_name).
+  ControllerKind controller = ControllerKind::kGait;
+  std::string lua_script;     // a .lua file, for kLua
+  std::string external_name;  // for kExternal
   bool paused = false;
 };
 
@@ -91,10 +92,6 @@ class LiveRunner {
   std::string record_dir_;
   std::deque<std::string> console_;
 };
-
-// A controller name mrsim-sim --controllers can list: 1-64 letters,
-// digits, '-', '_' or '.', not starting with '-' or '.'.
-bool ValidControllerName(const std::string& name);
 
 // A folder of its own for one recording under `base`, named by the local
 // time it starts ("base/2026-11-26_14-05-09", then "..._2" if taken), so

@@ -16,6 +16,9 @@
 namespace mrsim::studio {
 namespace {
 
+constexpr int kGait = static_cast<int>(ControllerKind::kGait);
+constexpr int kLua = static_cast<int>(ControllerKind::kLua);
+constexpr int kExternal = static_cast<int>(ControllerKind::kExternal);
 constexpr const char* kScriptName = "controller.lua";
 constexpr size_t kMaxScriptBytes = size_t{1} << 20;
 
@@ -34,10 +37,10 @@ std::string ControllerPanel::gait() const {
   return presets[gait_].name;
 }
 
-void ControllerPanel::Set(Kind kind, const std::string& gait,
+void ControllerPanel::Set(ControllerKind kind, const std::string& gait,
                           const std::string& lua_source,
                           const std::string& external_name) {
-  kind_ = kind;
+  kind_ = static_cast<int>(kind);
   for (size_t i = 0; i < GaitPresets().size(); ++i) {
     if (GaitPresets()[i].name == gait) gait_ = static_cast<int>(i);
   }
@@ -65,9 +68,7 @@ void ControllerPanel::Draw(LayoutRecorder* layout) {
   ImGui::RadioButton("external", &kind_, kExternal);
   RecordItem(layout, "controller external");
   if (layout != nullptr && layout->enabled()) {
-    layout->State("controller", kind_ == kGait  ? "gait"
-                                : kind_ == kLua ? "lua"
-                                                : "external");
+    layout->State("controller", ToString(kind()));
   }
   if (kind_ == kGait) {
     const auto& presets = GaitPresets();
@@ -164,11 +165,11 @@ void ControllerPanel::Fill(RunOptions* o,
                            const std::string& design_path) const {
   switch (kind_) {
     case kGait:
-      o->controller = "gait";
+      o->controller = ControllerKind::kGait;
       o->gait = gait();
       return;
     case kExternal:
-      o->controller = "external";
+      o->controller = ControllerKind::kExternal;
       o->external_name = external_;
       return;
     default:
@@ -183,7 +184,7 @@ void ControllerPanel::Fill(RunOptions* o,
   }
   const std::string path = ScriptPathFor(design_path);
   WriteFileAtomically(path, source_);
-  o->controller = "lua";
+  o->controller = ControllerKind::kLua;
   o->lua_script = path;
 }
 

@@ -16,8 +16,6 @@ namespace mrsim::studio {
 
 class ControllerPanel {
  public:
-  enum Kind { kGait = 0, kLua = 1, kExternal = 2 };
-
   ControllerPanel();
   void Draw(LayoutRecorder* layout);
   // Sets o->controller and what it needs. For a Lua script, writes it
@@ -26,11 +24,12 @@ class ControllerPanel {
   // not load (naming its line) or the external name is not one.
   void Fill(RunOptions* o, const std::string& design_path) const;
 
-  Kind kind() const { return static_cast<Kind>(kind_); }
+  ControllerKind kind() const { return static_cast<ControllerKind>(kind_); }
   const std::string& lua_source() const { return source_; }
-  // What a design file brings along (its run settings).
-  void Set(Kind kind, const std::string& gait, const std::string& lua_source,
-           const std::string& external_name);
+  // What a design file brings along (its run settings); an empty script or
+  // name keeps the editor's.
+  void Set(ControllerKind kind, const std::string& gait,
+           const std::string& lua_source, const std::string& external_name);
   std::string gait() const;
   const std::string& external_name() const { return external_; }
 
@@ -40,7 +39,8 @@ class ControllerPanel {
  private:
   void CheckNow();
 
-  int kind_ = kGait;
+  // ControllerKind as the radio buttons' int (ControllerKinds() order).
+  int kind_ = static_cast<int>(ControllerKind::kGait);
   int gait_ = 0;
   int template_ = 0;
   std::string source_;

@@ -16,6 +16,7 @@ void FileDialog::Draw(StudioContext& studio) {
         break;
       case BrowseFor::kSaveAs:
         try {
+          studio.StoreRunSettings();
           studio.design.SaveAs(chosen, studio.embed_on_save);
           studio.recent.Add(chosen);
           studio.Note("saved " + chosen);

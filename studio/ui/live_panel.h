@@ -66,6 +66,12 @@ class LivePanel {
     Connect(url, prefix);
   }
   LiveSession& mutable_session() { return *session_; }
+  // The Run form (clock, rate, speed, controller and its script or gait)
+  // as the run settings Save writes into the design.
+  RunSettings FormRunSettings() const;
+  // Fills the Run form from an opened design's saved run settings; none
+  // (a file from before they were saved): the defaults.
+  void LoadRunSettings(const std::optional<RunSettings>& run);
   // Something live is shown (a simulation heard, processes or an
   // optimisation running): the window redraws at a steady rate.
   bool animating() const {

@@ -1,7 +1,10 @@
 // The Run panel's first section: run the design (saved first) or attach to
 // a simulation; stop or detach.
 // Part of LivePanel (live_panel.h), one file per section.
+#include <algorithm>
+
 #include "sim_core/scenario_xml.h"
+#include "studio/live/saved_run.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
 
@@ -76,6 +79,26 @@ void LivePanel::DrawRun(const LiveDesign& design) {
     ImGui::InputText("prefix", &prefix_);
     ImGui::TreePop();
   }
+}
+
+RunSettings LivePanel::FormRunSettings() const {
+  RunOptions o = FormRun();
+  o.controller = controller_.kind();
+  o.gait = controller_.gait();
+  o.external_name = controller_.external_name();
+  return SettingsFromRunOptions(o, controller_.lua_source());
+}
+
+void LivePanel::LoadRunSettings(const std::optional<RunSettings>& run) {
+  const RunOptions o = RunOptionsFromSettings(run);
+  const auto& clocks = ClockModes().entries();
+  for (size_t i = 0; i < clocks.size(); ++i) {
+    if (clocks[i].value == o.clock) clock_ = static_cast<int>(i);
+  }
+  rate_ = static_cast<float>(o.rate);
+  speed_ = static_cast<float>(o.speed);
+  controller_.Set(o.controller, o.gait, run ? run->lua_script : "",
+                  o.external_name);
 }
 
 RunOptions LivePanel::FormRun() const {

@@ -21,6 +21,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
       recent(options_in.recent_store) {
   Note(design.note());
   if (options.full_view) ToggleFullView();
+  live->LoadRunSettings(design.scenario().run);
   if (!design.path().empty() && std::filesystem::exists(design.path())) {
     recent.Add(design.path());
   }
@@ -129,6 +130,7 @@ void StudioContext::RequestClose() {
 void StudioContext::OpenFile(const std::string& path) {
   try {
     design = Design::Open(path);
+    live->LoadRunSettings(design.scenario().run);
     built_revision = -1;
     recent.Add(path);
     Note(design.note());
@@ -146,6 +148,10 @@ std::string StudioContext::StartFolder() const {
   return std::filesystem::is_directory("scenarios", ec) ? "scenarios" : ".";
 }
 
+void StudioContext::StoreRunSettings() {
+  design.SetRunSettings(live->FormRunSettings());
+}
+
 void StudioContext::BrowseSaveAs() {
   browse_for = BrowseFor::kSaveAs;
   browser.Open("Save scenario as", StartFolder(), ".xml", true);
@@ -157,6 +163,7 @@ void StudioContext::SaveFile() {
     return;
   }
   try {
+    StoreRunSettings();
     design.Save(embed_on_save);
     recent.Add(design.path());
     Note("saved " + design.path());

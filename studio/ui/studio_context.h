@@ -95,6 +95,9 @@ struct StudioContext {
   void RequestClose();
   void OpenFile(const std::string& path);
   void SaveFile();
+  // The Run panel's form into the design, so Save writes how to run it.
+  // Throws DesignError for a form no run could use.
+  void StoreRunSettings();
   // Starts a video of the 3-D view beside the design (else in the
   // current folder), or stops it and says where it went and its size.
   void ToggleVideo();

@@ -72,7 +72,7 @@ TEST(LiveRunner, LuaAndExternalControllersStartWhatTheyShould) {
   RunOptions o;
   o.scenario_path = "robots.xml";
   o.robots = {"a"};
-  o.controller = "lua";
+  o.controller = ControllerKind::kLua;
   o.lua_script = "ctl.lua";
   o.clock = ClockMode::kLockstep;
   auto specs = LiveRunner::RunSpecs(o);
@@ -85,7 +85,7 @@ TEST(LiveRunner, LuaAndExternalControllersStartWhatTheyShould) {
 
   // External: nothing but the simulator, in lockstep whatever the form
   // says, waiting for the named program.
-  o.controller = "external";
+  o.controller = ControllerKind::kExternal;
   o.external_name = "my-python";
   o.clock = ClockMode::kRealtime;
   specs = LiveRunner::RunSpecs(o);
@@ -98,7 +98,7 @@ TEST(LiveRunner, LuaAndExternalControllersStartWhatTheyShould) {
     o.external_name = bad;
     EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument) << bad;
   }
-  o.controller = "teleport";
+  o.controller = static_cast<ControllerKind>(7);  // not a kind
   EXPECT_THROW(LiveRunner::RunSpecs(o), std::invalid_argument);
 }
 

@@ -1,4 +1,4 @@
-#include "lcmtypes/runtime/clock_mode.h"
+#include "common/clock_mode.h"
 
 namespace mrsim {
 

@@ -1,0 +1,26 @@
+// A design's saved run settings (Scenario::run, <run> in the file) and
+// the Run form's RunOptions, each made from the other: Save writes the
+// form into the design, opening a design fills the form, so Run after
+// opening does what the author saw.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "sim_core/run_settings.h"
+#include "studio/live/live_runner.h"
+
+namespace mrsim::studio {
+
+// The form's clock, rate, speed, controller, gait and external name from
+// saved settings; none saved: RunOptions' defaults (as mrsim-sim's).
+// The Lua script is text in the settings and a file in RunOptions: the
+// controller panel takes run->lua_script itself.
+RunOptions RunOptionsFromSettings(const std::optional<RunSettings>& run);
+
+// What Save writes for the form `o` and the Lua source in the editor.
+// The script is kept only when the controller is Lua.
+RunSettings SettingsFromRunOptions(const RunOptions& o,
+                                   const std::string& lua_source);
+
+}  // namespace mrsim::studio

@@ -1,0 +1,83 @@
+// mrsim-lua without --script runs the Lua script a design carries in its
+// run settings, so `mrsim-sim FILE` and `mrsim-lua --scenario FILE` run
+// what the studio ran.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "lcmtypes/runtime/usage_error.h"
+#include "lua_controller/process/lua_command_line.h"
+#include "sim_core/chain_builder.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+std::string SaveDesign(const std::string& name,
+                       const std::optional<RunSettings>& run) {
+  const std::string path = testing::TempDir(name) + "/design.xml";
+  ChainScenarioOptions options;
+  options.chain.name = "snake";
+  options.chain.modules = 2;
+  Scenario scenario = MakeChainScenario(options);
+  scenario.run = run;
+  WriteScenarioFile(scenario, path);
+  return path;
+}
+
+void Parse(LuaCommandLine* line, std::vector<std::string> args) {
+  CLI::App app;
+  line->AddFlags(app);
+  args.insert(args.begin(), "mrsim-lua");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  app.parse(static_cast<int>(argv.size()), argv.data());
+  line->Finish();
+}
+
+TEST(LuaSavedScript, WithoutScriptTheScenariosSavedScriptRuns) {
+  RunSettings run;
+  run.controller = ControllerKind::kLua;
+  run.lua_script = "function step(t, state) return {0.25, -0.25} end\n";
+  const std::string path = SaveDesign("lua_saved", run);
+  LuaCommandLine line;
+  Parse(&line, {"--robot", "snake", "--scenario", path});
+  ASSERT_NE(line.script, nullptr);
+  EXPECT_NE(line.StartLine().find("script saved in " + path), std::string::npos)
+      << line.StartLine();
+}
+
+TEST(LuaSavedScript, AScenarioWithoutAScriptAsksForOne) {
+  const std::string path = SaveDesign("lua_unsaved", std::nullopt);
+  LuaCommandLine line;
+  try {
+    Parse(&line, {"--robot", "snake", "--scenario", path});
+    ADD_FAILURE() << "ran without a script";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("give --script FILE"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(LuaSavedScript, ASavedScriptWithAnErrorNamesItsLine) {
+  RunSettings run;
+  run.controller = ControllerKind::kLua;
+  run.lua_script = "-- fine\nfunction step(t, state)\n  return {\nend\n";
+  const std::string path = SaveDesign("lua_saved_bad", run);
+  LuaCommandLine line;
+  try {
+    Parse(&line, {"--robot", "snake", "--scenario", path});
+    ADD_FAILURE() << "loaded a broken script";
+  } catch (const LuaScriptError& e) {
+    EXPECT_GT(e.line(), 0);
+    EXPECT_NE(std::string(e.what()).find("luaScript"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mrsim
