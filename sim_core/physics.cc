@@ -16,6 +16,7 @@
 #include "sim_core/forward_pipeline.h"
 #include "sim_core/mjcf_builder.h"
 #include "sim_core/model_compiler.h"
+#include "sim_core/mujoco_data.h"
 #include "sim_core/mujoco_handlers.h"
 #include "sim_core/robot_orientation.h"
 #include "sim_core/scenario_validate.h"
@@ -315,7 +316,7 @@ void Physics::Impl::Build() {
       robots[r].targets = old_targets[r];
   }
   eq_active0.assign(m->eq_active, m->eq_active + m->neq);
-  data.reset(mj_makeData(m));
+  data = MakeMjData(m);
   if (!data) {
     throw std::runtime_error(fmt::format(
         "MuJoCo cannot allocate the simulation data ({} constraint rows)",
@@ -341,7 +342,7 @@ void Physics::Impl::BuildView() {
   m->nconmax = 1;
   m->njmax = 1;
   m->nstack = std::min(m->nstack, 100000 + 100 * m->nv);
-  data.reset(mj_makeData(m));
+  data = MakeMjData(m);
   if (!data) throw std::runtime_error("MuJoCo cannot allocate data");
 }
 
@@ -537,7 +538,7 @@ void Physics::Impl::MakeRoom() {
         static_cast<int>(std::min(2e9, std::ceil(m->nstack * scale * scale)));
     m->nconmax = nconmax;
     m->njmax = static_cast<int>(njmax);
-    MjDataPtr grown(mj_makeData(m));
+    MjDataPtr grown = MakeMjData(m);
     if (!grown) {
       Fail(data->time, fmt::format("cannot allocate buffers for {} contacts "
                                    "and {} constraint rows",
@@ -704,7 +705,7 @@ void Physics::Reset() {
   }
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
-  mj_resetData(impl_->model.get(), impl_->data.get());
+  ResetMjData(impl_->model.get(), impl_->data.get());
   for (Impl::RobotIndex& r : impl_->robots) {
     for (size_t j = 0; j < r.servos.size(); ++j) {
       r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
@@ -868,7 +869,7 @@ RobotState Physics::ReadRobotState(int robot) const {
   if (need_forces) {
     // Contact forces of the current state: a full forward pass on a copy,
     // with the controls the next step would apply.
-    if (!impl_->scratch) impl_->scratch.reset(mj_makeData(m));
+    if (!impl_->scratch) impl_->scratch = MakeMjData(m);
     if (!impl_->scratch)
       throw std::runtime_error("MuJoCo cannot allocate data");
     mjData* s = impl_->scratch.get();
@@ -1136,7 +1137,7 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     }
   }
   mjData* d = impl_->data.get();
-  mj_resetData(m, d);
+  ResetMjData(m, d);
   const unsigned char* p = bytes.data() + header;
   auto get = [&p](mjtNum* dst, size_t n) {
     if (n == 0) return;  // MuJoCo leaves empty arrays null (e.g. act)

@@ -6,13 +6,10 @@
 #include <string>
 
 #include "sim_core/mjcf_builder.h"
+#include "sim_core/mujoco_data.h"
 
 namespace mrsim {
 namespace {
-
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
 
 Eigen::Quaterniond QuatFrom(const mjtNum* wxyz) {
   return Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).normalized();
@@ -79,8 +76,8 @@ StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
     : model_(model) {
   if (model == nullptr) throw std::invalid_argument("StatePoseMapper: null");
   const mjModel* m = model;
-  std::unique_ptr<mjData, DataDeleter> data(mj_makeData(m));
-  mj_resetData(m, data.get());
+  const MjDataPtr data = MakeMjData(m);
+  if (data == nullptr) throw std::runtime_error("viewer: mj_makeData failed");
   mj_kinematics(m, data.get());
   built_.resize(m->nbody);
   for (int b = 0; b < m->nbody; ++b) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "sim_core/model_compiler.h"
+#include "sim_core/mujoco_data.h"
 
 namespace mrsim {
 
@@ -13,9 +14,8 @@ StateViewer::StateViewer(const Scenario& scenario, const ViewerOptions& options)
     throw std::runtime_error("viewer: the scenario has no robot to show");
   }
   model_ = CompileScenarioModel(scenario, MjcfOptions{});
-  data_.reset(mj_makeData(model_.get()));
+  data_ = MakeMjData(model_.get());
   if (data_ == nullptr) throw std::runtime_error("viewer: mj_makeData failed");
-  mj_resetData(model_.get(), data_.get());
   mj_forward(model_.get(), data_.get());  // lights, cameras, everything
   mapper_ = std::make_unique<StatePoseMapper>(model_.get(), scenario);
   if (!options.follow_robot.empty()) {
