@@ -87,9 +87,21 @@ void StatusBar::Draw(StudioContext& studio, const PanelRect& rect) {
     }
     if (ImGui::IsItemHovered()) WrappedTooltip(studio.message);
   } else {
-    // What fits beside the file name in the narrowest layout; the rest on
-    // hover.
-    ImGui::TextDisabled("drag: orbit  right-drag: pan  wheel: zoom  F: frame");
+    // The longest hint that fits beside the file name and buttons (never
+    // cut mid-word); all of it on hover.
+    static const char* const kHints[] = {
+        "drag: orbit  right-drag: pan  wheel: zoom  F: frame",
+        "drag: orbit  right-drag: pan  wheel: zoom", "drag: orbit  wheel: zoom",
+        "hover: controls"};
+    const float room = ImGui::GetContentRegionAvail().x;
+    const char* hint = kHints[3];
+    for (const char* h : kHints) {
+      if (ImGui::CalcTextSize(h).x <= room) {
+        hint = h;
+        break;
+      }
+    }
+    ImGui::TextDisabled("%s", hint);
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
           "drag: orbit, right-drag (or shift+drag): pan, wheel: zoom\n"
