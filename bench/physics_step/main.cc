@@ -281,6 +281,12 @@ void RunMemory() {
     std::printf("BENCH physics_resident_mb_200 %.0f MB\n",
                 ResidentMb() - before);
   }
+  {
+    mrsim::Physics physics(Crowd(50));
+    physics.Step(100);
+    std::printf("BENCH physics_resident_mb_robots_50 %.0f MB\n",
+                ResidentMb() - before);
+  }
   std::fflush(stdout);
 }
 
