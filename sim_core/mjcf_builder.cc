@@ -1015,30 +1015,34 @@ std::string Builder::Build() {
   out.CloseElement();
 
   out.OpenElement("asset");
-  element({"texture",
-           {{"name", "scene/sky"},
-            {"type", "skybox"},
-            {"builtin", "gradient"},
-            {"rgb1", "0.3 0.5 0.7"},
-            {"rgb2", "0 0 0"},
-            {"width", "512"},
-            {"height", "3072"}}});
-  element({"texture",
-           {{"name", "scene/checker"},
-            {"type", "2d"},
-            {"builtin", "checker"},
-            {"rgb1", "0.1 0.2 0.3"},
-            {"rgb2", "0.2 0.3 0.4"},
-            {"mark", "edge"},
-            {"markrgb", "0.8 0.8 0.8"},
-            {"width", "300"},
-            {"height", "300"}}});
-  element({"material",
-           {{"name", "scene/ground"},
-            {"texture", "scene/checker"},
-            {"texuniform", "true"},
-            {"texrepeat", "4 4"},
-            {"reflectance", "0.2"}}});
+  if (options_.textures) {
+    element({"texture",
+             {{"name", "scene/sky"},
+              {"type", "skybox"},
+              {"builtin", "gradient"},
+              {"rgb1", "0.3 0.5 0.7"},
+              {"rgb2", "0 0 0"},
+              {"width", "512"},
+              {"height", "3072"}}});
+    element({"texture",
+             {{"name", "scene/checker"},
+              {"type", "2d"},
+              {"builtin", "checker"},
+              {"rgb1", "0.1 0.2 0.3"},
+              {"rgb2", "0.2 0.3 0.4"},
+              {"mark", "edge"},
+              {"markrgb", "0.8 0.8 0.8"},
+              {"width", "300"},
+              {"height", "300"}}});
+    element({"material",
+             {{"name", "scene/ground"},
+              {"texture", "scene/checker"},
+              {"texuniform", "true"},
+              {"texrepeat", "4 4"},
+              {"reflectance", "0.2"}}});
+  } else {
+    element({"material", {{"name", "scene/ground"}}});
+  }
   std::set<std::string> looks;
   auto add_look = [&](const GeomSpec& g) {
     const std::string name = LookName(g.kind, g.material);

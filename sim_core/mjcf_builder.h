@@ -69,6 +69,9 @@ struct MjcfOptions {
   // constraints even where they could be rigid tree links, so they can be
   // released at run time (Physics::SetLockAttached).
   std::set<std::string> weld_locks;
+  // The skybox and floor textures (4.7 MB in each mjModel). Worlds of a
+  // split scene leave them out: only the scene's view model is drawn.
+  bool textures = true;
   // Scene objects (by index) left out; the others keep their names. A
   // world of a split scene (world_split.h) holds only its own objects.
   std::vector<bool> skip_scene_objects;

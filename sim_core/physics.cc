@@ -306,6 +306,7 @@ void Physics::Impl::Build() {
   options.rangefinders = false;
   options.weld_locks = runtime_welds;
   options.skip_scene_objects = skip_objects;
+  options.textures = global_ids.empty();  // a world of a split scene: undrawn
   MjcfInfo info;
   model = CompileScenarioModel(scenario, options, &info);
   mjModel* m = model.get();

@@ -11,6 +11,8 @@
 #include "sim_core/base64.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/contact_model.h"
+#include "sim_core/model_compiler.h"
+#include "sim_core/mujoco_ptr.h"
 #include "sim_core/physics.h"
 #include "sim_core/terrain.h"
 #include "tests/common/child_process.h"
@@ -412,6 +414,37 @@ TEST(MjcfBuilder, MaterialNamesShadeTheirKindsColour) {
   EXPECT_NE(plastic, rubber);
   // A shade: the same hue, so the ratios of the channels stay.
   EXPECT_NEAR(plastic.x() / plastic.z(), rubber.x() / rubber.z(), 0.05);
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+// The worlds of a split scene are never drawn: their models leave the
+// 4.7 MB of textures out and move exactly as the drawn model does.
+TEST(MjcfBuilder, AModelWithoutTexturesMovesTheSame) {
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(MakeChain(ChainOptions{}));
+  MjcfOptions bare;
+  bare.textures = false;
+  const MjModelPtr drawn = CompileScenarioModel(s, MjcfOptions{});
+  const MjModelPtr undrawn = CompileScenarioModel(s, bare);
+  EXPECT_GT(drawn->ntex, 0);
+  EXPECT_EQ(undrawn->ntex, 0);
+  EXPECT_LT(undrawn->nbuffer, drawn->nbuffer / 4);
+  const MjDataPtr a(mj_makeData(drawn.get()));
+  const MjDataPtr b(mj_makeData(undrawn.get()));
+  for (int step = 0; step < 200; ++step) {
+    for (int k = 0; k < drawn->nu; ++k) {
+      a->ctrl[k] = b->ctrl[k] = 0.4 * std::sin(0.05 * step + k);
+    }
+    mj_step(drawn.get(), a.get());
+    mj_step(undrawn.get(), b.get());
+  }
+  ASSERT_EQ(drawn->nq, undrawn->nq);
+  for (int i = 0; i < drawn->nq; ++i) EXPECT_EQ(a->qpos[i], b->qpos[i]) << i;
 }
 
 }  // namespace
