@@ -165,8 +165,9 @@ class LivePanel {
   std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
   std::string prefix_ = "MRSIM";
   int clock_ = 0;  // into ClockModes().entries(): realtime
-  float rate_ = 100;
-  float speed_ = 1;
+  // Doubles, as the design saves them: a saved 33.3 Hz stays 33.3.
+  double rate_ = 100;
+  double speed_ = 1;
   bool camera_follows_ = true;
   int step_periods_ = 10;
   float strength_ = 1;

@@ -16,10 +16,10 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   EnumCombo("clock", &clock_, ClockModes());
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
-  ImGui::InputFloat("Hz", &rate_, 0, 0, "%.0f");
+  ImGui::InputDouble("Hz", &rate_, 0, 0, "%g");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
-  ImGui::InputFloat("speed", &speed_, 0, 0, "%.2f");
+  ImGui::InputDouble("speed", &speed_, 0, 0, "%g");
   controller_.Draw(layout_);
   if (!runner_.running()) {
     // mrsim-sim runs the file: what is on screen is saved first.
@@ -95,8 +95,8 @@ void LivePanel::LoadRunSettings(const std::optional<RunSettings>& run) {
   for (size_t i = 0; i < clocks.size(); ++i) {
     if (clocks[i].value == o.clock) clock_ = static_cast<int>(i);
   }
-  rate_ = static_cast<float>(o.rate);
-  speed_ = static_cast<float>(o.speed);
+  rate_ = o.rate;
+  speed_ = o.speed;
   controller_.Set(o.controller, o.gait, run ? run->lua_script : "",
                   o.external_name);
 }

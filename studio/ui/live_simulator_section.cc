@@ -53,8 +53,10 @@ void LivePanel::DrawControls() {
     Send([&](StudioOutbox* out) { session_->Reset(WallClock::now(), out); });
   }
   ImGui::SetNextItemWidth(120);
-  if (ImGui::SliderFloat("real-time factor", &speed_, 0.1f, 4.0f, "%.2f",
-                         ImGuiSliderFlags_Logarithmic) &&
+  static const double kSlowest = 0.1, kFastest = 4.0;
+  if (ImGui::SliderScalar("real-time factor", ImGuiDataType_Double, &speed_,
+                          &kSlowest, &kFastest, "%.2f",
+                          ImGuiSliderFlags_Logarithmic) &&
       link_) {
     Send([&](StudioOutbox* out) {
       session_->SetSpeed(speed_, WallClock::now(), out);
