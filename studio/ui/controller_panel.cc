@@ -33,6 +33,7 @@ ControllerPanel::ControllerPanel() {
 
 std::string ControllerPanel::gait() const {
   const auto& presets = GaitPresets();
+  if (gait_ == kDesignGait && !design_gait_.empty()) return design_gait_;
   if (gait_ < 0 || gait_ >= static_cast<int>(presets.size())) return "forward";
   return presets[gait_].name;
 }
@@ -41,9 +42,14 @@ void ControllerPanel::Set(ControllerKind kind, const std::string& gait,
                           const std::string& lua_source,
                           const std::string& external_name) {
   kind_ = static_cast<int>(kind);
+  // A gait that is no preset stays what the design says (and is offered
+  // in the list), so saving the design again keeps it.
+  design_gait_.clear();
+  gait_ = kDesignGait;
   for (size_t i = 0; i < GaitPresets().size(); ++i) {
     if (GaitPresets()[i].name == gait) gait_ = static_cast<int>(i);
   }
+  if (gait_ == kDesignGait) design_gait_ = gait;
   if (!lua_source.empty()) source_ = lua_source;
   if (!external_name.empty()) external_ = external_name;
 }
@@ -75,6 +81,10 @@ void ControllerPanel::Draw(LayoutRecorder* layout) {
     const std::string current = gait();
     ImGui::SetNextItemWidth(160);
     if (ImGui::BeginCombo("starting gait", current.c_str())) {
+      if (!design_gait_.empty() &&
+          ImGui::Selectable(design_gait_.c_str(), gait_ == kDesignGait)) {
+        gait_ = kDesignGait;
+      }
       for (size_t i = 0; i < presets.size(); ++i) {
         if (ImGui::Selectable(presets[i].name.c_str(),
                               static_cast<int>(i) == gait_)) {

@@ -41,7 +41,11 @@ class ControllerPanel {
 
   // ControllerKind as the radio buttons' int (ControllerKinds() order).
   int kind_ = static_cast<int>(ControllerKind::kGait);
+  // A preset's index, or kDesignGait: design_gait_, a gait the opened
+  // design names that is no preset.
+  static constexpr int kDesignGait = -1;
   int gait_ = 0;
+  std::string design_gait_;
   int template_ = 0;
   std::string source_;
   std::string checked_;  // the source error_ is for
