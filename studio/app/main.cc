@@ -4,6 +4,7 @@
 #include <csignal>
 #include <iostream>
 
+#include "common/cli_exit.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/scenario_xml.h"
@@ -20,24 +21,23 @@ int main(int argc, char** argv) {
   CLI::App cli("mrsim-studio: design a modular robot and its scene");
   StudioFlags flags;
   AddStudioFlags(&cli, &flags);
-  CLI11_PARSE(cli, argc, argv);
   try {
-    mrsim::AuthFlags auth{flags.key_file};
-    auth.Load();  // a bad key file is said now, not at the first run
-    auth.ExportToChildren();
-  } catch (const mrsim::UsageError& e) {
-    std::cerr << "mrsim-studio: " << e.what() << "\n";
-    return 2;
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return mrsim::CliParseExit(cli, e);  // 2 for bad usage, as every tool
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   std::signal(SIGPIPE, SIG_IGN);  // a tcpq hub gone must not kill the window
-  if (flags.screenshot.empty() && !mrsim::LiveWindow::DisplayAvailable()) {
-    std::cerr << "mrsim-studio: no display (DISPLAY is not set); run it on a "
-                 "desktop, under xvfb-run, or use --screenshot OUT.png\n";
-    return 2;
-  }
   try {
+    mrsim::AuthFlags auth{flags.key_file};
+    auth.Load();  // a bad key file is said now, not at the first run
+    auth.ExportToChildren();
+    if (flags.screenshot.empty() && !mrsim::LiveWindow::DisplayAvailable()) {
+      throw mrsim::UsageError(
+          "no display (DISPLAY is not set); run it on a desktop, under "
+          "xvfb-run, or use --screenshot OUT.png");
+    }
     const AppOptions& options = flags.options;
     StudioApp app(OpenDesign(flags), options);
     if (!flags.screenshot.empty()) {
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   } catch (const mrsim::ScenarioError& e) {
     std::cerr << "mrsim-studio: " << e.what() << "\n";
     return 2;
-  } catch (const mrsim::UsageError& e) {  // --select names nothing
+  } catch (const mrsim::UsageError& e) {  // key file, display, --select
     std::cerr << "mrsim-studio: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
