@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/printable.h"
 #include "gait_controller/process/key_command.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
@@ -131,7 +132,7 @@ void GaitServer::Run(const std::function<bool()>& stop_requested,
       if (help) log << "mrsim-gait: " << KeyHelp() << eol;
     }
     for (const std::string& line : node_.TakeLog()) {
-      log << "mrsim-gait: " << line << eol;
+      log << "mrsim-gait: " << Printable(line) << eol;
     }
     log.flush();
   }

@@ -2,13 +2,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
 
+#include "common/printable.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 
 namespace mrsim {
+namespace {
+
+// The node's lines, each line of a multi-line one (a Lua traceback) on its
+// own, made printable: the script may come from someone else's file.
+void WriteLog(const std::vector<std::string>& lines, std::ostream& log) {
+  for (const std::string& text : lines) {
+    size_t begin = 0;
+    for (;;) {
+      const size_t end = text.find('\n', begin);
+      log << "mrsim-lua: "
+          << Printable(std::string_view(text).substr(begin, end - begin))
+          << "\n";
+      if (end == std::string::npos) break;
+      begin = end + 1;
+    }
+  }
+}
+
+}  // namespace
 
 LuaServer::LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node)
     : lcm_(lcm), node_(std::move(node)) {
@@ -60,14 +84,10 @@ void LuaServer::Run(const std::function<bool()>& stop_requested,
     const double wait = SecondsBetween(WallClock::now(), due);
     HandleFor(lcm_,
               std::clamp(static_cast<int>(std::ceil(wait * 1e3)), 0, 100));
-    for (const std::string& line : node_.TakeLog()) {
-      log << "mrsim-lua: " << line << "\n";
-    }
+    WriteLog(node_.TakeLog(), log);
     log.flush();
   }
-  for (const std::string& line : node_.TakeLog()) {
-    log << "mrsim-lua: " << line << "\n";
-  }
+  WriteLog(node_.TakeLog(), log);
 }
 
 }  // namespace mrsim

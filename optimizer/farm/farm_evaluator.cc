@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/printable.h"
 #include "common/wall_time.h"
 
 namespace mrsim {
@@ -56,7 +57,7 @@ void FarmEvaluator::Step(int timeout_ms) {
   FarmOutbox out = core_.Tick(FarmLink::Now());
   link_->Publish(out);
   for (const std::string& line : link_->TakeLog()) {
-    if (settings_.log) settings_.log(line);
+    if (settings_.log) settings_.log(Printable(line));  // names from peers
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/printable.h"
 #include "optimizer/farm/farm_worker.h"
 
 namespace mrsim {
@@ -48,7 +49,8 @@ void RunWorkerCommand(const WorkerCommand& command, std::FILE* out,
   FarmWorker worker(command.lcm_url, settings, command.fake_workers);
   const auto say = [&](const std::string& line) {
     if (command.quiet) return;
-    fmt::print(out, "mrsim-worker {}: {}\n", worker.id(), line);
+    fmt::print(out, "mrsim-worker {}: {}\n", Printable(worker.id()),
+               Printable(line));
     std::fflush(out);
   };
   say("waiting for a run on " + command.settings.prefix + "_*");
