@@ -9,30 +9,23 @@
 #include <vector>
 
 #include "gait_controller/gait.h"
+#include "gait_controller/process/controller_flags.h"
 #include "gait_controller/process/gait_node.h"
-#include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/scenario.h"
 
 namespace mrsim {
 
 struct GaitCommandLine {
-  std::string robot;
-  std::string lcm_url;
-  AuthFlags auth;
+  // --robot, --lcm-url, --scenario, --axes, --name, ...; after Finish() its
+  // axes_for and warning.
+  ControllerFlags controller{"gait"};
   std::string gait_spec = "forward";
-  std::string scenario_path;
-  std::string axes_text;
-  std::string name;
   bool keyboard = false;
   std::string resume;  // a checkpoint whose saved gait state to continue
   GaitNodeOptions options;
 
   // Filled by Finish().
   Gait initial;
-  std::function<std::vector<Axis>(int)> axes_for;
-  // A warning for stderr (no --scenario or --axes), or empty.
-  std::string warning;
 
   // Declares every flag of mrsim-gait (and --version) on `app`.
   void AddFlags(CLI::App& app);

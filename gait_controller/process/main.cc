@@ -17,6 +17,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-gait: drive one robot of mrsim-sim with a gait"};
   mrsim::GaitCommandLine flags;
+  const mrsim::ControllerFlags& ctl = flags.controller;
   flags.AddFlags(app);
   try {
     app.parse(argc, argv);
@@ -25,16 +26,16 @@ int main(int argc, char** argv) {
   }
   try {
     flags.Finish(isatty(STDIN_FILENO));
-    if (!flags.warning.empty())
-      std::cerr << "mrsim-gait: " << flags.warning << "\n";
+    if (!ctl.warning.empty())
+      std::cerr << "mrsim-gait: " << ctl.warning << "\n";
     mrsim::InstallStopHandlers();
-    mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
+    mrsim::SignedLcm lcm(ctl.lcm_url, ctl.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-gait"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-gait: cannot open LCM '" << flags.lcm_url << "'\n";
+      std::cerr << "mrsim-gait: cannot open LCM '" << ctl.lcm_url << "'\n";
       return 1;
     }
-    mrsim::GaitServer server(lcm, flags.options, flags.axes_for, flags.initial);
+    mrsim::GaitServer server(lcm, flags.options, ctl.axes_for, flags.initial);
     if (!flags.resume.empty()) server.node().Resume(flags.resume);
     std::cerr << flags.StartLine() << std::endl;
     {

@@ -9,27 +9,22 @@
 #include <string>
 #include <vector>
 
-#include "lcmtypes/runtime/auth_flags.h"
+#include "gait_controller/process/controller_flags.h"
 #include "lua_controller/lua_script.h"
 #include "lua_controller/process/lua_node.h"
 
 namespace mrsim {
 
 struct LuaCommandLine {
-  std::string robot;
+  // --robot, --lcm-url, --scenario, --axes, --name, ...; after Finish() its
+  // axes_for and warning.
+  ControllerFlags controller{"lua"};
   std::string script_path;
-  std::string lcm_url;
-  AuthFlags auth;
-  std::string scenario_path;
-  std::string axes_text;
-  std::string name;
   bool check_only = false;
   LuaNodeOptions options;
 
   // Filled by Finish().
   std::unique_ptr<LuaScript> script;
-  std::function<std::vector<Axis>(int)> axes_for;
-  std::string warning;  // for stderr, or empty
 
   void AddFlags(CLI::App& app);
   // Loads the script (throws LuaScriptError with its line) and resolves the

@@ -15,6 +15,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-lua: drive one robot of mrsim-sim with a Lua script"};
   mrsim::LuaCommandLine flags;
+  const mrsim::ControllerFlags& ctl = flags.controller;
   flags.AddFlags(app);
   try {
     app.parse(argc, argv);
@@ -27,18 +28,17 @@ int main(int argc, char** argv) {
       std::cout << flags.script_path << ": OK\n";
       return 0;
     }
-    if (!flags.warning.empty())
-      std::cerr << "mrsim-lua: " << flags.warning << "\n";
+    if (!ctl.warning.empty()) std::cerr << "mrsim-lua: " << ctl.warning << "\n";
     mrsim::InstallStopHandlers();
-    mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
+    mrsim::SignedLcm lcm(ctl.lcm_url, ctl.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-lua"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-lua: cannot open LCM '" << flags.lcm_url << "'\n";
+      std::cerr << "mrsim-lua: cannot open LCM '" << ctl.lcm_url << "'\n";
       return 1;
     }
     mrsim::LuaServer server(
         lcm, flags.options,
-        mrsim::LuaNode(flags.options, std::move(flags.script), flags.axes_for,
+        mrsim::LuaNode(flags.options, std::move(flags.script), ctl.axes_for,
                        mrsim::WallClock::now()));
     std::cerr << flags.StartLine() << std::endl;
     server.Run([] { return mrsim::StopRequested(); }, std::cerr);
