@@ -12,6 +12,7 @@
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/parse_flags.h"
 
 namespace mrsim {
 namespace {
@@ -31,10 +32,7 @@ void ParseAndFinish(Parsed* p, std::vector<std::string> args) {
   CLI::App app;
   p->flags.AddFlags(app, {&p->prefix, &p->rate, &p->exit_with_sim},
                     {"the joint axes", "rate", "exit"});
-  args.insert(args.begin(), "mrsim-" + p->flags.kind);
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  app.parse(static_cast<int>(argv.size()), argv.data());
+  testing::ParseFlags(app, "mrsim-" + p->flags.kind, args);
   p->flags.Finish(kWarning);
 }
 

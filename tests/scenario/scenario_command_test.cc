@@ -12,6 +12,7 @@
 
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/parse_flags.h"
 
 namespace mrsim {
 namespace {
@@ -23,10 +24,7 @@ ScenarioCommand Parse(std::vector<std::string> args) {
   CLI::App app;
   ScenarioCommand command;
   AddScenarioFlags(app, command);
-  args.insert(args.begin(), "mrsim-scenario");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  app.parse(static_cast<int>(argv.size()), argv.data());
+  testing::ParseFlags(app, "mrsim-scenario", args);
   return command;
 }
 

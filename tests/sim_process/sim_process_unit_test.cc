@@ -17,6 +17,7 @@
 #include "sim_core/sim_process/command_filter.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "tests/common/child_process.h"
+#include "tests/common/parse_flags.h"
 
 namespace mrsim {
 namespace {
@@ -170,10 +171,7 @@ TEST(SimCommandLine, ADurationTheCheckpointIsPastIsRefused) {
     CLI::App app;
     SimCommandLine line;
     line.AddFlags(app);
-    args.insert(args.begin(), "mrsim-sim");
-    std::vector<const char*> argv;
-    for (const auto& a : args) argv.push_back(a.c_str());
-    app.parse(static_cast<int>(argv.size()), argv.data());
+    testing::ParseFlags(app, "mrsim-sim", args);
     line.Finish();
     return line.LoadPhysics();
   };
