@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "sim_core/mjcf_builder.h"
+
 namespace mrsim {
 namespace {
 
@@ -59,6 +61,8 @@ FluidForces::FluidForces(const mjModel* m,
     if (m->geom_type[g] == mjGEOM_PLANE || m->geom_type[g] == mjGEOM_HFIELD) {
       continue;
     }
+    // The frames it stands in for feel the water.
+    if (m->geom_group[g] == kMjcfContactGroup) continue;
     Geom geom;
     geom.id = g;
     geom.body = b;

@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "common/hash.h"
+#include "sim_core/box_union.h"
 #include "sim_core/contact_model.h"
 #include "sim_core/embedded_mesh.h"
 #include "sim_core/face_geometry.h"
@@ -99,6 +100,11 @@ struct GeomSpec {
   std::string mesh;  // mesh asset name
   bool collide = true;
   PartKind kind = PartKind::kSceneObject;
+  // A module frame's box that may share one contact box with a flush frame
+  // locked to it (MergeFlushFrames).
+  bool mergeable = false;
+  // Collides and weighs nothing; hidden (kMjcfContactGroup).
+  bool contact_only = false;
 };
 
 struct SiteSpec {
@@ -200,6 +206,7 @@ class Builder {
   void AddSceneObjects();
   void AddTerrain();
   std::vector<int> WeldGroups() const;
+  void MergeFlushFrames(const std::vector<int>& weld);
   void WriteBody(tinyxml2::XMLPrinter& out, int index) const;
   void WriteGeom(tinyxml2::XMLPrinter& out, const GeomSpec& g) const;
   // A file path as the MJCF names it: relative to MjcfOptions::file_dir
@@ -427,10 +434,12 @@ void Builder::AddRobot(const std::string& robot_name,
       const Frame& frame = m.frames[f];
       const std::string name = mjcf_names::FrameBody(robot_name, i, f);
       const int body = AddBody(name, frame.position, frame.quat_rotation);
-      bodies_[body].geoms.push_back(FrameGeom(frame, name,
-                                              m.axis == Axis::kPitch
-                                                  ? PartKind::kPitchModule
-                                                  : PartKind::kYawModule));
+      GeomSpec g = FrameGeom(frame, name,
+                             m.axis == Axis::kPitch ? PartKind::kPitchModule
+                                                    : PartKind::kYawModule);
+      // Passive wheels steer friction by each frame's own axes.
+      g.mergeable = g.type == "box" && !m.passive_wheels && !frame.is_static;
+      bodies_[body].geoms.push_back(g);
       ids[f] = add_node(frame.guid,
                         "robot '" + robot_name + "' module " +
                             std::to_string(i) + " frame " + std::to_string(f),
@@ -819,6 +828,77 @@ std::vector<int> Builder::WeldGroups() const {
   return group;
 }
 
+// A locked pair of module frames lying flush is one rigid box as far as the
+// ground can tell; as two boxes it touched down at eight corners, four of
+// them doubled where the frames meet, which only added constraint rows
+// (memory grows with their square, solver time faster than linearly). The
+// frames stay as they are for looks, mass and sensors; one hidden box of
+// their union collides for both. Only frames of one weld group (no joint,
+// no weld between them) merge, so the bodies move exactly as before.
+void Builder::MergeFlushFrames(const std::vector<int>& weld) {
+  struct Piece {
+    OrientedBox box;
+    int body;                                  // where the union's geom goes
+    std::vector<std::pair<int, int>> sources;  // (body, geom index)
+  };
+  std::map<int, std::vector<Piece>> groups;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (weld[b] < 0) continue;
+    for (size_t gi = 0; gi < bodies_[b].geoms.size(); ++gi) {
+      const GeomSpec& g = bodies_[b].geoms[gi];
+      if (!g.mergeable || !g.collide) continue;
+      const BodySpec& body = bodies_[b];
+      Piece p;
+      p.box.center = body.pos + body.quat * g.pos;
+      p.box.quat = Normalized(body.quat * g.quat);
+      p.box.half = g.size;
+      p.body = static_cast<int>(b);
+      p.sources.push_back({static_cast<int>(b), static_cast<int>(gi)});
+      groups[weld[b]].push_back(std::move(p));
+    }
+  }
+  const auto geom = [this](const std::pair<int, int>& s) -> GeomSpec& {
+    return bodies_[s.first].geoms[s.second];
+  };
+  for (auto& [group, pieces] : groups) {
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (size_t i = 0; i < pieces.size() && !merged; ++i) {
+        for (size_t j = i + 1; j < pieces.size() && !merged; ++j) {
+          if (geom(pieces[i].sources[0]).material !=
+              geom(pieces[j].sources[0]).material) {
+            continue;
+          }
+          const auto u = FlushBoxUnion(pieces[i].box, pieces[j].box);
+          if (!u) continue;
+          pieces[i].box = *u;
+          pieces[i].sources.insert(pieces[i].sources.end(),
+                                   pieces[j].sources.begin(),
+                                   pieces[j].sources.end());
+          pieces.erase(pieces.begin() + j);
+          merged = true;
+        }
+      }
+    }
+    for (const Piece& p : pieces) {
+      if (p.sources.size() < 2) continue;
+      const GeomSpec& first = geom(p.sources[0]);
+      BodySpec& body = bodies_[p.body];
+      GeomSpec u;
+      u.name = first.name + "/contact";
+      u.type = "box";
+      u.size = p.box.half;
+      u.pos = body.quat.conjugate() * (p.box.center - body.pos);
+      u.quat = Normalized(body.quat.conjugate() * p.box.quat);
+      u.material = first.material;
+      u.kind = first.kind;
+      u.contact_only = true;
+      for (const auto& s : p.sources) geom(s).collide = false;
+      body.geoms.push_back(u);
+    }
+  }
+}
+
 std::string Builder::WrittenPath(const std::string& absolute) const {
   if (options_.file_dir.empty()) return absolute;
   const fs::path dir = fs::absolute(options_.file_dir).lexically_normal();
@@ -844,6 +924,10 @@ void Builder::WriteGeom(tinyxml2::XMLPrinter& out, const GeomSpec& g) const {
   const bool ground = g.type == "plane" || g.type == "hfield";
   out.PushAttribute("material", ground ? "scene/ground"
                                        : LookName(g.kind, g.material).c_str());
+  if (g.contact_only) {
+    out.PushAttribute("density", "0");
+    out.PushAttribute("group", std::to_string(kMjcfContactGroup).c_str());
+  }
   if (!g.collide) {
     out.PushAttribute("contype", "0");
     out.PushAttribute("conaffinity", "0");
@@ -926,6 +1010,7 @@ std::string Builder::Build() {
   AddTerrain();
 
   const std::vector<int> weld = WeldGroups();
+  MergeFlushFrames(weld);
   int ncollide = 0, nhinge = 0, nfree = 0;
   for (const BodySpec& b : bodies_) {
     for (const GeomSpec& g : b.geoms) ncollide += g.collide;

@@ -29,6 +29,12 @@ struct ServoModel {
 // below XML parsers' nesting limits (tinyxml2: 100 elements).
 constexpr int kMaxBodyDepth = 64;
 
+// The MuJoCo geom group of contact-only boxes (MergeFlushFrames in the
+// builder): one box for a rigid pair of flush module frames, which collides
+// for both and weighs nothing. MuJoCo's viewers hide group 3 by default;
+// code that walks geoms for looks or fluid drag skips it.
+constexpr int kMjcfContactGroup = 3;
+
 // Contact and constraint-row capacity of the model's mjData (MJCF <size>):
 // what the model needs at rest; Physics grows them when a step needs more.
 struct MjcfSizes {

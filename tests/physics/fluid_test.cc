@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "sim_core/chain_builder.h"
 #include "sim_core/physics.h"
 #include "tests/physics/test_scenes.h"
 
@@ -39,6 +40,23 @@ TEST(PhysicsFluid, LightBoxFloatsAtItsDensityDepth) {
   const double submerged = 0.4 * 0.1;
   EXPECT_NEAR(BoxZ(physics), 0.5 - submerged + 0.05, 0.005);
   EXPECT_LT(std::abs(physics.data()->qvel[2]), 0.05);
+}
+
+TEST(PhysicsFluid, AChainFloatsByItsFramesVolumeAlone) {
+  // Two modules: four 5 cm frames (0.5 l), the middle two sharing one
+  // contact box that must not float too. 0.1 kg in 0.5 l is 20 % under.
+  Scenario s = Pool(1.0);
+  s.scene_objects.clear();
+  ChainOptions options;
+  options.modules = 2;
+  options.module_mass = 0.05;
+  options.origin = Eigen::Vector3d(0, 0, 0.3);
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  physics.Step(3000);  // 6 s
+  for (const Pose& frame : physics.ReadRobotState(0).frames) {
+    EXPECT_NEAR(frame.position.z(), 0.5 - 0.2 * 0.05 + 0.025, 0.0015);
+  }
 }
 
 TEST(PhysicsFluid, HeavyBoxSinks) {

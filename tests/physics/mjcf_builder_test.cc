@@ -132,8 +132,15 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
       EXPECT_DOUBLE_EQ(m->pair_friction[5 * p], 0.6);
     }
   }
-  // 22 frames, 2 sensor modules, 2 plates.
-  EXPECT_EQ(with_terrain, 26);
+  int colliding = 0;
+  for (int i = 0; i < m->ngeom; ++i) {
+    colliding += i != terrain &&
+                 (m->geom_contype[i] != 0 || m->geom_conaffinity[i] != 0);
+  }
+  // 22 frames (9 flush locked pairs of them share one box), 2 sensor
+  // modules, 2 plates.
+  EXPECT_EQ(colliding, 22 - 9 + 2 + 2);
+  EXPECT_EQ(with_terrain, colliding);
   // Restitution 0 is critically damped; stiff plastic is as stiff as safe.
   const Eigen::Vector2d solref = ContactSolref(s.contact_frictions[0]);
   EXPECT_DOUBLE_EQ(solref.y(), 1.0);
@@ -142,6 +149,58 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
   const Eigen::Vector2d soft = ContactSolref(bouncy);
   EXPECT_LT(soft.y(), 1.0);
   EXPECT_GT(soft.x(), 0.004);
+}
+
+int CollidingRobotGeoms(const mjModel* m) {
+  int n = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    n += m->geom_bodyid[g] != 0 &&
+         (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0);
+  }
+  return n;
+}
+
+TEST(MjcfBuilder, FlushLockedFramesTouchTheGroundAsOneBox) {
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 11;
+  s.robots.push_back(MakeChain(options));
+  Physics physics(s);
+  const mjModel* m = physics.model();
+  // The two end frames, and one box for each locked pair between modules.
+  EXPECT_EQ(CollidingRobotGeoms(m), 2 + 10);
+  // The shared boxes are hidden and weigh nothing: the robot weighs what
+  // its modules do, and every frame is still drawn.
+  EXPECT_NEAR(mj_getTotalmass(m), 11 * options.module_mass, 1e-12);
+  int shared = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_group[g] != kMjcfContactGroup) continue;
+    ++shared;
+    EXPECT_EQ(m->geom_type[g], mjGEOM_BOX);
+    EXPECT_NEAR(m->geom_size[3 * g], 0.05, 1e-12);  // two 5 cm frames long
+  }
+  EXPECT_EQ(shared, 10);
+  for (int i = 0; i < 11; ++i) {
+    for (int f = 0; f < 2; ++f) {
+      const int g = mj_name2id(m, mjOBJ_GEOM,
+                               mjcf_names::FrameBody("snake", i, f).c_str());
+      ASSERT_GE(g, 0);
+      EXPECT_LT(m->geom_group[g], 3);
+    }
+  }
+  // Lying flat, each box touches down at its four corners.
+  physics.Step(250);
+  EXPECT_EQ(physics.data()->ncon, 4 * 12);
+}
+
+TEST(MjcfBuilder, FramesOfPassiveWheelModulesKeepTheirOwnContacts) {
+  Scenario s = testing::FlatScenario();
+  s.robots.push_back(MakeChain(ChainOptions{}));
+  s.robots[0].modules[3].passive_wheels = true;
+  Physics physics(s);
+  // Module 3's frames steer friction by their own axes: neither joins its
+  // neighbour's frame.
+  EXPECT_EQ(CollidingRobotGeoms(physics.model()), 2 + 10 + 2);
 }
 
 TEST(MjcfBuilder, ContactTimeConstantsDoNotDependOnTheStep) {
