@@ -116,12 +116,7 @@ TEST(PhysicsConstraintRoom, ChainsAndCrowdsAtRestNeverOverflow) {
   // Each colliding box (the end frames, one per flush locked pair of
   // frames, two where a weld cuts the chain for nesting) touches down at
   // its four corners.
-  const mjModel* m = alone.model();
-  int boxes = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    boxes += m->geom_bodyid[g] != 0 &&
-             (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0);
-  }
+  const int boxes = testing::CollidingRobotGeoms(alone.model());
   EXPECT_LT(boxes, 200);
   EXPECT_EQ(alone.data()->ncon, 4 * boxes);
 }

@@ -132,11 +132,7 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
       EXPECT_DOUBLE_EQ(m->pair_friction[5 * p], 0.6);
     }
   }
-  int colliding = 0;
-  for (int i = 0; i < m->ngeom; ++i) {
-    colliding += i != terrain &&
-                 (m->geom_contype[i] != 0 || m->geom_conaffinity[i] != 0);
-  }
+  const int colliding = testing::CollidingRobotGeoms(m.get());
   // 22 frames (9 flush locked pairs of them share one box), 2 sensor
   // modules, 2 plates.
   EXPECT_EQ(colliding, 22 - 9 + 2 + 2);
@@ -151,15 +147,6 @@ TEST(MjcfBuilder, MaterialPairsBecomeContactParameters) {
   EXPECT_GT(soft.x(), 0.004);
 }
 
-int CollidingRobotGeoms(const mjModel* m) {
-  int n = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    n += m->geom_bodyid[g] != 0 &&
-         (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0);
-  }
-  return n;
-}
-
 TEST(MjcfBuilder, FlushLockedFramesTouchTheGroundAsOneBox) {
   Scenario s = testing::FlatScenario();
   ChainOptions options;
@@ -168,7 +155,7 @@ TEST(MjcfBuilder, FlushLockedFramesTouchTheGroundAsOneBox) {
   Physics physics(s);
   const mjModel* m = physics.model();
   // The two end frames, and one box for each locked pair between modules.
-  EXPECT_EQ(CollidingRobotGeoms(m), 2 + 10);
+  EXPECT_EQ(testing::CollidingRobotGeoms(m), 2 + 10);
   // The shared boxes are hidden and weigh nothing: the robot weighs what
   // its modules do, and every frame is still drawn.
   EXPECT_NEAR(mj_getTotalmass(m), 11 * options.module_mass, 1e-12);
@@ -200,7 +187,7 @@ TEST(MjcfBuilder, FramesOfPassiveWheelModulesKeepTheirOwnContacts) {
   Physics physics(s);
   // Module 3's frames steer friction by their own axes: neither joins its
   // neighbour's frame.
-  EXPECT_EQ(CollidingRobotGeoms(physics.model()), 2 + 10 + 2);
+  EXPECT_EQ(testing::CollidingRobotGeoms(physics.model()), 2 + 10 + 2);
 }
 
 TEST(MjcfBuilder, ContactTimeConstantsDoNotDependOnTheStep) {

@@ -49,4 +49,13 @@ Scenario FlatScenario() {
   return s;
 }
 
+int CollidingRobotGeoms(const mjModel* m) {
+  int n = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    n += m->geom_bodyid[g] != 0 &&
+         (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0);
+  }
+  return n;
+}
+
 }  // namespace mrsim::testing

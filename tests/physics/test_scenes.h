@@ -1,6 +1,8 @@
 // Small scenarios built in code for the physics tests.
 #pragma once
 
+#include <mujoco/mujoco.h>
+
 #include <string>
 
 #include "sim_core/scenario.h"
@@ -23,6 +25,9 @@ Robot CantileverModule(const std::string& name, const Eigen::Vector3d& hinge,
 // A scenario with a flat ground plane and a material pair for "plastic" on
 // "ground".
 Scenario FlatScenario();
+
+// How many geoms of the model's bodies (not the world's) collide.
+int CollidingRobotGeoms(const mjModel* m);
 
 // Writes a grey PNG (rows x cols, pixel values from `pixel(r, c)`) and
 // returns its path.
