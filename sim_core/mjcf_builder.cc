@@ -857,6 +857,8 @@ void Builder::MergeFlushFrames(const std::vector<int>& weld) {
       groups[weld[b]].push_back(std::move(p));
     }
   }
+  std::set<std::pair<std::string, std::string>> excluded(excludes_.begin(),
+                                                         excludes_.end());
   const auto geom = [this](const std::pair<int, int>& s) -> GeomSpec& {
     return bodies_[s.first].geoms[s.second];
   };
@@ -895,6 +897,26 @@ void Builder::MergeFlushFrames(const std::vector<int>& weld) {
       u.contact_only = true;
       for (const auto& s : p.sources) geom(s).collide = false;
       body.geoms.push_back(u);
+      // Whatever must never touch a source's body (a lock that closes a
+      // loop joins bodies of other weld groups) must not touch the box.
+      std::set<std::string> from;
+      for (const auto& s : p.sources) from.insert(bodies_[s.first].name);
+      for (size_t e = 0, n = excludes_.size(); e < n; ++e) {
+        const auto [x, y] = excludes_[e];
+        if (from.count(x) && from.count(y)) continue;
+        std::pair<std::string, std::string> add;
+        if (from.count(x) && x != body.name) {
+          add = {body.name, y};
+        } else if (from.count(y) && y != body.name) {
+          add = {x, body.name};
+        } else {
+          continue;
+        }
+        if (!excluded.count(add) && !excluded.count({add.second, add.first})) {
+          excluded.insert(add);
+          excludes_.push_back(add);
+        }
+      }
     }
   }
 }

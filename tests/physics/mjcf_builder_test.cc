@@ -226,6 +226,31 @@ TEST(MjcfBuilder, LockThatClosesALoopBecomesAWeld) {
   EXPECT_EQ(physics.model()->neq, 1);
 }
 
+TEST(MjcfBuilder, AContactBoxNeverTouchesWhatItsFramesMustNot) {
+  // A lock from module 0 to module 2's front frame closes a loop (a weld).
+  // That frame shares its contact box with module 1's back frame, in
+  // module 1's body, so the box must not touch module 0 either.
+  Scenario s = testing::FlatScenario();
+  ChainOptions options;
+  options.modules = 3;
+  Robot robot = MakeChain(options);
+  Joint extra;
+  extra.guid = "loop";
+  extra.type = JointType::kLock;
+  extra.left_frame_guid = robot.modules[0].frames[0].guid;
+  extra.right_frame_guid = robot.modules[2].frames[0].guid;
+  robot.locks.push_back(extra);
+  s.robots.push_back(robot);
+  const std::string xml = BuildMjcf(s);
+  EXPECT_NE(xml.find("<geom name=\"snake/m1/f1/contact\""), std::string::npos);
+  EXPECT_NE(xml.find("<exclude body1=\"snake/m0/f0\" body2=\"snake/m2/f0\""),
+            std::string::npos);
+  EXPECT_NE(xml.find("<exclude body1=\"snake/m0/f0\" body2=\"snake/m1/f1\""),
+            std::string::npos);
+  Physics physics(s);
+  physics.Step(50);
+}
+
 TEST(MjcfBuilder, HingeThatClosesALoopIsRejected) {
   Scenario s = testing::FlatScenario();
   ChainOptions options;
