@@ -6,6 +6,7 @@
 // each counts. Then the step time per module of pitch-yaw chains of 10 to
 // 200 modules (a sensor module after each), and how far the timestep moves
 // the result of a gait (scenarios/snake11.xml, 2 ms over 0.5 ms).
+// `bench_physics_step profile` prints where a long chain's step time goes.
 #include <fcntl.h>
 #include <mujoco/mujoco.h>
 #include <sys/resource.h>
@@ -209,6 +210,54 @@ void RunModules() {
   std::fflush(stdout);
 }
 
+// Where the step's time goes (MuJoCo's own timers, CPU microseconds per
+// step) for LongChains of 10 and 200 modules under the wave: no BENCH
+// lines, a table for docs/physics.md ("Long chains and crowds").
+mjtNum TimerMicroseconds() { return 1e6 * CpuNow(); }
+
+void RunProfile() {
+  mjcb_time = TimerMicroseconds;
+  std::printf("%8s %4s %5s %5s %9s %9s %9s %9s %9s %6s\n", "modules", "nv",
+              "ncon", "nefc", "step", "solver", "collision", "make", "rest",
+              "iter");
+  for (int n : {10, 200}) {
+    mrsim::Physics physics(LongChain(n));
+    std::vector<std::vector<double>> targets;
+    for (int r = 0; r < physics.robot_count(); ++r) {
+      targets.emplace_back(physics.joint_count(r));
+    }
+    for (int i = 0; i < 500; ++i) {
+      Wave(physics, targets);
+      physics.Step();
+    }
+    mjData* d = const_cast<mjData*>(physics.data());
+    for (mjTimerStat& t : d->timer) t = mjTimerStat{};
+    const int steps = std::max(200, 20000 / n);
+    long iterations = 0, ncon = 0, nefc = 0;
+    const double start = CpuNow();
+    for (int i = 0; i < steps; ++i) {
+      Wave(physics, targets);
+      physics.Step();
+      iterations += physics.data()->solver_iter;
+      ncon += physics.data()->ncon;
+      nefc += physics.data()->nefc;
+    }
+    const double step = 1e6 * (CpuNow() - start) / steps;
+    auto per_step = [&](int timer) {
+      return physics.data()->timer[timer].duration / steps;
+    };
+    const double solver = per_step(mjTIMER_CONSTRAINT);
+    const double collision = per_step(mjTIMER_POS_COLLISION);
+    const double make = per_step(mjTIMER_POS_MAKE);
+    std::printf(
+        "%8d %4d %5ld %5ld %7.0fus %7.0fus %7.0fus %7.0fus %7.0fus %6.1f\n", n,
+        physics.model()->nv, ncon / steps, nefc / steps, step, solver,
+        collision, make, step - solver - collision - make,
+        static_cast<double>(iterations) / steps);
+  }
+  mjcb_time = nullptr;
+}
+
 void RunRobots() {
   double one = 0;
   for (int k : {1, 10, 25, 50}) {
@@ -313,12 +362,17 @@ void RunRatio();
 int main(int argc, char** argv) {
   const std::string only = argc > 1 ? argv[1] : "";
   if (!only.empty() && only != "ratio" && only != "modules" &&
-      only != "robots" && only != "memory" && only != "convergence") {
+      only != "robots" && only != "memory" && only != "convergence" &&
+      only != "profile") {
     std::fprintf(stderr,
                  "bench_physics_step: unknown part '%s' (expected ratio, "
-                 "modules, robots, memory or convergence)\n",
+                 "modules, robots, memory, convergence or profile)\n",
                  only.c_str());
     return 2;
+  }
+  if (only == "profile") {
+    RunProfile();
+    return 0;
   }
   if (only.empty() || only == "ratio") RunRatio();
   if (only.empty() || only == "modules") RunModules();
