@@ -208,18 +208,25 @@ TEST(MjcfBuilder, ContactTimeConstantsDoNotDependOnTheStep) {
   }
 }
 
-TEST(MjcfBuilder, LockThatClosesALoopBecomesAWeld) {
+// A chain of `modules` with one more lock, "loop", from module 0's front
+// frame to frame `frame` of the last module: it closes a loop.
+Scenario ChainWithLoopLock(int modules, int frame) {
   Scenario s = testing::FlatScenario();
   ChainOptions options;
-  options.modules = 2;
+  options.modules = modules;
   Robot robot = MakeChain(options);
   Joint extra;
   extra.guid = "loop";
   extra.type = JointType::kLock;
   extra.left_frame_guid = robot.modules[0].frames[0].guid;
-  extra.right_frame_guid = robot.modules[1].frames[1].guid;
+  extra.right_frame_guid = robot.modules[modules - 1].frames[frame].guid;
   robot.locks.push_back(extra);
   s.robots.push_back(robot);
+  return s;
+}
+
+TEST(MjcfBuilder, LockThatClosesALoopBecomesAWeld) {
+  const Scenario s = ChainWithLoopLock(2, 1);
   const std::string xml = BuildMjcf(s);
   EXPECT_NE(xml.find("<weld name=\"snake/weld/loop\""), std::string::npos);
   Physics physics(s);
@@ -230,17 +237,7 @@ TEST(MjcfBuilder, AContactBoxNeverTouchesWhatItsFramesMustNot) {
   // A lock from module 0 to module 2's front frame closes a loop (a weld).
   // That frame shares its contact box with module 1's back frame, in
   // module 1's body, so the box must not touch module 0 either.
-  Scenario s = testing::FlatScenario();
-  ChainOptions options;
-  options.modules = 3;
-  Robot robot = MakeChain(options);
-  Joint extra;
-  extra.guid = "loop";
-  extra.type = JointType::kLock;
-  extra.left_frame_guid = robot.modules[0].frames[0].guid;
-  extra.right_frame_guid = robot.modules[2].frames[0].guid;
-  robot.locks.push_back(extra);
-  s.robots.push_back(robot);
+  const Scenario s = ChainWithLoopLock(3, 0);
   const std::string xml = BuildMjcf(s);
   EXPECT_NE(xml.find("<geom name=\"snake/m1/f1/contact\""), std::string::npos);
   EXPECT_NE(xml.find("<exclude body1=\"snake/m0/f0\" body2=\"snake/m2/f0\""),
