@@ -863,23 +863,24 @@ void Builder::MergeFlushFrames(const std::vector<int>& weld) {
     return bodies_[s.first].geoms[s.second];
   };
   for (auto& [group, pieces] : groups) {
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (size_t i = 0; i < pieces.size() && !merged; ++i) {
-        for (size_t j = i + 1; j < pieces.size() && !merged; ++j) {
-          if (geom(pieces[i].sources[0]).material !=
-              geom(pieces[j].sources[0]).material) {
-            continue;
-          }
-          const auto u = FlushBoxUnion(pieces[i].box, pieces[j].box);
-          if (!u) continue;
-          pieces[i].box = *u;
-          pieces[i].sources.insert(pieces[i].sources.end(),
-                                   pieces[j].sources.begin(),
-                                   pieces[j].sources.end());
-          pieces.erase(pieces.begin() + j);
-          merged = true;
+    // One pass, quadratic in the group at most (a design may lock many
+    // frames into one body): frames come in chain order, so a row of flush
+    // boxes grows from its first one.
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      for (size_t j = i + 1; j < pieces.size();) {
+        const auto u = geom(pieces[i].sources[0]).material ==
+                               geom(pieces[j].sources[0]).material
+                           ? FlushBoxUnion(pieces[i].box, pieces[j].box)
+                           : std::nullopt;
+        if (!u) {
+          ++j;
+          continue;
         }
+        pieces[i].box = *u;
+        pieces[i].sources.insert(pieces[i].sources.end(),
+                                 pieces[j].sources.begin(),
+                                 pieces[j].sources.end());
+        pieces.erase(pieces.begin() + j);
       }
     }
     for (const Piece& p : pieces) {
