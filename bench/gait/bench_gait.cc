@@ -7,10 +7,8 @@
 //   bench_gait --gait NAME|FILE [--chain pitch|yaw|pitch-yaw]
 //              [--motion M] [--strength S] [--params 7 comma values]
 //              [--lag L]      (measures one gait of your own)
-#include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -21,9 +19,7 @@
 
 #include "gait_controller/gait_file.h"
 #include "gait_controller/gait_presets.h"
-#include "gait_controller/gait_runner.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "gait_controller/gait_trial.h"
 
 namespace {
 
@@ -35,10 +31,7 @@ constexpr double kSettle = 4.0;  // s: one period of ramp-in, not timed
 struct Row {
   std::string preset;
   std::string chain;
-  Eigen::Vector3d displacement;  // of the CoM, from kSettle to the end
-  double speed_bl = 0;           // body lengths per second after kSettle
-  double heading_deg = 0;        // whole run
-  double roll_deg = 0;           // whole run
+  mrsim::GaitOutcome outcome;
   double wall_s = 0;
 };
 
@@ -48,47 +41,30 @@ struct Custom {
   double strength = 1.0;
 };
 
+// One run through mrsim::MeasureGait (what the gait atlas measures too),
+// timed on the wall clock.
 Row Measure(const Gait& gait, double seconds, double control_period,
             const Custom& custom = {}) {
-  const bool yaw =
-      gait.parameters.amplitude_yaw != 0 || gait.parameters.offset_yaw != 0 ||
-      (custom.motion && *custom.motion != mrsim::Motion::kForward &&
-       *custom.motion != mrsim::Motion::kBackward);
-  mrsim::ChainOptions options;
-  options.modules = kModules;
-  options.pattern =
-      yaw ? mrsim::ChainPattern::kPitchYaw : mrsim::ChainPattern::kPitch;
-  std::string chain = yaw ? "pitch-yaw" : "pitch";
-  if (custom.chain == "pitch") options.pattern = mrsim::ChainPattern::kPitch;
-  if (custom.chain == "yaw") options.pattern = mrsim::ChainPattern::kYaw;
-  if (custom.chain == "pitch-yaw") {
-    options.pattern = mrsim::ChainPattern::kPitchYaw;
+  mrsim::GaitTrial trial;
+  trial.chain.modules = kModules;
+  trial.chain.pattern = mrsim::ChainFor(gait, custom.motion);
+  for (auto p : {mrsim::ChainPattern::kPitch, mrsim::ChainPattern::kYaw,
+                 mrsim::ChainPattern::kPitchYaw}) {
+    if (custom.chain == mrsim::ChainPatternName(p)) trial.chain.pattern = p;
   }
-  if (!custom.chain.empty()) chain = custom.chain;
-  mrsim::Scenario scenario;
-  scenario.robots.push_back(mrsim::MakeChain(options));
-  mrsim::Physics physics(scenario);
-  mrsim::GaitController controller(mrsim::JointAxes(physics, 0));
-  controller.SetGait(gait);
-  if (custom.motion) controller.SetMotion(*custom.motion, custom.strength);
-
+  trial.seconds = seconds;
+  trial.settle = kSettle;
+  trial.control_period = control_period;
+  trial.motion = custom.motion;
+  trial.strength = custom.strength;
   const auto start = std::chrono::steady_clock::now();
-  const auto settle =
-      mrsim::RunGait(physics, 0, controller, kSettle, control_period);
-  const auto run =
-      mrsim::RunGait(physics, 0, controller, seconds - kSettle, control_period);
   Row row;
+  row.outcome = mrsim::MeasureGait(gait, trial);
   row.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
   row.preset = gait.name;
-  row.chain = chain;
-  row.displacement = run.com_end - run.com_start;
-  const double body_length = kModules * 2 * options.frame_size.x();
-  row.speed_bl =
-      row.displacement.head<2>().norm() / (seconds - kSettle) / body_length;
-  row.heading_deg = (settle.heading_change + run.heading_change) * 180.0 / M_PI;
-  row.roll_deg = (settle.roll_change + run.roll_change) * 180.0 / M_PI;
+  row.chain = mrsim::ChainPatternName(trial.chain.pattern);
   return row;
 }
 
@@ -209,24 +185,27 @@ int main(int argc, char** argv) {
   for (const Row& r : rows) {
     std::printf(
         "%-15s %-10s %8.3f %8.3f %6.4f bl/s %8.1f deg %6.0f deg %5.2fs\n",
-        r.preset.c_str(), r.chain.c_str(), r.displacement.x(),
-        r.displacement.y(), r.speed_bl, r.heading_deg, r.roll_deg, r.wall_s);
+        r.preset.c_str(), r.chain.c_str(), r.outcome.displacement.x(),
+        r.outcome.displacement.y(), r.outcome.speed, r.outcome.heading_deg,
+        r.outcome.roll_deg, r.wall_s);
   }
   if (!motions.empty()) {
     std::printf("motion commands (on the forward or sidewind preset):\n");
     for (const Row& r : motions) {
       std::printf(
           "%-15s %-10s %8.3f %8.3f %6.4f bl/s %8.1f deg %6.0f deg %5.2fs\n",
-          r.preset.c_str(), r.chain.c_str(), r.displacement.x(),
-          r.displacement.y(), r.speed_bl, r.heading_deg, r.roll_deg, r.wall_s);
+          r.preset.c_str(), r.chain.c_str(), r.outcome.displacement.x(),
+          r.outcome.displacement.y(), r.outcome.speed, r.outcome.heading_deg,
+          r.outcome.roll_deg, r.wall_s);
     }
   }
   for (const Row& r : rows) {
     std::string name = r.preset;
     std::replace(name.begin(), name.end(), '-', '_');
-    std::printf("BENCH gait_speed_%s %.4f bl/s\n", name.c_str(), r.speed_bl);
+    std::printf("BENCH gait_speed_%s %.4f bl/s\n", name.c_str(),
+                r.outcome.speed);
     std::printf("BENCH gait_heading_%s %.1f deg\n", name.c_str(),
-                r.heading_deg);
+                r.outcome.heading_deg);
   }
   return 0;
 }
