@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
           "no display (DISPLAY is not set); run it on a desktop, under "
           "xvfb-run, or use --screenshot OUT.png");
     }
-    const AppOptions& options = flags.options;
+    const AppOptions options = StartOptions(flags);
     StudioApp app(OpenDesign(flags), options);
     if (!flags.screenshot.empty()) {
       SaveScreenshot(&app, options.width, options.height, flags.screenshot,

@@ -41,6 +41,12 @@ void AddStudioFlags(CLI::App* cli, StudioFlags* f) {
   cli->set_version_flag("--version", mrsim::VersionLine("mrsim-studio"));
 }
 
+AppOptions StartOptions(const StudioFlags& flags) {
+  AppOptions options = flags.options;
+  options.open_template = flags.scenario.empty();
+  return options;
+}
+
 Design OpenDesign(const StudioFlags& flags) {
   Design design =
       flags.scenario.empty() ? Design() : Design::Open(flags.scenario);

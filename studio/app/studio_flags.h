@@ -23,6 +23,10 @@ struct StudioFlags {
 // Adds every flag of mrsim-studio to `cli`, writing into `flags`.
 void AddStudioFlags(CLI::App* cli, StudioFlags* flags);
 
+// The window's options: flags.options, with "New robot from template" up
+// at the start when no SCENARIO was given (docs/studio.md).
+AppOptions StartOptions(const StudioFlags& flags);
+
 // The design to open (an empty one without SCENARIO) with --select
 // applied. Throws UsageError for a name it does not have, ScenarioError
 // for a file that cannot be read.

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "common/atomic_file.h"
+#include "common/data_dir.h"
 #include "common/lcm_url.h"
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
@@ -338,17 +339,22 @@ std::string GenomePathFor(const std::string& genome_path,
   namespace fs = std::filesystem;
   const fs::path genome(genome_path);
   std::error_code ec;
-  if (genome.empty() || genome.is_absolute() || fs::exists(genome, ec) ||
-      design_path.empty()) {
+  if (genome.empty() || genome.is_absolute() || fs::exists(genome, ec)) {
     return genome_path;
   }
-  const fs::path beside = fs::path(design_path).parent_path() / genome;
-  if (fs::exists(beside, ec)) return beside.string();
-  // The default names its folder (scenarios/...): try the file name too.
-  const fs::path named =
-      fs::path(design_path).parent_path() / genome.filename();
-  if (fs::exists(named, ec)) return named.string();
-  return genome_path;  // the error names what the user typed
+  if (!design_path.empty()) {
+    const fs::path beside = fs::path(design_path).parent_path() / genome;
+    if (fs::exists(beside, ec)) return beside.string();
+    // The default names its folder (scenarios/...): try the file name too.
+    const fs::path named =
+        fs::path(design_path).parent_path() / genome.filename();
+    if (fs::exists(named, ec)) return named.string();
+  }
+  // An installed studio: the bundled genomes are in its data folder
+  // (/usr/share/mrsim/scenarios/...).
+  const std::string installed = FindDataFile(genome.string());
+  return installed.empty() ? genome_path  // the error names what was typed
+                           : installed;
 }
 
 }  // namespace mrsim::studio

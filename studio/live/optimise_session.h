@@ -158,7 +158,8 @@ bool TakeOptProgress(const opt_progress_t& message, const std::string& out_dir,
 // The genome file to read for the path typed in the panel: a relative path
 // that does not exist from the working folder is looked for beside the
 // design (the studio started elsewhere than the repository still finds
-// scenarios/forward_gait.genome.xml next to scenarios/case_study.xml).
+// scenarios/forward_gait.genome.xml next to scenarios/case_study.xml),
+// then in the installed data folder (common/data_dir.h).
 std::string GenomePathFor(const std::string& genome_path,
                           const std::string& design_path);
 

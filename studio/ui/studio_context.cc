@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/data_dir.h"
 #include "launcher/program_locator.h"
 #include "sim_core/scenario_validate.h"
 #include "studio/ui/widgets.h"
@@ -21,6 +22,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
       recent(options_in.recent_store) {
   Note(design.note());
   if (options.full_view) ToggleFullView();
+  show_template = options.open_template;
   live->LoadRunSettings(design.scenario().run);
   if (!design.path().empty() && std::filesystem::exists(design.path())) {
     recent.Add(design.path());
@@ -89,7 +91,7 @@ void StudioContext::RunPending() {
       break;
     case Pending::kOpen:
       browse_for = BrowseFor::kOpen;
-      browser.Open("Open scenario", StartFolder(), ".xml", false);
+      browser.Open("Open scenario", OpenFolder(), ".xml", false);
       break;
     case Pending::kTemplate:
       show_template = true;
@@ -146,6 +148,13 @@ std::string StudioContext::StartFolder() const {
   }
   std::error_code ec;
   return std::filesystem::is_directory("scenarios", ec) ? "scenarios" : ".";
+}
+
+std::string StudioContext::OpenFolder() const {
+  const std::string start = StartFolder();
+  if (start != ".") return start;
+  const std::string installed = FindDataFile("scenarios");
+  return installed.empty() ? start : installed;
 }
 
 void StudioContext::StoreRunSettings() {

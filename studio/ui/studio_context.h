@@ -30,6 +30,10 @@ struct AppOptions {
   float ui_scale = 0;  // --ui-scale: text and panel size, 0: the monitor's
   // --full-view: both side panels hidden at the start (F11).
   bool full_view = false;
+  // "New robot from template" is up at the start: mrsim-studio opened with
+  // no file (from the desktop menu) offers a robot instead of an empty
+  // world.
+  bool open_template = false;
 };
 
 // An action that may first ask about unsaved changes.
@@ -109,6 +113,10 @@ struct StudioContext {
   // Where file dialogs open: beside the design, else ./scenarios when
   // there is one (the source tree), else the current folder.
   std::string StartFolder() const;
+  // Where Open starts: StartFolder(), but the installed examples
+  // (/usr/share/mrsim/scenarios) rather than a current folder without
+  // scenarios, such as the home folder the desktop menu starts in.
+  std::string OpenFolder() const;
 };
 
 }  // namespace mrsim::studio

@@ -39,6 +39,22 @@ bool Point(const std::string& text, int* x, int* y) {
   return static_cast<bool>(in >> *x >> *y);
 }
 
+// Started with no file, as the desktop menu starts it: "New robot from
+// template" is up, so a new user starts from a robot, not an empty world;
+// with a file it is not.
+TEST(StudioScreenshotFlags, WithoutAFileTheTemplateDialogIsUp) {
+  const std::string dir = TempDir("studio_shot_no_file");
+  const std::string png = dir + "/shot.png", layout = dir + "/layout.txt";
+  unsetenv("DISPLAY");
+  ChildProcess studio({Studio(), "--screenshot", png, "--layout-dump", layout},
+                      dir + "/studio.log");
+  ASSERT_EQ(studio.Wait(180), 0) << studio.Output();
+  auto state = ReadLayout(layout);
+  EXPECT_EQ(state["modal"], "template");
+  EXPECT_FALSE(state["widget Create"].empty()) << "no Create button";
+  EXPECT_EQ(Shot("studio_shot_file", {})["modal"], "none");
+}
+
 TEST(StudioScreenshotFlags, SelectShowsTheMoveHandleOfTheObject) {
   cv::Mat image;
   auto layout = Shot("studio_shot_select", {"--select", "ball"}, &image);
