@@ -90,6 +90,53 @@ bool TcpPortAccepts(int port) {
   return ok;
 }
 
+// After a required process ended: the processes that may finish their
+// work (ProcessSpec::finish_s) are given that long to end by themselves,
+// the others are stopped now. A stop request cuts the wait short.
+void LetFinish(const LaunchPlan& plan, const std::string& ended,
+               const std::function<bool()>& stop, ProcessGroup& group) {
+  const auto finishing = [](const ProcessSpec& s) { return s.finish_s > 0; };
+  if (!group.AnyRunning(finishing)) {
+    group.Say(ended + " ended, stopping the others");
+    return;
+  }
+  std::string names;
+  for (const auto& [spec, path] : plan.processes) {
+    const std::string& name = spec.name;
+    if (spec.finish_s > 0 && group.AnyRunning([&](const ProcessSpec& s) {
+          return s.name == name;
+        })) {
+      names += fmt::format("{}{} (up to {:g} s)", names.empty() ? "" : ", ",
+                           name, spec.finish_s);
+    }
+  }
+  group.Say(ended + " ended; letting " + names +
+            " finish, stopping the others (Ctrl-C stops all now)");
+  group.Stop(
+      [](const ProcessSpec& s) { return s.finish_s <= 0 && !s.stop_last; },
+      10.0);
+  const auto start = std::chrono::steady_clock::now();
+  while (!stop()) {
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
+    for (const auto& [spec, path] : plan.processes) {
+      const std::string& name = spec.name;
+      const auto this_one = [&](const ProcessSpec& s) {
+        return s.name == name;
+      };
+      if (spec.finish_s > 0 && waited >= spec.finish_s &&
+          group.AnyRunning(this_one)) {
+        group.Say(fmt::format("{} has not finished after {:g} s, stopping it",
+                              name, spec.finish_s));
+        group.Stop(this_one, 10.0);
+      }
+    }
+    if (!group.AnyRunning(finishing)) break;
+    group.Poll(100);
+  }
+}
+
 }  // namespace
 
 void PrintPlan(const LaunchPlan& plan, std::ostream& out) {
@@ -137,7 +184,7 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
   if (stop()) {
     group.Say("stop requested, stopping every process");
   } else if (!ended.empty()) {
-    group.Say(ended + " ended, stopping the others");
+    LetFinish(plan, ended, stop, group);
   }
   group.StopAll(10.0);
   group.Say("all stopped:\n" + group.Summary());

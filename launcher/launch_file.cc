@@ -92,9 +92,27 @@ void CheckAttributes(const tinyxml2::XMLElement* e,
   }
 }
 
+// The longest wait a launch can mean (an hour).
+constexpr double kMaxSeconds = 3600;
+
+// A delay or finish attribute: the whole text ("1.0s" and "1,0" are not 1)
+// and a wait a launch can mean. Absent: 0.
+double ParseSeconds(const char* text, const std::string& where,
+                    const std::string& process, const char* attribute) {
+  if (text == nullptr) return 0.0;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(seconds >= 0) || seconds > kMaxSeconds) {
+    throw LaunchError(where + "process '" + process + "': attribute " +
+                      attribute + ": expected seconds from 0 to " +
+                      std::to_string(static_cast<int>(kMaxSeconds)) +
+                      ", got '" + text + "'");
+  }
+  return seconds;
+}
+
 // <hub port="7667"/>: LCM's TCP hub, for networks without multicast;
 // clients then use tcpq://HOST:PORT as their LCM URL.
-constexpr double kMaxDelay = 3600;
 
 ProcessSpec HubProcess(const tinyxml2::XMLElement* e,
                        const std::map<std::string, std::string>& vars,
@@ -258,7 +276,9 @@ LaunchFile ReadLaunchFile(const std::string& path,
                         ">: expected <arg>, <hub> or <process>");
     }
     CheckAttributes(
-        e, {"name", "program", "args", "required", "enabled", "delay"}, where);
+        e,
+        {"name", "program", "args", "required", "enabled", "delay", "finish"},
+        where);
     ProcessSpec spec;
     spec.line = e->GetLineNum();
     const char* name = e->Attribute("name");
@@ -291,19 +311,10 @@ LaunchFile ReadLaunchFile(const std::string& path,
             ? Substitute(e->Attribute("enabled"), file.variables, where).c_str()
             : nullptr,
         true, where, "enabled");
-    if (const char* delay = e->Attribute("delay")) {
-      // The whole text ("1.0s" and "1,0" are not 1) and a wait a launch
-      // can mean (an hour at most).
-      char* end = nullptr;
-      spec.delay_s = std::strtod(delay, &end);
-      if (end == delay || *end != '\0' || !(spec.delay_s >= 0) ||
-          spec.delay_s > kMaxDelay) {
-        throw LaunchError(where + "process '" + spec.name +
-                          "': attribute delay: expected seconds from 0 to " +
-                          std::to_string(static_cast<int>(kMaxDelay)) +
-                          ", got '" + delay + "'");
-      }
-    }
+    spec.delay_s =
+        ParseSeconds(e->Attribute("delay"), where, spec.name, "delay");
+    spec.finish_s =
+        ParseSeconds(e->Attribute("finish"), where, spec.name, "finish");
     file.processes.push_back(std::move(spec));
   }
   if (file.processes.empty()) {

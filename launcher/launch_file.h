@@ -7,8 +7,8 @@
 //     <hub port="7667"/>   (LCM's TCP hub; optional, put it first)
 //     <process name="sim" program="mrsim-sim" required="true"
 //              args="${launch_dir}/../scenarios/case_study.xml --duration 20"/>
-//     <process name="viewer" program="mrsim-view" delay="0.5"
-//              args="... --out ${out}/demo.mp4"/>
+//     <process name="viewer" program="mrsim-view" delay="0.5" finish="120"
+//              args="... --out ${out}/demo.mp4 --exit-with-sim"/>
 //   </launch>
 #pragma once
 
@@ -32,6 +32,11 @@ struct ProcessSpec {
   bool required = false;          // when it exits, the whole launch stops
   bool enabled = true;            // enabled="false" or --without leaves it out
   double delay_s = 0.0;           // start this long after the previous process
+  // > 0: when a required process ends, this one may go on for up to this
+  // long to finish its work by itself (a viewer rendering the frames it
+  // fell behind on, a logger writing its last rows) before it is stopped.
+  // A stop the user asks for (Ctrl-C) still stops it at once.
+  double finish_s = 0.0;
   // > 0: the processes after it start only once this TCP port on this host
   // accepts connections (a hub: LCM's tcpq clients do not retry).
   int ready_port = 0;

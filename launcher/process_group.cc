@@ -166,25 +166,25 @@ std::string ProcessGroup::Poll(int timeout_ms) {
 void ProcessGroup::StopAll(double grace_s) {
   // Clients first, in reverse start order (consumers before the
   // simulator), then the hubs they talk through.
-  StopStage(false, grace_s);
-  StopStage(true, grace_s);
+  StopStage([](const ProcessSpec& s) { return !s.stop_last; }, grace_s);
+  StopStage([](const ProcessSpec& s) { return s.stop_last; }, grace_s);
   for (auto& c : children_) {
     Forward(c, true);
   }
 }
 
-void ProcessGroup::StopStage(bool stop_last, double grace_s) {
+void ProcessGroup::Stop(const Which& which, double grace_s) {
+  StopStage(which, grace_s);
+}
+
+void ProcessGroup::StopStage(const Which& which, double grace_s) {
   using Clock = std::chrono::steady_clock;
-  const auto stage_running = [&] {
-    return std::any_of(children_.begin(), children_.end(), [&](const Child& c) {
-      return c.running && c.spec.stop_last == stop_last;
-    });
-  };
+  const auto stage_running = [&] { return AnyRunning(which); };
   const int signals[] = {SIGINT, SIGTERM, SIGKILL};
   for (int sig : signals) {
     bool any = false;
     for (auto it = children_.rbegin(); it != children_.rend(); ++it) {
-      if (it->running && it->spec.stop_last == stop_last) {
+      if (it->running && which(it->spec)) {
         it->stopped_by_us = true;
         it->process->Signal(sig);
         any = true;
@@ -203,6 +203,12 @@ void ProcessGroup::StopStage(bool stop_last, double grace_s) {
 bool ProcessGroup::AnyRunning() const {
   return std::any_of(children_.begin(), children_.end(),
                      [](const Child& c) { return c.running; });
+}
+
+bool ProcessGroup::AnyRunning(const Which& which) const {
+  return std::any_of(children_.begin(), children_.end(), [&](const Child& c) {
+    return c.running && which(c.spec);
+  });
 }
 
 bool ProcessGroup::AllClean(bool interrupted) const {

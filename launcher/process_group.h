@@ -41,7 +41,13 @@ class ProcessGroup {
   // Hubs (ProcessSpec::stop_last) only once every other process ended.
   void StopAll(double grace_s);
 
+  // Stops the running processes whose spec `which` picks, as StopAll does
+  // (hubs among them only if picked).
+  using Which = std::function<bool(const ProcessSpec&)>;
+  void Stop(const Which& which, double grace_s);
+
   bool AnyRunning() const;
+  bool AnyRunning(const Which& which) const;
   // True when every process ended with exit code 0, or was stopped: ended
   // by SIGINT or SIGTERM, or exited 128 + that signal (mrsim-opt does when
   // it leaves a run unfinished), after StopAll signalled it or, with
@@ -62,8 +68,8 @@ class ProcessGroup {
     bool stopped_by_us = false;
     int colour = 0;
   };
-  // Signals the children with spec.stop_last == stop_last, escalating.
-  void StopStage(bool stop_last, double grace_s);
+  // Signals the running children `which` picks, escalating.
+  void StopStage(const Which& which, double grace_s);
   void Forward(Child& child, bool flush_partial);
   void Reap(Child& child, int status);
   void PrintLine(const Child& child, const std::string& line);

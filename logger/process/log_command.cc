@@ -13,7 +13,9 @@
 #include "common/lcm_url.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/channel_pattern.h"
+#include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/message_queue.h"
@@ -44,6 +46,26 @@ void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
     // must not see an exception.
   }
 }
+
+// --exit-with-sim: the simulator's statuses, heard on LCM's thread (the
+// one that also runs the loop below), tell the watch when it stops.
+struct StatusFollower {
+  SimulatorWatch watch;
+  std::vector<std::string> log;
+
+  static void On(const lcm::ReceiveBuffer* rbuf, const std::string&,
+                 StatusFollower* self) {
+    try {
+      sim_status_t status;
+      if (DecodeMessage(rbuf, &status)) {
+        self->watch.OnStatus(status, WallClock::now(), &self->log);
+      }
+    } catch (const std::exception&) {
+      // A status that cannot be decoded is no word from the simulator;
+      // LCM's C code must not see an exception.
+    }
+  }
+};
 
 void Progress(const Recorder& recorder, bool quiet, std::FILE* err) {
   if (quiet) return;
@@ -98,12 +120,28 @@ void RunLive(const LogCommand& opt, const std::string& regex,
                      std::ref(failed), opt.quiet, err);
   lcm::Subscription* sub = lcm.subscribeFunction(regex, &OnLcm, &queue);
   sub->setQueueCapacity(kQueueCapacity);
+  StatusFollower follower{SimulatorWatch(SimStatusChannel(opt.prefix),
+                                         opt.exit_with_sim, WallClock::now()),
+                          {}};
+  lcm::Subscription* status_sub =
+      opt.exit_with_sim ? lcm.subscribeFunction(SimStatusChannel(opt.prefix),
+                                                &StatusFollower::On, &follower)
+                        : nullptr;
+  const auto sim_gone = [&] {
+    if (!opt.exit_with_sim) return false;
+    follower.watch.Tick(WallClock::now(), &follower.log);
+    for (const std::string& line : follower.log) {
+      std::fprintf(err, "mrsim-log: %s\n", line.c_str());
+    }
+    follower.log.clear();
+    return follower.watch.stopped();
+  };
   if (!opt.quiet) {
     std::fprintf(err, "mrsim-log: recording channels matching '%s' to %s\n",
                  regex.c_str(), recorder.out_dir().c_str());
   }
   try {
-    while (!StopRequested() && !failed) {
+    while (!StopRequested() && !failed && !sim_gone()) {
       // Messages wait in LCM's queue for a few milliseconds and are taken
       // together: this thread wakes a few hundred times a second, not once
       // per message.
@@ -120,6 +158,7 @@ void RunLive(const LogCommand& opt, const std::string& regex,
     throw;
   }
   lcm.unsubscribe(sub);
+  if (status_sub != nullptr) lcm.unsubscribe(status_sub);
   queue.Close();
   writer.join();
   if (queue.dropped() > 0) {
@@ -274,6 +313,10 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
           },
           "MB > 0"));
   app.add_flag("--quiet", opt.quiet, "no progress lines");
+  app.add_flag("--exit-with-sim", opt.exit_with_sim,
+               "stop when the simulator stops (or is silent for 5 s), after "
+               "writing what already arrived")
+      ->excludes("--from-log");
 }
 
 LogPlan PlanLog(const LogCommand& opt) {

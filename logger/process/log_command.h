@@ -35,6 +35,9 @@ struct LogCommand {
   int64_t recv_buf_size = 8 << 20;
   int64_t max_queue_mb = 1024;
   bool quiet = false;
+  // Live only: stop when the simulator says it stops (or is silent for
+  // SimulatorWatch::kSimulatorSilence), after taking what already arrived.
+  bool exit_with_sim = false;
 };
 
 void AddLogFlags(CLI::App& app, LogCommand& command);

@@ -26,7 +26,8 @@ TEST(LaunchFile, SubstitutesArgsAndOverrides) {
   <arg name="speed" default="2"/>
   <process name="sim" program="mrsim-sim" required="true"
            args="${launch_dir}/x.xml --speed ${speed} --out '${out}/a b'"/>
-  <process name="viewer" program="mrsim-view" delay="0.5" enabled="false"/>
+  <process name="viewer" program="mrsim-view" delay="0.5" enabled="false"
+           finish="90"/>
 </launch>)");
   const LaunchFile f = ReadLaunchFile(path, {{"speed", "4"}});
   ASSERT_EQ(f.processes.size(), 2u);
@@ -39,6 +40,8 @@ TEST(LaunchFile, SubstitutesArgsAndOverrides) {
   EXPECT_EQ(sim.args[4], "outdir/a b");
   EXPECT_FALSE(f.processes[1].enabled);
   EXPECT_DOUBLE_EQ(f.processes[1].delay_s, 0.5);
+  EXPECT_DOUBLE_EQ(f.processes[1].finish_s, 90);
+  EXPECT_DOUBLE_EQ(sim.finish_s, 0);  // stopped at once unless it says so
 }
 
 // Sets an environment variable for one scope.
@@ -167,22 +170,24 @@ TEST(LaunchFile, ErrorsNameFileLineAndProblem) {
           << what;
     }
   }
-  // A delay is the whole text, in seconds a launch can mean.
-  for (const char* delay : {"1.0s", "1,0", "nan", "1e9", "-1", "abc", ""}) {
-    const std::string path =
-        WriteFile("h.launch", std::string("<launch>\n<process name=\"a\" "
-                                          "program=\"true\" delay=\"") +
-                                  delay + "\"/>\n</launch>");
-    try {
-      ReadLaunchFile(path, {});
-      ADD_FAILURE() << "delay '" << delay << "': no error";
-    } catch (const LaunchError& e) {
-      EXPECT_NE(std::string(e.what()).find(
-                    "h.launch:2: process 'a': attribute delay: "
-                    "expected seconds from 0 to 3600, got '" +
-                    std::string(delay) + "'"),
-                std::string::npos)
-          << e.what();
+  // A delay or a finish time is the whole text, in seconds a launch can
+  // mean.
+  for (const std::string attribute : {"delay", "finish"}) {
+    for (const char* seconds : {"1.0s", "1,0", "nan", "1e9", "-1", "abc", ""}) {
+      const std::string path = WriteFile(
+          "h.launch", "<launch>\n<process name=\"a\" program=\"true\" " +
+                          attribute + "=\"" + seconds + "\"/>\n</launch>");
+      try {
+        ReadLaunchFile(path, {});
+        ADD_FAILURE() << attribute << " '" << seconds << "': no error";
+      } catch (const LaunchError& e) {
+        EXPECT_NE(std::string(e.what()).find(
+                      "h.launch:2: process 'a': attribute " + attribute +
+                      ": expected seconds from 0 to 3600, got '" +
+                      std::string(seconds) + "'"),
+                  std::string::npos)
+            << e.what();
+      }
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/videoio.hpp>
 #include <thread>
 
 #include "common/version.h"
@@ -16,7 +17,9 @@ namespace {
 
 using testing::BinaryPath;
 using testing::ChildProcess;
+using testing::SourcePath;
 using testing::TempDir;
+using testing::TestLcmUrl;
 
 std::string WriteLaunch(const std::string& dir, const std::string& text) {
   const std::string path = dir + "/test.launch";
@@ -175,6 +178,106 @@ TEST(Launcher, ReportsAProcessThatDies) {
   EXPECT_NE(mrsim.Output().find("crasher exited with code 3"),
             std::string::npos)
       << mrsim.Output();
+}
+
+// A viewer still rendering the frames it fell behind on when the simulator
+// ends: with finish="..." it completes them and ends by itself; the
+// launch waits for it instead of stopping it.
+TEST(Launcher, AProcessMayFinishItsWorkAfterTheRequiredOneEnds) {
+  const std::string dir = TempDir("launcher_finish");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <arg name="done" default=")" + dir + R"(/sim_done"/>
+  <process name="view" program="/bin/sh" finish="60"
+           args="-c 'while [ ! -e ${done} ]; do sleep 0.02; done; for i in 1 2 3 4 5 6 7 8 9 10; do echo frame $i; sleep 0.1; done; echo wrote the whole video'"/>
+  <process name="ticker" program="/bin/sh"
+           args="-c 'trap &quot;echo ticker stopped; exit 0&quot; INT TERM; while true; do sleep 0.05; done'"/>
+  <process name="sim" program="/bin/sh" required="true" delay="0.2"
+           args="-c 'touch ${done}; echo sim done'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(60), 0) << mrsim.Output();
+  const std::string out = mrsim.Output();
+  EXPECT_NE(out.find("sim ended; letting view (up to 60 s) finish"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("frame 10"), std::string::npos) << out;
+  EXPECT_NE(out.find("wrote the whole video"), std::string::npos) << out;
+  EXPECT_NE(out.find("view exited with code 0"), std::string::npos) << out;
+  // The others are stopped at once, before the finisher is done.
+  EXPECT_NE(out.find("ticker stopped"), std::string::npos) << out;
+  EXPECT_LT(out.find("ticker stopped"), out.find("wrote the whole video"))
+      << out;
+}
+
+TEST(Launcher, AProcessThatDoesNotFinishInTimeIsStopped) {
+  const std::string dir = TempDir("launcher_finish_late");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="view" program="/bin/sh" finish="0.5"
+           args="-c 'trap &quot;echo view stopped; exit 0&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
+  <process name="sim" program="/bin/sh" required="true" delay="0.2"
+           args="-c 'echo sim done'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  EXPECT_EQ(mrsim.Wait(60), 0) << mrsim.Output();
+  const std::string out = mrsim.Output();
+  EXPECT_NE(out.find("view has not finished after 0.5 s, stopping it"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("view stopped"), std::string::npos) << out;
+}
+
+// Ctrl-C while a process is finishing stops it at once, not after its
+// finish time.
+TEST(Launcher, InterruptWhileFinishingStopsAtOnce) {
+  const std::string dir = TempDir("launcher_finish_interrupt");
+  const std::string launch = WriteLaunch(dir, R"(<launch>
+  <process name="view" program="/bin/sh" finish="600"
+           args="-c 'trap &quot;echo view stopped; exit 0&quot; INT TERM; echo armed; while true; do sleep 0.05; done'"/>
+  <process name="sim" program="/bin/sh" required="true" delay="0.2"
+           args="-c 'echo sim done'"/>
+</launch>)");
+  ChildProcess mrsim({BinaryPath("launcher/mrsim"), "launch", launch},
+                     dir + "/out.txt");
+  ASSERT_TRUE(mrsim.WaitForOutput("letting view (up to 600 s) finish", 30))
+      << mrsim.Output();
+  mrsim.Signal(SIGINT);
+  // Well before the 600 s: the whole test's deadline.
+  EXPECT_EQ(mrsim.Wait(60), 0) << mrsim.Output();
+  EXPECT_NE(mrsim.Output().find("view stopped"), std::string::npos)
+      << mrsim.Output();
+}
+
+// The demo as a user runs it, with a viewer far slower than the run: at
+// 120 frames per simulated second of 640x480 software rendering it falls
+// behind (as a loaded machine makes it at 30), and the video must still
+// cover the whole run, not end where the simulator did.
+TEST(DemoLaunch, TheVideoCoversTheWholeRunWhenTheViewerFallsBehind) {
+  const std::string dir = TempDir("demo_launch_slow_viewer");
+  const double duration = 3.0;
+  const double fps = 120.0;
+  ChildProcess mrsim(
+      {BinaryPath("launcher/mrsim"), "launch", SourcePath("launch/demo.launch"),
+       "--set", "out=" + dir, "--set", "duration=3", "--set", "fps=120",
+       "--set", "lcm_url=" + TestLcmUrl(7887)},
+      dir + "/out.txt");
+  ASSERT_EQ(mrsim.Wait(600), 0) << mrsim.Output();
+  const std::string out = mrsim.Output();
+  // The logger may have ended by itself before the launcher saw the
+  // simulator go; the viewer, behind, is still at work then.
+  EXPECT_NE(out.find("view (up to 600 s)"), std::string::npos) << out;
+  EXPECT_NE(out.find("the simulator stopped (--exit-with-sim)"),
+            std::string::npos)
+      << out;
+  cv::VideoCapture video(dir + "/demo.mp4");
+  ASSERT_TRUE(video.isOpened()) << out;
+  const double frames = video.get(cv::CAP_PROP_FRAME_COUNT);
+  // Frame k shows time k / fps: the last frame is at the end of the run
+  // (one frame of slack for where the last state falls).
+  EXPECT_GE(frames, duration * fps) << out;
+  EXPECT_TRUE(std::ifstream(dir + "/final.checkpoint").good()) << out;
+  EXPECT_TRUE(std::ifstream(dir + "/front_force.png").good()) << out;
 }
 
 TEST(Launcher, UnknownProgramStartsNothingAndExitsTwo) {

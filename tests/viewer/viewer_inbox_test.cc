@@ -10,6 +10,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
+#include "mrsim/sim_status_t.hpp"
 #include "sim_core/codec/state_message.h"
 #include "sim_core/physics.h"
 #include "tests/viewer/viewer_test_util.h"
@@ -101,6 +102,44 @@ TEST(ViewerInbox, DropsAndCountsMalformedStatesAndFollowsGaitCommands) {
         inbox.scene_channel(), inbox.channels().begin()->first}) {
     EXPECT_NE(std::find(all.begin(), all.end(), channel), all.end()) << channel;
   }
+}
+
+// --exit-with-sim follows the simulator's status: the inbox listens on its
+// channel, keeps the newest well-formed status and counts the rest.
+TEST(ViewerInbox, KeepsTheSimulatorsStatusAndDropsAMalformedOne) {
+  GlContext gl;
+  const Scenario scenario = testing::ViewerTestScenario();
+  ViewerOptions options;
+  options.width = 64;
+  options.height = 48;
+  StateViewer viewer(scenario, options);
+  FrameScheduler scheduler(10.0, viewer.robot_count());
+  StateInbox inbox(viewer, "MRSIM", &scheduler);
+  const std::vector<std::string> all = inbox.AllChannels();
+  EXPECT_NE(std::find(all.begin(), all.end(), SimStatusChannel("MRSIM")),
+            all.end());
+  EXPECT_FALSE(inbox.last_status().has_value());
+
+  const unsigned char junk[] = {9, 9, 9, 9, 9, 9, 9, 9, 9};
+  EXPECT_FALSE(inbox.Receive(inbox.status_channel(), junk, sizeof(junk)));
+  EXPECT_EQ(inbox.malformed(), 1);
+  EXPECT_EQ(inbox.statuses(), 0);
+
+  sim_status_t status{};
+  status.mode = sim_status_t::RUNNING;
+  std::vector<unsigned char> b = Bytes(status);
+  EXPECT_TRUE(inbox.Receive(inbox.status_channel(), b.data(),
+                            static_cast<int>(b.size())));
+  status.mode = sim_status_t::STOPPING;
+  b = Bytes(status);
+  EXPECT_TRUE(inbox.Receive(inbox.status_channel(), b.data(),
+                            static_cast<int>(b.size())));
+  EXPECT_EQ(inbox.statuses(), 2);
+  ASSERT_TRUE(inbox.last_status().has_value());
+  // lcm-gen's constants are declared, not defined: compared as values.
+  const int stopping = sim_status_t::STOPPING;
+  EXPECT_EQ(inbox.last_status()->mode, stopping);
+  EXPECT_EQ(inbox.accepted(), 0);  // a status is no robot state
 }
 
 }  // namespace

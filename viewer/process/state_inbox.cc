@@ -11,6 +11,7 @@
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/scene_state_t.hpp"
+#include "mrsim/sim_status_t.hpp"
 #include "sim_core/codec/state_message.h"
 
 namespace mrsim {
@@ -25,6 +26,27 @@ StateInbox::StateInbox(const StateViewer& viewer, const std::string& prefix,
   gait_status_channel_ =
       GaitStatusChannel(prefix, viewer.robot_name(viewer.follow_robot()));
   scene_channel_ = SceneChannel(prefix);
+  status_channel_ = SimStatusChannel(prefix);
+}
+
+bool StateInbox::ReceiveStatus(const void* data, int size) {
+  try {
+    sim_status_t msg;
+    if (size < 0 || !DecodeMessage(data, static_cast<size_t>(size), &msg)) {
+      ++malformed_;
+      last_error_ = status_channel_ + ": cannot decode sim_status_t";
+      return false;
+    }
+    last_status_ = std::move(msg);
+    ++statuses_;
+    return true;
+  } catch (const std::exception& e) {
+    ++malformed_;
+    last_error_ = status_channel_ + ": " + e.what();
+  } catch (...) {
+    ++malformed_;
+  }
+  return false;
 }
 
 bool StateInbox::ReceiveScene(const void* data, int size) {
@@ -112,6 +134,7 @@ std::vector<std::string> StateInbox::AllChannels() const {
   all.push_back(gait_channel_);
   all.push_back(gait_status_channel_);
   all.push_back(scene_channel_);
+  all.push_back(status_channel_);
   return all;
 }
 
@@ -121,6 +144,7 @@ bool StateInbox::Receive(const std::string& channel, const void* data,
     if (channel == gait_status_channel_) return ReceiveGaitStatus(data, size);
     if (channel == gait_channel_) return ReceiveGait(data, size);
     if (channel == scene_channel_) return ReceiveScene(data, size);
+    if (channel == status_channel_) return ReceiveStatus(data, size);
     const auto it = channels_.find(channel);
     if (it == channels_.end()) return false;
     const int robot = it->second;

@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mrsim/sim_status_t.hpp"
 #include "viewer/frame_scheduler.h"
 #include "viewer/state_viewer.h"
 
@@ -31,6 +33,9 @@ class StateInbox {
   }
   // SceneChannel(prefix): scene_state_t.
   const std::string& scene_channel() const { return scene_channel_; }
+  // SimStatusChannel(prefix): whether the simulator is stopping, for
+  // --exit-with-sim.
+  const std::string& status_channel() const { return status_channel_; }
   // Every channel Receive takes: what a live viewer subscribes to.
   std::vector<std::string> AllChannels() const;
   // "gait (motion)" from the latest gait status (or, until one came, the
@@ -41,9 +46,15 @@ class StateInbox {
   bool ReceiveGait(const void* data, int size);
   bool ReceiveGaitStatus(const void* data, int size);
   bool ReceiveScene(const void* data, int size);
+  bool ReceiveStatus(const void* data, int size);
 
   int64_t accepted() const { return accepted_; }
   int64_t scenes() const { return scenes_; }  // scene states accepted
+  // Simulator statuses decoded, and the newest of them.
+  int64_t statuses() const { return statuses_; }
+  const std::optional<sim_status_t>& last_status() const {
+    return last_status_;
+  }
   int64_t malformed() const { return malformed_; }
   int64_t stale() const { return stale_; }
   const std::string& last_error() const { return last_error_; }
@@ -56,6 +67,9 @@ class StateInbox {
   std::string gait_status_channel_;
   bool have_gait_status_ = false;
   std::string scene_channel_;
+  std::string status_channel_;
+  std::optional<sim_status_t> last_status_;
+  int64_t statuses_ = 0;
   std::string gait_;
   std::string motion_;
   std::string gait_text_;

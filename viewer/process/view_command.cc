@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "lcmtypes/runtime/lcm_loop.h"
+#include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "sim_core/scenario_xml.h"
 #include "viewer/frame_pump.h"
@@ -144,6 +145,43 @@ void ReplayLog(const ViewOptions& opt, StateInbox& inbox, FramePump& pump,
       "? Nothing was written");
 }
 
+// --exit-with-sim: tells `watch` what the inbox heard since the last call
+// (under the inbox's mutex) and whether the simulator is now gone.
+class SimulatorFollower {
+ public:
+  SimulatorFollower(const StateInbox& inbox, bool exit_with_sim)
+      : watch_(Describe(inbox), exit_with_sim, WallClock::now()) {}
+
+  bool Stopped(const StateInbox& inbox, std::FILE* err) {
+    const WallTime now = WallClock::now();
+    std::vector<std::string> log;
+    if (inbox.accepted() != states_) watch_.Heard(now);
+    states_ = inbox.accepted();
+    if (inbox.statuses() != statuses_ && inbox.last_status()) {
+      watch_.OnStatus(*inbox.last_status(), now, &log);
+    }
+    statuses_ = inbox.statuses();
+    watch_.Tick(now, &log);
+    for (const std::string& line : log) {
+      std::fprintf(err, "mrsim-view: %s\n", line.c_str());
+    }
+    return watch_.stopped();
+  }
+
+ private:
+  static std::string Describe(const StateInbox& inbox) {
+    std::string channels;
+    for (const auto& entry : inbox.channels()) {
+      channels += (channels.empty() ? "" : ", ") + entry.first;
+    }
+    return channels;
+  }
+
+  SimulatorWatch watch_;
+  int64_t states_ = 0;
+  int64_t statuses_ = 0;
+};
+
 }  // namespace
 
 void CheckViewOptions(const ViewOptions& opt) {
@@ -215,7 +253,9 @@ int RunView(const ViewOptions& opt, SignedLcm* lcm, std::FILE* err) {
     announce("listening on " + std::to_string(inbox.channels().size()) +
              " state channel(s)");
     Clock::time_point next_progress = Clock::now() + std::chrono::seconds(2);
-    while (!StopRequested() && !pump.Done()) {
+    SimulatorFollower follower(inbox, opt.exit_with_sim);
+    bool sim_gone = false;
+    while (!StopRequested() && !pump.Done() && !sim_gone) {
       receiver.Wait(window ? 10 : 100);
       if (!receiver.error().empty()) {
         throw std::runtime_error("LCM: " + receiver.error());
@@ -232,8 +272,13 @@ int RunView(const ViewOptions& opt, SignedLcm* lcm, std::FILE* err) {
       }
       std::lock_guard<std::mutex> lock(mutex);
       Progress(pump, inbox, &next_progress, err);
+      sim_gone = opt.exit_with_sim && follower.Stopped(inbox, err);
     }
     receiver.Stop();
+    // The simulator's last states may have arrived while the frames before
+    // them were drawn: they are due now.
+    if (sim_gone)
+      pump.Drain(std::numeric_limits<int64_t>::max(), StopRequested);
   }
   pump.Close();
   std::fprintf(err,

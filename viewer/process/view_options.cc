@@ -88,6 +88,10 @@ int ParseViewOptions(int argc, char** argv, ViewOptions* o) {
                  "mass (follow), m");
   app.add_flag("--window", o->window,
                "Also show a live window when a display exists");
+  app.add_flag("--exit-with-sim", o->exit_with_sim,
+               "Exit when the simulator stops (or is silent for 5 s), after "
+               "rendering every frame it is still behind on")
+      ->excludes("--from-log");
   app.add_option("--overlay", o->viewer.gait,
                  "Gait name shown in the overlay (default: what mrsim-gait "
                  "reports running, else the latest gait command)");

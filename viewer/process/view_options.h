@@ -19,6 +19,9 @@ struct ViewOptions {
   std::string frames_dir;  // PNG folder
   double fps = 30.0;
   bool window = false;
+  // When the simulator says it stops (or goes silent): render the frames
+  // still due, finish the output and exit 0 (a launch's finish policy).
+  bool exit_with_sim = false;
   int64_t max_frames = 0;  // 0: until stopped or the log ends
   // States kept per robot for frames not rendered yet (at most one per
   // frame); 0: kRecordingQueue when writing frames, kWindowQueue for a
