@@ -15,13 +15,6 @@
 namespace mrsim::studio {
 namespace {
 
-std::vector<std::string> LcmArgs(const RunOptions& o) {
-  std::vector<std::string> args;
-  if (!o.lcm_url.empty()) args = {"--lcm-url", o.lcm_url};
-  args.insert(args.end(), {"--prefix", o.prefix});
-  return args;
-}
-
 int64_t DataRows(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   int64_t lines = 0;
@@ -40,83 +33,7 @@ LiveRunner::LiveRunner(std::vector<std::string> search_path)
 LiveRunner::~LiveRunner() { Stop(); }
 
 std::vector<ProcessSpec> LiveRunner::RunSpecs(const RunOptions& o) {
-  if (o.scenario_path.empty()) {
-    throw std::invalid_argument("run: save the design to a file first");
-  }
-  if (std::string(ToString(o.clock)) == "?") {
-    throw std::invalid_argument("run: clock " +
-                                std::to_string(static_cast<int>(o.clock)) +
-                                " (expected " + ClockModes().Choices() + ")");
-  }
-  if (!(o.rate > 0) || !std::isfinite(o.rate)) {
-    throw std::invalid_argument(
-        fmt::format("run: rate {} Hz (expected > 0)", o.rate));
-  }
-  if (!(o.speed > 0) || !std::isfinite(o.speed)) {
-    throw std::invalid_argument(fmt::format(
-        "run: speed {} (expected a real-time factor > 0)", o.speed));
-  }
-  std::vector<ProcessSpec> specs;
-  std::vector<std::string> senders;
-  ClockMode clock = o.clock;
-  if (o.controller == ControllerKind::kExternal) {
-    if (!ValidControllerName(o.external_name)) {
-      throw std::invalid_argument(
-          "run: external controller name '" + o.external_name +
-          "' (expected 1-64 letters, digits, '-', '_' or '.', starting with "
-          "a letter or digit)");
-    }
-    // The simulator waits for the user's program at every step.
-    clock = ClockMode::kLockstep;
-    senders.push_back(o.external_name);
-  } else if (o.controller == ControllerKind::kGait ||
-             o.controller == ControllerKind::kLua) {
-    const bool lua = o.controller == ControllerKind::kLua;
-    if (lua && o.lua_script.empty()) {
-      throw std::invalid_argument("run: no Lua script to run");
-    }
-    for (const std::string& robot : o.robots) {
-      ProcessSpec node;
-      node.name = (lua ? "lua-" : "gait-") + robot;
-      node.program = lua ? "mrsim-lua" : "mrsim-gait";
-      if (lua) {
-        node.args = {"--robot",    robot,
-                     "--scenario", o.scenario_path,
-                     "--script",   o.lua_script,
-                     "--name",     node.name,
-                     "--rate",     fmt::format("{:g}", o.rate)};
-      } else {
-        node.args = {"--robot", robot,  "--scenario", o.scenario_path,
-                     "--gait",  o.gait, "--name",     node.name};
-      }
-      const auto lcm = LcmArgs(o);
-      node.args.insert(node.args.end(), lcm.begin(), lcm.end());
-      senders.push_back(node.name);
-      specs.push_back(std::move(node));
-    }
-  } else {
-    throw std::invalid_argument(
-        "run: controller " + std::to_string(static_cast<int>(o.controller)) +
-        " (expected " + ControllerKinds().Choices() + ")");
-  }
-  ProcessSpec sim;
-  sim.name = "sim";
-  sim.program = "mrsim-sim";
-  sim.required = true;
-  sim.args = {o.scenario_path, "--clock", ToString(clock), "--rate",
-              fmt::format("{:g}", o.rate)};
-  if (clock == ClockMode::kRealtime) {
-    sim.args.insert(sim.args.end(), {"--speed", fmt::format("{:g}", o.speed)});
-  }
-  if (clock == ClockMode::kLockstep && !senders.empty()) {
-    sim.args.push_back("--controllers");
-    sim.args.insert(sim.args.end(), senders.begin(), senders.end());
-  }
-  if (o.paused) sim.args.push_back("--paused");
-  const auto lcm = LcmArgs(o);
-  sim.args.insert(sim.args.end(), lcm.begin(), lcm.end());
-  specs.push_back(std::move(sim));
-  return specs;
+  return RunProcessSpecs(o);
 }
 
 ProcessSpec LiveRunner::RecordSpec(const RunOptions& o,
@@ -126,7 +43,7 @@ ProcessSpec LiveRunner::RecordSpec(const RunOptions& o,
   log.name = "log";
   log.program = "mrsim-log";
   log.args = {"--out", out_dir};
-  const auto lcm = LcmArgs(o);
+  const auto lcm = RunLcmArgs(o);
   log.args.insert(log.args.end(), lcm.begin(), lcm.end());
   return log;
 }

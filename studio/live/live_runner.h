@@ -15,28 +15,9 @@
 
 #include "launcher/launch_file.h"
 #include "launcher/process_group.h"
-#include "lcmtypes/runtime/clock_mode.h"
-#include "sim_core/run_settings.h"
+#include "launcher/run_options.h"
 
 namespace mrsim::studio {
-
-struct RunOptions {
-  std::string scenario_path;        // a saved scenario file
-  std::vector<std::string> robots;  // one mrsim-gait each
-  std::string lcm_url;              // empty: LCM's default
-  std::string prefix = "MRSIM";
-  ClockMode clock = ClockMode::kRealtime;
-  double rate = 100;             // Hz
-  double speed = 1;              // real-time factor (realtime clock)
-  std::string gait = "forward";  // each robot's starting gait
-  // Who drives the robots: kGait (mrsim-gait each), kLua (mrsim-lua each,
-  // running lua_script) or kExternal (nothing started: mrsim-sim runs in
-  // lockstep waiting for the controller named external_name).
-  ControllerKind controller = ControllerKind::kGait;
-  std::string lua_script;     // a .lua file, for kLua
-  std::string external_name;  // for kExternal
-  bool paused = false;
-};
 
 // A CSV the recording wrote, with its data rows (header excluded).
 struct RecordedFile {
@@ -52,9 +33,9 @@ class LiveRunner {
   LiveRunner(const LiveRunner&) = delete;
   LiveRunner& operator=(const LiveRunner&) = delete;
 
-  // The processes Start runs, in start order: the gait nodes first so they
-  // hear the first state. Throws std::invalid_argument for options that no
-  // run could use (no scenario, unknown clock, rate or speed not positive).
+  // The processes Start runs (RunProcessSpecs, as `mrsim run` starts
+  // them), in start order: the gait nodes first so they hear the first
+  // state. Throws std::invalid_argument for options that no run could use.
   static std::vector<ProcessSpec> RunSpecs(const RunOptions& options);
   static ProcessSpec RecordSpec(const RunOptions& options,
                                 const std::string& out_dir);

@@ -2,18 +2,6 @@
 
 namespace mrsim::studio {
 
-RunOptions RunOptionsFromSettings(const std::optional<RunSettings>& run) {
-  RunOptions o;
-  if (!run) return o;
-  o.clock = run->clock;
-  o.rate = run->rate;
-  o.speed = run->speed;
-  o.controller = run->controller;
-  o.gait = run->gait;
-  o.external_name = run->external_name;
-  return o;
-}
-
 RunSettings SettingsFromRunOptions(const RunOptions& o,
                                    const std::string& lua_source) {
   RunSettings run;

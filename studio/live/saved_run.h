@@ -12,11 +12,9 @@
 
 namespace mrsim::studio {
 
-// The form's clock, rate, speed, controller, gait and external name from
-// saved settings; none saved: RunOptions' defaults (as mrsim-sim's).
-// The Lua script is text in the settings and a file in RunOptions: the
-// controller panel takes run->lua_script itself.
-RunOptions RunOptionsFromSettings(const std::optional<RunSettings>& run);
+// The form from saved settings is RunOptionsFromSettings
+// (launcher/run_options.h, shared with `mrsim run`); the controller panel
+// takes run->lua_script itself.
 
 // What Save writes for the form `o` and the Lua source in the editor.
 // The script is kept only when the controller is Lua.
