@@ -12,6 +12,7 @@
 #include "gait_controller/gait_runner.h"
 #include "optimizer/body_genes.h"
 #include "optimizer/episode_physics_pool.h"
+#include "sim_core/overlap_check.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 
@@ -90,6 +91,17 @@ void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
 
 namespace {
 
+// Whether the genome builds the robot's shape (module_count, module_scale,
+// sensor_after): such a body is checked against the scene at the start as
+// mrsim-sim checks a file, since the genes' limits may grow it into the
+// ball in front of it or the terrain around it.
+bool BuildsTheBody(const GenomeSpec& spec) {
+  for (const char* name : {"module_count", "module_scale", "sensor_after"}) {
+    if (spec.Find(name) >= 0) return true;
+  }
+  return false;
+}
+
 // One episode; in the world of `gap` when given, else the nominal one.
 EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
                          const std::function<bool()>& stop,
@@ -103,6 +115,13 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     const int robot = GenomeRobotIndex(scenario, problem.genome);
     PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
+    // On the model already built (its start pose), not a second compile.
+    if (BuildsTheBody(problem.genome) &&
+        !FindOverlapsInModel(scenario, physics.model()).empty()) {
+      result.failed = true;
+      result.fitness = kFailedFitness;
+      return result;
+    }
     // Always set: a pooled simulation may come from a perturbed episode.
     physics.SetRealityGap(gap ? *gap : RealityGap{});
     GaitController controller(JointAxes(physics, robot));
@@ -148,8 +167,9 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     result.failed = true;
     result.fitness = kFailedFitness;
   } catch (const ScenarioError&) {
-    // A body the validator refuses (the genome's limits allowed it): a
-    // failed individual, the same in one process and on every worker.
+    // A body the validator refuses, or whose parts overlap at the start
+    // (the genome's limits allowed it): a failed individual, the same in
+    // one process and on every worker.
     result = EvalResult{};
     result.failed = true;
     result.fitness = kFailedFitness;

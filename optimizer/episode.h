@@ -88,7 +88,9 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 class EpisodePhysicsPool;
 
 // Runs the episode. An unstable simulation, gait values the controller
-// refuses or a body the validator refuses give failed = true and
+// refuses, a body the validator refuses or, built from module_count,
+// module_scale or sensor_after genes, one whose parts overlap at the start
+// (overlap_check.h) give failed = true and
 // kFailedFitness, never an exception; a genome of the wrong size or a
 // robot not in the scenario throws. `stop` (optional) is polled every ten
 // control periods: when it returns true the episode is abandoned with

@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <stdexcept>
 
@@ -18,6 +19,29 @@ struct PartName {
   std::string what;
   std::string path;
 };
+
+// A generated GUID ("7b579252-58ce-4fb0-937f-57c24696363f", what the
+// original MRSim gave every part) names nothing for a person.
+bool IsGeneratedGuid(const std::string& guid) {
+  if (guid.size() != 36) return false;
+  for (size_t i = 0; i < guid.size(); ++i) {
+    const bool dash = i == 8 || i == 13 || i == 18 || i == 23;
+    if (dash != (guid[i] == '-')) return false;
+    if (!dash && !std::isxdigit(static_cast<unsigned char>(guid[i]))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// "scene object 'ball'": the guid is the name the studio and users give
+// an object; the index when the guid names nothing.
+std::string SceneObjectName(const SceneObject& o, size_t i) {
+  if (o.guid.empty() || IsGeneratedGuid(o.guid)) {
+    return fmt::format("scene object {}", i);
+  }
+  return fmt::format("scene object '{}'", o.guid);
+}
 
 // MJCF body name -> the part it models, for every body that can collide.
 std::map<std::string, PartName> PartsByBody(const Scenario& s) {
@@ -58,7 +82,7 @@ std::map<std::string, PartName> PartsByBody(const Scenario& s) {
   add_sensor_modules("loose", "Scenario", "loose ", s.loose_sensor_modules);
   for (size_t i = 0; i < s.scene_objects.size(); ++i) {
     parts[mjcf_names::SceneObject(static_cast<int>(i))] = {
-        fmt::format("scene object {}", i),
+        SceneObjectName(s.scene_objects[i], i),
         fmt::format("Scenario/sceneObjects/SceneObject[{}]", i + 1)};
   }
   parts[mjcf_names::Terrain()] = {"the terrain", "Scenario/scene"};
@@ -136,6 +160,17 @@ std::string DescribeOverlap(const PartOverlap& o,
                                    : "";
   return fmt::format("{}{}: {} overlaps {} by {:.1f} mm at the start", where,
                      o.first_path, o.first, o.second, o.depth * 1000);
+}
+
+void RefuseOverlaps(const Scenario& scenario, const ScenarioSource* source) {
+  std::vector<PartOverlap> overlaps = FindOverlaps(scenario);
+  if (overlaps.empty()) return;
+  std::string text;
+  for (const PartOverlap& o : overlaps) {
+    if (!text.empty()) text += "\n";
+    text += DescribeOverlap(o, source);
+  }
+  throw OverlapError(text, std::move(overlaps));
 }
 
 }  // namespace mrsim

@@ -4,13 +4,15 @@
 // model the simulator would run, so meshes, height fields and rotations
 // count exactly as they will in the physics; parts joined by a hinge or a
 // lock may touch (the model excludes them). A separate step from
-// ValidateScenario, which never builds a model: `mrsim-scenario validate`
-// and the studio call both.
+// ValidateScenario, which never builds a model: `mrsim-scenario validate`,
+// mrsim-sim, `mrsim run`, the optimiser's body genes and the studio call
+// both (RefuseOverlaps, or FindOverlaps to show them).
 #pragma once
 
 #include <mujoco/mujoco.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/scenario.h"
@@ -23,9 +25,11 @@ namespace mrsim {
 inline constexpr double kOverlapTolerance = 0.001;  // m
 
 struct PartOverlap {
-  // What each part is ("robot 'snake' module 3 frame 0", "scene object 1",
-  // "the terrain") and its element path in the file ("Scenario/robot[1]/
-  // modules/Module[4]/frames/Frame[1]"), as validation errors name them.
+  // What each part is, by the names the user gave ("robot 'snake' module 3
+  // frame 0", "scene object 'ball'" by its guid, "scene object 1" when its
+  // guid is a generated GUID, "the terrain") and its element path in
+  // the file ("Scenario/robot[1]/modules/Module[4]/frames/Frame[1]"), as
+  // validation errors name them.
   std::string first, second;
   std::string first_path, second_path;
   // The MJCF body names (mjcf_names.h), for tools that colour them.
@@ -51,5 +55,29 @@ std::vector<PartOverlap> FindOverlapsInModel(
 // source: "path: ...").
 std::string DescribeOverlap(const PartOverlap& overlap,
                             const ScenarioSource* source = nullptr);
+
+// Parts overlapping at the start, refused: what() is one DescribeOverlap
+// line per pair, deepest first; overlaps() the pairs themselves.
+class OverlapError : public ScenarioError {
+ public:
+  OverlapError(std::string what, std::vector<PartOverlap> overlaps)
+      : ScenarioError(std::move(what)), overlaps_(std::move(overlaps)) {}
+  const std::vector<PartOverlap>& overlaps() const { return overlaps_; }
+
+ private:
+  std::vector<PartOverlap> overlaps_;
+};
+
+// What a program that refuses overlaps adds to OverlapError's lines (the
+// flag of mrsim-sim and `mrsim run`; the studio's checkbox has its words).
+inline constexpr char kAllowOverlapHint[] =
+    "parts must not overlap at the start: move them apart, or allow "
+    "overlap (--allow-overlap) to run it anyway";
+
+// Throws OverlapError when any parts of `scenario` overlap at the start
+// (FindOverlaps), naming each pair and how deep; std::runtime_error when
+// the model cannot be built.
+void RefuseOverlaps(const Scenario& scenario,
+                    const ScenarioSource* source = nullptr);
 
 }  // namespace mrsim

@@ -75,8 +75,11 @@ struct JointUse {
 
 class Validator {
  public:
-  Validator(const Scenario& s, const ScenarioSource* source)
-      : s_(s), source_(source) {}
+  // `warnings`: where what runs but is likely not meant goes; null: it
+  // is not looked for.
+  Validator(const Scenario& s, const ScenarioSource* source,
+            std::vector<ScenarioWarning>* warnings = nullptr)
+      : s_(s), source_(source), warnings_(warnings) {}
 
   void Run() {
     path_ = "Scenario";
@@ -132,6 +135,14 @@ class Validator {
     schema::Describe(*this, part);
     After(part, lock);
     path_ = saved;
+  }
+
+  void Warn(const std::string& path, const std::string& what) const {
+    const ScenarioError as_error =
+        source_ ? ScenarioError(source_->file, source_->LineOf(path), path,
+                                "warning: " + what)
+                : ScenarioError("", 0, path, "warning: " + what);
+    warnings_->push_back({path, what, as_error.what()});
   }
 
   [[noreturn]] void Fail(const std::string& path,
@@ -284,7 +295,7 @@ class Validator {
   void Before(const DistanceSensor&) {}
   void After(const DistanceSensor& d, bool) {
     sensors_[robot_].insert(d.guid);
-    if (robot_ >= 0 && sensor_module_ != nullptr) {
+    if (warnings_ != nullptr && robot_ >= 0 && sensor_module_ != nullptr) {
       CheckRayLeavesClearOfTheRobot(*sensor_module_, d);
     }
   }
@@ -587,6 +598,9 @@ class Validator {
   // turned to a neighbour (the front face of a sensor module behind module
   // 0, say), or a ray looking back through its module into the next.
   // Checked at the pose in the file, against box frames and sensor modules.
+  // A warning, not a refusal: the design still runs (the original MRSim
+  // ran such files, e.g. its thesis's Appendix F, whose frames of
+  // <scale>10</scale> enclose the sensor module in front of them).
   void CheckRayLeavesClearOfTheRobot(const SensorModule& sm,
                                      const DistanceSensor& d) {
     // Faces and sizes out of range are told on their own.
@@ -634,7 +648,7 @@ class Validator {
       }
     }
     if (hit.empty()) return;
-    Fail(
+    Warn(
         path_ + "/sensorPosition",
         fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
                     "sensor module, so it would read about 0 the whole run; "
@@ -648,6 +662,7 @@ class Validator {
 
   const Scenario& s_;
   const ScenarioSource* source_;
+  std::vector<ScenarioWarning>* warnings_;
   std::string path_;
   int robot_ = -1;  // index of the robot being walked; -1: loose parts
   const SensorModule* sensor_module_ = nullptr;  // the one being walked
@@ -667,6 +682,13 @@ class Validator {
 
 void ValidateScenario(const Scenario& scenario, const ScenarioSource* source) {
   Validator(scenario, source).Run();
+}
+
+std::vector<ScenarioWarning> ScenarioWarnings(const Scenario& scenario,
+                                              const ScenarioSource* source) {
+  std::vector<ScenarioWarning> warnings;
+  Validator(scenario, source, &warnings).Run();
+  return warnings;
 }
 
 }  // namespace mrsim

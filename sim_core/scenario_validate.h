@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sim_core/scenario.h"
 
@@ -56,5 +57,21 @@ struct ScenarioSource {
 // distance sensors. With a source, errors carry file:line.
 void ValidateScenario(const Scenario& scenario,
                       const ScenarioSource* source = nullptr);
+
+// What a valid scenario holds that runs but is likely not what its author
+// meant: a distance sensor whose ray starts inside another part of its
+// robot and would read about 0 the whole run. Told, never refused, so the
+// files the original MRSim ran load; programs print them.
+struct ScenarioWarning {
+  std::string path;     // element path, as in errors
+  std::string message;  // what, without file, line and path
+  // "file:line: path: warning: message" (without a source: "path: ...").
+  std::string text;
+};
+
+// The warnings of `scenario`, in file order. Throws ScenarioError as
+// ValidateScenario does when the scenario is not valid.
+std::vector<ScenarioWarning> ScenarioWarnings(
+    const Scenario& scenario, const ScenarioSource* source = nullptr);
 
 }  // namespace mrsim

@@ -60,20 +60,23 @@ FrameConvention FrameNamed(const std::string& name) {
 // The second step of validate: parts overlapping at the start, all of
 // them named, one per line.
 void CheckNoOverlaps(const Scenario& s, const ScenarioSource& source) {
-  std::vector<PartOverlap> overlaps;
   try {
-    overlaps = FindOverlaps(s);
+    RefuseOverlaps(s, &source);
+  } catch (const OverlapError& e) {
+    throw ScenarioInputError(e.what());
   } catch (const std::exception& e) {
     throw ScenarioInputError(source.file +
                              ": cannot build the MuJoCo model: " + e.what());
   }
-  if (overlaps.empty()) return;
-  std::string text;
-  for (const PartOverlap& o : overlaps) {
-    if (!text.empty()) text += "\n";
-    text += DescribeOverlap(o, &source);
+}
+
+// What runs but is likely not meant (a ray starting inside the robot),
+// one "file:line: path: warning: ..." line each.
+void TellWarnings(const Scenario& s, const ScenarioSource& source,
+                  std::ostream& info) {
+  for (const ScenarioWarning& w : ScenarioWarnings(s, &source)) {
+    info << "mrsim-scenario: " << w.text << "\n";
   }
-  throw ScenarioInputError(text);
 }
 
 void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
@@ -85,6 +88,7 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       ScenarioReadOptions read;
       read.source_out = &source;
       const Scenario s = ReadScenarioFile(c.file, read);
+      TellWarnings(s, source, info);
       CheckNoOverlaps(s, source);
       out << fmt::format("{}: ok ({}, {})\n", c.file,
                          Counted(s.robots.size(), "robot"),
@@ -146,7 +150,10 @@ void Run(const ScenarioCommand& c, std::ostream& out, std::ostream& info) {
       ScenarioReadOptions read;
       if (!c.from_frame.empty()) read.frame = FrameNamed(c.from_frame);
       read.length_scale = c.scale;
+      ScenarioSource source;
+      read.source_out = &source;
       const Scenario s = ReadScenarioFile(c.file, read);
+      TellWarnings(s, source, info);
       if (c.scale == 1.0 && IsOriginalMrsimFile(c.file)) {
         info << "mrsim-scenario: note: " << c.file
              << " was written by the original MRSim, whose lengths are "

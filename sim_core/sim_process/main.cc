@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     auto physics = flags.LoadPhysics();
     const std::string loaded = flags.LoadLine(*physics);
     if (!loaded.empty()) std::cerr << loaded << "\n";
+    for (const std::string& w : flags.warnings) std::cerr << w << "\n";
     if (!flags.run_note.empty()) std::cerr << flags.run_note << "\n";
     mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-sim"));

@@ -5,6 +5,7 @@
 #include "common/enum_option.h"
 #include "lcmtypes/runtime/version.h"
 #include "sim_core/checkpoint.h"
+#include "sim_core/overlap_check.h"
 #include "sim_core/scenario_xml.h"
 
 namespace mrsim {
@@ -51,6 +52,9 @@ void SimCommandLine::AddFlags(CLI::App& app) {
                  "Write a checkpoint here when stopping");
   app.add_option("--load-checkpoint", load_checkpoint,
                  "Start from this checkpoint (its scenario and state)");
+  app.add_flag("--allow-overlap", allow_overlap,
+               "Run even when parts overlap at the start (the physics then "
+               "pushes them apart at the first step)");
 }
 
 void SimCommandLine::Finish() {
@@ -164,8 +168,16 @@ std::unique_ptr<Physics> SimCommandLine::LoadPhysics() {
   }
   if (scenario_path.empty()) return physics;
   try {
-    Scenario scenario = ReadScenarioFile(scenario_path);
+    ScenarioSource source;
+    ScenarioReadOptions read;
+    read.source_out = &source;
+    Scenario scenario = ReadScenarioFile(scenario_path, read);
     ApplyRunSettings(scenario);
+    for (const ScenarioWarning& w : ScenarioWarnings(scenario, &source)) {
+      warnings.push_back("mrsim-sim: " + w.text);
+    }
+    // A checkpoint's parts are where the run left them, not at the start.
+    if (!physics && !allow_overlap) RefuseOverlaps(scenario, &source);
     if (!physics) return std::make_unique<Physics>(scenario);
     Scenario saved = physics->scenario();
     saved.base_dir = scenario.base_dir;
@@ -175,6 +187,8 @@ std::unique_ptr<Physics> SimCommandLine::LoadPhysics() {
                        " (leave SCENARIO out to use the checkpoint's)");
     }
     return physics;
+  } catch (const OverlapError& e) {
+    throw UsageError(std::string(e.what()) + "\n" + kAllowOverlapHint);
   } catch (const ScenarioError& e) {
     throw UsageError(e.what());
   }

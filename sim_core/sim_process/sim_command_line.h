@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
@@ -20,10 +21,15 @@ struct SimCommandLine {
   std::string load_checkpoint;
   bool no_state = false;
   bool no_spin = false;
+  // Run a design whose parts overlap at the start (refused otherwise).
+  bool allow_overlap = false;
   SimOptions options;
   // What the scenario's run settings set and which controllers to start,
   // for stderr; empty when the file has none (LoadPhysics fills it).
   std::string run_note;
+  // "mrsim-sim: FILE:LINE: path: warning: ..." lines about the scenario
+  // (ScenarioWarnings), for stderr (LoadPhysics fills it).
+  std::vector<std::string> warnings;
 
   // Declares every flag of mrsim-sim (and --version) on `app`.
   void AddFlags(CLI::App& app);
@@ -31,8 +37,9 @@ struct SimCommandLine {
   void Finish();
   // The physics to run: the scenario, the checkpoint, or the checkpoint
   // checked against the scenario. The scenario's run settings become the
-  // defaults of the flags not given (ApplyRunSettings). Throws UsageError
-  // naming the file.
+  // defaults of the flags not given (ApplyRunSettings). A scenario whose
+  // parts overlap at the start is refused naming them, unless
+  // --allow-overlap. Throws UsageError naming the file.
   std::unique_ptr<Physics> LoadPhysics();
   // A design's run settings (<run>) for every run flag the command line
   // did not give: --clock (lockstep for an external controller), --rate,

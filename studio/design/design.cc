@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "sim_core/embed_assets.h"
 #include "sim_core/face_geometry.h"
 #include "sim_core/frame_mesh.h"
+#include "sim_core/scenario_validate.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
 #include "studio/design/chain_edit.h"
@@ -90,6 +94,25 @@ Robot RelayoutFacing(const Robot& old, const std::vector<ChainSlot>& slots,
   Robot out = Relayout(straight, slots, options, base_dir);
   TransformRobot(&out, GroundTransform(pivot, {{0, 0}, heading}));
   return out;
+}
+
+// A ray put on a face turned to a neighbour reads about 0 the whole run.
+// Files holding one load with a warning (ScenarioWarnings); the designer
+// does not add one. Throws DesignError with the warning that `after`
+// gained over `before`; an `after` the validator refuses is left to
+// Commit, which says why.
+void RefuseUselessRay(const Scenario& before, const Scenario& after) {
+  std::vector<ScenarioWarning> now;
+  try {
+    now = ScenarioWarnings(after);
+  } catch (const ScenarioError&) {
+    return;
+  }
+  std::set<std::string> had;
+  for (const ScenarioWarning& w : ScenarioWarnings(before)) had.insert(w.path);
+  for (const ScenarioWarning& w : now) {
+    if (!had.count(w.path)) throw DesignError(w.message);
+  }
 }
 
 }  // namespace
@@ -508,6 +531,7 @@ void Design::SetForcePlate(bool on) {
 void Design::AddDistanceSensor(int face) {
   Scenario next = scenario_;
   AddRay(&SelectedSensorModule(&next), face);
+  RefuseUselessRay(scenario_, next);
   Commit(std::move(next), selection_);
 }
 
@@ -519,6 +543,7 @@ std::vector<int> Design::OpenRayFaces() const {
     try {
       AddRay(&SelectedSensorModule(&next), face);
       ValidateScenario(next);
+      RefuseUselessRay(scenario_, next);
       faces.push_back(face);
     } catch (const std::exception&) {
       // taken, full, or looking into the robot
@@ -650,6 +675,7 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
                       Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
                       Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX());
   }
+  RefuseUselessRay(scenario_, next);
   Commit(std::move(next), selection_);
 }
 

@@ -172,6 +172,29 @@ TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
   EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
 }
 
+// A body the genes grow into the scene (module_count here, past the ball
+// lying behind the chain) overlaps at the start: a failed individual, as
+// mrsim-sim refuses such a file; the body that stays clear runs.
+TEST(OptimizerBodyGenes, ABodyGrownIntoTheBallIsAFailedIndividual) {
+  Problem problem = SnakeProblem(0.5);
+  problem.genome = ReadGenomeString(R"(<genome>
+  <gene name="module_count" lower="3" upper="14" start="11"/>
+</genome>)",
+                                    "body genome");
+  ChainOptions longer;
+  longer.modules = 14;
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.shape = PrimitiveShape::kSphere;
+  ball.size = Eigen::Vector3d(0.05, 0.05, 0.05);
+  ball.position = MakeChain(longer).modules[13].position;
+  problem.scenario.scene_objects.push_back(ball);
+  EXPECT_FALSE(RunEpisode(problem, Genome{11}).failed);
+  const EvalResult grown = RunEpisode(problem, Genome{14});
+  EXPECT_TRUE(grown.failed);
+  EXPECT_EQ(grown.fitness, kFailedFitness);
+}
+
 // A body the validator refuses is a failed individual, not an error that
 // stops the run (locally) or that every worker reports (on a farm).
 TEST(OptimizerEpisode, ABodyTheSimulatorRefusesIsAFailedIndividual) {

@@ -55,8 +55,8 @@ TEST(OverlapCheck, RobotPlacedInsideABoxIsReportedNamingBoth) {
   const Scenario s = RobotInsideABox();
   const std::vector<PartOverlap> overlaps = FindOverlaps(s);
   ASSERT_THAT(overlaps, ::testing::Not(IsEmpty()));
-  const std::string object =
-      "scene object " + std::to_string(s.scene_objects.size() - 1);
+  // By the name the user gave it (its guid), not its index.
+  const std::string object = "scene object 'crate'";
   bool named = false;
   for (const PartOverlap& o : overlaps) {
     named |= o.second == object && o.first.find("robot '") == 0 &&
@@ -87,6 +87,38 @@ TEST(OverlapCheck, ChainInsideAHillOverlapsTheTerrain) {
   // Flat ground under the same robot: nothing.
   s.scene.height_image.clear();
   EXPECT_THAT(FindOverlaps(s), IsEmpty());
+}
+
+TEST(OverlapCheck, ObjectsWithAGeneratedGuidAreNamedByTheirIndex) {
+  Scenario s = RobotInsideABox();
+  s.scene_objects.back().guid = "7b579252-58ce-4fb0-937f-57c24696363f";
+  const std::string object =
+      "scene object " + std::to_string(s.scene_objects.size() - 1);
+  const std::vector<PartOverlap> overlaps = FindOverlaps(s);
+  ASSERT_THAT(overlaps, ::testing::Not(IsEmpty()));
+  EXPECT_EQ(overlaps.front().second, object);
+}
+
+TEST(OverlapCheck, RefuseOverlapsNamesEveryPairWithFileAndLine) {
+  const std::string dir = testing::TempDir("overlap_refuse");
+  const std::string file = dir + "/boxed.xml";
+  WriteScenarioFile(RobotInsideABox(), file);
+  ScenarioSource source;
+  ScenarioReadOptions read;
+  read.source_out = &source;
+  const Scenario s = ReadScenarioFile(file, read);
+  try {
+    RefuseOverlaps(s, &source);
+    FAIL() << "a robot inside a box was not refused";
+  } catch (const OverlapError& e) {
+    EXPECT_EQ(e.overlaps().size(), FindOverlaps(s).size());
+    for (const PartOverlap& o : e.overlaps()) {
+      EXPECT_THAT(e.what(), HasSubstr(DescribeOverlap(o, &source)));
+    }
+    EXPECT_THAT(e.what(), HasSubstr("scene object 'crate' by "));
+  }
+  EXPECT_NO_THROW(RefuseOverlaps(
+      ReadScenarioFile(testing::SourcePath("scenarios/lua_serpenoid.xml"))));
 }
 
 TEST(OverlapCheck, TwoRobotsInTheSamePlaceOverlapEachOther) {

@@ -125,26 +125,6 @@ std::vector<Rule> BuilderRules() {
        },
        sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
        "expected 0..5"},
-      {"distance sensor facing a module",
-       [](Scenario& s) {
-         // The back face of the front sensor module touches module 0.
-         DistanceSensor& d = s.robots[0].sensor_modules[0].distance_sensors[0];
-         d.sensor_position = 5;
-         d.ray_direction = -Eigen::Vector3d::UnitX();
-       },
-       sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
-       "the ray of face 5 (back) runs into 'r/m0/f0' as it leaves its sensor "
-       "module, so it would read about 0"},
-      {"distance sensor looking back through its module into another",
-       [](Scenario& s) {
-         // Face 4 (front) looking back: through the sensor module (which
-         // the ray skips) straight into module 0 behind it.
-         s.robots[0].sensor_modules[0].distance_sensors[0].ray_direction =
-             -Eigen::Vector3d::UnitX();
-       },
-       sm1 + "/distanceSensors/DistanceSensor[1]/sensorPosition",
-       "the ray of face 4 (front) runs into 'r/m0/f0' as it leaves its "
-       "sensor module"},
       {"sensor module mass",
        [](Scenario& s) { s.robots[0].sensor_modules[0].mass = 0; },
        sm1 + "/mass", "expected a positive value"},
@@ -298,6 +278,57 @@ TEST(ScenarioValidate, EveryBuilderRuleIsRefusedByTheReaderBuilderAndPhysics) {
       leaf = leaf.substr(0, leaf.find('['));
       EXPECT_THAT(LineOf(file, e.line()), HasSubstr("<" + leaf + ">"));
     }
+  }
+}
+
+// A ray that starts inside another part of its robot reads about 0 the
+// whole run: told as a warning at the sensor's face, never refused, since
+// files the original MRSim ran hold such rays (its Appendix F).
+TEST(ScenarioValidate, ARayRunningIntoTheRobotIsAWarningNotARefusal) {
+  const std::string dir = TempDir("validate_ray_warning");
+  const std::string sm1 = "Scenario/robot[1]/sensorModules/SensorModule[1]";
+  const std::vector<std::pair<std::function<void(Scenario&)>, std::string>>
+      cases = {
+          // The back face of the front sensor module touches module 0.
+          {[](Scenario& s) {
+             DistanceSensor& d =
+                 s.robots[0].sensor_modules[0].distance_sensors[0];
+             d.sensor_position = 5;
+             d.ray_direction = -Eigen::Vector3d::UnitX();
+           },
+           "the ray of face 5 (back) runs into 'r/m0/f0' as it leaves its "
+           "sensor module, so it would read about 0"},
+          // Face 4 (front) looking back: through the sensor module (which
+          // the ray skips) straight into module 0 behind it.
+          {[](Scenario& s) {
+             s.robots[0].sensor_modules[0].distance_sensors[0].ray_direction =
+                 -Eigen::Vector3d::UnitX();
+           },
+           "the ray of face 4 (front) runs into 'r/m0/f0' as it leaves its "
+           "sensor module"}};
+  EXPECT_TRUE(ScenarioWarnings(Base(dir)).empty());
+  for (const auto& [break_it, message] : cases) {
+    SCOPED_TRACE(message);
+    Scenario s = Base(dir);
+    break_it(s);
+    EXPECT_NO_THROW(ValidateScenario(s));
+    EXPECT_NO_THROW(Physics physics(s));
+    const std::string file = dir + "/ray.xml";
+    WriteScenarioFile(s, file);
+    ScenarioSource source;
+    ScenarioReadOptions read;
+    read.source_out = &source;
+    const Scenario back = ReadScenarioFile(file, read);
+    const std::vector<ScenarioWarning> warnings =
+        ScenarioWarnings(back, &source);
+    ASSERT_EQ(warnings.size(), 1u);
+    const std::string path =
+        sm1 + "/distanceSensors/DistanceSensor[1]/" + "sensorPosition";
+    EXPECT_EQ(warnings[0].path, path);
+    EXPECT_THAT(warnings[0].message, HasSubstr(message));
+    EXPECT_THAT(warnings[0].text,
+                StartsWith(file + ":" + std::to_string(source.LineOf(path)) +
+                           ": " + path + ": warning: "));
   }
 }
 
