@@ -1,0 +1,26 @@
+# Every file a Markdown file links to or shows ([text](path), ![text](path))
+# is in the tree: a screenshot renamed, a doc moved or a file never
+# committed is found before a reader follows the link. Links to the web
+# (scheme:...) and to a place in the same page (#...) are not files.
+# Usage: cmake -DMRSIM_DOCS=<file;...> -P check_docs_links.cmake
+set(missing "")
+foreach(doc IN LISTS MRSIM_DOCS)
+  get_filename_component(dir "${doc}" DIRECTORY)
+  file(STRINGS "${doc}" lines REGEX "\\]\\([^)]+\\)")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCHALL "\\]\\([^)]+\\)" links "${line}")
+    foreach(link IN LISTS links)
+      string(REGEX REPLACE "^\\]\\(([^) ]+).*" "\\1" path "${link}")
+      if(path MATCHES "^[a-z]+:" OR path MATCHES "^#")
+        continue()
+      endif()
+      string(REGEX REPLACE "#.*" "" path "${path}")
+      if(NOT EXISTS "${dir}/${path}")
+        string(APPEND missing "\n  ${doc}: ${path}")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(missing)
+  message(FATAL_ERROR "linked or shown but not in the tree:${missing}")
+endif()
