@@ -23,3 +23,12 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake
 install(FILES ${PROJECT_BINARY_DIR}/mrsimConfig.cmake
   ${PROJECT_BINARY_DIR}/mrsimConfigVersion.cmake DESTINATION ${config_dir} ${MRSIM_DEV_INSTALL})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim/scenarios)
+# The documentation beside the data, so an installed mrsim (the Debian
+# package, scripts/package.sh) has it offline; README's links to docs/
+# still resolve from share/mrsim/README.md.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim)
+# The Slurm batch script for farm workers started by hand, so a cluster
+# with mrsim installed on its nodes needs no source tree.
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/slurm/mrsim-worker.sbatch
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/mrsim/slurm)
