@@ -14,6 +14,7 @@ packages=(
   libimgui-dev xdotool fonts-dejavu-core
   clang-format clang libfuzzer-14-dev
   iproute2 nftables
+  dpkg-dev help2man desktop-file-utils
   slurm-wlm munge
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
 )
