@@ -24,9 +24,11 @@ int main(int argc, char** argv) {
     CLI::App app{
         "mrsim: modular robot simulator front door.\n"
         "  mrsim launch FILE    start the processes of a launch file\n"
+        "  mrsim run FILE       run a design headless with its saved "
+        "controller\n"
         "  mrsim keygen PATH    write a key for signed messages\n"
         "  mrsim TOOL ARGS...   run mrsim-TOOL: scenario, studio, sim, "
-        "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary"};
+        "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary, run"};
     app.set_version_flag("--version", std::string("mrsim ") + mrsim::kVersion);
     app.require_subcommand(1);
     mrsim::LaunchCommand command;
