@@ -1,6 +1,8 @@
 // The panel's genome path, for a studio started outside the repository.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -25,6 +27,19 @@ TEST(GenomePathFor, ARelativePathNotFoundHereIsFoundBesideTheDesign) {
   EXPECT_EQ(GenomePathFor("nowhere/else.xml", design), "nowhere/else.xml");
   EXPECT_EQ(GenomePathFor("scenarios/forward_gait.genome.xml", ""),
             "scenarios/forward_gait.genome.xml");
+}
+
+// An installed studio started from the desktop menu (no design, the home
+// folder): the panel's default is the bundled genome in the data folder.
+TEST(GenomePathFor, WithoutADesignTheInstalledGenomeIsFound) {
+  const std::string data = testing::TempDir("genome_path_data");
+  std::filesystem::create_directories(data + "/scenarios");
+  const std::string genome = data + "/scenarios/forward_gait.genome.xml";
+  std::ofstream(genome) << "<x/>";
+  setenv("MRSIM_DATA_DIR", data.c_str(), 1);
+  EXPECT_EQ(GenomePathFor("scenarios/forward_gait.genome.xml", ""), genome);
+  EXPECT_EQ(GenomePathFor("nowhere/else.xml", ""), "nowhere/else.xml");
+  unsetenv("MRSIM_DATA_DIR");
 }
 
 }  // namespace
