@@ -86,6 +86,13 @@ void ScaleRobot(Robot* robot, double ground_z, double factor) {
 
 }  // namespace
 
+bool GenomeBuildsTheBody(const GenomeSpec& spec) {
+  for (const char* name : {"module_count", "module_scale", "sensor_after"}) {
+    if (spec.Find(name) >= 0) return true;
+  }
+  return false;
+}
+
 Scenario ApplyBodyGenes(const Scenario& scenario, const GenomeSpec& spec,
                         const Genome& genome) {
   Scenario s = scenario;

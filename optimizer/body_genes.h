@@ -26,6 +26,12 @@ int GenomeRobotIndex(const Scenario& scenario, const GenomeSpec& spec);
 // MakeChain for the chains it makes).
 ChainOptions ChainOptionsOf(const Robot& robot);
 
+// Whether the genome builds the robot's shape (module_count, module_scale,
+// sensor_after): such bodies are checked for parts overlapping at the
+// start, as mrsim-sim checks a file (the genes' limits may grow a body
+// into the ball in front of it or the terrain around it).
+bool GenomeBuildsTheBody(const GenomeSpec& spec);
+
 // The scenario with the body genes applied. Throws GenomeError when the
 // robot cannot be rebuilt (no modules).
 Scenario ApplyBodyGenes(const Scenario& scenario, const GenomeSpec& spec,

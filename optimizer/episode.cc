@@ -91,17 +91,6 @@ void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
 
 namespace {
 
-// Whether the genome builds the robot's shape (module_count, module_scale,
-// sensor_after): such a body is checked against the scene at the start as
-// mrsim-sim checks a file, since the genes' limits may grow it into the
-// ball in front of it or the terrain around it.
-bool BuildsTheBody(const GenomeSpec& spec) {
-  for (const char* name : {"module_count", "module_scale", "sensor_after"}) {
-    if (spec.Find(name) >= 0) return true;
-  }
-  return false;
-}
-
 // One episode; in the world of `gap` when given, else the nominal one.
 EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
                          const std::function<bool()>& stop,
@@ -116,7 +105,7 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
     // On the model already built (its start pose), not a second compile.
-    if (BuildsTheBody(problem.genome) &&
+    if (GenomeBuildsTheBody(problem.genome) &&
         !FindOverlapsInModel(scenario, physics.model()).empty()) {
       result.failed = true;
       result.fitness = kFailedFitness;

@@ -28,6 +28,7 @@
 #include "optimizer/problem_codec.h"
 #include "optimizer/process/opt_progress_reporter.h"
 #include "optimizer/task.h"
+#include "sim_core/overlap_check.h"
 #include "sim_core/scenario_xml.h"
 
 namespace fs = std::filesystem;
@@ -363,8 +364,20 @@ OptSetup PrepareOpt(const OptCommand& c) {
     GenomeRobotIndex(problem.scenario, problem.genome);
     ValidateGaitParameters(
         GaitOfGenome(problem, problem.genome.StartGenome()).parameters);
+    // The body the genes start from must be clear of the scene, as
+    // mrsim-sim requires of a file; individuals that grow into it later
+    // are failed ones (RunEpisode).
+    if (GenomeBuildsTheBody(problem.genome)) {
+      RefuseOverlaps(ApplyBodyGenes(problem.scenario, problem.genome,
+                                    problem.genome.StartGenome()));
+    }
   } catch (const OptInputError&) {
     throw;
+  } catch (const OverlapError& err) {
+    throw OptInputError(
+        std::string("the body the genome starts from: ") + err.what() +
+        "\nparts must not overlap at the start: move them apart in the "
+        "scenario, or change the body genes' start values");
   } catch (const std::exception& err) {
     throw OptInputError(err.what());
   }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "optimizer/farm/farm_master_core.h"
+#include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -174,6 +175,36 @@ class StoppingEvaluator : public BatchEvaluator {
 // Two runs on one --out would write the same checkpoint temporary file:
 // the second is refused, naming the process that holds the folder, and a
 // lock its holder left behind when killed is taken over.
+// A body genome starting from a body that overlaps the scene (the case
+// study's ball put in module 0) is refused before any episode, naming the
+// parts as mrsim-sim does; a gait-only genome runs the file as it is.
+TEST(OptCommand, AStartBodyOverlappingTheSceneIsRefusedNamingItsParts) {
+  const std::string dir = testing::TempDir("opt_command_overlap");
+  Scenario s =
+      ReadScenarioFile(testing::SourcePath("scenarios/case_study.xml"));
+  s.scene_objects.at(0).position = s.robots.at(0).modules.at(0).position;
+  const std::string scenario = dir + "/ball_in_the_robot.xml";
+  WriteScenarioFile(s, scenario);
+  const std::string genome = dir + "/body.genome.xml";
+  std::ofstream(genome) << R"(<genome>
+  <gene name="module_scale" lower="0.5" upper="2" start="1"/>
+</genome>)";
+  try {
+    PrepareOpt(Parse({scenario, "--genome", genome, "--out", dir + "/out"}));
+    ADD_FAILURE() << "an overlapping start body was accepted";
+  } catch (const OptInputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("scene object 'ball' by "), std::string::npos) << what;
+    EXPECT_NE(what.find("body genes' start values"), std::string::npos) << what;
+  }
+  const std::string gait = dir + "/gait.genome.xml";
+  std::ofstream(gait) << R"(<genome>
+  <gene name="A_pitch" lower="0" upper="1.5" start="1"/>
+</genome>)";
+  EXPECT_NO_THROW(PrepareOpt(
+      Parse({scenario, "--genome", gait, "--out", dir + "/gait_only"})));
+}
+
 TEST(OptCommand, ARunFolderIsLockedWhileARunWritesIt) {
   const std::string out = testing::TempDir("opt_command_lock");
   const OptCommand c = Parse(SnakeArgs(out));
