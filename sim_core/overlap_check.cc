@@ -162,8 +162,9 @@ std::string DescribeOverlap(const PartOverlap& o,
                      o.first_path, o.first, o.second, o.depth * 1000);
 }
 
-void RefuseOverlaps(const Scenario& scenario, const ScenarioSource* source) {
-  std::vector<PartOverlap> overlaps = FindOverlaps(scenario);
+namespace {
+
+void Refuse(std::vector<PartOverlap> overlaps, const ScenarioSource* source) {
   if (overlaps.empty()) return;
   std::string text;
   for (const PartOverlap& o : overlaps) {
@@ -171,6 +172,17 @@ void RefuseOverlaps(const Scenario& scenario, const ScenarioSource* source) {
     text += DescribeOverlap(o, source);
   }
   throw OverlapError(text, std::move(overlaps));
+}
+
+}  // namespace
+
+void RefuseOverlaps(const Scenario& scenario, const ScenarioSource* source) {
+  Refuse(FindOverlaps(scenario), source);
+}
+
+void RefuseOverlapsInModel(const Scenario& scenario, const mjModel* model,
+                           const ScenarioSource* source) {
+  Refuse(FindOverlapsInModel(scenario, model), source);
 }
 
 }  // namespace mrsim

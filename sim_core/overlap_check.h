@@ -79,5 +79,9 @@ inline constexpr char kAllowOverlapHint[] =
 // the model cannot be built.
 void RefuseOverlaps(const Scenario& scenario,
                     const ScenarioSource* source = nullptr);
+// The same on a model already built from `scenario` (a simulator's, so
+// the check costs no second compile; see FindOverlapsInModel).
+void RefuseOverlapsInModel(const Scenario& scenario, const mjModel* model,
+                           const ScenarioSource* source = nullptr);
 
 }  // namespace mrsim

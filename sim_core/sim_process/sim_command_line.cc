@@ -176,9 +176,15 @@ std::unique_ptr<Physics> SimCommandLine::LoadPhysics() {
     for (const ScenarioWarning& w : ScenarioWarnings(scenario, &source)) {
       warnings.push_back("mrsim-sim: " + w.text);
     }
-    // A checkpoint's parts are where the run left them, not at the start.
-    if (!physics && !allow_overlap) RefuseOverlaps(scenario, &source);
-    if (!physics) return std::make_unique<Physics>(scenario);
+    if (!physics) {
+      physics = std::make_unique<Physics>(scenario);
+      // On the model just built, at the file's pose (a checkpoint's parts
+      // are where the run left them, not at the start: not checked).
+      if (!allow_overlap) {
+        RefuseOverlapsInModel(scenario, physics->model(), &source);
+      }
+      return physics;
+    }
     Scenario saved = physics->scenario();
     saved.base_dir = scenario.base_dir;
     if (!(saved == scenario)) {
