@@ -9,9 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <stdexcept>
 
+#include "common/data_dir.h"
 #include "common/edit_distance.h"
 #include "launcher/process_group.h"
 #include "launcher/program_locator.h"
@@ -30,6 +32,16 @@ void AddLaunchFlags(CLI::App& launch, LaunchCommand& c) {
                   "Print the resolved commands and start nothing");
 }
 
+std::string FindLaunchFile(const std::string& file) {
+  std::error_code ec;
+  if (file.find('/') != std::string::npos ||
+      std::filesystem::exists(file, ec)) {
+    return file;
+  }
+  const std::string bundled = FindDataFile("launch/" + file);
+  return bundled.empty() ? file : bundled;
+}
+
 LaunchPlan PlanLaunch(const std::string& argv0, const LaunchCommand& c) {
   std::map<std::string, std::string> overrides;
   for (const auto& s : c.sets) {
@@ -39,7 +51,7 @@ LaunchPlan PlanLaunch(const std::string& argv0, const LaunchCommand& c) {
     }
     overrides[s.substr(0, eq)] = s.substr(eq + 1);
   }
-  LaunchFile launch = ReadLaunchFile(c.file, overrides);
+  LaunchFile launch = ReadLaunchFile(FindLaunchFile(c.file), overrides);
   for (const auto& name : c.without) {
     bool found = false;
     for (auto& p : launch.processes) {

@@ -36,6 +36,11 @@ struct LaunchPlan {
   std::vector<std::pair<ProcessSpec, std::string>> processes;
 };
 
+// `file` as given when it is a path or is there; a bare name that is not
+// (`mrsim launch demo.launch` on an installed mrsim) is looked up among the
+// bundled launch files (DataDir()/launch); else `file`, for the error.
+std::string FindLaunchFile(const std::string& file);
+
 // Reads the file with the overrides, leaves out --without processes and
 // finds every program on ProgramSearchPath(argv0), so a typo starts
 // nothing. Throws LaunchError naming the file (and line) and the problem.

@@ -113,6 +113,22 @@ TEST(ProgramLocator, AMistypedProgramNamesTheNearestAndTheOthers) {
   }
 }
 
+// Installed, `mrsim launch demo.launch` finds the bundled file from any
+// folder; a path, or a file in the current folder, is taken as given.
+TEST(LaunchCommand, ABareNameFindsABundledLaunchFile) {
+  const std::string data = testing::TempDir("launch_data_dir");
+  std::filesystem::create_directories(data + "/launch");
+  std::ofstream(data + "/launch/bundled.launch") << kTwo;
+  setenv("MRSIM_DATA_DIR", data.c_str(), 1);
+  EXPECT_EQ(FindLaunchFile("bundled.launch"), data + "/launch/bundled.launch");
+  LaunchCommand command;
+  command.file = "bundled.launch";
+  EXPECT_EQ(PlanLaunch("mrsim", command).name, "two");
+  EXPECT_EQ(FindLaunchFile("./bundled.launch"), "./bundled.launch");
+  EXPECT_EQ(FindLaunchFile("missing.launch"), "missing.launch");
+  unsetenv("MRSIM_DATA_DIR");
+}
+
 TEST(LaunchCommand, AStopBeforeTheFirstStartStartsNothing) {
   LaunchCommand command;
   command.file = WriteFile("two.launch", kTwo);
