@@ -179,14 +179,16 @@ std::array<double, kAtlasQuantities> MeasureAtlasValues(const AtlasEntry& entry,
 AtlasLine MakeAtlasLine(const AtlasEntry& entry,
                         const std::vector<GaitOutcome>& runs,
                         const AtlasTolerancePolicy& policy) {
-  if (runs.size() != kAtlasFactors.size()) {
+  if (runs.size() != kAtlasSpreadFactors.size()) {
     throw std::invalid_argument(
         fmt::format("atlas line {}: {} runs, expected one per factor ({})",
-                    entry.name, runs.size(), kAtlasFactors.size()));
+                    entry.name, runs.size(), kAtlasSpreadFactors.size()));
   }
-  const int nominal = static_cast<int>(
-      std::find(kAtlasFactors.begin(), kAtlasFactors.end(), 1.0) -
-      kAtlasFactors.begin());
+  auto run_at = [&](double factor) -> const GaitOutcome& {
+    return runs[std::find(kAtlasSpreadFactors.begin(),
+                          kAtlasSpreadFactors.end(), factor) -
+                kAtlasSpreadFactors.begin()];
+  };
   AtlasLine line;
   line.name = entry.name;
   line.robot = entry.robot.empty() ? RobotName(entry.trial) : entry.robot;
@@ -195,11 +197,19 @@ AtlasLine MakeAtlasLine(const AtlasEntry& entry,
     const auto q = AtlasQuantities(r);
     for (int i = 0; i < kAtlasQuantities; ++i) values[i].push_back(q[i]);
   }
+  const auto nominal = AtlasQuantities(run_at(1.0));
+  // The mean as MeasureAtlasValues takes it (same order, same bits).
+  std::array<double, kAtlasQuantities> mean{};
+  for (double f : kAtlasFactors) {
+    const auto q = AtlasQuantities(run_at(f));
+    for (int i = 0; i < kAtlasQuantities; ++i) mean[i] += q[i];
+  }
+  for (double& m : mean) m /= static_cast<double>(kAtlasFactors.size());
   bool chaotic = false;
   for (int i = 0; i < kAtlasQuantities; ++i) {
     const double sd = StandardDeviation(values[i]);
     const double floor =
-        policy.relative * std::abs(values[i][nominal]) + policy.floor[i];
+        policy.relative * std::abs(nominal[i]) + policy.floor[i];
     // Would the spread set a single run's tolerance? Then one run says too
     // little and the line is checked by its mean.
     if (policy.k * sd * std::sqrt(2.0) > floor) chaotic = true;
@@ -208,7 +218,7 @@ AtlasLine MakeAtlasLine(const AtlasEntry& entry,
   line.samples = chaotic ? static_cast<int>(kAtlasFactors.size()) : 1;
   for (int i = 0; i < kAtlasQuantities; ++i) {
     AtlasValue& v = line.values[i];
-    v.value = chaotic ? Mean(values[i]) : values[i][nominal];
+    v.value = chaotic ? mean[i] : nominal[i];
     const double floor = policy.relative * std::abs(v.value) + policy.floor[i];
     v.tolerance =
         std::max(policy.k * v.spread * std::sqrt(2.0 / line.samples), floor);
@@ -219,7 +229,7 @@ AtlasLine MakeAtlasLine(const AtlasEntry& entry,
 AtlasLine MeasureAtlasLine(const AtlasEntry& entry,
                            const AtlasTolerancePolicy& policy) {
   std::vector<GaitOutcome> runs;
-  for (double f : kAtlasFactors) {
+  for (double f : kAtlasSpreadFactors) {
     runs.push_back(MeasureGait(ScaleAmplitudes(entry.gait, f), entry.trial));
   }
   return MakeAtlasLine(entry, runs, policy);

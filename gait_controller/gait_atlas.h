@@ -25,12 +25,18 @@ struct AtlasEntry {
   GaitTrial trial;
 };
 
-// The amplitude factors of a line's perturbed runs: every amplitude of the
-// gait times 0.998, 0.999, 1, 1.001 and 1.002. A chaotic gait (lateral
-// undulation) moves by several per cent between them; a regular one not
-// measurably.
+// The amplitude factors a chaotic line is checked with: the mean of its
+// runs with every amplitude of the gait times 0.998, 0.999, 1, 1.001 and
+// 1.002. A chaotic gait (lateral undulation) moves by several per cent
+// between them; a regular one not measurably.
 inline constexpr std::array<double, 5> kAtlasFactors = {0.998, 0.999, 1.0,
                                                         1.001, 1.002};
+// The factors the spread is measured over when the table is made: those
+// five and eight more between them, since the spread of five runs is
+// itself too uncertain to set a tolerance by (docs/physics.md).
+inline constexpr std::array<double, 13> kAtlasSpreadFactors = {
+    0.998,  0.9983, 0.9986, 0.999,  0.9993, 0.9996, 1.0,
+    1.0004, 1.0007, 1.001,  1.0014, 1.0017, 1.002};
 
 // How tolerances follow from the measured spread (docs/physics.md):
 // tolerance = max(k * spread * sqrt(2 / samples), relative * |value| +
@@ -69,15 +75,16 @@ std::array<double, kAtlasQuantities> MeasureAtlasValues(const AtlasEntry& entry,
                                                         double scale = 1.0);
 
 // The table line of `entry` from its runs at every factor of
-// kAtlasFactors (in that order): the spread of each quantity over them, and
-// samples 1 unless the spread, not the floor, would set a single run's
-// tolerance (then the line is checked by its mean over all five).
+// kAtlasSpreadFactors (in that order): the spread of each quantity over
+// them, and samples 1 unless the spread, not the floor, would set a single
+// run's tolerance (then the line is checked by its mean over the runs at
+// kAtlasFactors). Throws std::invalid_argument for another number of runs.
 AtlasLine MakeAtlasLine(const AtlasEntry& entry,
                         const std::vector<GaitOutcome>& runs,
                         const AtlasTolerancePolicy& policy = {});
 
-// Runs the entry at every factor and makes its line (what gait_atlas
-// --write does for each entry).
+// Runs the entry at every factor of kAtlasSpreadFactors and makes its line
+// (what gait_atlas --write does for each entry).
 AtlasLine MeasureAtlasLine(const AtlasEntry& entry,
                            const AtlasTolerancePolicy& policy = {});
 

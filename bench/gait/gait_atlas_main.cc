@@ -2,7 +2,7 @@
 // writes docs/gait_atlas.csv, or checks a build against it as ctest -L
 // atlas does.
 //
-//   gait_atlas [--write FILE]          every line, five runs each
+//   gait_atlas [--write FILE]          every line, 13 runs each
 //   gait_atlas --check FILE            exit 1 when a line moved too far
 //   gait_atlas ... --line NAME...      only these lines
 #include <fmt/format.h>

@@ -108,9 +108,12 @@ TEST(AtlasTolerance, ARegularLineKeepsItsNominalRunAndTheFloor) {
   AtlasEntry e;
   e.name = "regular";
   // Speeds that differ in the 7th digit: the floor (2 % + 0.0003) rules.
+  std::vector<double> speeds;
+  for (size_t i = 0; i < kAtlasSpreadFactors.size(); ++i) {
+    speeds.push_back(0.02 + 1e-7 * (kAtlasSpreadFactors[i] - 1.0) / 0.002);
+  }
   const AtlasLine l =
-      MakeAtlasLine(e, Runs({0.0200001, 0.0200002, 0.02, 0.0199999, 0.0200003},
-                            {1, 1, 1, 1, 1}));
+      MakeAtlasLine(e, Runs(speeds, std::vector<double>(speeds.size(), 1.0)));
   EXPECT_EQ(l.samples, 1);
   EXPECT_DOUBLE_EQ(l.at(AtlasQuantity::kSpeed).value, 0.02);
   EXPECT_NEAR(l.at(AtlasQuantity::kSpeed).tolerance, 0.02 * 0.02 + 0.0003,
@@ -121,14 +124,33 @@ TEST(AtlasTolerance, ARegularLineKeepsItsNominalRunAndTheFloor) {
 TEST(AtlasTolerance, AChaoticLineIsCheckedByItsMeanWithinFourSpreads) {
   AtlasEntry e;
   e.name = "chaotic";
-  const std::vector<double> speeds = {0.013, 0.0125, 0.0135, 0.012, 0.014};
-  const AtlasLine l = MakeAtlasLine(e, Runs(speeds, {0, 0, 0, 0, 0}));
+  // Speeds jumping by +-0.001 from run to run; the five runs the check
+  // repeats (factors 0.998, 0.999, 1, 1.001, 1.002) are the 1st, 4th, 7th,
+  // 10th and 13th.
+  std::vector<double> speeds;
+  for (size_t i = 0; i < kAtlasSpreadFactors.size(); ++i) {
+    speeds.push_back(0.013 + (i % 2 == 0 ? -0.001 : 0.001));
+  }
+  const AtlasLine l =
+      MakeAtlasLine(e, Runs(speeds, std::vector<double>(speeds.size(), 0.0)));
   EXPECT_EQ(l.samples, 5);
   const AtlasValue& v = l.at(AtlasQuantity::kSpeed);
-  EXPECT_NEAR(v.value, 0.013, 1e-12);
-  const double sd = std::sqrt(0.0000025 / 4);  // sum of squares / (n - 1)
+  EXPECT_NEAR(v.value, 0.013 + (-1 + 1 - 1 + 1 - 1) * 0.001 / 5, 1e-12);
+  double mean = 0;
+  for (double x : speeds) mean += x / speeds.size();
+  double squares = 0;
+  for (double x : speeds) squares += (x - mean) * (x - mean);
+  const double sd = std::sqrt(squares / (speeds.size() - 1));
   EXPECT_NEAR(v.spread, sd, 1e-12);
   EXPECT_NEAR(v.tolerance, 4 * sd * std::sqrt(2.0 / 5), 1e-12);
+}
+
+TEST(AtlasTolerance, ALineNeedsARunAtEverySpreadFactor) {
+  AtlasEntry e;
+  e.name = "short";
+  EXPECT_THROW(
+      MakeAtlasLine(e, Runs({0.01, 0.01, 0.01, 0.01, 0.01}, {0, 0, 0, 0, 0})),
+      std::invalid_argument);
 }
 
 }  // namespace
