@@ -37,6 +37,10 @@ struct LiveDesign {
   std::string path;  // saved file, "" before the first save
   bool dirty = false;
   std::vector<std::string> robots;
+  // Parts overlapping at the start, one line per pair ("robot 'snake'
+  // module 0 frame 0 / scene object 'ball': 12.0 mm"): Run refuses them
+  // unless the user allows it, as mrsim-sim does.
+  std::vector<std::string> overlaps;
   // Saves the design as Save does; returns its path once saved, "" when
   // it is not (Save As asks where first, or saving failed).
   std::function<std::string()> save;
@@ -107,6 +111,9 @@ class LivePanel {
   void Disconnect();
   void Send(const std::function<void(StudioOutbox*)>& request);
   void DrawRun(const LiveDesign& design);
+  // Beside Run: why it is refused (parts overlapping at the start) and the
+  // box that allows it.
+  void DrawOverlapRefusal(const LiveDesign& design, bool refused);
   void DrawControls();
   void DrawSteering();
   void DrawRecording();
@@ -161,6 +168,7 @@ class LivePanel {
   std::map<std::string, std::set<std::string>> detached_locks_;
   std::string message_;
   bool message_is_note_ = false;  // "wrote ...": not an error
+  bool allow_overlap_ = false;    // Run with parts overlapping at the start
   // Form state.
   std::string url_ = "udpm://239.255.76.67:7667?ttl=0";
   std::string prefix_ = "MRSIM";

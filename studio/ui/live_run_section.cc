@@ -24,7 +24,15 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   if (!runner_.running()) {
     // mrsim-sim runs the file: what is on screen is saved first.
     const bool saved = !design.path.empty() && !design.dirty;
-    if (RecordedButton(layout_, saved ? "Run" : "Save and Run")) {
+    // REQ-1.2.8: parts that overlap at the start are pushed apart by the
+    // first step, and the run is not the design; mrsim-sim refuses them
+    // unless told, and the button says why beside it.
+    const bool refused = !design.overlaps.empty() && !allow_overlap_;
+    ImGui::BeginDisabled(refused);
+    const bool pressed =
+        RecordedButton(layout_, saved ? "Run" : "Save and Run");
+    ImGui::EndDisabled();
+    if (pressed) {
       const std::string path =
           saved ? design.path : (design.save ? design.save() : "");
       if (path.empty()) {
@@ -38,6 +46,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           o.scenario_path = path;
           o.robots = design.robots;
           controller_.Fill(&o, path);
+          o.allow_overlap = !design.overlaps.empty() && allow_overlap_;
           runner_.Start(o);
           Connect(url_, prefix_);
           EndReplay();
@@ -70,6 +79,9 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   } else if (RecordedButton(layout_, "Detach")) {
     Disconnect();
   }
+  if (!runner_.running()) {
+    DrawOverlapRefusal(design, !design.overlaps.empty() && !allow_overlap_);
+  }
   // A run on this computer needs neither; attaching to a simulation or a
   // farm elsewhere does. Folded, so a first look is not an LCM URL.
   if (ImGui::TreeNode("network (LCM URL, prefix)")) {
@@ -79,6 +91,28 @@ void LivePanel::DrawRun(const LiveDesign& design) {
     ImGui::InputText("prefix", &prefix_);
     ImGui::TreePop();
   }
+}
+
+void LivePanel::DrawOverlapRefusal(const LiveDesign& design, bool refused) {
+  if (layout_ != nullptr) {
+    layout_->State("run refused", refused ? design.overlaps.front() : "");
+  }
+  if (design.overlaps.empty()) return;
+  if (refused) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
+    ImGui::TextWrapped(
+        "parts overlap at the start: %s%s", design.overlaps.front().c_str(),
+        design.overlaps.size() > 1
+            ? (" (and " + std::to_string(design.overlaps.size() - 1) +
+               " more, in the Design panel)")
+                  .c_str()
+            : "");
+    ImGui::PopStyleColor();
+  }
+  // The flag's words (--allow-overlap), so the studio and the command line
+  // read alike.
+  ImGui::Checkbox("allow overlap: run it anyway", &allow_overlap_);
+  RecordItem(layout_, "checkbox allow overlap");
 }
 
 RunSettings LivePanel::FormRunSettings() const {

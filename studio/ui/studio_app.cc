@@ -58,6 +58,11 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     for (const Robot& r : studio_.design.scenario().robots) {
       run.robots.push_back(r.name);
     }
+    for (const PartOverlap& o : studio_.overlaps) {
+      char depth[32];
+      std::snprintf(depth, sizeof depth, ": %.1f mm", o.depth * 1000);
+      run.overlaps.push_back(o.first + " / " + o.second + depth);
+    }
     run.save = [this] {
       studio_.SaveFile();
       return studio_.design.dirty() ? std::string() : studio_.design.path();

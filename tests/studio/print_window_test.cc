@@ -33,10 +33,11 @@ class StudioPrintTest : public ::testing::Test {
  protected:
   // The studio on a private display with a copy of the case study (and
   // whatever `prepare` adds to its folder).
-  void Start(const std::string& name) {
+  void Start(const std::string& name, const std::string& source = SourcePath(
+                                          "scenarios/case_study.xml")) {
     dir_ = TempDir(name);
     file_ = dir_ + "/case_study.xml";
-    fs::copy_file(SourcePath("scenarios/case_study.xml"), file_);
+    fs::copy_file(source, file_);
     layout_ = dir_ + "/layout.txt";
     xvfb_ = std::make_unique<XvfbDisplay>(dir_);
     ASSERT_TRUE(xvfb_->ok()) << "Xvfb did not start, see " << dir_;
@@ -138,11 +139,9 @@ TEST_F(StudioPrintTest, ExportStlIntoAFolder) {
   studio_->Stop();
 }
 
-// Red pixels in the 3-D view of the case study with a crate beside
-// module 1, `gap` m to its side (objects are red themselves; parts
-// overlapping are drawn red on top).
-int RedPixelsWithCrate(const std::string& name, double gap, bool* overlaps) {
-  const std::string dir = TempDir(name);
+// The case study with a static crate `gap` m to the side of module 1
+// (negative: into it), written to `dir`.
+std::string CaseStudyWithCrate(const std::string& dir, double gap) {
   Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
   SceneObject crate;
   crate.guid = "crate";
@@ -153,6 +152,40 @@ int RedPixelsWithCrate(const std::string& name, double gap, bool* overlaps) {
   s.scene_objects.push_back(crate);
   const std::string file = dir + "/crate.xml";
   WriteScenarioFile(s, file);
+  return file;
+}
+
+// REQ-1.2.8: Run refuses a design whose parts overlap at the start and
+// says why beside the button, until the user ticks the box that allows it
+// (the words of mrsim-sim's --allow-overlap).
+TEST_F(StudioPrintTest, RunSaysWhyItRefusesOverlappingPartsUntilAllowed) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string source =
+      CaseStudyWithCrate(TempDir("studio_run_overlap_src"), -0.01);
+  Start("studio_run_overlap", source);
+  ASSERT_TRUE(Xdotool({"mousemove", "640", "400"}));
+  ASSERT_TRUE(Xdotool({"key", "F5"}));  // the Run panel
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout_)["run refused"].find(
+                   "scene object 'crate'") != std::string::npos;
+      },
+      60))
+      << ReadLayout(layout_)["run refused"];
+  EXPECT_NE(ReadLayout(layout_)["run refused"].find(" mm"), std::string::npos);
+  Click("checkbox allow overlap");
+  EXPECT_TRUE(WaitForLayout(layout_, "run refused", ""))
+      << ReadLayout(layout_)["run refused"];
+  studio_->Stop();
+}
+
+// Red pixels in the 3-D view of the case study with a crate beside
+// module 1, `gap` m to its side (objects are red themselves; parts
+// overlapping are drawn red on top).
+int RedPixelsWithCrate(const std::string& name, double gap, bool* overlaps) {
+  const std::string dir = TempDir(name);
+  const std::string file = CaseStudyWithCrate(dir, gap);
+  const Scenario s = ReadScenarioFile(file);
   *overlaps = !FindOverlaps(s).empty();
   const std::string png = dir + "/crate.png";
   unsetenv("DISPLAY");
