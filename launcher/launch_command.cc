@@ -162,6 +162,7 @@ void PrintPlan(const LaunchPlan& plan, std::ostream& out) {
 int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
               std::FILE* out) {
   ProcessGroup group(out);
+  for (const auto& [spec, path] : plan.processes) group.FitName(spec.name);
   group.Say("launch " + plan.name + ": " +
             std::to_string(plan.processes.size()) +
             " processes; Ctrl-C stops them all");

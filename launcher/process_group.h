@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -57,6 +58,11 @@ class ProcessGroup {
   std::string Summary() const;
   // Prints a line prefixed with the launcher's own name.
   void Say(const std::string& line);
+  // Makes the name column at least as wide as `name`, so the lines before
+  // a process with a long name starts line up with those after.
+  void FitName(const std::string& name) {
+    name_width_ = std::max(name_width_, name.size());
+  }
 
  private:
   struct Child {
