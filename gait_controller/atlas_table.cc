@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
+
+#include "common/exact_number.h"
 
 namespace mrsim {
 
@@ -22,18 +25,12 @@ std::vector<std::string> SplitCsv(const std::string& row) {
 }
 
 double ParseNumber(const std::string& cell, const std::string& where) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(cell, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != cell.size()) {
+  const std::optional<double> v = ParseWholeNumber(cell);
+  if (!v) {
     throw AtlasTableError(
         fmt::format("{}: expected a number, got '{}'", where, cell));
   }
-  return v;
+  return *v;
 }
 
 }  // namespace
