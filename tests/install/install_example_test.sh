@@ -36,3 +36,22 @@ out="$("$work/build/distance" "$work/prefix/share/mrsim/scenarios/snake11.xml" f
 echo "$out"
 # The 11-module snake must really have moved forward (+x) under the preset.
 echo "$out" | awk '{ for (i = 1; i <= NF; ++i) if ($i == "(dx") { gsub(",", "", $(i+1)); exit !($(i+1) > 0.02) } exit 1 }'
+
+# mrsim's optimiser as a library for a problem of one's own, no simulator
+# (examples/optimise_function): it must climb Rosenbrock's valley from its
+# start at (-1.5, ...) (fitness below -4000) to near its top (0), and the
+# same seed must give the same run.
+cmake -S "$source_dir/examples/optimise_function" -B "$work/build-opt" \
+  -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure-opt.log"
+cmake --build "$work/build-opt" -j2 >"$work/build-opt.log"
+first="$("$work/build-opt/optimise_function" cmaes 80 7)"
+second="$("$work/build-opt/optimise_function" cmaes 80 7)"
+echo "$first" | tail -n 2
+if [ "$first" != "$second" ]; then
+  echo "optimise_function: the same seed gave two different runs" >&2
+  exit 1
+fi
+echo "$first" | tail -n 1 | awk '{ exit !($3 > -1.0) }' || {
+  echo "optimise_function: CMA-ES did not get near the valley's best" >&2
+  exit 1
+}
