@@ -18,6 +18,11 @@ std::string ResolveLcmUrl(const std::string& url);
 // and bytes <= 0 are returned resolved but unchanged.
 std::string LcmUrlWithReceiveBuffer(const std::string& url, std::int64_t bytes);
 
+// Why `url` (resolved) may not open and how to fix it, for the message of
+// every program that cannot open LCM: a udpm:// group needs a multicast
+// route (the commands that add one on loopback), a tcpq:// URL its hub.
+std::string CannotOpenLcm(const std::string& url);
+
 // The largest receive buffer an unprivileged SO_RCVBUF may ask for here
 // (net.core.rmem_max; the kernel grants twice the request); 0 if unknown.
 std::int64_t KernelReceiveBufferMax();

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/cli_exit.h"
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     mrsim::SignedLcm lcm(lcm_url, auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-ctl"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-ctl: cannot open LCM '" << lcm_url << "'\n";
+      std::cerr << "mrsim-ctl: " << mrsim::CannotOpenLcm(lcm_url) << "\n";
       return 1;
     }
     return mrsim::RunCtl(lcm, words, options, std::cout, std::cerr);

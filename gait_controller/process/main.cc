@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "common/cli_exit.h"
+#include "common/lcm_url.h"
 #include "gait_controller/process/gait_command_line.h"
 #include "gait_controller/process/gait_server.h"
 #include "lcmtypes/runtime/auth_flags.h"
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
     mrsim::SignedLcm lcm(ctl.lcm_url, ctl.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-gait"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-gait: cannot open LCM '" << ctl.lcm_url << "'\n";
+      std::cerr << "mrsim-gait: " << mrsim::CannotOpenLcm(ctl.lcm_url) << "\n";
       return 1;
     }
     mrsim::GaitServer server(lcm, flags.options, ctl.axes_for, flags.initial);

@@ -110,8 +110,7 @@ void RunLive(const LogCommand& opt, const std::string& regex,
              Recorder& recorder, SignedLcm& lcm, std::FILE* err) {
   if (!lcm.good()) {
     throw std::runtime_error(
-        "cannot open LCM at '" +
-        LcmUrlWithReceiveBuffer(opt.lcm_url, opt.recv_buf_size) + "'");
+        CannotOpenLcm(LcmUrlWithReceiveBuffer(opt.lcm_url, opt.recv_buf_size)));
   }
   const size_t max_queue_bytes = static_cast<size_t>(opt.max_queue_mb) << 20;
   MessageQueue queue(max_queue_bytes, max_queue_bytes / 4);

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/cli_exit.h"
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -33,7 +34,7 @@ int main(int argc, char** argv) {
     mrsim::SignedLcm lcm(ctl.lcm_url, ctl.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-lua"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-lua: cannot open LCM '" << ctl.lcm_url << "'\n";
+      std::cerr << "mrsim-lua: " << mrsim::CannotOpenLcm(ctl.lcm_url) << "\n";
       return 1;
     }
     mrsim::LuaServer server(

@@ -39,9 +39,7 @@ FarmLink::FarmLink(std::string url, const std::string& prefix,
   }
   Open();
   if (!lcm_) {
-    throw std::runtime_error("cannot open LCM '" + ResolveLcmUrl(url) +
-                             "' (no multicast route, or no tcpq hub? see "
-                             "docs/optimizer.md)");
+    throw std::runtime_error(CannotOpenLcm(url));
   }
 }
 

@@ -17,6 +17,7 @@
 #include "common/atomic_file.h"
 #include "common/enum_option.h"
 #include "common/hash.h"
+#include "common/lcm_url.h"
 #include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/algorithm_registry.h"
@@ -653,8 +654,7 @@ std::function<void(const opt_progress_t&)> MakeProgressPublisher(
   if (c.progress_url.empty()) return {};
   *connection = std::make_unique<lcm::LCM>(c.progress_url);
   if (!(*connection)->good()) {
-    throw OptInputError("--progress-url: cannot open LCM at '" +
-                        c.progress_url + "'");
+    throw OptInputError("--progress-url: " + CannotOpenLcm(c.progress_url));
   }
   lcm::LCM* lcm = connection->get();
   const std::string channel = FarmChannels(c.prefix).progress;

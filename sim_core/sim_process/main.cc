@@ -4,6 +4,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "common/cli_exit.h"
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -30,8 +31,7 @@ int main(int argc, char** argv) {
     mrsim::SignedLcm lcm(flags.lcm_url, flags.auth.Load(),
                          mrsim::WarnLines(std::cerr, "mrsim-sim"));
     if (!lcm.good()) {
-      std::cerr << "mrsim-sim: cannot open LCM '" << flags.lcm_url
-                << "' (no multicast route? see docs/sim.md)\n";
+      std::cerr << "mrsim-sim: " << mrsim::CannotOpenLcm(flags.lcm_url) << "\n";
       return 1;
     }
     mrsim::SimServer server(lcm, std::move(physics), flags.options, std::cerr);

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 
 namespace mrsim::studio {
@@ -10,7 +11,7 @@ LiveLink::LiveLink(const std::string& url, LiveSession* session,
                    AuthConfig auth)
     : url_(url), session_(session), lcm_(url, std::move(auth)) {
   if (!lcm_.good()) {
-    throw std::runtime_error("cannot open LCM at '" + url + "'");
+    throw std::runtime_error(CannotOpenLcm(url));
   }
   // Every channel: the session picks what it reads, counts what it cannot.
   subscription_ = lcm_.subscribe(".*", &LiveLink::OnRaw, this);

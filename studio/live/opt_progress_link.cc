@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 
@@ -12,8 +13,8 @@ OptProgressLink::OptProgressLink(const std::string& url,
                                  const std::string& channel, Handler handler)
     : lcm_(url), handler_(std::move(handler)) {
   if (!lcm_.good()) {
-    throw std::runtime_error("cannot open LCM at '" + url +
-                             "' for the optimisation's progress");
+    throw std::runtime_error(CannotOpenLcm(url) +
+                             " (for the optimisation's progress)");
   }
   subscription_ = lcm_.subscribe(channel, &OptProgressLink::OnRaw, this);
 }

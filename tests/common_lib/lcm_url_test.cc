@@ -45,5 +45,22 @@ TEST(LcmUrl, KernelReceiveBufferMaxIsReadFromProc) {
   EXPECT_GT(KernelReceiveBufferMax(), 4096);
 }
 
+// A program that cannot open LCM says how to fix it, whatever it is.
+TEST(LcmUrl, CannotOpenSaysHowToFixTheRouteOrTheHub) {
+  const std::string udpm = CannotOpenLcm("udpm://239.255.76.99:7667?ttl=0");
+  EXPECT_NE(udpm.find("cannot open LCM at 'udpm://239.255.76.99:7667?ttl=0'"),
+            std::string::npos)
+      << udpm;
+  EXPECT_NE(udpm.find("sudo ip route add 239.255.0.0/16 dev lo"),
+            std::string::npos)
+      << udpm;
+  EXPECT_NE(udpm.find("ip route get 239.255.76.99`"), std::string::npos)
+      << udpm;
+  const std::string tcpq = CannotOpenLcm("tcpq://10.1.2.3:7700");
+  EXPECT_NE(tcpq.find("hub"), std::string::npos) << tcpq;
+  EXPECT_EQ(tcpq.find("ip route"), std::string::npos) << tcpq;
+  EXPECT_EQ(CannotOpenLcm("memq://"), "cannot open LCM at 'memq://'");
+}
+
 }  // namespace
 }  // namespace mrsim

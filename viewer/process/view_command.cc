@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "common/lcm_url.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/stop_signal.h"
@@ -247,7 +248,7 @@ int RunView(const ViewOptions& opt, SignedLcm* lcm, std::FILE* err) {
     ReplayLog(opt, inbox, pump, window.get(), err);
   } else {
     if (lcm == nullptr || !lcm->good()) {
-      throw std::runtime_error("cannot open LCM at '" + opt.lcm_url + "'");
+      throw std::runtime_error(CannotOpenLcm(opt.lcm_url));
     }
     Receiver receiver(lcm, &inbox, &mutex);
     announce("listening on " + std::to_string(inbox.channels().size()) +
