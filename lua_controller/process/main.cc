@@ -1,6 +1,5 @@
-// mrsim-lua: drives one robot of a running mrsim-sim with a Lua script
-// (docs/gait.md, "Lua controllers"; the logic is LuaNode, wired to LCM by
-// LuaServer).
+// mrsim-lua: drives one robot of mrsim-sim with a Lua script (docs/gait.md,
+// "Lua controllers"); the logic is LuaNode, wired to LCM by LuaServer.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
