@@ -53,4 +53,22 @@ void EmbedAssetFiles(Scenario& scenario) {
                                                               bytes->end()));
 }
 
+bool NamesAssetFiles(const Scenario& scenario) {
+  const auto names_file = [](const Frame& f) {
+    return f.is_mesh() && !IsEmbeddedMesh(f.shape);
+  };
+  for (const Robot& r : scenario.robots) {
+    for (const Module& m : r.modules) {
+      for (const Frame& f : m.frames) {
+        if (names_file(f)) return true;
+      }
+    }
+  }
+  for (const Frame& f : scenario.loose_frames) {
+    if (names_file(f)) return true;
+  }
+  const std::string& image = scenario.scene.height_image;
+  return !image.empty() && image.rfind("base64:", 0) != 0;
+}
+
 }  // namespace mrsim

@@ -18,4 +18,9 @@ namespace mrsim {
 // file when one cannot be read or is longer than kMaxInputFileBytes.
 void EmbedAssetFiles(Scenario& scenario);
 
+// Whether any mesh frame or the terrain's height image names a file
+// rather than carrying its bytes: a file saved without embedding (the
+// studio shows "Embed terrain and meshes" as the file was saved).
+bool NamesAssetFiles(const Scenario& scenario);
+
 }  // namespace mrsim

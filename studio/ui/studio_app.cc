@@ -184,6 +184,7 @@ void StudioApp::RecordState(const mjrRect& view, int height) {
                                std::to_string(s.index));
   layout.State("dirty", studio_.design.dirty() ? "1" : "0");
   layout.State("path", studio_.design.path());
+  layout.State("embed", studio_.embed_on_save ? "1" : "0");
   layout.State("revision", std::to_string(studio_.built_revision));
   layout.State("modal", studio_.ask_unsaved && unsaved_.shown() ? "unsaved"
                         : busy_quit_.shown()                    ? "busy"

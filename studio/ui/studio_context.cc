@@ -8,6 +8,7 @@
 
 #include "common/data_dir.h"
 #include "launcher/program_locator.h"
+#include "sim_core/embed_assets.h"
 #include "sim_core/scenario_validate.h"
 #include "studio/ui/widgets.h"
 
@@ -23,6 +24,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
   Note(design.note());
   if (options.full_view) ToggleFullView();
   show_template = options.open_template;
+  embed_on_save = !NamesAssetFiles(design.scenario());
   live->LoadRunSettings(design.scenario().run);
   if (!design.path().empty() && std::filesystem::exists(design.path())) {
     recent.Add(design.path());
@@ -132,6 +134,7 @@ void StudioContext::RequestClose() {
 void StudioContext::OpenFile(const std::string& path) {
   try {
     design = Design::Open(path);
+    embed_on_save = !NamesAssetFiles(design.scenario());
     live->LoadRunSettings(design.scenario().run);
     built_revision = -1;
     recent.Add(path);

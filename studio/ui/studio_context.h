@@ -66,7 +66,9 @@ struct StudioContext {
   ViewRecorder video;     // the 3-D view to an MP4
   bool show_help = false;
   // Save and Save As write the terrain and meshes into the file (base64).
-  bool embed_on_save = false;
+  // A design is one self-contained file unless the user unticks it; an
+  // opened file shows it as it was saved (NamesAssetFiles).
+  bool embed_on_save = true;
   bool show_template = false;
   bool quit = false;
   long built_revision = -1;           // the design revision the preview shows

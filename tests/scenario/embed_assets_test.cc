@@ -47,8 +47,10 @@ TEST(EmbedAssets, SavedDesignCarriesItsMeshAndTerrainAndRunsWithoutThem) {
   s.robots[0].modules[1].frames[0].shape = "assets/cube.obj";
   s.scene.height_image = "assets/terrain.png";
   s.base_dir = dir;
+  EXPECT_TRUE(NamesAssetFiles(s));
 
   EmbedAssetFiles(s);
+  EXPECT_FALSE(NamesAssetFiles(s));  // the studio shows it ticked on reopening
   const std::string& shape = s.robots[0].modules[1].frames[0].shape;
   ASSERT_TRUE(IsEmbeddedMesh(shape));
   const EmbeddedMesh mesh = DecodeEmbeddedMesh(shape);

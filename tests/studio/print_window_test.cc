@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "sim_core/chain_builder.h"
+#include "sim_core/embed_assets.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/overlap_check.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/stl_export.h"
@@ -92,15 +94,44 @@ TEST_F(StudioPrintTest, PickAMeshForAllPitchModules) {
   EXPECT_EQ(ReadLayout(layout_)["overlaps"], "0");
   Click("Save");
   ASSERT_TRUE(WaitForLayout(layout_, "dirty", "0")) << studio_->Output();
+  // A design is one file by default: the mesh travels inside it.
+  EXPECT_EQ(ReadLayout(layout_)["embed"], "1");
   const Scenario saved = ReadScenarioFile(file_);
   int pitch = 0;
   for (const Module& m : saved.robots[0].modules) {
     for (const Frame& f : m.frames) {
-      EXPECT_EQ(f.shape, m.axis == Axis::kPitch ? "link.stl" : "Box");
+      if (m.axis == Axis::kPitch) {
+        EXPECT_TRUE(IsEmbeddedMesh(f.shape)) << f.shape.substr(0, 40);
+      } else {
+        EXPECT_EQ(f.shape, "Box");
+      }
     }
     pitch += m.axis == Axis::kPitch;
   }
   EXPECT_GE(pitch, 2);
+  studio_->Stop();
+}
+
+// "Embed terrain and meshes" shows how the opened file was saved: ticked
+// for a file that carries its meshes, unticked for one that names files.
+TEST_F(StudioPrintTest, EmbeddingShowsHowTheFileWasSaved) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string src = TempDir("studio_embed_state_src");
+  {
+    std::ofstream out(src + "/link.stl", std::ios::binary);
+    out << BinaryStl(BoxMesh(Eigen::Vector3d(0.07, 0.05, 0.05)), 1.0, "link");
+  }
+  Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
+  for (Frame& f : s.robots[0].modules[0].frames) f.shape = src + "/link.stl";
+  WriteScenarioFile(s, src + "/named.xml");
+  Start("studio_embed_state_named", src + "/named.xml");
+  EXPECT_TRUE(WaitForLayout(layout_, "embed", "0"));
+  studio_->Stop();
+  s.base_dir = src;
+  EmbedAssetFiles(s);
+  WriteScenarioFile(s, src + "/embedded.xml");
+  Start("studio_embed_state_embedded", src + "/embedded.xml");
+  EXPECT_TRUE(WaitForLayout(layout_, "embed", "1"));
   studio_->Stop();
 }
 
