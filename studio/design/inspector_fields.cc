@@ -27,8 +27,11 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       if (robot_ok() && in(sel.index, s.robots[sel.robot].modules.size())) {
         Module& m = s.robots[sel.robot].modules[sel.index];
         groups.push_back({"", "Module", FieldsOf(m)});
-        groups.push_back({"joint", "Joint",
-                          WithoutInert(FieldsOf(m.joint), {"breakForce"})});
+        // A module's joint is its hinge: Lock would be refused, and a lock
+        // never breaks there.
+        groups.push_back(
+            {"joint", "Joint",
+             WithoutInert(FieldsOf(m.joint), {"type", "breakForce"})});
         groups.push_back({"frames[0]", "Front frame",
                           WithoutInert(FieldsOf(m.frames[0]), {"rotation"})});
         groups.push_back({"frames[1]", "Back frame",

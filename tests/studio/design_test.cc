@@ -472,7 +472,7 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
   ball.position = Eigen::Vector3d(1, 0, 0.1);
   s.scene_objects.push_back(ball);
   const std::map<std::string, std::vector<std::string>> inert = {
-      {"joint", {"breakForce"}},
+      {"joint", {"type", "breakForce"}},  // Lock is refused on a module
       {"frames[0]", {"rotation"}},
       {"frames[1]", {"rotation"}},
       {"", {"rotation", "forceLockPosition", "distanceLockPosition"}},
