@@ -29,7 +29,8 @@ std::string Lines(const std::string& name, const PairedRatio& r, double value,
                   const std::string& unit, const std::string& what,
                   const std::string& note) {
   std::string out = "# " + name + ": " + std::to_string(r.ratios.size()) +
-                    " pairs, ratios " + Format("%.3f-%.3f", r.min, r.max);
+                    " pairs, ratios " + Format("%.3f-%.3f", r.min, r.max) +
+                    Format(" (IQR %.1f%%)", 100 * r.iqr);
   if (!what.empty()) {
     out += "; median " + what + " " +
            Format("%.4g / %.4g", r.median_a, r.median_b);
@@ -61,6 +62,23 @@ double RelativeIqr(std::vector<double> v) {
   return (Quantile(v, 0.75) - Quantile(v, 0.25)) / std::fabs(median);
 }
 
+double RelativeMedianInterval(std::vector<double> v) {
+  const size_t n = v.size();
+  if (n < 2) return 0;
+  std::sort(v.begin(), v.end());
+  const double median = Quantile(v, 0.5);
+  if (median == 0) return 0;
+  // Ranks (1-based) of the interval's ends: the number of values below the
+  // true median is binomial(n, 1/2), within n/2 -+ 1.96 sqrt(n)/2 95 times
+  // in 100.
+  const double half = 0.98 * std::sqrt(static_cast<double>(n));
+  const double n2 = static_cast<double>(n) / 2;
+  const size_t lo = static_cast<size_t>(std::max(1.0, std::floor(n2 - half)));
+  const size_t hi = static_cast<size_t>(
+      std::min(static_cast<double>(n), std::ceil(n2 + 1 + half)));
+  return (v[hi - 1] - v[lo - 1]) / std::fabs(median);
+}
+
 PairedRatio SummarizePairs(const std::vector<double>& a,
                            const std::vector<double>& b) {
   if (a.size() != b.size()) {
@@ -75,7 +93,8 @@ PairedRatio SummarizePairs(const std::vector<double>& a,
   }
   if (r.ratios.empty()) return r;
   r.median = Median(r.ratios);
-  r.spread = RelativeIqr(r.ratios);
+  r.spread = RelativeMedianInterval(r.ratios);
+  r.iqr = RelativeIqr(r.ratios);
   const auto [lo, hi] = std::minmax_element(r.ratios.begin(), r.ratios.end());
   r.min = *lo;
   r.max = *hi;

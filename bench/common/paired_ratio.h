@@ -19,11 +19,17 @@ namespace mrsim {
 // The statistics of one ratio over paired repeats.
 struct PairedRatio {
   double median = 0;  // median of the pair ratios a[i] / b[i]
-  // Relative interquartile range of the pair ratios, (q75 - q25) / median.
-  // With n pairs the median moves by about 0.93 x spread / sqrt(n) between
-  // runs (normal errors), so a spread of 5 % over 8 or more pairs keeps two
-  // runs' medians within about 5 % of each other.
+  // How far the median itself can be trusted: the width of its 95 %
+  // confidence interval (distribution-free, between the order statistics
+  // n/2 -+ 0.98 sqrt(n) of the pair ratios) over the median. Two runs'
+  // medians differ by less than this 99 times in 100, so a spread of 5 %
+  // is what "two runs within 5 % of each other" needs. More pairs narrow
+  // it as 1 / sqrt(n) even where single pairs scatter widely; with fewer
+  // than 11 pairs it is (max - min) / median.
   double spread = 0;
+  // The scatter of single pair ratios, (q75 - q25) / median: what one
+  // short measurement is worth on this machine right now.
+  double iqr = 0;
   double min = 0;  // smallest and largest pair ratio
   double max = 0;
   double median_a = 0;  // median of each side's own values
@@ -44,6 +50,10 @@ double Median(std::vector<double> v);
 // interpolation between order statistics (0 if fewer than 2 values).
 double RelativeIqr(std::vector<double> v);
 
+// Width of the distribution-free 95 % confidence interval of the median of
+// `v` over the median (0 if fewer than 2 values).
+double RelativeMedianInterval(std::vector<double> v);
+
 // Calls each of `measures` once per round, `rounds` times, in forward order
 // on even rounds and backward on odd ones (A B C, C B A, ...), and returns
 // each one's values in round order: result[k][r] is measures[k] in round r.
@@ -61,7 +71,8 @@ PairedRatio RunPaired(const std::function<double()>& a,
 inline constexpr double kReliableSpread = 0.05;
 
 // The lines of one ratio, in this order: a comment with the pairs, the
-// extremes and each side's median ("# name: 12 pairs, ..."), then
+// extremes, the pairs' IQR and each side's median ("# name: 12 pairs,
+// ..."), then
 // "BENCH name <median> unit" and "BENCH name_spread <spread %> %", and a
 // comment "# name: spread X% > 5%: not a reliable figure on this machine
 // right now" when the spread is larger. `what` names the two sides for the

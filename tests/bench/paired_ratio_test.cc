@@ -28,6 +28,33 @@ TEST(PairedRatioTest, RelativeIqrInterpolatesTheQuartiles) {
   EXPECT_DOUBLE_EQ(RelativeIqr({1}), 0);
 }
 
+// The ends of the interval are the 40th and 61st of 100 values (n/2 -+
+// 0.98 sqrt(n), widened to whole ranks); with 10 or fewer values, the
+// extremes.
+TEST(PairedRatioTest, MedianIntervalFromOrderStatistics) {
+  std::vector<double> v;
+  for (int i = 100; i >= 1; --i) v.push_back(i);
+  EXPECT_DOUBLE_EQ(RelativeMedianInterval(v), (61.0 - 40.0) / 50.5);
+  EXPECT_DOUBLE_EQ(RelativeMedianInterval({1, 2, 3, 4, 10}), 9.0 / 3.0);
+  EXPECT_DOUBLE_EQ(RelativeMedianInterval({2}), 0);
+}
+
+// Single pairs that scatter by +-20 % still give a steady median when
+// there are enough of them: the spread narrows as 1 / sqrt(n), the IQR
+// does not.
+TEST(PairedRatioTest, MorePairsNarrowTheSpreadNotTheIqr) {
+  auto scattered = [](int n) {
+    std::vector<double> a;
+    for (int i = 0; i < n; ++i) a.push_back(1.0 + 0.2 * std::sin(i * 2.4));
+    return SummarizePairs(a, std::vector<double>(n, 1.0));
+  };
+  const PairedRatio few = scattered(12), many = scattered(200);
+  EXPECT_GT(few.spread, 0.2);
+  EXPECT_LT(many.spread, few.spread / 3);
+  EXPECT_GT(many.iqr, 0.2);
+  EXPECT_NEAR(many.median, 1.0, 0.02);
+}
+
 // A load that doubles every time halfway through moves both sides of a
 // pair alike: each pair still says 1.2, where the sides' own values swing
 // by a factor of two.
@@ -41,6 +68,7 @@ TEST(PairedRatioTest, PairsCancelLoadThatHitsBothSides) {
   const PairedRatio r = SummarizePairs(a, b);
   EXPECT_NEAR(r.median, 1.2, 1e-12);
   EXPECT_NEAR(r.spread, 0, 1e-12);
+  EXPECT_NEAR(r.iqr, 0, 1e-12);
   EXPECT_NEAR(r.min, 1.2, 1e-12);
   EXPECT_NEAR(r.max, 1.2, 1e-12);
   EXPECT_EQ(r.ratios.size(), 10u);
@@ -52,7 +80,7 @@ TEST(PairedRatioTest, OneOutlierMovesNeitherMedianNorSpread) {
   std::vector<double> b(a.size(), 1.0);
   const PairedRatio r = SummarizePairs(a, b);
   EXPECT_DOUBLE_EQ(r.median, 1.00);
-  EXPECT_LT(r.spread, 0.02);
+  EXPECT_LT(r.iqr, 0.02);
   EXPECT_DOUBLE_EQ(r.max, 3.0);
   EXPECT_DOUBLE_EQ(r.min, 0.99);
 }
@@ -97,11 +125,11 @@ TEST(PairedRatioTest, RunPairedCancelsDrift) {
 TEST(PairedRatioTest, FormatPrintsValueThenSpread) {
   const PairedRatio r = SummarizePairs({1.1, 1.2, 1.3}, {1, 1, 1});
   const std::string out = FormatBench("decode_ratio", r, "x", "safe / plain");
-  EXPECT_THAT(out, HasSubstr("# decode_ratio: 3 pairs, ratios 1.100-1.300; "
-                             "median safe / plain 1.2 / 1\n"));
+  EXPECT_THAT(out, HasSubstr("# decode_ratio: 3 pairs, ratios 1.100-1.300 (IQR "
+                             "8.3%); median safe / plain 1.2 / 1\n"));
   EXPECT_THAT(out, HasSubstr("BENCH decode_ratio 1.200 x\n"
-                             "BENCH decode_ratio_spread 8.3 %\n"));
-  EXPECT_THAT(out, HasSubstr("# decode_ratio: spread 8.3% > 5%: not a "
+                             "BENCH decode_ratio_spread 16.7 %\n"));
+  EXPECT_THAT(out, HasSubstr("# decode_ratio: spread 16.7% > 5%: not a "
                              "reliable figure on this machine right now\n"));
 }
 
