@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "sim_core/sensor_face.h"
 #include "sim_core/sensor_kind.h"
+#include "studio/design/euler_degrees.h"
 #include "studio/design/inspector_fields.h"
 #include "studio/ui/panel_background.h"
 #include "studio/ui/widgets.h"
@@ -131,38 +133,19 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
           }
           ImGui::EndCombo();
         }
+      } else if (f.type() == FieldType::kQuaternion) {
+        DrawEulerDegrees(studio, f, address, key, w * 0.5f);
       } else {
-        auto edit = field_edits_.find(key);
-        std::string text = edit != field_edits_.end() ? edit->second : current;
-        const bool enter = ImGui::InputText(
-            "##v", &text, ImGuiInputTextFlags_EnterReturnsTrue);
-        const bool active = ImGui::IsItemActive();
-        if (active) {
-          field_edits_[key] = text;
-          // Checked as typed against the schema on a scratch copy.
-          try {
-            f.SetText(text);
-            field_errors_.erase(key);
-          } catch (const std::exception& e) {
-            field_errors_[key] = e.what();
-          }
-        }
-        if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
-          // Refused: the field shows the design's value again, so what is
-          // on screen is what is saved and run.
-          field_edits_.erase(key);
-          try {
-            studio.design.SetField(address, text);
-            field_errors_.erase(key);
-          } catch (const std::exception& e) {
-            field_errors_[key] =
-                "not applied, still " + current + ": " + e.what();
-          }
-        } else if (!active && field_edits_.erase(key) > 0) {
-          field_errors_.erase(key);  // typing abandoned (Escape)
-        }
+        TextField(
+            key, current, [&](const std::string& text) { f.SetText(text); },
+            [&](const std::string& text) {
+              studio.design.SetField(address, text);
+            });
       }
-      studio.Record("field " + g.sub + "/" + info.xml);
+      // A quaternion records its three rows itself.
+      if (f.type() != FieldType::kQuaternion || info.kept) {
+        studio.Record("field " + g.sub + "/" + info.xml);
+      }
       auto error = field_errors_.find(key);
       if (error != field_errors_.end()) {
         ImGui::PushTextWrapPos(0);
@@ -175,6 +158,89 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     ImGui::PopID();
   }
   ImGui::End();
+}
+
+bool InspectorPanel::TextField(
+    const std::string& key, const std::string& current,
+    const std::function<void(const std::string&)>& check,
+    const std::function<void(const std::string&)>& apply) {
+  auto edit = field_edits_.find(key);
+  std::string text = edit != field_edits_.end() ? edit->second : current;
+  const bool enter = ImGui::InputText(
+      "##v", &text,
+      ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  const bool active = ImGui::IsItemActive();
+  if (active) {
+    field_edits_[key] = text;
+    // Checked as typed against the schema on a scratch copy.
+    try {
+      check(text);
+      field_errors_.erase(key);
+    } catch (const std::exception& e) {
+      field_errors_[key] = e.what();
+    }
+  }
+  if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
+    // Refused: the field shows the design's value again, so what is on
+    // screen is what is saved and run.
+    field_edits_.erase(key);
+    try {
+      apply(text);
+      field_errors_.erase(key);
+      return true;
+    } catch (const std::exception& e) {
+      field_errors_[key] = "not applied, still " + current + ": " + e.what();
+    }
+  } else if (!active && field_edits_.erase(key) > 0) {
+    field_errors_.erase(key);  // typing abandoned (Escape)
+  }
+  return false;
+}
+
+void InspectorPanel::DrawEulerDegrees(StudioContext& studio, const FieldRef& f,
+                                      const FieldAddress& address,
+                                      const std::string& key, float left) {
+  // Degrees are what a student thinks in; the quaternion the file keeps
+  // (x y z w there, w x y z in messages) is written from them.
+  const Eigen::Quaterniond stored = *std::get<Eigen::Quaterniond*>(f.value());
+  const Eigen::Vector3d rpy = EulerDegreesFromQuaternion(stored);
+  static constexpr const char* kAxes[3] = {"roll", "pitch", "yaw"};
+  const float width = ImGui::GetContentRegionAvail().x;
+  for (int k = 0; k < 3; ++k) {
+    ImGui::PushID(k);
+    if (k > 0) ImGui::SetCursorPosX(left);
+    ImGui::TextDisabled("%s", kAxes[k]);
+    if (ImGui::IsItemHovered()) WrappedTooltip(kEulerConvention);
+    ImGui::SameLine(left + 50);
+    ImGui::SetNextItemWidth(width - 50);
+    const std::string component_key = key + " " + kAxes[k];
+    const auto with = [&](const std::string& text) {
+      Eigen::Vector3d next = rpy;
+      next[k] = ParseNumber(text);
+      if (!std::isfinite(next[k])) throw FieldError("expected a number");
+      return next;
+    };
+    TextField(
+        component_key, ShortNumbers(FormatNumber(rpy[k])),
+        [&](const std::string& text) { with(text); },
+        [&](const std::string& text) {
+          const Eigen::Quaterniond q = QuaternionFromEulerDegrees(with(text));
+          studio.design.SetField(
+              address, FormatNumber(q.x()) + " " + FormatNumber(q.y()) + " " +
+                           FormatNumber(q.z()) + " " + FormatNumber(q.w()));
+        });
+    studio.Record("field " + address.sub + "/" + address.field + " " +
+                  kAxes[k]);
+    // A refusal shows under the field the student typed in.
+    auto error = field_errors_.find(component_key);
+    if (error != field_errors_.end()) {
+      ImGui::PushTextWrapPos(0);
+      ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s",
+                         error->second.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::PopID();
+  }
 }
 
 void InspectorPanel::DrawSensorMounts(StudioContext& studio,

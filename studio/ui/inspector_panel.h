@@ -3,6 +3,7 @@
 // checked as typed; a sensor module's force plate and distance sensors.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 
@@ -19,6 +20,17 @@ class InspectorPanel {
   // Force plate on/off and distance sensors of the selected sensor module.
   void DrawSensorMounts(StudioContext& studio, const Scenario& view,
                         const Selection& sel);
+
+  // An InputText for `key` that keeps what is typed until Enter or leaving
+  // the field: `check` throws on text it refuses (shown as typed), `apply`
+  // writes the text to the design. True when applied.
+  bool TextField(const std::string& key, const std::string& current,
+                 const std::function<void(const std::string&)>& check,
+                 const std::function<void(const std::string&)>& apply);
+  // A quaternion field as roll, pitch and yaw in degrees, one row each.
+  void DrawEulerDegrees(StudioContext& studio, const FieldRef& f,
+                        const FieldAddress& address, const std::string& key,
+                        float left);
 
   std::map<std::string, std::string> field_errors_;  // by field key
   std::map<std::string, std::string> field_edits_;   // text being typed
