@@ -127,7 +127,10 @@ struct FieldLimits {
 
 // One field of a part. The type comes from the member it describes.
 struct FieldInfo {
-  const char* xml;     // element name in the file, e.g. "Kp"
+  const char* xml;  // element name in the file, e.g. "Kp"
+  // In words for a person, without the unit, e.g. "gain Kp": the studio's
+  // label (with the unit after it), the XML name going to its tooltip.
+  const char* label;
   const char* member;  // C++ member, e.g. "kp"
   const char* unit;    // "m", "kg", "rad", "rad/s", "N m", ... or ""
   FieldLimits limits;

@@ -35,15 +35,12 @@ inline ChildInfo Wrapper(const char* xml, const char* item, const char* member,
 template <typename V>
 void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
                   Eigen::Quaterniond& quat) {
-  static const FieldInfo kPosition{"position",
-                                   "position",
-                                   "m",
-                                   L::Coordinate(),
-                                   "Position of the centre",
-                                   false,
-                                   G::kLengthVector};
+  static const FieldInfo kPosition{
+      "position",      "centre position",        "position", "m",
+      L::Coordinate(), "Position of the centre", false,      G::kLengthVector};
   static const FieldInfo kRotation{
       "rotation",
+      "Euler angles as stored",
       "rotation",
       "deg",
       L::Any(),
@@ -52,6 +49,7 @@ void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
       false,
       G::kEuler};
   static const FieldInfo kQuat{"quatRotation",
+                               "orientation",
                                "quat_rotation",
                                "",
                                L::NonZero(),
@@ -66,19 +64,20 @@ void DescribePose(V& v, Eigen::Vector3d& position, Eigen::Vector3d& rotation,
 
 template <typename V>
 void Describe(V& v, Frame& f) {
-  static const FieldInfo kGuid{"guid",
-                               "guid",
-                               "",
-                               L::NonEmpty(),
-                               "Unique id joints refer to",
-                               true,
-                               Geometry::kNone,
-                               false,
-                               true};
+  static const FieldInfo kGuid{"guid",        "id",
+                               "guid",        "",
+                               L::NonEmpty(), "Unique id joints refer to",
+                               true,          Geometry::kNone,
+                               false,         true};
   static const FieldInfo kShape{
-      "shape", "shape", "", L::NonEmpty(),
+      "shape",
+      "Box or mesh file",
+      "shape",
+      "",
+      L::NonEmpty(),
       "Box, or a mesh file (.obj or .stl) relative to the scenario file"};
   static const FieldInfo kScale{"scale",
+                                "scale",
                                 "scale",
                                 "m",
                                 L::Size(),
@@ -88,12 +87,18 @@ void Describe(V& v, Frame& f) {
                                 false,
                                 G::kLengthVector,
                                 true};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
-                               "Mass of the frame (static frames too)"};
-  static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
-                                 "Fixed to the world where it is placed"};
+  static const FieldInfo kMass{
+      "mass", "mass",    "mass",
+      "kg",   L::Mass(), "Mass of the frame (static frames too)"};
+  static const FieldInfo kStatic{
+      "isStatic", "fixed in place", "is_static",
+      "",         L::Any(),         "Fixed to the world where it is placed"};
   static const FieldInfo kMaterial{
-      "materialName", "material_name", "", L::Any(),
+      "materialName",
+      "material",
+      "material_name",
+      "",
+      L::Any(),
       "Material name; ContactFriction pairs give its contact parameters"};
   v.Field(kGuid, f.guid);
   v.Field(kShape, f.shape);
@@ -106,11 +111,14 @@ void Describe(V& v, Frame& f) {
 
 template <typename V>
 void Describe(V& v, Joint& j) {
-  static const FieldInfo kGuid{
-      "guid", "guid",          "",    L::NonEmpty(), "Unique id of the joint",
-      true,   Geometry::kNone, false, true};
+  static const FieldInfo kGuid{"guid",        "joint id",
+                               "guid",        "",
+                               L::NonEmpty(), "Unique id of the joint",
+                               true,          Geometry::kNone,
+                               false,         true};
   static const FieldInfo kLeft{
       "leftFrameGuid",
+      "first part joined",
       "left_frame_guid",
       "",
       L::NonEmpty(),
@@ -120,6 +128,7 @@ void Describe(V& v, Joint& j) {
       false,
       true};
   static const FieldInfo kRight{"rightFrameGuid",
+                                "second part joined",
                                 "right_frame_guid",
                                 "",
                                 L::NonEmpty(),
@@ -130,30 +139,47 @@ void Describe(V& v, Joint& j) {
                                 true};
   static const FieldInfo kType{
       "type",
+      "joint type",
       "type",
       "",
       L::Any(),
       "Hinge (motorised, turns about the module axis) or Lock (rigid)",
       true};
-  static const FieldInfo kLower{"lowerRangeLimit", "lower_range_limit", "rad",
-                                L::Any(), "Hinge: lowest angle"};
-  static const FieldInfo kUpper{"upperRangeLimit", "upper_range_limit", "rad",
-                                L::Any(), "Hinge: highest angle"};
+  static const FieldInfo kLower{
+      "lowerRangeLimit", "lowest angle",       "lower_range_limit", "rad",
+      L::Any(),          "Hinge: lowest angle"};
+  static const FieldInfo kUpper{
+      "upperRangeLimit", "highest angle",       "upper_range_limit", "rad",
+      L::Any(),          "Hinge: highest angle"};
   static const FieldInfo kKp{
-      "Kp", "kp", "1/s", L::NonNegative(),
+      "Kp",
+      "gain Kp",
+      "kp",
+      "1/s",
+      L::NonNegative(),
       "Hinge: servo gain, speed = Kp * (target - angle)"};
   static const FieldInfo kMaxVel{
-      "max_vel", "max_vel", "rad/s", L::NonNegative(),
+      "max_vel",
+      "top speed",
+      "max_vel",
+      "rad/s",
+      L::NonNegative(),
       "Hinge: speed limit of the servo (positive; locks ignore it)"};
   static const FieldInfo kVelocityGain{
-      "velocityGain", "velocity_gain", "N m s/rad", L::Positive(),
+      "velocityGain",
+      "velocity gain",
+      "velocity_gain",
+      "N m s/rad",
+      L::Positive(),
       "Hinge: torque per rad/s of speed error in the servo's velocity loop"};
   static const FieldInfo kMaxTorque{
-      "maxTorque", "max_torque", "N m", L::Positive(),
-      "Hinge: stall torque, the most the servo can apply"};
+      "maxTorque",   "stall torque",
+      "max_torque",  "N m",
+      L::Positive(), "Hinge: stall torque, the most the servo can apply"};
   static const FieldInfo kBreakForce{
-      "breakForce", "break_force", "N", L::NonNegative(),
-      "Lock: force at which it breaks; 0 never breaks"};
+      "breakForce",     "breaking force",
+      "break_force",    "N",
+      L::NonNegative(), "Lock: force at which it breaks; 0 never breaks"};
   v.Field(kGuid, j.guid);
   v.Field(kLeft, j.left_frame_guid);
   v.Field(kRight, j.right_frame_guid);
@@ -171,24 +197,18 @@ template <typename V>
 void Describe(V& v, Module& m) {
   static const FieldInfo kNr{
       "mod_Nr",
+      "module number",
       "mod_nr",
       "",
       L::Any(),
       "Module number, unique in its robot; sensor modules refer to it",
       true};
-  static const FieldInfo kPosition{"position",
-                                   "position",
-                                   "m",
-                                   L::Coordinate(),
-                                   "Position of the hinge",
-                                   false,
-                                   G::kLengthVector};
+  static const FieldInfo kPosition{
+      "position",      "hinge position",        "position", "m",
+      L::Coordinate(), "Position of the hinge", false,      G::kLengthVector};
   static const FieldInfo kAxis{
-      "axis",
-      "axis",
-      "",
-      L::Any(),
-      "Pitch (bends up/down) or Yaw (bends left/right)",
+      "axis", "bends (axis)", "axis",
+      "",     L::Any(),       "Pitch (bends up/down) or Yaw (bends left/right)",
       true};
   static const ChildInfo kFrames{"frames", "Frame", "frames",
                                  "The two rigid bodies", true};
@@ -199,6 +219,7 @@ void Describe(V& v, Module& m) {
   v.Field(kAxis, m.axis);
   static const FieldInfo kWheels{
       "passiveWheels",
+      "passive wheels",
       "passive_wheels",
       "",
       L::Any(),
@@ -218,6 +239,7 @@ template <typename V>
 void Describe(V& v, ForceSensor& s) {
   static const FieldInfo kGuid{
       "guid",
+      "id",
       "guid",
       "",
       L::Any(),
@@ -226,43 +248,36 @@ void Describe(V& v, ForceSensor& s) {
       Geometry::kNone,
       false,
       true};
-  static const FieldInfo kForce{"forceValue",
-                                "force_value",
-                                "N",
-                                L::Any(),
-                                "Last reading the original saved; not an input",
-                                false,
-                                Geometry::kNone,
-                                false,
-                                true};
-  static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
+  static const FieldInfo kForce{
+      "forceValue",  "force reading",
+      "force_value", "N",
+      L::Any(),      "Last reading the original saved; not an input",
+      false,         Geometry::kNone,
+      false,         true};
+  static const FieldInfo kFace{"sensorPosition",
+                               "face",
+                               "sensor_position",
+                               "",
                                L::Range(0, 3, kForcePlateFaceList),
                                "Face of the sensor module the plate is on"};
-  static const FieldInfo kPosition{"position",
-                                   "position",
-                                   "m",
-                                   L::Coordinate(),
-                                   "Position of the plate",
-                                   false,
-                                   G::kLengthVector};
-  static const FieldInfo kRotation{"rotation",
-                                   "rotation",
-                                   "",
-                                   L::NonZero(),
-                                   "Orientation of the plate as a quaternion",
-                                   false,
-                                   G::kQuaternion};
-  static const FieldInfo kMaterial{"materialName", "material_name", "",
-                                   L::Any(), "Material of the plate"};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
-                               "Mass of the plate"};
-  static const FieldInfo kSize{"size",
-                               "size",
-                               "m",
-                               L::Size(),
-                               "Plate extents; z is its thickness",
-                               false,
-                               G::kLengthVector};
+  static const FieldInfo kPosition{"position",      "position",
+                                   "position",      "m",
+                                   L::Coordinate(), "Position of the plate",
+                                   false,           G::kLengthVector};
+  static const FieldInfo kRotation{
+      "rotation",   "Euler angles as stored",
+      "rotation",   "",
+      L::NonZero(), "Orientation of the plate as a quaternion",
+      false,        G::kQuaternion};
+  static const FieldInfo kMaterial{"materialName",  "material",
+                                   "material_name", "",
+                                   L::Any(),        "Material of the plate"};
+  static const FieldInfo kMass{"mass", "mass",    "mass",
+                               "kg",   L::Mass(), "Mass of the plate"};
+  static const FieldInfo kSize{"size",    "size",
+                               "size",    "m",
+                               L::Size(), "Plate extents; z is its thickness",
+                               false,     G::kLengthVector};
   v.Field(kGuid, s.guid);
   v.Field(kForce, s.force_value);
   v.Field(kFace, s.sensor_position);
@@ -277,6 +292,7 @@ template <typename V>
 void Describe(V& v, DistanceSensor& s) {
   static const FieldInfo kGuid{
       "guid",
+      "id",
       "guid",
       "",
       L::Any(),
@@ -285,15 +301,20 @@ void Describe(V& v, DistanceSensor& s) {
       Geometry::kNone,
       false,
       true};
-  static const FieldInfo kFace{"sensorPosition", "sensor_position", "",
+  static const FieldInfo kFace{"sensorPosition",
+                               "face",
+                               "sensor_position",
+                               "",
                                L::Range(0, 5, kSensorFaceList),
                                "Face of the sensor module the ray starts from"};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
-                               "Mass of the sensor"};
-  static const FieldInfo kSize{
-      "size", "size",          "m", L::Size(), "Extents of the sensor body",
-      false,  G::kLengthVector};
+  static const FieldInfo kMass{"mass", "mass",    "mass",
+                               "kg",   L::Mass(), "Mass of the sensor"};
+  static const FieldInfo kSize{"size",    "size",
+                               "size",    "m",
+                               L::Size(), "Extents of the sensor body",
+                               false,     G::kLengthVector};
   static const FieldInfo kRange{"max_rayDistance",
+                                "max ray distance",
                                 "max_ray_distance",
                                 "m",
                                 L::Size(),
@@ -301,15 +322,13 @@ void Describe(V& v, DistanceSensor& s) {
                                 false,
                                 G::kLength};
   static const FieldInfo kDirection{
-      "ray_Direction",
-      "ray_direction",
-      "",
-      L::NonZero(),
-      "Ray direction in the sensor module's frame",
-      false,
-      G::kDirection};
+      "ray_Direction", "ray direction",
+      "ray_direction", "",
+      L::NonZero(),    "Ray direction in the sensor module's frame",
+      false,           G::kDirection};
   static const FieldInfo kResolution{
       "ray_Resolution",
+      "ray resolution",
       "ray_resolution",
       "m",
       L::Size(),
@@ -329,22 +348,28 @@ void Describe(V& v, DistanceSensor& s) {
 
 template <typename V>
 void Describe(V& v, Imu& s) {
-  static const FieldInfo kGuid{"guid",
-                               "guid",
-                               "",
-                               L::Any(),
-                               "Id of the IMU (optional; nothing refers to it)",
-                               false,
-                               Geometry::kNone,
-                               false,
-                               true};
+  static const FieldInfo kGuid{
+      "guid",   "id",
+      "guid",   "",
+      L::Any(), "Id of the IMU (optional; nothing refers to it)",
+      false,    Geometry::kNone,
+      false,    true};
   static const FieldInfo kAccelNoise{
-      "accelNoise", "accel_noise", "m/s^2", L::NonNegative(),
+      "accelNoise",
+      "accelerometer noise",
+      "accel_noise",
+      "m/s^2",
+      L::NonNegative(),
       "Standard deviation of the accelerometer's white noise; 0: none"};
   static const FieldInfo kGyroNoise{
-      "gyroNoise", "gyro_noise", "rad/s", L::NonNegative(),
+      "gyroNoise",
+      "gyroscope noise",
+      "gyro_noise",
+      "rad/s",
+      L::NonNegative(),
       "Standard deviation of the gyroscope's white noise; 0: none"};
   static const FieldInfo kAccelBias{"accelBias",
+                                    "accelerometer bias",
                                     "accel_bias",
                                     "m/s^2",
                                     L::Any(),
@@ -355,11 +380,16 @@ void Describe(V& v, Imu& s) {
   // An angular rate is an axial vector: a change of handedness flips it
   // too, so it is left alone rather than mirrored wrongly.
   static const FieldInfo kGyroBias{
-      "gyroBias", "gyro_bias", "rad/s", L::Any(),
+      "gyroBias",
+      "gyroscope bias",
+      "gyro_bias",
+      "rad/s",
+      L::Any(),
       "Constant offset of every gyroscope reading, in the module's frame"};
   static const FieldInfo kSeed{
-      "seed", "seed", "", L::Any(),
-      "Seed of the noise: the same seed gives the same readings"};
+      "seed",   "noise seed",
+      "seed",   "",
+      L::Any(), "Seed of the noise: the same seed gives the same readings"};
   v.Field(kGuid, s.guid);
   v.Field(kAccelNoise, s.accel_noise);
   v.Field(kGyroNoise, s.gyro_noise);
@@ -370,35 +400,23 @@ void Describe(V& v, Imu& s) {
 
 template <typename V>
 void Describe(V& v, SensorModule& s) {
-  static const FieldInfo kGuid{"guid",
-                               "guid",
-                               "",
-                               L::NonEmpty(),
-                               "Unique id of the sensor module",
-                               true,
-                               Geometry::kNone,
-                               false,
-                               true};
+  static const FieldInfo kGuid{"guid",        "id",
+                               "guid",        "",
+                               L::NonEmpty(), "Unique id of the sensor module",
+                               true,          Geometry::kNone,
+                               false,         true};
   static const FieldInfo kLeft{
-      "leftMod_Nr",
-      "left_mod_nr",
-      "",
-      L::AtLeast(-1),
-      "mod_Nr of the module on one side; -1: chain end",
-      false,
-      Geometry::kNone,
-      false,
-      true};
+      "leftMod_Nr",   "left neighbour module",
+      "left_mod_nr",  "",
+      L::AtLeast(-1), "mod_Nr of the module on one side; -1: chain end",
+      false,          Geometry::kNone,
+      false,          true};
   static const FieldInfo kRight{
-      "rightMod_Nr",
-      "right_mod_nr",
-      "",
-      L::AtLeast(-1),
-      "mod_Nr of the module on the other side; -1: chain end",
-      false,
-      Geometry::kNone,
-      false,
-      true};
+      "rightMod_Nr",  "right neighbour module",
+      "right_mod_nr", "",
+      L::AtLeast(-1), "mod_Nr of the module on the other side; -1: chain end",
+      false,          Geometry::kNone,
+      false,          true};
   static const ChildInfo kForce{"forceSensor", "", "force_sensor",
                                 "At most one force plate"};
   static const ChildInfo kForceLock = [] {
@@ -409,6 +427,7 @@ void Describe(V& v, SensorModule& s) {
   }();
   static const FieldInfo kForceLockPosition{
       "forceLockPosition",
+      "force plate lock position",
       "force_lock_position",
       "m",
       L::Coordinate(),
@@ -423,6 +442,7 @@ void Describe(V& v, SensorModule& s) {
   }();
   static const FieldInfo kDistanceLockPosition{
       "distanceLockPosition",
+      "distance sensor lock position",
       "distance_lock_position",
       "m",
       L::Coordinate(),
@@ -440,34 +460,26 @@ void Describe(V& v, SensorModule& s) {
   static const ChildInfo kImu{
       "imu", "", "imu",
       "At most one IMU (accelerometer and gyroscope) at the box's centre"};
-  static const FieldInfo kSize{
-      "size", "size",          "m", L::Size(), "Extents of the box",
-      false,  G::kLengthVector};
-  static const FieldInfo kMass{"mass", "mass", "kg", L::Mass(),
-                               "Mass of the box"};
-  static const FieldInfo kMaterial{"materialName", "material_name", "",
-                                   L::Any(), "Material of the box"};
-  static const FieldInfo kPosition{"position",
-                                   "position",
-                                   "m",
-                                   L::Coordinate(),
-                                   "Position of the centre",
-                                   false,
-                                   G::kLengthVector};
-  static const FieldInfo kRotation{"rotation",
-                                   "rotation",
-                                   "deg",
-                                   L::Any(),
-                                   "Euler angles as the original stored them",
-                                   false,
-                                   G::kEuler};
-  static const FieldInfo kQuat{"quatRotation",
-                               "quat_rotation",
-                               "",
-                               L::NonZero(),
-                               "Orientation as a quaternion",
-                               false,
-                               G::kQuaternion};
+  static const FieldInfo kSize{"size", "size",          "size",
+                               "m",    L::Size(),       "Extents of the box",
+                               false,  G::kLengthVector};
+  static const FieldInfo kMass{"mass", "mass",    "mass",
+                               "kg",   L::Mass(), "Mass of the box"};
+  static const FieldInfo kMaterial{"materialName",  "material",
+                                   "material_name", "",
+                                   L::Any(),        "Material of the box"};
+  static const FieldInfo kPosition{
+      "position",      "centre position",        "position", "m",
+      L::Coordinate(), "Position of the centre", false,      G::kLengthVector};
+  static const FieldInfo kRotation{
+      "rotation", "Euler angles as stored",
+      "rotation", "deg",
+      L::Any(),   "Euler angles as the original stored them",
+      false,      G::kEuler};
+  static const FieldInfo kQuat{"quatRotation",  "orientation",
+                               "quat_rotation", "",
+                               L::NonZero(),    "Orientation as a quaternion",
+                               false,           G::kQuaternion};
   v.Field(kGuid, s.guid);
   v.Field(kLeft, s.left_mod_nr);
   v.Field(kRight, s.right_mod_nr);
@@ -489,7 +501,11 @@ void Describe(V& v, SensorModule& s) {
 template <typename V>
 void Describe(V& v, Robot& r) {
   static const FieldInfo kName{
-      "name", "name", "", L::Any(),
+      "name",
+      "robot name",
+      "name",
+      "",
+      L::Any(),
       "Unique robot name (letters, digits, _ - .); used in LCM channels; "
       "robot<i> when left out"};
   static const ChildInfo kModules = [] {
@@ -518,13 +534,19 @@ void Describe(V& v, Robot& r) {
 
 template <typename V>
 void Describe(V& v, Scene& s) {
-  static const FieldInfo kGuid{"guid", "guid", "", L::Any(),
-                               "Id of the terrain (optional)"};
+  static const FieldInfo kGuid{"guid",   "terrain id",
+                               "guid",   "",
+                               L::Any(), "Id of the terrain (optional)"};
   static const FieldInfo kImage{
-      "height_Image", "height_image", "", L::Any(),
+      "height_Image",
+      "height image",
+      "height_image",
+      "",
+      L::Any(),
       "Grey-scale height image: a file path or base64 image bytes; empty: "
       "a flat ground plane"};
   static const FieldInfo kPosition{"position",
+                                   "position",
                                    "position",
                                    "m",
                                    L::Coordinate(),
@@ -532,12 +554,14 @@ void Describe(V& v, Scene& s) {
                                    "height)",
                                    false,
                                    G::kLengthVector};
-  static const FieldInfo kMaterial{"materialName", "material_name", "",
-                                   L::Any(), "Material of the ground"};
+  static const FieldInfo kMaterial{"materialName",  "material",
+                                   "material_name", "",
+                                   L::Any(),        "Material of the ground"};
   static const FieldInfo kHeight{
-      "height", "height",  "m", L::Length(), "Height of the brightest pixel",
-      false,    G::kLength};
+      "height",    "height of the brightest pixel", "height", "m",
+      L::Length(), "Height of the brightest pixel", false,    G::kLength};
   static const FieldInfo kPixel{"metersPerPixel",
+                                "metres per pixel",
                                 "meters_per_pixel",
                                 "m",
                                 L::Size(),
@@ -562,9 +586,11 @@ void Describe(V& v, Scene& s) {
 
 template <typename V>
 void Describe(V& v, SceneObject& o) {
-  static const FieldInfo kGuid{
-      "guid", "guid", "", L::NonEmpty(), "Unique id of the object", true};
+  static const FieldInfo kGuid{"guid", "name",        "guid",
+                               "",     L::NonEmpty(), "Unique id of the object",
+                               true};
   static const FieldInfo kSize{
+      "size",
       "size",
       "size",
       "m",
@@ -573,15 +599,22 @@ void Describe(V& v, SceneObject& o) {
       "diameter, z length",
       false,
       G::kLengthVector};
-  static const FieldInfo kMaterial{"materialName", "material_name", "",
-                                   L::Any(), "Material of the object"};
-  static const FieldInfo kShape{
-      "shape", "shape", "", L::Any(), "Box, Sphere, Cylinder or Capsule", true};
-  static const FieldInfo kMass{"mass", "mass", "kg",
+  static const FieldInfo kMaterial{"materialName",  "material",
+                                   "material_name", "",
+                                   L::Any(),        "Material of the object"};
+  static const FieldInfo kShape{"shape",  "solid shape",
+                                "shape",  "",
+                                L::Any(), "Box, Sphere, Cylinder or Capsule",
+                                true};
+  static const FieldInfo kMass{"mass",
+                               "mass",
+                               "mass",
+                               "kg",
                                L::NonNegative().Within(kMaxMass),
                                "Mass; positive unless the object is static"};
-  static const FieldInfo kStatic{"isStatic", "is_static", "", L::Any(),
-                                 "Fixed to the world where it is placed"};
+  static const FieldInfo kStatic{
+      "isStatic", "fixed in place", "is_static",
+      "",         L::Any(),         "Fixed to the world where it is placed"};
   v.Field(kGuid, o.guid);
   v.Field(kSize, o.size);
   DescribePose(v, o.position, o.rotation, o.quat_rotation);
@@ -593,22 +626,26 @@ void Describe(V& v, SceneObject& o) {
 
 template <typename V>
 void Describe(V& v, ContactFriction& f) {
-  static const FieldInfo kM1{
-      "material1", "material1", "", L::NonEmpty(), "First material of the pair",
-      true};
-  static const FieldInfo kM2{"material2",
-                             "material2",
-                             "",
-                             L::NonEmpty(),
-                             "Second material (order does not matter)",
+  static const FieldInfo kM1{"material1",   "first material",
+                             "material1",   "",
+                             L::NonEmpty(), "First material of the pair",
                              true};
+  static const FieldInfo kM2{
+      "material2", "second material", "material2",
+      "",          L::NonEmpty(),     "Second material (order does not matter)",
+      true};
   static const FieldInfo kRestitution{
-      "restitution", "restitution", "", L::Range(0, 1),
-      "Bounce: 0 none (critically damped) .. 1 elastic"};
-  static const FieldInfo kFriction{"friction", "friction", "", L::NonNegative(),
-                                   "Sliding friction coefficient"};
+      "restitution",  "bounciness (restitution)",
+      "restitution",  "",
+      L::Range(0, 1), "Bounce: 0 none (critically damped) .. 1 elastic"};
+  static const FieldInfo kFriction{
+      "friction", "friction coefficient", "friction",
+      "",         L::NonNegative(),       "Sliding friction coefficient"};
   // Diamond's is about 1.2e12 Pa.
-  static const FieldInfo kYoung{"youngsModulus", "youngs_modulus", "Pa",
+  static const FieldInfo kYoung{"youngsModulus",
+                                "stiffness (Young's modulus)",
+                                "youngs_modulus",
+                                "Pa",
                                 L::Positive().Within(1e13),
                                 "Stiffness of the contact (docs/physics.md)"};
   v.Field(kM1, f.material1);
@@ -619,6 +656,7 @@ void Describe(V& v, ContactFriction& f) {
   // a contact patch's size.
   static const FieldInfo kDirectional{
       "directional",
+      "friction by direction",
       "directional",
       "",
       L::Any(),
@@ -631,6 +669,7 @@ void Describe(V& v, ContactFriction& f) {
       "false"};
   static const FieldInfo kForward{
       "forwardFriction",
+      "forward friction",
       "forward_friction",
       "",
       L::NonNegative().Within(10),
@@ -642,6 +681,7 @@ void Describe(V& v, ContactFriction& f) {
       "0.5"};
   static const FieldInfo kBackward{
       "backwardFriction",
+      "backward friction",
       "backward_friction",
       "",
       L::NonNegative().Within(10),
@@ -653,6 +693,7 @@ void Describe(V& v, ContactFriction& f) {
       "0.5"};
   static const FieldInfo kLateral{
       "lateralFriction",
+      "sideways friction",
       "lateral_friction",
       "",
       L::NonNegative().Within(10),
@@ -664,6 +705,7 @@ void Describe(V& v, ContactFriction& f) {
       "0.5"};
   static const FieldInfo kTorsional{
       "torsionalFriction",
+      "torsional friction",
       "torsional_friction",
       "m",
       L::Length().Within(1),
@@ -674,6 +716,7 @@ void Describe(V& v, ContactFriction& f) {
       false,
       "0"};
   static const FieldInfo kRolling{"rollingFriction",
+                                  "rolling friction",
                                   "rolling_friction",
                                   "m",
                                   L::Length().Within(1),
@@ -695,30 +738,32 @@ void Describe(V& v, ContactFriction& f) {
 
 template <typename V>
 void Describe(V& v, FluidRegion& r) {
-  static const FieldInfo kGuid{"guid", "guid", "", L::Any(),
-                               "Id of the region (optional)"};
+  static const FieldInfo kGuid{"guid", "name",   "guid",
+                               "",     L::Any(), "Id of the region (optional)"};
   static const FieldInfo kKind{
       "kind",
+      "water or air",
       "kind",
       "",
       L::Any(),
       "Water (buoyancy and drag) or Air (drag); sets density and viscosity "
       "defaults",
       true};
-  static const FieldInfo kPosition{"position",      "position",          "m",
-                                   L::Coordinate(), "Centre of the box", false,
-                                   G::kLengthVector};
-  static const FieldInfo kSize{
-      "size", "size",          "m", L::Size(), "Extents of the box",
-      false,  G::kLengthVector};
-  static const FieldInfo kDensity{"density", "density", "kg/m^3", L::Positive(),
-                                  "Density of the fluid"};
-  static const FieldInfo kViscosity{"viscosity", "viscosity", "Pa s",
-                                    L::NonNegative(),
-                                    "Dynamic viscosity of the fluid"};
+  static const FieldInfo kPosition{
+      "position",      "position",          "position", "m",
+      L::Coordinate(), "Centre of the box", false,      G::kLengthVector};
+  static const FieldInfo kSize{"size", "size",          "size",
+                               "m",    L::Size(),       "Extents of the box",
+                               false,  G::kLengthVector};
+  static const FieldInfo kDensity{"density",     "density",
+                                  "density",     "kg/m^3",
+                                  L::Positive(), "Density of the fluid"};
+  static const FieldInfo kViscosity{
+      "viscosity", "viscosity",      "viscosity",
+      "Pa s",      L::NonNegative(), "Dynamic viscosity of the fluid"};
   static const FieldInfo kVelocity{
-      "velocity", "velocity",      "m/s", L::Any(), "Flow or wind velocity",
-      false,      G::kLengthVector};
+      "velocity", "flow velocity",         "velocity", "m/s",
+      L::Any(),   "Flow or wind velocity", false,      G::kLengthVector};
   v.Field(kGuid, r.guid);
   v.Field(kKind, r.kind);
   v.Field(kPosition, r.position);
@@ -730,17 +775,17 @@ void Describe(V& v, FluidRegion& r) {
 
 template <typename V>
 void Describe(V& v, SimulationSettings& s) {
-  static const FieldInfo kTimestep{"timestep", "timestep", "s",
+  static const FieldInfo kTimestep{"timestep",
+                                   "time step",
+                                   "timestep",
+                                   "s",
                                    L::Range(kMinTimestep, kMaxTimestep),
                                    "Physics step"};
   static const FieldInfo kGravity{
-      "gravity",
-      "gravity",
-      "m/s^2",
-      L::Any(),
-      "Gravity; a unit scale (convert --scale) leaves it alone",
-      false,
-      G::kDirection};
+      "gravity", "gravity",
+      "gravity", "m/s^2",
+      L::Any(),  "Gravity; a unit scale (convert --scale) leaves it alone",
+      false,     G::kDirection};
   v.Field(kTimestep, s.timestep);
   v.Field(kGravity, s.gravity);
 }
@@ -748,23 +793,44 @@ void Describe(V& v, SimulationSettings& s) {
 template <typename V>
 void Describe(V& v, RunSettings& r) {
   static const FieldInfo kClock{
-      "clock", "clock", "", L::Any(),
+      "clock",
+      "clock mode",
+      "clock",
+      "",
+      L::Any(),
       "How simulated time runs: realtime, fast or lockstep (mrsim-sim "
       "--clock)"};
   static const FieldInfo kRate{
-      "rate", "rate", "Hz", L::Positive().Within(kMaxControlRate),
+      "rate",
+      "publish rate",
+      "rate",
+      "Hz",
+      L::Positive().Within(kMaxControlRate),
       "State publication rate = control rate (mrsim-sim --rate)"};
   static const FieldInfo kSpeed{
-      "speed", "speed", "", L::Positive().Within(kMaxRealtimeFactor),
+      "speed",
+      "speed (times real time)",
+      "speed",
+      "",
+      L::Positive().Within(kMaxRealtimeFactor),
       "Real-time factor of the realtime clock (mrsim-sim --speed)"};
   static const FieldInfo kController{
-      "controller", "controller", "", L::Any(),
+      "controller",
+      "controller kind",
+      "controller",
+      "",
+      L::Any(),
       "Who drives the robots: gait (mrsim-gait), lua (mrsim-lua running "
       "luaScript) or external (lockstep, waiting for externalName)"};
   static const FieldInfo kGait{
-      "gait", "gait", "", L::TextUpTo(kMaxRunNameBytes, true),
+      "gait",
+      "starting gait",
+      "gait",
+      "",
+      L::TextUpTo(kMaxRunNameBytes, true),
       "The gait each robot starts with (controller gait)"};
   static const FieldInfo kLua{"luaScript",
+                              "Lua script",
                               "lua_script",
                               "",
                               L::TextUpTo(kMaxLuaScriptBytes),
@@ -776,6 +842,7 @@ void Describe(V& v, RunSettings& r) {
                               ""};
   static const FieldInfo kExternal{
       "externalName",
+      "external controller name",
       "external_name",
       "",
       L::TextUpTo(kMaxRunNameBytes),

@@ -121,6 +121,27 @@ const char* ToString(PartKind kind) {
   return "?";
 }
 
+std::string FieldLabel(const FieldInfo& info) {
+  std::string label = info.label;
+  if (*info.unit) label += std::string(" (") + info.unit + ")";
+  return label;
+}
+
+std::string FieldTooltip(const FieldInfo& info) {
+  std::string text =
+      std::string(info.help) + "\nin the file: <" + info.xml + ">";
+  const FieldLimits& l = info.limits;
+  char buf[96] = "";
+  if (std::isfinite(l.min) && std::isfinite(l.max)) {
+    std::snprintf(buf, sizeof(buf), "%g .. %g", l.min, l.max);
+  } else if (std::isfinite(l.min)) {
+    std::snprintf(buf, sizeof(buf), "%s %g",
+                  l.min_exclusive ? ">" : ">=", l.min);
+  }
+  if (*buf) text += std::string("\nlimits: ") + buf;
+  return text;
+}
+
 std::string ShortNumbers(const std::string& text) {
   const auto numeric = [](char c) {
     return std::isdigit(static_cast<unsigned char>(c)) || c == '.' ||

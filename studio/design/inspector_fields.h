@@ -22,6 +22,14 @@ struct FieldGroup {
 std::vector<FieldGroup> InspectorFields(Scenario& scenario,
                                         const Selection& selection);
 
+// A field's name on screen: its schema label with the unit, e.g. "gain Kp
+// (1/s)". The XML name goes to FieldTooltip.
+std::string FieldLabel(const FieldInfo& info);
+
+// A field's help, its name in the file ("in the file: <Kp>") and its
+// limits, one per line.
+std::string FieldTooltip(const FieldInfo& info);
+
 // A field's text as the inspector shows it: every number with at most 10
 // significant digits, so 0.009 x 3 reads 0.027, not 0.027000000000000003.
 // The design keeps the exact value until the field is edited.

@@ -28,18 +28,6 @@ std::string Key(const Selection& s, const std::string& sub,
          std::to_string(s.index) + "/" + sub + "/" + field;
 }
 
-std::string LimitsText(const FieldInfo& info) {
-  const FieldLimits& l = info.limits;
-  char buf[96] = "";
-  if (std::isfinite(l.min) && std::isfinite(l.max)) {
-    std::snprintf(buf, sizeof(buf), "%g .. %g", l.min, l.max);
-  } else if (std::isfinite(l.min)) {
-    std::snprintf(buf, sizeof(buf), "%s %g",
-                  l.min_exclusive ? ">" : ">=", l.min);
-  }
-  return buf;
-}
-
 }  // namespace
 
 void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
@@ -75,15 +63,14 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       const FieldInfo& info = f.info();
       const std::string key = Key(sel, g.sub, info.xml);
       const FieldAddress address{sel, g.sub, info.xml};
-      std::string label = info.xml;
-      if (*info.unit) label += std::string(" [") + info.unit + "]";
+      // Shown as degrees (DrawEulerDegrees), though the file keeps a
+      // quaternion.
+      const std::string label =
+          FieldLabel(info) +
+          (f.type() == FieldType::kQuaternion && !info.kept ? " (deg)" : "");
       ImGui::PushID(info.xml);
       ImGui::TextUnformatted(label.c_str());
-      if (ImGui::IsItemHovered()) {
-        const std::string limits = LimitsText(info);
-        ImGui::SetTooltip("%s%s%s", info.help,
-                          limits.empty() ? "" : "\nlimits: ", limits.c_str());
-      }
+      if (ImGui::IsItemHovered()) WrappedTooltip(FieldTooltip(info));
       ImGui::SameLine(w * 0.5f);
       ImGui::SetNextItemWidth(-1);
       const bool numbers = f.type() == FieldType::kNumber ||
