@@ -9,7 +9,10 @@
 //      typed handler vs a bare ping-pong of an 8-byte raw message;
 //  (d) signed messages (--key-file): pipelined lockstep and (b)'s publishing
 //      with a key over the same without.
-// LCM ports 7900-7909. Prints BENCH lines (bench/run).
+// Every ratio is the median of interleaved rounds (each round runs every
+// variant once, the order reversed every other round), printed with its
+// spread (bench/common/paired_ratio.h). LCM ports 7900-7909. Prints BENCH
+// lines (bench/run).
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,8 +29,11 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
+#include "bench/common/paired_ratio.h"
+#include "bench/common/sim_report.h"
 #include "common/subprocess.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
@@ -48,7 +54,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kRate = 100.0;
-constexpr int kRepeats = 3;
+// Rounds of short runs (10 sim s, a few tenths of a wall second each):
+// single lockstep runs swing by half with where the scheduler puts the
+// two processes, so a ratio needs many pairs; the best of three runs of
+// 20 s (as before) moved by 10-40 % between runs. Shorter runs read 2-4 %
+// faster in the median (README), alike for both sides of a ratio.
+constexpr int kRounds = 24;
+constexpr double kDuration = 10.0;  // sim s of a lockstep run
 
 std::string Url(int port) {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
@@ -187,21 +199,11 @@ double InProcessLoop(const std::string& scenario, double duration) {
   return physics.time() / Seconds(Clock::now() - start);
 }
 
-// Sim seconds per wall second of mrsim-sim + controller in lockstep, as
-// mrsim-sim reports it (from its first period to its last). The bench
-// itself stays off the LCM network meanwhile: on udpm every member of the
-// group wakes for every message, and a third process would slow the loop.
-double ReadFactor(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string key = "real-time factor ";
-  const size_t at = text.str().rfind(key);
-  if (at == std::string::npos) {
-    throw std::runtime_error(path + ": no real-time factor in: " + text.str());
-  }
-  return std::stod(text.str().substr(at + key.size()));
-}
+// Sim seconds per wall second of mrsim-sim + controller in lockstep are
+// as mrsim-sim reports them (from its first period to its last,
+// ReadRealTimeFactor). The bench itself stays off the LCM network
+// meanwhile: on udpm every member of the group wakes for every message,
+// and a third process would slow the loop.
 
 // Pace of a loop: sim s per wall s (as the process reports it) and sim s
 // per CPU s of all its processes.
@@ -220,7 +222,7 @@ Pace LocalLoop(const std::string& scenario, double duration,
     local.WaitExit(120);
     cpu = local.cpu_seconds();
   }
-  return {ReadFactor(out), duration / cpu};
+  return {mrsim::ReadRealTimeFactor(out), duration / cpu};
 }
 
 Pace LcmLoop(const std::string& scenario, double duration, int port,
@@ -253,7 +255,7 @@ Pace LcmLoop(const std::string& scenario, double duration, int port,
     controller.Stop();
     cpu = sim.cpu_seconds() + controller.cpu_seconds();
   }
-  return {ReadFactor(out), duration / cpu};
+  return {mrsim::ReadRealTimeFactor(out), duration / cpu};
 }
 
 // SimServer on the fast clock, in this process.
@@ -311,12 +313,19 @@ double RoundTrip(lcm::LCM& lcm, Pong& pong, bool state,
   return total / done * 1e6;
 }
 
-double Best(const std::vector<double>& v) {
-  return *std::max_element(v.begin(), v.end());
+// The ratio of two variants of the same rounds, printed with its spread.
+void Ratio(const std::string& name, const std::vector<double>& a,
+           const std::vector<double>& b, const std::string& what) {
+  mrsim::PrintBench(name, mrsim::SummarizePairs(a, b), "x", what);
 }
 
-// --signed: only (d), the two signed figures (a few minutes instead of
-// about ten), each pair measured back to back.
+// Signing only adds work: a median above 1 is noise, printed as 1.
+void CostRatio(const std::string& name, const std::vector<double>& a,
+               const std::vector<double>& b, const std::string& what) {
+  mrsim::PrintBenchAtMost(name, mrsim::SummarizePairs(a, b), 1.0, "x", what);
+}
+
+// --signed: only (d), the two signed figures, in rounds of their own.
 int RunSignedBench() {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
@@ -332,21 +341,27 @@ int RunSignedBench() {
   const std::string key = (dir / "bench.key").string();
   mrsim::WriteKeyFile(key);
   const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
-  const double duration = 20.0;
-  std::vector<double> piped, piped_signed, loud, loud_signed;
-  // Which of a pair goes first alternates: a neighbour's burst then
-  // favours neither side.
-  for (int r = 0; r < 2 * kRepeats; ++r) {
-    const bool with_key = r % 2 == 1;
-    if (with_key) setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
-    (with_key ? piped_signed : piped)
-        .push_back(LcmLoop(path, duration, 7903, dir.string(), 1).wall);
-    unsetenv(mrsim::kKeyFileEnv);
-    (with_key ? loud_signed : loud)
-        .push_back(ServerRun(path, duration / 4, true, 7903,
-                             with_key ? auth : mrsim::AuthConfig{})
-                       .wall);
-  }
+  const double duration = kDuration;
+  // Rounds of the four, the order reversed every other round: a
+  // neighbour's burst then favours neither side.
+  auto with_key = [&](auto measure) {
+    return [&key, measure] {
+      setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
+      const double v = measure();
+      unsetenv(mrsim::kKeyFileEnv);
+      return v;
+    };
+  };
+  auto piped = [&] {
+    return LcmLoop(path, duration, 7903, dir.string(), 1).wall;
+  };
+  auto loud = [&](const mrsim::AuthConfig& a) {
+    return [&path, duration, a] {
+      return ServerRun(path, duration / 4, true, 7903, a).wall;
+    };
+  };
+  const auto v = mrsim::RunInterleaved(
+      {piped, with_key(piped), loud({}), loud(auth)}, kRounds);
   // What one signature costs: a state-sized message, signed 20,000 times.
   {
     mrsim::Physics physics(scenario);
@@ -364,14 +379,10 @@ int RunSignedBench() {
               << Seconds(Clock::now() - start) / n * 1e6 << " us ("
               << bytes.size() << "-byte state)" << std::endl;
   }
-  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
-            << " sim s/s with a key, " << Best(piped) << " without\n";
-  std::cout << "BENCH signed_lockstep_ratio "
-            << Best(piped_signed) / Best(piped) << " x" << std::endl;
-  std::cout << "signed: publishing " << Best(loud_signed)
-            << " sim s/s with a key, " << Best(loud) << " without\n";
-  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
-            << " x" << std::endl;
+  CostRatio("signed_lockstep_ratio", v[1], v[0],
+            "pipelined lockstep sim s/s, key / none");
+  CostRatio("signed_publish_ratio", v[3], v[2],
+            "publishing sim s/s, key / none");
   std::filesystem::remove_all(dir);
   return 0;
 }
@@ -389,89 +400,94 @@ int RunBench() {
   const std::string path = (dir / "snake11.xml").string();
   mrsim::WriteScenarioFile(scenario, path);
 
-  // (a) lockstep over LCM vs in one process; best of kRepeats each, so a
-  // neighbour's burst on a shared machine does not decide the ratio.
-  const double duration = 20.0;
+  // (a) lockstep over LCM vs in one process, in rounds of every variant.
+  const double duration = kDuration;
   // Strict lockstep and pipelined lockstep (--actuation-delay 1, the
   // answer to state k acts from period k+1) against the same baseline.
   // A delay of 2 as well: it hides a round trip longer than one period's
   // physics (docs/sim.md).
   // And both with --no-spin: the send thread asleep between states.
-  std::vector<double> local, remote, piped, piped2, local_cpu, remote_cpu,
-      piped_cpu, remote_sleep, piped_sleep, piped_signed;
   // (d): mrsim-sim and the controller sign with this key when
   // MRSIM_KEY_FILE names it.
   const std::string key = (dir / "bench.key").string();
   mrsim::WriteKeyFile(key);
-  for (int r = 0; r < kRepeats; ++r) {
-    const Pace l = LocalLoop(path, duration, dir.string());
-    const Pace x = LcmLoop(path, duration, 7900, dir.string(), 0);
-    const Pace p = LcmLoop(path, duration, 7900, dir.string(), 1);
-    const Pace p2 = LcmLoop(path, duration, 7900, dir.string(), 2);
-    const Pace xs = LcmLoop(path, duration, 7900, dir.string(), 0, false);
-    const Pace ps = LcmLoop(path, duration, 7900, dir.string(), 1, false);
-    remote_sleep.push_back(xs.wall);
-    piped_sleep.push_back(ps.wall);
+  const std::string tmp = dir.string();
+  std::vector<double> local_cpu, remote_cpu, piped_cpu;
+  // A loop's sim s per wall s; its sim s per CPU s into `cpu` if given.
+  auto lcm_loop = [&](int delay, bool spin, std::vector<double>* cpu) {
+    return [&, delay, spin, cpu] {
+      const Pace p = LcmLoop(path, duration, 7900, tmp, delay, spin);
+      if (cpu != nullptr) cpu->push_back(p.cpu);
+      return p.wall;
+    };
+  };
+  auto local = [&] {
+    const Pace p = LocalLoop(path, duration, tmp);
+    local_cpu.push_back(p.cpu);
+    return p.wall;
+  };
+  auto signed_piped = [&] {
     setenv(mrsim::kKeyFileEnv, key.c_str(), 1);
-    piped_signed.push_back(LcmLoop(path, duration, 7900, dir.string(), 1).wall);
+    const double wall = LcmLoop(path, duration, 7900, tmp, 1).wall;
     unsetenv(mrsim::kKeyFileEnv);
-    piped2.push_back(p2.wall);
-    local.push_back(l.wall);
-    remote.push_back(x.wall);
-    piped.push_back(p.wall);
-    local_cpu.push_back(l.cpu);
-    remote_cpu.push_back(x.cpu);
-    piped_cpu.push_back(p.cpu);
-  }
-  std::cout << "lockstep: in-process " << Best(local) << " sim s/s, over LCM "
-            << Best(remote) << " sim s/s strict, " << Best(piped)
-            << " sim s/s pipelined (per CPU s of all processes: "
-            << Best(local_cpu) << " vs " << Best(remote_cpu) << " and "
-            << Best(piped_cpu) << ")\n";
-  std::cout << "BENCH lockstep_ratio " << Best(remote) / Best(local) << " x"
-            << std::endl;
-  std::cout << "BENCH lockstep_ratio_cpu " << Best(remote_cpu) / Best(local_cpu)
-            << " x" << std::endl;
-  std::cout << "BENCH lockstep_pipelined_ratio " << Best(piped) / Best(local)
-            << " x" << std::endl;
-  std::cout << "BENCH lockstep_pipelined2_ratio " << Best(piped2) / Best(local)
-            << " x" << std::endl;
-  std::cout << "BENCH lockstep_ratio_nospin "
-            << Best(remote_sleep) / Best(local) << " x" << std::endl;
-  std::cout << "BENCH lockstep_pipelined_ratio_nospin "
-            << Best(piped_sleep) / Best(local) << " x" << std::endl;
-  std::cout << "BENCH lockstep_pipelined_ratio_cpu "
-            << Best(piped_cpu) / Best(local_cpu) << " x" << std::endl;
-  std::cout << "signed: pipelined lockstep " << Best(piped_signed)
-            << " sim s/s with a key, " << Best(piped) << " without\n";
-  std::cout << "BENCH signed_lockstep_ratio "
-            << Best(piped_signed) / Best(piped) << " x" << std::endl;
+    return wall;
+  };
+  // Each headline's two sides run next to each other in every round
+  // (pipelined beside in-process and beside signed), whichever order.
+  const auto a = mrsim::RunInterleaved(
+      {signed_piped, lcm_loop(1, true, &piped_cpu), local,
+       lcm_loop(0, true, &remote_cpu), lcm_loop(1, false, nullptr),
+       lcm_loop(0, false, nullptr), lcm_loop(2, true, nullptr)},
+      kRounds);
+  const auto& [piped_signed, piped, in_process, remote, piped_sleep,
+               remote_sleep, piped2] =
+      std::tie(a[0], a[1], a[2], a[3], a[4], a[5], a[6]);
+  std::cout << "# lockstep, " << kRounds << " rounds of " << duration
+            << " sim s: medians in-process " << mrsim::Median(in_process)
+            << " sim s/s, over LCM " << mrsim::Median(remote) << " strict, "
+            << mrsim::Median(piped)
+            << " pipelined (per CPU s of all processes: "
+            << mrsim::Median(local_cpu) << " vs " << mrsim::Median(remote_cpu)
+            << " and " << mrsim::Median(piped_cpu) << ")" << std::endl;
+  const std::string over_local = "sim s/s, over LCM / in-process";
+  Ratio("lockstep_ratio", remote, in_process, over_local);
+  Ratio("lockstep_ratio_cpu", remote_cpu, local_cpu,
+        "sim s per CPU s, over LCM / in-process");
+  Ratio("lockstep_pipelined_ratio", piped, in_process, over_local);
+  Ratio("lockstep_pipelined2_ratio", piped2, in_process, over_local);
+  Ratio("lockstep_ratio_nospin", remote_sleep, in_process, over_local);
+  Ratio("lockstep_pipelined_ratio_nospin", piped_sleep, in_process, over_local);
+  Ratio("lockstep_pipelined_ratio_cpu", piped_cpu, local_cpu,
+        "sim s per CPU s, over LCM / in-process");
+  CostRatio("signed_lockstep_ratio", piped_signed, piped,
+            "pipelined lockstep sim s/s, key / none");
 
   // (b) fast clock with and without 100 Hz state publishing.
   // The snake lies still (no controller), the heaviest contact load.
-  std::vector<double> quiet, loud, quiet_cpu, loud_cpu, loud_signed;
   const mrsim::AuthConfig auth = mrsim::LoadAuthConfig(key, false);
-  for (int r = 0; r < kRepeats; ++r) {
-    const Pace q = ServerRun(path, duration / 4, false, 7901);
-    const Pace l = ServerRun(path, duration / 4, true, 7901);
-    loud_signed.push_back(ServerRun(path, duration / 4, true, 7901, auth).wall);
-    quiet.push_back(q.wall);
-    loud.push_back(l.wall);
-    quiet_cpu.push_back(q.cpu);
-    loud_cpu.push_back(l.cpu);
-  }
-  std::cout << "fast clock: no publishing " << Best(quiet)
-            << " sim s/s, publishing " << Best(loud)
-            << " sim s/s (per CPU s: " << Best(quiet_cpu) << " vs "
-            << Best(loud_cpu) << ")\n";
-  std::cout << "BENCH publish_ratio " << Best(loud) / Best(quiet) << " x"
+  std::vector<double> quiet_cpu, loud_cpu;
+  auto server = [&](bool publish, const mrsim::AuthConfig& with,
+                    std::vector<double>* cpu) {
+    return [&, publish, with, cpu] {
+      const Pace p = ServerRun(path, duration / 4, publish, 7901, with);
+      if (cpu != nullptr) cpu->push_back(p.cpu);
+      return p.wall;
+    };
+  };
+  const auto b = mrsim::RunInterleaved(
+      {server(false, {}, &quiet_cpu), server(true, {}, &loud_cpu),
+       server(true, auth, nullptr)},
+      kRounds);
+  std::cout << "# fast clock: medians no publishing " << mrsim::Median(b[0])
+            << " sim s/s, publishing " << mrsim::Median(b[1])
+            << " (per CPU s: " << mrsim::Median(quiet_cpu) << " vs "
+            << mrsim::Median(loud_cpu) << "), signed " << mrsim::Median(b[2])
             << std::endl;
-  std::cout << "BENCH publish_ratio_cpu " << Best(loud_cpu) / Best(quiet_cpu)
-            << " x" << std::endl;
-  std::cout << "signed: publishing " << Best(loud_signed)
-            << " sim s/s with a key, " << Best(loud) << " without\n";
-  std::cout << "BENCH signed_publish_ratio " << Best(loud_signed) / Best(loud)
-            << " x" << std::endl;
+  Ratio("publish_ratio", b[1], b[0], "sim s/s, publishing / not");
+  Ratio("publish_ratio_cpu", loud_cpu, quiet_cpu,
+        "sim s per CPU s, publishing / not");
+  CostRatio("signed_publish_ratio", b[2], b[1],
+            "publishing sim s/s, key / none");
 
   // (c) round trips.
   {
