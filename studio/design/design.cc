@@ -727,6 +727,52 @@ void Design::SetModuleMesh(const std::string& mesh, bool every_of_kind) {
   Commit(std::move(next), selection_);
 }
 
+void Design::ScaleMesh(const std::string& shape, double factor) {
+  Scenario next = scenario_;
+  bool found = false;
+  for (Robot& robot : next.robots) {
+    bool changed = false;
+    for (Module& m : robot.modules) {
+      for (Frame& f : m.frames) {
+        if (f.shape != shape) continue;
+        f.scale *= factor;
+        changed = true;
+      }
+    }
+    if (changed) Restack(&robot, next.base_dir);
+    found = found || changed;
+  }
+  if (!found) throw DesignError("no frame has that mesh");
+  Commit(std::move(next), selection_);
+}
+
+std::vector<Design::OversizedMesh> Design::OversizedMeshes() const {
+  std::vector<OversizedMesh> out;
+  for (const Robot& robot : scenario_.robots) {
+    for (const Module& m : robot.modules) {
+      for (const Frame& f : m.frames) {
+        if (!f.is_mesh()) continue;
+        double longest = 0;
+        try {
+          longest = FrameBounds(f, scenario_.base_dir).sizes().maxCoeff();
+        } catch (const std::exception&) {
+          continue;
+        }
+        if (longest <= kMeshLooksLikeMillimetres) continue;
+        auto same = std::find_if(out.begin(), out.end(), [&](const auto& o) {
+          return o.shape == f.shape;
+        });
+        if (same == out.end()) {
+          out.push_back({f.shape, longest});
+        } else {
+          same->longest = std::max(same->longest, longest);
+        }
+      }
+    }
+  }
+  return out;
+}
+
 void Design::ApplyTemplate(const TemplateOptions& options) {
   Scenario next = MakeTemplateScenario(options);
   next.base_dir = scenario_.base_dir;

@@ -30,6 +30,10 @@ enum class ObjectKind { kBall, kBox, kCylinder, kCapsule, kRamp };
 // One field of one part: the part, the sub-part ("" for the part itself,
 // "frames[0]", "frames[1]", "joint", "force_sensor", "distance_sensors[k]")
 // and the field's XML name.
+// No module is a metre long: a mesh frame longer than this on some axis was
+// almost surely drawn in millimetres.
+inline constexpr double kMeshLooksLikeMillimetres = 1.0;  // m
+
 struct FieldAddress {
   Selection part;
   std::string sub;
@@ -122,6 +126,10 @@ class Design {
   // to the mesh's length and new modules of that kind reuse it. Throws
   // DesignError when nothing is selected or the mesh cannot be read.
   void SetModuleMesh(const std::string& mesh, bool every_of_kind);
+  // Every frame whose shape is `shape` (a mesh) has its scale multiplied by
+  // `factor` (0.001: a mesh drawn in millimetres), as one edit; the chains
+  // restack to the new lengths.
+  void ScaleMesh(const std::string& shape, double factor);
   // Replaces everything with a template (undoable).
   void ApplyTemplate(const TemplateOptions& options);
   // Replaces everything with an empty scenario (undoable; path kept).
@@ -144,6 +152,17 @@ class Design {
   // paths.
   void Save(bool embed_assets = false);
   void SaveAs(const std::string& path, bool embed_assets = false);
+
+  // The meshes (each shape once, in chain order) that some frame shows
+  // longer than kMeshLooksLikeMillimetres on an axis: most CAD programs
+  // export millimetres, which make a part 1000 times too big. Reads the
+  // mesh files: call once per revision. An unreadable mesh is not listed
+  // (the validator says why it cannot be read).
+  struct OversizedMesh {
+    std::string shape;
+    double longest = 0;  // m, the longest side of its biggest frame
+  };
+  std::vector<OversizedMesh> OversizedMeshes() const;
 
   // The current value of a field as text, or throws DesignError.
   std::string FieldText(const FieldAddress& address) const;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/stl_export.h"
 #include "studio/ui/widgets.h"
 
@@ -16,6 +17,26 @@ namespace mrsim::studio {
 void DrawPrintSection(StudioContext& studio) {
   ImGui::Separator();
   const float w = ImGui::GetContentRegionAvail().x;
+  for (size_t i = 0; i < studio.oversized_meshes.size(); ++i) {
+    // Before the overlaps such a mesh causes. Most CAD programs export
+    // millimetres; MuJoCo reads metres, so such a
+    // module is silently 1000 times too big.
+    const Design::OversizedMesh& mesh = studio.oversized_meshes[i];
+    const std::string name =
+        IsEmbeddedMesh(mesh.shape)
+            ? std::string("an embedded mesh")
+            : std::filesystem::path(mesh.shape).filename().string();
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.75f, 0.3f, 1));
+    ImGui::TextWrapped("%s is %.3g m across: this looks like millimetres.",
+                       name.c_str(), mesh.longest);
+    ImGui::PopStyleColor();
+    if (studio.Button("scale by 0.001", -1)) {
+      studio.Try("scale " + name + " by 0.001",
+                 [&] { studio.design.ScaleMesh(mesh.shape, 0.001); });
+    }
+    ImGui::PopID();
+  }
   if (!studio.overlaps.empty()) {
     // REQ-1.2.8: what overlaps is said here and drawn red in the 3-D view.
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));

@@ -150,6 +150,7 @@ void StudioApp::UpdatePreview() {
     studio_.build_error = preview.Rebuild(shown);
     preview.ShowDesign();
     CheckOverlaps(studio_, shown);
+    studio_.oversized_meshes = design.OversizedMeshes();
     last_rebuild_ms_ = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - start)
                            .count();
@@ -194,6 +195,8 @@ void StudioApp::RecordState(const mjrRect& view, int height) {
                                                                 : "none");
   layout.State("message", studio_.message);
   layout.State("overlaps", std::to_string(studio_.overlaps.size()));
+  layout.State("oversized meshes",
+               std::to_string(studio_.oversized_meshes.size()));
   // Where ImGui has the mouse, so a test presses only once it is there.
   char mouse[64];
   std::snprintf(mouse, sizeof(mouse), "%.0f %.0f%s", ImGui::GetIO().MousePos.x,

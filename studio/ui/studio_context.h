@@ -74,6 +74,9 @@ struct StudioContext {
   long built_revision = -1;           // the design revision the preview shows
   std::string build_error;            // why the preview could not be built
   std::vector<PartOverlap> overlaps;  // in the design shown, at the start
+  // Meshes that look drawn in millimetres (Design::OversizedMeshes), for
+  // the design shown; measured once per rebuild.
+  std::vector<Design::OversizedMesh> oversized_meshes;
   std::string message;  // last note, refusal or error, in the status bar
   bool message_is_error = false;  // red, else a plain note ("saved ...")
   Pending pending = Pending::kNone;

@@ -621,6 +621,46 @@ TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
   EXPECT_GT(physics.model()->nmesh, 0);
 }
 
+// Most CAD programs export millimetres: an 80 mm link read as metres is
+// 80 m long. The studio spots it and one edit scales it back.
+TEST(StudioMesh, AMeshInMillimetresIsSpottedAndScaledByOneThousandth) {
+  const std::string dir = TempDir("studio_mesh_mm");
+  {
+    std::ofstream out(dir + "/link_mm.stl", std::ios::binary);
+    out << BinaryStl(BoxMesh(Eigen::Vector3d(80, 50, 40)), 1.0, "link");
+  }
+  ChainScenarioOptions options;
+  options.chain.modules = 3;
+  options.chain.pattern = ChainPattern::kPitchYaw;
+  WriteScenarioFile(MakeChainScenario(options), dir + "/robot.xml");
+  Design d = Design::Open(dir + "/robot.xml");
+  EXPECT_TRUE(d.OversizedMeshes().empty()) << "boxes in metres";
+  d.Select({PartKind::kModule, 0, 0});
+  d.SetModuleMesh(dir + "/link_mm.stl", true);
+  const std::vector<Design::OversizedMesh> big = d.OversizedMeshes();
+  ASSERT_EQ(big.size(), 1u);  // the shape once, though two modules use it
+  EXPECT_EQ(big[0].shape, "link_mm.stl");
+  EXPECT_NEAR(big[0].longest, 80, 1e-4);
+
+  const std::string before = Bytes(d);
+  d.ScaleMesh("link_mm.stl", 0.001);
+  EXPECT_TRUE(d.OversizedMeshes().empty());
+  const Robot& r = d.scenario().robots[0];
+  for (const Module& m : r.modules) {
+    for (const Frame& f : m.frames) {
+      if (f.is_mesh()) {
+        EXPECT_NEAR(f.scale.x(), 0.001, 1e-12);
+      }
+    }
+  }
+  // Restacked: pitch modules 160 mm long, the yaw module 100 mm.
+  EXPECT_NEAR(r.modules[0].position.x() - r.modules[1].position.x(),
+              0.08 + 0.05, 1e-6);  // STL stores float32
+  // One undo step.
+  d.Undo();
+  EXPECT_EQ(Bytes(d), before);
+}
+
 TEST(StudioMesh, AnUnreadableMeshIsRefusedAndChangesNothing) {
   const std::string dir = TempDir("studio_mesh_bad");
   {

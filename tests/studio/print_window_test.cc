@@ -112,6 +112,40 @@ TEST_F(StudioPrintTest, PickAMeshForAllPitchModules) {
   studio_->Stop();
 }
 
+// A mesh drawn in millimetres makes its module 1000 times too big: the
+// Design panel says so and its button scales the mesh by 0.001.
+TEST_F(StudioPrintTest, AMeshInMillimetresIsOfferedScaleByOneThousandth) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string src = TempDir("studio_mesh_mm_src");
+  {
+    // 70 x 50 x 50 mm, as a CAD program exports it.
+    std::ofstream out(src + "/link_mm.stl", std::ios::binary);
+    out << BinaryStl(BoxMesh(Eigen::Vector3d(70, 50, 50)), 1.0, "link");
+  }
+  Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
+  for (Frame& f : s.robots[0].modules[0].frames) {
+    f.shape = src + "/link_mm.stl";
+    f.scale = Eigen::Vector3d::Ones();
+  }
+  WriteScenarioFile(s, src + "/mm.xml");
+  Start("studio_mesh_mm", src + "/mm.xml");
+  ASSERT_TRUE(WaitForLayout(layout_, "oversized meshes", "1"));
+  // The panel shows the offer from the frame after the mesh is measured.
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLayout(layout_).count("widget scale by 0.001") > 0; },
+      60));
+  Click("scale by 0.001");
+  ASSERT_TRUE(WaitForLayout(layout_, "oversized meshes", "0"))
+      << ReadLayout(layout_)["message"];
+  Click("Save");
+  ASSERT_TRUE(WaitForLayout(layout_, "dirty", "0")) << studio_->Output();
+  const Scenario saved = ReadScenarioFile(file_);
+  for (const Frame& f : saved.robots[0].modules[0].frames) {
+    EXPECT_NEAR(f.scale.x(), 0.001, 1e-12);
+  }
+  studio_->Stop();
+}
+
 // "Embed terrain and meshes" shows how the opened file was saved: ticked
 // for a file that carries its meshes, unticked for one that names files.
 TEST_F(StudioPrintTest, EmbeddingShowsHowTheFileWasSaved) {
