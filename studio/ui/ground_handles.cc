@@ -74,6 +74,8 @@ bool GroundHandles::DropNewPart(StudioContext& studio, const mjrRect& view,
                                 int window_height) {
   NextPart part;
   if (!DraggedNewPart(&part)) return false;
+  // Said here too: an empty design has no chain rows to say it.
+  studio.layout.State("drag", "new");
   const ImVec2 p = ImGui::GetMousePos();
   const double left = view.left,
                top = window_height - view.bottom - view.height;
@@ -89,7 +91,19 @@ bool GroundHandles::DropNewPart(StudioContext& studio, const mjrRect& view,
   Preview& preview = *studio.preview;
   const Selection hit = preview.Pick(view, p.x - left, p.y - top);
   if (hit.kind != PartKind::kModule && hit.kind != PartKind::kSensorModule) {
-    studio.message = "drop it onto the robot, between two parts";
+    // No robot to drop it onto: the part starts one, as the palette's
+    // buttons would.
+    const std::vector<Robot>& robots = studio.design.scenario().robots;
+    const bool no_robot =
+        std::all_of(robots.begin(), robots.end(), [](const Robot& r) {
+          return r.modules.empty() && r.sensor_modules.empty();
+        });
+    if (no_robot) {
+      studio.Try("start a robot",
+                 [&] { studio.design.InsertPart(part, 0, 0); });
+    } else {
+      studio.message = "drop it onto the robot, between two parts";
+    }
     return true;
   }
   const Robot& robot = studio.design.scenario().robots.at(hit.robot);

@@ -6,7 +6,8 @@
 // is one edit (Design::MoveOnGround), one undo step. Also takes a pitch,
 // yaw or sensor module dragged from the palette and dropped onto the robot:
 // it lands between the part under the cursor and its neighbour nearer the
-// cursor (Design::InsertPart).
+// cursor (Design::InsertPart). With no robot in the design, a module
+// dropped anywhere in the view starts one.
 #pragma once
 
 #include <mujoco/mujoco.h>

@@ -139,6 +139,29 @@ TEST_F(StudioDragWindow, ReorderByDragAndDropAModuleFromThePalette) {
   studio_->Stop();
 }
 
+// An empty design has no robot to drop onto: a module dropped anywhere in
+// the 3-D view starts one.
+TEST_F(StudioDragWindow, AModuleDroppedIntoAnEmptyDesignStartsARobot) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  const std::string file = TempDir("studio_drag_empty_src") + "/robot.xml";
+  Start("studio_drag_empty", file);
+  int palette[4], view[4];
+  ASSERT_TRUE(Rect(layout_, "yaw module", palette));
+  std::istringstream in(ReadLayout(layout_)["panel view"]);
+  ASSERT_TRUE(in >> view[0] >> view[1] >> view[2] >> view[3]);
+  Drag(palette[0] + palette[2] / 2, palette[1] + palette[3] / 2,
+       view[0] + view[2] / 2, view[1] + view[3] / 2, "drag", "new");
+  ASSERT_TRUE(WaitForLayout(layout_, "revision", "1"))
+      << ReadLayout(layout_)["message"];
+  EXPECT_EQ(ReadLayout(layout_)["selected"], "module 0 0");
+  Save();
+  const Scenario saved = ReadScenarioFile(file);
+  ASSERT_EQ(saved.robots.size(), 1u);
+  ASSERT_EQ(saved.robots[0].modules.size(), 1u);
+  EXPECT_EQ(saved.robots[0].modules[0].axis, Axis::kYaw);
+  studio_->Stop();
+}
+
 TEST_F(StudioDragWindow, DragTheBallAndTurnTheRobotOnTheGround) {
   if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
   const std::string file =
