@@ -3,8 +3,10 @@
 // own time; (2) the optimised forward gait of the 11-module snake against
 // the `forward` preset, 20 s episodes, the same budget for GA, SA, PSO and
 // random search; (3) CMA-ES against the GA at equal evaluations over 5
-// seeds; (4) the CPU this machine gives us, which bounds the farm's
-// speed-up, and a worker's episode cost against a bare mj_step loop.
+// seeds; (4) the same episodes on 1 and 2 local threads, which bound the
+// farm's speed-up (and the CPU this machine gives us, for context), and a
+// worker's episode cost against a bare mj_step loop. The farm's figures
+// come from interleaved rounds, each printed with its spread.
 // LCM ports 7920-7929.
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
@@ -20,9 +22,11 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "bench/common/cpu_available.h"
+#include "bench/common/paired_ratio.h"
 #include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode.h"
@@ -105,60 +109,86 @@ struct FarmMeasure {
   double worker_cpu_per_episode = 0;  // s of the worker processes' CPU
 };
 
-FarmMeasure MeasureFarm(int workers, int port, int jobs) {
-  const std::string url = fmt::format("udpm://239.255.76.67:{}?ttl=0", port);
-  const mrsim::Problem problem = SnakeProblem(4.0);
-  mrsim::SignedLcm lcm(url);
-  if (!lcm.good()) throw std::runtime_error("cannot open LCM " + url);
-  std::vector<std::unique_ptr<mrsim::Subprocess>> pool;
-  for (int w = 0; w < workers; ++w) {
-    pool.push_back(StartWorker(url, fmt::format("bench{}", w)));
+// A farm of `workers` mrsim-worker processes, started and warmed once and
+// then measured batch after batch, so the rounds of the farm's figures are
+// short and many (bench/common/paired_ratio.h).
+class BenchFarm {
+ public:
+  BenchFarm(int workers, int port)
+      : problem_(SnakeProblem(4.0)),
+        lcm_(fmt::format("udpm://239.255.76.67:{}?ttl=0", port)) {
+    if (!lcm_.good()) throw std::runtime_error("cannot open LCM farm bench");
+    for (int w = 0; w < workers; ++w) {
+      pool_.push_back(
+          StartWorker(fmt::format("udpm://239.255.76.67:{}?ttl=0", port),
+                      fmt::format("bench{}", w)));
+    }
+    mrsim::FarmSettings settings;
+    // The farm sits idle while the other farm and the local threads run
+    // their batches: heard of again only then, its workers must not count
+    // as gone (they are local processes; a lost one fails the bench).
+    settings.worker_timeout = 600;
+    farm_ = std::make_unique<mrsim::FarmEvaluator>(
+        lcm_, mrsim::EncodeProblem(problem_),
+        fmt::format("bench-{}-{}", workers, getpid()), settings);
+    // Warm up until every worker holds the payload, then once more so each
+    // has run a job. One warm-up batch was not enough: a batch the first
+    // ready worker finished alone left the other fetching the payload into
+    // the measured one (a speed-up of 1.05-1.2 in half the runs).
+    for (int k = 0; k < 100 && farm_->workers_ready() < workers; ++k) {
+      farm_->Evaluate(RandomBatch(problem_.genome, 2 * workers, 1));
+    }
+    if (farm_->workers_ready() < workers) {
+      throw std::runtime_error("farm bench: workers did not all get ready");
+    }
+    farm_->Evaluate(RandomBatch(problem_.genome, 2 * workers, 1));
+    workers_ = workers;
   }
-  mrsim::FarmSettings settings;
-  mrsim::FarmEvaluator farm(lcm, mrsim::EncodeProblem(problem),
-                            fmt::format("bench-{}-{}", workers, getpid()),
-                            settings);
-  // Warm up until every worker holds the payload, then once more so each
-  // has run a job. One warm-up batch was not enough: a batch the first
-  // ready worker finished alone left the other fetching the payload into
-  // the measured one (a speed-up of 1.05-1.2 in half the runs).
-  for (int k = 0; k < 100 && farm.workers_ready() < workers; ++k) {
-    farm.Evaluate(RandomBatch(problem.genome, 2 * workers, 1));
+
+  // One batch of `jobs` episodes, the genomes drawn from `seed`.
+  FarmMeasure Measure(int jobs, std::uint64_t seed) {
+    const auto batch = RandomBatch(problem_.genome, jobs, seed);
+    const double before = farm_->episode_seconds();
+    double cpu_before = 0;
+    for (const auto& w : pool_) cpu_before += ProcessCpuSeconds(w->pid());
+    const auto t0 = Clock::now();
+    farm_->Evaluate(batch);
+    const double wall = Since(t0);
+    double cpu_after = 0;
+    for (const auto& w : pool_) cpu_after += ProcessCpuSeconds(w->pid());
+    const double episodes = farm_->episode_seconds() - before;
+    FarmMeasure m;
+    m.evals_per_second = jobs / wall;
+    // Wall time per worker beyond its own episodes, per evaluation.
+    m.overhead_percent = 100.0 * (wall * workers_ - episodes) / episodes;
+    m.episode_wall = episodes / jobs;
+    m.worker_cpu_per_episode = (cpu_after - cpu_before) / jobs;
+    return m;
   }
-  if (farm.workers_ready() < workers) {
-    throw std::runtime_error("farm bench: workers did not all get ready");
-  }
-  farm.Evaluate(RandomBatch(problem.genome, 2 * workers, 1));
-  const double before = farm.episode_seconds();
-  double cpu_before = 0;
-  for (const auto& w : pool) cpu_before += ProcessCpuSeconds(w->pid());
-  const auto t0 = Clock::now();
-  farm.Evaluate(RandomBatch(problem.genome, jobs, 2));
-  const double wall = Since(t0);
-  double cpu_after = 0;
-  for (const auto& w : pool) cpu_after += ProcessCpuSeconds(w->pid());
-  const double episodes = farm.episode_seconds() - before;
-  FarmMeasure m;
-  m.evals_per_second = jobs / wall;
-  // Wall time per worker beyond its own episodes, per evaluation.
-  m.overhead_percent = 100.0 * (wall * workers - episodes) / episodes;
-  m.episode_wall = episodes / jobs;
-  m.worker_cpu_per_episode = (cpu_after - cpu_before) / jobs;
-  return m;
-}
+
+ private:
+  mrsim::Problem problem_;
+  mrsim::SignedLcm lcm_;
+  std::vector<std::unique_ptr<mrsim::Subprocess>> pool_;
+  std::unique_ptr<mrsim::FarmEvaluator> farm_;
+  int workers_ = 0;
+};
 
 // CPU seconds of a bare mj_step loop over the same model and number of
 // steps as one episode of `problem`, the hinges driven by a travelling sine
 // through the same velocity servos (so contacts are alike): the least an
-// episode can cost. The best of three runs.
-double BareStepCpuSeconds(const mrsim::Problem& problem) {
+// episode can cost. The mean of `runs` runs (main() pairs them with a
+// batch of 16 episodes; one run of about 45 ms scattered single pairs by
+// +-20 %).
+double BareStepCpuSeconds(const mrsim::Problem& problem, int runs) {
   const mrsim::Physics physics(problem.scenario);
-  double best = 1e300;
-  for (int run = 0; run < 3; ++run) {
-    mjModel* m = mj_copyModel(nullptr, physics.model());
-    mjData* d = mj_makeData(m);
-    const int steps = static_cast<int>(
-        std::lround(problem.episode.duration / m->opt.timestep));
+  mjModel* m = mj_copyModel(nullptr, physics.model());
+  mjData* d = mj_makeData(m);
+  const int steps =
+      static_cast<int>(std::lround(problem.episode.duration / m->opt.timestep));
+  double cpu = 0;
+  for (int run = 0; run < runs; ++run) {
+    mj_resetData(m, d);  // each run an episode from the start
     const double t0 = ThreadCpuSeconds();
     for (int i = 0; i < steps; ++i) {
       for (int a = 0; a < m->nu; ++a) {
@@ -169,11 +199,11 @@ double BareStepCpuSeconds(const mrsim::Problem& problem) {
       }
       mj_step(m, d);
     }
-    best = std::min(best, ThreadCpuSeconds() - t0);
-    mj_deleteData(d);
-    mj_deleteModel(m);
+    cpu += ThreadCpuSeconds() - t0;
   }
-  return best;
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  return cpu / runs;
 }
 
 // Mean over seeds of the best forward distance each algorithm finds with
@@ -207,20 +237,29 @@ double MeanBestDistance(const mrsim::Problem& problem, const std::string& algo,
   return sum / seeds;
 }
 
-// The same batch on local threads: how far this machine lets two episodes
-// run in parallel at all (context for the farm's ratio).
-double LocalRate(int threads, int jobs) {
-  const mrsim::Problem problem = SnakeProblem(4.0);
-  mrsim::LocalEvaluator local(
-      [&](const mrsim::Genome& g) {
-        return mrsim::RunEpisode(problem, g, {}, &Physics());
-      },
-      threads);
-  const auto batch = RandomBatch(problem.genome, jobs, 2);
-  const auto t0 = Clock::now();
-  local.Evaluate(batch);
-  return jobs / Since(t0);
-}
+// The same batches on local threads of this process: how far this machine
+// lets two episodes run in parallel right now, the bound of the farm's
+// speed-up measured in the same rounds.
+class LocalRate {
+ public:
+  explicit LocalRate(int threads)
+      : problem_(SnakeProblem(4.0)),
+        local_(
+            [this](const mrsim::Genome& g) {
+              return mrsim::RunEpisode(problem_, g, {}, &Physics());
+            },
+            threads) {}
+  double EvalsPerSecond(int jobs, std::uint64_t seed) {
+    const auto batch = RandomBatch(problem_.genome, jobs, seed);
+    const auto t0 = Clock::now();
+    local_.Evaluate(batch);
+    return jobs / Since(t0);
+  }
+
+ private:
+  mrsim::Problem problem_;
+  mrsim::LocalEvaluator local_;
+};
 
 // CMA-ES against the GA: the same evaluations, short episodes, 5 seeds.
 int CmaesVsGa() {
@@ -259,62 +298,100 @@ int main(int argc, char** argv) {
   const bool cmaes_only = argc > 1 && std::string(argv[1]) == "--cmaes-only";
   try {
     if (cmaes_only) return CmaesVsGa();
-    // The CPU we actually get bounds what two workers can do.
+    // The CPU this machine gives us, for context: the spin's bound on two
+    // processes is printed beside the farm's figures.
     const mrsim::CpuAvailability cpu = mrsim::MeasureCpuAvailable();
     std::fputs(mrsim::FormatCpuAvailable(cpu).c_str(), stdout);
     std::fflush(stdout);
 
-    // Farm: same batch of 4 s episodes on 1 and on 2 workers.
-    const int jobs = 16;
-    const FarmMeasure one = MeasureFarm(1, 7920, jobs);
-    const FarmMeasure two = MeasureFarm(2, 7921, jobs);
+    // Rounds of four batches of 4 s episodes (the order reversed every
+    // other round): on 1 farm worker, on 2, on 2 local threads and on 1.
+    // A round's farm speed-up (2 over 1) over its local one is the farm's
+    // efficiency against what the machine allowed at that moment; the
+    // median of the rounds holds still where single batches swung (two
+    // runs once gave 0.71 and 1.21). Every batch of a round evaluates the
+    // same genomes.
+    const int jobs = 16, rounds = 20;
+    BenchFarm farm1(1, 7920), farm2(2, 7921);
+    LocalRate local1(1), local2(2);
+    const mrsim::Problem bare_problem = SnakeProblem(4.0);
+    std::vector<double> overhead, episode_wall1, episode_wall2, worker_cpu,
+        bare_cpu;
+    std::uint64_t seeds[4] = {100, 100, 100, 100};
+    const auto v = mrsim::RunInterleaved(
+        {[&] {
+           const FarmMeasure m = farm1.Measure(jobs, seeds[0]++);
+           overhead.push_back(m.overhead_percent);
+           episode_wall1.push_back(m.episode_wall);
+           worker_cpu.push_back(m.worker_cpu_per_episode);
+           // A worker's episode cost against a bare mj_step loop, in the
+           // same round.
+           bare_cpu.push_back(BareStepCpuSeconds(bare_problem, 4));
+           return m.evals_per_second;
+         },
+         [&] {
+           const FarmMeasure m = farm2.Measure(jobs, seeds[1]++);
+           episode_wall2.push_back(m.episode_wall);
+           return m.evals_per_second;
+         },
+         [&] { return local2.EvalsPerSecond(jobs, seeds[2]++); },
+         [&] { return local1.EvalsPerSecond(jobs, seeds[3]++); }},
+        rounds);
+    const auto& [farm_one, farm_two, local_two, local_one] =
+        std::tie(v[0], v[1], v[2], v[3]);
     std::printf(
-        "# farm: %d episodes of 4 s: %.2f evals/s on 1 worker, %.2f "
-        "on 2 (%u cores); one episode takes %.3f s on a lone worker, %.3f s "
-        "with two workers running\n",
-        jobs, one.evals_per_second, two.evals_per_second,
-        std::thread::hardware_concurrency(), one.episode_wall,
-        two.episode_wall);
-    const double local1 = LocalRate(1, jobs), local2 = LocalRate(2, jobs);
-    std::printf(
-        "# same batch on local threads: %.2f evals/s on 1, %.2f on 2 "
-        "(%.2f x: what this machine allows right now)\n",
-        local1, local2, local2 / local1);
+        "# farm: %d rounds of %d episodes of 4 s, medians: %.2f evals/s on 1 "
+        "worker, %.2f on 2 (%u cores); one episode takes %.3f s on a lone "
+        "worker, %.3f s with two workers running; local threads %.2f on 1, "
+        "%.2f on 2\n",
+        rounds, jobs, mrsim::Median(farm_one), mrsim::Median(farm_two),
+        std::thread::hardware_concurrency(), mrsim::Median(episode_wall1),
+        mrsim::Median(episode_wall2), mrsim::Median(local_one),
+        mrsim::Median(local_two));
+    std::vector<double> farm_speedup, local_speedup;
+    for (int r = 0; r < rounds; ++r) {
+      farm_speedup.push_back(farm_two[r] / farm_one[r]);
+      local_speedup.push_back(local_two[r] / local_one[r]);
+    }
+    const mrsim::PairedRatio speedup =
+        mrsim::SummarizePairs(farm_two, farm_one);
+    mrsim::PrintBench("farm_speedup_2w", speedup, "x",
+                      "evals/s, 2 workers / 1");
+    mrsim::PrintBench("farm_local_speedup_2t",
+                      mrsim::SummarizePairs(local_two, local_one), "x",
+                      "evals/s, 2 local threads / 1");
+    // The farm cannot beat the same episodes on threads of one process
+    // (no messages, no copies): above 1 is noise, printed as 1.
+    mrsim::PrintBenchAtMost("farm_efficiency",
+                            mrsim::SummarizePairs(farm_speedup, local_speedup),
+                            1.0, "x", "speed-up, farm / local threads");
     // Other users' load changes while we measure: the CPU again after the
     // farm, and the mean of both bounds the speed-up. On a machine where
     // many processes compete, each of ours gets a fair share, so two
     // workers can get twice what one gets even when far less than two
     // cores are free: the bound is min(2, cores / one thread's share),
     // which is min(2, cpu_available) when one thread gets a whole core.
+    // A spin is not an episode (no memory traffic), so this bound is
+    // context, printed as a comment; the figure above is measured with
+    // the episodes themselves.
     const mrsim::CpuAvailability cpu_after = mrsim::MeasureCpuAvailable();
-    const double cores = 0.5 * (cpu.cores + cpu_after.cores);
     const double bound = 0.5 * (cpu.TwoOverOne() + cpu_after.TwoOverOne());
-    const double speedup = two.evals_per_second / one.evals_per_second;
     std::printf(
         "# cpu available: %.2f cores before the farm runs, %.2f after (one "
-        "thread alone: %.2f, %.2f); two processes can gain at most %.2f x "
-        "over one here; speed-up with 2 workers %.3f\n",
+        "thread alone: %.2f, %.2f); two spinning processes can gain at most "
+        "%.2f x over one here: farm speed-up %.3f over that is %.3f\n",
         cpu.cores, cpu_after.cores, cpu.one_thread, cpu_after.one_thread, bound,
-        speedup);
-    std::printf("BENCH farm_speedup_2w %.3f x\n", speedup);
-    // The figure as defined: speed-up over min(2, cpu_available). Under
-    // heavy load it exceeds 1 (two processes get two fair shares), so the
-    // fair-share bound is printed beside it.
-    std::printf("BENCH farm_efficiency %.3f x\n",
-                speedup / std::min(2.0, cores));
-    std::printf("BENCH farm_efficiency_fair_share %.3f x\n", speedup / bound);
-    std::printf("BENCH farm_overhead %.3f %%\n", one.overhead_percent);
+        speedup.median, speedup.median / bound);
+    std::printf("BENCH farm_overhead %.3f %%\n", mrsim::Median(overhead));
     std::fflush(stdout);
-
-    // A worker's episodes per CPU-second against a bare mj_step loop.
-    const double bare = BareStepCpuSeconds(SnakeProblem(4.0));
     std::printf(
         "# episode of 4 s: worker process %.3f CPU-s per episode (1 worker), "
-        "bare mj_step loop %.3f CPU-s\n",
-        one.worker_cpu_per_episode, bare);
-    std::printf("BENCH episode_efficiency %.3f x\n",
-                bare / one.worker_cpu_per_episode);
-    std::fflush(stdout);
+        "bare mj_step loop %.3f CPU-s (medians)\n",
+        mrsim::Median(worker_cpu), mrsim::Median(bare_cpu));
+    // The bare loop is the least an episode can cost: above 1 is noise.
+    mrsim::PrintBenchAtMost("episode_efficiency",
+                            mrsim::SummarizePairs(bare_cpu, worker_cpu), 1.0,
+                            "x", "CPU-s per episode, bare / worker");
 
     if (farm_only) return 0;
 
