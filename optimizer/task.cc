@@ -23,6 +23,23 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kRobotMaterial = "plastic";
 
+// The obstacle fields (stairs, rubble) reach kReach from where the robot
+// starts, to either side and ahead (the pegs are walled in instead), so a
+// gait scores there only by meeting the obstacles. Fields 2 m wide let a
+// gait that drifted sideways go round them and score to 16 digits as on
+// flat (the start genome of mrsim-opt --genes cpg drifts
+// 2.5 m). 4 m is 0.2 m/s for the 20 s episode, faster than anything in
+// docs/tasks.md moves (the fastest, optimised genomes and that drifting
+// one, about 0.13 m/s).
+constexpr double kReach = 4.0;
+constexpr double kRobotLength = 0.1 * kTaskModules;  // tail at x = -1.2
+
+// Distance in the ground plane from (x, y) to the robot's body as it
+// starts (the segment from its tail to its head along x).
+double FromStartBody(double x, double y) {
+  return std::hypot(std::max({-kRobotLength - x, x, 0.0}), y);
+}
+
 ChainOptions TaskChain() {
   ChainOptions c;
   c.name = kTaskRobot;
@@ -73,7 +90,7 @@ SceneObject StaticBox(
 Task Flat() {
   Task t;
   t.name = "flat";
-  t.description = "flat ground, friction 0.6: distance along +x";
+  t.world = "flat ground, robot-ground friction 0.6";
   t.scenario = Base();
   t.gait = *FindGaitPreset("forward");
   return t;
@@ -82,8 +99,9 @@ Task Flat() {
 Task Slope() {
   Task t;
   t.name = "slope";
-  t.description =
-      "a 10 degree slope, uphill along +x (gravity tilted): distance along +x";
+  t.world =
+      "a 10 degree slope, uphill along +x (the ground stays flat, gravity is "
+      "tilted by 10 degrees)";
   t.scenario = Base();
   // The ground plane is infinite, so tilting gravity is the same as tilting
   // the ground, without the edge of a ramp (a thin static box at 10 degrees
@@ -98,16 +116,23 @@ Task Slope() {
 Task Stairs() {
   Task t;
   t.name = "stairs";
-  t.description =
-      "eight 2 cm steps, 0.3 m deep, from 0.1 m ahead: distance along +x";
+  t.world = "eight 2 cm steps, 0.3 m deep, from 0.1 m ahead, 10 m wide";
   t.scenario = Base();
+  // Each step is five 2 m boxes side by side, out to 5 m either side (past
+  // kReach). One box 8 m wide made MuJoCo's box-box contact with the robot
+  // blow up (the forward gait at 0.999 of its amplitude; boxes 2 or 4 m
+  // wide did not); the middle box is the old 2 m step.
   for (int i = 0; i < 8; ++i) {
     const double h = 0.02 * (i + 1);
-    const double depth = i == 7 ? 2.0 : 0.3;
     const double x0 = 0.1 + 0.3 * i;
-    t.scenario.scene_objects.push_back(
-        StaticBox(fmt::format("step{}", i), Eigen::Vector3d(depth, 2.0, h),
-                  Eigen::Vector3d(x0 + depth / 2, 0, h / 2)));
+    // The top step is a landing out to kReach and a little more.
+    const double depth = i == 7 ? kReach + 0.2 - x0 : 0.3;
+    for (int k = -2; k <= 2; ++k) {
+      t.scenario.scene_objects.push_back(StaticBox(
+          k == 0 ? fmt::format("step{}", i) : fmt::format("step{}_{}", i, k),
+          Eigen::Vector3d(depth, 2.0, h),
+          Eigen::Vector3d(x0 + depth / 2, 2.0 * k, h / 2)));
+    }
   }
   t.gait = *FindGaitPreset("forward");
   return t;
@@ -116,25 +141,46 @@ Task Stairs() {
 Task Pegs() {
   Task t;
   t.name = "pegs";
-  t.description =
-      "rigid pegs (4 cm, 0.25 m apart, rows staggered) from 0.25 m ahead: "
-      "distance along +x";
+  t.world =
+      "rigid 4 cm pegs on a 0.25 m grid (rows staggered) round the robot, from "
+      "1.5 m behind its head to 3 m ahead, between walls 2.1 m apart "
+      "(obstacle-aided locomotion)";
   t.scenario = Base();
+  // Every peg is a body, and a model of 1167 (a field out to kReach) took
+  // over ten times as long an episode; so the field is 2 m wide
+  // and walls keep the robot in it: a gait that drifts sideways meets the
+  // walls and then the pegs beside them, not open ground. Pegs beside and
+  // behind the robot too, not only ahead: the task's own gait (serpenoid)
+  // slips backwards by itself, and with pegs only ahead it never met one.
+  // The robot starts in a lane clear of pegs for 0.1 m round its body.
+  constexpr double kHalfWidth = 1.0;  // the outermost pegs' centres
   int n = 0;
-  for (int row = 0; row < 12; ++row) {
+  for (int row = -7; row < 12; ++row) {  // x from -1.5 to 3 m
     const double x = 0.25 + 0.25 * row;
     const double shift = row % 2 ? 0.125 : 0.0;
     for (int k = -4; k <= 4; ++k) {
+      const double y = 0.25 * k + shift;
+      if (std::abs(y) > kHalfWidth || FromStartBody(x, y) < 0.1) continue;
       SceneObject peg;
       peg.guid = fmt::format("peg{}", n++);
       peg.shape = PrimitiveShape::kCylinder;
       peg.size = Eigen::Vector3d(0.04, 0.04, 0.2);
-      peg.position = Eigen::Vector3d(x, 0.25 * k + shift, 0.1);
+      peg.position = Eigen::Vector3d(x, y, 0.1);
       peg.material_name = "ground";
       peg.is_static = true;
       peg.mass = 1.0;
       t.scenario.scene_objects.push_back(peg);
     }
+  }
+  // The walls' inner faces 3 cm outside the outermost pegs: less than a
+  // module's width, so no way round the pegs along a wall.
+  const double wall_y = kHalfWidth + 0.02 + 0.03;
+  const double x0 = -kRobotLength - kReach, x1 = kReach;
+  for (int side : {-1, 1}) {
+    t.scenario.scene_objects.push_back(
+        StaticBox(side < 0 ? "wall_right" : "wall_left",
+                  Eigen::Vector3d(x1 - x0, 0.1, 0.2),
+                  Eigen::Vector3d((x0 + x1) / 2, side * (wall_y + 0.05), 0.1)));
   }
   t.gait = *FindGaitPreset("serpenoid");
   return t;
@@ -143,9 +189,9 @@ Task Pegs() {
 Task Pipe() {
   Task t;
   t.name = "pipe";
-  t.description =
-      "inside a horizontal pipe of 0.2 m inner diameter (12 flat staves) "
-      "along x: distance along +x";
+  t.world =
+      "inside a horizontal pipe of 0.2 m inner diameter (12 flat staves) along "
+      "x";
   t.scenario = Base();
   const double r = 0.1;  // inner radius; the axis is at z = r
   const double thickness = 0.02;
@@ -242,10 +288,8 @@ Robot WrappedChain(double* arc_radius) {
 Task Pole() {
   Task t;
   t.name = "pole";
-  t.description =
-      "a vertical pole (rubber, friction 2); the robot starts wrapped round "
-      "its foot "
-      "(an arc, its joints' zero): height gained by the centre of mass";
+  t.world =
+      "a vertical pole (friction 2); the robot starts wrapped round its foot";
   Scenario s;
   double arc_radius = 0;
   s.robots.push_back(WrappedChain(&arc_radius));
@@ -288,48 +332,67 @@ std::string Pgm(int cols, int rows, const std::vector<unsigned char>& grey) {
 Task Rubble() {
   Task t;
   t.name = "rubble";
-  t.description =
-      "a height map of seeded random stones up to 4 cm high from 0.1 m "
-      "ahead (flat under the robot): distance along +x";
+  t.world =
+      "seeded random stones up to 4 cm high round the robot (flat under it), a "
+      "height map 9.6 m by 8.4 m";
   t.scenario = Base();
-  constexpr int kSide = 160;  // 0.04 m per pixel: 6.4 m square
+  // Stones beside and behind the robot as well as ahead, like the pegs: a
+  // gait that went backwards or sideways left the stones (ahead only)
+  // behind and scored as on flat. The height map is the whole ground, so
+  // it reaches kReach and a little more (past its edge there is nothing).
   const double mpp = 0.04;
+  const double x0 = -kRobotLength - kReach - 0.2;  // image x = 0
+  const double y0 = -kReach - 0.2;
+  const int cols = static_cast<int>(std::lround((kReach + 0.2 - x0) / mpp));
+  const int rows = static_cast<int>(std::lround(-2 * y0 / mpp));
   Scene& scene = t.scenario.scene;
   scene.meters_per_pixel = mpp;
   scene.height = 0.04;
-  scene.position = Eigen::Vector3d(-2.0, -3.2, 0);  // x from -2 to 4.4 m
-  std::vector<double> h(kSide * kSide, 0.0);
+  scene.position = Eigen::Vector3d(x0, y0, 0);
+  // World x and y of a pixel's centre (row 0 is the +y edge).
+  const auto world_x = [&](int col) { return x0 + (col + 0.5) * mpp; };
+  const auto world_y = [&](int row) { return -y0 - (row + 0.5) * mpp; };
+  std::vector<double> h(static_cast<size_t>(rows) * cols, 0.0);
   std::mt19937 rng(33);
   std::uniform_real_distribution<double> u(0, 1);
-  for (int stone = 0; stone < 900; ++stone) {
-    const double cx = 2.1 + u(rng) * 4.3;  // image x of -2 m is 0
-    const double cy = u(rng) * 6.4;
+  // 33 stones a square metre, as many as the first rubble had.
+  const int stones = static_cast<int>(33 * cols * mpp * rows * mpp);
+  for (int stone = 0; stone < stones; ++stone) {
+    const double cx = x0 + u(rng) * cols * mpp;
+    const double cy = y0 + u(rng) * rows * mpp;
     const double radius = 0.05 + 0.1 * u(rng);
     const double top = 0.3 + 0.7 * u(rng);
-    for (int row = 0; row < kSide; ++row) {
-      for (int col = 0; col < kSide; ++col) {
-        const double x = (col + 0.5) * mpp, y = (row + 0.5) * mpp;
-        const double d = std::hypot(x - cx, y - cy) / radius;
+    // Only the pixels near the stone: the map is large.
+    const int c0 = std::max(0, static_cast<int>((cx - radius - x0) / mpp) - 1);
+    const int c1 =
+        std::min(cols - 1, static_cast<int>((cx + radius - x0) / mpp) + 1);
+    const int r0 = std::max(0, static_cast<int>((-y0 - cy - radius) / mpp) - 1);
+    const int r1 =
+        std::min(rows - 1, static_cast<int>((-y0 - cy + radius) / mpp) + 1);
+    for (int row = r0; row <= r1; ++row) {
+      for (int col = c0; col <= c1; ++col) {
+        const double d =
+            std::hypot(world_x(col) - cx, world_y(row) - cy) / radius;
         if (d < 1) {
-          double& v = h[row * kSide + col];
+          double& v = h[static_cast<size_t>(row) * cols + col];
           v = std::max(v, top * std::sqrt(1 - d * d));
         }
       }
     }
   }
   std::vector<unsigned char> grey(h.size());
-  for (int row = 0; row < kSide; ++row) {
-    for (int col = 0; col < kSide; ++col) {
-      // Flat where the robot starts (x < 0.1 m): image x < 2.1 m.
-      const double x = (col + 0.5) * mpp;
-      const double v = x < 2.1 ? 0.0 : h[row * kSide + col];
-      grey[row * kSide + col] =
-          static_cast<unsigned char>(std::lround(255 * std::min(1.0, v)));
+  for (int row = 0; row < rows; ++row) {
+    for (int col = 0; col < cols; ++col) {
+      // Flat where the robot lies and 0.1 m round it.
+      const size_t i = static_cast<size_t>(row) * cols + col;
+      const double v =
+          FromStartBody(world_x(col), world_y(row)) < 0.1 ? 0.0 : h[i];
+      grey[i] = static_cast<unsigned char>(std::lround(255 * std::min(1.0, v)));
     }
   }
   // One pixel at full white, so the brightest is 4 cm whatever the stones.
-  grey[kSide * kSide - 1] = 255;
-  scene.height_image = Pgm(kSide, kSide, grey);
+  grey.back() = 255;
+  scene.height_image = Pgm(cols, rows, grey);
   t.gait = *FindGaitPreset("forward");
   return t;
 }
@@ -337,9 +400,9 @@ Task Rubble() {
 Task Water() {
   Task t;
   t.name = "water";
-  t.description =
-      "a pool of water 0.3 m deep over the ground (the modules float): "
-      "distance along +x";
+  t.world =
+      "a pool of water 0.3 m deep (buoyancy and drag, docs/sim.md); the "
+      "modules float";
   t.scenario = Base();
   FluidRegion pool;
   pool.guid = "pool";
@@ -378,11 +441,19 @@ std::string TaskNamesText() {
   return text;
 }
 
+std::string TaskFitnessText(const Task& task) {
+  return task.distance_mode == "up" ? "CoM rise along +z"
+                                    : "CoM travel along +x";
+}
+
 Task MakeTask(const std::string& name) {
   std::string key = name;
   std::replace(key.begin(), key.end(), '_', '-');
   for (const auto& [n, build] : Builders()) {
-    if (n == key) return build();
+    if (n != key) continue;
+    Task t = build();
+    t.description = t.world + ": " + TaskFitnessText(t);
+    return t;
   }
   throw TaskError(fmt::format("unknown task '{}': expected one of {}", name,
                               TaskNamesText()));

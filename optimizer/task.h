@@ -16,7 +16,8 @@ namespace mrsim {
 
 struct Task {
   std::string name;
-  std::string description;  // one line
+  std::string world;        // what the world is: docs/tasks.md's table
+  std::string description;  // one line: the world and what is scored
   Scenario scenario;        // everything embedded: names no file
   // FitnessSettings::distance_mode: "forward" (+x), or "up" (+z, the pole).
   std::string distance_mode = "forward";
@@ -36,6 +37,9 @@ class TaskError : public std::invalid_argument {
 const std::vector<std::string>& TaskNames();
 // "flat, slope, ..." for messages and --help.
 std::string TaskNamesText();
+// What the task's fitness measures, in metres: "CoM travel along +x" or
+// "CoM rise along +z".
+std::string TaskFitnessText(const Task& task);
 // Builds the task ('_' accepted for '-'). Same name, same task, bit for bit
 // (the rubble is seeded). Throws TaskError.
 Task MakeTask(const std::string& name);

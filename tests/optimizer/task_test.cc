@@ -10,6 +10,7 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
+#include "optimizer/genome.h"
 #include "optimizer/process/opt_command.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_validate.h"
@@ -97,6 +98,33 @@ TEST(TaskSuite, HelicalRollingClimbsThePoleAndSlidesBackWhenTheServosGoLimp) {
   while (limp_physics.time() - t0 < 1.0) limp_physics.Step();
   const double after = limp_physics.CenterOfMass(0).z() - z0;
   EXPECT_LT(after, climbed - 0.1) << "m after 1 s limp, from " << climbed;
+}
+
+// What mrsim-opt --genes cpg evaluates first on a task: its start genome.
+EvalResult CpgStartGenomeOn(const std::string& task) {
+  const Task t = MakeTask(task);
+  const Problem p = TaskProblem(t, t.gait, BuiltInGenome("cpg"));
+  return RunEpisode(p, p.genome.StartGenome());
+}
+
+// The start genome of --genes cpg drifts metres sideways on flat ground.
+// When the stairs and pegs were 2 m wide it went round them and scored on
+// both to 16 digits what it scores on flat; now they span its reach (the
+// pegs between walls), so it meets them and scores less, and the rubble
+// changes its score too (the stones help it).
+TEST(TaskSuite, AGaitThatDriftsSidewaysCannotGoRoundTheObstacles) {
+  const EvalResult flat = CpgStartGenomeOn("flat");
+  ASSERT_FALSE(flat.failed);
+  EXPECT_GT(flat.drift, 1.5) << "m sideways: no longer a drifting gait";
+  for (const char* task : {"stairs", "pegs", "rubble"}) {
+    SCOPED_TRACE(task);
+    const EvalResult r = CpgStartGenomeOn(task);
+    EXPECT_FALSE(r.failed);
+    EXPECT_NE(r.distance, flat.distance);
+    if (std::string(task) != "rubble") {
+      EXPECT_LT(r.distance, flat.distance);
+    }
+  }
 }
 
 OptCommand ParseOpt(std::vector<std::string> args) {
