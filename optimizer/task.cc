@@ -27,10 +27,10 @@ constexpr const char* kRobotMaterial = "plastic";
 // starts, to either side and ahead (the pegs are walled in instead), so a
 // gait scores there only by meeting the obstacles. Fields 2 m wide let a
 // gait that drifted sideways go round them and score to 16 digits as on
-// flat (the start genome of mrsim-opt --genes cpg drifts
-// 2.5 m). 4 m is 0.2 m/s for the 20 s episode, faster than anything in
-// docs/tasks.md moves (the fastest, optimised genomes and that drifting
-// one, about 0.13 m/s).
+// flat (the start genome of mrsim-opt --genes cpg drifts 2.5 m). 4 m is
+// 0.2 m/s for the 20 s episode, faster than anything in docs/tasks.md
+// moves (the fastest, optimised genomes and that drifting one, about
+// 0.14 m/s).
 constexpr double kReach = 4.0;
 constexpr double kRobotLength = 0.1 * kTaskModules;  // tail at x = -1.2
 

@@ -1,6 +1,6 @@
-// mrsim-tasks (`mrsim tasks`): lists the task suite (docs/tasks.md), or
-// writes one task's scenario to a file for mrsim-sim, the studio or a
-// launch file.
+// mrsim-tasks (`mrsim tasks`): lists the task suite (docs/tasks.md), prints
+// its tables, runs one episode of a gait on a task, or writes one task's
+// scenario to a file for mrsim-sim, the studio or a launch file.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -9,56 +9,32 @@
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/task.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/task_table.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-tasks: the task suite (docs/tasks.md)"};
   app.set_version_flag("--version", mrsim::VersionLine("mrsim-tasks"));
-  std::string name;
-  std::string out;
-  app.add_option("task", name, "Task to describe or write");
-  std::string gait;
-  double seconds = 0;
-  app.add_option("--write", out, "Write the task's scenario to this file")
-      ->needs(app.get_option("task"));
-  app.add_option("--gait", gait,
-                 "Run one episode of this gait (preset or "
-                 "file) and print its fitness")
-      ->needs(app.get_option("task"));
-  app.add_option("--seconds", seconds, "Episode length (default: the task's)")
+  mrsim::TaskCommand c;
+  auto* task = app.add_option("task", c.task, "Task to describe or write");
+  app.add_option("--write", c.write, "Write the task's scenario to this file")
+      ->needs(task);
+  app.add_option("--gait", c.gait,
+                 "Run one episode of this gait (preset, file or 'task': the "
+                 "task's own) and print its fitness")
+      ->needs(task);
+  app.add_option("--seconds", c.seconds, "Episode length (default: the task's)")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--markdown", c.markdown,
+               "Print the tables of docs/tasks.md: the tasks and every "
+               "compared gait's fitness on each (a minute or two)")
+      ->excludes(task);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& err) {
     return mrsim::CliParseExit(app, err);
   }
   try {
-    if (name.empty()) {
-      fmt::print("{:<8} {:<8} {:>5}  {:<14} {}\n", "task", "fitness", "s",
-                 "gait", "world");
-      for (const std::string& n : mrsim::TaskNames()) {
-        const mrsim::Task t = mrsim::MakeTask(n);
-        fmt::print("{:<8} {:<8} {:>5g}  {:<14} {}\n", t.name, t.distance_mode,
-                   t.duration, t.gait.name, t.description);
-      }
-      return 0;
-    }
-    const mrsim::Task t = mrsim::MakeTask(name);
-    if (!gait.empty()) {
-      const mrsim::EvalResult r = mrsim::EvaluateTask(
-          t, gait == "task" ? t.gait : mrsim::ResolveGait(gait), seconds);
-      fmt::print("{} {} {}: {:.3f} m{}\n", t.name, gait, t.distance_mode,
-                 r.distance, r.failed ? " (unstable)" : "");
-      return 0;
-    }
-    if (out.empty()) {
-      fmt::print("{}: {}\nfitness: {} (m), episode {} s, suggested gait {}\n",
-                 t.name, t.description, t.distance_mode, t.duration,
-                 t.gait.name);
-      return 0;
-    }
-    mrsim::WriteScenarioFile(t.scenario, out);
-    fmt::print("wrote {}\n", out);
+    fmt::print("{}", mrsim::RunTaskCommand(c));
     return 0;
   } catch (const mrsim::GaitFileError& err) {
     fmt::print(stderr, "mrsim-tasks: {}\n", err.what());
