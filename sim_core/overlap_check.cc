@@ -67,7 +67,7 @@ std::map<std::string, PartName> PartsByBody(const Scenario& s) {
     for (size_t i = 0; i < rb.modules.size(); ++i) {
       for (int f = 0; f < 2; ++f) {
         parts[mjcf_names::FrameBody(robot, static_cast<int>(i), f)] = {
-            fmt::format("{}module {} frame {}", who, i, f),
+            fmt::format("{}module {} {}", who, i, FrameName(f)),
             fmt::format("{}/modules/Module[{}]/frames/Frame[{}]", path, i + 1,
                         f + 1)};
       }

@@ -26,7 +26,7 @@ inline constexpr double kOverlapTolerance = 0.001;  // m
 
 struct PartOverlap {
   // What each part is, by the names the user gave ("robot 'snake' module 3
-  // frame 0", "scene object 'ball'" by its guid, "scene object 1" when its
+  // front frame", "scene object 'ball'" by its guid, "scene object 1" when its
   // guid is a generated GUID, "the terrain") and its element path in
   // the file ("Scenario/robot[1]/modules/Module[4]/frames/Frame[1]"), as
   // validation errors name them.
@@ -50,7 +50,7 @@ std::vector<PartOverlap> FindOverlapsInModel(
     const Scenario& scenario, const mjModel* model,
     double tolerance = kOverlapTolerance);
 
-// "file:line: path: robot 'snake' module 3 frame 0 overlaps scene object 1
+// "file:line: path: robot 'snake' module 3 front frame overlaps scene object 1
 // by 12.5 mm", the line and path those of the first part (without a
 // source: "path: ...").
 std::string DescribeOverlap(const PartOverlap& overlap,

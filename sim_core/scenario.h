@@ -59,6 +59,13 @@ struct Joint {
   double break_force = 0.0;    // N, lock only; 0: never breaks
 };
 
+// A module's frames[i] in words: frames[0] is on the +x side, the front,
+// frames[1] the back (chain_builder.h). Messages and the studio's
+// inspector name frames so, never "frame 0".
+inline const char* FrameName(int i) {
+  return i == 0 ? "front frame" : i == 1 ? "back frame" : "frame";
+}
+
 // Two frames joined by a hinge whose axis is given by `axis`.
 struct Module {
   int mod_nr = 0;

@@ -10,6 +10,18 @@
 #include "studio/design/inert_fields.h"
 
 namespace mrsim::studio {
+namespace {
+
+// A group title from a name used inside messages ("front frame").
+std::string Capitalised(std::string text) {
+  if (!text.empty()) {
+    text[0] =
+        static_cast<char>(std::toupper(static_cast<unsigned char>(text[0])));
+  }
+  return text;
+}
+
+}  // namespace
 
 std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
   std::vector<FieldGroup> groups;
@@ -32,9 +44,9 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
         groups.push_back(
             {"joint", "Joint",
              WithoutInert(FieldsOf(m.joint), {"type", "breakForce"})});
-        groups.push_back({"frames[0]", "Front frame",
+        groups.push_back({"frames[0]", Capitalised(FrameName(0)),
                           WithoutInert(FieldsOf(m.frames[0]), {"rotation"})});
-        groups.push_back({"frames[1]", "Back frame",
+        groups.push_back({"frames[1]", Capitalised(FrameName(1)),
                           WithoutInert(FieldsOf(m.frames[1]), {"rotation"})});
       }
       break;

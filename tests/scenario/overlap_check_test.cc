@@ -60,7 +60,8 @@ TEST(OverlapCheck, RobotPlacedInsideABoxIsReportedNamingBoth) {
   bool named = false;
   for (const PartOverlap& o : overlaps) {
     named |= o.second == object && o.first.find("robot '") == 0 &&
-             o.first.find("module 0 frame") != std::string::npos;
+             (o.first.find("module 0 front frame") != std::string::npos ||
+              o.first.find("module 0 back frame") != std::string::npos);
     EXPECT_GT(o.depth, kOverlapTolerance);
   }
   EXPECT_TRUE(named) << DescribeOverlap(overlaps.front());
@@ -161,7 +162,7 @@ TEST(OverlapCheck, ValidateCommandFailsWithFileLineAndBothParts) {
     EXPECT_THAT(what, HasSubstr(file + ":"));
     EXPECT_THAT(what, HasSubstr("Scenario/robot[1]/modules/Module[1]/frames/"
                                 "Frame[1]: robot '"));
-    EXPECT_THAT(what, HasSubstr("module 0 frame 0 overlaps scene object"));
+    EXPECT_THAT(what, HasSubstr("module 0 front frame overlaps scene object"));
     // A line number, not 0.
     EXPECT_THAT(what, ::testing::Not(HasSubstr(file + ":0:")));
   }

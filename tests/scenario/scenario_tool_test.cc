@@ -255,7 +255,8 @@ TEST(ScenarioTool, ValidateExitsTwoNamingPartsThatOverlapAtTheStart) {
   const Result r = RunTool({"validate", dir + "/boxed.xml"}, dir);
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("error: " + dir + "/boxed.xml:"));
-  EXPECT_THAT(r.output, HasSubstr("module 2 frame 0 overlaps scene object "));
+  EXPECT_THAT(r.output,
+              HasSubstr("module 2 front frame overlaps scene object "));
 }
 
 TEST(ScenarioTool, ExportStlWritesThePartsAndTheListIntoTheFolder) {

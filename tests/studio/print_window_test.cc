@@ -238,6 +238,14 @@ TEST_F(StudioPrintTest, RunSaysWhyItRefusesOverlappingPartsUntilAllowed) {
       60))
       << ReadLayout(layout_)["run refused"];
   EXPECT_NE(ReadLayout(layout_)["run refused"].find(" mm"), std::string::npos);
+  // Every part by its name: the robot's, and its frame as the inspector
+  // titles it, not by index.
+  const std::string refused = ReadLayout(layout_)["run refused"];
+  EXPECT_NE(refused.find("robot 'case_study' module 1 "), std::string::npos)
+      << refused;
+  EXPECT_TRUE(refused.find("front frame") != std::string::npos ||
+              refused.find("back frame") != std::string::npos)
+      << refused;
   Click("checkbox allow overlap");
   EXPECT_TRUE(WaitForLayout(layout_, "run refused", ""))
       << ReadLayout(layout_)["run refused"];
