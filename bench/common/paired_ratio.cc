@@ -38,7 +38,11 @@ std::string Lines(const std::string& name, const PairedRatio& r, double value,
   out += note + "\n";
   out += "BENCH " + name + Format(" %.3f ", value) + unit + "\n";
   out += "BENCH " + name + "_spread" + Format(" %.1f %%\n", 100 * r.spread);
-  if (!(r.spread <= kReliableSpread) || r.ratios.empty()) {
+  // One pair has no spread to show; it is not a figure either.
+  if (r.ratios.size() < 2) {
+    out += "# " + name + ": " + std::to_string(r.ratios.size()) +
+           " pairs: not a reliable figure on this machine right now\n";
+  } else if (!(r.spread <= kReliableSpread)) {
     out += "# " + name +
            Format(": spread %.1f%% > %.0f%%", 100 * r.spread,
                   100 * kReliableSpread) +

@@ -75,8 +75,8 @@ inline constexpr double kReliableSpread = 0.05;
 // ..."), then
 // "BENCH name <median> unit" and "BENCH name_spread <spread %> %", and a
 // comment "# name: spread X% > 5%: not a reliable figure on this machine
-// right now" when the spread is larger. `what` names the two sides for the
-// comment, e.g. "safe us / lcm-gen us".
+// right now" when the spread is larger (or there are fewer than 2 pairs).
+// `what` names the two sides for the comment, e.g. "safe us / lcm-gen us".
 std::string FormatBench(const std::string& name, const PairedRatio& r,
                         const std::string& unit, const std::string& what = "");
 

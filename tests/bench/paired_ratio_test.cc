@@ -152,10 +152,11 @@ TEST(PairedRatioTest, AtMostClampsAndSaysSo) {
               HasSubstr("BENCH farm_efficiency 0.850 x\n"));
 }
 
-TEST(PairedRatioTest, NoPairsIsNotReliable) {
-  const PairedRatio r = SummarizePairs({1}, {0});
-  EXPECT_THAT(FormatBench("x_ratio", r, "x"),
-              HasSubstr("not a reliable figure"));
+TEST(PairedRatioTest, FewerThanTwoPairsIsNotReliable) {
+  EXPECT_THAT(FormatBench("x_ratio", SummarizePairs({1}, {0}), "x"),
+              HasSubstr("# x_ratio: 0 pairs: not a reliable figure"));
+  EXPECT_THAT(FormatBench("x_ratio", SummarizePairs({1}, {1}), "x"),
+              HasSubstr("# x_ratio: 1 pairs: not a reliable figure"));
 }
 
 }  // namespace
