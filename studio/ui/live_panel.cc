@@ -191,6 +191,10 @@ void LivePanel::Draw(float x, float y, float w, float h,
     ImGui::TextWrapped("%s", message_.c_str());
     ImGui::PopStyleColor();
   }
+  // Optimise is the other way to run a design: right under Run, so at
+  // 1280x800 its header and its Start button are on screen without
+  // scrolling past the sections a run fills (Simulator, Steering).
+  if (RecordedHeader(layout_, "Optimise", false)) DrawOptimise(design, w);
   if (RecordedHeader(layout_, "Simulator", true)) {
     DrawControls();
   }
@@ -200,7 +204,6 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (RecordedHeader(layout_, "Locks", false)) DrawLocks();
   if (RecordedHeader(layout_, "Recording", false)) DrawRecording();
   if (RecordedHeader(layout_, "Plots", false)) DrawPlots(w);
-  if (RecordedHeader(layout_, "Optimise", false)) DrawOptimise(design, w);
   if (RecordedHeader(layout_, "Console", false)) DrawConsole(240);
   ImGui::End();
 }

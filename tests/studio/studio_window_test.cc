@@ -226,6 +226,38 @@ TEST_F(StudioWindowTest, At1024By640NoPanelsOverlap) {
   studio_->Stop();
 }
 
+// At 1280x800 the Run panel's Optimise header is on screen without
+// scrolling, and opened, so is its Start button.
+TEST_F(StudioWindowTest, At1280By800OptimiseIsReachableWithoutScrolling) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  Start("studio_window_optimise_reach",
+        CaseStudyCopy("studio_window_optimise_reach_src"),
+        {"--width", "1280", "--height", "800"});
+  ASSERT_TRUE(Xdotool({"mousemove", "640", "400"}));
+  ASSERT_TRUE(Xdotool({"key", "F5"}));
+  ASSERT_TRUE(WaitUntil(
+      [&] { return ReadLayout(layout_).count("widget header Optimise") > 0; },
+      60));
+  auto l = ReadLayout(layout_);
+  const Box window{0, 0, 1280, 800};
+  const Box right = ParseBox(l["panel right"]);
+  ASSERT_TRUE(window.Holds(right)) << l["panel right"];
+  const Box header = ParseBox(l["widget header Optimise"]);
+  EXPECT_TRUE(right.Holds(header)) << l["widget header Optimise"];
+  ASSERT_NO_FATAL_FAILURE(
+      ClickWhenThere(layout_, static_cast<int>(header.x + header.w / 2),
+                     static_cast<int>(header.y + header.h / 2)));
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout_).count("widget Start optimisation") > 0;
+      },
+      60));
+  l = ReadLayout(layout_);
+  EXPECT_TRUE(right.Holds(ParseBox(l["widget Start optimisation"])))
+      << l["widget Start optimisation"];
+  studio_->Stop();
+}
+
 TEST_F(StudioWindowTest, RecordsThreeSecondsOfTheViewToAPlayableMp4) {
   if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
   const std::string file = CaseStudyCopy("studio_window_video_src");
