@@ -168,7 +168,9 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     }
   }
   if (s.robots.empty()) {
-    ImGui::TextWrapped("No robot yet: add a pitch or yaw module.");
+    ImGui::TextWrapped(
+        "No robot yet: add a pitch or yaw module, or drag one into the 3-D "
+        "view.");
   }
   ImGui::PopStyleColor(3);
   ImGui::EndChild();
