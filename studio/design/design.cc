@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -748,16 +750,29 @@ void Design::ScaleMesh(const std::string& shape, double factor) {
 
 std::vector<Design::OversizedMesh> Design::OversizedMeshes() const {
   std::vector<OversizedMesh> out;
+  // Each file read once (a chain often repeats one mesh): its size at
+  // scale 1, NaN when it cannot be read.
+  std::map<std::string, Eigen::Vector3d> unscaled;
   for (const Robot& robot : scenario_.robots) {
     for (const Module& m : robot.modules) {
       for (const Frame& f : m.frames) {
         if (!f.is_mesh()) continue;
-        double longest = 0;
-        try {
-          longest = FrameBounds(f, scenario_.base_dir).sizes().maxCoeff();
-        } catch (const std::exception&) {
-          continue;
+        auto known = unscaled.find(f.shape);
+        if (known == unscaled.end()) {
+          Frame one = f;
+          one.scale = Eigen::Vector3d::Ones();
+          Eigen::Vector3d size = Eigen::Vector3d::Constant(
+              std::numeric_limits<double>::quiet_NaN());
+          try {
+            size = FrameBounds(one, scenario_.base_dir).sizes();
+          } catch (const std::exception&) {
+            // Left to the validator, which says why it cannot be read.
+          }
+          known = unscaled.emplace(f.shape, size).first;
         }
+        if (!known->second.allFinite()) continue;
+        const double longest =
+            known->second.cwiseProduct(f.scale.cwiseAbs()).maxCoeff();
         if (longest <= kMeshLooksLikeMillimetres) continue;
         auto same = std::find_if(out.begin(), out.end(), [&](const auto& o) {
           return o.shape == f.shape;
