@@ -1,8 +1,8 @@
 // The one description of every scenario part: for each field its XML name,
-// C++ member, type, unit, limits, default and help text, and for each part
-// the child parts it holds. Reading, writing and validating scenario files,
-// frame and unit conversion, and the studio's inspector all walk it
-// (docs/scenario.md, "The schema").
+// its label in words for the studio, C++ member, type, unit, limits, default
+// and help text, and for each part the child parts it holds. Reading, writing
+// and validating scenario files, frame and unit conversion, and the studio's
+// inspector all walk it (docs/scenario.md, "The schema").
 #pragma once
 
 #include <Eigen/Core>
