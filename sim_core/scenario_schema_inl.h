@@ -512,12 +512,14 @@ void Describe(V& v, Robot& r) {
     ChildInfo c =
         Wrapper("modules", "Module", "modules", "The modules of the chain");
     c.max_items = kMaxModules;
+    c.max_items_why = kMaxModulesWhy;
     return c;
   }();
   static const ChildInfo kSensorModules = [] {
     ChildInfo c = Wrapper("sensorModules", "SensorModule", "sensor_modules",
                           "Sensor modules between the modules");
     c.max_items = kMaxModules;
+    c.max_items_why = kMaxModulesWhy;
     return c;
   }();
   static const ChildInfo kLocks = [] {
@@ -643,7 +645,7 @@ void Describe(V& v, ContactFriction& f) {
       "",         L::NonNegative(),       "Sliding friction coefficient"};
   // Diamond's is about 1.2e12 Pa.
   static const FieldInfo kYoung{"youngsModulus",
-                                "stiffness (Young's modulus)",
+                                "Young's modulus",
                                 "youngs_modulus",
                                 "Pa",
                                 L::Positive().Within(1e13),
