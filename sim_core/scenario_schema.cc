@@ -379,12 +379,15 @@ bool ParseBool(const std::string& raw) {
 std::string FormatNumber(double value) { return FormatShortest(value); }
 
 std::string ListLimitMessage(const ChildInfo& info) {
+  const std::string why =
+      *info.max_items_why ? std::string(": ") + info.max_items_why : "";
   if (*info.item) {
-    return fmt::format("more than {} <{}> in <{}> (at most {})", info.max_items,
-                       info.item, info.xml, info.max_items);
+    return fmt::format("more than {} <{}> in <{}> (at most {}{})",
+                       info.max_items, info.item, info.xml, info.max_items,
+                       why);
   }
-  return fmt::format("more than {} <{}> (at most {})", info.max_items, info.xml,
-                     info.max_items);
+  return fmt::format("more than {} <{}> (at most {}{})", info.max_items,
+                     info.xml, info.max_items, why);
 }
 
 FieldType FieldRef::type() const {

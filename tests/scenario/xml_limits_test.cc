@@ -79,7 +79,8 @@ TEST(ScenarioLimits, MoreModulesThanTheCapAreRefusedBeforeAnyIsRead) {
   EXPECT_EQ(ErrorReading(path),
             path +
                 ":1004: Scenario/robot[1]/modules/Module[1001]: more than "
-                "1000 <Module> in <modules> (at most 1000)");
+                "1000 <Module> in <modules> (at most 1000: " +
+                kMaxModulesWhy + ")");
   EXPECT_THROW(
       {
         ChainOptions options;
