@@ -8,6 +8,7 @@
 
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
 #include "tests/studio/studio_test_util.h"
 
 namespace mrsim::testing {
@@ -52,6 +53,12 @@ class StudioInspectorWindow : public ::testing::Test {
         WaitForLayout(layout_, "revision", std::to_string(revision));
     ASSERT_TRUE(Xdotool({"keyup", "Return"}));
     ASSERT_TRUE(taken) << ReadLayout(layout_)["message"];
+    // The field lets go of the keyboard a frame or more after it commits;
+    // until then the studio gives keys to the field, so a Ctrl+S sent at
+    // once on a loaded machine went to the field and never saved.
+    ASSERT_TRUE(
+        WaitUntil([&] { return ReadLayout(layout_).count("active") == 0; }, 90))
+        << ReadLayout(layout_)["active"];
   }
 
   std::string dir_;
