@@ -21,6 +21,16 @@
 
 namespace mrsim {
 
+const char* FrontDoorHelp() {
+  return "mrsim: modular robot simulator front door.\n"
+         "  mrsim launch FILE    start the processes of a launch file\n"
+         "  mrsim run FILE       run a design headless with its saved "
+         "controller\n"
+         "  mrsim keygen PATH    write a key for signed messages\n"
+         "  mrsim TOOL ARGS...   run mrsim-TOOL: scenario, studio, sim, "
+         "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary, run";
+}
+
 void AddLaunchFlags(CLI::App& launch, LaunchCommand& c) {
   launch.add_option("file", c.file, "Launch file (XML)")->required();
   launch.add_option("--set", c.sets, "Override an <arg>: NAME=VALUE");

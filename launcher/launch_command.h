@@ -30,6 +30,9 @@ struct LaunchCommand {
 // Registers the launch subcommand's arguments on `launch`.
 void AddLaunchFlags(CLI::App& launch, LaunchCommand& command);
 
+// `mrsim --help`'s description: the subcommands and the tools.
+const char* FrontDoorHelp();
+
 // What will run: each enabled process with the program path found for it.
 struct LaunchPlan {
   std::string name;  // the launch file's

@@ -21,14 +21,7 @@ int main(int argc, char** argv) {
       mrsim::ExecTool(argv[0], argv[1],
                       std::vector<std::string>(argv + 2, argv + argc));
     }
-    CLI::App app{
-        "mrsim: modular robot simulator front door.\n"
-        "  mrsim launch FILE    start the processes of a launch file\n"
-        "  mrsim run FILE       run a design headless with its saved "
-        "controller\n"
-        "  mrsim keygen PATH    write a key for signed messages\n"
-        "  mrsim TOOL ARGS...   run mrsim-TOOL: scenario, studio, sim, "
-        "gait, ctl, log, plot, view, opt, worker, lcm-spy, summary, run"};
+    CLI::App app{mrsim::FrontDoorHelp()};
     app.set_version_flag("--version", std::string("mrsim ") + mrsim::kVersion);
     app.require_subcommand(1);
     mrsim::LaunchCommand command;
@@ -53,14 +46,11 @@ int main(int argc, char** argv) {
     mrsim::InstallStopHandlers();
     return mrsim::RunLaunch(
         plan, [] { return mrsim::StopRequested(); }, stdout);
-  } catch (const mrsim::UsageError& e) {  // the key file
-    std::fprintf(stderr, "mrsim: %s\n", e.what());
-    return 2;
-  } catch (const mrsim::LaunchError& e) {
-    std::fprintf(stderr, "mrsim: %s\n", e.what());
-    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrsim: %s\n", e.what());
-    return 1;
+    // A bad key file or launch file is bad usage; anything else a failure.
+    const bool usage = dynamic_cast<const mrsim::UsageError*>(&e) ||
+                       dynamic_cast<const mrsim::LaunchError*>(&e);
+    return usage ? 2 : 1;
   }
 }

@@ -310,6 +310,13 @@ int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
 
 }  // namespace
 
+std::string CtlHelp() {
+  return std::string(
+             "Drives a running mrsim-sim and mrsim-gait.\n  mrsim-ctl ") +
+         SimControlUsage() + "\n  mrsim-ctl status\n  mrsim-ctl " +
+         GaitRequestUsage();
+}
+
 int RunCtl(SignedLcm& lcm, const std::vector<std::string>& words,
            const CtlOptions& options, std::ostream& out, std::ostream& err) {
   if (!words.empty() && words[0] == "gait") {

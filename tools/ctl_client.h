@@ -22,6 +22,9 @@ struct CtlOptions {
   std::string sender;
 };
 
+// `mrsim-ctl --help`'s description: every command it takes.
+std::string CtlHelp();
+
 // The exit status: 0 done, 1 refused or no answer, 2 bad words (thrown as
 // std::invalid_argument before anything is sent).
 int RunCtl(SignedLcm& lcm, const std::vector<std::string>& words,

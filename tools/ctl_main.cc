@@ -1,14 +1,10 @@
 // mrsim-ctl: drive a running simulation and its gait controllers from the
-// shell (tools/ctl_client.h):
-//   mrsim-ctl pause | resume | step N | reset | save PATH | load PATH |
-//             speed S | detach ROBOT LOCK | attach ROBOT LOCK | quit
-//   mrsim-ctl status
-//   mrsim-ctl gait ROBOT [gait NAME] [motion M] [strength S] [direction F T]
+// shell; the commands and their conversations are in tools/ctl_client.h
+// (`mrsim-ctl --help` lists them).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
-#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
 
@@ -18,14 +14,9 @@
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "tools/ctl_client.h"
-#include "tools/gait_command_request.h"
-#include "tools/sim_control_request.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{std::string("Drives a running mrsim-sim and mrsim-gait.\n  "
-                           "mrsim-ctl ") +
-               mrsim::SimControlUsage() + "\n  mrsim-ctl status\n  mrsim-ctl " +
-               mrsim::GaitRequestUsage()};
+  CLI::App app{mrsim::CtlHelp()};
   app.set_version_flag("--version", mrsim::VersionLine("mrsim-ctl"));
   std::string lcm_url;
   mrsim::CtlOptions options;
@@ -55,14 +46,11 @@ int main(int argc, char** argv) {
       return 1;
     }
     return mrsim::RunCtl(lcm, words, options, std::cout, std::cerr);
-  } catch (const mrsim::UsageError& e) {  // the key file
-    std::cerr << "mrsim-ctl: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "mrsim-ctl: " << e.what() << "\n";
-    return 2;
   } catch (const std::exception& e) {
     std::cerr << "mrsim-ctl: " << e.what() << "\n";
-    return 1;
+    // A bad key file or bad words are bad usage; anything else a failure.
+    const bool usage = dynamic_cast<const mrsim::UsageError*>(&e) ||
+                       dynamic_cast<const std::invalid_argument*>(&e);
+    return usage ? 2 : 1;
   }
 }
