@@ -92,7 +92,10 @@ TEST_F(StudioInspectorWindow, NinetyTypedInYawTurnsTheObjectAboutUp) {
   ASSERT_TRUE(
       WaitForLayout(layout_, "selected", "object 0 " + std::to_string(index)));
   ASSERT_NO_FATAL_FAILURE(TypeAndEnter("field /quatRotation yaw", "90", 1));
-  ASSERT_TRUE(Xdotool({"key", "ctrl+s"}));
+  // Saved with the Design panel's button: this test is about the field.
+  int x = 0, y = 0;
+  ASSERT_TRUE(WidgetCentre(layout_, "Save", &x, &y));
+  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
   ASSERT_TRUE(WaitForLayout(layout_, "dirty", "0"))
       << ReadLayout(layout_)["message"];
   const SceneObject crate = ReadScenarioFile(file).scene_objects.at(index);
