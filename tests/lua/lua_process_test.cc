@@ -50,7 +50,12 @@ TEST(LuaProcess, SerpenoidTemplateDrivesTheSimulatorInLockstep) {
   const std::string path = dir + "/snake.xml";
   WriteScenarioFile(scenario, path);
   const std::string url = TestLcmUrl(7943);
-  lcm::LCM lcm(url);
+  // Every one of the 301 states must reach this recorder: in lockstep the
+  // simulator paces itself on the controller, not on the test, and with
+  // six tests on two cores this process can be off the CPU while a few
+  // hundred kilobytes of states arrive (the default 208 KiB socket buffer
+  // kept 65 of 301). LCM asks the kernel for more (up to rmem_max).
+  lcm::LCM lcm(url + "&recv_buf_size=4194304");
   ASSERT_TRUE(lcm.good());
   Recorder rec;
   lcm.subscribe(StateChannel("MRSIM", "snake"), &Recorder::OnState, &rec)
