@@ -28,6 +28,16 @@ std::string Key(const Selection& s, const std::string& sub,
          std::to_string(s.index) + "/" + sub + "/" + field;
 }
 
+// The refusal of what was typed into the field `key`, in red under it.
+void DrawFieldError(const std::map<std::string, std::string>& errors,
+                    const std::string& key) {
+  auto error = errors.find(key);
+  if (error == errors.end()) return;
+  ImGui::PushTextWrapPos(0);
+  ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s", error->second.c_str());
+  ImGui::PopTextWrapPos();
+}
+
 }  // namespace
 
 void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
@@ -133,13 +143,7 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       if (f.type() != FieldType::kQuaternion || info.kept) {
         studio.Record("field " + g.sub + "/" + info.xml);
       }
-      auto error = field_errors_.find(key);
-      if (error != field_errors_.end()) {
-        ImGui::PushTextWrapPos(0);
-        ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s",
-                           error->second.c_str());
-        ImGui::PopTextWrapPos();
-      }
+      DrawFieldError(field_errors_, key);
       ImGui::PopID();
     }
     ImGui::PopID();
@@ -219,13 +223,7 @@ void InspectorPanel::DrawEulerDegrees(StudioContext& studio, const FieldRef& f,
     studio.Record("field " + address.sub + "/" + address.field + " " +
                   kAxes[k]);
     // A refusal shows under the field the student typed in.
-    auto error = field_errors_.find(component_key);
-    if (error != field_errors_.end()) {
-      ImGui::PushTextWrapPos(0);
-      ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s",
-                         error->second.c_str());
-      ImGui::PopTextWrapPos();
-    }
+    DrawFieldError(field_errors_, component_key);
     ImGui::PopID();
   }
 }
