@@ -266,21 +266,10 @@ const std::pair<std::vector<FieldSpec>, std::vector<ChildSpec>>& SpecsOf(
     std::map<PartKind,
              std::pair<std::vector<FieldSpec>, std::vector<ChildSpec>>>
         t;
-    t[PartKind::kScenario] = Specs<Scenario>();
-    t[PartKind::kRobot] = Specs<Robot>();
-    t[PartKind::kModule] = Specs<Module>();
-    t[PartKind::kFrame] = Specs<Frame>();
-    t[PartKind::kJoint] = Specs<Joint>();
-    t[PartKind::kSensorModule] = Specs<SensorModule>();
-    t[PartKind::kForceSensor] = Specs<ForceSensor>();
-    t[PartKind::kDistanceSensor] = Specs<DistanceSensor>();
-    t[PartKind::kImu] = Specs<Imu>();
-    t[PartKind::kScene] = Specs<Scene>();
-    t[PartKind::kSceneObject] = Specs<SceneObject>();
-    t[PartKind::kContactFriction] = Specs<ContactFriction>();
-    t[PartKind::kFluidRegion] = Specs<FluidRegion>();
-    t[PartKind::kSettings] = Specs<SimulationSettings>();
-    t[PartKind::kRunSettings] = Specs<RunSettings>();
+#define MRSIM_PART_KIND_SPECS(Kind, Name, Type) \
+  t[PartKind::Kind] = Specs<Type>();
+    MRSIM_PART_KINDS(MRSIM_PART_KIND_SPECS)
+#undef MRSIM_PART_KIND_SPECS
     return t;
   }();
   return table.at(kind);
@@ -308,38 +297,22 @@ const char* ToString(FieldType type) {
   return "?";
 }
 
+const std::vector<PartKind>& AllPartKinds() {
+  static const std::vector<PartKind> kinds{
+#define MRSIM_PART_KIND_ITEM(Kind, Name, Type) PartKind::Kind,
+      MRSIM_PART_KINDS(MRSIM_PART_KIND_ITEM)
+#undef MRSIM_PART_KIND_ITEM
+  };
+  return kinds;
+}
+
 const char* ToString(PartKind kind) {
   switch (kind) {
-    case PartKind::kScenario:
-      return "Scenario";
-    case PartKind::kRobot:
-      return "robot";
-    case PartKind::kModule:
-      return "Module";
-    case PartKind::kFrame:
-      return "Frame";
-    case PartKind::kJoint:
-      return "Joint";
-    case PartKind::kSensorModule:
-      return "SensorModule";
-    case PartKind::kForceSensor:
-      return "forceSensor";
-    case PartKind::kDistanceSensor:
-      return "DistanceSensor";
-    case PartKind::kImu:
-      return "imu";
-    case PartKind::kScene:
-      return "scene";
-    case PartKind::kSceneObject:
-      return "SceneObject";
-    case PartKind::kContactFriction:
-      return "ContactFriction";
-    case PartKind::kFluidRegion:
-      return "FluidRegion";
-    case PartKind::kSettings:
-      return "settings";
-    case PartKind::kRunSettings:
-      return "run";
+#define MRSIM_PART_KIND_NAME(Kind, Name, Type) \
+  case PartKind::Kind:                         \
+    return Name;
+    MRSIM_PART_KINDS(MRSIM_PART_KIND_NAME)
+#undef MRSIM_PART_KIND_NAME
   }
   return "?";
 }

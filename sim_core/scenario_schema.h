@@ -165,24 +165,36 @@ enum class ChildCount {
   kRepeated,  // std::vector of elements repeated in the parent, no wrapper
 };
 
+// Every kind of scenario part, once: its enumerator, its element name in
+// files, and its model type (scenario.h). The enum, ToString, AllPartKinds,
+// the schema's per-kind table (FieldSpecsOf) and the schema document are
+// all made from this list, so a kind cannot be added without being
+// described (the studio's SelectionKind takes its values from it too).
+#define MRSIM_PART_KINDS(X)                               \
+  X(kScenario, "Scenario", Scenario)                      \
+  X(kRobot, "robot", Robot)                               \
+  X(kModule, "Module", Module)                            \
+  X(kFrame, "Frame", Frame)                               \
+  X(kJoint, "Joint", Joint)                               \
+  X(kSensorModule, "SensorModule", SensorModule)          \
+  X(kForceSensor, "forceSensor", ForceSensor)             \
+  X(kDistanceSensor, "DistanceSensor", DistanceSensor)    \
+  X(kImu, "imu", Imu)                                     \
+  X(kScene, "scene", Scene)                               \
+  X(kSceneObject, "SceneObject", SceneObject)             \
+  X(kContactFriction, "ContactFriction", ContactFriction) \
+  X(kFluidRegion, "FluidRegion", FluidRegion)             \
+  X(kSettings, "settings", SimulationSettings)            \
+  X(kRunSettings, "run", RunSettings)
+
 // What kind of part a child is.
 enum class PartKind {
-  kScenario,
-  kRobot,
-  kModule,
-  kFrame,
-  kJoint,
-  kSensorModule,
-  kForceSensor,
-  kDistanceSensor,
-  kImu,
-  kScene,
-  kSceneObject,
-  kContactFriction,
-  kFluidRegion,
-  kSettings,
-  kRunSettings,
+#define MRSIM_PART_KIND_ENUMERATOR(Kind, Name, Type) Kind,
+  MRSIM_PART_KINDS(MRSIM_PART_KIND_ENUMERATOR)
+#undef MRSIM_PART_KIND_ENUMERATOR
 };
+// Every part kind, in the enum's order.
+const std::vector<PartKind>& AllPartKinds();
 // The part's element name in files, e.g. "Frame", "SensorModule".
 const char* ToString(PartKind kind);
 

@@ -919,27 +919,13 @@ void Describe(V& v, Scenario& s) {
 
 template <typename T>
 struct KindOf;
-#define MRSIM_KIND_OF(Type, Kind)                      \
+#define MRSIM_PART_KIND_KIND_OF(Kind, Name, Type)      \
   template <>                                          \
   struct KindOf<Type> {                                \
     static constexpr PartKind kValue = PartKind::Kind; \
-  }
-MRSIM_KIND_OF(Scenario, kScenario);
-MRSIM_KIND_OF(Robot, kRobot);
-MRSIM_KIND_OF(Module, kModule);
-MRSIM_KIND_OF(Frame, kFrame);
-MRSIM_KIND_OF(Joint, kJoint);
-MRSIM_KIND_OF(SensorModule, kSensorModule);
-MRSIM_KIND_OF(ForceSensor, kForceSensor);
-MRSIM_KIND_OF(DistanceSensor, kDistanceSensor);
-MRSIM_KIND_OF(Imu, kImu);
-MRSIM_KIND_OF(Scene, kScene);
-MRSIM_KIND_OF(SceneObject, kSceneObject);
-MRSIM_KIND_OF(ContactFriction, kContactFriction);
-MRSIM_KIND_OF(FluidRegion, kFluidRegion);
-MRSIM_KIND_OF(SimulationSettings, kSettings);
-MRSIM_KIND_OF(RunSettings, kRunSettings);
-#undef MRSIM_KIND_OF
+  };
+MRSIM_PART_KINDS(MRSIM_PART_KIND_KIND_OF)
+#undef MRSIM_PART_KIND_KIND_OF
 
 // The names of a choice field's values, in enum order.
 inline const std::vector<std::string>& ChoiceNames(const Axis*) {

@@ -59,8 +59,7 @@ const char* CountText(ChildCount count) {
 std::string SchemaMarkdown() {
   std::string out;
   // Every part, in the enum's order (a new part kind is listed by itself).
-  for (int k = 0; k <= static_cast<int>(PartKind::kRunSettings); ++k) {
-    const PartKind kind = static_cast<PartKind>(k);
+  for (const PartKind kind : AllPartKinds()) {
     out += fmt::format("### {}\n\n", ToString(kind));
     const auto& fields = FieldSpecsOf(kind);
     if (!fields.empty()) {

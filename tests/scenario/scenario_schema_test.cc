@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 #include <string>
 
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario.h"
+#include "sim_core/scenario_tool/schema_table.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/sensor_face.h"
 
@@ -44,6 +46,36 @@ std::string SetTextError(const FieldRef& f, const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// A part kind added to the list but never described (no fields, no
+// children, held by no part) would be a kind no file can hold and the
+// schema document would not mention: each kind must be reachable from the
+// scenario and have its own section in `mrsim-scenario schema`.
+TEST(ScenarioSchema, EveryPartKindIsDescribedAndInTheSchemaTable) {
+  std::set<PartKind> reached{PartKind::kScenario};
+  std::vector<PartKind> todo{PartKind::kScenario};
+  while (!todo.empty()) {
+    const PartKind kind = todo.back();
+    todo.pop_back();
+    for (const ChildSpec& c : ChildSpecsOf(kind)) {
+      if (reached.insert(c.kind).second) todo.push_back(c.kind);
+    }
+  }
+  const std::string table = SchemaMarkdown();
+  std::set<std::string> names;
+  ASSERT_FALSE(AllPartKinds().empty());
+  for (const PartKind kind : AllPartKinds()) {
+    const std::string name = ToString(kind);
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(names.insert(name).second) << "two kinds are called " << name;
+    EXPECT_FALSE(FieldSpecsOf(kind).empty() && ChildSpecsOf(kind).empty())
+        << "a part kind with no fields and no children";
+    EXPECT_TRUE(reached.count(kind)) << "no part holds a " << name;
+    EXPECT_NE(table.find("### " + name + "\n"), std::string::npos)
+        << "not in the schema table";
+  }
+  EXPECT_EQ(reached.size(), AllPartKinds().size());
 }
 
 TEST(ScenarioSchema, JointFieldsCarryUnitsDefaultsAndLimits) {
