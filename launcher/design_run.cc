@@ -55,12 +55,13 @@ std::vector<ProcessSpec> OutputSpecs(const RunOptions& o,
   log.name = "log";
   log.program = "mrsim-log";
   log.finish_s = 30;
+  log.ready_line = "recording channels";
   log.args = {"--out", out_dir + "/csv", "--exit-with-sim"};
   log.args.insert(log.args.end(), lcm.begin(), lcm.end());
   ProcessSpec view;
   view.name = "view";
   view.program = "mrsim-view";
-  view.delay_s = 0.3;
+  view.ready_line = "listening on";
   view.finish_s = 600;
   view.args = {o.scenario_path,   "--out",    out_dir + "/" + name + ".mp4",
                "--exit-with-sim", "--camera", "follow"};
@@ -138,13 +139,9 @@ DesignRun::DesignRun(const std::string& argv0, const DesignRunFlags& flags) {
     throw UsageError(flags.file + ": " + e.what());
   }
   // The controllers, the logger and the viewer listen before the first
-  // state: the viewer needs a few seconds to start rendering, and a
-  // lockstep or fast run would be over before it (it keeps up afterwards,
-  // rendering what it fell behind on).
-  const bool viewed = std::find(flags.without.begin(), flags.without.end(),
-                                "view") == flags.without.end();
-  specs.back().delay_s = viewed ? 3.0 : 0.5;
-
+  // state (each has a ready line; RunLaunch starts the simulator after
+  // them), so a lockstep or fast run is not over before the viewer has
+  // set up its renderer.
   for (const std::string& left_out : flags.without) {
     const auto it =
         std::find_if(specs.begin(), specs.end(), [&](const ProcessSpec& p) {

@@ -112,6 +112,35 @@ bool TcpPortAccepts(int port) {
   return ok;
 }
 
+// Waits until `spec`'s process prints its ready line. Returns "" when it
+// did or a stop was asked; else why the launch ends: a required process
+// ended meanwhile, or this one ended or stayed silent past the deadline.
+// `not_ready` is set in the last two cases: the launch failed.
+std::string WaitUntilReady(const ProcessSpec& spec,
+                           const std::function<bool()>& stop,
+                           ProcessGroup& group, bool& not_ready) {
+  const auto deadline = std::chrono::steady_clock::now() + kReadyPortTimeout;
+  const auto this_one = [&](const ProcessSpec& s) {
+    return s.name == spec.name;
+  };
+  while (!stop() && !group.IsReady(spec.name)) {
+    const std::string ended = group.Poll(20);
+    if (!ended.empty()) return ended;
+    if (group.IsReady(spec.name)) break;
+    if (!group.AnyRunning(this_one)) {
+      not_ready = true;
+      return fmt::format("{} (ended before printing a line matching '{}')",
+                         spec.name, spec.ready_line);
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      not_ready = true;
+      return fmt::format("{} (no line matching '{}' after {} s)", spec.name,
+                         spec.ready_line, kReadyPortTimeout.count());
+    }
+  }
+  return "";
+}
+
 // After a required process ended: the processes that may finish their
 // work (ProcessSpec::finish_s) are given that long to end by themselves,
 // the others are stopped now. A stop request cuts the wait short.
@@ -177,6 +206,7 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
             std::to_string(plan.processes.size()) +
             " processes; Ctrl-C stops them all");
   std::string ended;
+  bool not_ready = false;  // a process the others wait for never got ready
   for (const auto& [spec, path] : plan.processes) {
     const auto start = std::chrono::steady_clock::now();
     while (spec.delay_s > 0 && !stop() && ended.empty() &&
@@ -191,6 +221,7 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
           std::chrono::steady_clock::now() + kReadyPortTimeout;
       while (!stop() && ended.empty() && !TcpPortAccepts(spec.ready_port)) {
         if (std::chrono::steady_clock::now() > deadline) {
+          not_ready = true;
           ended = fmt::format(
               "{} (not accepting connections on port {} after "
               "{} s)",
@@ -199,6 +230,10 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
         }
         ended = group.Poll(50);
       }
+    }
+    if (!spec.ready_line.empty()) {
+      ended = WaitUntilReady(spec, stop, group, not_ready);
+      if (!ended.empty()) break;
     }
   }
   while (ended.empty() && !stop() && group.AnyRunning()) {
@@ -213,7 +248,7 @@ int RunLaunch(const LaunchPlan& plan, const std::function<bool()>& stop,
   group.Say("all stopped:\n" + group.Summary());
   // A terminal's Ctrl-C reaches the children too, and one may end before
   // StopAll signals it.
-  return group.AllClean(stop()) ? 0 : 1;
+  return group.AllClean(stop()) && !not_ready ? 0 : 1;
 }
 
 void ExecTool(const std::string& argv0, const std::string& tool,

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
+#include <regex>
 #include <set>
 
 #include "common/input_limits.h"
@@ -109,6 +110,29 @@ double ParseSeconds(const char* text, const std::string& where,
                       ", got '" + text + "'");
   }
   return seconds;
+}
+
+// A ready attribute: a regular expression that compiles and is short (a
+// launch file is input, and std::regex recurses on long patterns).
+std::string ParseReadyLine(const char* text, const std::string& where,
+                           const std::string& process) {
+  if (text == nullptr) return "";
+  constexpr size_t kMaxReadyLength = 200;
+  const std::string pattern = text;
+  const std::string what =
+      where + "process '" + process + "': attribute ready: expected ";
+  if (pattern.empty() || pattern.size() > kMaxReadyLength) {
+    throw LaunchError(what + "a regular expression of 1 to " +
+                      std::to_string(kMaxReadyLength) + " characters, got " +
+                      std::to_string(pattern.size()));
+  }
+  try {
+    std::regex{pattern};
+  } catch (const std::regex_error& e) {
+    throw LaunchError(what + "a regular expression, got '" + pattern + "' (" +
+                      e.what() + ")");
+  }
+  return pattern;
 }
 
 // <hub port="7667"/>: LCM's TCP hub, for networks without multicast;
@@ -275,10 +299,10 @@ LaunchFile ReadLaunchFile(const std::string& path,
       throw LaunchError(where + "unexpected <" + tag +
                         ">: expected <arg>, <hub> or <process>");
     }
-    CheckAttributes(
-        e,
-        {"name", "program", "args", "required", "enabled", "delay", "finish"},
-        where);
+    CheckAttributes(e,
+                    {"name", "program", "args", "required", "enabled", "delay",
+                     "finish", "ready"},
+                    where);
     ProcessSpec spec;
     spec.line = e->GetLineNum();
     const char* name = e->Attribute("name");
@@ -315,6 +339,7 @@ LaunchFile ReadLaunchFile(const std::string& path,
         ParseSeconds(e->Attribute("delay"), where, spec.name, "delay");
     spec.finish_s =
         ParseSeconds(e->Attribute("finish"), where, spec.name, "finish");
+    spec.ready_line = ParseReadyLine(e->Attribute("ready"), where, spec.name);
     file.processes.push_back(std::move(spec));
   }
   if (file.processes.empty()) {

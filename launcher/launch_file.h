@@ -7,8 +7,8 @@
 //     <hub port="7667"/>   (LCM's TCP hub; optional, put it first)
 //     <process name="sim" program="mrsim-sim" required="true"
 //              args="${launch_dir}/../scenarios/case_study.xml --duration 20"/>
-//     <process name="viewer" program="mrsim-view" delay="0.5" finish="120"
-//              args="... --out ${out}/demo.mp4 --exit-with-sim"/>
+//     <process name="viewer" program="mrsim-view" ready="listening on"
+//              finish="120" args="... --out ${out}/demo.mp4 --exit-with-sim"/>
 //   </launch>
 #pragma once
 
@@ -40,6 +40,11 @@ struct ProcessSpec {
   // > 0: the processes after it start only once this TCP port on this host
   // accepts connections (a hub: LCM's tcpq clients do not retry).
   int ready_port = 0;
+  // Not empty: the processes after it start only once it has printed a
+  // line this regular expression finds (ECMAScript, searched anywhere in
+  // the line), e.g. "listening on": a viewer or logger that takes a while
+  // to set up under load would otherwise miss the run's first seconds.
+  std::string ready_line;
   // A hub: its siblings talk through it, so it is stopped after all of
   // them (and the terminal's Ctrl-C does not reach it), which spares them
   // "connection reset" and "re-connecting" on a normal stop.

@@ -58,6 +58,9 @@ void ProcessGroup::Start(const ProcessSpec& spec,
                              "): " + e.what());
   }
   child.spec = spec;
+  if (!spec.ready_line.empty()) {
+    child.ready_line = std::make_shared<const std::regex>(spec.ready_line);
+  }
   child.running = true;
   child.colour = kColours[children_.size() % std::size(kColours)];
   name_width_ = std::max(name_width_, spec.name.size());
@@ -67,7 +70,10 @@ void ProcessGroup::Start(const ProcessSpec& spec,
       "): " + program_path);
 }
 
-void ProcessGroup::PrintLine(const Child& child, const std::string& line) {
+void ProcessGroup::PrintLine(Child& child, const std::string& line) {
+  if (child.ready_line && std::regex_search(line, *child.ready_line)) {
+    child.ready_line.reset();
+  }
   if (sink_) {
     sink_(child.spec.name, line);
     return;
@@ -198,6 +204,12 @@ void ProcessGroup::StopStage(const Which& which, double grace_s) {
     Say(std::string("some processes ignored ") + strsignal(sig) +
         ", escalating");
   }
+}
+
+bool ProcessGroup::IsReady(const std::string& name) const {
+  return std::any_of(children_.begin(), children_.end(), [&](const Child& c) {
+    return c.spec.name == name && !c.ready_line;
+  });
 }
 
 bool ProcessGroup::AnyRunning() const {

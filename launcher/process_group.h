@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ class ProcessGroup {
   using Which = std::function<bool(const ProcessSpec&)>;
   void Stop(const Which& which, double grace_s);
 
+  // True once the process `name` has printed a line its
+  // ProcessSpec::ready_line finds (or at once when it has none).
+  bool IsReady(const std::string& name) const;
+
   bool AnyRunning() const;
   bool AnyRunning(const Which& which) const;
   // True when every process ended with exit code 0, or was stopped: ended
@@ -73,12 +78,13 @@ class ProcessGroup {
     int status = 0;
     bool stopped_by_us = false;
     int colour = 0;
+    std::shared_ptr<const std::regex> ready_line;  // null: none, or seen
   };
   // Signals the running children `which` picks, escalating.
   void StopStage(const Which& which, double grace_s);
   void Forward(Child& child, bool flush_partial);
   void Reap(Child& child, int status);
-  void PrintLine(const Child& child, const std::string& line);
+  void PrintLine(Child& child, const std::string& line);
 
   std::FILE* out_ = nullptr;
   LineSink sink_;

@@ -71,6 +71,7 @@ std::vector<ProcessSpec> RunProcessSpecs(const RunOptions& o) {
       ProcessSpec node;
       node.name = (lua ? "lua-" : "gait-") + robot;
       node.program = lua ? "mrsim-lua" : "mrsim-gait";
+      node.ready_line = "listening on";  // both say so once subscribed
       if (lua) {
         node.args = {"--robot",    robot,
                      "--scenario", o.scenario_path,

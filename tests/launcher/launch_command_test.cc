@@ -214,5 +214,58 @@ TEST(LaunchCommand, ProcessesAfterAHubStartOnceItListens) {
   EXPECT_THAT(text, ::testing::Not(HasSubstr("refused"))) << text;
 }
 
+// A viewer setting up its renderer on a busy machine: what comes after it
+// starts once it says it listens, not after a guessed delay.
+TEST(LaunchCommand, ProcessesAfterOneWithAReadyLineStartOnceItPrintsIt) {
+  LaunchPlan plan;
+  plan.name = "ready-first";
+  ProcessSpec slow;
+  slow.name = "slow";
+  slow.ready_line = "listening on \\d+";
+  slow.args = {"-c",
+               "echo setting up; sleep 1; echo listening on; "
+               "echo listening on 3 channels; exec sleep 60"};
+  ProcessSpec next;
+  next.name = "next";
+  next.required = true;
+  next.args = {"-c", "echo next ran"};
+  plan.processes = {{slow, "/bin/sh"}, {next, "/bin/sh"}};
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  const int code = RunLaunch(
+      plan, [] { return false; }, out);
+  const std::string text = TextOf(out);
+  EXPECT_EQ(code, 0) << text;
+  const size_t ready = text.find("listening on 3 channels");
+  const size_t started = text.find("started next");
+  ASSERT_NE(ready, std::string::npos) << text;
+  ASSERT_NE(started, std::string::npos) << text;
+  EXPECT_LT(ready, started) << text;
+}
+
+TEST(LaunchCommand, AProcessThatEndsBeforeItsReadyLineFailsTheLaunch) {
+  LaunchPlan plan;
+  plan.name = "never-ready";
+  ProcessSpec broken;
+  broken.name = "broken";
+  broken.ready_line = "listening on";
+  broken.args = {"-c", "echo cannot open the display; exit 0"};
+  ProcessSpec next;
+  next.name = "next";
+  next.required = true;
+  next.args = {"-c", "echo next ran"};
+  plan.processes = {{broken, "/bin/sh"}, {next, "/bin/sh"}};
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  const int code = RunLaunch(
+      plan, [] { return false; }, out);
+  const std::string text = TextOf(out);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_THAT(text, HasSubstr("broken (ended before printing a line matching "
+                              "'listening on')"))
+      << text;
+  EXPECT_THAT(text, ::testing::Not(HasSubstr("next ran"))) << text;
+}
+
 }  // namespace
 }  // namespace mrsim

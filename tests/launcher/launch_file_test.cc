@@ -1,5 +1,6 @@
 #include "launcher/launch_file.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -199,6 +200,29 @@ std::string ErrorOf(const std::string& path) {
     return e.what();
   }
   return "";
+}
+
+TEST(LaunchFile, AReadyLineIsARegularExpressionCheckedWithItsLine) {
+  const std::string ok = WriteFile("ready_ok.launch", R"(<launch>
+  <process name="view" program="mrsim-view" ready="listening on \d+"/>
+  <process name="sim" program="mrsim-sim"/>
+</launch>)");
+  const LaunchFile file = ReadLaunchFile(ok, {});
+  EXPECT_EQ(file.processes[0].ready_line, "listening on \\d+");
+  EXPECT_EQ(file.processes[1].ready_line, "");
+  const std::string bad = WriteFile("ready_bad.launch", R"(<launch>
+
+  <process name="view" program="mrsim-view" ready="listening (on"/>
+</launch>)");
+  try {
+    ReadLaunchFile(bad, {});
+    FAIL() << "expected LaunchError";
+  } catch (const LaunchError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("ready_bad.launch:3:"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr(
+                              "attribute ready: expected a regular expression, "
+                              "got 'listening (on'"));
+  }
 }
 
 TEST(LaunchFile, AnUnreadableFileIsSaidInWords) {
