@@ -11,11 +11,13 @@
 
 #include "common/wall_time.h"
 #include "gait_controller/motion.h"
+#include "gait_controller/process/gait_node.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
+#include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
 #include "tools/gait_command_request.h"
@@ -64,6 +66,9 @@ class Listener {
   // Messages on the channel that did not decode as Message (another
   // version of mrsim, or another program on the same channel).
   int undecodable() const { return undecodable_; }
+  // Drops what arrived and Next has not looked at (for a listener only
+  // `watch`ed).
+  void Forget() { fresh_.clear(); }
 
   // Called with every message decoded, whether Next wanted it or not.
   std::function<void(const Message&)> watch;
@@ -257,6 +262,37 @@ int RunSimControl(SignedLcm& lcm, const std::vector<std::string>& words,
   return 0;
 }
 
+// The first gait status of `robot`'s steering controller, or nothing. A
+// controller that takes gait commands says so with its gait status (at
+// least once a second); a robot whose states are heard for
+// kGaitStatusWait without one is driven by a controller that takes none
+// (mrsim-lua, a program of one's own), and waiting longer is pointless:
+// `*robot_heard` says so.
+constexpr double kGaitStatusWait = 2.5 * GaitNode::kHeartbeatInterval;
+std::optional<gait_status_t> WaitForSteering(
+    SignedLcm& lcm, Listener<gait_status_t>& status, const std::string& prefix,
+    const std::string& robot, double timeout, bool* robot_heard) {
+  Listener<robot_state_t> state(lcm, StateChannel(prefix, robot));
+  std::optional<Clock::time_point> first_state;
+  state.watch = [&](const robot_state_t&) {
+    if (!first_state) first_state = Clock::now();
+  };
+  const auto end = Clock::now() + std::chrono::duration<double>(timeout);
+  while (Clock::now() < end) {
+    if (auto alive =
+            status.Next([](const gait_status_t&) { return true; }, 0.1)) {
+      return alive;
+    }
+    state.Forget();
+    if (first_state && Clock::now() - *first_state >
+                           std::chrono::duration<double>(kGaitStatusWait)) {
+      break;
+    }
+  }
+  *robot_heard = first_state.has_value();
+  return std::nullopt;
+}
+
 int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
             const CtlOptions& o, std::ostream& out, std::ostream& err) {
   gait_command_t c = ParseGaitRequest(words);
@@ -264,8 +300,20 @@ int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
   Listener<gait_status_t> status(lcm, channel);
   // mrsim-gait says it is there once a second; a command sent before it
   // subscribed would be lost.
+  bool robot_heard = false;
   const auto alive =
-      status.Next([](const gait_status_t&) { return true; }, o.timeout);
+      WaitForSteering(lcm, status, o.prefix, c.robot, o.timeout, &robot_heard);
+  if (!alive && robot_heard) {
+    err << fmt::format(
+        "mrsim-ctl: nothing steers robot '{}': it runs (its states are on "
+        "{}), but its controller takes no gait commands (nothing speaks on "
+        "{}). Only a controller that takes steering answers `mrsim-ctl "
+        "gait`: mrsim-gait does; mrsim-lua (a Lua script) and most programs "
+        "of one's own do not\n",
+        c.robot, StateChannel(o.prefix, c.robot), channel);
+    err << UndecodableNote(status.undecodable(), channel);
+    return 1;
+  }
   if (!alive) {
     err << fmt::format(
         "mrsim-ctl: no mrsim-gait for robot '{}' answers on {} within {:.1f} "

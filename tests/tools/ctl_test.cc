@@ -16,6 +16,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_status_t.hpp"
+#include "mrsim/robot_state_t.hpp"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tools/ctl_client.h"
@@ -310,6 +311,43 @@ TEST(MrsimCtl, AStepThatCannotFinishFails) {
   EXPECT_EQ(p.Wait(60), 1) << p.Output();
   EXPECT_NE(p.Output().find("5 periods not done"), std::string::npos)
       << p.Output();
+}
+
+// A robot that runs but whose controller takes no gait commands (mrsim-lua,
+// a program of one's own: it never sends a gait status) is named as such
+// soon after its states are heard, not waited for until the timeout.
+TEST(MrsimCtl, SteeringARobotNothingSteersFailsAtOnceAndSaysWhy) {
+  const std::string url = TestLcmUrl(7886);
+  lcm::LCM talker(url);
+  ASSERT_TRUE(talker.good());
+  std::atomic<bool> done{false};
+  std::thread states([&] {
+    // The worm's states, as mrsim-sim sends them, and nothing on its gait
+    // status channel.
+    robot_state_t state{};
+    state.robot = "worm";
+    testing::RepeatUntil(
+        [&] {
+          ++state.seq;
+          state.sim_time += 0.02;
+          talker.publish(StateChannel("MRSIM", "worm"), &state);
+        },
+        [&] { return done.load(); }, 0.02, 60);
+  });
+  SignedLcm lcm(url);
+  CtlOptions options;
+  options.timeout = 30;  // the other message would say "within 30.0 s"
+  options.sender = "ctl-test";
+  std::ostringstream out, err;
+  const int code =
+      RunCtl(lcm, {"gait", "worm", "motion", "forward"}, options, out, err);
+  done = true;
+  states.join();
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(err.str().find("nothing steers robot 'worm': it runs"),
+            std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find("mrsim-lua"), std::string::npos) << err.str();
 }
 
 // mrsim-ctl gait waits for mrsim-gait's heartbeat, sends once and reports
