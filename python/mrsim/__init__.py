@@ -12,6 +12,8 @@ mrsim._core); nothing is implemented a second time in Python.
   ``sim.set_controller(gait); sim.run(10)``.
 - Episodes and the optimiser: ``run_episode``, ``run_task("pole")``,
   ``mrsim.optimize`` (a scenario file or ``task="pole"``).
+- mrsim-opt's algorithms on a Python objective: ``Optimizer("cmaes",
+  genes=[("x", -5, 5)], seed=1)``, ``ask()``, ``tell(fitness)``, ``best``.
 - Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
 - LCM: ``Node`` (states, commands, lockstep, simulator control; signed
   with a key file, ``KeyFileError`` when it cannot be used).
@@ -26,6 +28,7 @@ from ._core import (  # noqa: F401
     GenomeError,
     KeyFileError,
     LogError,
+    Optimizer,
     PhysicsError,
     Scenario,
     ScenarioError,
@@ -54,7 +57,7 @@ def load_scenario(path, frame=None, length_scale=1.0):
 
 __all__ = [
     "CheckpointError", "ControlError", "Gait", "GaitError", "GenomeError",
-    "KeyFileError", "LogError", "Message", "Node", "POSE_FIELDS", "PhysicsError", "Scenario",
+    "KeyFileError", "LogError", "Message", "Node", "Optimizer", "POSE_FIELDS", "PhysicsError", "Scenario",
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
     "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",

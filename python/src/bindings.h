@@ -14,5 +14,6 @@ void BindSimulation(pybind11::module_& m);
 void BindLcm(pybind11::module_& m);
 void BindLogs(pybind11::module_& m);
 void BindEpisode(pybind11::module_& m);
+void BindOptimizer(pybind11::module_& m);
 
 }  // namespace mrsim::python

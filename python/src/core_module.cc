@@ -18,4 +18,5 @@ PYBIND11_MODULE(_core, m) {
   mrsim::python::BindLcm(m);
   mrsim::python::BindLogs(m);
   mrsim::python::BindEpisode(m);
+  mrsim::python::BindOptimizer(m);
 }
