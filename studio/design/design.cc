@@ -26,13 +26,14 @@ namespace {
 constexpr size_t kMaxUndo = 500;
 
 bool IsChainPart(const Selection& s) {
-  return s.kind == PartKind::kModule || s.kind == PartKind::kSensorModule;
+  return s.kind == SelectionKind::kModule ||
+         s.kind == SelectionKind::kSensorModule;
 }
 
 // Position of the selected chain part in ChainOrder, or -1.
 int SlotOf(const std::vector<ChainSlot>& slots, const Selection& sel) {
   for (size_t i = 0; i < slots.size(); ++i) {
-    if (slots[i].sensor == (sel.kind == PartKind::kSensorModule) &&
+    if (slots[i].sensor == (sel.kind == SelectionKind::kSensorModule) &&
         slots[i].source == sel.index) {
       return static_cast<int>(i);
     }
@@ -45,7 +46,8 @@ Selection SelectionAt(const std::vector<ChainSlot>& slots, int robot,
                       int slot) {
   int modules = 0, sensors = 0;
   for (int i = 0; i < slot; ++i) (slots[i].sensor ? sensors : modules)++;
-  return {slots[slot].sensor ? PartKind::kSensorModule : PartKind::kModule,
+  return {slots[slot].sensor ? SelectionKind::kSensorModule
+                             : SelectionKind::kModule,
           robot, slots[slot].sensor ? sensors : modules};
 }
 
@@ -163,20 +165,20 @@ Design Design::Open(const std::string& path) {
   }
   if (!design.scenario_.robots.empty() &&
       !design.scenario_.robots[0].modules.empty()) {
-    design.selection_ = {PartKind::kModule, 0, 0};
+    design.selection_ = {SelectionKind::kModule, 0, 0};
   }
   return design;
 }
 
 void Design::Select(const Selection& selection) {
   Scenario copy = scenario_;
-  const bool valid = selection.kind == PartKind::kNone ||
+  const bool valid = selection.kind == SelectionKind::kNone ||
                      !InspectorFields(copy, selection).empty();
   selection_ = valid ? selection : Selection{};
 }
 
 int Design::TargetRobot() const {
-  if (IsChainPart(selection_) || selection_.kind == PartKind::kRobot) {
+  if (IsChainPart(selection_) || selection_.kind == SelectionKind::kRobot) {
     return selection_.robot;
   }
   return scenario_.robots.empty() ? -1 : 0;
@@ -276,7 +278,7 @@ void Design::AddRobot() {
     throw DesignError(e.what());
   }
   const int r = static_cast<int>(next.robots.size()) - 1;
-  Commit(std::move(next), {PartKind::kRobot, r, 0});
+  Commit(std::move(next), {SelectionKind::kRobot, r, 0});
 }
 
 void Design::AddObject(ObjectKind kind) {
@@ -339,7 +341,7 @@ void Design::AddObject(ObjectKind kind) {
     o.position.y() = OptionsOf(next.robots[0]).origin.y();
   }
   next.scene_objects.push_back(o);
-  Commit(std::move(next), {PartKind::kObject, 0,
+  Commit(std::move(next), {SelectionKind::kSceneObject, 0,
                            static_cast<int>(next.scene_objects.size()) - 1});
 }
 
@@ -360,7 +362,7 @@ void Design::AddFluid(FluidKind kind) {
   }
   next.fluid_regions.push_back(f);
   const int index = static_cast<int>(next.fluid_regions.size()) - 1;
-  Commit(std::move(next), {PartKind::kFluid, 0, index});
+  Commit(std::move(next), {SelectionKind::kFluidRegion, 0, index});
 }
 
 void Design::AddContact() {
@@ -372,7 +374,7 @@ void Design::AddContact() {
   pair.material2 = next.scene.material_name;
   next.contact_frictions.push_back(pair);
   const int index = static_cast<int>(next.contact_frictions.size()) - 1;
-  Commit(std::move(next), {PartKind::kContact, 0, index});
+  Commit(std::move(next), {SelectionKind::kContactFriction, 0, index});
 }
 
 void Design::RemoveSelected() {
@@ -390,8 +392,8 @@ void Design::RemoveSelected() {
   };
   Selection after;
   switch (sel.kind) {
-    case PartKind::kModule:
-    case PartKind::kSensorModule: {
+    case SelectionKind::kModule:
+    case SelectionKind::kSensorModule: {
       const Robot& old = next.robots.at(sel.robot);
       std::vector<ChainSlot> slots = ChainOrder(old);
       const int at = SlotOf(slots, sel);
@@ -411,13 +413,13 @@ void Design::RemoveSelected() {
                           std::min(at, static_cast<int>(slots.size()) - 1));
       break;
     }
-    case PartKind::kObject:
+    case SelectionKind::kSceneObject:
       after = erase(next.scene_objects);
       break;
-    case PartKind::kFluid:
+    case SelectionKind::kFluidRegion:
       after = erase(next.fluid_regions);
       break;
-    case PartKind::kContact:
+    case SelectionKind::kContactFriction:
       after = erase(next.contact_frictions);
       break;
     default:
@@ -468,14 +470,14 @@ void Design::MoveOnGround(const Selection& what, const GroundMove& move) {
   if (move.empty()) return;
   Scenario next = scenario_;
   switch (what.kind) {
-    case PartKind::kRobot:
-    case PartKind::kModule:
-    case PartKind::kSensorModule:
+    case SelectionKind::kRobot:
+    case SelectionKind::kModule:
+    case SelectionKind::kSensorModule:
       if (what.robot < 0 || what.robot >= static_cast<int>(next.robots.size()))
         throw DesignError("there is no robot " + std::to_string(what.robot));
       MoveRobot(&next.robots[what.robot], move);
       break;
-    case PartKind::kObject:
+    case SelectionKind::kSceneObject:
       if (what.index < 0 ||
           what.index >= static_cast<int>(next.scene_objects.size()))
         throw DesignError("there is no object " + std::to_string(what.index));
@@ -488,7 +490,7 @@ void Design::MoveOnGround(const Selection& what, const GroundMove& move) {
 }
 
 SensorModule& Design::SelectedSensorModule(Scenario* next) const {
-  if (selection_.kind != PartKind::kSensorModule) {
+  if (selection_.kind != SelectionKind::kSensorModule) {
     throw DesignError("select a sensor module first");
   }
   return next->robots.at(selection_.robot).sensor_modules.at(selection_.index);
@@ -539,7 +541,7 @@ void Design::AddDistanceSensor(int face) {
 
 std::vector<int> Design::OpenRayFaces() const {
   std::vector<int> faces;
-  if (selection_.kind != PartKind::kSensorModule) return faces;
+  if (selection_.kind != SelectionKind::kSensorModule) return faces;
   for (int face = 0; face < 6; ++face) {
     Scenario next = scenario_;
     try {
@@ -648,7 +650,8 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
   // A plate or ray moved to another face sits on that face; a ray that
   // looked straight out of its old face looks out of the new one.
   // A face out of range is left to the validator's message.
-  if (address.part.kind == PartKind::kSensorModule && !address.sub.empty()) {
+  if (address.part.kind == SelectionKind::kSensorModule &&
+      !address.sub.empty()) {
     try {
       SensorModule& sm = next.robots.at(address.part.robot)
                              .sensor_modules.at(address.part.index);
@@ -670,7 +673,8 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
     }
   }
   // Euler angles place nothing; keep the quaternion that does in step.
-  if (address.field == "rotation" && address.part.kind == PartKind::kObject) {
+  if (address.field == "rotation" &&
+      address.part.kind == SelectionKind::kSceneObject) {
     SceneObject& o = next.scene_objects[address.part.index];
     const Eigen::Vector3d r = o.rotation * M_PI / 180;
     o.quat_rotation = Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) *
@@ -687,11 +691,11 @@ void Design::SetTerrain(const std::string& image, double height,
   next.scene.height_image = image;
   next.scene.height = height;
   next.scene.meters_per_pixel = meters_per_pixel;
-  Commit(std::move(next), {PartKind::kScene, 0, 0});
+  Commit(std::move(next), {SelectionKind::kScene, 0, 0});
 }
 
 void Design::SetModuleMesh(const std::string& mesh, bool every_of_kind) {
-  if (selection_.kind != PartKind::kModule) {
+  if (selection_.kind != SelectionKind::kModule) {
     throw DesignError("select a module first");
   }
   Scenario next = scenario_;
@@ -791,7 +795,7 @@ std::vector<Design::OversizedMesh> Design::OversizedMeshes() const {
 void Design::ApplyTemplate(const TemplateOptions& options) {
   Scenario next = MakeTemplateScenario(options);
   next.base_dir = scenario_.base_dir;
-  Commit(std::move(next), {PartKind::kModule, 0, 0});
+  Commit(std::move(next), {SelectionKind::kModule, 0, 0});
 }
 
 void Design::Clear() {

@@ -30,12 +30,12 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
   };
   auto in = [](int i, size_t n) { return i >= 0 && i < static_cast<int>(n); };
   switch (sel.kind) {
-    case PartKind::kRobot:
+    case SelectionKind::kRobot:
       if (robot_ok()) {
         groups.push_back({"", "Robot", FieldsOf(s.robots[sel.robot])});
       }
       break;
-    case PartKind::kModule:
+    case SelectionKind::kModule:
       if (robot_ok() && in(sel.index, s.robots[sel.robot].modules.size())) {
         Module& m = s.robots[sel.robot].modules[sel.index];
         groups.push_back({"", "Module", FieldsOf(m)});
@@ -50,7 +50,7 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
                           WithoutInert(FieldsOf(m.frames[1]), {"rotation"})});
       }
       break;
-    case PartKind::kSensorModule:
+    case SelectionKind::kSensorModule:
       if (robot_ok() &&
           in(sel.index, s.robots[sel.robot].sensor_modules.size())) {
         SensorModule& sm = s.robots[sel.robot].sensor_modules[sel.index];
@@ -78,56 +78,56 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
         }
       }
       break;
-    case PartKind::kObject:
+    case SelectionKind::kSceneObject:
       if (in(sel.index, s.scene_objects.size())) {
         groups.push_back(
             {"", "Scene object",
              WithoutInert(FieldsOf(s.scene_objects[sel.index]), {"rotation"})});
       }
       break;
-    case PartKind::kScene:
+    case SelectionKind::kScene:
       groups.push_back({"", "Terrain", FieldsOf(s.scene)});
       break;
-    case PartKind::kFluid:
+    case SelectionKind::kFluidRegion:
       if (in(sel.index, s.fluid_regions.size())) {
         groups.push_back(
             {"", "Fluid region", FieldsOf(s.fluid_regions[sel.index])});
       }
       break;
-    case PartKind::kContact:
+    case SelectionKind::kContactFriction:
       if (in(sel.index, s.contact_frictions.size())) {
         groups.push_back(
             {"", "Contact material", FieldsOf(s.contact_frictions[sel.index])});
       }
       break;
-    case PartKind::kSettings:
+    case SelectionKind::kSettings:
       groups.push_back({"", "Simulation", FieldsOf(s.settings)});
       break;
-    case PartKind::kNone:
+    case SelectionKind::kNone:
       break;
   }
   return groups;
 }
 
-const char* ToString(PartKind kind) {
+const char* ToString(SelectionKind kind) {
   switch (kind) {
-    case PartKind::kNone:
+    case SelectionKind::kNone:
       return "none";
-    case PartKind::kRobot:
+    case SelectionKind::kRobot:
       return "robot";
-    case PartKind::kModule:
+    case SelectionKind::kModule:
       return "module";
-    case PartKind::kSensorModule:
+    case SelectionKind::kSensorModule:
       return "sensor_module";
-    case PartKind::kObject:
+    case SelectionKind::kSceneObject:
       return "object";
-    case PartKind::kScene:
+    case SelectionKind::kScene:
       return "terrain";
-    case PartKind::kFluid:
+    case SelectionKind::kFluidRegion:
       return "fluid";
-    case PartKind::kContact:
+    case SelectionKind::kContactFriction:
       return "contact";
-    case PartKind::kSettings:
+    case SelectionKind::kSettings:
       return "settings";
   }
   return "?";

@@ -5,22 +5,33 @@
 
 #include <string>
 
+#include "sim_core/scenario_schema.h"
+
 namespace mrsim::studio {
 
-enum class PartKind {
-  kNone,
-  kRobot,         // robot
-  kModule,        // robot, index into Robot::modules
-  kSensorModule,  // robot, index into Robot::sensor_modules
-  kObject,        // index into Scenario::scene_objects
-  kScene,         // the terrain
-  kFluid,         // index into Scenario::fluid_regions
-  kContact,       // index into Scenario::contact_frictions
-  kSettings,      // Scenario::settings
+// What kind of part a selection names: nothing, or one of the scenario
+// schema's part kinds (mrsim::PartKind, the one list of kinds) that the
+// studio lets a user pick, each with the schema kind's value, so a
+// selection kind cannot name a part the schema does not describe.
+enum class SelectionKind {
+  kNone = -1,
+  kRobot = static_cast<int>(PartKind::kRobot),  // robot
+  // robot, index into Robot::modules
+  kModule = static_cast<int>(PartKind::kModule),
+  // robot, index into Robot::sensor_modules
+  kSensorModule = static_cast<int>(PartKind::kSensorModule),
+  // index into Scenario::scene_objects
+  kSceneObject = static_cast<int>(PartKind::kSceneObject),
+  kScene = static_cast<int>(PartKind::kScene),  // the terrain
+  // index into Scenario::fluid_regions
+  kFluidRegion = static_cast<int>(PartKind::kFluidRegion),
+  // index into Scenario::contact_frictions
+  kContactFriction = static_cast<int>(PartKind::kContactFriction),
+  kSettings = static_cast<int>(PartKind::kSettings),  // Scenario::settings
 };
 
 struct Selection {
-  PartKind kind = PartKind::kNone;
+  SelectionKind kind = SelectionKind::kNone;
   int robot = 0;
   int index = 0;
 
@@ -31,6 +42,6 @@ struct Selection {
 };
 
 // "module 2 of snake", "ball (object 0)", ...: for titles and test dumps.
-const char* ToString(PartKind kind);
+const char* ToString(SelectionKind kind);
 
 }  // namespace mrsim::studio

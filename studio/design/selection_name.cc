@@ -22,17 +22,17 @@ int PlaceOf(const std::string& words, const std::string& kind) {
 Selection SelectionNamed(const Scenario& s, const std::string& name) {
   for (size_t r = 0; r < s.robots.size(); ++r) {
     if (s.robots[r].name == name) {
-      return {PartKind::kRobot, static_cast<int>(r), 0};
+      return {SelectionKind::kRobot, static_cast<int>(r), 0};
     }
   }
   for (size_t i = 0; i < s.scene_objects.size(); ++i) {
     if (s.scene_objects[i].guid == name) {
-      return {PartKind::kObject, 0, static_cast<int>(i)};
+      return {SelectionKind::kSceneObject, 0, static_cast<int>(i)};
     }
   }
   if (name == "none") return {};
-  if (name == "terrain") return {PartKind::kScene, 0, 0};
-  if (name == "settings") return {PartKind::kSettings, 0, 0};
+  if (name == "terrain") return {SelectionKind::kScene, 0, 0};
+  if (name == "settings") return {SelectionKind::kSettings, 0, 0};
   // A part: "[ROBOT ]module N" or "[ROBOT ]sensor_module N".
   int robot = 0;
   std::string part = name;
@@ -47,11 +47,11 @@ Selection SelectionNamed(const Scenario& s, const std::string& name) {
     const Robot& r = s.robots[robot];
     const int module = PlaceOf(part, "module");
     if (module >= 0 && module < static_cast<int>(r.modules.size())) {
-      return {PartKind::kModule, robot, module};
+      return {SelectionKind::kModule, robot, module};
     }
     const int sensor = PlaceOf(part, "sensor_module");
     if (sensor >= 0 && sensor < static_cast<int>(r.sensor_modules.size())) {
-      return {PartKind::kSensorModule, robot, sensor};
+      return {SelectionKind::kSensorModule, robot, sensor};
     }
   }
   std::string robots, objects;

@@ -132,7 +132,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   const Scenario& s = studio.design.scenario();
   for (int r = 0; r < static_cast<int>(s.robots.size()); ++r) {
     const Robot& robot = s.robots[r];
-    const Selection robot_sel{PartKind::kRobot, r, 0};
+    const Selection robot_sel{SelectionKind::kRobot, r, 0};
     if (ImGui::Selectable(("robot " + robot.name).c_str(),
                           studio.design.selection() == robot_sel)) {
       studio.design.Select(robot_sel);
@@ -141,8 +141,8 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     int place = 0;
     for (const ChainSlot& slot : ChainOrder(robot)) {
       const Selection sel{
-          slot.sensor ? PartKind::kSensorModule : PartKind::kModule, r,
-          slot.source};
+          slot.sensor ? SelectionKind::kSensorModule : SelectionKind::kModule,
+          r, slot.source};
       std::string label;
       Look look;
       if (slot.sensor) {
@@ -207,7 +207,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     if (&o != &objects[4]) ImGui::SameLine();
   }
   for (int i = 0; i < static_cast<int>(s.scene_objects.size()); ++i) {
-    const Selection sel{PartKind::kObject, 0, i};
+    const Selection sel{SelectionKind::kSceneObject, 0, i};
     const SceneObject& o = s.scene_objects[i];
     ImGui::PushStyleColor(ImGuiCol_Text, Swatch(Look::kObject));
     if (ImGui::Selectable(
@@ -222,7 +222,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   ImGui::Separator();
   ImGui::TextUnformatted("World");
   if (studio.Button("Terrain", third))
-    studio.design.Select({PartKind::kScene, 0, 0});
+    studio.design.Select({SelectionKind::kScene, 0, 0});
   ImGui::SameLine();
   if (studio.Button("flat ground", third)) {
     studio.Try([&] {
@@ -248,14 +248,14 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     studio.Try("add a contact pair", [&] { studio.design.AddContact(); });
   }
   for (int i = 0; i < static_cast<int>(s.fluid_regions.size()); ++i) {
-    const Selection sel{PartKind::kFluid, 0, i};
+    const Selection sel{SelectionKind::kFluidRegion, 0, i};
     if (ImGui::Selectable(("  " + s.fluid_regions[i].guid).c_str(),
                           studio.design.selection() == sel)) {
       studio.design.Select(sel);
     }
   }
   for (int i = 0; i < static_cast<int>(s.contact_frictions.size()); ++i) {
-    const Selection sel{PartKind::kContact, 0, i};
+    const Selection sel{SelectionKind::kContactFriction, 0, i};
     const ContactFriction& c = s.contact_frictions[i];
     if (ImGui::Selectable(("  contact " + c.material1 + " / " + c.material2 +
                            "##" + std::to_string(i))
@@ -266,7 +266,7 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   }
   DrawPrintSection(studio);
   if (studio.Button("Simulation settings", -1)) {
-    studio.design.Select({PartKind::kSettings, 0, 0});
+    studio.design.Select({SelectionKind::kSettings, 0, 0});
   }
   ImGui::End();
 }

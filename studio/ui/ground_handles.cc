@@ -20,8 +20,8 @@ constexpr double kSnapTurn = M_PI / 12;
 constexpr double kFine = 0.1;  // with Ctrl
 
 bool IsRobotPart(const Selection& s) {
-  return s.kind == PartKind::kRobot || s.kind == PartKind::kModule ||
-         s.kind == PartKind::kSensorModule;
+  return s.kind == SelectionKind::kRobot || s.kind == SelectionKind::kModule ||
+         s.kind == SelectionKind::kSensorModule;
 }
 
 // What the handles stand on: the pivot, the ring's radius and the heading.
@@ -48,7 +48,7 @@ bool TargetOf(const Scenario& s, const Selection& sel, Target* t) {
     t->radius = far + 0.08;
     return true;
   }
-  if (sel.kind == PartKind::kObject && sel.index >= 0 &&
+  if (sel.kind == SelectionKind::kSceneObject && sel.index >= 0 &&
       sel.index < static_cast<int>(s.scene_objects.size())) {
     const SceneObject& o = s.scene_objects[sel.index];
     t->pivot = o.position;
@@ -90,7 +90,8 @@ bool GroundHandles::DropNewPart(StudioContext& studio, const mjrRect& view,
   }
   Preview& preview = *studio.preview;
   const Selection hit = preview.Pick(view, p.x - left, p.y - top);
-  if (hit.kind != PartKind::kModule && hit.kind != PartKind::kSensorModule) {
+  if (hit.kind != SelectionKind::kModule &&
+      hit.kind != SelectionKind::kSensorModule) {
     // No robot to drop it onto: the part starts one, as the palette's
     // buttons would.
     const std::vector<Robot>& robots = studio.design.scenario().robots;
@@ -111,7 +112,7 @@ bool GroundHandles::DropNewPart(StudioContext& studio, const mjrRect& view,
   int place = -1;
   for (int i = 0; i < static_cast<int>(slots.size()); ++i) {
     if (slots[i].source == hit.index &&
-        slots[i].sensor == (hit.kind == PartKind::kSensorModule)) {
+        slots[i].sensor == (hit.kind == SelectionKind::kSensorModule)) {
       place = i;
     }
   }
@@ -122,7 +123,7 @@ bool GroundHandles::DropNewPart(StudioContext& studio, const mjrRect& view,
   auto where = [&](int i, Eigen::Vector2d* at) {
     if (i < 0 || i >= static_cast<int>(slots.size())) return false;
     const Selection s{
-        slots[i].sensor ? PartKind::kSensorModule : PartKind::kModule,
+        slots[i].sensor ? SelectionKind::kSensorModule : SelectionKind::kModule,
         hit.robot, slots[i].source};
     for (const PartMarker& m : markers) {
       if (m.part == s) {
@@ -281,9 +282,9 @@ bool GroundHandles::Update(StudioContext& studio, const mjrRect& view,
     move_ = GroundMove();
     preview.EndDrag();
     if (!move.empty()) {
-      studio.Try(
-          what.kind == PartKind::kObject ? "move the object" : "move the robot",
-          [&] { studio.design.MoveOnGround(what, move); });
+      studio.Try(what.kind == SelectionKind::kSceneObject ? "move the object"
+                                                          : "move the robot",
+                 [&] { studio.design.MoveOnGround(what, move); });
     }
   }
   return true;

@@ -62,7 +62,8 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
         "Select a part in the list or click it in the 3-D view to see and "
         "edit every field.");
   }
-  if (sel.kind == PartKind::kSensorModule) DrawSensorMounts(studio, view, sel);
+  if (sel.kind == SelectionKind::kSensorModule)
+    DrawSensorMounts(studio, view, sel);
   for (const FieldGroup& g : groups) {
     if (!ImGui::CollapsingHeader(g.title.c_str(),
                                  ImGuiTreeNodeFlags_DefaultOpen)) {

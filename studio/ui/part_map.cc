@@ -35,12 +35,12 @@ std::vector<GeomPart> MapGeoms(const mjModel* m, const Scenario& s) {
                             ? Look::kPitchModule
                             : Look::kYawModule;
       for (int f = 0; f < 2; ++f) {
-        MarkBody(m, n::FrameBody(name, i, f), {{PartKind::kModule, r, i}, look},
-                 &geoms);
+        MarkBody(m, n::FrameBody(name, i, f),
+                 {{SelectionKind::kModule, r, i}, look}, &geoms);
       }
     }
     for (int j = 0; j < static_cast<int>(robot.sensor_modules.size()); ++j) {
-      const Selection part{PartKind::kSensorModule, r, j};
+      const Selection part{SelectionKind::kSensorModule, r, j};
       MarkBody(m, n::SensorModuleBody(name, j), {part, Look::kSensorModule},
                &geoms);
       MarkBody(m, n::PlateBody(name, j), {part, Look::kForcePlate}, &geoms);
@@ -52,10 +52,11 @@ std::vector<GeomPart> MapGeoms(const mjModel* m, const Scenario& s) {
     }
   }
   for (int i = 0; i < static_cast<int>(s.scene_objects.size()); ++i) {
-    MarkBody(m, n::SceneObject(i), {{PartKind::kObject, 0, i}, Look::kObject},
-             &geoms);
+    MarkBody(m, n::SceneObject(i),
+             {{SelectionKind::kSceneObject, 0, i}, Look::kObject}, &geoms);
   }
-  MarkGeom(m, n::Terrain(), {{PartKind::kScene, 0, 0}, Look::kTerrain}, &geoms);
+  MarkGeom(m, n::Terrain(), {{SelectionKind::kScene, 0, 0}, Look::kTerrain},
+           &geoms);
   return geoms;
 }
 
@@ -72,7 +73,7 @@ std::vector<RaySite> MapRays(const mjModel* m, const Scenario& s) {
         if (site >= 0) {
           rays.push_back({site,
                           sensors[k].max_ray_distance,
-                          {PartKind::kSensorModule, r, j}});
+                          {SelectionKind::kSensorModule, r, j}});
         }
       }
     }

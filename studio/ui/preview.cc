@@ -103,7 +103,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   for (int r = 0; r < static_cast<int>(scenario.robots.size()); ++r) {
     for (int g = 0; g < m->ngeom; ++g) {
       const GeomPart& p = geoms_[g];
-      if (p.part.kind == PartKind::kModule && p.part.robot == r &&
+      if (p.part.kind == SelectionKind::kModule && p.part.robot == r &&
           (g + 1 >= m->ngeom || geoms_[g + 1].part != p.part)) {
         // One label per module, on its back frame's geom (the last one).
         labels_.emplace_back(g, std::to_string(p.part.index));
@@ -244,7 +244,7 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
     }
     if (g.objtype == mjOBJ_GEOM && g.objid >= 0 &&
         g.objid < static_cast<int>(geoms_.size()) &&
-        geoms_[g.objid].part.kind != PartKind::kNone &&
+        geoms_[g.objid].part.kind != SelectionKind::kNone &&
         geoms_[g.objid].part == selected) {
       g.emission = 0.15f;
       if (scene_.ngeom < scene_.maxgeom) {
@@ -404,18 +404,18 @@ void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
     drag_xpos_.assign(data_->geom_xpos, data_->geom_xpos + 3 * m->ngeom);
     drag_xmat_.assign(data_->geom_xmat, data_->geom_xmat + 9 * m->ngeom);
   }
-  const bool robot = what.kind == PartKind::kRobot ||
-                     what.kind == PartKind::kModule ||
-                     what.kind == PartKind::kSensorModule;
+  const bool robot = what.kind == SelectionKind::kRobot ||
+                     what.kind == SelectionKind::kModule ||
+                     what.kind == SelectionKind::kSensorModule;
   const Eigen::Matrix3d r = t.linear();
   for (int g = 0; g < m->ngeom && g < static_cast<int>(geoms_.size()); ++g) {
     const Selection& p = geoms_[g].part;
     const bool moves =
-        robot ? (p.kind == PartKind::kModule ||
-                 p.kind == PartKind::kSensorModule ||
-                 p.kind == PartKind::kRobot) &&
+        robot ? (p.kind == SelectionKind::kModule ||
+                 p.kind == SelectionKind::kSensorModule ||
+                 p.kind == SelectionKind::kRobot) &&
                     p.robot == what.robot
-              : p.kind == PartKind::kObject && p.index == what.index;
+              : p.kind == SelectionKind::kSceneObject && p.index == what.index;
     if (!moves) continue;
     using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
     Eigen::Map<Eigen::Vector3d>(data_->geom_xpos + 3 * g) =

@@ -50,7 +50,7 @@ void DrawPrintSection(StudioContext& studio) {
     ImGui::PopStyleColor();
   }
   const Selection& sel = studio.design.selection();
-  if (sel.kind == PartKind::kModule) {
+  if (sel.kind == SelectionKind::kModule) {
     const float half = (w - 8) / 2;
     if (studio.Button("Mesh for module...", half)) {
       studio.browse_for = BrowseFor::kFrameMesh;

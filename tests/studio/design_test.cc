@@ -56,7 +56,7 @@ std::string ScenarioNew(const std::vector<std::string>& args,
 
 TEST(StudioDesign, EveryEditUndoesAndRedoesToIdenticalBytes) {
   Design d;
-  const Selection module1{PartKind::kModule, 0, 1};
+  const Selection module1{SelectionKind::kModule, 0, 1};
   const std::vector<std::pair<std::string, std::function<void()>>> edits = {
       {"add pitch", [&] { d.AddPart(NextPart::kPitchModule); }},
       {"add yaw", [&] { d.AddPart(NextPart::kYawModule); }},
@@ -119,7 +119,7 @@ TEST(StudioDesign, InvalidFieldValuesAreRefusedWithTheSchemaMessage) {
   Design d;
   d.AddPart(NextPart::kPitchModule);
   const std::string before = Bytes(d);
-  const Selection m0{PartKind::kModule, 0, 0};
+  const Selection m0{SelectionKind::kModule, 0, 0};
   try {
     d.SetField({m0, "frames[0]", "mass"}, "-1");
     FAIL() << "negative mass accepted";
@@ -152,7 +152,7 @@ TEST(StudioDesign, RefusesTwoSensorModulesSideBySide) {
   // Removing the module between two sensor modules names them as the
   // chain list does.
   Design e = Design::Open(testing::SourcePath("scenarios/case_study.xml"));
-  e.Select({PartKind::kModule, 0, 0});
+  e.Select({SelectionKind::kModule, 0, 0});
   try {
     e.RemoveSelected();
     FAIL() << "removed module 0";
@@ -189,8 +189,8 @@ TEST(StudioDesign, PartByPartEqualsScenarioNew) {
   // The same edits on both give the same file again.
   Design from_tool = Design::Open(tool);
   for (Design* x : {&d, &from_tool}) {
-    x->SetField({{PartKind::kModule, 0, 2}, "joint", "Kp"}, "14");
-    x->Select({PartKind::kModule, 0, 4});
+    x->SetField({{SelectionKind::kModule, 0, 2}, "joint", "Kp"}, "14");
+    x->Select({SelectionKind::kModule, 0, 4});
     x->AddObject(ObjectKind::kBall);
   }
   d.Save();
@@ -215,14 +215,14 @@ TEST(StudioDesign, MoveAndRemoveKeepTheChainWhole) {
   d.AddPart(NextPart::kYawModule);
   d.AddPart(NextPart::kSensorModule);
   d.AddPart(NextPart::kPitchModule);
-  d.Select({PartKind::kSensorModule, 0, 0});
+  d.Select({SelectionKind::kSensorModule, 0, 0});
   d.MoveSelected(-1);  // between module 0 and 1 now
   const Robot& r = d.scenario().robots[0];
   ASSERT_EQ(r.sensor_modules.size(), 1u);
   EXPECT_EQ(r.sensor_modules[0].left_mod_nr, 0);
   EXPECT_EQ(r.sensor_modules[0].right_mod_nr, 1);
-  EXPECT_EQ(d.selection(), (Selection{PartKind::kSensorModule, 0, 0}));
-  d.Select({PartKind::kModule, 0, 1});
+  EXPECT_EQ(d.selection(), (Selection{SelectionKind::kSensorModule, 0, 0}));
+  d.Select({SelectionKind::kModule, 0, 1});
   d.RemoveSelected();
   const Robot& r2 = d.scenario().robots[0];
   ASSERT_EQ(r2.modules.size(), 2u);
@@ -266,7 +266,7 @@ TEST(StudioDesign, ScalingAFrameSlidesThePartsBehindItToStayAttached) {
   d.AddPart(NextPart::kSensorModule, Where::kFront);
   const double hinge0 = d.scenario().robots[0].modules[0].position.x();
   const double tail = d.scenario().robots[0].modules[2].position.x();
-  d.SetField({{PartKind::kModule, 0, 1}, "frames[0]", "scale"},
+  d.SetField({{SelectionKind::kModule, 0, 1}, "frames[0]", "scale"},
              "0.09 0.05 0.05");
   const Robot& r = d.scenario().robots[0];
   ExpectChainTouches(r);
@@ -277,9 +277,10 @@ TEST(StudioDesign, ScalingAFrameSlidesThePartsBehindItToStayAttached) {
   ASSERT_TRUE(sm.force_sensor);
   EXPECT_NEAR(sm.force_sensor->position.x(), sm.position.x(), 1e-12);
   // A sensor module that grows, and a later structural edit, keep it too.
-  d.SetField({{PartKind::kSensorModule, 0, 1}, "", "size"}, "0.08 0.05 0.05");
+  d.SetField({{SelectionKind::kSensorModule, 0, 1}, "", "size"},
+             "0.08 0.05 0.05");
   ExpectChainTouches(d.scenario().robots[0]);
-  d.Select({PartKind::kModule, 0, 1});
+  d.Select({SelectionKind::kModule, 0, 1});
   d.AddPart(NextPart::kPitchModule);
   ExpectChainTouches(d.scenario().robots[0]);
   EXPECT_EQ(d.scenario().robots[0].modules[1].frames[0].scale.x(), 0.09);
@@ -306,7 +307,7 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
   ASSERT_TRUE(d.scenario().robots[0].sensor_modules[0].force_sensor);
   ASSERT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
   const double z = d.scenario().robots[0].modules[0].position.z();
-  d.Select({PartKind::kSensorModule, 0, 0});
+  d.Select({SelectionKind::kSensorModule, 0, 0});
   d.SetForcePlate(false);
   const Robot& r = d.scenario().robots[0];
   EXPECT_FALSE(r.sensor_modules[0].force_sensor);
@@ -314,18 +315,19 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
   ASSERT_TRUE(r.sensor_modules[1].force_sensor);
   EXPECT_EQ(r.modules[0].position.z(), z);  // still on the other plate
   // The choice survives structural edits, and the plate changes face.
-  d.Select({PartKind::kModule, 0, 0});
+  d.Select({SelectionKind::kModule, 0, 0});
   d.AddPart(NextPart::kYawModule, Where::kFront);
   EXPECT_FALSE(d.scenario().robots[0].sensor_modules[0].force_sensor);
   EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor);
   d.SetField(
-      {{PartKind::kSensorModule, 0, 1}, "force_sensor", "sensorPosition"}, "2");
+      {{SelectionKind::kSensorModule, 0, 1}, "force_sensor", "sensorPosition"},
+      "2");
   const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
   EXPECT_NEAR(sm.force_sensor->position.z(),
               sm.position.z() + sm.size.z() / 2 + sm.force_sensor->size.z() / 2,
               1e-12);  // on top now
   // Without any plate the chain comes down to the ground, and back up.
-  d.Select({PartKind::kSensorModule, 0, 1});
+  d.Select({SelectionKind::kSensorModule, 0, 1});
   d.SetForcePlate(false);
   const double ground_z = d.scenario().robots[0].modules[0].position.z();
   EXPECT_NEAR(ground_z, z - ForceSensor().size.z(), 1e-12);
@@ -334,7 +336,7 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
   EXPECT_TRUE(d.scenario().robots[0].sensor_modules[1].force_sensor_lock);
   EXPECT_THROW(
       {
-        d.Select({PartKind::kModule, 0, 0});
+        d.Select({SelectionKind::kModule, 0, 0});
         d.SetForcePlate(true);
       },
       DesignError);
@@ -346,7 +348,7 @@ TEST(StudioDesign, ForcePlatesAreChosenPerSensorModule) {
 
 TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
   Design d = TwoSensorModules();
-  d.Select({PartKind::kSensorModule, 0, 1});
+  d.Select({SelectionKind::kSensorModule, 0, 1});
   // What the face picker offers first: the faces that will be taken.
   EXPECT_EQ(d.OpenRayFaces(), (std::vector<int>{0, 1, 2, 3}));
   for (int face : {0, 1, 2, 3}) d.AddDistanceSensor(face);
@@ -377,7 +379,7 @@ TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
   EXPECT_THROW(d.AddDistanceSensor(3), DesignError);  // face taken
   d.RemoveDistanceSensor(1);                          // the one on face 1
   // A ray moved to another face sits on it and looks out of it.
-  d.SetField({{PartKind::kSensorModule, 0, 1},
+  d.SetField({{SelectionKind::kSensorModule, 0, 1},
               "distance_sensors[0]",
               "sensorPosition"},
              "1");
@@ -389,7 +391,7 @@ TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
               1e-12);
   d.AddDistanceSensor(0);
   for (const char* face : {"9", "4"}) {
-    EXPECT_THROW(d.SetField({{PartKind::kSensorModule, 0, 1},
+    EXPECT_THROW(d.SetField({{SelectionKind::kSensorModule, 0, 1},
                              "distance_sensors[0]",
                              "sensorPosition"},
                             face),
@@ -406,7 +408,7 @@ TEST(StudioDesign, ASensorModuleAtTheTailLooksOutOfItsBack) {
   Design d;
   d.AddPart(NextPart::kPitchModule, Where::kTail);
   d.AddPart(NextPart::kSensorModule, Where::kTail);
-  d.Select({PartKind::kSensorModule, 0, 0});
+  d.Select({SelectionKind::kSensorModule, 0, 0});
   d.AddDistanceSensor(5);
   EXPECT_THROW(d.AddDistanceSensor(4), DesignError);  // module 0 is there
   EXPECT_EQ(d.scenario().robots[0].sensor_modules[0].distance_sensors.size(),
@@ -424,11 +426,9 @@ TEST(StudioInspector, ShowsComputedNumbersShortAndLeavesTheRestAlone) {
 // Labels are words with units; the name in the file is in the tooltip, so
 // a student reading the XML finds the field.
 TEST(StudioInspector, EveryFieldHasAHumanLabelAndItsXmlNameInTheTooltip) {
-  using SchemaPart = ::mrsim::PartKind;
   int fields = 0;
-  for (int k = static_cast<int>(SchemaPart::kScenario);
-       k <= static_cast<int>(SchemaPart::kRunSettings); ++k) {
-    for (const FieldSpec& spec : FieldSpecsOf(static_cast<SchemaPart>(k))) {
+  for (const PartKind kind : AllPartKinds()) {
+    for (const FieldSpec& spec : FieldSpecsOf(kind)) {
       const FieldInfo& info = spec.info;
       ASSERT_NE(info.label, nullptr) << info.xml;
       EXPECT_NE(FieldLabel(info), info.xml);
@@ -450,14 +450,14 @@ TEST(StudioInspector, EveryFieldHasAHumanLabelAndItsXmlNameInTheTooltip) {
     }
     return std::string("(no field)");
   };
-  EXPECT_EQ(label_of({PartKind::kModule, 0, 0}, "joint", "Kp"),
+  EXPECT_EQ(label_of({SelectionKind::kModule, 0, 0}, "joint", "Kp"),
             "gain Kp (1/s)");
-  EXPECT_EQ(label_of({PartKind::kSensorModule, 0, 0}, "", "leftMod_Nr"),
+  EXPECT_EQ(label_of({SelectionKind::kSensorModule, 0, 0}, "", "leftMod_Nr"),
             "left neighbour module");
-  d.Select({PartKind::kSensorModule, 0, 0});
+  d.Select({SelectionKind::kSensorModule, 0, 0});
   d.AddDistanceSensor(d.OpenRayFaces().front());
-  EXPECT_EQ(label_of({PartKind::kSensorModule, 0, 0}, "distance_sensors[0]",
-                     "max_rayDistance"),
+  EXPECT_EQ(label_of({SelectionKind::kSensorModule, 0, 0},
+                     "distance_sensors[0]", "max_rayDistance"),
             "max ray distance (m)");
 }
 
@@ -519,9 +519,9 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
       {"force_sensor", {"position", "rotation"}},
       {"distance_sensors[0]", {"rotation", "ray_Resolution"}}};
   int groups = 0;
-  for (const Selection& sel : {Selection{PartKind::kModule, 0, 0},
-                               Selection{PartKind::kSensorModule, 0, 0},
-                               Selection{PartKind::kObject, 0, 0}}) {
+  for (const Selection& sel : {Selection{SelectionKind::kModule, 0, 0},
+                               Selection{SelectionKind::kSensorModule, 0, 0},
+                               Selection{SelectionKind::kSceneObject, 0, 0}}) {
     for (const FieldGroup& g : InspectorFields(s, sel)) {
       ++groups;
       auto it = inert.find(g.sub);
@@ -537,7 +537,7 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
   // The quaternion that does place the part is still offered.
   bool quat = false;
   for (const FieldGroup& g :
-       InspectorFields(s, Selection{PartKind::kModule, 0, 0})) {
+       InspectorFields(s, Selection{SelectionKind::kModule, 0, 0})) {
     for (const FieldRef& f : g.fields) {
       quat |= std::string(f.info().xml) == "quatRotation";
     }
@@ -586,7 +586,7 @@ TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
   options.chain.pattern = ChainPattern::kPitchYaw;
   WriteScenarioFile(MakeChainScenario(options), dir + "/robot.xml");
   Design d = Design::Open(dir + "/robot.xml");
-  d.Select({PartKind::kModule, 0, 0});
+  d.Select({SelectionKind::kModule, 0, 0});
   d.SetModuleMesh(dir + "/link.stl", true);
   const Robot& r = d.scenario().robots[0];
   for (const Module& m : r.modules) {
@@ -606,7 +606,7 @@ TEST(StudioMesh, AMeshForEveryPitchModuleRestacksAndNewModulesReuseIt) {
   d.Undo();
   EXPECT_EQ(d.scenario().robots[0].modules[0].frames[0].shape, "Box");
   d.Redo();
-  d.Select({PartKind::kModule, 0, 2});
+  d.Select({SelectionKind::kModule, 0, 2});
   d.AddPart(NextPart::kPitchModule);
   const Robot& grown = d.scenario().robots[0];
   ASSERT_EQ(grown.modules.size(), 4u);
@@ -635,7 +635,7 @@ TEST(StudioMesh, AMeshInMillimetresIsSpottedAndScaledByOneThousandth) {
   WriteScenarioFile(MakeChainScenario(options), dir + "/robot.xml");
   Design d = Design::Open(dir + "/robot.xml");
   EXPECT_TRUE(d.OversizedMeshes().empty()) << "boxes in metres";
-  d.Select({PartKind::kModule, 0, 0});
+  d.Select({SelectionKind::kModule, 0, 0});
   d.SetModuleMesh(dir + "/link_mm.stl", true);
   const std::vector<Design::OversizedMesh> big = d.OversizedMeshes();
   ASSERT_EQ(big.size(), 1u);  // the shape once, though two modules use it
@@ -669,7 +669,7 @@ TEST(StudioMesh, AnUnreadableMeshIsRefusedAndChangesNothing) {
   }
   WriteScenarioFile(MakeChainScenario({}), dir + "/robot.xml");
   Design d = Design::Open(dir + "/robot.xml");
-  d.Select({PartKind::kModule, 0, 0});
+  d.Select({SelectionKind::kModule, 0, 0});
   const long revision = d.revision();
   EXPECT_THROW(d.SetModuleMesh(dir + "/bad.stl", false), DesignError);
   EXPECT_EQ(d.revision(), revision);

@@ -44,7 +44,7 @@ TEST(StudioDrag, ReorderingByDragIsOneUndoStep) {
   const std::string before = Bytes(d);
   d.MovePart(0, 4, 0);  // the tail's pitch module to the front
   EXPECT_EQ(Kinds(d.scenario().robots[0]), "PPSYS");
-  EXPECT_EQ(d.selection(), (Selection{PartKind::kModule, 0, 0}));
+  EXPECT_EQ(d.selection(), (Selection{SelectionKind::kModule, 0, 0}));
   d.Undo();
   EXPECT_EQ(Bytes(d), before);
   d.Redo();
@@ -69,7 +69,7 @@ TEST(StudioDrag, AModuleDroppedFromThePaletteLandsBetweenTheParts) {
   Design d = FiveParts();
   d.InsertPart(NextPart::kYawModule, 0, 2);  // between S0 and the yaw module
   EXPECT_EQ(Kinds(d.scenario().robots[0]), "PSYYSP");
-  EXPECT_EQ(d.selection(), (Selection{PartKind::kModule, 0, 1}));
+  EXPECT_EQ(d.selection(), (Selection{SelectionKind::kModule, 0, 1}));
   d.InsertPart(NextPart::kSensorModule, 0, 3);
   EXPECT_EQ(Kinds(d.scenario().robots[0]), "PSYSYSP");
   d.Undo();
@@ -81,7 +81,7 @@ TEST(StudioDrag, DraggingARobotMovesAndTurnsEveryPartRigidly) {
   Design d = FiveParts();
   const Robot before = d.scenario().robots[0];
   const Eigen::Vector3d pivot = RobotPivot(before);
-  d.MoveOnGround({PartKind::kRobot, 0, 0}, {{0.3, -0.1}, M_PI / 2});
+  d.MoveOnGround({SelectionKind::kRobot, 0, 0}, {{0.3, -0.1}, M_PI / 2});
   const Robot& after = d.scenario().robots[0];
   EXPECT_NEAR(RobotHeading(after), M_PI / 2, 1e-9);
   EXPECT_TRUE(
@@ -107,7 +107,7 @@ TEST(StudioDrag, DraggingARobotMovesAndTurnsEveryPartRigidly) {
 
 TEST(StudioDrag, ATurnedRobotKeepsItsHeadingWhenPartsAreAddedOrMoved) {
   Design d = FiveParts();
-  d.MoveOnGround({PartKind::kModule, 0, 1}, {{1.0, 2.0}, 0.7});
+  d.MoveOnGround({SelectionKind::kModule, 0, 1}, {{1.0, 2.0}, 0.7});
   const Eigen::Vector3d hinge0 = d.scenario().robots[0].modules[0].position;
   d.InsertPart(NextPart::kPitchModule, 0, 5);
   d.MovePart(0, 0, 5);
@@ -121,8 +121,8 @@ TEST(StudioDrag, DraggingAnObjectMovesOnlyThatObjectAndSavesThere) {
   d.AddObject(ObjectKind::kBall);
   d.AddObject(ObjectKind::kBox);
   const Scenario before = d.scenario();
-  d.MoveOnGround({PartKind::kObject, 0, 0}, {{0.3, 0.0}, 0.0});
-  d.MoveOnGround({PartKind::kObject, 0, 1}, {{0.0, 0.0}, M_PI / 2});
+  d.MoveOnGround({SelectionKind::kSceneObject, 0, 0}, {{0.3, 0.0}, 0.0});
+  d.MoveOnGround({SelectionKind::kSceneObject, 0, 1}, {{0.0, 0.0}, M_PI / 2});
   const std::string file = TempDir("studio_drag_object") + "/moved.xml";
   d.SaveAs(file);
   const Scenario saved = ReadScenarioFile(file);
@@ -139,7 +139,7 @@ TEST(StudioDrag, DraggingAnObjectMovesOnlyThatObjectAndSavesThere) {
     return WriteScenarioString(s);
   };
   EXPECT_EQ(robots_only(saved), robots_only(before));
-  EXPECT_THROW(d.MoveOnGround({PartKind::kScene, 0, 0}, {{0.1, 0}, 0}),
+  EXPECT_THROW(d.MoveOnGround({SelectionKind::kScene, 0, 0}, {{0.1, 0}, 0}),
                DesignError);
 }
 
@@ -151,7 +151,7 @@ TEST(StudioDrag, SeveralRobotsStandSideBySideAndEachMovesAlone) {
   ASSERT_EQ(s.robots.size(), 3u);
   EXPECT_NE(s.robots[1].name, s.robots[0].name);
   EXPECT_NE(s.robots[2].name, s.robots[1].name);
-  EXPECT_EQ(d.selection(), (Selection{PartKind::kRobot, 2, 0}));
+  EXPECT_EQ(d.selection(), (Selection{SelectionKind::kRobot, 2, 0}));
   EXPECT_NO_THROW(Physics{s});
   // Parts go into the selected robot; moving it leaves the others.
   d.InsertPart(NextPart::kYawModule, 2, 1);
@@ -161,7 +161,7 @@ TEST(StudioDrag, SeveralRobotsStandSideBySideAndEachMovesAlone) {
     t.robots = {d.scenario().robots[0]};
     return t;
   }());
-  d.MoveOnGround({PartKind::kRobot, 2, 0}, {{0.5, 0.5}, 1.0});
+  d.MoveOnGround({SelectionKind::kRobot, 2, 0}, {{0.5, 0.5}, 1.0});
   EXPECT_EQ(WriteScenarioString([&] {
               Scenario t;
               t.robots = {d.scenario().robots[0]};

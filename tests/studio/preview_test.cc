@@ -60,16 +60,17 @@ TEST(StudioPreview, AfterEditsShowsThePhysicsModelOfTheSavedFile) {
   studio.Frame();
   // Structural edits, field edits and an object: each rebuilds in place.
   Design& d = app.design();
-  d.Select({PartKind::kModule, 0, 2});
+  d.Select({SelectionKind::kModule, 0, 2});
   d.AddPart(NextPart::kSensorModule);
   studio.Frame();
   d.AddPart(NextPart::kYawModule, Where::kTail);
   studio.Frame();
-  d.SetField({{PartKind::kModule, 0, 1}, "frames[0]", "mass"}, "0.07");
+  d.SetField({{SelectionKind::kModule, 0, 1}, "frames[0]", "mass"}, "0.07");
   studio.Frame();
   d.AddObject(ObjectKind::kBall);
   studio.Frame();
-  d.SetField({{PartKind::kObject, 0, 0}, "", "position"}, "0.9 0.1 0.05");
+  d.SetField({{SelectionKind::kSceneObject, 0, 0}, "", "position"},
+             "0.9 0.1 0.05");
   studio.Frame();
   ASSERT_EQ(app.build_error(), "");
   d.SaveAs(path);

@@ -21,13 +21,15 @@ Scenario CaseStudy() {
 TEST(SelectionName, FindsRobotsObjectsAndPartsByName) {
   const Scenario s = CaseStudy();
   EXPECT_EQ(SelectionNamed(s, "case_study"),
-            (Selection{PartKind::kRobot, 0, 0}));
-  EXPECT_EQ(SelectionNamed(s, "ball"), (Selection{PartKind::kObject, 0, 0}));
+            (Selection{SelectionKind::kRobot, 0, 0}));
+  EXPECT_EQ(SelectionNamed(s, "ball"),
+            (Selection{SelectionKind::kSceneObject, 0, 0}));
   EXPECT_EQ(SelectionNamed(s, "module 2"),
-            (Selection{PartKind::kModule, 0, 2}));
+            (Selection{SelectionKind::kModule, 0, 2}));
   EXPECT_EQ(SelectionNamed(s, "case_study sensor_module 1"),
-            (Selection{PartKind::kSensorModule, 0, 1}));
-  EXPECT_EQ(SelectionNamed(s, "terrain"), (Selection{PartKind::kScene, 0, 0}));
+            (Selection{SelectionKind::kSensorModule, 0, 1}));
+  EXPECT_EQ(SelectionNamed(s, "terrain"),
+            (Selection{SelectionKind::kScene, 0, 0}));
   EXPECT_EQ(SelectionNamed(s, "none"), Selection{});
 }
 

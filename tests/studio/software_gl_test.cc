@@ -116,7 +116,7 @@ TEST(StudioSoftwareGl, ReleasedDragDrawsTheDesignAsBefore) {
 
   Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
   move.translation() = Eigen::Vector3d(0.3, 0, 0);
-  preview.ShowDrag({PartKind::kObject, 0, 0}, move);
+  preview.ShowDrag({SelectionKind::kSceneObject, 0, 0}, move);
   const std::vector<unsigned char> dragging = draw();
   preview.EndDrag();
   const std::vector<unsigned char> after = draw();
