@@ -238,7 +238,7 @@ class PyOptimizer {
 
   py::array_t<double> Ask() {
     std::unique_lock<std::mutex> lock(busy_, std::try_to_lock);
-    if (!lock) throw py::value_error("Optimizer: in use by another thread");
+    if (!lock) throw std::runtime_error("Optimizer: in use by another thread");
     if (!asked_) {
       Algorithm& algorithm = Island();
       std::vector<Genome> batch;
@@ -261,7 +261,7 @@ class PyOptimizer {
 
   void Tell(const py::object& fitness) {
     std::unique_lock<std::mutex> lock(busy_, std::try_to_lock);
-    if (!lock) throw py::value_error("Optimizer: in use by another thread");
+    if (!lock) throw std::runtime_error("Optimizer: in use by another thread");
     if (!asked_) {
       throw py::value_error(
           "Optimizer.tell: nothing asked; call ask() for the generation "
