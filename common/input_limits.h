@@ -23,6 +23,13 @@ inline constexpr int kMaxXmlDepth = 32;
 // A longer attribute value: every attribute mrsim reads is a name, a
 // number or a command line.
 inline constexpr size_t kMaxXmlAttributeBytes = size_t{64} << 10;  // 64 KiB
+// The longest Lua controller script, wherever it comes from: a scenario's
+// <run><luaScript>, a --script file of mrsim-lua, the studio's editor. One
+// value, because a script written in the studio is saved in the scenario
+// and must load back in mrsim-lua. 64 KiB (the studio once allowed 1 MiB,
+// which saved designs mrsim refused to read): some 1500 lines, far more
+// than any controller, and as much as any one XML attribute may hold.
+inline constexpr size_t kMaxLuaScriptBytes = size_t{64} << 10;  // 64 KiB
 
 // A file beyond one of the limits. what() is "FILE:LINE: what was found
 // (the limit)", or "FILE: ..." when no line applies.

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "common/input_limits.h"
+
 namespace mrsim {
 
 struct LuaLimits {
@@ -25,7 +27,7 @@ struct LuaLimits {
   // call): about 0.1-1 s of work, far above any sensible step.
   int64_t instructions = 50'000'000;
   size_t memory_bytes = size_t{64} << 20;
-  size_t max_source_bytes = size_t{1} << 20;
+  size_t max_source_bytes = kMaxLuaScriptBytes;
   size_t max_printed_lines = 1000;
 };
 

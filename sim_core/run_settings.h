@@ -10,6 +10,7 @@
 
 #include "common/clock_mode.h"
 #include "common/enum_table.h"
+#include "common/input_limits.h"
 
 namespace mrsim {
 
@@ -23,8 +24,8 @@ inline const char* ToString(ControllerKind kind) {
   return ControllerKinds().Name(kind);
 }
 
-// Bounds on the text a <run> element carries (docs/scenario.md, "Limits").
-inline constexpr size_t kMaxLuaScriptBytes = size_t{64} << 10;  // 64 KiB
+// Bounds on the text a <run> element carries (docs/scenario.md, "Limits");
+// the Lua script's, kMaxLuaScriptBytes, is common/input_limits.h's.
 inline constexpr size_t kMaxRunNameBytes = 64;    // gait and controller names
 inline constexpr double kMaxControlRate = 10000;  // Hz
 inline constexpr double kMaxRealtimeFactor = 1000;

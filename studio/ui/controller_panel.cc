@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "common/atomic_file.h"
+#include "common/input_limits.h"
 #include "gait_controller/gait_presets.h"
 #include "lua_controller/lua_templates.h"
 #include "studio/ui/widgets.h"
@@ -20,7 +21,6 @@ constexpr int kGait = static_cast<int>(ControllerKind::kGait);
 constexpr int kLua = static_cast<int>(ControllerKind::kLua);
 constexpr int kExternal = static_cast<int>(ControllerKind::kExternal);
 constexpr const char* kScriptName = "controller.lua";
-constexpr size_t kMaxScriptBytes = size_t{1} << 20;
 
 }  // namespace
 
@@ -139,7 +139,9 @@ void ControllerPanel::Draw(LayoutRecorder* layout) {
   ImGui::InputTextMultiline("##lua", &source_, ImVec2(-1, 200),
                             ImGuiInputTextFlags_AllowTabInput);
   RecordItem(layout, "lua editor");
-  if (source_.size() > kMaxScriptBytes) source_.resize(kMaxScriptBytes);
+  if (source_.size() > kMaxLuaScriptBytes) {
+    source_.resize(kMaxLuaScriptBytes);
+  }
   CheckNow();
   int lines = 1;
   for (char c : source_) lines += c == '\n';

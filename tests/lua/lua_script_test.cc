@@ -63,6 +63,25 @@ TEST(LuaScript, SeesTheStateAndKeepsGlobalsBetweenSteps) {
   EXPECT_EQ(script.Step(0, s)[0], 2.25);
 }
 
+// One limit for a script wherever it comes from (a file, a design's
+// <run><luaScript>, the studio's editor): kMaxLuaScriptBytes.
+TEST(LuaScript, AScriptOverTheOneSizeLimitIsRefused) {
+  // step, then a comment line filling the script up to the limit.
+  std::string source = "function step(t, s) return {} end\n--";
+  source.resize(kMaxLuaScriptBytes - 1, '-');
+  source.push_back('\n');
+  ASSERT_EQ(source.size(), kMaxLuaScriptBytes);
+  EXPECT_NO_THROW(LuaScript(source, "max.lua"));
+  source.push_back('\n');
+  try {
+    LuaScript script(source, "over.lua");
+    FAIL() << "a script of " << source.size() << " bytes was taken";
+  } catch (const LuaScriptError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "over.lua: the script has 65537 bytes; at most 65536");
+  }
+}
+
 TEST(LuaScript, SyntaxErrorNamesItsLine) {
   const std::string source =
       "function step(t, state)\n"
