@@ -280,6 +280,41 @@ void PushVector3(lua_State* L, const double (&v)[3]) {
   }
 }
 
+// Sets `readings` (every reading, in order) and `by_kind` (kind name ->
+// the readings of that kind, in order) on the table on top of the stack.
+// One table per reading, shared by both.
+void PushReadings(lua_State* L,
+                  const std::vector<LuaRobotState::Reading>& readings) {
+  lua_createtable(L, static_cast<int>(readings.size()), 0);
+  lua_newtable(L);  // by_kind
+  for (size_t r = 0; r < readings.size(); ++r) {
+    const LuaRobotState::Reading& reading = readings[r];
+    lua_createtable(L, 0, 3);
+    lua_pushlstring(L, reading.kind.data(), reading.kind.size());
+    lua_setfield(L, -2, "kind");
+    lua_pushinteger(L, reading.face);
+    lua_setfield(L, -2, "face");
+    PushArray(L, reading.values);
+    lua_setfield(L, -2, "values");
+    lua_pushvalue(L, -1);
+    lua_rawseti(L, -4, static_cast<lua_Integer>(r + 1));  // readings[r + 1]
+    // by_kind[kind][#by_kind[kind] + 1] = reading
+    lua_pushlstring(L, reading.kind.data(), reading.kind.size());
+    if (lua_rawget(L, -3) != LUA_TTABLE) {
+      lua_pop(L, 1);
+      lua_newtable(L);
+      lua_pushlstring(L, reading.kind.data(), reading.kind.size());
+      lua_pushvalue(L, -2);
+      lua_rawset(L, -5);
+    }
+    lua_insert(L, -2);  // ..., by_kind, list, reading
+    lua_rawseti(L, -2, static_cast<lua_Integer>(lua_rawlen(L, -2) + 1));
+    lua_pop(L, 1);  // the list
+  }
+  lua_setfield(L, -3, "by_kind");
+  lua_setfield(L, -2, "readings");
+}
+
 int CallStep(lua_State* L, StepCall* call) {
   LuaScript::Impl* impl = ImplOf(L);
   const LuaRobotState& s = *call->state;
@@ -311,13 +346,14 @@ int CallStep(lua_State* L, StepCall* call) {
   lua_setfield(L, -2, "heading");
   lua_createtable(L, static_cast<int>(s.sensors.size()), 0);
   for (size_t i = 0; i < s.sensors.size(); ++i) {
-    lua_createtable(L, 0, 2);
+    lua_createtable(L, 0, 4);
     if (s.sensors[i].has_force) {
       lua_pushnumber(L, s.sensors[i].force);
       lua_setfield(L, -2, "force");
     }
     PushArray(L, s.sensors[i].distances);
     lua_setfield(L, -2, "distances");
+    PushReadings(L, s.sensors[i].readings);
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "sensors");

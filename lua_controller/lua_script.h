@@ -49,7 +49,9 @@ class LuaScriptError : public std::runtime_error {
 // joints in chain order (rad, rad/s, N m), its centre of mass (m, m/s), its
 // orientation (quaternion w, x, y, z) and heading (rad; docs/sim.md), and
 // each sensor module's force (N, when it has one) and distances (m), and
-// each joint's axis ("pitch" or "yaw"; empty when unknown).
+// every reading of every sensor kind the module carries (force, distance,
+// IMU, and any kind added later), and each joint's axis ("pitch" or "yaw";
+// empty when unknown).
 struct LuaRobotState {
   std::vector<std::string> axes;
   std::vector<double> angles;
@@ -59,10 +61,18 @@ struct LuaRobotState {
   double com_velocity[3] = {0, 0, 0};
   double orientation[4] = {1, 0, 0, 0};  // w, x, y, z
   double heading = 0;
+  // One sensor's values, in its kind's channel order (sim_core's
+  // SensorKinds(): the IMU's accel.x/y/z m/s^2 then gyro.x/y/z rad/s).
+  struct Reading {
+    std::string kind;  // "force", "distance", "imu", ...
+    int face = -1;     // 0..5, or -1 when it sits on no face
+    std::vector<double> values;
+  };
   struct Sensor {
     double force = 0;
     bool has_force = false;
     std::vector<double> distances;
+    std::vector<Reading> readings;  // every sensor of the module, any kind
   };
   std::vector<Sensor> sensors;
 };

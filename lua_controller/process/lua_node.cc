@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "lcmtypes/runtime/channels.h"
+#include "sim_core/sensor_kind.h"
 
 namespace mrsim {
 namespace {
@@ -133,6 +134,9 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
   }
   for (int i = 0; i < 4; ++i) input_.orientation[i] = state.orientation[i];
   input_.heading = state.heading;
+  // The kinds the message carries in fields of their own (sensor_kind.h).
+  const std::string force_kind = FindSensorKind("force")->name;
+  const std::string distance_kind = FindSensorKind("distance")->name;
   input_.sensors.resize(state.sensor_modules.size());
   for (size_t k = 0; k < state.sensor_modules.size(); ++k) {
     const sensor_module_state_t& m = state.sensor_modules[k];
@@ -142,6 +146,17 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
     s.distances.clear();
     for (double d : m.distance) {
       if (std::isfinite(d)) s.distances.push_back(d);
+    }
+    // Every reading under its kind's name: force and distance have fields
+    // of their own in the message, the other kinds are its `readings`.
+    s.readings.clear();
+    if (m.has_force) s.readings.push_back({force_kind, -1, {m.force}});
+    for (int j = 0; j < m.num_distances; ++j) {
+      s.readings.push_back(
+          {distance_kind, m.distance_face[j], {m.distance[j]}});
+    }
+    for (const sensor_reading_t& r : m.readings) {
+      s.readings.push_back({r.kind, r.face, r.values});
     }
   }
   std::vector<double> targets = script_->Step(state.sim_time, input_);

@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "lcmtypes/runtime/channels.h"
+#include "sim_core/codec/state_message.h"
+#include "sim_core/sensor_kind.h"
 
 namespace mrsim {
 namespace {
@@ -91,6 +93,67 @@ TEST_F(LuaNodeTest, ScriptSeesTheRobotsOrientationAndHeading) {
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0].target, (std::vector<double>{M_PI / 2, std::cos(M_PI / 4),
                                                 0.0, std::sin(M_PI / 4)}));
+}
+
+// Every kind of SensorKinds(), so a kind added later must reach Lua too: a
+// sensor module carrying two of the kind (faces 2 and 5, values 10k + c) as
+// the simulator encodes it; the script returns what it finds under the
+// kind's name in by_kind and in readings, and the faces.
+TEST_F(LuaNodeTest, ScriptReadsEverySensorKindByName) {
+  for (const SensorKind& kind : SensorKinds()) {
+    SCOPED_TRACE(kind.name);
+    const int channels = static_cast<int>(kind.channels.size());
+    ASSERT_GT(channels, 0);
+    // The force plate is one per module, on no face; others two.
+    const bool one = kind.store != nullptr && !kind.many;
+    const std::vector<int> faces =
+        one ? std::vector<int>{-1} : std::vector<int>{2, 5};
+    RobotState state;
+    state.robot = "snake";
+    state.time = 0.25;
+    state.joints.resize(faces.size() * (channels + 1) + 1);
+    SensorModuleState& sm = state.sensor_modules.emplace_back();
+    for (size_t k = 0; k < faces.size(); ++k) {
+      std::vector<double> values;
+      for (int c = 0; c < channels; ++c) values.push_back(10.0 * k + c + 1);
+      if (kind.store != nullptr) {
+        kind.store(sm, faces[k], values);
+      } else {
+        sm.readings.push_back({kind.name, faces[k], values});
+      }
+    }
+    const std::string kind_name = kind.name;
+    auto node = Make(
+        "function step(t, state)\n"
+        "  local out = {}\n"
+        "  local mine = state.sensors[1].by_kind['" +
+        kind_name +
+        "']\n"
+        "  for _, r in ipairs(mine) do\n"
+        "    out[#out + 1] = r.face\n"
+        "    for _, v in ipairs(r.values) do out[#out + 1] = v end\n"
+        "  end\n"
+        "  local listed = 0\n"
+        "  for _, r in ipairs(state.sensors[1].readings) do\n"
+        "    if r.kind == '" +
+        kind_name +
+        "' then listed = listed + 1 end\n"
+        "  end\n"
+        "  out[#out + 1] = listed\n"
+        "  while #out < state.n do out[#out + 1] = 0 end\n"
+        "  return out\n"
+        "end\n");
+    const auto got = Send(*node, ToRobotStateMessage(state, /*seq=*/1));
+    ASSERT_EQ(got.size(), 1u) << node->error();
+    std::vector<double> want;
+    for (size_t k = 0; k < faces.size(); ++k) {
+      want.push_back(faces[k]);
+      for (int c = 0; c < channels; ++c) want.push_back(10.0 * k + c + 1);
+    }
+    want.push_back(static_cast<double>(faces.size()));
+    want.resize(state.joints.size(), 0.0);
+    EXPECT_EQ(got[0].target, want);
+  }
 }
 
 TEST_F(LuaNodeTest, RepeatedStateGetsTheSameAnswerAndForeignOnesNone) {
