@@ -208,6 +208,7 @@ void LiveSession::OnMessage(const std::string& channel, const uint8_t* data,
         return;
       }
       LiveRobot& robot = robots_[name];
+      if (robot.name.empty()) robot.first_heard = now;
       robot.name = name;
       robot.state = std::move(msg);
       ++robot.states;
@@ -277,9 +278,37 @@ void LiveSession::OnGaitStatus(const gait_status_t& msg, WallTime now) {
   LiveRobot& robot = robots_[msg.robot];
   if (robot.name.empty()) {
     robot.name = msg.robot;
+    robot.first_heard = now;
     robot.last_heard = now;
   }
   robot.gait = msg;
+  robot.gait_heard = now;
+}
+
+Steering LiveSession::SteeringOf(const std::string& name, WallTime now) const {
+  using State = Steering::State;
+  const LiveRobot* robot = this->robot(name);
+  if (robot == nullptr) {
+    return {State::kUnknown, fmt::format("robot '{}' not heard yet", name)};
+  }
+  if (robot->gait) {
+    const double quiet = SecondsBetween(robot->gait_heard, now);
+    if (quiet <= options_.request_timeout_s) return {State::kAnswered, ""};
+    return {State::kUnanswered,
+            fmt::format("the controller steering robot '{}' has not been "
+                        "heard for {:.0f} s (it stopped?)",
+                        name, quiet)};
+  }
+  if (SecondsBetween(robot->first_heard, now) < options_.gait_status_wait_s) {
+    return {
+        State::kUnknown,
+        fmt::format("waiting to hear whether robot '{}' can be steered", name)};
+  }
+  return {State::kUnanswered,
+          fmt::format("robot '{}' cannot be steered: its controller does not "
+                      "take steering commands (only the gait controller "
+                      "does; a Lua script or your own program drives it)",
+                      name)};
 }
 
 void LiveSession::Tick(WallTime now) {
@@ -315,6 +344,11 @@ int64_t LiveSession::SendSim(sim_control_t msg, const std::string& what,
 
 int64_t LiveSession::SendGait(gait_command_t msg, const std::string& what,
                               WallTime now, StudioOutbox* out) {
+  // Sent to nobody it would only time out; say why at once instead.
+  const Steering steering = SteeringOf(msg.robot, now);
+  if (steering.state == Steering::State::kUnanswered) {
+    throw std::runtime_error(steering.why);
+  }
   LiveRequest r;
   r.kind = LiveRequest::Kind::kGait;
   r.seq = next_seq_++;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "gait_controller/process/gait_node.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "logger/lcm_type_registry.h"
 #include "mrsim/gait_command_t.hpp"
@@ -35,6 +36,24 @@ struct LiveSessionOptions {
   double request_timeout_s = 3.0;
   // A robot not heard from for this long is listed as silent.
   double robot_silent_s = 2.0;
+  // A robot heard this long without a gait status has no controller that
+  // takes steering (mrsim-gait speaks at least once a second).
+  double gait_status_wait_s = 2.5 * GaitNode::kHeartbeatInterval;
+};
+
+// Whether steering a robot (gait_command_t) will be answered. A controller
+// declares that it takes steering by what it publishes: a gait status on
+// <prefix>_GAIT_STATUS_<robot> (mrsim-gait does, about once a second; a
+// program of one's own may); one that does not (mrsim-lua, most programs)
+// never sends one, and steering it would go unanswered.
+struct Steering {
+  enum class State {
+    kAnswered,    // its controller's gait status is being heard
+    kUnknown,     // too early to tell (robot not heard yet, or just now)
+    kUnanswered,  // nothing steers it: steering is refused before sending
+  };
+  State state = State::kUnknown;
+  std::string why;  // for kUnknown and kUnanswered, in words
 };
 
 // One request the studio sent and what became of it.
@@ -52,11 +71,13 @@ struct LiveRequest {
 // What the studio knows of one robot.
 struct LiveRobot {
   std::string name;
-  robot_state_t state;  // the newest
-  int64_t states = 0;   // received
+  robot_state_t state;   // the newest
+  int64_t states = 0;    // received
+  WallTime first_heard;  // its first state or gait status
   WallTime last_heard;
   bool silent = false;
   std::optional<gait_status_t> gait;  // the newest, once mrsim-gait spoke
+  WallTime gait_heard;                // when `gait` came
 };
 
 class LiveSession {
@@ -91,10 +112,13 @@ class LiveSession {
   // std::invalid_argument for an empty robot or lock name.
   int64_t SetLockAttached(const std::string& robot, const std::string& lock,
                           bool attached, WallTime now, StudioOutbox* out);
+  // Whether steering `robot` will be answered, and why not (Steering).
+  Steering SteeringOf(const std::string& robot, WallTime now) const;
   // Steering (gait_command_t on <prefix>_GAIT_<robot>): a motion with its
   // strength in [-1, 1], the seven gait parameters, or a gait by name.
   // Throws std::invalid_argument for an unknown motion or a value out of
-  // range, before anything is sent.
+  // range, and std::runtime_error (SteeringOf's why) for a robot nothing
+  // steers, before anything is sent.
   int64_t Steer(const std::string& robot, const std::string& motion,
                 double strength, WallTime now, StudioOutbox* out);
   int64_t SetGaitParameters(const std::string& robot,

@@ -346,6 +346,7 @@ void LivePanel::Play(const GenerationRow& row) {
         best, optimise_.options().out_dir + "/watch", FormRun());
     runner_.Start(o);
     Connect(url_, prefix_);
+    run_controller_ = o.controller;
     if (best.body) {
       replay_ = std::move(best);
       ++replay_revision_;

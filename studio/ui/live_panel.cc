@@ -57,6 +57,29 @@ void LivePanel::Connect(const std::string& url, const std::string& prefix) {
   link_ = std::make_unique<LiveLink>(url, session_.get(),
                                      LoadAuthConfig("", false));
   followed_.clear();
+  run_controller_.reset();  // the caller that started the run says who
+}
+
+Steering LivePanel::FollowedSteering() const {
+  Steering s = session_->SteeringOf(followed_, WallClock::now());
+  if (s.state == Steering::State::kAnswered || !run_controller_) return s;
+  // This window started the run: it knows who drives the robot, and what
+  // the student can change so that steering works.
+  if (*run_controller_ == ControllerKind::kLua) {
+    return {Steering::State::kUnanswered,
+            "robot '" + followed_ +
+                "' is driven by your Lua script, which does not take "
+                "steering: to steer with these buttons and the arrow keys, "
+                "choose the gait controller above and press Run again"};
+  }
+  if (*run_controller_ == ControllerKind::kExternal &&
+      s.state == Steering::State::kUnanswered) {
+    s.why = "robot '" + followed_ +
+            "' is driven by your own program, which does not take steering "
+            "(a program takes it by publishing a gait status; "
+            "docs/gait.md, \"Who takes steering\")";
+  }
+  return s;
 }
 
 void LivePanel::Disconnect() {
@@ -141,6 +164,15 @@ void LivePanel::Poll() {
     if (const LiveRobot* r = session_->robot(followed_); r && r->gait) {
       layout_->State("live gait", r->gait->motion);
     }
+    if (!followed_.empty()) {
+      const Steering steering = FollowedSteering();
+      const char* state = steering.state == Steering::State::kAnswered ? "on"
+                          : steering.state == Steering::State::kUnknown
+                              ? "waiting"
+                              : "off";
+      layout_->State("live steering",
+                     state + (steering.why.empty() ? "" : ": " + steering.why));
+    }
   }
 }
 
@@ -165,6 +197,13 @@ bool LivePanel::OnKey(int key) {
       break;
     default:
       return false;
+  }
+  // Nothing would answer: say why rather than send into a timeout.
+  if (const Steering s = FollowedSteering();
+      s.state == Steering::State::kUnanswered) {
+    message_ = s.why;
+    message_is_note_ = false;
+    return true;
   }
   Send([&](StudioOutbox* out) {
     session_->Steer(followed_, motion, strength_, WallClock::now(), out);

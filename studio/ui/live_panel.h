@@ -131,6 +131,10 @@ class LivePanel {
   void EndReplay();
   // The run settings of the form (clock, rate, speed, URL, prefix).
   RunOptions FormRun() const;
+  // Whether the followed robot can be steered, in the words the panel
+  // shows: the session's view, told who drives the robot when this window
+  // started the run.
+  Steering FollowedSteering() const;
 
   LayoutRecorder* layout_;
   LiveRunner runner_;
@@ -158,7 +162,10 @@ class LivePanel {
   std::optional<BestReplay> replay_;  // what runs, when not the design
   int replay_revision_ = 0;
   std::optional<Scenario> running_;  // what Run started
-  std::string watching_;             // "playing generation 3's best ..."
+  // Who drives the robots of the run this window started (none when
+  // attached to someone else's simulation).
+  std::optional<ControllerKind> run_controller_;
+  std::string watching_;  // "playing generation 3's best ..."
   std::unique_ptr<LiveSession> session_;
   std::unique_ptr<LiveLink> link_;
   StudioOutbox outbox_;

@@ -49,6 +49,7 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           o.allow_overlap = !design.overlaps.empty() && allow_overlap_;
           runner_.Start(o);
           Connect(url_, prefix_);
+          run_controller_ = o.controller;
           EndReplay();
           running_ = ReadScenarioFile(path);
           ++replay_revision_;

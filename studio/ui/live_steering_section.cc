@@ -31,6 +31,19 @@ void LivePanel::DrawSteering() {
                 robot->gait->motion.c_str(), robot->gait->strength,
                 robot->silent ? "  silent" : "");
   }
+  // Offered only where a controller answers (LiveSession::SteeringOf).
+  const Steering steering = FollowedSteering();
+  const bool off = steering.state == Steering::State::kUnanswered;
+  if (!steering.why.empty()) {
+    if (off) {
+      ImGui::TextWrapped("%s", steering.why.c_str());
+    } else {
+      ImGui::PushTextWrapPos(0);
+      ImGui::TextDisabled("%s", steering.why.c_str());
+      ImGui::PopTextWrapPos();
+    }
+  }
+  ImGui::BeginDisabled(off);
   ImGui::SetNextItemWidth(150);
   ImGui::SliderFloat("strength", &strength_, -1.0f, 1.0f, "%.2f");
   const char* const motions[] = {
@@ -63,6 +76,7 @@ void LivePanel::DrawSteering() {
       session_->SetGait(followed_, gait_file_, WallClock::now(), out);
     });
   }
+  ImGui::EndDisabled();
   ImGui::SameLine();
   if (RecordedButton(layout_, "Save gait")) {
     try {
@@ -81,6 +95,7 @@ void LivePanel::DrawSteering() {
       message_is_note_ = false;
     }
   }
+  ImGui::BeginDisabled(off);
   if (ImGui::TreeNode("gait parameters")) {
     const auto& parameter_names = GaitParameterNames();
     bool changed = false;
@@ -102,6 +117,7 @@ void LivePanel::DrawSteering() {
     }
     ImGui::TreePop();
   }
+  ImGui::EndDisabled();
 }
 
 }  // namespace mrsim::studio

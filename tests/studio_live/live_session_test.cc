@@ -271,6 +271,49 @@ TEST_F(LiveSessionTest, SteeringGoesToTheRobotsGaitNodeAndItsStatusAnswers) {
   EXPECT_EQ(session_.robot("snake")->gait->motion, "turn-left");
 }
 
+// A gait controller says it takes steering by its gait status; a robot
+// whose controller never says so (mrsim-lua) is not steered into "no
+// answer within 3 s": the request is refused at once, with why.
+TEST_F(LiveSessionTest, SteeringIsRefusedAtOnceForARobotNothingSteers) {
+  using State = Steering::State;
+  gait_status_t heartbeat{};
+  heartbeat.robot = "snake";
+  heartbeat.running = true;
+  EXPECT_EQ(session_.SteeringOf("snake", now_).state, State::kUnknown);
+  for (int i = 0; i < 3; ++i) {
+    Hear("TEST_STATE_snake", testing::KnownRobotState(i, 4, 1, "snake"));
+    Hear("TEST_STATE_worm", testing::KnownRobotState(i, 3, 0, "worm"));
+    if (i == 0) {
+      // Too early to tell: a gait controller may not have spoken yet.
+      EXPECT_EQ(session_.SteeringOf("worm", now_).state, State::kUnknown);
+    }
+    Hear("TEST_GAIT_STATUS_snake", heartbeat);
+    Advance(1.0);
+  }
+  EXPECT_EQ(session_.SteeringOf("snake", now_).state, State::kAnswered);
+  const Steering worm = session_.SteeringOf("worm", now_);
+  EXPECT_EQ(worm.state, State::kUnanswered);
+  EXPECT_NE(worm.why.find("robot 'worm' cannot be steered"), std::string::npos)
+      << worm.why;
+
+  EXPECT_THROW(session_.Steer("worm", "forward", 1, now_, &out_),
+               std::runtime_error);
+  EXPECT_THROW(session_.SetGait("worm", "turn", now_, &out_),
+               std::runtime_error);
+  EXPECT_TRUE(out_.empty());
+  EXPECT_TRUE(session_.requests().empty());
+  session_.Steer("snake", "forward", 1, now_, &out_);
+  ASSERT_EQ(out_.messages.size(), 1u);
+  EXPECT_EQ(out_.messages[0].first, "TEST_GAIT_snake");
+
+  // The gait controller stopped: steering it is refused too, and says so.
+  Advance(3.8);
+  const Steering gone = session_.SteeringOf("snake", now_);
+  EXPECT_EQ(gone.state, State::kUnanswered);
+  EXPECT_NE(gone.why.find("has not been heard for 5 s"), std::string::npos)
+      << gone.why;
+}
+
 TEST_F(LiveSessionTest, MalformedAndForeignMessagesAreCountedAndDropped) {
   const auto good = Bytes(testing::KnownRobotState(0, 3, 1, "snake"));
   // Cut short, one byte too many, random bytes, empty.

@@ -115,6 +115,24 @@ TEST(StudioLua, ScriptErrorShowsItsLineAndTheFixedScriptDrivesTheRobot) {
   text << script.rdbuf();
   EXPECT_NE(text.str().find("math.sin(4 * t - i)"), std::string::npos);
 
+  // The script takes no steering: the Steering section says so, and an
+  // arrow key says why at once rather than sending into "no answer".
+  const auto steering = [&] { return ReadLayout(layout)["live steering"]; };
+  EXPECT_EQ(steering().rfind("off: robot 'case_study' is driven by your Lua "
+                             "script",
+                             0),
+            0u)
+      << steering();
+  ASSERT_TRUE(Xdotool({"key", "Up"}));
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout)["live message"].find(
+                   "driven by your Lua script") != std::string::npos;
+      },
+      60))
+      << ReadLayout(layout)["live message"];
+  EXPECT_EQ(ReadLayout(layout)["live request"], "") << "a steering request";
+
   Click(layout, "Stop");
   ASSERT_TRUE(WaitForLayout(layout, "live busy", "idle", 60));
   ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));

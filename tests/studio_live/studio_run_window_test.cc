@@ -97,6 +97,8 @@ TEST_F(StudioRun, UpArrowDrivesForwardPauseStopsAndStepAdvancesATenth) {
   // Stop the robot (space), then a real Up key press sets it going.
   ASSERT_TRUE(Xdotool({"key", "space"}));
   ASSERT_TRUE(WaitForLayout(layout, "live gait", "stop", 60));
+  // mrsim-gait's status says it takes steering: the section offers it.
+  EXPECT_EQ(ReadLayout(layout)["live steering"], "on");
   const Live before = ReadLive(layout);
   ASSERT_TRUE(Xdotool({"key", "Up"}));
   ASSERT_TRUE(WaitForLayout(layout, "live gait", "forward", 60));
