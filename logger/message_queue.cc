@@ -5,9 +5,10 @@
 namespace mrsim {
 
 bool MessageQueue::Push(const std::string& channel, const void* data,
-                        size_t size) {
+                        size_t size, int64_t recv_utime) {
   QueuedMessage m;
   m.channel = channel;
+  m.recv_utime = recv_utime;
   const uint8_t* bytes = static_cast<const uint8_t*>(data);
   m.data.assign(bytes, bytes + size);
   bool wake = false;

@@ -15,6 +15,7 @@ namespace mrsim {
 struct QueuedMessage {
   std::string channel;
   std::vector<uint8_t> data;
+  int64_t recv_utime = 0;  // when LCM received it (us since the epoch)
 };
 
 class MessageQueue {
@@ -27,7 +28,8 @@ class MessageQueue {
       : max_bytes_(max_bytes), wake_bytes_(wake_bytes) {}
 
   // Copies the message in. False (and counted in dropped()) when full.
-  bool Push(const std::string& channel, const void* data, size_t size);
+  bool Push(const std::string& channel, const void* data, size_t size,
+            int64_t recv_utime = 0);
   // Waits up to `timeout` for wake_bytes of messages, then moves every
   // queued one to `out` (appending). False once Close() was called and
   // nothing is left.

@@ -17,7 +17,25 @@ packages=(
   dpkg-dev help2man desktop-file-utils
   slurm-wlm munge
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
+  libzstd-dev nodejs
 )
+# npm: Debian's package, unless the nodejs installed brings its own (as
+# NodeSource's does, which conflicts with Debian's npm).
+if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
+
+# The npm packages the MCAP tests read files with (tests/mcap, pinned by its
+# package-lock.json): fetched once, then nothing is fetched again until the
+# lock file changes, so later runs work offline.
+npm_packages() {
+  local dir
+  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/mcap"
+  if [ -f "$dir/node_modules/.package-lock.json" ] &&
+     [ ! "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
+    return 0
+  fi
+  echo "install_deps: npm ci in tests/mcap"
+  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error)
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -28,6 +46,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install_deps: all ${#packages[@]} packages present"
+  npm_packages
   exit 0
 fi
 
@@ -37,4 +56,5 @@ if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+npm_packages
 echo "install_deps: done"

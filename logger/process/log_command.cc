@@ -18,6 +18,7 @@
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "logger/lcm_type_registry.h"
+#include "logger/mcap/mcap_recorder.h"
 #include "logger/message_queue.h"
 
 namespace mrsim {
@@ -40,12 +41,94 @@ constexpr std::chrono::milliseconds kTakePeriod(4);
 void OnLcm(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
            MessageQueue* queue) {
   try {
-    queue->Push(channel, rbuf->data, rbuf->data_size);
+    queue->Push(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
   } catch (const std::exception&) {
     // Out of memory for one copy: the seq gap will show it; LCM's C code
     // must not see an exception.
   }
 }
+
+// Where messages go: one CSV per channel (Recorder) or one MCAP file
+// (McapRecorder). Live logging and replay feed either the same way.
+class LogSink {
+ public:
+  virtual ~LogSink() = default;
+  // utime: when the message was received or logged (us since the epoch).
+  virtual void OnMessage(const std::string& channel, const void* data,
+                         size_t size, int64_t utime) = 0;
+  // Called every writer wake-up: puts what is buffered on disk at the
+  // sink's own pace. Never throws (failed() tells).
+  virtual void Periodic() = 0;
+  // At the end: flush (CSV) or write the summary and footer (MCAP).
+  virtual void Finish() = 0;
+  virtual bool failed() const = 0;
+  virtual const std::string& error() const = 0;
+  virtual int64_t messages() const = 0;
+  virtual std::vector<ChannelStats> Stats() const = 0;
+  virtual std::string Summary() const = 0;
+  virtual std::string where() const = 0;
+};
+
+class CsvSink : public LogSink {
+ public:
+  CsvSink(const LcmTypeRegistry& registry, RecorderOptions options)
+      : recorder_(registry, std::move(options)) {}
+  void OnMessage(const std::string& channel, const void* data, size_t size,
+                 int64_t) override {
+    recorder_.OnMessage(channel, data, size);
+  }
+  void Periodic() override {
+    const auto now = Clock::now();
+    if (now - last_flush_ < std::chrono::milliseconds(500)) return;
+    last_flush_ = now;
+    try {
+      recorder_.Flush();
+    } catch (const std::exception&) {
+      // recorder_.error() holds it.
+    }
+  }
+  void Finish() override { recorder_.Flush(); }
+  bool failed() const override { return recorder_.failed(); }
+  const std::string& error() const override { return recorder_.error(); }
+  int64_t messages() const override { return recorder_.messages(); }
+  std::vector<ChannelStats> Stats() const override { return recorder_.Stats(); }
+  std::string Summary() const override { return recorder_.Summary(); }
+  std::string where() const override { return recorder_.out_dir(); }
+  const Recorder& recorder() const { return recorder_; }
+
+ private:
+  Recorder recorder_;
+  Clock::time_point last_flush_ = Clock::now();
+};
+
+class McapSink : public LogSink {
+ public:
+  explicit McapSink(McapRecorderOptions options)
+      : recorder_(std::move(options)) {}
+  void OnMessage(const std::string& channel, const void* data, size_t size,
+                 int64_t utime) override {
+    recorder_.OnMessage(
+        channel, data, size,
+        static_cast<uint64_t>(std::max<int64_t>(utime, 0)) * 1000);
+  }
+  void Periodic() override {
+    // A chunk on disk at least every second, so a killed logger loses at
+    // most that.
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    recorder_.Tick(static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(now).count()));
+  }
+  void Finish() override { recorder_.Finish(); }
+  bool failed() const override { return recorder_.failed(); }
+  const std::string& error() const override { return recorder_.error(); }
+  int64_t messages() const override { return recorder_.messages(); }
+  std::vector<ChannelStats> Stats() const override { return recorder_.Stats(); }
+  std::string Summary() const override { return recorder_.Summary(); }
+  std::string where() const override { return recorder_.path(); }
+
+ private:
+  McapRecorder recorder_;
+};
 
 // --exit-with-sim: the simulator's statuses, heard on LCM's thread (the
 // one that also runs the loop below), tell the watch when it stops.
@@ -67,7 +150,7 @@ struct StatusFollower {
   }
 };
 
-void Progress(const Recorder& recorder, bool quiet, std::FILE* err) {
+void Progress(const LogSink& recorder, bool quiet, std::FILE* err) {
   if (quiet) return;
   int64_t missing = 0;
   const auto stats = recorder.Stats();
@@ -79,26 +162,18 @@ void Progress(const Recorder& recorder, bool quiet, std::FILE* err) {
 
 // Formats and writes what the LCM thread queued, so receiving never waits
 // on the disk.
-void WriteQueued(MessageQueue& queue, Recorder& recorder,
+void WriteQueued(MessageQueue& queue, LogSink& recorder,
                  std::atomic<bool>& failed, bool quiet, std::FILE* err) {
   std::vector<QueuedMessage> batch;
-  auto last_flush = Clock::now();
   auto last_progress = Clock::now();
   while (queue.PopAll(&batch, kWriterPeriod)) {
     for (const QueuedMessage& m : batch) {
-      recorder.OnMessage(m.channel, m.data.data(), m.data.size());
+      recorder.OnMessage(m.channel, m.data.data(), m.data.size(), m.recv_utime);
     }
     batch.clear();
-    const auto now = Clock::now();
-    if (now - last_flush > std::chrono::milliseconds(500)) {
-      last_flush = now;
-      try {
-        recorder.Flush();
-      } catch (const std::exception&) {
-        // recorder.error() holds it.
-      }
-    }
+    recorder.Periodic();
     if (recorder.failed()) failed = true;
+    const auto now = Clock::now();
     if (now - last_progress > std::chrono::seconds(10)) {
       last_progress = now;
       Progress(recorder, quiet, err);
@@ -106,8 +181,8 @@ void WriteQueued(MessageQueue& queue, Recorder& recorder,
   }
 }
 
-void RunLive(const LogCommand& opt, const std::string& regex,
-             Recorder& recorder, SignedLcm& lcm, std::FILE* err) {
+void RunLive(const LogCommand& opt, const std::string& regex, LogSink& recorder,
+             SignedLcm& lcm, std::FILE* err) {
   if (!lcm.good()) {
     throw std::runtime_error(
         CannotOpenLcm(LcmUrlWithReceiveBuffer(opt.lcm_url, opt.recv_buf_size)));
@@ -137,7 +212,7 @@ void RunLive(const LogCommand& opt, const std::string& regex,
   };
   if (!opt.quiet) {
     std::fprintf(err, "mrsim-log: recording channels matching '%s' to %s\n",
-                 regex.c_str(), recorder.out_dir().c_str());
+                 regex.c_str(), recorder.where().c_str());
   }
   try {
     while (!StopRequested() && !failed && !sim_gone()) {
@@ -172,7 +247,7 @@ void RunLive(const LogCommand& opt, const std::string& regex,
 // Replays an .lcmlog. A file with no LCM event in it (not a log) or with
 // none on the channels asked is bad input: nothing is written.
 void RunFromLog(const LogCommand& opt, const std::string& regex,
-                Recorder& recorder, std::FILE* err) {
+                LogSink& recorder, std::FILE* err) {
   lcm::LogFile log(opt.from_log, "r");
   if (!log.good()) {
     throw LogInputError("cannot read LCM log " + opt.from_log);
@@ -193,7 +268,8 @@ void RunFromLog(const LogCommand& opt, const std::string& regex,
       continue;
     }
     ++matched;
-    recorder.OnMessage(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+    recorder.OnMessage(ev->channel, ev->data, static_cast<size_t>(ev->datalen),
+                       ev->timestamp);
     if ((events & 1023) == 0 &&
         Clock::now() - last_progress > std::chrono::seconds(5)) {
       last_progress = Clock::now();
@@ -285,15 +361,22 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
                  "a comma-separated list of names");
   app.add_option("--out", opt.out_dir, "output folder (created if needed)")
       ->capture_default_str();
-  app.add_option("--from-log", opt.from_log,
+  app.add_option("--from-log,--from", opt.from_log,
                  "read this .lcmlog (from lcm-logger) instead of the network");
+  auto* mcap =
+      app.add_option("--mcap", opt.mcap,
+                     "write one indexed MCAP file (JSON messages with JSON "
+                     "Schemas, for Foxglove and PlotJuggler) instead of CSVs");
   app.add_option("--types", opt.types,
-                 "extra .lcm files or folders with message definitions");
+                 "extra .lcm files or folders with message definitions "
+                 "(CSV only)")
+      ->excludes(mcap);
   app.add_option("--plot", opt.plots,
                  "draw a PNG when logging stops (repeatable): "
                  "CHANNEL:y=COL[,COL...][:x=COL][:title=TEXT]"
                  "[:style=auto|lines|points][:size=WxH][:out=FILE.png]; "
-                 "x defaults to time, a relative FILE is in --out");
+                 "x defaults to time, a relative FILE is in --out")
+      ->excludes(mcap);
   app.add_option("--recv-buf-size", opt.recv_buf_size,
                  "kernel receive buffer (bytes) asked for on udpm URLs that "
                  "do not set recv_buf_size (capped by net.core.rmem_max); 0 "
@@ -316,6 +399,7 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
                "stop when the simulator stops (or is silent for 5 s), after "
                "writing what already arrived")
       ->excludes("--from-log");
+  mcap->excludes("--out");
 }
 
 LogPlan PlanLog(const LogCommand& opt) {
@@ -354,13 +438,26 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
       throw LogInputError(e.what());
     }
   }
-  RecorderOptions recorder_options;
-  recorder_options.out_dir = opt.out_dir;
-  recorder_options.report = [err](const std::string& text) {
+  const auto report = [err](const std::string& text) {
     std::fprintf(err, "mrsim-log: %s\n", text.c_str());
   };
   const bool out_dir_existed = std::filesystem::exists(opt.out_dir);
-  Recorder recorder(registry, recorder_options);
+  std::unique_ptr<LogSink> sink;
+  CsvSink* csv = nullptr;
+  if (opt.mcap.empty()) {
+    RecorderOptions recorder_options;
+    recorder_options.out_dir = opt.out_dir;
+    recorder_options.report = report;
+    auto made = std::make_unique<CsvSink>(registry, recorder_options);
+    csv = made.get();
+    sink = std::move(made);
+  } else {
+    McapRecorderOptions mcap_options;
+    mcap_options.path = opt.mcap;
+    mcap_options.report = report;
+    sink = std::make_unique<McapSink>(mcap_options);
+  }
+  LogSink& recorder = *sink;
   if (opt.from_log.empty()) {
     if (lcm == nullptr) throw std::logic_error("live logging needs an LCM");
     RunLive(opt, plan.regex, recorder, *lcm, err);
@@ -368,9 +465,13 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
     try {
       RunFromLog(opt, plan.regex, recorder, err);
     } catch (const LogInputError&) {
-      // Bad input writes nothing: not even the folder made for it.
+      // Bad input writes nothing: not even the folder or file made for it.
       std::error_code ec;
-      if (!out_dir_existed && std::filesystem::is_empty(opt.out_dir, ec)) {
+      if (!opt.mcap.empty()) {
+        sink.reset();
+        std::filesystem::remove(opt.mcap, ec);
+      } else if (!out_dir_existed &&
+                 std::filesystem::is_empty(opt.out_dir, ec)) {
         std::filesystem::remove(opt.out_dir, ec);
       }
       throw;
@@ -378,7 +479,7 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
   }
   // Files that did not fail keep everything, even after another failed.
   try {
-    recorder.Flush();
+    recorder.Finish();
   } catch (const std::exception&) {
     // recorder.error() holds it.
   }
@@ -396,7 +497,8 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
                  plan.regex.c_str());
     return 1;
   }
-  return WritePlots(plan.plots, recorder, err);
+  if (csv == nullptr) return 0;
+  return WritePlots(plan.plots, csv->recorder(), err);
 }
 
 }  // namespace mrsim

@@ -30,6 +30,7 @@ struct LogCommand {
   std::string channels;
   std::string out_dir = ".";
   std::string from_log;
+  std::string mcap;  // --mcap FILE: one MCAP file instead of the CSVs
   std::vector<std::string> types;
   std::vector<std::string> plots;
   int64_t recv_buf_size = 8 << 20;

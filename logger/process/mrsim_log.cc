@@ -1,6 +1,7 @@
 // mrsim-log: writes every mrsim channel (or the chosen ones) to one CSV per
-// channel, live from LCM or from an .lcmlog file, reports sequence gaps and
-// optionally draws plots when it stops. The work is in log_command.h.
+// channel or one MCAP file, live from LCM or from an .lcmlog file, reports
+// sequence gaps and optionally draws plots when it stops. The work is in
+// log_command.h.
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
@@ -16,8 +17,9 @@
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Writes mrsim LCM channels to one CSV per channel (DIR/<channel>.csv), "
-      "live or from an .lcmlog file, and reports sequence gaps."};
+      "Writes mrsim LCM channels to one CSV per channel (DIR/<channel>.csv) "
+      "or one MCAP file (--mcap), live or from an .lcmlog file, and reports "
+      "sequence gaps."};
   app.set_version_flag("--version", mrsim::VersionLine("mrsim-log"));
   mrsim::LogCommand command;
   mrsim::AddLogFlags(app, command);
