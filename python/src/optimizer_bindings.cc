@@ -284,11 +284,23 @@ class PyOptimizer {
     std::vector<EvalResult> results(batch_.size());
     for (size_t i = 0; i < results.size(); ++i) {
       const py::object v = values[i];
+      const std::string where =
+          "Optimizer.tell: fitness[" + std::to_string(i) + "]";
       EvalResult& r = results[i];
-      const double f =
-          v.is_none()
-              ? NAN
-              : Number(v, "Optimizer.tell: fitness[" + std::to_string(i) + "]");
+      double f = NAN;
+      if (py::isinstance<py::dict>(v)) {
+        // run_episode's and run_task's result as it is.
+        const py::dict d = v.cast<py::dict>();
+        if (!d.contains("fitness")) {
+          throw py::value_error(where + ": a dict needs a 'fitness'");
+        }
+        f = Number(d["fitness"], where + "['fitness']");
+        if (d.contains("failed") && Flag(d["failed"], where + "['failed']")) {
+          f = NAN;
+        }
+      } else if (!v.is_none()) {
+        f = Number(v, where);
+      }
       // A failed evaluation scores as mrsim-opt scores a failed episode.
       if (std::isfinite(f)) {
         r.fitness = f;
@@ -405,7 +417,8 @@ and one column per gene (gene_names order), each value within its gene's
 limits. Asking again before tell() gives the same generation.)doc");
   c.def("tell", &PyOptimizer::Tell, py::arg("fitness"), R"doc(
 The fitness of each row of the last ask(), in the same order (a list or a
-numpy array; higher is better). None, NaN or an infinity marks a failed
+numpy array; higher is better), or per row the dict run_episode and
+run_task return. None, NaN, an infinity or failed=True marks a failed
 evaluation: it scores as a failed mrsim-opt episode does (-1e6, failed).
 ValueError for another count or nothing asked.)doc");
   c.def_property_readonly("best", &PyOptimizer::Best, R"doc(

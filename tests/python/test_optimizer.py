@@ -123,6 +123,29 @@ def test_failed_evaluations_score_as_a_failed_mrsim_opt_episode():
     assert every.best["failed"] and every.best["fitness"] == -1e6
 
 
+def test_tell_takes_run_task_results_as_they_are():
+    base = mrsim.Gait(mrsim.task_info("flat")["gait"])
+    names = mrsim.gait_parameter_names()
+    dicts = mrsim.Optimizer("cmaes", genes="sine", seed=3, population=4)
+    floats = mrsim.Optimizer("cmaes", genes="sine", seed=3, population=4)
+    results = [mrsim.run_task("flat", base.with_parameters(
+        **dict(zip(names, map(float, g)))), seconds=0.2)
+        for g in dicts.ask()]
+    floats.ask()
+    dicts.tell(results)
+    floats.tell([r["fitness"] for r in results])
+    np.testing.assert_array_equal(dicts.ask(), floats.ask())
+    assert dicts.best["fitness"] == floats.best["fitness"]
+
+    failed = mrsim.Optimizer("random", genes=[("x", 0, 1)], population=2)
+    failed.ask()
+    failed.tell([{"fitness": 5.0, "failed": True}, {"fitness": 1.0}])
+    assert failed.best["fitness"] == 1.0
+    failed.ask()
+    with pytest.raises(ValueError, match=r"fitness\[0\].*'fitness'"):
+        failed.tell([{"distance": 1.0}, 0.0])
+
+
 def test_gene_forms_give_the_same_genome():
     forms = [
         [("x", -1, 1, 0.5), ("n", 0, 9, 3)],
