@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """lcmtypes/wire_check_gen.py on small .lcm files: a variable-length field
-without its `// max:` is refused, and a limits table that drifted from the
-.lcm files fails --check-doc."""
+without its `// max:` is refused, a limits table that drifted from the
+.lcm files fails --check-doc, and `// unit:` comments reach the units
+table."""
 import importlib.util
 import os
 import subprocess
@@ -50,6 +51,32 @@ class WireCheckGen(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("| t | s | 64 bytes |", r.stdout)
         self.assertIn("| t | n | 8 elements (v) |", r.stdout)
+
+    def test_units_reach_the_units_header(self):
+        path = self.lcm("  double torque;  // unit: N m\n"
+                        "  int32_t n;  // max: 8, unit: 1\n"
+                        "  double v[n];\n")
+        header = os.path.join(self.dir.name, "units.hpp")
+        checks = os.path.join(self.dir.name, "wire.hpp")
+        r = run("--output", checks, "--units-output", header, path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(header, encoding="utf-8") as f:
+            text = f.read()
+        self.assertIn('{"mrsim.t", "torque", "N m"},', text)
+        self.assertIn('{"mrsim.t", "n", "1"},', text)
+        self.assertNotIn('"v"', text)
+        # Unchanged text keeps the file (and whatever includes it) as it was.
+        before = os.stat(header).st_mtime_ns
+        os.utime(header, ns=(before - 10**9, before - 10**9))
+        self.assertEqual(run("--output", checks, "--units-output", header,
+                             path).returncode, 0)
+        self.assertEqual(os.stat(header).st_mtime_ns, before - 10**9)
+
+    def test_a_unit_comment_without_a_unit_is_refused(self):
+        path = self.lcm("  double torque;  // unit:\n")
+        r = run("--markdown", path)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn(f"{path}:4: 'unit:' without a unit", r.stderr)
 
     def test_check_doc_fails_on_a_drifted_table_and_update_fixes_it(self):
         path = self.lcm("  string s;  // max: 64\n")
