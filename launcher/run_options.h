@@ -11,6 +11,7 @@
 
 #include "common/clock_mode.h"
 #include "launcher/launch_file.h"
+#include "lcmtypes/runtime/channels.h"
 #include "sim_core/run_settings.h"
 
 namespace mrsim {
@@ -19,7 +20,7 @@ struct RunOptions {
   std::string scenario_path;        // a saved scenario file
   std::vector<std::string> robots;  // one mrsim-gait each
   std::string lcm_url;              // empty: LCM's default
-  std::string prefix = "MRSIM";
+  std::string prefix = kDefaultChannelPrefix;
   ClockMode clock = ClockMode::kRealtime;
   double rate = 100;             // Hz
   double speed = 1;              // real-time factor (realtime clock)

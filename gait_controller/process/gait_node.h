@@ -17,6 +17,7 @@
 
 #include "gait_controller/gait.h"
 #include "gait_controller/gait_controller.h"
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/clock_mode.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "lcmtypes/runtime/simulator_watch.h"
@@ -39,7 +40,7 @@ std::string GaitCheckpointPath(const std::string& checkpoint,
 
 struct GaitNodeOptions {
   std::string robot;
-  std::string prefix = "MRSIM";
+  std::string prefix = kDefaultChannelPrefix;
   std::string sender;  // joint_command_t.sender
   // Hz of sim time: states closer together than 1/rate are not answered
   // (0: answer every state). If the simulator sends a skipped state again

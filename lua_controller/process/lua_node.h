@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/state_pacer.h"
@@ -30,7 +31,7 @@ using LuaOutbox = Outbox<joint_command_t>;
 
 struct LuaNodeOptions {
   std::string robot;
-  std::string prefix = "MRSIM";
+  std::string prefix = kDefaultChannelPrefix;
   std::string sender;  // joint_command_t.sender
   // Hz of sim time: states closer together than 1/rate are not answered
   // (0: every state). As in mrsim-gait, a skipped state the simulator

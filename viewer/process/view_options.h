@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "viewer/state_viewer.h"
 
@@ -13,7 +14,7 @@ struct ViewOptions {
   std::string scenario;
   std::string lcm_url;  // empty: LCM's default
   AuthFlags auth;
-  std::string prefix = "MRSIM";
+  std::string prefix = kDefaultChannelPrefix;
   std::string from_log;    // .lcmlog to replay instead of listening
   std::string out;         // MP4 path
   std::string frames_dir;  // PNG folder
