@@ -14,7 +14,7 @@ mrsim._core); nothing is implemented a second time in Python.
   ``mrsim.optimize`` (a scenario file or ``task="pole"``).
 - mrsim-opt's algorithms on a Python objective: ``Optimizer("cmaes",
   genes=[("x", -5, 5)], seed=1)``, ``ask()``, ``tell(fitness)``, ``best``.
-- Logs: ``read_csv_folder``, ``read_lcm_log`` (dicts of numpy arrays).
+- Logs: ``read_csv_folder``, ``read_lcm_log``, ``read_mcap`` (dicts of numpy arrays).
 - LCM: ``Node`` (states, commands, lockstep, simulator control; signed
   with a key file, ``KeyFileError`` when it cannot be used).
 - Gymnasium-style environment: ``mrsim.env.ChainEnv`` (``task="pole"``:
@@ -42,7 +42,7 @@ from ._core import (  # noqa: F401
     task_info,
     task_names,
 )
-from .logs import read_csv, read_csv_folder, read_lcm_log  # noqa: F401
+from .logs import read_csv, read_csv_folder, read_lcm_log, read_mcap  # noqa: F401
 from .node import ControlError, Message, Node  # noqa: F401
 from .optimize import optimize, read_generations  # noqa: F401
 
@@ -60,6 +60,7 @@ __all__ = [
     "KeyFileError", "LogError", "Message", "Node", "Optimizer", "POSE_FIELDS", "PhysicsError", "Scenario",
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
-    "read_csv_folder", "read_generations", "read_lcm_log", "run_episode",
+    "read_csv_folder", "read_generations", "read_lcm_log", "read_mcap",
+    "run_episode",
     "run_task", "task_info", "task_names",
 ]

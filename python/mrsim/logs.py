@@ -4,14 +4,19 @@
 ``{channel: {column: array}}``; ``read_lcm_log(path)`` does the same for an
 lcm-logger log, decoding with the logger's own C++ flatteners, so both give
 the same column names (``time``, ``module3.joint.angle``, ``com.x``, ...).
-``pandas.DataFrame(logs[channel])`` takes a channel as it is.
+``read_mcap(path)`` reads an MCAP file of mrsim-log --mcap (JSON messages)
+into the same shape, columns named by the JSON paths of the message's
+fields (``modules.3.position.0``, ``com.1``). ``pandas.DataFrame(logs[channel])``
+takes a channel as it is.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import re
-from typing import Dict, Optional
+import warnings
+from typing import Dict, List, Optional
 
 import numpy as np
 
@@ -73,3 +78,57 @@ def read_lcm_log(path: str,
     mrsim-log names them plus 'log_time' (s). channels: a regex of the
     channels to read (default: all)."""
     return _core.read_lcm_log(os.fspath(path), channels or "")
+
+
+def _flatten(value, prefix: str, row: Dict[str, object]) -> None:
+    """One JSON value into row, keys joined by '.' (list items by index)."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _flatten(v, prefix + "." + k if prefix else k, row)
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            _flatten(v, "%s.%d" % (prefix, i) if prefix else str(i), row)
+    else:
+        row[prefix] = value
+
+
+def _columns(rows: List[Dict[str, object]]) -> Dict[str, object]:
+    """Rows into columns: numbers (and null: NaN) as float arrays, text as
+    lists of str; a column missing from a row is NaN (or '')."""
+    names: Dict[str, None] = {}
+    for r in rows:
+        for n in r:
+            names.setdefault(n, None)
+    out: Dict[str, object] = {}
+    for n in names:
+        cells = [r.get(n) for r in rows]
+        if any(isinstance(c, str) for c in cells):
+            out[n] = ["" if c is None else str(c) for c in cells]
+        else:
+            out[n] = np.array([np.nan if c is None else float(c) for c in cells],
+                              dtype=float)
+    return out
+
+
+def read_mcap(path: str,
+              channels: Optional[str] = None) -> Dict[str, Dict[str, object]]:
+    """An MCAP file of mrsim-log --mcap: {channel: {column: array}}, each
+    message's JSON fields flattened into columns named by their path
+    (``seq``, ``modules.0.position.2``; booleans as 0/1), plus 'log_time'
+    (s). channels: a regex of the channels to read (default: all). A file
+    whose logger was killed reads up to its last whole chunk, with a
+    warning. Raises LogError naming the byte of a malformed file."""
+    topics, complete = _core.read_mcap_messages(os.fspath(path), channels or "")
+    if not complete:
+        warnings.warn("%s: the file ends before its summary (its writer was "
+                      "stopped); read up to its last whole chunk" % path)
+    out = {}
+    for topic, (_schema, times, data) in topics.items():
+        rows = []
+        for t, text in zip(times, data):
+            row: Dict[str, object] = {}
+            _flatten(json.loads(text), "", row)
+            row["log_time"] = float(t)
+            rows.append(row)
+        out[topic] = _columns(rows)
+    return out

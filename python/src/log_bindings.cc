@@ -1,6 +1,7 @@
 // Logs into columns: mrsim-log's CSV files and lcm-logger logs, the latter
 // decoded with the logger's own flatteners (so a log reads into the same
-// column names as the CSV mrsim-log would have written from it).
+// column names as the CSV mrsim-log would have written from it), and the
+// messages of MCAP files (logger/mcap/mcap_reader.h, bounds-checked).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -8,6 +9,7 @@
 #include <charconv>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
 #include <map>
@@ -20,6 +22,7 @@
 #include "logger/csv_columns.h"
 #include "logger/generic_flattener.h"
 #include "logger/lcm_type_registry.h"
+#include "logger/mcap/mcap_reader.h"
 #include "logger/robot_state_flattener.h"
 #include "python/src/bindings.h"
 
@@ -212,6 +215,59 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
   return out;
 }
 
+// Every message of an MCAP file by topic: its log times (s) and data (the
+// JSON text mrsim-log writes), with the schema's name and whether the file
+// was finished (false: cut off after its last whole chunk).
+py::tuple ReadMcapMessages(const std::string& path,
+                           const std::string& channels) {
+  struct Topic {
+    std::vector<double> times;
+    std::vector<std::string> data;
+  };
+  std::map<std::string, Topic> topics;
+  std::vector<std::string> order;
+  mcap::McapSummary summary;
+  {
+    py::gil_scoped_release release;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw PlotInputError(path + ": cannot open");
+    const std::string bytes((std::istreambuf_iterator<char>(in)),
+                            std::istreambuf_iterator<char>());
+    const std::regex wanted(channels.empty() ? ".*" : channels);
+    try {
+      summary = mcap::ReadMcap(bytes, path, [&](const mcap::McapMessage& m) {
+        const std::string& topic = m.channel->topic;
+        auto it = topics.find(topic);
+        if (it == topics.end()) {
+          if (!std::regex_match(topic, wanted)) return;
+          it = topics.emplace(topic, Topic{}).first;
+          order.push_back(topic);
+        }
+        Topic& t = it->second;
+        t.times.push_back(static_cast<double>(m.log_time) / 1e9);
+        t.data.emplace_back(m.data);
+      });
+    } catch (const mcap::McapError& e) {
+      throw PlotInputError(e.what());
+    }
+  }
+  py::dict out;
+  for (const std::string& name : order) {
+    const Topic& t = topics.at(name);
+    std::string schema;
+    for (const auto& [id, c] : summary.channels) {
+      if (c.topic != name) continue;
+      const auto s = summary.schemas.find(c.schema_id);
+      if (s != summary.schemas.end()) schema = s->second.name;
+    }
+    py::list data;
+    for (const std::string& d : t.data) data.append(py::str(d));
+    out[py::str(name)] = py::make_tuple(
+        schema, py::array_t<double>(t.times.size(), t.times.data()), data);
+  }
+  return py::make_tuple(out, summary.complete);
+}
+
 }  // namespace
 
 void BindLogs(py::module_& m) {
@@ -226,6 +282,15 @@ mrsim-log gives (decoded by the logger's flatteners), plus 'log_time' (s,
 when the message was logged). channels: a regex of the channels to read
 (default all). Messages of unknown types or that do not decode are left
 out. Raises LogError when the file is not an LCM log.)doc");
+  m.def("read_mcap_messages", &ReadMcapMessages, py::arg("path"),
+        py::arg("channels") = "",
+        R"doc(
+The messages of an MCAP file (as mrsim-log --mcap writes it, or any):
+({topic: (schema_name, log_times_s, [data as str])}, complete). complete
+is False for a file cut off after its last whole chunk (its writer was
+killed). channels: a regex of the topics to read (default all). Every
+length is checked and every CRC the file has; raises LogError naming the
+byte offset of what is malformed. mrsim.read_mcap turns it into columns.)doc");
 }
 
 }  // namespace mrsim::python

@@ -65,3 +65,45 @@ def test_lcm_log_reads_like_the_loggers_csv(tmp_path, children):
     assert np.all(np.diff(state["seq"]) > 0)
     only = mrsim.read_lcm_log(log, channels="MRSIM_SIM_STATUS")
     assert list(only) == ["MRSIM_SIM_STATUS"]
+
+
+def test_mcap_reads_as_many_states_as_the_csv_logger_wrote(tmp_path, children):
+    path = str(tmp_path / "snake.xml")
+    mrsim.Scenario.chain(modules=4, pattern="pitch").save(path)
+    url = lcm_url(7568)
+    mcap = str(tmp_path / "run.mcap")
+    loggers = [children.start([program("mrsim-log"), "--lcm-url", url] + how +
+                              ["--exit-with-sim"], str(tmp_path / name))
+               for name, how in (("csv.log", ["--out", str(tmp_path / "csv")]),
+                                 ("mcap.log", ["--mcap", mcap]))]
+    for logger in loggers:
+        wait_until(lambda: "recording channels" in logger.output(), 30,
+                   "mrsim-log to listen")
+    sim = children.start([program("mrsim-sim"), path, "--lcm-url", url,
+                          "--duration", "0.5", "--clock", "fast"],
+                         str(tmp_path / "sim.log"))
+    assert sim.wait(60) == 0, sim.output()
+    for logger in loggers:
+        assert logger.wait(60) == 0, logger.output()
+    csv = mrsim.read_csv_folder(str(tmp_path / "csv"))["MRSIM_STATE_snake"]
+    state = mrsim.read_mcap(mcap)["MRSIM_STATE_snake"]
+    assert len(state["seq"]) == len(csv["seq"]) > 0
+    assert np.array_equal(state["seq"], csv["seq"])
+    assert np.allclose(state["modules.3.position.0"], csv["module3.x"])
+    assert np.all(np.diff(state["log_time"]) >= 0)
+    only = mrsim.read_mcap(mcap, channels="MRSIM_SIM_STATUS")
+    assert list(only) == ["MRSIM_SIM_STATUS"]
+
+
+def test_mcap_cut_off_reads_its_whole_chunks_and_warns(tmp_path):
+    path = tmp_path / "cut.mcap"
+    source = os.path.join(os.path.dirname(__file__), "..", "..", "fuzz",
+                          "corpus", "mcap_reader", "cut_off.mcap")
+    with open(source, "rb") as f:
+        path.write_bytes(f.read())
+    with pytest.warns(UserWarning, match="last whole chunk"):
+        mrsim.read_mcap(str(path))
+    bad = tmp_path / "bad.mcap"
+    bad.write_bytes(b"not an mcap file")
+    with pytest.raises(mrsim.LogError, match="not an MCAP file"):
+        mrsim.read_mcap(str(bad))
