@@ -3,7 +3,10 @@
 A Node subscribes to the states, scene, simulator status and gait status
 channels and publishes joint commands, simulator controls and gait
 commands with the message types, sequence numbers and acknowledgements of
-the C++ programs. Messages are decoded by the C++ message types (with the
+the C++ programs. It can publish and receive every message type the .lcm
+files define (``listen``, ``publish``, ``send``), with every field: the
+conversions and the channel table (``CHANNELS``) are generated from the
+.lcm files. Messages are decoded by the C++ message types (with the
 project's checked decoding; messages that do not decode are counted in
 ``Node.malformed`` and dropped).
 
@@ -29,22 +32,62 @@ import collections
 import os
 import time as _time
 import types
-from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
+from typing import (Any, Callable, Dict, Iterator, List, Optional, Sequence,
+                    Tuple)
 
 from . import _core
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 
-# sim_control_t commands.
-PAUSE, RESUME, STEP, RESET, SAVE_CHECKPOINT, LOAD_CHECKPOINT = 1, 2, 3, 4, 5, 6
-SET_SPEED, QUIT, DETACH, ATTACH = 7, 8, 9, 10
+# The channel prefix of the programs' --prefix default.
+DEFAULT_PREFIX: str = _core.DEFAULT_CHANNEL_PREFIX
+
+# Every message type of the .lcm files: {type: {"fields": [...], "consts"}}.
+MESSAGE_TYPES: Dict[str, Dict[str, Any]] = _core.message_types()
+
+# The channel of each message type by its short name ("state",
+# "sim_status", "run", ...), from the .lcm files' '// channel:' lines.
+CHANNELS: Dict[str, Dict[str, Any]] = {
+    c["name"]: c for c in _core.channels()}
+
+# sim_control_t commands (the consts of sim_control_t.lcm).
+_COMMANDS = MESSAGE_TYPES["sim_control_t"]["consts"]
+PAUSE: int = _COMMANDS["PAUSE"]
+RESUME: int = _COMMANDS["RESUME"]
+STEP: int = _COMMANDS["STEP"]
+RESET: int = _COMMANDS["RESET"]
+SAVE_CHECKPOINT: int = _COMMANDS["SAVE_CHECKPOINT"]
+LOAD_CHECKPOINT: int = _COMMANDS["LOAD_CHECKPOINT"]
+SET_SPEED: int = _COMMANDS["SET_SPEED"]
+QUIT: int = _COMMANDS["QUIT"]
+DETACH: int = _COMMANDS["DETACH"]
+ATTACH: int = _COMMANDS["ATTACH"]
 
 # Messages kept per channel for the iterators; older ones are dropped.
 _QUEUE_LENGTH = 10000
 
 
 class Message(types.SimpleNamespace):
-    """A decoded message: its fields as attributes (arrays as numpy)."""
+    """A decoded message: its fields as attributes (numeric arrays as
+    numpy, nested structs as Message, arrays of them as lists)."""
+
+
+def _message(value: Any) -> Any:
+    if isinstance(value, dict):
+        return Message(**{k: _message(v) for k, v in value.items()})
+    if isinstance(value, list):
+        return [_message(v) for v in value]
+    return value
+
+
+def _type_name(kind: str) -> str:
+    """An .lcm type name; "sim_status" is taken for "sim_status_t"."""
+    if kind in MESSAGE_TYPES or kind == "state":
+        return kind
+    if kind + "_t" in MESSAGE_TYPES:
+        return kind + "_t"
+    raise ValueError("unknown message type %r (one of %s)" %
+                     (kind, ", ".join(sorted(MESSAGE_TYPES))))
 
 
 class ControlError(RuntimeError):
@@ -54,7 +97,8 @@ class ControlError(RuntimeError):
 class Node:
     """An LCM node: subscribe to mrsim's channels, publish commands."""
 
-    def __init__(self, url: Optional[str] = None, prefix: str = "MRSIM",
+    def __init__(self, url: Optional[str] = None,
+                 prefix: str = DEFAULT_PREFIX,
                  key_file: Optional[str] = None,
                  name: Optional[str] = None,
                  accept_replays: bool = False) -> None:
@@ -62,7 +106,9 @@ class Node:
 
         url: the LCM URL (default: $LCM_DEFAULT_URL, else mrsim's default
         udpm://239.255.76.67:7667?ttl=0). prefix: the channel prefix the
-        programs were started with (--prefix). name: the sender name, what
+        programs were started with (--prefix; channels whose default prefix
+        is another, the optimiser farm's, keep theirs). name: the sender
+        name, what
         mrsim-sim --controllers lists (default python-<pid>).
         key_file: a key written by ``mrsim keygen``, as the programs'
         --key-file (None: $MRSIM_KEY_FILE, else unsigned): every message
@@ -81,56 +127,77 @@ class Node:
         self.name = name or "python-%d" % os.getpid()
         self._lcm = _core.LcmTransport(url, key_file or "",
                                        bool(accept_replays))
-        self._types: Dict[str, str] = {}
-        self._callbacks: Dict[str, List[Callable[[Any], None]]] = {}
-        self._queues: Dict[str, collections.deque] = {}
+        self._subscribed: Dict[Tuple[str, str], bool] = {}
+        self._callbacks: Dict[Tuple[str, str],
+                              List[Callable[[Any], None]]] = {}
+        self._queues: Dict[Tuple[str, str], collections.deque] = {}
         self._heard: Dict[str, bool] = {}
         self._control_seq = 0
         self._gait_seq = 0
 
     # Channels -----------------------------------------------------------
+    def channel(self, what: str, robot: Optional[str] = None) -> str:
+        """The channel of `what`, a name of CHANNELS ('state', 'command',
+        'gait', 'gait_status', 'scene', 'sim_control', 'sim_status', the
+        farm's 'run', 'job', ...): <prefix><infix>[<robot>]."""
+        spec = CHANNELS.get(what)
+        if spec is None:
+            raise ValueError("expected one of %s, got %r" %
+                             (", ".join(CHANNELS), what))
+        prefix = (self.prefix if spec["default_prefix"] == DEFAULT_PREFIX
+                  else spec["default_prefix"])
+        if not spec["per_robot"]:
+            return prefix + spec["infix"]
+        if not robot:
+            raise ValueError("%s: give the robot's name" % what)
+        return prefix + spec["infix"] + robot
+
     def state_channel(self, robot: str) -> str:
         """<prefix>_STATE_<robot>."""
-        return "%s_STATE_%s" % (self.prefix, robot)
+        return self.channel("state", robot)
 
     def command_channel(self, robot: str) -> str:
         """<prefix>_COMMAND_<robot>."""
-        return "%s_COMMAND_%s" % (self.prefix, robot)
+        return self.channel("command", robot)
 
-    def _subscribe(self, channel: str, kind: str) -> str:
-        if channel not in self._types:
-            self._lcm.subscribe(channel, kind)
-            self._types[channel] = kind
-            self._queues[channel] = collections.deque(maxlen=_QUEUE_LENGTH)
-            self._callbacks[channel] = []
-        return channel
+    def _subscribe(self, channel: str, kind: str) -> Tuple[str, str]:
+        """Subscribes `channel` as `kind` ('state': mrsim.State objects,
+        else an .lcm type); returns the key of its queue."""
+        kind = _type_name(kind)
+        key = (channel, kind)
+        if key not in self._subscribed:
+            if kind == "state":
+                self._lcm.subscribe(channel, "robot_state_t", True)
+            else:
+                self._lcm.subscribe(channel, kind)
+            self._subscribed[key] = True
+            self._queues[key] = collections.deque(maxlen=_QUEUE_LENGTH)
+            self._callbacks[key] = []
+        return key
 
-    def _channel_of(self, what: str, robot: Optional[str]) -> str:
-        channels = {
-            "state": ("%s_STATE_%s", "robot_state"),
-            "gait_status": ("%s_GAIT_STATUS_%s", "gait_status"),
-            "scene": ("%s_SCENE", "scene_state"),
-            "sim_status": ("%s_SIM_STATUS", "sim_status"),
-        }
-        if what not in channels:
-            raise ValueError("expected one of %s, got %r" %
-                             (", ".join(channels), what))
-        pattern, kind = channels[what]
-        if pattern.count("%s") == 2:
-            if not robot:
-                raise ValueError("%s: give the robot's name" % what)
-            channel = pattern % (self.prefix, robot)
-        else:
-            channel = pattern % self.prefix
-        return self._subscribe(channel, kind)
+    def _channel_of(self, what: str, robot: Optional[str]) -> Tuple[str, str]:
+        kind = "state" if what == "state" else None
+        channel = self.channel(what, robot)
+        return self._subscribe(channel, kind or CHANNELS[what]["type"])
 
     def subscribe(self, what: str, robot: Optional[str] = None,
                   callback: Optional[Callable[[Any], None]] = None) -> None:
-        """Listens to 'state' or 'gait_status' of a robot, or to 'scene' or
-        'sim_status'; callback(message) is called from spin_once()."""
-        channel = self._channel_of(what, robot)
+        """Listens to a channel of CHANNELS: 'state' (mrsim.State objects)
+        or 'gait_status' of a robot, 'scene', 'sim_status', or any other
+        ('command', 'run', ...; a Message with every field);
+        callback(message) is called from spin_once()."""
+        key = self._channel_of(what, robot)
         if callback is not None:
-            self._callbacks[channel].append(callback)
+            self._callbacks[key].append(callback)
+
+    def listen(self, channel: str, type: str,
+               callback: Optional[Callable[[Any], None]] = None) -> None:
+        """Listens to any channel as any .lcm type (MESSAGE_TYPES): each
+        message a Message with every field (a robot_state_t too); read with
+        next_on() or on_... callbacks from spin_once()."""
+        key = self._subscribe(channel, type)
+        if callback is not None:
+            self._callbacks[key].append(callback)
 
     def on_state(self, robot: str, callback: Callable[[Any], None]) -> None:
         """callback(state) for every new state of the robot (mrsim.State)."""
@@ -158,14 +225,15 @@ class Node:
         for channel, kind, msg in got:
             # States come once each: the transport answers re-sent ones
             # again and drops older ones (mrsim-gait's rules).
-            if kind != "robot_state":
-                msg = Message(**msg)
+            if kind != "state":
+                msg = _message(msg)
             delivered += 1
             self._heard[channel] = True
-            queue = self._queues.get(channel)
+            key = (channel, kind)
+            queue = self._queues.get(key)
             if queue is not None:
                 queue.append(msg)
-            for cb in self._callbacks.get(channel, ()):
+            for cb in self._callbacks.get(key, ()):
                 cb(msg)
         return delivered
 
@@ -176,9 +244,10 @@ class Node:
             left = 0.1 if end is None else min(0.1, end - _time.monotonic())
             self.spin_once(max(0.0, left))
 
-    def _next(self, channel: str, timeout: Optional[float],
+    def _next(self, key: Tuple[str, str], timeout: Optional[float],
               accept: Callable[[Any], bool] = lambda m: True) -> Any:
-        queue = self._queues[channel]
+        queue = self._queues[key]
+        channel = key[0]
         end = None if timeout is None else _time.monotonic() + timeout
         while True:
             while queue:
@@ -199,33 +268,56 @@ class Node:
                timeout: Optional[float] = 5.0) -> Iterator[Any]:
         """Iterates over the robot's new states (mrsim.State); ends when
         none comes within timeout s (None: waits forever)."""
-        channel = self._channel_of("state", robot)
-        queue = self._queues[channel]
+        key = self._channel_of("state", robot)
+        queue = self._queues[key]
         while True:
             while queue:  # the fast path of a controller keeping up
                 yield queue.popleft()
             try:
-                yield self._next(channel, timeout)
+                yield self._next(key, timeout)
             except TimeoutError:
                 return
 
     def next_message(self, what: str, robot: Optional[str] = None,
                      timeout: Optional[float] = 5.0):
-        """The next 'scene', 'sim_status' or 'gait_status' message."""
+        """The next message on a channel of CHANNELS ('scene',
+        'sim_status', 'gait_status', ...); raises TimeoutError."""
         return self._next(self._channel_of(what, robot), timeout)
+
+    def next_on(self, channel: str, type: str,
+                timeout: Optional[float] = 5.0) -> Any:
+        """The next message listen(channel, type) received; raises
+        TimeoutError."""
+        return self._next(self._subscribe(channel, type), timeout)
 
     def messages(self, what: str, robot: Optional[str] = None,
                  timeout: Optional[float] = 5.0) -> Iterator[Any]:
         """Iterates over 'scene', 'sim_status', 'gait_status' or 'state'
         messages; ends when none comes within timeout s."""
-        channel = self._channel_of(what, robot)
+        key = self._channel_of(what, robot)
         while True:
             try:
-                yield self._next(channel, timeout)
+                yield self._next(key, timeout)
             except TimeoutError:
                 return
 
     # Publishing ---------------------------------------------------------
+    def publish(self, channel: str, type: str,
+                fields: Dict[str, Any]) -> None:
+        """Publishes a message of any .lcm type (MESSAGE_TYPES) on any
+        channel from a dict of its fields: left out ones are zero or empty,
+        length members follow the arrays; a field of the wrong type or
+        size, or beyond its // max:, raises TypeError or ValueError naming
+        it. Signed when the node has a key."""
+        self._lcm.publish(channel, _type_name(type), fields)
+
+    def send(self, what: str, fields: Dict[str, Any],
+             robot: Optional[str] = None) -> None:
+        """Publishes a message on a channel of CHANNELS ('sim_control',
+        'run', ...) as its type, from a dict of its fields (as publish)."""
+        self.publish(self.channel(what, robot), CHANNELS[what]["type"],
+                     fields)
+
     def send_targets(self, robot: str, targets: Sequence[float],
                      state: Any = None) -> None:
         """Publishes joint targets (rad, chain order) for the robot on
@@ -246,20 +338,20 @@ class Node:
         speed, path, robot, lock) and, with wait, returns the simulator's
         acknowledging status. Raises ControlError when the simulator
         refuses it, TimeoutError when it does not answer."""
-        channel = self._channel_of("sim_status", None)
-        if wait and not self._heard.get(channel):
+        key = self._channel_of("sim_status", None)
+        if wait and not self._heard.get(key[0]):
             # As mrsim-ctl: a request sent before the simulator listens is
             # lost, so the first one waits for its first status.
-            self._next(channel, timeout)
+            self._next(key, timeout)
         self._control_seq += 1
         seq = self._control_seq
         msg = dict(fields, command=command, seq=seq, sender=self.name,
                    utime=int(_time.time() * 1e6))
-        self._lcm.publish_sim_control("%s_SIM_CONTROL" % self.prefix, msg)
+        self.send("sim_control", msg)
         if not wait:
             return None
         status = self._next(
-            channel, timeout,
+            key, timeout,
             lambda s: s.control_seq == seq and s.control_sender == self.name)
         if not status.control_ok:
             raise ControlError(status.last_error or "request refused")
@@ -324,24 +416,29 @@ class Node:
         file or name), the seven parameters, a motion with strength, or
         direction (forward, turn). With wait, returns the gait status that
         acknowledges it; raises ControlError when it is rejected."""
-        channel = self._channel_of("gait_status", robot)
-        if wait and not self._heard.get(channel):
-            self._next(channel, timeout)  # mrsim-gait is listening
+        key = self._channel_of("gait_status", robot)
+        if wait and not self._heard.get(key[0]):
+            self._next(key, timeout)  # mrsim-gait is listening
+        msg: Dict[str, Any] = {
+            "utime": int(_time.time() * 1e6), "seq": self._gait_seq + 1,
+            "sender": self.name, "robot": robot, "gait": gait or "",
+            "motion": motion or "", "strength": float(strength)}
+        if parameters is not None:
+            msg["has_parameters"] = True
+            msg["parameters"] = [float(v) for v in parameters]
+        if direction is not None:
+            forward_turn = [float(v) for v in direction]
+            if len(forward_turn) != 2:
+                raise ValueError("direction: expected (forward, turn)")
+            msg["has_direction"] = True
+            msg["forward"], msg["turn"] = forward_turn
+        self.send("gait", msg, robot)
         self._gait_seq += 1
         seq = self._gait_seq
-        msg = {"utime": int(_time.time() * 1e6), "seq": seq,
-               "sender": self.name, "robot": robot, "gait": gait or "",
-               "parameters": None if parameters is None
-               else [float(v) for v in parameters],
-               "motion": motion or "", "strength": float(strength),
-               "direction": None if direction is None
-               else [float(v) for v in direction]}
-        self._lcm.publish_gait_command("%s_GAIT_%s" % (self.prefix, robot),
-                                       msg)
         if not wait:
             return None
         status = self._next(
-            channel, timeout,
+            key, timeout,
             lambda s: s.command_seq == seq and s.command_sender == self.name)
         if status.command_result == "rejected":
             raise ControlError(status.command_error or "gait command rejected")

@@ -2,13 +2,17 @@
 // subscribes raw, decodes every message with the C++ generated types and
 // the project's checked decoding (DecodeMessage; a message that does not
 // decode is counted and dropped), and hands decoded messages to Python as
-// State objects and dicts. Waiting happens with the GIL released. With a
-// key it is a SignedLcm, the C++ programs' transport: it signs what it
-// publishes and drops (and counts) unsigned, forged and replayed messages.
+// State objects and dicts of every field (python_messages.h, generated from
+// the .lcm files; meaning added below where a field needs it). It
+// publishes every message type from such dicts. Waiting happens with the GIL
+// released. With a key it is a SignedLcm, the C++ programs' transport: it signs
+// what it publishes and drops (and counts) unsigned, forged and replayed
+// messages.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <deque>
@@ -20,19 +24,14 @@
 #include <variant>
 #include <vector>
 
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "mrsim/gait_command_t.hpp"
-#include "mrsim/gait_status_t.hpp"
-#include "mrsim/joint_command_t.hpp"
-#include "mrsim/robot_state_t.hpp"
-#include "mrsim/scene_state_t.hpp"
-#include "mrsim/sim_control_t.hpp"
-#include "mrsim/sim_status_t.hpp"
 #include "python/src/bindings.h"
+#include "python/src/python_messages.h"
 #include "python/src/state_object.h"
 
 namespace py = pybind11;
@@ -51,19 +50,26 @@ class KeyFileError : public std::runtime_error {
   std::string path_;
 };
 
-using Message =
-    std::variant<robot_state_t, scene_state_t, sim_status_t, gait_status_t,
-                 joint_command_t, sim_control_t, gait_command_t>;
+using Message = AnyMessage;
 
-const char* const kTypeNames[] = {"robot_state", "scene_state",   "sim_status",
-                                  "gait_status", "joint_command", "sim_control",
-                                  "gait_command"};
+// The index of an .lcm type name in kMessageTypeNames.
+size_t TypeIndex(const std::string& type) {
+  for (size_t t = 0; t < std::size(kMessageTypeNames); ++t) {
+    if (type == kMessageTypeNames[t]) return t;
+  }
+  std::string known;
+  for (const char* name : kMessageTypeNames) {
+    known += (known.empty() ? "" : ", ") + std::string(name);
+  }
+  throw std::invalid_argument("unknown message type '" + type +
+                              "' (the .lcm files define " + known + ")");
+}
 
 template <size_t I = 0>
 bool DecodeAs(size_t type, const lcm::ReceiveBuffer* rbuf, Message* out) {
   if constexpr (I < std::variant_size_v<Message>) {
     if (type == I) {
-      std::variant_alternative_t<I, Message> msg;
+      std::variant_alternative_t<I, Message> msg{};
       if (!DecodeMessage(rbuf, &msg)) return false;
       *out = std::move(msg);
       return true;
@@ -73,20 +79,28 @@ bool DecodeAs(size_t type, const lcm::ReceiveBuffer* rbuf, Message* out) {
   return false;
 }
 
-py::array_t<double> Doubles(const double* d, size_t n) {
-  return py::array_t<double>(n, d);
+// Every field as the generated conversion gives it, plus meaning where a
+// field needs it (below).
+template <class T>
+py::object ToPython(const T& m) {
+  return MessageToDict(m);
 }
 
-py::object ToPython(const robot_state_t& m) {
-  return py::cast(std::make_shared<StateObject>(StateObject::FromMessage(m)));
+// An enum field as the lower-case name of its const ("paused").
+template <class T>
+std::string ConstLabel(const T& m, int64_t value) {
+  const char* name = ConstName(&m, value);
+  if (name == nullptr) return "unknown";
+  std::string label = name;
+  for (char& c : label) c = static_cast<char>(std::tolower(c));
+  return label;
 }
 
+// Poses as rows x, y, z, qw, qx, qy, qz (as State and the logger have
+// them); time: sim_time.
 py::object ToPython(const scene_state_t& m) {
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
+  py::dict d = MessageToDict(m);
   d["time"] = m.sim_time;
-  d["object_index"] = m.object_index;
   py::array_t<double> poses(
       {static_cast<py::ssize_t>(m.poses.size()), py::ssize_t{7}});
   double* p = poses.mutable_data();
@@ -98,108 +112,20 @@ py::object ToPython(const scene_state_t& m) {
   return d;
 }
 
+// mode in words ("running", "paused", "stopping"); time: sim_time.
 py::object ToPython(const sim_status_t& m) {
-  static const char* const kModes[] = {"running", "paused", "stopping"};
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
+  py::dict d = MessageToDict(m);
   d["time"] = m.sim_time;
-  d["real_time_factor"] = m.real_time_factor;
-  d["mode"] = (m.mode >= 0 && m.mode <= 2) ? kModes[m.mode] : "unknown";
-  d["clock"] = m.clock;
-  d["speed"] = m.speed;
-  d["control_rate"] = m.control_rate;
-  d["steps_per_period"] = m.steps_per_period;
-  d["steps"] = m.steps;
-  d["state_seq"] = m.state_seq;
-  d["states_published"] = m.states_published;
-  d["actuation_delay"] = m.actuation_delay;
-  d["commands_applied"] = m.commands_applied;
-  d["commands_rejected"] = m.commands_rejected;
-  d["rejected_joint_count"] = m.rejected_joint_count;
-  d["rejected_value"] = m.rejected_value;
-  d["rejected_robot"] = m.rejected_robot;
-  d["rejected_seq"] = m.rejected_seq;
-  d["rejected_sender"] = m.rejected_sender;
-  d["messages_malformed"] = m.messages_malformed;
-  d["messages_dropped"] = m.messages_dropped;
-  d["control_seq"] = m.control_seq;
-  d["control_sender"] = m.control_sender;
-  d["control_ok"] = m.control_ok;
-  d["waiting_for"] = m.waiting_for;
-  d["last_error"] = m.last_error;
+  d["mode"] = ConstLabel(m, m.mode);
   return d;
 }
 
+// command_result in words ("none", "applied", "rejected", "queued");
+// time: sim_time.
 py::object ToPython(const gait_status_t& m) {
-  static const char* const kResults[] = {"none", "applied", "rejected",
-                                         "queued"};
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
-  d["robot"] = m.robot;
-  d["sender"] = m.sender;
+  py::dict d = MessageToDict(m);
   d["time"] = m.sim_time;
-  d["running"] = m.running;
-  d["gait"] = m.gait;
-  d["kind"] = m.kind;
-  d["parameters"] = Doubles(m.parameters, std::size(m.parameters));
-  d["motion"] = m.motion;
-  d["strength"] = m.strength;
-  d["stopped"] = m.stopped;
-  d["states_answered"] = m.states_answered;
-  d["commands_applied"] = m.commands_applied;
-  d["commands_rejected"] = m.commands_rejected;
-  d["messages_malformed"] = m.messages_malformed;
-  d["command_seq"] = m.command_seq;
-  d["command_sender"] = m.command_sender;
-  d["command_result"] = (m.command_result >= 0 && m.command_result <= 3)
-                            ? kResults[m.command_result]
-                            : "unknown";
-  d["command_error"] = m.command_error;
-  d["warning"] = m.warning;
-  return d;
-}
-
-py::object ToPython(const joint_command_t& m) {
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
-  d["robot"] = m.robot;
-  d["sender"] = m.sender;
-  d["state_seq"] = m.state_seq;
-  d["target"] = Doubles(m.target.data(), m.target.size());
-  return d;
-}
-
-py::object ToPython(const sim_control_t& m) {
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
-  d["sender"] = m.sender;
-  d["command"] = m.command;
-  d["steps"] = m.steps;
-  d["speed"] = m.speed;
-  d["path"] = m.path;
-  d["robot"] = m.robot;
-  d["lock"] = m.lock;
-  return d;
-}
-
-py::object ToPython(const gait_command_t& m) {
-  py::dict d;
-  d["utime"] = m.utime;
-  d["seq"] = m.seq;
-  d["sender"] = m.sender;
-  d["robot"] = m.robot;
-  d["gait"] = m.gait;
-  d["has_parameters"] = m.has_parameters;
-  d["parameters"] = Doubles(m.parameters, std::size(m.parameters));
-  d["motion"] = m.motion;
-  d["strength"] = m.strength;
-  d["has_direction"] = m.has_direction;
-  d["forward"] = m.forward;
-  d["turn"] = m.turn;
+  d["command_result"] = ConstLabel(m, m.command_result);
   return d;
 }
 
@@ -225,13 +151,15 @@ class Transport {
     }
   }
 
-  void Subscribe(const std::string& channel, const std::string& type) {
-    size_t t = 0;
-    while (t < std::size(kTypeNames) && type != kTypeNames[t]) ++t;
-    if (t == std::size(kTypeNames)) {
-      throw std::invalid_argument("unknown message type '" + type + "'");
+  // as_state: robot_state_t as a State object (answered again when
+  // re-sent, handed once), as mrsim-gait takes states; else as a dict.
+  void Subscribe(const std::string& channel, const std::string& type,
+                 bool as_state) {
+    const size_t t = TypeIndex(type);
+    if (as_state && std::string(kMessageTypeNames[t]) != "robot_state_t") {
+      throw std::invalid_argument("as_state: only for robot_state_t");
     }
-    auto sub = std::make_unique<Sub>(Sub{this, t});
+    auto sub = std::make_unique<Sub>(Sub{this, t, as_state});
     if (lcm_.subscribeFunction(channel, &Transport::OnMessage, sub.get()) ==
         nullptr) {
       throw std::runtime_error("LCM: cannot subscribe to " + channel);
@@ -252,10 +180,18 @@ class Transport {
     py::list out;
     while (!queue_.empty()) {
       Item& item = queue_.front();
-      py::object obj =
-          std::visit([](const auto& m) { return ToPython(m); }, item.message);
-      out.append(
-          py::make_tuple(item.channel, kTypeNames[item.message.index()], obj));
+      const auto* state = std::get_if<robot_state_t>(&item.message);
+      if (item.as_state && state != nullptr) {
+        out.append(py::make_tuple(
+            item.channel, "state",
+            std::make_shared<StateObject>(StateObject::FromMessage(*state))));
+      } else {
+        py::object obj =
+            std::visit([](const auto& m) -> py::object { return ToPython(m); },
+                       item.message);
+        out.append(py::make_tuple(
+            item.channel, kMessageTypeNames[item.message.index()], obj));
+      }
       queue_.pop_front();
     }
     return out;
@@ -273,47 +209,11 @@ class Transport {
     Publish(channel, m);
   }
 
-  void PublishSimControl(const std::string& channel, const py::dict& d) {
-    sim_control_t m{};
-    m.utime = Get<int64_t>(d, "utime", 0);
-    m.seq = Get<int64_t>(d, "seq", 0);
-    m.sender = Get<std::string>(d, "sender", "");
-    m.command = Get<int8_t>(d, "command", 0);
-    m.steps = Get<int32_t>(d, "steps", 0);
-    m.speed = Get<double>(d, "speed", 0.0);
-    m.path = Get<std::string>(d, "path", "");
-    m.robot = Get<std::string>(d, "robot", "");
-    m.lock = Get<std::string>(d, "lock", "");
-    Publish(channel, m);
-  }
-
-  void PublishGaitCommand(const std::string& channel, const py::dict& d) {
-    gait_command_t m{};
-    m.utime = Get<int64_t>(d, "utime", 0);
-    m.seq = Get<int64_t>(d, "seq", 0);
-    m.sender = Get<std::string>(d, "sender", "");
-    m.robot = Get<std::string>(d, "robot", "");
-    m.gait = Get<std::string>(d, "gait", "");
-    if (d.contains("parameters") && !d["parameters"].is_none()) {
-      const auto p = d["parameters"].cast<std::vector<double>>();
-      if (p.size() != std::size(m.parameters)) {
-        throw std::invalid_argument("parameters: expected the seven values");
-      }
-      m.has_parameters = true;
-      std::copy(p.begin(), p.end(), m.parameters);
-    }
-    m.motion = Get<std::string>(d, "motion", "");
-    m.strength = Get<double>(d, "strength", 1.0);
-    if (d.contains("direction") && !d["direction"].is_none()) {
-      const auto v = d["direction"].cast<std::vector<double>>();
-      if (v.size() != 2) {
-        throw std::invalid_argument("direction: expected (forward, turn)");
-      }
-      m.has_direction = true;
-      m.forward = v[0];
-      m.turn = v[1];
-    }
-    Publish(channel, m);
+  // Any message type from a dict of its fields (MessageFromDict: every
+  // field checked, lengths from the arrays).
+  void PublishFields(const std::string& channel, const std::string& type,
+                     const py::handle& fields) {
+    PublishAs(TypeIndex(type), channel, fields);
   }
 
   // The joint command answering state `state_seq` of `robot` (lockstep),
@@ -373,23 +273,35 @@ class Transport {
   struct Sub {
     Transport* owner;
     size_t type;
+    bool as_state;
   };
   struct Item {
     std::string channel;
     Message message;
+    bool as_state;
   };
+
+  template <size_t I = 0>
+  void PublishAs(size_t type, const std::string& channel,
+                 const py::handle& fields) {
+    if constexpr (I < std::variant_size_v<Message>) {
+      if (type != I) return PublishAs<I + 1>(type, channel, fields);
+      std::variant_alternative_t<I, Message> m{};
+      MessageFromDict(fields, &m, kMessageTypeNames[I]);
+      Publish(channel, m);
+    }
+  }
 
   static void OnMessage(const lcm::ReceiveBuffer* rbuf,
                         const std::string& channel, Sub* sub) {
     Transport* self = sub->owner;
-    Item item{channel, Message{}};
+    Item item{channel, Message{}, sub->as_state};
     if (!DecodeAs(sub->type, rbuf, &item.message)) {
       ++self->malformed_;
       return;
     }
-    if (const auto* state = std::get_if<robot_state_t>(&item.message)) {
-      if (!self->FirstTime(*state)) return;
-    }
+    const auto* state = std::get_if<robot_state_t>(&item.message);
+    if (item.as_state && state != nullptr && !self->FirstTime(*state)) return;
     if (self->queue_.size() >= kMaxQueued) {
       self->queue_.pop_front();
       ++self->dropped_;
@@ -480,22 +392,23 @@ counted in `malformed` and dropped.)doc");
         "the file when it cannot be used. accept_replays: as "
         "--accept-replays.");
   c.def("subscribe", &Transport::Subscribe, py::arg("channel"), py::arg("type"),
-        "Subscribes a channel (regex) decoded as one of robot_state, "
-        "scene_state, sim_status, gait_status, joint_command, sim_control, "
-        "gait_command.");
+        py::arg("as_state") = false,
+        "Subscribes a channel (regex) decoded as an .lcm type (one of "
+        "message_types()); as_state: robot_state_t as State objects, each "
+        "handed once and a re-sent one answered again (lockstep).");
   c.def("handle", &Transport::Handle, py::arg("timeout_ms"),
         "Waits up to timeout_ms for traffic (GIL released); returns a list of "
-        "(channel, type, message) for every message decoded.");
+        "(channel, type, message) for every message decoded: type 'state' "
+        "with a State, else the .lcm type with a dict of every field.");
   c.def("publish_joint_command", &Transport::PublishJointCommand,
         py::arg("channel"), py::arg("fields"),
         "Publishes a joint_command_t from a dict of its fields.");
-  c.def("publish_sim_control", &Transport::PublishSimControl,
-        py::arg("channel"), py::arg("fields"),
-        "Publishes a sim_control_t from a dict of its fields.");
-  c.def("publish_gait_command", &Transport::PublishGaitCommand,
-        py::arg("channel"), py::arg("fields"),
-        "Publishes a gait_command_t from a dict (parameters: seven values, "
-        "direction: (forward, turn)).");
+  c.def("publish", &Transport::PublishFields, py::arg("channel"),
+        py::arg("type"), py::arg("fields"),
+        "Publishes a message of an .lcm type from a dict of its fields (left "
+        "out: zero or empty; length members: from the arrays). A field of "
+        "the wrong type, size or beyond its // max: raises TypeError or "
+        "ValueError naming it.");
   c.def("answer", &Transport::Answer, py::arg("channel"), py::arg("robot"),
         py::arg("sender"), py::arg("state_seq"), py::arg("utime"),
         py::arg("targets"),
@@ -525,6 +438,32 @@ counted in `malformed` and dropped.)doc");
         "replayed, as a dict (all zero without a key).");
   c.def("fileno", &Transport::fileno,
         "LCM's file descriptor, readable when traffic waits (select/poll).");
+
+  m.attr("DEFAULT_CHANNEL_PREFIX") = kDefaultChannelPrefix;
+  m.def(
+      "channels",
+      [] {
+        py::list out;
+        for (const ChannelSpec& spec : kChannels) {
+          py::dict d;
+          d["type"] = spec.type;
+          d["name"] = spec.name;
+          d["pattern"] = spec.pattern;
+          d["infix"] = spec.infix;
+          d["per_robot"] = spec.per_robot;
+          d["default_prefix"] = spec.default_prefix;
+          out.append(d);
+        }
+        return out;
+      },
+      "The channel of every message type, from the '// channel:' lines of "
+      "the .lcm files: dicts of type, name ('state'), pattern "
+      "('<prefix>_STATE_<robot>'), infix ('_STATE_'), per_robot and "
+      "default_prefix.");
+  m.def("message_types", &MessageTypes,
+        "Every message type of the .lcm files: {type: {'fields': [{name, "
+        "type, dims, max}], 'consts': {NAME: value}}}; dims holds sizes and "
+        "the names of length members.");
 }
 
 }  // namespace mrsim::python
