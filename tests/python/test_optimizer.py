@@ -4,6 +4,7 @@ objective, generation for generation the run mrsim-opt makes."""
 import csv
 import math
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -144,6 +145,35 @@ def test_tell_takes_run_task_results_as_they_are():
     failed.ask()
     with pytest.raises(ValueError, match=r"fitness\[0\].*'fitness'"):
         failed.tell([{"distance": 1.0}, 0.0])
+
+
+def test_other_threads_run_while_the_algorithm_works():
+    # CMA-ES's update of 700 genes takes a fraction of a second in C++. Two
+    # threads asking at once overlap only if that work lets go of the GIL;
+    # the one that comes second is refused, not raced.
+    opt = mrsim.Optimizer("cmaes", genes=[("x%d" % i, -1, 1)
+                                          for i in range(700)],
+                          seed=1, population=4)
+    refused = []
+
+    def ask():
+        try:
+            opt.ask()
+        except RuntimeError as e:
+            refused.append(str(e))
+
+    for _ in range(5):  # each a fresh update; one overlap is enough
+        g = opt.ask()
+        opt.tell(-(g * g).sum(axis=1))
+        other = threading.Thread(target=ask)
+        other.start()
+        while other.is_alive():
+            ask()
+        other.join()
+        if refused:
+            break
+    assert refused and "another thread" in refused[0]
+    np.testing.assert_array_equal(opt.ask(), opt.ask())
 
 
 def test_gene_forms_give_the_same_genome():
