@@ -25,6 +25,7 @@ struct LuaScript::Impl {
   bool memory_refused = false;
   int step_ref = LUA_NOREF;
   int step_line = 0;
+  int gait_ref = LUA_NOREF;  // on_gait_command, when the script defines it
   std::vector<std::string> printed;
   ~Impl() {
     if (L != nullptr) lua_close(L);
@@ -235,6 +236,19 @@ LuaScript::LuaScript(const std::string& source, const std::string& name,
     const std::string message = TopMessage(L);
     throw LuaScriptError(message, LineOf(message));
   }
+  auto find_gait = [](lua_State* L) {
+    lua_getglobal(L, "on_gait_command");
+    if (lua_isfunction(L, -1)) {
+      ImplOf(L)->gait_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    } else {
+      lua_pop(L, 1);
+    }
+    return 0;
+  };
+  if (Protected(L, &find_gait) != LUA_OK) {
+    const std::string message = TopMessage(L);
+    throw LuaScriptError(message, LineOf(message));
+  }
   if (impl_->step_ref == LUA_NOREF || impl_->step_ref == LUA_REFNIL) {
     throw LuaScriptError(name +
                              ": no function step(t, state) (the controller "
@@ -426,6 +440,83 @@ std::vector<double> LuaScript::Step(double t, const LuaRobotState& state) {
     throw LuaScriptError(message, LineOf(message));
   }
   return out;
+}
+
+namespace {
+
+struct GaitCall {
+  const LuaGaitCommand* command;
+  std::string* refusal;
+};
+
+int CallGait(lua_State* L, GaitCall* call) {
+  const LuaGaitCommand& c = *call->command;
+  lua_rawgeti(L, LUA_REGISTRYINDEX, ImplOf(L)->gait_ref);
+  lua_createtable(L, 0, 7);
+  lua_pushlstring(L, c.sender.data(), c.sender.size());
+  lua_setfield(L, -2, "sender");
+  if (!c.motion.empty()) {
+    lua_pushlstring(L, c.motion.data(), c.motion.size());
+    lua_setfield(L, -2, "motion");
+    lua_pushnumber(L, c.strength);
+    lua_setfield(L, -2, "strength");
+  }
+  if (!c.gait.empty()) {
+    lua_pushlstring(L, c.gait.data(), c.gait.size());
+    lua_setfield(L, -2, "gait");
+  }
+  if (!c.parameters.empty()) {
+    PushArray(L, c.parameters);
+    lua_setfield(L, -2, "parameters");
+  }
+  if (c.has_direction) {
+    lua_pushnumber(L, c.forward);
+    lua_setfield(L, -2, "forward");
+    lua_pushnumber(L, c.turn);
+    lua_setfield(L, -2, "turn");
+  }
+  lua_call(L, 1, 2);
+  // nil or true: taken; false (and a reason): refused.
+  if (lua_isboolean(L, -2) && !lua_toboolean(L, -2)) {
+    const char* why = lua_isstring(L, -1) ? lua_tostring(L, -1) : nullptr;
+    *call->refusal = why != nullptr && *why != '\0'
+                         ? why
+                         : "the script's on_gait_command refused it";
+  }
+  lua_pop(L, 2);
+  return 0;
+}
+
+}  // namespace
+
+bool LuaScript::takes_gait_commands() const {
+  return impl_->gait_ref != LUA_NOREF && impl_->gait_ref != LUA_REFNIL;
+}
+
+std::string LuaScript::OnGaitCommand(const LuaGaitCommand& command) {
+  if (!takes_gait_commands()) {
+    throw std::logic_error("LuaScript: the script has no on_gait_command");
+  }
+  std::string refusal;
+  GaitCall call{&command, &refusal};
+  lua_State* L = impl_->L;
+  impl_->executed = 0;
+  impl_->exceeded = false;
+  impl_->memory_refused = false;
+  lua_sethook(L, CountHook, LUA_MASKCOUNT, kHookEvery);
+  auto fn = [&call](lua_State* L) { return CallGait(L, &call); };
+  const int status = Protected(L, &fn);
+  lua_sethook(L, nullptr, 0, 0);
+  if (status != LUA_OK || impl_->exceeded) {
+    std::string message =
+        status != LUA_OK ? TopMessage(L) : name_ + ": stopped (instructions)";
+    if (impl_->memory_refused && status == LUA_ERRMEM) {
+      message = name_ + ": on_gait_command ran out of memory (the limit is " +
+                std::to_string(impl_->limits.memory_bytes >> 20) + " MiB)";
+    }
+    throw LuaScriptError(message, LineOf(message));
+  }
+  return refusal;
 }
 
 std::vector<std::string> LuaScript::TakePrinted() {

@@ -77,6 +77,20 @@ struct LuaRobotState {
   std::vector<Sensor> sensors;
 };
 
+// A steering request as on_gait_command(cmd) sees it: cmd.motion and
+// cmd.strength, cmd.gait, cmd.parameters (7 numbers) and cmd.forward /
+// cmd.turn, each present only when the gait command carries it.
+struct LuaGaitCommand {
+  std::string sender;
+  std::string motion;  // "" when absent
+  double strength = 0;
+  std::string gait;                // "" when absent
+  std::vector<double> parameters;  // empty or 7 numbers
+  bool has_direction = false;
+  double forward = 0;
+  double turn = 0;
+};
+
 class LuaScript {
  public:
   // Compiles `source` and runs its top level (defining step). `name` is
@@ -100,6 +114,16 @@ class LuaScript {
   // or a result of the wrong shape. The script's globals persist between
   // calls.
   std::vector<double> Step(double t, const LuaRobotState& state);
+
+  // Whether the script defines on_gait_command(cmd): it then takes
+  // steering, and mrsim-lua says so by sending a gait status (docs/gait.md,
+  // "Who takes steering").
+  bool takes_gait_commands() const;
+  // Calls on_gait_command(cmd) with the command's parts as a table (see
+  // LuaGaitCommand). Returns "" when the script took it, else why it
+  // refused (it returned false, and perhaps a reason). Throws
+  // LuaScriptError as Step does; std::logic_error without the function.
+  std::string OnGaitCommand(const LuaGaitCommand& command);
 
   // Lines the script printed since the last call (at most
   // max_printed_lines are kept).

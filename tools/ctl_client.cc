@@ -266,8 +266,8 @@ int RunSimControl(SignedLcm& lcm, const std::vector<std::string>& words,
 // controller that takes gait commands says so with its gait status (at
 // least once a second); a robot whose states are heard for
 // kGaitStatusWait without one is driven by a controller that takes none
-// (mrsim-lua, a program of one's own), and waiting longer is pointless:
-// `*robot_heard` says so.
+// (a Lua script without on_gait_command, a program of one's own), and
+// waiting longer is pointless: `*robot_heard` says so.
 constexpr double kGaitStatusWait = 2.5 * GaitNode::kHeartbeatInterval;
 std::optional<gait_status_t> WaitForSteering(
     SignedLcm& lcm, Listener<gait_status_t>& status, const std::string& prefix,
@@ -308,8 +308,9 @@ int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
         "mrsim-ctl: nothing steers robot '{}': it runs (its states are on "
         "{}), but its controller takes no gait commands (nothing speaks on "
         "{}). Only a controller that takes steering answers `mrsim-ctl "
-        "gait`: mrsim-gait does; mrsim-lua (a Lua script) and most programs "
-        "of one's own do not\n",
+        "gait`: mrsim-gait does, and mrsim-lua when the script defines "
+        "on_gait_command; a program of one's own when it sends a gait "
+        "status\n",
         c.robot, StateChannel(o.prefix, c.robot), channel);
     err << UndecodableNote(status.undecodable(), channel);
     return 1;
@@ -349,8 +350,10 @@ int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
           << Describe(*ack) << "\n";
       return 0;
     default:
-      err << "mrsim-ctl: gait: refused by mrsim-gait: " << ack->command_error
-          << "\n"
+      // mrsim-lua's status says kind "lua": its script refused.
+      err << "mrsim-ctl: gait: refused by "
+          << (ack->kind == "lua" ? "the Lua script" : "mrsim-gait") << ": "
+          << ack->command_error << "\n"
           << Describe(*ack) << "\n";
       return 1;
   }

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "lcmtypes/runtime/channels.h"
@@ -38,11 +40,89 @@ std::vector<std::string> LuaNode::TakeLog() {
   return out;
 }
 
-WallTime LuaNode::Tick(WallTime now) {
+WallTime LuaNode::Tick(WallTime now, LuaOutbox* out) {
   std::vector<std::string> lines;
   watch_.Tick(now, &lines);
   for (std::string& line : lines) Log(std::move(line));
-  return AfterSeconds(now, 0.5);
+  if (takes_gait_commands() && error_.empty() && now >= next_heartbeat_) {
+    PublishStatus(now, out);
+  }
+  const WallTime next = AfterSeconds(now, 0.5);
+  return takes_gait_commands() ? std::min(next, next_heartbeat_) : next;
+}
+
+void LuaNode::PublishStatus(WallTime now, LuaOutbox* out) {
+  status_.seq += 1;
+  status_.robot = options_.robot;
+  status_.sender = options_.sender;
+  status_.kind = "lua";
+  status_.gait = script_->name();
+  status_.states_answered = counters_.states_answered;
+  status_.commands_applied = counters_.commands_applied;
+  status_.commands_rejected = counters_.commands_rejected;
+  status_.messages_malformed = counters_.messages_malformed;
+  out->Add(GaitStatusChannel(options_.prefix, options_.robot), status_);
+  next_heartbeat_ = AfterSeconds(now, kHeartbeatInterval);
+}
+
+void LuaNode::OnGaitCommand(const gait_command_t& c, WallTime now,
+                            LuaOutbox* out) {
+  if (!takes_gait_commands() || !error_.empty()) return;
+  LuaGaitCommand command;
+  command.sender = c.sender;
+  std::string refusal;
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (!c.robot.empty() && c.robot != options_.robot) {
+    refusal = fmt::format("a command for robot '{}' (this is '{}')", c.robot,
+                          options_.robot);
+  } else if (!finite(c.strength) || c.strength < -1 || c.strength > 1) {
+    refusal = fmt::format("strength {} (expected -1 to 1)", c.strength);
+  } else if (c.has_direction &&
+             !(finite(c.forward) && finite(c.turn) && c.forward >= -1 &&
+               c.forward <= 1 && c.turn >= -1 && c.turn <= 1)) {
+    refusal = "direction out of range (forward and turn are -1 to 1)";
+  } else if (c.has_parameters && !std::all_of(std::begin(c.parameters),
+                                              std::end(c.parameters), finite)) {
+    refusal = "a gait parameter is not a finite number";
+  } else {
+    command.motion = c.motion;
+    command.strength = c.strength;
+    command.gait = c.gait;
+    if (c.has_parameters) {
+      command.parameters.assign(std::begin(c.parameters),
+                                std::end(c.parameters));
+    }
+    command.has_direction = c.has_direction;
+    command.forward = c.forward;
+    command.turn = c.turn;
+    try {
+      refusal = script_->OnGaitCommand(command);
+    } catch (const LuaScriptError& e) {
+      error_ = e.what();
+      return;
+    }
+    for (std::string& line : script_->TakePrinted()) {
+      Log("print: " + std::move(line));
+    }
+  }
+  status_.command_seq = c.seq;
+  status_.command_sender = c.sender;
+  status_.command_error = refusal;
+  if (refusal.empty()) {
+    ++counters_.commands_applied;
+    status_.command_result = gait_status_t::APPLIED;
+    if (!c.motion.empty()) {
+      status_.motion = c.motion;
+      status_.strength = c.strength;
+      status_.stopped = c.motion == "stop";
+    }
+  } else {
+    ++counters_.commands_rejected;
+    status_.command_result = gait_status_t::REJECTED;
+    Log(fmt::format("gait command {} from {} refused: {}", c.seq, c.sender,
+                    refusal));
+  }
+  PublishStatus(now, out);
 }
 
 void LuaNode::OnSimStatus(const sim_status_t& status, WallTime now) {
@@ -164,6 +244,12 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
   out->Add(CommandChannel(options_.prefix, options_.robot),
            pacer_.Answer(state, std::move(targets)));
   ++counters_.states_answered;
+  status_.utime = state.utime;
+  status_.sim_time = state.sim_time;
+  if (!status_.running && takes_gait_commands()) {
+    status_.running = true;  // said at once, as mrsim-gait does
+    next_heartbeat_ = WallTime{};
+  }
 }
 
 std::string LuaNode::Summary() const {

@@ -20,6 +20,8 @@
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/state_pacer.h"
 #include "lua_controller/lua_script.h"
+#include "mrsim/gait_command_t.hpp"
+#include "mrsim/gait_status_t.hpp"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_status_t.hpp"
@@ -27,7 +29,7 @@
 
 namespace mrsim {
 
-using LuaOutbox = Outbox<joint_command_t>;
+using LuaOutbox = Outbox<joint_command_t, gait_status_t>;
 
 struct LuaNodeOptions {
   std::string robot;
@@ -46,12 +48,17 @@ struct LuaNodeCounters {
   int64_t states_skipped = 0;
   int64_t states_foreign = 0;
   int64_t messages_malformed = 0;
+  int64_t commands_applied = 0;   // gait commands the script took
+  int64_t commands_rejected = 0;  // refused by the script, or malformed
 };
 
 class LuaNode {
  public:
   static constexpr double kSimulatorSilence = SimulatorWatch::kSimulatorSilence;
   static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
+  // wall s between gait statuses (a script with on_gait_command only), as
+  // mrsim-gait's: what tells the studio and mrsim-ctl it takes steering.
+  static constexpr double kHeartbeatInterval = 1.0;
 
   // `script` is already loaded (its syntax checked). axes_for(joint_count)
   // gives the hinge axes once the first state says how many joints there
@@ -63,9 +70,17 @@ class LuaNode {
   void OnState(const robot_state_t& state, WallTime now, LuaOutbox* out);
   void OnMalformedState() { ++counters_.messages_malformed; }
   void OnSimStatus(const sim_status_t& status, WallTime now);
-  // Warnings and, with exit_with_sim, a silent simulator; returns when it
-  // wants to be called again.
-  WallTime Tick(WallTime now);
+  // A steering request, for a script that defines on_gait_command
+  // (takes_gait_commands): the script's verdict is acknowledged in a
+  // gait_status_t on <prefix>_GAIT_STATUS_<robot>, as mrsim-gait does.
+  void OnGaitCommand(const gait_command_t& command, WallTime now,
+                     LuaOutbox* out);
+  void OnMalformedGaitCommand() { ++counters_.messages_malformed; }
+  bool takes_gait_commands() const { return script_->takes_gait_commands(); }
+  // Warnings, the gait status heartbeat (takes_gait_commands only) and,
+  // with exit_with_sim, a silent simulator; returns when it wants to be
+  // called again.
+  WallTime Tick(WallTime now, LuaOutbox* out);
 
   bool done() const { return options_.exit_with_sim && watch_.stopped(); }
   bool gave_up() const { return watch_.gave_up(); }
@@ -77,6 +92,7 @@ class LuaNode {
 
  private:
   void HandleState(const robot_state_t& state, LuaOutbox* out);
+  void PublishStatus(WallTime now, LuaOutbox* out);
   void Log(std::string line);
 
   LuaNodeOptions options_;
@@ -89,6 +105,8 @@ class LuaNode {
   SimulatorWatch watch_;
 
   LuaNodeCounters counters_;
+  gait_status_t status_{};  // what the gait status says (steering scripts)
+  WallTime next_heartbeat_;
   std::vector<std::string> log_;
   std::string error_;
 };

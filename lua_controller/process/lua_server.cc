@@ -46,6 +46,16 @@ LuaServer::LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node)
   state->setQueueCapacity(100);
   status->setQueueCapacity(100);
   subscriptions_ = {state, status};
+  if (node_.takes_gait_commands()) {
+    lcm::Subscription* gait =
+        lcm_.subscribe(GaitChannel(options.prefix, options.robot),
+                       &LuaServer::OnGaitCommand, this);
+    if (gait == nullptr) {
+      throw std::runtime_error("cannot subscribe to the LCM channels");
+    }
+    gait->setQueueCapacity(100);
+    subscriptions_.push_back(gait);
+  }
 }
 
 LuaServer::~LuaServer() {
@@ -77,10 +87,25 @@ void LuaServer::OnSimStatus(const lcm::ReceiveBuffer* rbuf,
   }
 }
 
+void LuaServer::OnGaitCommand(const lcm::ReceiveBuffer* rbuf,
+                              const std::string&) {
+  try {
+    if (!DecodeMessage(rbuf, &command_)) {
+      node_.OnMalformedGaitCommand();
+      return;
+    }
+    node_.OnGaitCommand(command_, WallClock::now(), &outbox_);
+    PublishAll(lcm_, &outbox_, &buffer_);
+  } catch (...) {
+    node_.OnMalformedGaitCommand();
+  }
+}
+
 void LuaServer::Run(const std::function<bool()>& stop_requested,
                     std::ostream& log) {
   while (!stop_requested() && node_.error().empty() && !node_.done()) {
-    const WallTime due = node_.Tick(WallClock::now());
+    const WallTime due = node_.Tick(WallClock::now(), &outbox_);
+    PublishAll(lcm_, &outbox_, &buffer_);
     const double wait = SecondsBetween(WallClock::now(), due);
     HandleFor(lcm_,
               std::clamp(static_cast<int>(std::ceil(wait * 1e3)), 0, 100));

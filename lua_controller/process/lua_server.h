@@ -17,7 +17,8 @@ namespace mrsim {
 
 class LuaServer {
  public:
-  // Subscribes STATE_<robot> and SIM_STATUS. Throws std::runtime_error if
+  // Subscribes STATE_<robot> and SIM_STATUS, and GAIT_<robot> when the
+  // script takes steering (on_gait_command). Throws std::runtime_error if
   // LCM cannot subscribe.
   LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node);
   ~LuaServer();
@@ -33,6 +34,8 @@ class LuaServer {
  private:
   void OnState(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void OnSimStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void OnGaitCommand(const lcm::ReceiveBuffer* rbuf,
+                     const std::string& channel);
 
   SignedLcm& lcm_;
   LuaNode node_;
@@ -40,6 +43,7 @@ class LuaServer {
   std::vector<lcm::Subscription*> subscriptions_;
   robot_state_t state_;
   sim_status_t status_;
+  gait_command_t command_;
   std::vector<uint8_t> buffer_;
 };
 

@@ -65,12 +65,13 @@ Steering LivePanel::FollowedSteering() const {
   if (s.state == Steering::State::kAnswered || !run_controller_) return s;
   // This window started the run: it knows who drives the robot, and what
   // the student can change so that steering works.
-  if (*run_controller_ == ControllerKind::kLua) {
-    return {Steering::State::kUnanswered,
-            "robot '" + followed_ +
-                "' is driven by your Lua script, which does not take "
-                "steering: to steer with these buttons and the arrow keys, "
-                "choose the gait controller above and press Run again"};
+  if (*run_controller_ == ControllerKind::kLua &&
+      s.state == Steering::State::kUnanswered) {
+    s.why = "robot '" + followed_ +
+            "' is driven by your Lua script, which does not take steering: "
+            "to steer with these buttons and the arrow keys, give the script "
+            "a function on_gait_command(cmd) (docs/gait.md), or choose the "
+            "gait controller above, and press Run again";
   }
   if (*run_controller_ == ControllerKind::kExternal &&
       s.state == Steering::State::kUnanswered) {

@@ -221,6 +221,91 @@ TEST_F(LuaNodeTest, PrintedLinesReachTheLog) {
   EXPECT_EQ(log.back(), "print: t=0.5");
 }
 
+// A script that defines on_gait_command takes steering: mrsim-lua says so
+// with a gait status (at once, then each second), hands each command to
+// the script and acknowledges its verdict, so the studio and mrsim-ctl
+// steer it as they steer mrsim-gait. A script without it sends nothing.
+TEST_F(LuaNodeTest, AScriptWithOnGaitCommandTakesSteeringAndSaysSo) {
+  const auto statuses = [&] {
+    std::vector<gait_status_t> got;
+    for (auto& [channel, msg] : out_.messages) {
+      if (const auto* st = std::get_if<gait_status_t>(&msg)) {
+        EXPECT_EQ(channel, GaitStatusChannel("MRSIM", "snake"));
+        got.push_back(*st);
+      }
+    }
+    out_.clear();
+    return got;
+  };
+  auto plain = Make(kRamp);
+  EXPECT_FALSE(plain->takes_gait_commands());
+  plain->Tick(now_, &out_);
+  Send(*plain, State(0, 0.0));
+  plain->Tick(AfterSeconds(now_, 2), &out_);
+  EXPECT_TRUE(statuses().empty());
+
+  auto node = Make(
+      "speed = 0\n"
+      "function on_gait_command(cmd)\n"
+      "  if cmd.motion == 'roll' then return false, 'I do not roll' end\n"
+      "  if cmd.motion == 'forward' then speed = cmd.strength end\n"
+      "end\n"
+      "function step(t, state)\n"
+      "  local out = {}\n"
+      "  for i = 1, state.n do out[i] = speed end\n"
+      "  return out\n"
+      "end\n");
+  ASSERT_TRUE(node->takes_gait_commands());
+  node->Tick(now_, &out_);
+  auto said = statuses();
+  ASSERT_EQ(said.size(), 1u);  // the heartbeat: it takes steering
+  EXPECT_EQ(said[0].robot, "snake");
+  EXPECT_EQ(said[0].kind, "lua");
+
+  gait_command_t c{};
+  c.robot = "snake";
+  c.sender = "studio";
+  c.seq = 7;
+  c.motion = "forward";
+  c.strength = 0.5;
+  node->OnGaitCommand(c, now_, &out_);
+  said = statuses();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].command_seq, 7);
+  EXPECT_EQ(said[0].command_sender, "studio");
+  EXPECT_EQ(said[0].command_result, int8_t{gait_status_t::APPLIED});
+  EXPECT_EQ(said[0].motion, "forward");
+  const auto answer = Send(*node, State(0, 0.0));
+  ASSERT_EQ(answer.size(), 1u);
+  EXPECT_EQ(answer[0].target[0], 0.5);  // the script steered
+
+  c.seq = 8;
+  c.motion = "roll";
+  node->OnGaitCommand(c, now_, &out_);
+  said = statuses();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].command_result, int8_t{gait_status_t::REJECTED});
+  EXPECT_EQ(said[0].command_error, "I do not roll");
+  c.seq = 9;
+  c.motion = "forward";
+  c.strength = 2;  // out of range: refused before the script sees it
+  node->OnGaitCommand(c, now_, &out_);
+  said = statuses();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].command_result, int8_t{gait_status_t::REJECTED});
+  EXPECT_EQ(node->counters().commands_applied, 1);
+  EXPECT_EQ(node->counters().commands_rejected, 2);
+
+  // The heartbeat each second, not more often.
+  node->Tick(AfterSeconds(now_, 0.5), &out_);
+  EXPECT_TRUE(statuses().empty());
+  node->Tick(AfterSeconds(now_, 1.1), &out_);
+  said = statuses();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_TRUE(said[0].running);
+  EXPECT_EQ(said[0].states_answered, 1);
+}
+
 TEST_F(LuaNodeTest, ExitsWithASilentSimulator) {
   LuaNodeOptions o;
   o.robot = "snake";
@@ -229,9 +314,9 @@ TEST_F(LuaNodeTest, ExitsWithASilentSimulator) {
       o, std::make_unique<LuaScript>(kRamp, "ctl.lua"),
       [](int n) { return std::vector<Axis>(n, Axis::kPitch); }, now_);
   node.OnState(State(0, 0), now_, &out_);
-  node.Tick(AfterSeconds(now_, 1));
+  node.Tick(AfterSeconds(now_, 1), &out_);
   EXPECT_FALSE(node.done());
-  node.Tick(AfterSeconds(now_, LuaNode::kSimulatorSilence + 0.1));
+  node.Tick(AfterSeconds(now_, LuaNode::kSimulatorSilence + 0.1), &out_);
   EXPECT_TRUE(node.done());
   EXPECT_FALSE(node.gave_up());
 }

@@ -118,10 +118,13 @@ TEST(StudioLua, ScriptErrorShowsItsLineAndTheFixedScriptDrivesTheRobot) {
   // The script takes no steering: the Steering section says so, and an
   // arrow key says why at once rather than sending into "no answer".
   const auto steering = [&] { return ReadLayout(layout)["live steering"]; };
-  EXPECT_EQ(steering().rfind("off: robot 'case_study' is driven by your Lua "
-                             "script",
-                             0),
-            0u)
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return steering().rfind(
+                   "off: robot 'case_study' is driven by your Lua script", 0) ==
+               0;
+      },
+      60))
       << steering();
   ASSERT_TRUE(Xdotool({"key", "Up"}));
   EXPECT_TRUE(WaitUntil(

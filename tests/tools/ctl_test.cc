@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <optional>
@@ -313,8 +314,9 @@ TEST(MrsimCtl, AStepThatCannotFinishFails) {
       << p.Output();
 }
 
-// A robot that runs but whose controller takes no gait commands (mrsim-lua,
-// a program of one's own: it never sends a gait status) is named as such
+// A robot that runs but whose controller takes no gait commands (a Lua
+// script without on_gait_command, a program of one's own: it never sends a
+// gait status) is named as such
 // soon after its states are heard, not waited for until the timeout.
 TEST(MrsimCtl, SteeringARobotNothingSteersFailsAtOnceAndSaysWhy) {
   const std::string url = TestLcmUrl(7886);
@@ -347,7 +349,54 @@ TEST(MrsimCtl, SteeringARobotNothingSteersFailsAtOnceAndSaysWhy) {
   EXPECT_NE(err.str().find("nothing steers robot 'worm': it runs"),
             std::string::npos)
       << err.str();
-  EXPECT_NE(err.str().find("mrsim-lua"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("on_gait_command"), std::string::npos) << err.str();
+}
+
+// A Lua script that defines on_gait_command takes steering as mrsim-gait
+// does: mrsim-ctl hears its gait status, sends, and reports the script's
+// verdict, its reason included when it refuses.
+TEST(MrsimCtl, SteersALuaScriptThatTakesGaitCommands) {
+  const std::string dir = TempDir("mrsim_ctl_lua");
+  const std::string url = TestLcmUrl(7888);
+  const std::string script = dir + "/steered.lua";
+  {
+    std::ofstream f(script);
+    f << "local speed = 1\n"
+         "function on_gait_command(cmd)\n"
+         "  if cmd.motion == 'stop' then speed = 0\n"
+         "  elseif cmd.motion then return false, 'only stop here' end\n"
+         "end\n"
+         "function step(t, state)\n"
+         "  local out = {}\n"
+         "  for i = 1, state.n do out[i] = speed * math.sin(t - i) end\n"
+         "  return out\n"
+         "end\n";
+  }
+  ChildProcess sim({BinaryPath("sim_core/sim_process/mrsim-sim"),
+                    SourcePath("scenarios/snake11.xml"), "--lcm-url", url},
+                   dir + "/sim.log");
+  ChildProcess lua({BinaryPath("lua_controller/process/mrsim-lua"), "--robot",
+                    "snake", "--scenario", SourcePath("scenarios/snake11.xml"),
+                    "--script", script, "--lcm-url", url},
+                   dir + "/lua.log");
+  auto ctl = [&](std::vector<std::string> words, const std::string& name) {
+    std::vector<std::string> argv{BinaryPath("tools/mrsim-ctl"), "--lcm-url",
+                                  url, "--timeout", "20"};
+    argv.insert(argv.end(), words.begin(), words.end());
+    ChildProcess p(argv, dir + "/" + name + ".log");
+    const int code = p.Wait(60);
+    return std::make_pair(code, p.Output());
+  };
+  auto [code, out] = ctl({"gait", "snake", "motion", "stop"}, "stop");
+  EXPECT_EQ(code, 0) << out << lua.Output();
+  EXPECT_NE(out.find("gait: done"), std::string::npos) << out;
+  std::tie(code, out) = ctl({"gait", "snake", "motion", "roll"}, "roll");
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("refused by the Lua script: only stop here"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(lua.Stop(5), 0) << lua.Output();
+  EXPECT_EQ(sim.Stop(5), 0);
 }
 
 // mrsim-ctl gait waits for mrsim-gait's heartbeat, sends once and reports
