@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lua_controller/lua_templates.h"
 #include "sim_core/codec/state_message.h"
 #include "sim_core/sensor_kind.h"
 
@@ -304,6 +306,40 @@ TEST_F(LuaNodeTest, AScriptWithOnGaitCommandTakesSteeringAndSaysSo) {
   ASSERT_EQ(said.size(), 1u);
   EXPECT_TRUE(said[0].running);
   EXPECT_EQ(said[0].states_answered, 1);
+}
+
+// The serpenoid template a student starts from is steerable: stop halts
+// its wave, forward starts it again.
+TEST_F(LuaNodeTest, TheSerpenoidTemplateStopsAndGoesWhenSteered) {
+  const auto& templates = LuaTemplates();
+  const auto it =
+      std::find_if(templates.begin(), templates.end(),
+                   [](const LuaTemplate& t) { return t.name == "serpenoid"; });
+  ASSERT_NE(it, templates.end());
+  auto node = Make(it->source);
+  ASSERT_TRUE(node->takes_gait_commands());
+  const auto pitch_swing = [&](int64_t seq, double t) {
+    const auto answer = Send(*node, State(seq, t));
+    double swing = 0;
+    for (size_t i = 0; i < answer.at(0).target.size(); i += 2) {
+      swing = std::max(swing, std::abs(answer.at(0).target[i]));
+    }
+    return swing;
+  };
+  EXPECT_GT(pitch_swing(0, 2.0), 0.1);
+  gait_command_t c{};
+  c.seq = 1;
+  c.motion = "stop";
+  node->OnGaitCommand(c, now_, &out_);
+  out_.clear();
+  EXPECT_EQ(pitch_swing(1, 2.1), 0.0);
+  c.seq = 2;
+  c.motion = "forward";
+  c.strength = 1;
+  node->OnGaitCommand(c, now_, &out_);
+  out_.clear();
+  EXPECT_GT(pitch_swing(2, 2.2), 0.1);
+  EXPECT_EQ(node->counters().commands_applied, 2);
 }
 
 TEST_F(LuaNodeTest, ExitsWithASilentSimulator) {
