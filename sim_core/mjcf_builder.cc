@@ -52,24 +52,21 @@ Quaterniond Normalized(const Quaterniond& q) {
 
 // ---------------------------------------------------------------- look
 
-// What a geom is, for its colour: one hue per kind, shaded per material.
-using PartKind = PartLook;
-
-const char* KindName(PartKind kind) {
+const char* KindName(PartLook kind) {
   switch (kind) {
-    case PartKind::kPitchModule:
+    case PartLook::kPitchModule:
       return "pitch_module";
-    case PartKind::kYawModule:
+    case PartLook::kYawModule:
       return "yaw_module";
-    case PartKind::kLooseFrame:
+    case PartLook::kLooseFrame:
       return "frame";
-    case PartKind::kSensorModule:
+    case PartLook::kSensorModule:
       return "sensor_module";
-    case PartKind::kForcePlate:
+    case PartLook::kForcePlate:
       return "force_plate";
-    case PartKind::kDistanceSensor:
+    case PartLook::kDistanceSensor:
       return "distance_sensor";
-    case PartKind::kSceneObject:
+    case PartLook::kSceneObject:
       return "scene_object";
   }
   return "part";
@@ -77,10 +74,10 @@ const char* KindName(PartKind kind) {
 
 // The MuJoCo material of a kind and scenario material: "<kind>/<material>";
 // the material name picks a shade of the kind's colour (0.7x to 1.15x).
-std::string LookName(PartKind kind, const std::string& material) {
+std::string LookName(PartLook kind, const std::string& material) {
   return std::string(KindName(kind)) + "/" + material;
 }
-Eigen::Vector3d LookRgb(PartKind kind, const std::string& material) {
+Eigen::Vector3d LookRgb(PartLook kind, const std::string& material) {
   uint32_t h = 2166136261u;
   for (char c : material) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
   const double shade = 0.7 + 0.45 * ((h >> 8) % 1000) / 999.0;
@@ -99,7 +96,7 @@ struct GeomSpec {
   std::string material;
   std::string mesh;  // mesh asset name
   bool collide = true;
-  PartKind kind = PartKind::kSceneObject;
+  PartLook kind = PartLook::kSceneObject;
   // A module frame's box that may share one contact box with a flush frame
   // locked to it (MergeFlushFrames).
   bool mergeable = false;
@@ -191,7 +188,7 @@ class Builder {
   std::string MeshAsset(const std::string& path, const Vector3d& scale,
                         const std::string& what);
   GeomSpec FrameGeom(const Frame& frame, const std::string& name,
-                     PartKind kind);
+                     PartLook kind);
   void AddRobot(const std::string& robot_name,
                 const std::vector<Module>& modules,
                 const std::vector<SensorModule>& sensor_modules,
@@ -284,7 +281,7 @@ std::string Builder::MeshAsset(const std::string& path, const Vector3d& scale,
 }
 
 GeomSpec Builder::FrameGeom(const Frame& frame, const std::string& name,
-                            PartKind kind) {
+                            PartLook kind) {
   GeomSpec g;
   g.name = name;
   g.mass = frame.mass;
@@ -435,8 +432,8 @@ void Builder::AddRobot(const std::string& robot_name,
       const std::string name = mjcf_names::FrameBody(robot_name, i, f);
       const int body = AddBody(name, frame.position, frame.quat_rotation);
       GeomSpec g = FrameGeom(frame, name,
-                             m.axis == Axis::kPitch ? PartKind::kPitchModule
-                                                    : PartKind::kYawModule);
+                             m.axis == Axis::kPitch ? PartLook::kPitchModule
+                                                    : PartLook::kYawModule);
       // Passive wheels steer friction by each frame's own axes.
       g.mergeable = g.type == "box" && !m.passive_wheels && !frame.is_static;
       bodies_[body].geoms.push_back(g);
@@ -452,7 +449,7 @@ void Builder::AddRobot(const std::string& robot_name,
     const std::string name = robot_name + "/f" + std::to_string(i);
     const int body = AddBody(name, frame.position, frame.quat_rotation);
     bodies_[body].geoms.push_back(
-        FrameGeom(frame, name, PartKind::kLooseFrame));
+        FrameGeom(frame, name, PartLook::kLooseFrame));
     add_node(frame.guid, "loose frame " + std::to_string(i), body,
              frame.is_static);
   }
@@ -467,7 +464,7 @@ void Builder::AddRobot(const std::string& robot_name,
     g.size = sm.size / 2;
     g.mass = sm.mass;
     g.material = sm.material_name;
-    g.kind = PartKind::kSensorModule;
+    g.kind = PartLook::kSensorModule;
     bodies_[body].geoms.push_back(g);
     AddSensorModuleParts(robot_name, static_cast<int>(k), sm, body);
     sm_nodes.push_back(add_node(
