@@ -83,6 +83,11 @@ void LivePanel::DrawSteering() {
       if (robot == nullptr || !robot->gait) {
         throw std::runtime_error("no gait heard yet");
       }
+      if (robot->gait->kind == "lua") {  // mrsim-lua's status
+        throw std::runtime_error(
+            "robot '" + followed_ +
+            "' is driven by a Lua script: it has no gait to save");
+      }
       Gait gait;
       gait.name = std::filesystem::path(gait_file_).stem().string();
       gait.kind = ParseGaitKind(robot->gait->kind).value_or(GaitKind::kLinear);
