@@ -13,7 +13,9 @@ inside the struct (lcm-gen ignores it, so its output does not change):
     {
       // channel: <prefix>_RUN (default prefix MRSIM_OPT)
 
-A pattern is `<prefix>`, a fixed part, and optionally `<robot>` at the end.
+A pattern is `<prefix>`, a fixed part, and optionally a suffix at the end:
+`<robot>` (a robot's name) or `<shard>` (the optimiser farm's job shard,
+two hex digits).
 Without `(default prefix P)` the channel uses the simulation's prefix,
 kDefaultChannelPrefix. A struct without the line is only a part of other
 messages (pose_t) and has no channel of its own.
@@ -32,17 +34,18 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from wire_check_gen import LcmError, parse  # noqa: E402
 
 CHANNEL_RE = re.compile(r"^\s*//\s*channel:\s*(.*?)\s*$")
+SUFFIXES = ("robot", "shard")
 PATTERN_RE = re.compile(
-    r"^<prefix>(_[A-Z0-9_]*?)(<robot>)?"
+    r"^<prefix>(_[A-Z0-9_]*?)(?:<([a-z]+)>)?"
     r"(?:\s+\(default prefix ([A-Za-z0-9_]+)\))?$")
 
 
 class Channel:
-    def __init__(self, type_name, pattern, infix, per_robot, prefix, where):
+    def __init__(self, type_name, pattern, infix, suffix, prefix, where):
         self.type = type_name
         self.pattern = pattern
         self.infix = infix
-        self.per_robot = per_robot
+        self.suffix = suffix  # "", "robot" or "shard"
         self.default_prefix = prefix  # None: kDefaultChannelPrefix
         self.name = infix.strip("_").lower()
         self.where = where
@@ -72,16 +75,21 @@ def channels_of(path):
         parts = PATTERN_RE.match(text)
         if not parts or not parts.group(1).strip("_"):
             raise LcmError(f"{where}: channel '{text}': expected "
-                           "<prefix>_NAME or <prefix>_NAME_<robot>, "
+                           "<prefix>_NAME or <prefix>_NAME_<robot> "
+                           "(or _<shard>), "
                            "optionally '(default prefix P)'")
         infix = parts.group(1)
-        per_robot = parts.group(2) is not None
-        if per_robot != infix.endswith("_") or \
-                infix.strip("_") != infix[1:len(infix) - per_robot]:
+        suffix = parts.group(2) or ""
+        if suffix and suffix not in SUFFIXES:
+            raise LcmError(f"{where}: channel '{text}': <{suffix}>, "
+                           f"expected one of <{'>, <'.join(SUFFIXES)}>")
+        has_suffix = bool(suffix)
+        if has_suffix != infix.endswith("_") or \
+                infix.strip("_") != infix[1:len(infix) - has_suffix]:
             raise LcmError(f"{where}: channel '{text}': one '_' between "
                            "the parts")
-        pattern = "<prefix>" + infix + ("<robot>" if per_robot else "")
-        found.append(Channel(current, pattern, infix, per_robot,
+        pattern = "<prefix>" + infix + (f"<{suffix}>" if suffix else "")
+        found.append(Channel(current, pattern, infix, suffix,
                              parts.group(3), where))
     return found
 
@@ -92,7 +100,7 @@ def header(channels):
         "// lines of lcmtypes/mrsim/*.lcm; do not edit. Expanded by",
         "// lcmtypes/runtime/channels.h, where kDefaultChannelPrefix is",
         "// defined:",
-        "// X(type, name, pattern, infix, per_robot, default_prefix).",
+        "// X(type, name, pattern, infix, suffix, default_prefix).",
         "#pragma once",
         "",
         "#define MRSIM_CHANNEL_TABLE(X) \\",
@@ -101,9 +109,8 @@ def header(channels):
     for c in channels:
         prefix = ("kDefaultChannelPrefix" if c.default_prefix is None
                   else f'"{c.default_prefix}"')
-        per_robot = "true" if c.per_robot else "false"
         rows.append(f'  X({c.type}, "{c.name}", "{c.pattern}", "{c.infix}", '
-                    f"{per_robot}, {prefix})")
+                    f'"{c.suffix}", {prefix})')
     out.append(" \\\n".join(rows))
     return "\n".join(out) + "\n"
 

@@ -16,18 +16,20 @@ namespace mrsim {
 
 inline constexpr const char* kDefaultChannelPrefix = "MRSIM";
 
-// One message type's channel: <prefix><infix>[<robot>].
+// One message type's channel: <prefix><infix>[<suffix>].
 struct ChannelSpec {
-  const char* type;            // the .lcm type, "robot_state_t"
-  const char* name;            // short name, "state"
-  const char* pattern;         // "<prefix>_STATE_<robot>"
-  const char* infix;           // "_STATE_"
-  bool per_robot;              // ends in the robot's name
+  const char* type;     // the .lcm type, "robot_state_t"
+  const char* name;     // short name, "state"
+  const char* pattern;  // "<prefix>_STATE_<robot>"
+  const char* infix;    // "_STATE_"
+  // What ends the name: "robot" (a robot's name), "shard" (the farm's job
+  // shard, two hex digits) or "" (nothing).
+  const char* suffix;
   const char* default_prefix;  // "MRSIM", or the farm's "MRSIM_OPT"
 };
 
-#define MRSIM_CHANNEL_SPEC(type, name, pattern, infix, per_robot, prefix) \
-  ChannelSpec{#type, name, pattern, infix, per_robot, prefix},
+#define MRSIM_CHANNEL_SPEC(type, name, pattern, infix, suffix, prefix) \
+  ChannelSpec{#type, name, pattern, infix, suffix, prefix},
 inline constexpr ChannelSpec kChannels[] = {
     MRSIM_CHANNEL_TABLE(MRSIM_CHANNEL_SPEC)};
 #undef MRSIM_CHANNEL_SPEC
@@ -41,11 +43,11 @@ constexpr const ChannelSpec& ChannelNamed(std::string_view name) {
   throw "no such channel in the .lcm files' '// channel:' lines";
 }
 
-// <prefix><infix>[<robot>] of a channel of the table.
+// <prefix><infix>[<suffix>] of a channel of the table.
 inline std::string ChannelName(const ChannelSpec& spec,
                                const std::string& prefix,
-                               const std::string& robot = "") {
-  return prefix + spec.infix + (spec.per_robot ? robot : std::string());
+                               const std::string& suffix = "") {
+  return prefix + spec.infix + (*spec.suffix != '\0' ? suffix : "");
 }
 
 inline std::string StateChannel(const std::string& prefix,

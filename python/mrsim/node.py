@@ -139,17 +139,18 @@ class Node:
     def channel(self, what: str, robot: Optional[str] = None) -> str:
         """The channel of `what`, a name of CHANNELS ('state', 'command',
         'gait', 'gait_status', 'scene', 'sim_control', 'sim_status', the
-        farm's 'run', 'job', ...): <prefix><infix>[<robot>]."""
+        farm's 'run', 'job', ...): <prefix><infix>[<robot>]; robot: the
+        robot's name, for 'job' the shard (two hex digits)."""
         spec = CHANNELS.get(what)
         if spec is None:
             raise ValueError("expected one of %s, got %r" %
                              (", ".join(CHANNELS), what))
         prefix = (self.prefix if spec["default_prefix"] == DEFAULT_PREFIX
                   else spec["default_prefix"])
-        if not spec["per_robot"]:
+        if not spec["suffix"]:
             return prefix + spec["infix"]
         if not robot:
-            raise ValueError("%s: give the robot's name" % what)
+            raise ValueError("%s: give the %s" % (what, spec["suffix"]))
         return prefix + spec["infix"] + robot
 
     def state_channel(self, robot: str) -> str:

@@ -450,7 +450,7 @@ counted in `malformed` and dropped.)doc");
           d["name"] = spec.name;
           d["pattern"] = spec.pattern;
           d["infix"] = spec.infix;
-          d["per_robot"] = spec.per_robot;
+          d["suffix"] = spec.suffix;
           d["default_prefix"] = spec.default_prefix;
           out.append(d);
         }
@@ -458,8 +458,8 @@ counted in `malformed` and dropped.)doc");
       },
       "The channel of every message type, from the '// channel:' lines of "
       "the .lcm files: dicts of type, name ('state'), pattern "
-      "('<prefix>_STATE_<robot>'), infix ('_STATE_'), per_robot and "
-      "default_prefix.");
+      "('<prefix>_STATE_<robot>'), infix ('_STATE_'), suffix ('robot', "
+      "'shard' or '') and default_prefix.");
   m.def("message_types", &MessageTypes,
         "Every message type of the .lcm files: {type: {'fields': [{name, "
         "type, dims, max}], 'consts': {NAME: value}}}; dims holds sizes and "

@@ -153,7 +153,7 @@ def test_every_field_of_every_message_type_reads_back(node, type_name):
 @pytest.mark.parametrize("what", sorted(mrsim.node.CHANNELS))
 def test_every_channel_of_the_table_carries_its_type(node, what):
     spec = mrsim.node.CHANNELS[what]
-    robot = "snake" if spec["per_robot"] else None
+    robot = {"robot": "snake", "shard": "0a", "": None}[spec["suffix"]]
     channel = node.channel(what, robot)
     if what == "state":  # as fields; State objects: the test below
         node.listen(channel, spec["type"])
@@ -174,6 +174,7 @@ def test_channels_are_the_lcm_files_patterns_with_their_prefixes(node):
     assert prefixed.channel("gait_status", "s") == "LAB_GAIT_STATUS_s"
     assert prefixed.channel("sim_control") == "LAB_SIM_CONTROL"
     assert prefixed.channel("run") == "MRSIM_OPT_RUN"  # the farm's prefix
+    assert node.channel("job", "0a") == "MRSIM_OPT_JOB_0a"
     assert mrsim.node.DEFAULT_PREFIX == "MRSIM"
     with pytest.raises(ValueError, match="robot"):
         node.channel("command")
