@@ -7,11 +7,10 @@
 #include <string>
 #include <string_view>
 
+#include "common/shortest_double.h"
+
 namespace mrsim {
 
-// Writes v at p (at most kMaxDoubleChars characters); returns the end.
-inline constexpr int kMaxDoubleChars = 32;
-char* WriteDouble(double v, char* p);
 void AppendDouble(double v, std::string* out);
 void AppendFloat(float v, std::string* out);
 void AppendInt(int64_t v, std::string* out);

@@ -1,9 +1,8 @@
 #include "lcmtypes/json/json_writer.h"
 
-#include <fmt/compile.h>
-#include <fmt/format.h>
-
 #include <cmath>
+
+#include "common/shortest_double.h"
 
 namespace mrsim {
 namespace {
@@ -42,11 +41,10 @@ void JsonWriter::Double(double v) {
     Raw("null");
     return;
   }
-  // fmt's "{}" is the shortest text that reads back to v (Dragonbox), in a
-  // form JSON accepts ("0.1", "1e-05", "-0", "3").
-  char* p = Make(32);
-  size_ = static_cast<size_t>(fmt::format_to(p, FMT_COMPILE("{}"), v) -
-                              buf_.data());
+  // The shortest text that reads back to v, as the CSV logger writes it,
+  // in a form JSON accepts ("0.1", "1e-05", "-0", "3").
+  char* p = Make(kMaxDoubleChars);
+  size_ = static_cast<size_t>(WriteDouble(v, p) - buf_.data());
 }
 
 void JsonWriter::String(std::string_view text) {
