@@ -363,7 +363,9 @@ int RunGait(SignedLcm& lcm, const std::vector<std::string>& words,
 
 std::string CtlHelp() {
   return std::string(
-             "Drives a running mrsim-sim and mrsim-gait.\n  mrsim-ctl ") +
+             "Drives a running mrsim-sim, and steers the robots whose "
+             "controller takes gait commands (mrsim-gait; mrsim-lua with a "
+             "script defining on_gait_command).\n  mrsim-ctl ") +
          SimControlUsage() + "\n  mrsim-ctl status\n  mrsim-ctl " +
          GaitRequestUsage();
 }
