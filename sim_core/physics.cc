@@ -18,6 +18,7 @@
 #include "sim_core/model_compiler.h"
 #include "sim_core/mujoco_data.h"
 #include "sim_core/mujoco_handlers.h"
+#include "sim_core/physics_state_fields.h"
 #include "sim_core/robot_orientation.h"
 #include "sim_core/scenario_validate.h"
 #include "sim_core/sensor_kind.h"
@@ -34,6 +35,8 @@ namespace {
 // version-3 blob of a scenario with directional friction, may differ in
 // the last bits).
 constexpr char kStateMagic[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '4'};
+// The version kStateMagic names, the one SaveState writes.
+constexpr int kStateVersion = 4;
 constexpr char kStateMagicV3[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '3'};
 constexpr char kStateMagicV2[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '2'};
 constexpr char kStateMagicV1[8] = {'M', 'R', 'S', 'I', 'M', 'S', 'T', '1'};
@@ -83,6 +86,42 @@ template <typename T>
 void Put(std::vector<unsigned char>& out, const T* values, size_t n) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(values);
   out.insert(out.end(), bytes, bytes + n * sizeof(T));
+}
+
+// The checkpoint version of a blob, from its magic; 0 when it is none.
+int StateVersion(const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < sizeof(kStateMagic)) return 0;
+  for (const auto& [magic, version] :
+       {std::pair<const char*, int>{kStateMagic, kStateVersion},
+        {kStateMagicV3, 3},
+        {kStateMagicV2, 2},
+        {kStateMagicV1, 1}}) {
+    if (std::memcmp(bytes.data(), magic, sizeof(kStateMagic)) == 0)
+      return version;
+  }
+  return 0;
+}
+
+// Where the entries of each kind of state array go when the state moves
+// from one model to another (matched by name): runs of {index in the
+// destination, index in the source, length}, per StatePer.
+class StateMap {
+ public:
+  using Run = std::array<int, 3>;
+  std::vector<Run>& of(StatePer per) { return runs_[static_cast<size_t>(per)]; }
+  void Copy(StatePer per, const mjtNum* from, mjtNum* to) const {
+    for (const Run& r : runs_[static_cast<size_t>(per)]) {
+      mju_copy(to + r[0], from + r[1], r[2]);
+    }
+  }
+
+ private:
+  std::array<std::vector<Run>, static_cast<size_t>(StatePer::kTarget) + 1>
+      runs_;
+};
+
+bool InCheckpoint(const PhysicsStateField& f, int version) {
+  return (f.copies & kStateCheckpoint) && f.since <= version;
 }
 
 }  // namespace
@@ -226,6 +265,17 @@ struct Physics::Impl {
     }
   }
   void GapControls(mjData* d, bool advance);
+  // The body forces the next step of state `from` applies, into `to`
+  // (may be `from`): the fluids' when the scene has any (they replace the
+  // whole array), else from's own. Step and the force readings' forward
+  // both come here, so they cannot differ.
+  void ApplyBodyForces(const mjData* from, mjData* to) const {
+    if (!fluids->empty()) {
+      fluids->Apply(model.get(), from, to->xfrc_applied);
+    } else if (to != from) {
+      mju_copy(to->xfrc_applied, from->xfrc_applied, 6 * model->nbody);
+    }
+  }
   void AfterStateChange() {
     mju_copy(qpos_integrated.data(), data->qpos, model->nq);
     Step1();
@@ -354,6 +404,7 @@ void Physics::Impl::TransferState(const mjModel* om, const mjData* od) {
   const mjModel* m = model.get();
   mjData* d = data.get();
   d->time = od->time;
+  StateMap map;
   for (int j = 0; j < m->njnt; ++j) {
     const char* jname = mj_id2name(m, mjOBJ_JOINT, j);
     const int ob =
@@ -364,11 +415,8 @@ void Physics::Impl::TransferState(const mjModel* om, const mjData* od) {
     const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
     const int nv = type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
     if (oj >= 0 && om->jnt_type[oj] == type && om->jnt_bodyid[oj] == ob) {
-      const int oqa = om->jnt_qposadr[oj], ova = om->jnt_dofadr[oj];
-      mju_copy(d->qpos + qa, od->qpos + oqa, nq);
-      mju_copy(d->qvel + va, od->qvel + ova, nv);
-      mju_copy(d->qacc_warmstart + va, od->qacc_warmstart + ova, nv);
-      mju_copy(d->qfrc_applied + va, od->qfrc_applied + ova, nv);
+      map.of(StatePer::kJointPosition).push_back({qa, om->jnt_qposadr[oj], nq});
+      map.of(StatePer::kDof).push_back({va, om->jnt_dofadr[oj], nv});
     } else if (type == mjJNT_FREE && ob >= 0) {
       mju_copy3(d->qpos + qa, od->xpos + 3 * ob);
       mju_copy4(d->qpos + qa + 3, od->xquat + 4 * ob);
@@ -381,13 +429,17 @@ void Physics::Impl::TransferState(const mjModel* om, const mjData* od) {
   for (int a = 0; a < m->nu; ++a) {
     const int oa =
         mj_name2id(om, mjOBJ_ACTUATOR, mj_id2name(m, mjOBJ_ACTUATOR, a));
-    if (oa >= 0) d->ctrl[a] = od->ctrl[oa];
+    if (oa >= 0) map.of(StatePer::kActuator).push_back({a, oa, 1});
   }
   for (int b = 0; b < m->nbody; ++b) {
     const char* name = mj_id2name(m, mjOBJ_BODY, b);
     const int ob = name ? mj_name2id(om, mjOBJ_BODY, name) : (b == 0 ? 0 : -1);
-    if (ob >= 0)
-      mju_copy(d->xfrc_applied + 6 * b, od->xfrc_applied + 6 * ob, 6);
+    if (ob >= 0) map.of(StatePer::kBody).push_back({6 * b, 6 * ob, 6});
+  }
+  // The old model's integrated qpos is not carried: the new model's
+  // kinematics start from the current pose (AfterStateChange).
+  for (const PhysicsStateField& f : kPhysicsStateFields) {
+    if (f.copies & kStateTransfer) map.Copy(f.per, od->*f.array, d->*f.array);
   }
   for (int e = 0; e < m->neq; ++e) {
     const char* name = mj_id2name(m, mjOBJ_EQUALITY, e);
@@ -548,21 +600,13 @@ void Physics::Impl::MakeRoom() {
     mjData* to = grown.get();
     const mjData* from = data.get();
     to->time = from->time;
-    mju_copy(to->qpos, qpos_integrated.data(), m->nq);
-    mju_copy(to->qvel, from->qvel, m->nv);
-    mju_copy(to->act, from->act, m->na);
-    mju_copy(to->act_dot, from->act_dot, m->na);
-    mju_copy(to->ctrl, from->ctrl, m->nu);
-    mju_copy(to->qacc, from->qacc, m->nv);
-    mju_copy(to->qacc_warmstart, from->qacc_warmstart, m->nv);
-    mju_copy(to->qfrc_applied, from->qfrc_applied, m->nv);
-    mju_copy(to->xfrc_applied, from->xfrc_applied, 6 * m->nbody);
-    mju_copy(to->mocap_pos, from->mocap_pos, 3 * m->nmocap);
-    mju_copy(to->mocap_quat, from->mocap_quat, 4 * m->nmocap);
-    mju_copy(to->userdata, from->userdata, m->nuserdata);
-    mju_copy(to->actuator_force, from->actuator_force, m->nu);
-    mju_copy(to->sensordata, from->sensordata, m->nsensordata);
-    mju_copy(to->qacc_smooth, from->qacc_smooth, m->nv);  // friction's look
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      const int n = StateSize(m, f.per);
+      if (!(f.copies & kStateGrow) || n == 0) continue;
+      // The integrated qpos: the kinematics pass below runs from it.
+      mju_copy(f.array ? to->*f.array : to->qpos,
+               f.array ? from->*f.array : qpos_integrated.data(), n);
+    }
     data = std::move(grown);
     scratch.reset();
     warnings.fill(0);  // the counters of the new mjData
@@ -668,7 +712,7 @@ void Physics::Step() {
   mjData* d = impl_->data.get();
   const double time_before = d->time;
   impl_->ComputeControls(d);
-  if (!impl_->fluids->empty()) impl_->fluids->Apply(m, d, d->xfrc_applied);
+  impl_->ApplyBodyForces(d, d);
   mj_step2(m, d);
   if (impl_->any_breakable) impl_->BreakOverloadedLocks();
   mju_copy(impl_->qpos_integrated.data(), d->qpos, m->nq);
@@ -875,18 +919,15 @@ RobotState Physics::ReadRobotState(int robot) const {
       throw std::runtime_error("MuJoCo cannot allocate data");
     mjData* s = impl_->scratch.get();
     s->time = d->time;
-    mju_copy(s->qpos, d->qpos, m->nq);
-    mju_copy(s->qvel, d->qvel, m->nv);
-    mju_copy(s->act, d->act, m->na);
-    mju_copy(s->qacc_warmstart, d->qacc_warmstart, m->nv);
-    mju_copy(s->qfrc_applied, d->qfrc_applied, m->nv);
-    if (impl_->fluids->empty()) {
-      mju_copy(s->xfrc_applied, d->xfrc_applied, 6 * m->nbody);
-    } else {
-      impl_->fluids->Apply(m, d, s->xfrc_applied);  // as the next step will
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      const int n = StateSize(m, f.per);
+      if (!(f.copies & kStateForward) || n == 0) continue;
+      if (f.array == &mjData::xfrc_applied) {
+        impl_->ApplyBodyForces(d, s);  // as the next step will
+      } else {
+        mju_copy(s->*f.array, d->*f.array, n);
+      }
     }
-    mju_copy(s->ctrl, d->ctrl, m->nu);
-    mju_copy(s->qacc_smooth, d->qacc_smooth, m->nv);  // directional friction
     impl_->ComputeControls(s, false);
     Forward(m, s, impl_->friction.get());
   }
@@ -1010,20 +1051,16 @@ std::vector<unsigned char> Physics::SaveState() const {
   Put(out, locks.data(), locks.size());
   Put(out, sizes, 7);
   Put(out, &d->time, 1);
-  Put(out, d->qpos, m->nq);
-  Put(out, impl_->qpos_integrated.data(), m->nq);
-  Put(out, d->qvel, m->nv);
-  Put(out, d->act, m->na);
-  Put(out, d->ctrl, m->nu);
-  Put(out, d->qacc_warmstart, m->nv);
-  Put(out, d->qfrc_applied, m->nv);
-  Put(out, d->xfrc_applied, 6 * m->nbody);
-  // Results of the last step's dynamics (mj_step2) that mj_step1 does not
-  // recompute and ReadRobotState reports (torques) or data() exposes.
-  Put(out, d->actuator_force, m->nu);
-  Put(out, d->sensordata, m->nsensordata);
-  Put(out, targets.data(), targets.size());
-  Put(out, d->qacc_smooth, m->nv);
+  for (const PhysicsStateField& f : kPhysicsStateFields) {
+    if (!InCheckpoint(f, kStateVersion)) continue;
+    if (f.per == StatePer::kTarget) {
+      Put(out, targets.data(), targets.size());
+    } else if (f.array == nullptr) {
+      Put(out, impl_->qpos_integrated.data(), m->nq);
+    } else {
+      Put(out, d->*f.array, StateSize(m, f.per));
+    }
+  }
   return out;
 }
 
@@ -1044,19 +1081,12 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     ntargets += r.targets.size();
     nlocks += r.locks.size();
   }
-  if (bytes.size() < sizeof(kStateMagic)) {
+  const int version = StateVersion(bytes);
+  if (version == 0) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
   }
-  const bool v1 =
-      std::memcmp(bytes.data(), kStateMagicV1, sizeof(kStateMagicV1)) == 0;
-  const bool v4 =
-      std::memcmp(bytes.data(), kStateMagic, sizeof(kStateMagic)) == 0;
-  const bool v3 =
-      v4 || std::memcmp(bytes.data(), kStateMagicV3, sizeof(kStateMagic)) == 0;
-  if (!v1 && !v3 &&
-      std::memcmp(bytes.data(), kStateMagicV2, sizeof(kStateMagicV2)) != 0) {
-    throw std::invalid_argument("physics state: not an mrsim state blob");
-  }
+  const bool v1 = version == 1;
+  const bool v3 = version >= 3;
   // Version 3: lock states first, since a lock released at run time
   // changes the model the rest was saved from.
   std::vector<unsigned char> lock_flags(nlocks, kLockAttached);
@@ -1099,10 +1129,12 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   expect.push_back(static_cast<int32_t>(ntargets));
   const size_t header =
       sizeof(kStateMagic) + lock_bytes + expect.size() * sizeof(int32_t);
-  size_t doubles = 1 + m->nq + m->nv + m->na + m->nu + m->nv + m->nv +
-                   6 * m->nbody + ntargets;
-  if (!v1) doubles += m->nq + m->nu + m->nsensordata;
-  if (v4) doubles += m->nv;
+  size_t doubles = 1;  // the time
+  for (const PhysicsStateField& f : kPhysicsStateFields) {
+    if (InCheckpoint(f, version)) {
+      doubles += f.per == StatePer::kTarget ? ntargets : StateSize(m, f.per);
+    }
+  }
   std::vector<int32_t> sizes(expect.size(), -1);
   if (bytes.size() >= header) {
     std::memcpy(sizes.data(), bytes.data() + sizeof(kStateMagic) + lock_bytes,
@@ -1145,29 +1177,31 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     std::memcpy(dst, p, n * sizeof(double));
     p += n * sizeof(double);
   };
-  std::vector<mjtNum> qpos(m->nq);
   get(&d->time, 1);
-  get(qpos.data(), m->nq);
-  if (v1) {
-    mju_copy(d->qpos, qpos.data(), m->nq);
-  } else {
-    get(d->qpos, m->nq);  // the integrated qpos (see qpos_integrated)
+  // Arrays the kinematics pass would overwrite, written after it.
+  std::array<std::vector<mjtNum>, kPhysicsStateFields.size()> after;
+  bool integrated = false;
+  for (size_t i = 0; i < kPhysicsStateFields.size(); ++i) {
+    const PhysicsStateField& f = kPhysicsStateFields[i];
+    if (!InCheckpoint(f, version)) continue;
+    if (f.per == StatePer::kTarget) {
+      for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
+    } else if (f.array == nullptr) {
+      get(d->qpos, m->nq);  // the integrated qpos (see qpos_integrated)
+      integrated = true;
+    } else if (f.stage == StateStage::kAfter) {
+      after[i].resize(StateSize(m, f.per));
+      get(after[i].data(), after[i].size());
+    } else {
+      get(d->*f.array, StateSize(m, f.per));
+    }
   }
-  get(d->qvel, m->nv);
-  get(d->act, m->na);
-  get(d->ctrl, m->nu);
-  get(d->qacc_warmstart, m->nv);
-  get(d->qfrc_applied, m->nv);
-  get(d->xfrc_applied, 6 * m->nbody);
-  std::vector<mjtNum> actuator_force, sensordata;
-  if (!v1) {
-    actuator_force.resize(m->nu);
-    sensordata.resize(m->nsensordata);
-    get(actuator_force.data(), m->nu);
-    get(sensordata.data(), m->nsensordata);
+  if (!integrated) {  // version 1: the saved qpos is all there is
+    for (size_t i = 0; i < kPhysicsStateFields.size(); ++i) {
+      if (kPhysicsStateFields[i].array == &mjData::qpos && !after[i].empty())
+        mju_copy(d->qpos, after[i].data(), m->nq);
+    }
   }
-  for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
-  if (v4) get(d->qacc_smooth, m->nv);
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
   size_t li = 0;
@@ -1185,13 +1219,14 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   }
   impl_->AfterStateChange();
   // The kinematics pass reproduces the saved qpos exactly unless the state
-  // was poked between the step and the save; keep the saved qpos then.
-  if (std::memcmp(d->qpos, qpos.data(), m->nq * sizeof(mjtNum)) != 0) {
-    mju_copy(d->qpos, qpos.data(), m->nq);
-  }
-  if (!v1) {
-    mju_copy(d->actuator_force, actuator_force.data(), m->nu);
-    mju_copy(d->sensordata, sensordata.data(), m->nsensordata);
+  // was poked between the step and the save; the saved one is kept. The
+  // pass may have given the physics a bigger mjData (MakeRoom).
+  d = impl_->data.get();
+  for (size_t i = 0; i < kPhysicsStateFields.size(); ++i) {
+    if (!after[i].empty()) {
+      mju_copy(d->*kPhysicsStateFields[i].array, after[i].data(),
+               static_cast<int>(after[i].size()));
+    }
   }
 }
 
@@ -1238,42 +1273,64 @@ void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
     }
     return i;
   };
-  // Copied after the kinematics pass, which recomputes neither.
-  // (source value, index in the merged world's array); indices, since
+  // Per part, where its entries go in the merged world; indices, since
   // Refresh may give the world a bigger mjData (MakeRoom).
-  std::vector<std::pair<const mjtNum*, int>> later_force, later_sensor;
-  for (const Physics* p : parts) {
-    const Impl& from = *p->impl_;
+  std::vector<StateMap> maps(parts.size());
+  for (size_t pi = 0; pi < parts.size(); ++pi) {
+    const Impl& from = *parts[pi]->impl_;
     const mjModel* om = from.model.get();
     const mjData* od = from.data.get();
-    d->time = od->time;
+    StateMap& map = maps[pi];
     for (int j = 0; j < om->njnt; ++j) {
       const int nj = id(mjOBJ_JOINT, mj_id2name(om, mjOBJ_JOINT, j));
       const int type = om->jnt_type[j];
       const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
       const int nv = type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
-      const int qa = m->jnt_qposadr[nj], oqa = om->jnt_qposadr[j];
-      const int va = m->jnt_dofadr[nj], ova = om->jnt_dofadr[j];
-      mju_copy(to.qpos_integrated.data() + qa,
-               from.qpos_integrated.data() + oqa, nq);
-      mju_copy(d->qvel + va, od->qvel + ova, nv);
-      mju_copy(d->qacc_warmstart + va, od->qacc_warmstart + ova, nv);
-      mju_copy(d->qfrc_applied + va, od->qfrc_applied + ova, nv);
-      mju_copy(d->qacc_smooth + va, od->qacc_smooth + ova, nv);
+      map.of(StatePer::kJointPosition)
+          .push_back({m->jnt_qposadr[nj], om->jnt_qposadr[j], nq});
+      map.of(StatePer::kDof)
+          .push_back({m->jnt_dofadr[nj], om->jnt_dofadr[j], nv});
     }
     for (int a = 0; a < om->nu; ++a) {
       const int na = id(mjOBJ_ACTUATOR, mj_id2name(om, mjOBJ_ACTUATOR, a));
-      d->ctrl[na] = od->ctrl[a];
+      map.of(StatePer::kActuator).push_back({na, a, 1});
       // MuJoCo 2.2 keeps the activations of the last na actuators.
       if (om->na > 0 && a >= om->nu - om->na) {
-        d->act[na - (m->nu - m->na)] = od->act[a - (om->nu - om->na)];
+        map.of(StatePer::kActivation)
+            .push_back({na - (m->nu - m->na), a - (om->nu - om->na), 1});
       }
     }
     for (int b = 1; b < om->nbody; ++b) {
       const char* name = mj_id2name(om, mjOBJ_BODY, b);
       if (name) {
-        mju_copy(d->xfrc_applied + 6 * id(mjOBJ_BODY, name),
-                 od->xfrc_applied + 6 * b, 6);
+        map.of(StatePer::kBody).push_back({6 * id(mjOBJ_BODY, name), 6 * b, 6});
+      }
+    }
+    for (int s = 0; s < om->nsensor; ++s) {
+      const int ns = id(mjOBJ_SENSOR, mj_id2name(om, mjOBJ_SENSOR, s));
+      map.of(StatePer::kSensordata)
+          .push_back({m->sensor_adr[ns], om->sensor_adr[s], om->sensor_dim[s]});
+    }
+    d->time = od->time;
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      if (!(f.copies & kStateMerge) || f.stage == StateStage::kAfter) continue;
+      if (f.per == StatePer::kTarget) {
+        for (size_t r = 0; r < from.robots.size(); ++r) {
+          for (size_t k = 0; k < to.robots.size(); ++k) {
+            if (to.robots[k].name != from.robots[r].name) continue;
+            to.robots[k].targets = from.robots[r].targets;
+            if (k < to.target_ring.size() && r < from.target_ring.size()) {
+              to.target_ring[k] = from.target_ring[r];
+            }
+          }
+        }
+        to.ring_next = from.ring_next;
+      } else if (f.array == nullptr) {
+        // In the merged world's Refresh below, the pose of every part is
+        // computed from its integrated qpos, as in its own world.
+        map.Copy(f.per, from.qpos_integrated.data(), to.qpos_integrated.data());
+      } else {
+        map.Copy(f.per, od->*f.array, d->*f.array);
       }
     }
     for (int e = 0; e < om->neq; ++e) {
@@ -1281,43 +1338,18 @@ void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
           ->eq_active[id(mjOBJ_EQUALITY, mj_id2name(om, mjOBJ_EQUALITY, e))] =
           om->eq_active[e];
     }
-    for (size_t r = 0; r < from.robots.size(); ++r) {
-      for (size_t k = 0; k < to.robots.size(); ++k) {
-        if (to.robots[k].name != from.robots[r].name) continue;
-        to.robots[k].targets = from.robots[r].targets;
-        if (k < to.target_ring.size() && r < from.target_ring.size()) {
-          to.target_ring[k] = from.target_ring[r];
-        }
-      }
-    }
-    to.ring_next = from.ring_next;
-    // In the merged world's Refresh below, the pose of every part is
-    // computed from its integrated qpos, as in its own world.
-    for (int a = 0; a < om->nu; ++a) {
-      const int na = id(mjOBJ_ACTUATOR, mj_id2name(om, mjOBJ_ACTUATOR, a));
-      later_force.emplace_back(od->actuator_force + a, na);
-    }
-    for (int s = 0; s < om->nsensor; ++s) {
-      const int ns = id(mjOBJ_SENSOR, mj_id2name(om, mjOBJ_SENSOR, s));
-      for (int i = 0; i < om->sensor_dim[s]; ++i) {
-        later_sensor.emplace_back(od->sensordata + om->sensor_adr[s] + i,
-                                  m->sensor_adr[ns] + i);
-      }
-    }
   }
   to.Refresh();
+  // Torques and sensor values of the last steps, which the kinematics pass
+  // does not recompute, and a qpos poked after its world's step (kept, as
+  // LoadState does).
   d = to.data.get();
-  for (const auto& [from, i] : later_force) d->actuator_force[i] = *from;
-  for (const auto& [from, i] : later_sensor) d->sensordata[i] = *from;
-  // A qpos poked after its world's step is kept, as LoadState does.
-  for (const Physics* p : parts) {
-    const mjModel* om = p->impl_->model.get();
-    const mjData* od = p->impl_->data.get();
-    for (int j = 0; j < om->njnt; ++j) {
-      const int nj = id(mjOBJ_JOINT, mj_id2name(om, mjOBJ_JOINT, j));
-      const int type = om->jnt_type[j];
-      const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
-      mju_copy(d->qpos + m->jnt_qposadr[nj], od->qpos + om->jnt_qposadr[j], nq);
+  for (size_t pi = 0; pi < parts.size(); ++pi) {
+    const mjData* od = parts[pi]->impl_->data.get();
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      if ((f.copies & kStateMerge) && f.stage == StateStage::kAfter) {
+        maps[pi].Copy(f.per, od->*f.array, d->*f.array);
+      }
     }
   }
 }
