@@ -185,6 +185,20 @@ def test_channels_are_the_lcm_files_patterns_with_their_prefixes(node):
             assert "// channel: " + spec["pattern"] in f.read()
 
 
+def test_the_docs_name_every_channel_of_the_table():
+    def read(name):
+        with open(os.path.join(SOURCE, name), encoding="utf-8") as f:
+            return f.read()
+    readme, farm = read("README.md"), read("docs/optimizer.md")
+    for spec in _core.channels():
+        if spec["default_prefix"] == mrsim.node.DEFAULT_PREFIX:
+            name = spec["pattern"].replace("<prefix>", spec["default_prefix"])
+            assert "`%s`" % name in readme, name  # README's channel table
+        else:  # docs/optimizer.md, "Farm"
+            assert ("`%s" % spec["infix"] in farm or
+                    spec["default_prefix"] + spec["infix"] in farm), spec
+
+
 def test_consts_of_the_lcm_files_are_exposed():
     assert TYPES["sim_control_t"]["consts"]["DETACH"] == mrsim.node.DETACH
     assert TYPES["gait_status_t"]["consts"] == {
