@@ -319,7 +319,7 @@ TEST(MrsimCtl, AStepThatCannotFinishFails) {
 // gait status) is named as such
 // soon after its states are heard, not waited for until the timeout.
 TEST(MrsimCtl, SteeringARobotNothingSteersFailsAtOnceAndSaysWhy) {
-  const std::string url = TestLcmUrl(7886);
+  const std::string url = TestLcmUrl(7889);
   lcm::LCM talker(url);
   ASSERT_TRUE(talker.good());
   std::atomic<bool> done{false};
