@@ -6,7 +6,8 @@
 //                                            lcm-logger's; target <= 1.5
 //   BENCH mcap_logger_cpu_ratio_spread <X> %
 //   BENCH mcap_logger_lost <n> msgs           sent but not in the MCAP file
-// Rounds: --rounds N (default 7), each --seconds S (default 5), or
+// Rounds: --rounds N (default 6), each --seconds S (default 10: the
+// logger's start-up, a few tens of ms of CPU, is then under 1 %), or
 // $MRSIM_BENCH_MCAP_ROUNDS / $MRSIM_BENCH_MCAP_SECONDS.
 #include <signal.h>
 #include <unistd.h>
@@ -209,9 +210,9 @@ double Setting(int argc, char** argv, const char* flag, const char* env,
 
 int main(int argc, char** argv) {
   const double seconds =
-      Setting(argc, argv, "--seconds", "MRSIM_BENCH_MCAP_SECONDS", 5);
+      Setting(argc, argv, "--seconds", "MRSIM_BENCH_MCAP_SECONDS", 10);
   const int rounds = static_cast<int>(
-      Setting(argc, argv, "--rounds", "MRSIM_BENCH_MCAP_ROUNDS", 7));
+      Setting(argc, argv, "--rounds", "MRSIM_BENCH_MCAP_ROUNDS", 6));
   if (!(seconds > 0) || rounds < 1) {
     std::fprintf(stderr, "bench_mcap_logger: --seconds > 0, --rounds >= 1\n");
     return 2;
