@@ -100,12 +100,12 @@ int main() {
   for (int k = 0; k < 11; ++k) {
     frame_ms.push_back(timed([] {}));
     structural_ms.push_back(timed([&] {
-      app.design().Select({PartKind::kModule, 0, 49});
+      app.design().Select({SelectionKind::kModule, 0, 49});
       app.design().AddPart(NextPart::kYawModule, Where::kTail);
     }));
     structural_ms.push_back(timed([&] { app.design().RemoveSelected(); }));
     field_ms.push_back(timed([&] {
-      app.design().SetField({{PartKind::kModule, 0, k}, "frames[0]", "mass"},
+      app.design().SetField({{SelectionKind::kModule, 0, k}, "frames[0]", "mass"},
                             std::to_string(0.03 + 0.001 * k));
     }));
   }

@@ -55,7 +55,7 @@ int main() {
     return 1;
   }
   HeadlessStudio studio(&app, kWidth, kHeight);
-  app.design().Select({PartKind::kObject, 0, 0});
+  app.design().Select({SelectionKind::kSceneObject, 0, 0});
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = ImVec2(-1, -1);
   for (int i = 0; i < 5; ++i) studio.Frame();
