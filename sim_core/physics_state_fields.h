@@ -3,8 +3,9 @@
 // A checkpoint (Physics::SaveState/LoadState, in this order on the wire),
 // the bigger mjData of a step that ran out of constraint rows (MakeRoom),
 // the force readings' private forward (ReadRobotState), a model rebuilt for
-// a released lock (TransferState) and the merge of a split scene's worlds
-// (AbsorbState) are all made from kPhysicsStateFields, as MuJoCo makes its
+// a released lock (TransferState), the merge of a split scene's worlds
+// (AbsorbState) and the split scene's view of them (WorldSplit::SyncView)
+// are all made from kPhysicsStateFields, as MuJoCo makes its
 // I/O from mjxmacro.h and names its state parts in mjtState. The sim time
 // travels first in every copy and is not listed.
 #pragma once
@@ -38,6 +39,9 @@ enum StateCopy : unsigned {
   kStateForward = 1u << 2,     // ReadRobotState's scratch forward
   kStateTransfer = 1u << 3,    // TransferState: a model rebuilt with welds
   kStateMerge = 1u << 4,       // AbsorbState: a split scene made one world
+  // WorldSplit::SyncView: what data() of a split scene shows of its
+  // worlds (the view then computes its own kinematics).
+  kStateView = 1u << 5,
 };
 
 // Where a copy writes an array relative to the kinematics pass (mj_step1)
@@ -76,35 +80,38 @@ constexpr std::array<PhysicsStateField, 17> kPhysicsStateFields = {{
     // from the current pose) take it as it is; a version-1 blob, without
     // qpos_integrated, runs the pass from it too.
     {"qpos", &mjData::qpos, StatePer::kJointPosition,
-     kStateCheckpoint | kStateForward | kStateTransfer | kStateMerge,
+     kStateCheckpoint | kStateForward | kStateTransfer | kStateMerge |
+         kStateView,
      StateStage::kAfter, 1},
     // Physics' own qpos as mj_step2 left it, before mj_step1 renormalised
     // its quaternions in place (not idempotent in the last bit): what the
     // kinematics pass of a loaded or merged state starts from.
     {"qpos_integrated", nullptr, StatePer::kJointPosition,
      kStateCheckpoint | kStateGrow | kStateMerge, StateStage::kBefore, 2},
-    {"qvel", &mjData::qvel, StatePer::kDof, kStateAllCopies,
+    {"qvel", &mjData::qvel, StatePer::kDof, kStateAllCopies | kStateView,
      StateStage::kBefore, 1},
     // TransferState predates activations (no mrsim actuator has any yet).
     {"act", &mjData::act, StatePer::kActivation,
      kStateAllCopies & ~kStateTransfer, StateStage::kBefore, 1},
-    {"ctrl", &mjData::ctrl, StatePer::kActuator, kStateAllCopies,
+    {"ctrl", &mjData::ctrl, StatePer::kActuator, kStateAllCopies | kStateView,
      StateStage::kBefore, 1},
     {"qacc_warmstart", &mjData::qacc_warmstart, StatePer::kDof, kStateAllCopies,
      StateStage::kBefore, 1},
-    {"qfrc_applied", &mjData::qfrc_applied, StatePer::kDof, kStateAllCopies,
-     StateStage::kBefore, 1},
+    {"qfrc_applied", &mjData::qfrc_applied, StatePer::kDof,
+     kStateAllCopies | kStateView, StateStage::kBefore, 1},
     // The forward copy takes the fluid forces instead when a scene has
     // fluids (FluidForces::Apply writes the whole array, as a step does).
-    {"xfrc_applied", &mjData::xfrc_applied, StatePer::kBody, kStateAllCopies,
-     StateStage::kBefore, 1},
+    {"xfrc_applied", &mjData::xfrc_applied, StatePer::kBody,
+     kStateAllCopies | kStateView, StateStage::kBefore, 1},
     // Torques and sensor values of the last step: mj_step1 does not
     // recompute them, ReadRobotState reports them. The forward copy
     // computes its own.
     {"actuator_force", &mjData::actuator_force, StatePer::kActuator,
-     kStateCheckpoint | kStateGrow | kStateMerge, StateStage::kAfter, 2},
+     kStateCheckpoint | kStateGrow | kStateMerge | kStateView,
+     StateStage::kAfter, 2},
     {"sensordata", &mjData::sensordata, StatePer::kSensordata,
-     kStateCheckpoint | kStateGrow | kStateMerge, StateStage::kAfter, 2},
+     kStateCheckpoint | kStateGrow | kStateMerge | kStateView,
+     StateStage::kAfter, 2},
     {"targets", nullptr, StatePer::kTarget, kStateCheckpoint | kStateMerge,
      StateStage::kBefore, 1},
     // Directional friction's look at the last unconstrained acceleration.
@@ -115,10 +122,11 @@ constexpr std::array<PhysicsStateField, 17> kPhysicsStateFields = {{
      kStateAllCopies & ~kStateTransfer, StateStage::kBefore, 4},
     // Only a bigger mjData of the same step needs these: every other copy
     // is followed by a step that recomputes them (qacc is also what the
-    // stability check and data() read).
+    // stability check and data() read, so a split scene's view shows it).
     {"act_dot", &mjData::act_dot, StatePer::kActivation, kStateGrow,
      StateStage::kBefore, 0},
-    {"qacc", &mjData::qacc, StatePer::kDof, kStateGrow, StateStage::kBefore, 0},
+    {"qacc", &mjData::qacc, StatePer::kDof, kStateGrow | kStateView,
+     StateStage::kBefore, 0},
     // mrsim's models have no mocap bodies and no user data; MakeRoom keeps
     // them so a model that does would not lose them mid-step. Not in the
     // checkpoint: adding them would need a version 5.
@@ -131,13 +139,19 @@ constexpr std::array<PhysicsStateField, 17> kPhysicsStateFields = {{
 }};
 
 // Checked at compile time: only a checkpoint array has a version; the
-// copies that take an array from mjData to mjData (forward, transfer) list
-// only mjData's arrays.
+// copies that take an array from mjData to mjData (forward, transfer,
+// view) list only mjData's arrays.
 constexpr bool PhysicsStateTableIsConsistent() {
   for (const PhysicsStateField& f : kPhysicsStateFields) {
     const bool saved = (f.copies & kStateCheckpoint) != 0;
     if (saved != (f.since >= 1)) return false;
-    if ((f.copies & (kStateForward | kStateTransfer)) && f.array == nullptr)
+    if ((f.copies & (kStateForward | kStateTransfer | kStateView)) &&
+        f.array == nullptr)
+      return false;
+    // A split scene's view maps joints, actuators, bodies and sensors.
+    if ((f.copies & kStateView) &&
+        (f.per == StatePer::kActivation || f.per == StatePer::kMocapPosition ||
+         f.per == StatePer::kMocapRotation || f.per == StatePer::kUserdata))
       return false;
   }
   return true;

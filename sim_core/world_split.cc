@@ -13,6 +13,7 @@
 #include <string>
 
 #include "sim_core/mjcf_names.h"
+#include "sim_core/physics_state_fields.h"
 
 namespace mrsim {
 namespace {
@@ -352,7 +353,7 @@ void WorldSplit::MapView(const mjModel* v, World* world) const {
   }
   for (int b = 1; b < m->nbody; ++b) {
     const char* name = mj_id2name(m, mjOBJ_BODY, b);
-    if (name) world->body.push_back({b, id(mjOBJ_BODY, name), 1});
+    if (name) world->body.push_back({6 * b, 6 * id(mjOBJ_BODY, name), 6});
   }
   for (int s = 0; s < m->nsensor; ++s) {
     const int vs = id(mjOBJ_SENSOR, mj_id2name(m, mjOBJ_SENSOR, s));
@@ -362,26 +363,33 @@ void WorldSplit::MapView(const mjModel* v, World* world) const {
   world->mapped = true;
 }
 
+const std::vector<WorldSplit::Run>& WorldSplit::World::of(StatePer per) const {
+  switch (per) {
+    case StatePer::kJointPosition:
+      return qpos;
+    case StatePer::kDof:
+      return dof;
+    case StatePer::kActuator:
+      return ctrl;
+    case StatePer::kBody:
+      return body;
+    case StatePer::kSensordata:
+      return sensor;
+    default:
+      throw std::logic_error("a split scene's view has no such array");
+  }
+}
+
 void WorldSplit::SyncView(const mjModel* v, mjData* vd) {
   if (!view_stale_) return;
   for (World& w : worlds_) {
     if (!w.mapped) MapView(v, &w);
     const mjData* d = w.physics->data();
-    for (const Run& r : w.qpos) mju_copy(vd->qpos + r[1], d->qpos + r[0], r[2]);
-    for (const Run& r : w.dof) {
-      mju_copy(vd->qvel + r[1], d->qvel + r[0], r[2]);
-      mju_copy(vd->qacc + r[1], d->qacc + r[0], r[2]);
-      mju_copy(vd->qfrc_applied + r[1], d->qfrc_applied + r[0], r[2]);
-    }
-    for (const Run& r : w.ctrl) {
-      vd->ctrl[r[1]] = d->ctrl[r[0]];
-      vd->actuator_force[r[1]] = d->actuator_force[r[0]];
-    }
-    for (const Run& r : w.body) {
-      mju_copy(vd->xfrc_applied + 6 * r[1], d->xfrc_applied + 6 * r[0], 6);
-    }
-    for (const Run& r : w.sensor) {
-      mju_copy(vd->sensordata + r[1], d->sensordata + r[0], r[2]);
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      if (!(f.copies & kStateView)) continue;
+      for (const Run& r : w.of(f.per)) {
+        mju_copy(vd->*f.array + r[1], d->*f.array + r[0], r[2]);
+      }
     }
   }
   vd->time = time();
@@ -409,7 +417,7 @@ void WorldSplit::PushView(const mjData* vd) {
       mju_copy(d->qfrc_applied + r[0], vd->qfrc_applied + r[1], r[2]);
     }
     for (const Run& r : w.body) {
-      mju_copy(d->xfrc_applied + 6 * r[0], vd->xfrc_applied + 6 * r[1], 6);
+      mju_copy(d->xfrc_applied + r[0], vd->xfrc_applied + r[1], r[2]);
     }
     if (moved) {
       for (const Run& r : w.qpos) {

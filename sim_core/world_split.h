@@ -19,6 +19,8 @@
 
 namespace mrsim {
 
+enum class StatePer;  // sim_core/physics_state_fields.h
+
 class WorldSplit {
  public:
   // The worlds of `scenario`, or null when it runs as one world: fewer
@@ -70,7 +72,10 @@ class WorldSplit {
     std::vector<int> entities;            // ascending
     std::vector<int> robots;              // global indices, ascending
     std::vector<std::vector<int>> geoms;  // per entity: its geoms
-    std::vector<Run> qpos, dof, ctrl, body, sensor;  // into the view
+    // Into the view; in mjtNum of their arrays.
+    std::vector<Run> qpos, dof, ctrl, body, sensor;
+    // The runs of an array of kPhysicsStateFields.
+    const std::vector<Run>& of(StatePer per) const;
     bool mapped = false;
   };
   explicit WorldSplit(const Scenario& scenario);
