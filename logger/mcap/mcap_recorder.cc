@@ -63,6 +63,10 @@ void McapRecorder::OnMessage(const std::string& channel, const void* data,
   Channel& ch = it->second;
   ++ch.stats.messages;
   if (failed()) return;
+  // LCM's receive times can go back a few ms (its first datagrams); a
+  // file's log times do not, so readers play it in the order heard.
+  if (log_time_ns < last_time_) log_time_ns = last_time_;
+  last_time_ = log_time_ns;
   try {
     Record(ch, static_cast<const uint8_t*>(data), size, log_time_ns);
   } catch (const std::exception& e) {

@@ -44,7 +44,8 @@ class McapRecorder {
   explicit McapRecorder(McapRecorderOptions options);
   ~McapRecorder();
 
-  // Records one message received at log_time_ns (ns since the epoch).
+  // Records one message received at log_time_ns (ns since the epoch; an
+  // earlier time than the previous message's is taken as that one's).
   // Never throws: a write error is kept in error() and later messages are
   // dropped.
   void OnMessage(const std::string& channel, const void* data, size_t size,
@@ -90,6 +91,7 @@ class McapRecorder {
   std::string error_;
   int64_t messages_ = 0;
   int64_t extra_channel_messages_ = 0;
+  uint64_t last_time_ = 0;  // log times never go back
 };
 
 }  // namespace mrsim

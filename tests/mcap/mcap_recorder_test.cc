@@ -109,6 +109,27 @@ TEST(McapRecorder, AChunkIsOnDiskOnceItsFirstMessageIsAPeriodOld) {
   EXPECT_EQ(r.data.size(), 1u);
 }
 
+TEST(McapRecorder, LogTimesNeverGoBackEvenWhenReceiveTimesDo) {
+  const std::string path = testing::TempDir("mcap_times") + "/run.mcap";
+  McapRecorderOptions options;
+  options.path = path;
+  {
+    McapRecorder recorder(options);
+    for (int64_t seq = 0; seq < 3; ++seq) {
+      const auto bytes = Encode(testing::KnownRobotState(seq, 2, 1));
+      const uint64_t received[] = {5000, 1200, 7000};
+      recorder.OnMessage("MRSIM_STATE_snake", bytes.data(), bytes.size(),
+                         received[seq]);
+    }
+    recorder.Finish();
+  }
+  std::vector<uint64_t> times;
+  mcap::ReadMcap(
+      testing::ReadFileText(path), path,
+      [&](const mcap::McapMessage& m) { times.push_back(m.log_time); });
+  EXPECT_EQ(times, (std::vector<uint64_t>{5000, 5000, 7000}));
+}
+
 TEST(MessageJson, EveryTypeHasASchemaAndNumbersJsonCannotHoldAreNull) {
   EXPECT_GE(MessageJsonTypes().size(), 10u);
   for (const MessageJsonType& t : MessageJsonTypes()) {
