@@ -29,7 +29,7 @@ enum class StatePer {
   kMocapRotation,  // 4 per mocap body
   kUserdata,       // nuserdata
   kSensordata,     // nsensordata: by sensor
-  kTarget,         // the robots' joint targets, by robot
+  kTarget,         // the robots' joint targets, by robot (keep last)
 };
 
 // Which copies carry an array (bit flags).

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_core/chain_builder.h"
@@ -58,6 +59,35 @@ int ExpectSameArrays(const Physics& saved, const Physics& loaded) {
     compared += !want.empty();
   }
   return compared;
+}
+
+// MuJoCo's own account of a simulation's state (its documentation's
+// "simulation state": time, qpos, qvel, act, the warm start, the controls,
+// applied forces, mocap poses and user data): every array of it is in the
+// table, and a bigger mjData mid-step keeps all of them.
+TEST(PhysicsStateTable, ListsEveryArrayOfMuJoCosState) {
+  const std::pair<const char*, mjtNum * mjData::*> state[] = {
+      {"qpos", &mjData::qpos},
+      {"qvel", &mjData::qvel},
+      {"act", &mjData::act},
+      {"qacc_warmstart", &mjData::qacc_warmstart},
+      {"ctrl", &mjData::ctrl},
+      {"qfrc_applied", &mjData::qfrc_applied},
+      {"xfrc_applied", &mjData::xfrc_applied},
+      {"mocap_pos", &mjData::mocap_pos},
+      {"mocap_quat", &mjData::mocap_quat},
+      {"userdata", &mjData::userdata}};
+  for (const auto& [name, array] : state) {
+    bool grown = false;
+    for (const PhysicsStateField& f : kPhysicsStateFields) {
+      if (f.array == array) {
+        EXPECT_STREQ(f.name, name);
+        grown |= (f.copies & kStateGrow) != 0 ||
+                 (f.array == &mjData::qpos);  // from qpos_integrated
+      }
+    }
+    EXPECT_TRUE(grown) << name;
+  }
 }
 
 TEST(PhysicsStateTable, EveryCheckpointArrayRoundTrips) {
