@@ -70,6 +70,10 @@ void McapWriter::Write(const std::string& bytes) {
     const ssize_t n = ::write(fd_, p, left);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
+      // Nothing more is written after a failed write (a full disk): a
+      // summary after a half-written chunk would make the file unreadable,
+      // where as it is it reads up to its last whole chunk.
+      broken_ = true;
       throw std::runtime_error("cannot write " + path_ + ": " +
                                std::strerror(errno));
     }
@@ -148,7 +152,7 @@ void McapWriter::WriteMessage(uint16_t channel_id, uint32_t sequence,
 }
 
 void McapWriter::CloseChunk() {
-  if (chunk_.size() == 0 || finished_) return;
+  if (chunk_.size() == 0 || finished_ || broken_) return;
   const std::string& records = chunk_.bytes();
   const uint32_t crc = Crc32(0, records.data(), records.size());
   compressed_.resize(ZSTD_compressBound(records.size()));
@@ -205,6 +209,11 @@ void McapWriter::Finish() {
   if (finished_) return;
   CloseChunk();
   finished_ = true;
+  if (broken_) {
+    throw std::runtime_error(path_ +
+                             ": left without its summary after a failed "
+                             "write (it reads up to its last whole chunk)");
+  }
   out_.clear();
   size_t at = out_.BeginRecord(Op::kDataEnd);
   // The data section's CRC covers the file from its first byte (the magic)

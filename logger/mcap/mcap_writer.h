@@ -81,6 +81,7 @@ class McapWriter {
   int fd_ = -1;
   void* zstd_ = nullptr;  // ZSTD_CCtx
   bool finished_ = false;
+  bool broken_ = false;  // a write failed: nothing more is written
   uint64_t offset_ = 0;  // bytes written
   uint32_t data_crc_ = 0;
 

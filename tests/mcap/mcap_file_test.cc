@@ -1,6 +1,8 @@
 // McapWriter and McapReader: what one writes the other reads back, CRCs
 // catch a changed byte, a file cut off reads up to its last whole chunk.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
 
 #include <cstring>
 #include <fstream>
@@ -144,6 +146,44 @@ TEST(McapFile, ForgedLengthsAreRefusedBeforeAnythingIsAllocated) {
         << e.what();
   }
   EXPECT_THROW(ReadAll("not an mcap file", &summary), McapError);
+}
+
+TEST(McapFile, AFailedWriteLeavesTheFileReadableToItsLastWholeChunk) {
+  const std::string path = testing::TempDir("mcap_full") + "/a.mcap";
+  McapWriterOptions options;
+  options.chunk_size = 1 << 20;
+  McapWriter w(path, options);
+  const uint16_t channel =
+      w.AddChannel(w.AddSchema("t", "jsonschema", "{}"), "A", "json");
+  // A disk that fills at 20 kB: writes past it fail (EFBIG, SIGXFSZ
+  // ignored), the first one part-way through a chunk.
+  signal(SIGXFSZ, SIG_IGN);
+  rlimit old{};
+  getrlimit(RLIMIT_FSIZE, &old);
+  rlimit small = old;
+  small.rlim_cur = 20000;
+  setrlimit(RLIMIT_FSIZE, &small);
+  std::string error;
+  for (int i = 0; i < 10000 && error.empty(); ++i) {
+    std::string text = "{\"i\":" + std::to_string(i) + ",\"pad\":\"";
+    for (int k = 0; k < 40; ++k) text += std::to_string(i * 7919 + k);
+    text += "\"}";
+    try {
+      w.WriteMessage(channel, i, i, i, text);
+      if (i % 20 == 19) w.CloseChunk();
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+  }
+  EXPECT_THROW(w.Finish(), std::runtime_error);
+  setrlimit(RLIMIT_FSIZE, &old);
+  signal(SIGXFSZ, SIG_DFL);
+  EXPECT_NE(error.find("cannot write " + path), std::string::npos) << error;
+  McapSummary summary;
+  const std::vector<Got> got = ReadAll(testing::ReadFileText(path), &summary);
+  EXPECT_FALSE(summary.complete);
+  EXPECT_GT(got.size(), 0u);
+  EXPECT_EQ(got.size() % 20, 0u);  // whole chunks only
 }
 
 }  // namespace
