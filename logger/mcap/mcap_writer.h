@@ -28,7 +28,7 @@ struct McapWriterOptions {
   std::string library = "mrsim";
   // Uncompressed bytes after which a chunk is closed by itself.
   size_t chunk_size = 1 << 20;
-  int zstd_level = 1;  // zstd's fastest level; JSON compresses ~10x anyway
+  int zstd_level = 1;  // the fastest standard level: about 6x on mrsim JSON
 };
 
 class McapWriter {
