@@ -3,37 +3,38 @@
 // Run by hand when a type changes:
 //   cmake --build build --target mrsim_fuzz_seed_writer
 //   build/fuzz/mrsim_fuzz_seed_writer fuzz/corpus
+#include <bitset>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
 
-#include "mrsim/gait_command_t.hpp"
-#include "mrsim/gait_status_t.hpp"
-#include "mrsim/joint_command_t.hpp"
-#include "mrsim/opt_chunk_request_t.hpp"
-#include "mrsim/opt_chunk_t.hpp"
-#include "mrsim/opt_heartbeat_t.hpp"
-#include "mrsim/opt_job_t.hpp"
-#include "mrsim/opt_progress_t.hpp"
-#include "mrsim/opt_result_t.hpp"
-#include "mrsim/opt_run_t.hpp"
-#include "mrsim/scene_state_t.hpp"
-#include "mrsim/sensor_reading_t.hpp"
-#include "mrsim/sim_control_t.hpp"
-#include "mrsim/sim_status_t.hpp"
+#include "mrsim/message_types.hpp"
 #include "tests/logger/test_messages.h"
 
 namespace {
 
-int index = 0;  // the type selector: types in name order, as both targets
+// The type selector both targets read: the type's place in name order,
+// from the list generated from the .lcm files.
+template <class Message>
+constexpr int kTypeIndex = -1;
+#define MRSIM_TYPE_INDEX(T, I) \
+  template <>                  \
+  constexpr int kTypeIndex<mrsim::T> = I;
+MRSIM_MESSAGE_TYPES(MRSIM_TYPE_INDEX)
+#undef MRSIM_TYPE_INDEX
+
+// Which types have a seed: every one must (main checks).
+std::bitset<MRSIM_MESSAGE_TYPE_COUNT> written;
 
 template <class Message>
 void Write(const std::string& dir, const std::string& name,
            const Message& msg) {
   std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
   msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  const char selector = static_cast<char>(index++);
+  static_assert(kTypeIndex<Message> >= 0, "not a message type");
+  const char selector = static_cast<char>(kTypeIndex<Message>);
+  written.set(kTypeIndex<Message>);
   std::ofstream decode(dir + "/lcm_decode/" + name, std::ios::binary);
   decode.put(selector);
   decode.write(reinterpret_cast<const char*>(bytes.data()),
@@ -166,5 +167,13 @@ int main(int argc, char** argv) {
   status.control_sender = "mrsim-ctl";
   status.waiting_for = "mrsim-gait";
   Write(dir, "sim_status_t", status);
+  if (!written.all()) {
+    std::fprintf(stderr,
+                 "mrsim_fuzz_seed_writer: %zu of %d message types "
+                 "have no seed; add one for each new type\n",
+                 MRSIM_MESSAGE_TYPE_COUNT - written.count(),
+                 MRSIM_MESSAGE_TYPE_COUNT);
+    return 1;
+  }
   return 0;
 }
