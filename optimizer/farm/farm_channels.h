@@ -1,4 +1,5 @@
-// Channel names of the optimiser farm: <prefix>_RUN, _CHUNK,
+// Channel names of the optimiser farm, from the channel table the .lcm
+// files declare (lcmtypes/runtime/channels.h): <prefix>_RUN, _CHUNK,
 // _CHUNK_REQUEST, _HEARTBEAT, _RESULT (default prefix MRSIM_OPT),
 // mrsim-opt's progress <prefix>_PROGRESS (opt_progress_t), and the jobs on
 // kJobShards channels _JOB_00 .. _JOB_ff, a worker's jobs on the one its id
@@ -11,28 +12,33 @@
 #include <string>
 
 #include "common/hash.h"
+#include "lcmtypes/runtime/channels.h"
 
 namespace mrsim {
 
-inline constexpr const char* kDefaultFarmPrefix = "MRSIM_OPT";
+inline constexpr const char* kDefaultFarmPrefix =
+    ChannelNamed("run").default_prefix;
 
 struct FarmChannels {
   explicit FarmChannels(const std::string& prefix)
-      : run(prefix + "_RUN"),
-        chunk(prefix + "_CHUNK"),
-        chunk_request(prefix + "_CHUNK_REQUEST"),
-        heartbeat(prefix + "_HEARTBEAT"),
-        job(prefix + "_JOB"),
-        result(prefix + "_RESULT"),
-        progress(prefix + "_PROGRESS") {}
-  std::string run, chunk, chunk_request, heartbeat, job, result, progress;
+      : run(ChannelName(ChannelNamed("run"), prefix)),
+        chunk(ChannelName(ChannelNamed("chunk"), prefix)),
+        chunk_request(ChannelName(ChannelNamed("chunk_request"), prefix)),
+        heartbeat(ChannelName(ChannelNamed("heartbeat"), prefix)),
+        result(ChannelName(ChannelNamed("result"), prefix)),
+        progress(ChannelName(ChannelNamed("progress"), prefix)),
+        prefix_(prefix) {}
+  std::string run, chunk, chunk_request, heartbeat, result, progress;
 
   // "<prefix>_JOB_" and the shard in two hex digits.
   std::string JobChannel(int shard) const {
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "_%02x", shard & 0xff);
-    return job + hex;
+    char hex[4];
+    std::snprintf(hex, sizeof hex, "%02x", shard & 0xff);
+    return ChannelName(ChannelNamed("job"), prefix_, hex);
   }
+
+ private:
+  std::string prefix_;
 };
 
 inline constexpr int kJobShards = 256;

@@ -20,13 +20,14 @@
 #include "lcmtypes/runtime/message_key.h"
 #include "optimizer/eval_result.h"
 #include "optimizer/farm/build_fingerprint.h"
+#include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"
 #include "optimizer/genome.h"
 
 namespace mrsim {
 
 struct FarmSettings {
-  std::string prefix = "MRSIM_OPT";
+  std::string prefix = kDefaultFarmPrefix;
   AuthConfig auth;  // the key messages are signed with (none: unsigned)
   // This master's build; workers announcing another are refused unless
   // allow_mixed_builds (their results could differ from a local run's).

@@ -17,13 +17,14 @@
 #include "lcmtypes/runtime/message_key.h"
 #include "optimizer/episode.h"
 #include "optimizer/farm/build_fingerprint.h"
+#include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"
 #include "optimizer/farm/payload_chunks.h"
 
 namespace mrsim {
 
 struct WorkerSettings {
-  std::string prefix = "MRSIM_OPT";
+  std::string prefix = kDefaultFarmPrefix;
   AuthConfig auth;  // the key messages are signed with (none: unsigned)
   std::string build = BuildFingerprint();  // announced in heartbeats
   // For tests of --verify only: adds this to every fitness it reports (a

@@ -18,6 +18,7 @@
 #include "optimizer/algorithm.h"
 #include "optimizer/batch_evaluator.h"
 #include "optimizer/episode.h"
+#include "optimizer/farm/farm_channels.h"
 #include "optimizer/optimization_run.h"
 #include "optimizer/slurm/farm_cluster.h"
 
@@ -43,7 +44,7 @@ struct OptCommand {
   AuthFlags auth;
   bool allow_mixed_builds = false;
   double verify = 0.0;  // share of jobs run again elsewhere (FarmSettings)
-  std::string prefix = "MRSIM_OPT";
+  std::string prefix = kDefaultFarmPrefix;
   double job_timeout = 0.0;
   double worker_timeout = 2.0;
   int chunk_size = 0;  // 0: one Ethernet frame (FarmSettings)

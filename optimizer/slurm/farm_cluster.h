@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lcmtypes/runtime/channels.h"
 #include "optimizer/slurm/lcm_hub.h"
 #include "optimizer/slurm/slurm_array.h"
 #include "optimizer/slurm/slurm_runner.h"
@@ -20,7 +21,8 @@ struct FarmClusterOptions {
   int slurm_tasks = 0;                     // 0: no array
   std::vector<std::string> slurm_options;  // --slurm-opt, as given
   std::string lcm_url;                     // --lcm-url ("" : derived)
-  std::string prefix = "MRSIM_OPT";
+  // The farm's default, as its .lcm files declare it.
+  std::string prefix = ChannelNamed("run").default_prefix;
   std::string key_file;        // passed on to the workers when set
   std::string worker_program;  // mrsim-worker as the nodes see it
   std::string out_dir;         // hub.log and slurm/ logs go here
