@@ -24,7 +24,7 @@ def main():
     p.add_argument("--robot", default="snake")
     p.add_argument("--name", default="py", help="sender (--controllers)")
     p.add_argument("--lcm-url", default=None)
-    p.add_argument("--prefix", default="MRSIM")
+    p.add_argument("--prefix", default=mrsim.node.DEFAULT_PREFIX)
     p.add_argument("--axes", default="pitch", help="the robot's joint axes")
     args = p.parse_args()
     node = mrsim.Node(url=args.lcm_url, prefix=args.prefix, name=args.name)
