@@ -11,9 +11,9 @@
 
 #include "common/wall_time.h"
 #include "gait_controller/motion.h"
-#include "gait_controller/process/gait_node.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
+#include "lcmtypes/runtime/gait_status_timing.h"
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/gait_command_t.hpp"
 #include "mrsim/gait_status_t.hpp"
@@ -268,7 +268,6 @@ int RunSimControl(SignedLcm& lcm, const std::vector<std::string>& words,
 // kGaitStatusWait without one is driven by a controller that takes none
 // (a Lua script without on_gait_command, a program of one's own), and
 // waiting longer is pointless: `*robot_heard` says so.
-constexpr double kGaitStatusWait = 2.5 * GaitNode::kHeartbeatInterval;
 std::optional<gait_status_t> WaitForSteering(
     SignedLcm& lcm, Listener<gait_status_t>& status, const std::string& prefix,
     const std::string& robot, double timeout, bool* robot_heard) {

@@ -19,6 +19,7 @@
 #include "gait_controller/gait_controller.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/clock_mode.h"
+#include "lcmtypes/runtime/gait_status_timing.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/state_pacer.h"
@@ -64,7 +65,7 @@ struct GaitNodeCounters {
 
 class GaitNode {
  public:
-  static constexpr double kHeartbeatInterval = 1.0;  // wall s
+  static constexpr double kHeartbeatInterval = kGaitStatusInterval;
   static constexpr double kNoSimulatorWarning =
       SimulatorWatch::kNoSimulatorWarning;
   static constexpr double kSimulatorSilence = SimulatorWatch::kSimulatorSilence;

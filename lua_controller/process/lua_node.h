@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
+#include "lcmtypes/runtime/gait_status_timing.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/state_pacer.h"
@@ -56,9 +57,9 @@ class LuaNode {
  public:
   static constexpr double kSimulatorSilence = SimulatorWatch::kSimulatorSilence;
   static constexpr double kMaxSimTime = 1e9;  // s; later states are forged
-  // wall s between gait statuses (a script with on_gait_command only), as
-  // mrsim-gait's: what tells the studio and mrsim-ctl it takes steering.
-  static constexpr double kHeartbeatInterval = 1.0;
+  // Between gait statuses (a script with on_gait_command only): what tells
+  // the studio and mrsim-ctl it takes steering.
+  static constexpr double kHeartbeatInterval = kGaitStatusInterval;
 
   // `script` is already loaded (its syntax checked). axes_for(joint_count)
   // gives the hinge axes once the first state says how many joints there

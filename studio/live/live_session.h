@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "gait_controller/process/gait_node.h"
+#include "lcmtypes/runtime/gait_status_timing.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "logger/lcm_type_registry.h"
 #include "mrsim/gait_command_t.hpp"
@@ -37,8 +37,8 @@ struct LiveSessionOptions {
   // A robot not heard from for this long is listed as silent.
   double robot_silent_s = 2.0;
   // A robot heard this long without a gait status has no controller that
-  // takes steering (mrsim-gait speaks at least once a second).
-  double gait_status_wait_s = 2.5 * GaitNode::kHeartbeatInterval;
+  // takes steering (gait_status_timing.h).
+  double gait_status_wait_s = kGaitStatusWait;
 };
 
 // Whether steering a robot (gait_command_t) will be answered. A controller
