@@ -272,16 +272,47 @@ void Recorder::Flush() {
   }
 }
 
+ChannelStats WithSeqCounts(ChannelStats stats, const SeqTracker& seq) {
+  stats.gaps = seq.gaps();
+  stats.missing = seq.missing();
+  stats.back_jumps = seq.back_jumps();
+  stats.first_seq = seq.first();
+  stats.last_seq = seq.last();
+  return stats;
+}
+
+std::string ChannelSummaryLine(const ChannelStats& s, const char* written) {
+  std::ostringstream os;
+  os << "  " << s.channel << ": ";
+  if (s.type.empty()) {
+    os << s.messages << " messages of unknown type, skipped\n";
+    return os.str();
+  }
+  os << s.type << ", " << s.messages << " messages, " << s.rows << " "
+     << written;
+  if (s.has_seq) {
+    os << ", seq " << s.first_seq << ".." << s.last_seq << ", " << s.gaps
+       << " gaps (" << s.missing << " missing)";
+    if (s.back_jumps > 0) os << ", " << s.back_jumps << " seq jumps back";
+    if (s.repeats > 0) os << ", " << s.repeats << " re-sends skipped";
+  }
+  if (s.malformed > 0) os << ", " << s.malformed << " malformed";
+  if (s.dropped > 0) {
+    os << ", " << s.dropped << " dropped (over " << Recorder::kMaxPartFiles
+       << " files)";
+  }
+  if (s.unknown_type + s.other_type > 0) {
+    os << ", " << (s.unknown_type + s.other_type) << " of another type";
+  }
+  for (const std::string& f : s.files) os << " -> " << f;
+  os << "\n";
+  return os.str();
+}
+
 std::vector<ChannelStats> Recorder::Stats() const {
   std::vector<ChannelStats> out;
   for (const auto& [name, ch] : channels_) {
-    ChannelStats s = ch.stats;
-    s.gaps = ch.seq.gaps();
-    s.missing = ch.seq.missing();
-    s.back_jumps = ch.seq.back_jumps();
-    s.first_seq = ch.seq.first();
-    s.last_seq = ch.seq.last();
-    out.push_back(std::move(s));
+    out.push_back(WithSeqCounts(ch.stats, ch.seq));
   }
   return out;
 }
@@ -290,28 +321,7 @@ std::string Recorder::Summary() const {
   std::ostringstream os;
   int64_t missing = 0;
   for (const ChannelStats& s : Stats()) {
-    os << "  " << s.channel << ": ";
-    if (s.type.empty()) {
-      os << s.messages << " messages of unknown type, skipped\n";
-      continue;
-    }
-    os << s.type << ", " << s.messages << " messages, " << s.rows << " rows";
-    if (s.has_seq) {
-      os << ", seq " << s.first_seq << ".." << s.last_seq << ", " << s.gaps
-         << " gaps (" << s.missing << " missing)";
-      if (s.back_jumps > 0) os << ", " << s.back_jumps << " seq jumps back";
-      if (s.repeats > 0) os << ", " << s.repeats << " re-sends skipped";
-    }
-    if (s.malformed > 0) os << ", " << s.malformed << " malformed";
-    if (s.dropped > 0) {
-      os << ", " << s.dropped << " dropped (over " << kMaxPartFiles
-         << " files)";
-    }
-    if (s.unknown_type + s.other_type > 0) {
-      os << ", " << (s.unknown_type + s.other_type) << " of another type";
-    }
-    for (const std::string& f : s.files) os << " -> " << f;
-    os << "\n";
+    os << ChannelSummaryLine(s, "rows");
     missing += s.missing;
   }
   os << "  total: " << messages_ << " messages on " << channels_.size()

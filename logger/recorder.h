@@ -43,6 +43,15 @@ struct ChannelStats {
   std::vector<std::string> files;
 };
 
+// `stats` with the seq counts of `seq` (gaps, missing, jumps back, first
+// and last) filled in.
+ChannelStats WithSeqCounts(ChannelStats stats, const SeqTracker& seq);
+
+// One channel's line of a recorder's summary, the same for the CSV and the
+// MCAP logger: "  CH: TYPE, N messages, N <written>, seq A..B, G gaps (M
+// missing)...", ending in a newline.
+std::string ChannelSummaryLine(const ChannelStats& s, const char* written);
+
 struct RecorderOptions {
   std::string out_dir = ".";
   // Receives warnings (gaps, unknown types, new file parts); unset: none

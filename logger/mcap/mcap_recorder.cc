@@ -203,13 +203,7 @@ void McapRecorder::Report(Channel& ch, const std::string& text) {
 std::vector<ChannelStats> McapRecorder::Stats() const {
   std::vector<ChannelStats> out;
   for (const auto& [name, ch] : channels_) {
-    ChannelStats s = ch.stats;
-    s.gaps = ch.seq.gaps();
-    s.missing = ch.seq.missing();
-    s.back_jumps = ch.seq.back_jumps();
-    s.first_seq = ch.seq.first();
-    s.last_seq = ch.seq.last();
-    out.push_back(std::move(s));
+    out.push_back(WithSeqCounts(ch.stats, ch.seq));
   }
   return out;
 }
@@ -218,23 +212,7 @@ std::string McapRecorder::Summary() const {
   std::ostringstream os;
   int64_t missing = 0;
   for (const ChannelStats& s : Stats()) {
-    os << "  " << s.channel << ": ";
-    if (s.type.empty()) {
-      os << s.messages << " messages of unknown type, skipped\n";
-      continue;
-    }
-    os << s.type << ", " << s.messages << " messages, " << s.rows << " written";
-    if (s.has_seq) {
-      os << ", seq " << s.first_seq << ".." << s.last_seq << ", " << s.gaps
-         << " gaps (" << s.missing << " missing)";
-      if (s.back_jumps > 0) os << ", " << s.back_jumps << " seq jumps back";
-      if (s.repeats > 0) os << ", " << s.repeats << " re-sends skipped";
-    }
-    if (s.malformed > 0) os << ", " << s.malformed << " malformed";
-    if (s.unknown_type + s.other_type > 0) {
-      os << ", " << (s.unknown_type + s.other_type) << " of another type";
-    }
-    os << "\n";
+    os << ChannelSummaryLine(s, "written");
     missing += s.missing;
   }
   os << "  total: " << messages_ << " messages on " << channels_.size()
