@@ -105,8 +105,9 @@ int main() {
     }));
     structural_ms.push_back(timed([&] { app.design().RemoveSelected(); }));
     field_ms.push_back(timed([&] {
-      app.design().SetField({{SelectionKind::kModule, 0, k}, "frames[0]", "mass"},
-                            std::to_string(0.03 + 0.001 * k));
+      app.design().SetField(
+          {{SelectionKind::kModule, 0, k}, "frames[0]", "mass"},
+          std::to_string(0.03 + 0.001 * k));
     }));
   }
   if (!app.build_error().empty()) {
