@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "common/atomic_file.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/face_geometry.h"
 #include "sim_core/frame_mesh.h"
 #include "sim_core/triangle_mesh.h"
@@ -33,6 +34,15 @@ std::string Mm(double metres) {
   return fmt::format("{:g}", std::round(metres * kMillimetres * 1000) / 1000);
 }
 
+// A mesh part is named after its mesh file ("link.stl", or the name an
+// embedded mesh keeps), as the person who drew it knows it; "" for a box.
+std::string MeshStem(const std::string& shape) {
+  if (shape == "Box") return "";
+  const std::string file =
+      IsEmbeddedMesh(shape) ? shape.substr(shape.rfind(':') + 1) : shape;
+  return std::filesystem::path(file).stem().string();
+}
+
 class Exporter {
  public:
   explicit Exporter(const Scenario& s) : s_(s) {}
@@ -49,8 +59,11 @@ class Exporter {
     auto it = index_.find(key);
     if (it == index_.end()) {
       PrintedPart part;
-      std::string stem = kind;
-      for (char& c : stem) c = c == ' ' ? '_' : c;
+      std::string stem = MeshStem(shape);
+      if (stem.empty()) {
+        stem = kind;
+        for (char& c : stem) c = c == ' ' ? '_' : c;
+      }
       part.name = FileSafe(fmt::format("{}_{}x{}x{}mm_{}", stem, Mm(size.x()),
                                        Mm(size.y()), Mm(size.z()), material));
       // Same size and material but another shape or mass: numbered.

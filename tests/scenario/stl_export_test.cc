@@ -171,6 +171,9 @@ TEST(StlExport, MeshFramesAreWrittenAsTheirMeshAtTheirScale) {
   for (const PrintedPart& p : e.parts) {
     if (p.name.find("20x30x10mm") == std::string::npos) continue;
     found = true;
+    // Named after the mesh its designer drew, not "module_frame_..._2".
+    EXPECT_EQ(p.name, "cube_20x30x10mm_" +
+                          s.robots[0].modules[0].frames[0].material_name);
     EXPECT_EQ(p.count, 11);
     const Stl stl = ParseStl(FileNamed(e, p.file));
     EXPECT_EQ(WatertightProblem(stl), "");
