@@ -154,6 +154,11 @@ struct FieldInfo {
   // Not written when its value's text is this (an option most files leave
   // at its default, added after files existed); nullptr: always written.
   const char* omit_when = nullptr;
+  // The xml name of a boolean sibling field this one only means something
+  // beside: "directional" (used only when it is true) or "!directional"
+  // (only when false). The studio hides it otherwise (REQ-1.4.5); files
+  // keep it either way. nullptr: always meaningful.
+  const char* shown_when = nullptr;
 };
 
 // How many of a child part there are.

@@ -640,9 +640,18 @@ void Describe(V& v, ContactFriction& f) {
       "restitution",  "bounciness (restitution)",
       "restitution",  "",
       L::Range(0, 1), "Bounce: 0 none (critically damped) .. 1 elastic"};
-  static const FieldInfo kFriction{
-      "friction", "friction coefficient", "friction",
-      "",         L::NonNegative(),       "Sliding friction coefficient"};
+  static const FieldInfo kFriction{"friction",
+                                   "friction coefficient",
+                                   "friction",
+                                   "",
+                                   L::NonNegative(),
+                                   "Sliding friction coefficient",
+                                   false,
+                                   G::kNone,
+                                   false,
+                                   false,
+                                   nullptr,
+                                   "!directional"};
   // Diamond's is about 1.2e12 Pa.
   static const FieldInfo kYoung{"youngsModulus",
                                 "Young's modulus",
@@ -680,7 +689,8 @@ void Describe(V& v, ContactFriction& f) {
       G::kNone,
       false,
       false,
-      "0.5"};
+      "0.5",
+      "directional"};
   static const FieldInfo kBackward{
       "backwardFriction",
       "backward friction",
@@ -692,7 +702,8 @@ void Describe(V& v, ContactFriction& f) {
       G::kNone,
       false,
       false,
-      "0.5"};
+      "0.5",
+      "directional"};
   static const FieldInfo kLateral{
       "lateralFriction",
       "sideways friction",
@@ -704,7 +715,8 @@ void Describe(V& v, ContactFriction& f) {
       G::kNone,
       false,
       false,
-      "0.5"};
+      "0.5",
+      "directional"};
   static const FieldInfo kTorsional{
       "torsionalFriction",
       "torsional friction",
@@ -716,7 +728,8 @@ void Describe(V& v, ContactFriction& f) {
       G::kNone,
       false,
       false,
-      "0"};
+      "0",
+      "directional"};
   static const FieldInfo kRolling{"rollingFriction",
                                   "rolling friction",
                                   "rolling_friction",
@@ -727,7 +740,8 @@ void Describe(V& v, ContactFriction& f) {
                                   G::kNone,
                                   false,
                                   false,
-                                  "0"};
+                                  "0",
+                                  "directional"};
   v.Field(kFriction, f.friction);
   v.Field(kYoung, f.youngs_modulus);
   v.Field(kDirectional, f.directional);

@@ -19,4 +19,23 @@ std::vector<FieldRef> WithoutInert(std::vector<FieldRef> fields,
   return fields;
 }
 
+std::vector<FieldRef> WithoutUnused(std::vector<FieldRef> fields) {
+  auto is_true = [&](const std::string& xml) {
+    for (const FieldRef& f : fields) {
+      if (xml == f.info().xml) return f.GetText() == "true";
+    }
+    return false;
+  };
+  std::vector<FieldRef> kept;
+  for (const FieldRef& f : fields) {
+    const char* when = f.info().shown_when;
+    if (when != nullptr) {
+      const bool negated = when[0] == '!';
+      if (is_true(negated ? when + 1 : when) == negated) continue;
+    }
+    kept.push_back(f);
+  }
+  return kept;
+}
+
 }  // namespace mrsim::studio

@@ -17,4 +17,10 @@ namespace mrsim::studio {
 std::vector<FieldRef> WithoutInert(std::vector<FieldRef> fields,
                                    const std::vector<std::string>& inert);
 
+// `fields` without those that mean nothing beside their siblings' current
+// values (FieldInfo::shown_when: the directional frictions while
+// `directional` is off, the single friction while it is on), so the
+// inspector offers no parameter that does nothing.
+std::vector<FieldRef> WithoutUnused(std::vector<FieldRef> fields);
+
 }  // namespace mrsim::studio

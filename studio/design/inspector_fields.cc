@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/sensor_kind.h"
 #include "studio/design/inert_fields.h"
 
@@ -106,6 +107,9 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
     case SelectionKind::kNone:
       break;
   }
+  for (FieldGroup& group : groups) {
+    group.fields = WithoutUnused(std::move(group.fields));
+  }
   return groups;
 }
 
@@ -182,6 +186,21 @@ std::string ShortNumbers(const std::string& text) {
     i = j;
   }
   return out;
+}
+
+std::string ShapeSummary(const std::string& shape) {
+  if (!IsEmbeddedMesh(shape)) return shape;
+  // Sized from the base64 text: decoding a mesh every frame to draw its
+  // name would cost more than the whole panel.
+  const size_t prefix = std::string("base64:").size();
+  const size_t name_at = shape.rfind(':');
+  if (name_at < prefix) return "mesh (embedded, malformed)";
+  const std::string name = shape.substr(name_at + 1);
+  const size_t encoded = name_at - prefix;
+  char size[32];
+  std::snprintf(size, sizeof size, "%.1f kB", encoded * 3.0 / 4.0 / 1000.0);
+  return (name.empty() ? std::string("mesh") : name) + " (embedded, " + size +
+         ")";
 }
 
 }  // namespace mrsim::studio

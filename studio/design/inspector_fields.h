@@ -35,4 +35,9 @@ std::string FieldTooltip(const FieldInfo& info);
 // The design keeps the exact value until the field is edited.
 std::string ShortNumbers(const std::string& text);
 
+// A frame's shape as the inspector shows it: a mesh carried in the file
+// ("base64:...:link.stl") as "link.stl (embedded, 12.3 kB)" rather than its
+// bytes; any other shape as it is.
+std::string ShapeSummary(const std::string& shape);
+
 }  // namespace mrsim::studio

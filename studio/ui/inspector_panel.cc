@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/sensor_face.h"
 #include "sim_core/sensor_kind.h"
 #include "studio/design/euler_degrees.h"
@@ -116,6 +117,16 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
         }
       } else if (info.kept) {
         ImGui::TextDisabled("%s", current.c_str());
+      } else if (IsEmbeddedMesh(current)) {
+        // Its bytes are no text to edit; the Print section's Mesh buttons
+        // replace it.
+        ImGui::TextUnformatted(ShapeSummary(current).c_str());
+        if (ImGui::IsItemHovered()) {
+          WrappedTooltip(
+              "A mesh carried inside the design file (Embed terrain and "
+              "meshes). The Print section's \"Mesh for module...\" "
+              "replaces it.");
+        }
       } else if (f.type() == FieldType::kBool) {
         bool on = current == "true";
         if (ImGui::Checkbox("##v", &on)) {

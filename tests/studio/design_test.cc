@@ -10,9 +10,11 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "sim_core/chain_builder.h"
+#include "sim_core/embedded_mesh.h"
 #include "sim_core/face_geometry.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
@@ -543,6 +545,54 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
     }
   }
   EXPECT_TRUE(quat);
+}
+
+TEST(StudioInspector, DirectionalFrictionsAreOfferedOnlyWhenDirectionalIsOn) {
+  Scenario s = MakeChainScenario(ChainScenarioOptions{});
+  s.contact_frictions.emplace_back();
+  const Selection contact{SelectionKind::kContactFriction, 0, 0};
+  auto offered = [&]() {
+    std::set<std::string> names;
+    for (const FieldGroup& g : InspectorFields(s, contact)) {
+      for (const FieldRef& f : g.fields) names.insert(f.info().xml);
+    }
+    return names;
+  };
+  const std::vector<std::string> by_direction = {
+      "forwardFriction", "backwardFriction", "lateralFriction",
+      "torsionalFriction", "rollingFriction"};
+  std::set<std::string> off = offered();
+  EXPECT_EQ(off.count("directional"), 1u);
+  EXPECT_EQ(off.count("friction"), 1u);
+  for (const std::string& name : by_direction) {
+    EXPECT_EQ(off.count(name), 0u) << name << " offered with directional off";
+  }
+  // Ticking it swaps the single coefficient for the per-direction ones.
+  for (const FieldGroup& g : InspectorFields(s, contact)) {
+    for (const FieldRef& f : g.fields) {
+      if (std::string(f.info().xml) == "directional") f.SetText("true");
+    }
+  }
+  std::set<std::string> on = offered();
+  EXPECT_EQ(on.count("friction"), 0u);
+  for (const std::string& name : by_direction) {
+    EXPECT_EQ(on.count(name), 1u) << name << " hidden with directional on";
+  }
+}
+
+TEST(StudioInspector, AnEmbeddedMeshShowsItsFileNameNotItsBytes) {
+  const std::string dir = TempDir("studio_embedded_mesh_name");
+  const std::string stl = dir + "/link.stl";
+  {
+    std::ofstream out(stl, std::ios::binary);
+    out << std::string(3000, 'x');  // the bytes only need to be carried
+  }
+  const std::string shape = EmbedMeshFile(stl);
+  ASSERT_TRUE(IsEmbeddedMesh(shape));
+  EXPECT_EQ(ShapeSummary(shape), "link.stl (embedded, 3.0 kB)");
+  EXPECT_EQ(ShapeSummary("Box"), "Box");
+  EXPECT_EQ(ShapeSummary("meshes/arm.stl"), "meshes/arm.stl");
+  EXPECT_EQ(ShapeSummary("base64:"), "mesh (embedded, malformed)");
 }
 
 TEST(StudioInspector, FilesWithFieldsThatDoNothingStillLoadAndKeepThem) {
