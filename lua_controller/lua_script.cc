@@ -1,8 +1,10 @@
 #include "lua_controller/lua_script.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 
 extern "C" {
 #include <lauxlib.h>
@@ -177,6 +179,146 @@ std::string TopMessage(lua_State* L) {
   return text;
 }
 
+// The largest `params` array read: as many genes as a genome may have.
+constexpr lua_Integer kMaxParameters = 1000;
+constexpr size_t kMaxParameterName = 64;
+
+struct ParamsRead {
+  std::vector<LuaParameter>* out;
+  std::string* error;  // set (and nothing thrown) for a bad declaration
+  const char* name;    // the script's
+};
+
+// Reads the global `params` without running script code (raw access only):
+// an array of {name=, min=, max=, start=}.
+int ReadParams(lua_State* L, ParamsRead* read) {
+  // Raw: a metatable the script put on _G runs no code here, outside the
+  // instruction limit.
+  lua_pushglobaltable(L);
+  lua_pushliteral(L, "params");
+  lua_rawget(L, -2);
+  if (lua_isnil(L, -1)) return 0;
+  char buffer[512];
+  auto fail = [&](const char* text) { read->error->assign(text); };
+  if (!lua_istable(L, -1)) {
+    std::snprintf(buffer, sizeof buffer,
+                  "%s: params must be an array of {name = ..., min = ..., "
+                  "max = ..., start = ...}; it is a %s",
+                  read->name, luaL_typename(L, -1));
+    fail(buffer);
+    return 0;
+  }
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+  if (n > kMaxParameters) {
+    std::snprintf(buffer, sizeof buffer,
+                  "%s: params declares %lld parameters; at most %lld",
+                  read->name, static_cast<long long>(n),
+                  static_cast<long long>(kMaxParameters));
+    fail(buffer);
+    return 0;
+  }
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, -1, i);
+    if (!lua_istable(L, -1)) {
+      std::snprintf(buffer, sizeof buffer,
+                    "%s: params[%lld] must be a table {name = ..., min = ..., "
+                    "max = ..., start = ...}; it is a %s",
+                    read->name, static_cast<long long>(i),
+                    luaL_typename(L, -1));
+      fail(buffer);
+      return 0;
+    }
+    read->out->emplace_back();
+    LuaParameter& p = read->out->back();
+    lua_pushliteral(L, "name");
+    lua_rawget(L, -2);
+    size_t len = 0;
+    const char* text =
+        lua_type(L, -1) == LUA_TSTRING ? lua_tolstring(L, -1, &len) : nullptr;
+    bool identifier = text != nullptr && len > 0 && len <= kMaxParameterName &&
+                      !(text[0] >= '0' && text[0] <= '9');
+    for (size_t k = 0; identifier && k < len; ++k) {
+      const char c = text[k];
+      identifier = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                   (c >= '0' && c <= '9') || c == '_';
+    }
+    if (!identifier) {
+      std::snprintf(buffer, sizeof buffer,
+                    "%s: params[%lld]: field 'name': expected a name of "
+                    "letters, digits and _ (at most %zu), not starting with "
+                    "a digit",
+                    read->name, static_cast<long long>(i), kMaxParameterName);
+      fail(buffer);
+      return 0;
+    }
+    p.name.assign(text, len);
+    lua_pop(L, 1);
+    double* fields[] = {&p.min, &p.max, &p.start};
+    const char* keys[] = {"min", "max", "start"};
+    for (int f = 0; f < 3; ++f) {
+      lua_pushstring(L, keys[f]);
+      lua_rawget(L, -2);
+      int is_number = 0;
+      const lua_Number v =
+          lua_type(L, -1) == LUA_TNUMBER ? lua_tonumberx(L, -1, &is_number) : 0;
+      if (!is_number || !std::isfinite(v)) {
+        std::snprintf(
+            buffer, sizeof buffer,
+            "%s: params[%lld] ('%s'): field '%s': expected a finite "
+            "number, got %s",
+            read->name, static_cast<long long>(i), p.name.c_str(), keys[f],
+            is_number ? "a number that is not finite" : luaL_typename(L, -1));
+        fail(buffer);
+        return 0;
+      }
+      *fields[f] = v;
+      lua_pop(L, 1);
+    }
+    const char* problem = nullptr;
+    if (p.min > p.max) {
+      problem = "field 'min' is above 'max'";
+    } else if (p.start < p.min || p.start > p.max) {
+      problem = "field 'start' is outside [min, max]";
+    }
+    for (size_t k = 0; problem == nullptr && k + 1 < read->out->size(); ++k) {
+      if ((*read->out)[k].name == p.name) {
+        problem = "field 'name' repeats an earlier parameter's";
+      }
+    }
+    if (problem != nullptr) {
+      std::snprintf(buffer, sizeof buffer,
+                    "%s: params[%lld] ('%s'): %s (min %.17g, max %.17g, start "
+                    "%.17g)",
+                    read->name, static_cast<long long>(i), p.name.c_str(),
+                    problem, p.min, p.max, p.start);
+      fail(buffer);
+      return 0;
+    }
+    lua_pop(L, 1);
+  }
+  return 0;
+}
+
+struct ParamsSet {
+  const std::vector<LuaParameter>* parameters;
+  const std::vector<double>* values;
+};
+
+// P = {name = value, ...}: a fresh table, so values do not leak between
+// settings; set raw, so no metamethod of the script's runs here.
+int SetParams(lua_State* L, ParamsSet* set) {
+  lua_pushglobaltable(L);
+  lua_pushliteral(L, "P");
+  lua_createtable(L, 0, static_cast<int>(set->parameters->size()));
+  for (size_t i = 0; i < set->parameters->size(); ++i) {
+    lua_pushnumber(L, (*set->values)[i]);
+    lua_setfield(L, -2, (*set->parameters)[i].name.c_str());
+  }
+  lua_rawset(L, -3);
+  lua_pop(L, 1);
+  return 0;
+}
+
 }  // namespace
 
 LuaScript::LuaScript(const std::string& source, const std::string& name,
@@ -254,6 +396,38 @@ LuaScript::LuaScript(const std::string& source, const std::string& name,
                              ": no function step(t, state) (the controller "
                              "calls it each control step)",
                          0);
+  }
+  std::string params_error;
+  ParamsRead read{&parameters_, &params_error, name.c_str()};
+  auto read_params = [&read](lua_State* L) { return ReadParams(L, &read); };
+  if (Protected(L, &read_params) != LUA_OK) {
+    const std::string message = TopMessage(L);
+    throw LuaScriptError(message, LineOf(message));
+  }
+  if (!params_error.empty()) throw LuaScriptError(params_error, 0);
+  std::vector<double> starts;
+  for (const LuaParameter& p : parameters_) starts.push_back(p.start);
+  SetParameters(starts);
+}
+
+void LuaScript::SetParameters(const std::vector<double>& values) {
+  if (values.size() != parameters_.size()) {
+    throw std::invalid_argument(name_ + ": " + std::to_string(values.size()) +
+                                " parameter values for " +
+                                std::to_string(parameters_.size()) +
+                                " declared parameters");
+  }
+  for (double v : values) {
+    if (!std::isfinite(v)) {
+      throw std::invalid_argument(name_ + ": a parameter value is not finite");
+    }
+  }
+  if (parameters_.empty()) return;
+  ParamsSet set{&parameters_, &values};
+  auto fn = [&set](lua_State* L) { return SetParams(L, &set); };
+  if (Protected(impl_->L, &fn) != LUA_OK) {
+    const std::string message = TopMessage(impl_->L);
+    throw LuaScriptError(message, LineOf(message));
   }
 }
 

@@ -77,6 +77,19 @@ struct LuaRobotState {
   std::vector<Sensor> sensors;
 };
 
+// A tunable constant the script declares (mrsim-opt --controller lua:FILE
+// makes each a gene; docs/optimizer.md, "Lua controllers as genomes"): the
+// global `params` is an array, in gene order, of tables
+// {name = "amplitude", min = 0, max = 1.5, start = 0.6}. After the top
+// level runs, the global table P holds each parameter's value by name:
+// its start, or what SetParameters gives (the optimiser's genes).
+struct LuaParameter {
+  std::string name;
+  double min = 0;
+  double max = 0;
+  double start = 0;
+};
+
 // A steering request as on_gait_command(cmd) sees it: cmd.motion and
 // cmd.strength, cmd.gait, cmd.parameters (7 numbers) and cmd.forward /
 // cmd.turn, each present only when the gait command carries it.
@@ -96,7 +109,9 @@ class LuaScript {
   // Compiles `source` and runs its top level (defining step). `name` is
   // the chunk name error messages start with (the file name). Throws
   // LuaScriptError with the line for a syntax error, an error at the top
-  // level, or no `step` function.
+  // level, no `step` function, or a `params` declaration that is not an
+  // array of {name, min, max, start} (the message names the entry and
+  // field).
   LuaScript(const std::string& source, const std::string& name,
             LuaLimits limits = {});
   ~LuaScript();
@@ -125,6 +140,13 @@ class LuaScript {
   // LuaScriptError as Step does; std::logic_error without the function.
   std::string OnGaitCommand(const LuaGaitCommand& command);
 
+  // The script's declared parameters (empty without `params`).
+  const std::vector<LuaParameter>& parameters() const { return parameters_; }
+  // Sets P[name] = values[i] for each declared parameter, in declaration
+  // order. Throws std::invalid_argument for the wrong count or a value
+  // that is not finite.
+  void SetParameters(const std::vector<double>& values);
+
   // Lines the script printed since the last call (at most
   // max_printed_lines are kept).
   std::vector<std::string> TakePrinted();
@@ -136,6 +158,7 @@ class LuaScript {
  private:
   std::unique_ptr<Impl> impl_;
   std::string name_;
+  std::vector<LuaParameter> parameters_;
 };
 
 }  // namespace mrsim

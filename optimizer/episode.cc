@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_runner.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/episode_controller.h"
 #include "optimizer/episode_physics_pool.h"
 #include "sim_core/overlap_check.h"
 #include "sim_core/physics.h"
@@ -91,6 +93,16 @@ void PrepareEpisode(const Problem& problem, EpisodePhysicsPool* pool) {
 
 namespace {
 
+// A controller's message as evaluations.csv and the checkpoint keep it: one
+// line of at most 1000 bytes.
+std::string OneLine(const std::string& message) {
+  std::string line = message.substr(0, 1000);
+  for (char& ch : line) {
+    if (ch == '\n' || ch == '\r' || ch == '\t') ch = ' ';
+  }
+  return line;
+}
+
 // One episode; in the world of `gap` when given, else the nominal one.
 EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
                          const std::function<bool()>& stop,
@@ -113,8 +125,15 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     }
     // Always set: a pooled simulation may come from a perturbed episode.
     physics.SetRealityGap(gap ? *gap : RealityGap{});
-    GaitController controller(JointAxes(physics, robot));
-    controller.SetGait(GaitOfGenome(problem, genome));
+    const std::vector<Axis> axes = JointAxes(physics, robot);
+    // Another controller kind than the gait (episode_controller.h).
+    std::unique_ptr<EpisodeController> other =
+        MakeEpisodeController(problem, genome, axes);
+    std::optional<GaitController> gait;
+    if (!other) {
+      gait.emplace(axes);
+      gait->SetGait(GaitOfGenome(problem, genome));
+    }
 
     // Upside down: the mean of the module frames' z axes points down.
     int samples = 0, upside_down = 0;
@@ -130,8 +149,17 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
       ++samples;
       upside_down += up.z() < 0 ? 1 : 0;
     };
-    const GaitRunResult run = RunGait(physics, robot, controller, e.duration,
+    ControllerRunResult run;
+    if (other) {
+      run = RunController(physics, robot, *other, e.duration, e.control_period,
+                          observer);
+    } else {
+      const GaitRunResult g = RunGait(physics, robot, *gait, e.duration,
                                       e.control_period, observer);
+      run.com_start = g.com_start;
+      run.com_end = g.com_end;
+      run.energy = g.energy;
+    }
     const Eigen::Vector3d d = run.com_end - run.com_start;
     result.distance = e.fitness.distance_mode == DistanceMode::kNet
                           ? std::hypot(d.x(), d.y())
@@ -146,6 +174,13 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
                      w.w_energy * result.energy - w.w_drift * result.drift -
                      w.w_fall * result.fell;
     if (!std::isfinite(result.fitness)) throw PhysicsError("non-finite");
+  } catch (const ControllerError& err) {
+    // The script's own error, kept for evaluations.csv: the same on every
+    // worker (the sandbox counts instructions, not time).
+    result = EvalResult{};
+    result.failed = true;
+    result.fitness = kFailedFitness;
+    result.error = OneLine(err.what());
   } catch (const PhysicsError&) {
     result = EvalResult{};
     result.failed = true;

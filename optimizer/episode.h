@@ -10,6 +10,7 @@
 #include "common/enum_table.h"
 #include "gait_controller/gait.h"
 #include "optimizer/batch_evaluator.h"
+#include "optimizer/controller_spec.h"
 #include "optimizer/eval_result.h"
 #include "optimizer/genome.h"
 #include "sim_core/reality_gap.h"
@@ -80,6 +81,9 @@ struct Problem {
   Scenario scenario;  // assets embedded (see problem_codec.h)
   GenomeSpec genome;
   EpisodeSettings episode;
+  // What drives the robot (the gait unless --controller says otherwise);
+  // the gait genes and base gait mean something only for the gait.
+  ControllerSpec controller;
 };
 
 // The gait an individual runs: the base gait with the gait genes applied.
@@ -88,7 +92,8 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 class EpisodePhysicsPool;
 
 // Runs the episode. An unstable simulation, gait values the controller
-// refuses, a body the validator refuses or, built from module_count,
+// refuses, a controller that fails (a Lua error: its message in
+// EvalResult::error), a body the validator refuses or, built from module_count,
 // module_scale or sensor_after genes, one whose parts overlap at the start
 // (overlap_check.h) give failed = true and
 // kFailedFitness, never an exception; a genome of the wrong size or a

@@ -2,6 +2,8 @@
 // and the episode metrics it was made of.
 #pragma once
 
+#include <string>
+
 namespace mrsim {
 
 struct EvalResult {
@@ -12,6 +14,9 @@ struct EvalResult {
   double drift = 0.0;     // m, |lateral CoM displacement|
   double fell = 0.0;      // fraction of the episode spent upside down
   bool failed = false;    // the simulation became unstable
+  // Why it failed, when a controller said (a Lua script's error message);
+  // "" otherwise. Written in evaluations.csv's error column.
+  std::string error;
 };
 
 }  // namespace mrsim

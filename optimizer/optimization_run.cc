@@ -150,6 +150,11 @@ std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
         e.drift = ParseDouble(t[4], where());
         e.fell = ParseDouble(t[5], where());
         e.failed = t[6] == "1";
+        // A failed evaluation's message, when it has one: the rest.
+        std::string message;
+        std::getline(r, message);
+        if (message.size() > 1 && message[0] == ' ')
+          e.error = message.substr(1);
         g.results.push_back(e);
       }
       gens.push_back(std::move(g));
@@ -161,6 +166,24 @@ std::vector<RecordedGeneration> ReadCheckpoint(const std::string& path,
   }
   if (!ended) throw CheckpointError(path + ": truncated (no end line)");
   return gens;
+}
+
+// A message on one line (the checkpoint's records are lines).
+std::string OneLine(std::string text) {
+  for (char& ch : text) {
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  }
+  return text;
+}
+
+// A CSV field: quoted, its quotes doubled.
+std::string CsvField(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : OneLine(text)) {
+    if (ch == '"') out += '"';
+    out += ch;
+  }
+  return out + "\"";
 }
 
 void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
@@ -179,10 +202,11 @@ void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
     text += fmt::format("gen {} {} {}\n", k, gens[k].results.size(),
                         gens[k].genomes_hash);
     for (const EvalResult& e : gens[k].results) {
-      text += fmt::format("r {} {} {} {} {} {} {}\n", ExactNumber(e.fitness),
+      text += fmt::format("r {} {} {} {} {} {} {}{}\n", ExactNumber(e.fitness),
                           ExactNumber(e.distance), ExactNumber(e.speed),
                           ExactNumber(e.energy), ExactNumber(e.drift),
-                          ExactNumber(e.fell), e.failed ? 1 : 0);
+                          ExactNumber(e.fell), e.failed ? 1 : 0,
+                          e.error.empty() ? "" : " " + OneLine(e.error));
     }
   }
   text += "end\n";
@@ -260,8 +284,8 @@ RunResult RunOptimization(const GenomeSpec& spec,
                  genes.c_str(), island);
     std::fprintf(evals_csv.get(),
                  "generation,index,fitness,distance,speed,energy,drift,fell,"
-                 "failed%s%s\n",
-                 genes.c_str(), island);
+                 "failed%s%s%s\n",
+                 genes.c_str(), island, options.error_column ? ",error" : "");
   }
 
   std::map<Genome, EvalResult> cache;  // results are a function of the genome
@@ -388,6 +412,7 @@ RunResult RunOptimization(const GenomeSpec& spec,
               e.speed, e.energy, e.drift, e.fell, e.failed ? 1 : 0);
           for (double v : batch[i]) line += fmt::format(",{}", v);
           line += island;
+          if (options.error_column) line += "," + CsvField(e.error);
           std::fprintf(evals_csv.get(), "%s\n", line.c_str());
         }
         std::fflush(gens_csv.get());

@@ -51,6 +51,10 @@ struct OptimizationRunOptions {
   // What the fingerprint covers, in "key=value" lines (episode settings):
   // recorded in the checkpoint so a refusal names what changed.
   std::string described;
+  // evaluations.csv ends with an `error` column: why a failed evaluation
+  // failed (a controller's message). Off for the gait, whose files keep
+  // their columns.
+  bool error_column = false;
   std::function<void(const GenerationReport&)> progress;
 };
 

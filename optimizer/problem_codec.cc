@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "common/exact_number.h"
 #include "common/input_limits.h"
@@ -210,12 +212,18 @@ void EmbedAssets(Scenario& scenario) {
 std::string EncodeProblem(const Problem& problem) {
   Scenario scenario = problem.scenario;
   EmbedAssets(scenario);
-  const std::string sections[][2] = {
+  std::vector<std::array<std::string, 2>> sections = {
       {"episode", EncodeEpisode(problem.episode)},
       {"genome", WriteGenomeString(problem.genome)},
       {"gait", WriteGaitString(problem.episode.base_gait)},
       {"scenario", WriteScenarioString(scenario)},
   };
+  // Only for another controller than the gait: a gait problem's payload
+  // (and its hash, the run's fingerprint) is what it always was.
+  if (!problem.controller.is_gait()) {
+    sections.push_back(
+        {"controller", EncodeControllerSpec(problem.controller)});
+  }
   std::string out = kMagic;
   for (const auto& s : sections) {
     out += fmt::format("{} {}\n", s[0], s[1].size());
@@ -250,8 +258,17 @@ Problem DecodeProblem(const std::string& payload, const std::string& source) {
   }
   Problem p;
   p.episode = DecodeEpisode(sections["episode"], source);
+  if (sections.count("controller")) {
+    try {
+      p.controller = DecodeControllerSpec(sections["controller"], source);
+    } catch (const std::invalid_argument& e) {
+      throw ProblemError(e.what());
+    }
+  }
   try {
-    p.genome = ReadGenomeString(sections["genome"], source + " genome");
+    // A script's parameters are genes of its own names.
+    p.genome = ReadGenomeString(sections["genome"], source + " genome",
+                                !p.controller.is_gait());
     p.episode.base_gait = ReadGaitString(sections["gait"], source + " gait");
     CheckNamesNoFile(sections["scenario"], source);
     p.scenario = ReadScenarioString(sections["scenario"], source + " scenario",

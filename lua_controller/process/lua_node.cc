@@ -8,7 +8,8 @@
 #include <stdexcept>
 
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/sensor_kind.h"
+#include "lua_controller/lua_robot_state_fill.h"
+#include "sim_core/codec/state_message.h"
 
 namespace mrsim {
 namespace {
@@ -198,47 +199,10 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
     ++counters_.states_skipped;
     return;
   }
-  const size_t n = state.joints.size();
+  // The same conversion as the optimiser's Lua episodes make from the
+  // physics (lua_robot_state_fill.h).
+  FillLuaRobotState(FromRobotStateMessage(state), &input_);
   input_.axes = *axes_;
-  input_.angles.resize(n);
-  input_.speeds.resize(n);
-  input_.torques.resize(n);
-  for (size_t j = 0; j < n; ++j) {
-    input_.angles[j] = state.joints[j].angle;
-    input_.speeds[j] = state.joints[j].speed;
-    input_.torques[j] = state.joints[j].torque;
-  }
-  for (int i = 0; i < 3; ++i) {
-    input_.com[i] = state.com[i];
-    input_.com_velocity[i] = state.com_velocity[i];
-  }
-  for (int i = 0; i < 4; ++i) input_.orientation[i] = state.orientation[i];
-  input_.heading = state.heading;
-  // The kinds the message carries in fields of their own (sensor_kind.h).
-  const std::string force_kind = FindSensorKind("force")->name;
-  const std::string distance_kind = FindSensorKind("distance")->name;
-  input_.sensors.resize(state.sensor_modules.size());
-  for (size_t k = 0; k < state.sensor_modules.size(); ++k) {
-    const sensor_module_state_t& m = state.sensor_modules[k];
-    LuaRobotState::Sensor& s = input_.sensors[k];
-    s.has_force = m.has_force && std::isfinite(m.force);
-    s.force = s.has_force ? m.force : 0.0;
-    s.distances.clear();
-    for (double d : m.distance) {
-      if (std::isfinite(d)) s.distances.push_back(d);
-    }
-    // Every reading under its kind's name: force and distance have fields
-    // of their own in the message, the other kinds are its `readings`.
-    s.readings.clear();
-    if (m.has_force) s.readings.push_back({force_kind, -1, {m.force}});
-    for (int j = 0; j < m.num_distances; ++j) {
-      s.readings.push_back(
-          {distance_kind, m.distance_face[j], {m.distance[j]}});
-    }
-    for (const sensor_reading_t& r : m.readings) {
-      s.readings.push_back({r.kind, r.face, r.values});
-    }
-  }
   std::vector<double> targets = script_->Step(state.sim_time, input_);
 
   out->Add(CommandChannel(options_.prefix, options_.robot),

@@ -267,7 +267,9 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
     ++counters_.results_ignored;  // late (older batch) or duplicate
     return;
   }
-  if (!msg.error.empty()) {
+  // failed with an error: a failed evaluation and why (a controller's
+  // message, EvalResult::error); error alone: the job could not run.
+  if (!msg.error.empty() && !msg.failed) {
     if (++job->errors >= kMaxJobErrors) {
       if (failure_.empty()) {
         failure_ = fmt::format("workers could not run job {} ({} times): {}",
@@ -299,6 +301,7 @@ void FarmMasterCore::OnResult(const opt_result_t& msg, double now) {
   r.drift = msg.drift;
   r.fell = msg.fell;
   r.failed = msg.failed;
+  if (msg.failed) r.error = msg.error;
   if (job->verify) {
     Verify(msg.job_id, *job, r, msg.worker_id, msg.eval_seconds, now);
   } else {

@@ -174,6 +174,9 @@ opt_result_t FarmWorker::Run(const WorkerTask& task, const std::string& worker,
     r.drift = e.drift;
     r.fell = e.fell;
     r.failed = e.failed;
+    // Why it failed travels in `error` beside failed = true (a failed
+    // evaluation, not a job that could not run: farm_master_core.cc).
+    if (e.failed) r.error = e.error;
   } catch (const std::exception& e) {
     r.error = e.what();
   }

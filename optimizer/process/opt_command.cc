@@ -21,7 +21,9 @@
 #include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
 #include "optimizer/algorithm_registry.h"
+#include "optimizer/best_lua_script.h"
 #include "optimizer/body_genes.h"
+#include "optimizer/controller_genes.h"
 #include "optimizer/episode_physics_pool.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_evaluator.h"
@@ -52,9 +54,11 @@ std::string ReplayLcmUrl(const std::string& lcm_url) {
   return env != nullptr ? env : "";
 }
 
+// `controller`: the controller process's line (mrsim-gait or mrsim-lua
+// with its arguments but the LCM URL).
 void WriteReplayLaunch(const std::string& path, const std::string& dir,
-                       const std::string& scenario, const std::string& gait,
-                       const std::string& robot, double duration,
+                       const std::string& scenario,
+                       const std::string& controller, double duration,
                        const std::string& lcm_url) {
   std::ostringstream out;
   out << "<!-- Written by mrsim-opt: the best individual in the simulator, "
@@ -72,9 +76,7 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
       << "  <process name=\"view\" program=\"mrsim-view\" delay=\"0.3\"\n"
       << "           args=\"" << scenario
       << " --lcm-url ${lcm_url} --camera follow ${view}\"/>\n"
-      << "  <process name=\"gait\" program=\"mrsim-gait\" delay=\"0.3\"\n"
-      << "           args=\"--robot " << robot << " --scenario " << scenario
-      << " --gait " << gait << " --lcm-url ${lcm_url} --name gait\"/>\n"
+      << controller
       << "  <process name=\"sim\" program=\"mrsim-sim\" required=\"true\" "
          "delay=\"1.0\"\n"
       << "           args=\"" << scenario
@@ -83,14 +85,52 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
   WriteFileAtomically(path, out.str());
 }
 
-// The best individual's gait, scenario, genome and replay launch file.
-void WriteBestFiles(const OptCommand& c, const Problem& problem,
-                    const RunResult& result, const std::string& dir,
-                    const std::string& launch) {
-  const Gait gait = GaitOfGenome(problem, result.best);
+// The best controller's file: best_gait.xml, or best_controller.lua for a
+// Lua script. Returns its name.
+std::string WriteBestControllerFile(const Problem& problem, const Genome& best,
+                                    const std::string& dir) {
+  switch (problem.controller.kind) {
+    case ControllerSpec::Kind::kGait:
+      WriteGaitFile(GaitOfGenome(problem, best), dir + "/best_gait.xml");
+      return "best_gait.xml";
+    case ControllerSpec::Kind::kLua:
+      WriteFileAtomically(
+          dir + "/best_controller.lua",
+          BestLuaScript(problem.controller, problem.genome, best));
+      return "best_controller.lua";
+  }
+  throw std::logic_error("unknown controller kind");
+}
+
+// The replay launch file's controller process for that file.
+std::string ReplayControllerProcess(const Problem& problem,
+                                    const std::string& file,
+                                    const std::string& robot,
+                                    const std::string& scenario) {
+  const std::string program =
+      problem.controller.is_gait() ? "mrsim-gait" : "mrsim-lua";
+  const std::string name = problem.controller.is_gait() ? "gait" : "lua";
+  const std::string what =
+      problem.controller.is_gait()
+          ? " --gait " + file
+          : fmt::format(" --script {} --rate {}", file,
+                        1.0 / problem.episode.control_period);
+  return fmt::format(
+      "  <process name=\"{0}\" program=\"{1}\" delay=\"0.3\"\n"
+      "           args=\"--robot {2} --scenario {3}{4} --lcm-url ${{lcm_url}} "
+      "--name {0}\"/>\n",
+      name, program, robot, scenario, what);
+}
+
+// The best individual's controller, scenario, genome and replay launch
+// file; returns the controller file's name.
+std::string WriteBestFiles(const OptCommand& c, const Problem& problem,
+                           const RunResult& result, const std::string& dir,
+                           const std::string& launch) {
+  const std::string controller_file =
+      WriteBestControllerFile(problem, result.best, dir);
   const Scenario body =
       ApplyBodyGenes(problem.scenario, problem.genome, result.best);
-  WriteGaitFile(gait, dir + "/best_gait.xml");
   WriteScenarioFile(body, dir + "/best_scenario.xml");
   GenomeSpec best_spec = problem.genome;
   for (int i = 0; i < best_spec.size(); ++i) {
@@ -99,10 +139,13 @@ void WriteBestFiles(const OptCommand& c, const Problem& problem,
   WriteFileAtomically(dir + "/best_genome.xml", WriteGenomeString(best_spec));
   const std::string robot =
       body.robots[GenomeRobotIndex(body, problem.genome)].name;
-  WriteReplayLaunch(launch, fs::absolute(dir).string(),
-                    fs::absolute(dir + "/best_scenario.xml"),
-                    fs::absolute(dir + "/best_gait.xml"), robot,
-                    c.episode.duration, ReplayLcmUrl(c.lcm_url));
+  const std::string scenario = fs::absolute(dir + "/best_scenario.xml");
+  WriteReplayLaunch(
+      launch, fs::absolute(dir).string(), scenario,
+      ReplayControllerProcess(
+          problem, fs::absolute(dir + "/" + controller_file), robot, scenario),
+      c.episode.duration, ReplayLcmUrl(c.lcm_url));
+  return controller_file;
 }
 
 // --algorithm's help: one line per algorithm of the registry.
@@ -136,7 +179,15 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                     ->excludes(genome);
   auto* gene_source = app.add_option_group("genes");
   gene_source->add_options(genome, genes);
-  gene_source->require_option(1);
+  // At most one; the gait needs one (PrepareOpt says so), a Lua script's
+  // parameters are genes of their own.
+  gene_source->require_option(0, 1);
+  app.add_option("--controller", c.controller,
+                 "What the genes drive: gait (the built-in gait, --genome "
+                 "or --genes), cpg (the gait with the CPG genes by "
+                 "default), lua:FILE (a Lua script; its declared params "
+                 "are the genes, plus any body genes of --genome)")
+      ->capture_default_str();
   app.add_option("--out", c.out_dir,
                  "Output directory (checkpoint, CSVs, best)")
       ->required();
@@ -351,8 +402,29 @@ OptSetup PrepareOpt(const OptCommand& c) {
       problem.scenario = ReadScenarioFile(c.scenario_path);
     }
     EmbedAssets(problem.scenario);
-    problem.genome = c.genes.empty() ? ReadGenomeFile(c.genome_path)
-                                     : BuiltInGenome(c.genes);
+    bool cpg_genes = false;
+    try {
+      problem.controller = ParseControllerFlag(c.controller, &cpg_genes);
+    } catch (const std::invalid_argument& err) {
+      throw OptInputError(err.what());
+    }
+    if (!problem.controller.is_gait() && !c.genes.empty()) {
+      throw OptInputError("--genes " + c.genes +
+                          " are the gait's genes; with --controller " +
+                          c.controller +
+                          " the controller brings its own (add body genes "
+                          "with --genome FILE)");
+    }
+    std::optional<GenomeSpec> user;
+    if (!c.genome_path.empty()) {
+      user = ReadGenomeFile(c.genome_path);
+    } else if (!c.genes.empty()) {
+      user = BuiltInGenome(c.genes);
+    } else if (cpg_genes) {
+      user = BuiltInGenome("cpg");
+    }
+    problem.genome =
+        ControllerGenome(problem.controller, user ? &*user : nullptr);
     // A task starts from its own gait unless --gait names one.
     e.base_gait = c.gait_spec.empty() && task_gait ? *task_gait
                   : c.gait_spec.empty()            ? ResolveGait("forward")
@@ -527,6 +599,15 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     options.described += fmt::format("robust={}\nrobust_mode={}\n",
                                      e.robust.episodes, e.robust.mode);
   }
+  const ControllerSpec& controller = setup.problem.controller;
+  if (!controller.is_gait()) {
+    // A resumed run names the script that differs, not only the hash.
+    options.described +=
+        fmt::format("controller={}:{}\nscript_hash={}\n",
+                    ControllerSpec::Kinds().Name(controller.kind),
+                    controller.name, HashHex(Fnv1a64(controller.source)));
+    options.error_column = true;
+  }
   options.progress = [&](const GenerationReport& r) {
     if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;
@@ -571,15 +652,16 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
       outcome.result = partial;
       outcome.best_dir = c.out_dir;
       outcome.launch = c.out_dir + "/replay.launch";
-      WriteBestFiles(c, setup.problem, partial, c.out_dir, outcome.launch);
+      const std::string file =
+          WriteBestFiles(c, setup.problem, partial, c.out_dir, outcome.launch);
       fmt::print(err,
                  "mrsim-opt: stopped after generation {} of {}; best so far "
-                 "{} (generation {}) written to {}/best_gait.xml, "
+                 "{} (generation {}) written to {}/{}, "
                  "best_scenario.xml, best_genome.xml, replay.launch; run the "
                  "same command to continue\n",
                  partial.generations_done, c.generations,
                  partial.best_result.fitness, partial.best_generation + 1,
-                 c.out_dir);
+                 c.out_dir, file);
     } else if (std::filesystem::exists(c.out_dir + "/checkpoint.txt")) {
       fmt::print(err,
                  "mrsim-opt: stopped; completed generations are in {}/"
@@ -607,7 +689,8 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     fs::create_directories(outcome.best_dir);
   }
   outcome.launch = outcome.best_dir + "/replay.launch";
-  WriteBestFiles(c, setup.problem, result, outcome.best_dir, outcome.launch);
+  const std::string best_file = WriteBestFiles(
+      c, setup.problem, result, outcome.best_dir, outcome.launch);
 
   std::string genes;
   for (int i = 0; i < setup.problem.genome.size(); ++i) {
@@ -619,7 +702,7 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
              "best fitness {} in generation {} of {}{} ("
              "generation {}, index {} in evaluations.csv): distance "
              "{:.4f} m, speed {:.4f} m/s, energy {:.4g} J, drift {:.4f} m, "
-             "fell {:.2f}\nbest genome:{}\nwrote {}/best_gait.xml, "
+             "fell {:.2f}\nbest genome:{}\nwrote {}/{}, "
              "best_scenario.xml, best_genome.xml, replay.launch\n",
              b.fitness, result.best_generation + 1, result.generations_done,
              c.algorithm.islands > 1
@@ -627,7 +710,7 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                                result.best_generation % c.algorithm.islands)
                  : "",
              result.best_generation, result.best_index, b.distance, b.speed,
-             b.energy, b.drift, b.fell, genes, outcome.best_dir);
+             b.energy, b.drift, b.fell, genes, outcome.best_dir, best_file);
   if (const auto* farm = dynamic_cast<const FarmEvaluator*>(&evaluator)) {
     const FarmCounters& n = farm->counters();
     fmt::print(out,

@@ -34,6 +34,8 @@ struct OptCommand {
   std::string task;  // a task of the suite instead of a scenario (task.h)
   std::string genome_path;
   std::string genes;  // a built-in genome instead of --genome: sine | cpg
+  // --controller: gait | cpg | lua:FILE (controller_spec.h)
+  std::string controller = "gait";
   std::string out_dir;
   std::string workers = "local:0";  // local:K threads (0: one per core)
   std::string gait_spec;            // empty: forward, or the task's own gait

@@ -1,0 +1,109 @@
+#include "optimizer/controller_spec.h"
+
+#include <fmt/format.h>
+
+#include <optional>
+#include <stdexcept>
+
+#include "common/input_limits.h"
+
+namespace mrsim {
+
+const EnumTable<ControllerSpec::Kind>& ControllerSpec::Kinds() {
+  static const EnumTable<Kind> kKinds("controller kind",
+                                      {{ControllerSpec::Kind::kGait, "gait"},
+                                       {ControllerSpec::Kind::kLua, "lua"}});
+  return kKinds;
+}
+
+namespace {
+
+constexpr const char* kFlagHelp = "expected gait, cpg or lua:FILE";
+
+// The name a script goes by: its file name, without the folders.
+std::string ScriptName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+ControllerSpec ParseControllerFlag(const std::string& text, bool* cpg_genes) {
+  if (cpg_genes != nullptr) *cpg_genes = false;
+  ControllerSpec spec;
+  if (text == "gait") return spec;
+  if (text == "cpg") {
+    if (cpg_genes != nullptr) *cpg_genes = true;
+    return spec;
+  }
+  const std::string lua = "lua:";
+  if (text.rfind(lua, 0) == 0 && text.size() > lua.size()) {
+    const std::string path = text.substr(lua.size());
+    std::optional<std::string> source;
+    try {
+      source = ReadFileAtMost(path, kMaxLuaScriptBytes);
+    } catch (const InputLimitError& e) {
+      throw std::invalid_argument("--controller " + text + ": " + e.what());
+    }
+    if (!source) {
+      throw std::invalid_argument("--controller " + text + ": cannot read " +
+                                  path);
+    }
+    spec.kind = ControllerSpec::Kind::kLua;
+    spec.source = std::move(*source);
+    spec.name = ScriptName(path);
+    return spec;
+  }
+  throw std::invalid_argument(
+      fmt::format("--controller '{}': {}", text, kFlagHelp));
+}
+
+std::string EncodeControllerSpec(const ControllerSpec& spec) {
+  if (spec.is_gait()) return "";
+  // The name is a file name (no newline); the source, the rest, verbatim.
+  return fmt::format("kind={}\nname={}\n\n{}",
+                     ControllerSpec::Kinds().Name(spec.kind), spec.name,
+                     spec.source);
+}
+
+ControllerSpec DecodeControllerSpec(const std::string& text,
+                                    const std::string& source) {
+  const std::string where = source + ": controller section";
+  ControllerSpec spec;
+  size_t pos = 0;
+  bool have_kind = false;
+  for (;;) {
+    const size_t eol = text.find('\n', pos);
+    if (eol == std::string::npos) {
+      throw std::invalid_argument(where + ": no blank line before the body");
+    }
+    const std::string line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (line.empty()) break;
+    const size_t eq = line.find('=');
+    const std::string key = line.substr(0, eq);
+    const std::string value =
+        eq == std::string::npos ? "" : line.substr(eq + 1);
+    if (key == "kind") {
+      spec.kind = ControllerSpec::Kinds().Parse(value, where + " kind");
+      have_kind = true;
+    } else if (key == "name") {
+      spec.name = value;
+    } else {
+      throw std::invalid_argument(where + ": unknown field '" + key + "'");
+    }
+  }
+  if (!have_kind) throw std::invalid_argument(where + ": no kind");
+  spec.source = text.substr(pos);
+  if (spec.kind == ControllerSpec::Kind::kLua) {
+    if (spec.source.size() > kMaxLuaScriptBytes) {
+      throw std::invalid_argument(
+          fmt::format("{}: the script has {} bytes; at most {}", where,
+                      spec.source.size(), kMaxLuaScriptBytes));
+    }
+    if (spec.name.empty()) spec.name = "script.lua";
+  }
+  return spec;
+}
+
+}  // namespace mrsim
