@@ -18,23 +18,27 @@ packages=(
   slurm-wlm munge
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
   libzstd-dev nodejs
+  libwebsocketpp-dev libasio-dev nlohmann-json3-dev
 )
 # npm: Debian's package, unless the nodejs installed brings its own (as
 # NodeSource's does, which conflicts with Debian's npm).
 if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
 
-# The npm packages the MCAP tests read files with (tests/mcap, pinned by its
-# package-lock.json): fetched once, then nothing is fetched again until the
-# lock file changes, so later runs work offline.
+# The npm packages the MCAP and Foxglove tests use (tests/mcap: MCAP's
+# reference reader; tests/foxglove: Foxglove's WebSocket client; each pinned
+# by its package-lock.json): fetched once, then nothing is fetched again
+# until a lock file changes, so later runs work offline.
 npm_packages() {
-  local dir
-  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/mcap"
-  if [ -f "$dir/node_modules/.package-lock.json" ] &&
-     [ ! "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
-    return 0
-  fi
-  echo "install_deps: npm ci in tests/mcap"
-  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error)
+  local root dir
+  root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+  for dir in "$root/tests/mcap" "$root/tests/foxglove"; do
+    if [ -f "$dir/node_modules/.package-lock.json" ] &&
+       [ ! "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
+      continue
+    fi
+    echo "install_deps: npm ci in ${dir#"$root"/}"
+    (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error)
+  done
 }
 
 missing=()

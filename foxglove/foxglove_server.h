@@ -1,0 +1,65 @@
+// The WebSocket side of mrsim-foxglove: a websocketpp server on its own
+// thread (asio) that speaks the Foxglove protocol through a FoxgloveBridge.
+// The LCM loop hands it messages with OnLcm, which never waits for a
+// socket: what each client is to get goes into its bounded ClientOutbox,
+// and the server thread sends from there as fast as the client reads
+// (a slow client loses its oldest data, the simulator never waits). Plain
+// HTTP requests get a short page saying where to connect; a page of its own
+// can be served from the same handler later.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "foxglove/foxglove_bridge.h"
+
+namespace mrsim::foxglove {
+
+struct FoxgloveServerOptions {
+  std::string bind = "0.0.0.0";
+  uint16_t port = 8765;  // 0: any free port (port() says which)
+  // The control key's token (control_access.h); empty: controls only from
+  // this host.
+  std::string control_token;
+  size_t max_clients = 64;
+  // Bytes a client's socket may have unsent before the server stops handing
+  // it more (the rest waits in its outbox).
+  size_t max_buffered = 1 << 20;
+  // Called on the server thread for each control to publish (thread-safe
+  // publishing, as SignedLcm's).
+  std::function<void(const sim_control_t&)> publish;
+  // Warnings (a client closed, a listener error); may be empty.
+  std::function<void(const std::string&)> warn;
+};
+
+class FoxgloveServer {
+ public:
+  struct Counts {
+    int64_t connections = 0;         // accepted so far
+    int64_t refused_handshakes = 0;  // no Foxglove subprotocol, too many
+    int64_t dropped_frames = 0;      // by slow clients' outboxes
+    int64_t too_big = 0;             // frames over the size websocketpp takes
+    int64_t closed_overflow = 0;     // clients closed for a full outbox
+  };
+
+  // Listens (throws std::runtime_error naming bind:port when it cannot)
+  // and starts the server thread.
+  FoxgloveServer(FoxgloveBridgeOptions bridge, FoxgloveServerOptions options);
+  ~FoxgloveServer();  // stops the thread, closing every connection
+  FoxgloveServer(const FoxgloveServer&) = delete;
+  FoxgloveServer& operator=(const FoxgloveServer&) = delete;
+
+  uint16_t port() const;
+  // One LCM message; returns at once.
+  void OnLcm(const std::string& channel, const void* data, size_t size);
+  Counts counts() const;
+  FoxgloveBridge::Counts bridge_counts() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrsim::foxglove

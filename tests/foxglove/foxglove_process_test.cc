@@ -1,0 +1,137 @@
+// mrsim-foxglove as a real program beside a real mrsim-sim, connected to
+// with Foxglove's own client library (client_check.js: @foxglove/ws-protocol
+// over ws): with each subprotocol name, serverInfo, channels with JSON
+// Schemas, the scene, transforms equal to the states and time that never
+// goes back; a client without the control token is refused a pause, one
+// with it is not.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "lcmtypes/runtime/message_key.h"
+#include "sim_core/chain_builder.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
+
+namespace mrsim {
+namespace {
+
+using testing::BinaryPath;
+using testing::ChildProcess;
+using testing::SourcePath;
+using testing::TempDir;
+using testing::TestLcmUrl;
+
+// Why the client library cannot run, or "" when it can.
+std::string NodeMissing() {
+  if (!std::filesystem::exists(SourcePath(
+          "tests/foxglove/node_modules/@foxglove/ws-protocol/package.json"))) {
+    return "tests/foxglove/node_modules is missing: scripts/install_deps.sh "
+           "installs it (npm ci in tests/foxglove)";
+  }
+  if (std::system("node --version > /dev/null 2>&1") != 0) {
+    return "node is not installed: scripts/install_deps.sh installs it";
+  }
+  return "";
+}
+
+std::string WriteSnake(const std::string& dir) {
+  ChainOptions options;
+  options.modules = 4;
+  options.pattern = ChainPattern::kPitchYaw;
+  options.name = "snake";
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(options));
+  const std::string path = dir + "/snake.xml";
+  WriteScenarioFile(scenario, path);
+  return path;
+}
+
+// client_check.js's verdict: its exit status 0, its line on failure.
+void ExpectClientCheck(const std::string& dir, const std::string& name,
+                       const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {
+      "/usr/bin/env", "node", SourcePath("tests/foxglove/client_check.js")};
+  argv.insert(argv.end(), args.begin(), args.end());
+  ChildProcess node(argv, dir + "/" + name + ".txt");
+  EXPECT_EQ(node.Wait(120), 0) << name << ": " << node.Output();
+}
+
+class FoxgloveProcess : public ::testing::Test {
+ protected:
+  void Start(int port, const std::vector<std::string>& extra) {
+    dir_ = TempDir("foxglove_process_" + std::to_string(port));
+    const std::string url = TestLcmUrl(port);
+    sim_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{BinaryPath("sim_core/sim_process/mrsim-sim"),
+                                 WriteSnake(dir_), "--lcm-url", url, "--rate",
+                                 "50"},
+        dir_ + "/sim.txt");
+    std::vector<std::string> argv = {
+        BinaryPath("foxglove/process/mrsim-foxglove"),
+        "--lcm-url",
+        url,
+        "--port",
+        "0",
+        "--bind",
+        "127.0.0.1"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    fox_ = std::make_unique<ChildProcess>(argv, dir_ + "/foxglove.txt");
+    ASSERT_TRUE(fox_->WaitForOutput("listening on ws://", 30))
+        << fox_->Output();
+    std::smatch m;
+    const std::string out = fox_->Output();
+    ASSERT_TRUE(
+        std::regex_search(out, m, std::regex("ws://127\\.0\\.0\\.1:(\\d+)")));
+    ws_url_ = "ws://127.0.0.1:" + m[1].str() + "/";
+  }
+
+  std::string dir_;
+  std::string ws_url_;
+  std::unique_ptr<ChildProcess> sim_;
+  std::unique_ptr<ChildProcess> fox_;
+};
+
+TEST_F(FoxgloveProcess, FoxgloveClientSeesTheRobotMoveWithEitherSubprotocol) {
+  const std::string skip = NodeMissing();
+  if (!skip.empty()) GTEST_SKIP() << skip;
+  Start(8130, {});
+  for (const std::string protocol :
+       {"foxglove.websocket.v1", "foxglove.sdk.v1"}) {
+    ExpectClientCheck(dir_, protocol, {"watch", ws_url_, protocol, "snake"});
+  }
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  EXPECT_NE(fox_->Output().find("mrsim-foxglove: stopped: 2 connections"),
+            std::string::npos)
+      << fox_->Output();
+}
+
+TEST_F(FoxgloveProcess, OnlyAClientWithTheControlTokenMayPause) {
+  const std::string skip = NodeMissing();
+  if (!skip.empty()) GTEST_SKIP() << skip;
+  const std::string key = TempDir("foxglove_process_key") + "/control.key";
+  WriteKeyFile(key);
+  Start(8131, {"--control-key", key});
+  ExpectClientCheck(dir_, "no_token",
+                    {"control", ws_url_, "foxglove.websocket.v1", "refused"});
+  const std::string key_hex = [&] {
+    std::string hex;
+    for (const char c : ReadKeyFile(key)) {
+      static const char* const kHex = "0123456789abcdef";
+      hex.push_back(kHex[static_cast<unsigned char>(c) >> 4]);
+      hex.push_back(kHex[static_cast<unsigned char>(c) & 15]);
+    }
+    return hex;
+  }();
+  ExpectClientCheck(
+      dir_, "token",
+      {"control", ws_url_ + "?token=" + key_hex, "foxglove.sdk.v1", "ok"});
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  EXPECT_NE(fox_->Output().find("1 service calls refused"), std::string::npos)
+      << fox_->Output();
+}
+
+}  // namespace
+}  // namespace mrsim
