@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.h"
 #include "common/lcm_url.h"
+#include "gait_controller/gait_file.h"
 #include "launcher/program_locator.h"
 #include "launcher/run_options.h"
 #include "launcher/run_summary.h"
@@ -130,6 +131,12 @@ DesignRun::DesignRun(const std::string& argv0, const DesignRunFlags& flags) {
     }
     o.lua_script = out_dir_ + "/" + name + ".controller.lua";
     WriteFileAtomically(o.lua_script, scenario_.run->lua_script);
+  }
+  try {
+    UseTunedGait(scenario_.run, flags.file + ": <run><tunedGait>",
+                 out_dir_ + "/" + name + ".tuned.gait.xml", &o);
+  } catch (const GaitFileError& e) {
+    throw UsageError(e.what());
   }
   std::vector<ProcessSpec> specs = OutputSpecs(o, out_dir_, name);
   try {

@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/atomic_file.h"
+#include "gait_controller/gait_file.h"
+
 namespace mrsim {
 
 std::vector<std::string> RunLcmArgs(const RunOptions& o) {
@@ -25,6 +28,19 @@ RunOptions RunOptionsFromSettings(const std::optional<RunSettings>& run) {
   o.gait = run->gait;
   o.external_name = run->external_name;
   return o;
+}
+
+bool UseTunedGait(const std::optional<RunSettings>& run,
+                  const std::string& source, const std::string& path,
+                  RunOptions* o) {
+  if (!run || run->tuned_gait.empty() ||
+      o->controller != ControllerKind::kGait) {
+    return false;
+  }
+  ReadGaitString(run->tuned_gait, source);
+  WriteFileAtomically(path, run->tuned_gait);
+  o->gait = path;
+  return true;
 }
 
 std::vector<ProcessSpec> RunProcessSpecs(const RunOptions& o) {

@@ -46,6 +46,15 @@ struct RunOptions {
 // RunOptions: the caller writes it where it wants it.
 RunOptions RunOptionsFromSettings(const std::optional<RunSettings>& run);
 
+// When `run` carries a tuned gait (RunSettings::tuned_gait) and the
+// controller is the gait: checks it as mrsim-gait will read it (throws
+// GaitFileError naming `source`, e.g. "case.xml: <run><tunedGait>"),
+// writes it to `path` and points o->gait at that file, so the robots start
+// with it. Returns whether it did.
+bool UseTunedGait(const std::optional<RunSettings>& run,
+                  const std::string& source, const std::string& path,
+                  RunOptions* o);
+
 // The LCM flags every process of the run takes: --lcm-url (when one is
 // set) and --prefix.
 std::vector<std::string> RunLcmArgs(const RunOptions& options);

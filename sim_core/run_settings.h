@@ -29,6 +29,9 @@ inline const char* ToString(ControllerKind kind) {
 inline constexpr size_t kMaxRunNameBytes = 64;    // gait and controller names
 inline constexpr double kMaxControlRate = 10000;  // Hz
 inline constexpr double kMaxRealtimeFactor = 1000;
+// A gait file's text (gait_controller/gait_file.h): seven numbers, a CPG
+// and a joint override per hinge of the largest robot fit in far less.
+inline constexpr size_t kMaxTunedGaitBytes = size_t{64} << 10;
 
 struct RunSettings {
   ClockMode clock = ClockMode::kRealtime;
@@ -36,8 +39,12 @@ struct RunSettings {
   double speed = 1;   // real-time factor (realtime clock)
   ControllerKind controller = ControllerKind::kGait;
   std::string gait = "forward";  // the gait each robot starts with
-  std::string lua_script;        // the Lua source itself, for kLua
-  std::string external_name;     // the sender mrsim-sim waits for
+  // The gait as tuned in the studio's Run panel, the text of a gait file
+  // (gait_controller/gait_file.h), carried so the design runs as it was
+  // left; empty: the preset or file `gait` names. For controller gait.
+  std::string tuned_gait;
+  std::string lua_script;     // the Lua source itself, for kLua
+  std::string external_name;  // the sender mrsim-sim waits for
 };
 
 // A controller name mrsim-sim --controllers can list: 1-64 letters,

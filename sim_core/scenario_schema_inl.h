@@ -845,6 +845,19 @@ void Describe(V& v, RunSettings& r) {
       "",
       L::TextUpTo(kMaxRunNameBytes, true),
       "The gait each robot starts with (controller gait)"};
+  static const FieldInfo kTunedGait{
+      "tunedGait",
+      "tuned gait",
+      "tuned_gait",
+      "",
+      L::TextUpTo(kMaxTunedGaitBytes),
+      "The gait as tuned in the studio's Run panel, a gait file's text "
+      "(docs/gait.md); replaces the starting gait (controller gait)",
+      false,
+      G::kNone,
+      false,
+      false,
+      ""};
   static const FieldInfo kLua{"luaScript",
                               "Lua script",
                               "lua_script",
@@ -873,6 +886,7 @@ void Describe(V& v, RunSettings& r) {
   v.Field(kSpeed, r.speed);
   v.Field(kController, r.controller);
   v.Field(kGait, r.gait);
+  v.Field(kTunedGait, r.tuned_gait);
   v.Field(kLua, r.lua_script);
   v.Field(kExternal, r.external_name);
 }

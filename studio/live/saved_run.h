@@ -16,9 +16,12 @@ namespace mrsim::studio {
 // (launcher/run_options.h, shared with `mrsim run`); the controller panel
 // takes run->lua_script itself.
 
-// What Save writes for the form `o` and the Lua source in the editor.
-// The script is kept only when the controller is Lua.
+// What Save writes for the form `o`, the Lua source in the editor and the
+// gait tuned in the Run panel (a gait file's text, "" when none). The
+// script is kept only when the controller is Lua, the tuned gait only
+// when it is the gait.
 RunSettings SettingsFromRunOptions(const RunOptions& o,
-                                   const std::string& lua_source);
+                                   const std::string& lua_source,
+                                   const std::string& tuned_gait = "");
 
 }  // namespace mrsim::studio

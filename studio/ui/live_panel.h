@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "gait_controller/gait.h"
 #include "gait_controller/gait_parameters.h"
 #include "optimizer/algorithm.h"
 #include "optimizer/algorithm_registry.h"
@@ -187,6 +188,10 @@ class LivePanel {
   int step_periods_ = 10;
   float strength_ = 1;
   float parameters_[GaitParameters::kVectorSize] = {1, 0, 2.5f, 0, 4, 0, 0};
+  // The gait the parameters above were last tuned to (or the design's
+  // saved one): Save keeps it in the design (<run><tunedGait>) and Run
+  // starts the robots with it; none until the user tunes or opens one.
+  std::optional<Gait> tuned_gait_;
   std::string checkpoint_ = "studio.checkpoint";
   std::string gait_file_ = "studio.gait.xml";
   std::string record_dir_ = "recordings";

@@ -3,6 +3,7 @@
 // Part of LivePanel (live_panel.h), one file per section.
 #include <algorithm>
 
+#include "gait_controller/gait_file.h"
 #include "sim_core/scenario_xml.h"
 #include "studio/live/saved_run.h"
 #include "studio/ui/live_panel.h"
@@ -21,6 +22,13 @@ void LivePanel::DrawRun(const LiveDesign& design) {
   ImGui::SetNextItemWidth(70);
   ImGui::InputDouble("speed", &speed_, 0, 0, "%g");
   controller_.Draw(layout_);
+  if (tuned_gait_ && controller_.kind() == ControllerKind::kGait) {
+    // What Run starts instead of the starting gait above, and why.
+    ImGui::TextDisabled("starts with the gait tuned below (saved with it)");
+    RecordItem(layout_, "tuned gait note");
+    ImGui::SameLine();
+    if (RecordedButton(layout_, "Forget tuned gait")) tuned_gait_.reset();
+  }
   if (!runner_.running()) {
     // mrsim-sim runs the file: what is on screen is saved first.
     const bool saved = !design.path.empty() && !design.dirty;
@@ -46,6 +54,12 @@ void LivePanel::DrawRun(const LiveDesign& design) {
           o.scenario_path = path;
           o.robots = design.robots;
           controller_.Fill(&o, path);
+          // Beside the design, as the Lua script is.
+          UseTunedGait(FormRunSettings(), "the tuned gait",
+                       std::filesystem::path(path)
+                           .replace_extension(".tuned.gait.xml")
+                           .string(),
+                       &o);
           o.allow_overlap = !design.overlaps.empty() && allow_overlap_;
           runner_.Start(o);
           Connect(url_, prefix_);
@@ -121,7 +135,9 @@ RunSettings LivePanel::FormRunSettings() const {
   o.controller = controller_.kind();
   o.gait = controller_.gait();
   o.external_name = controller_.external_name();
-  return SettingsFromRunOptions(o, controller_.lua_source());
+  return SettingsFromRunOptions(
+      o, controller_.lua_source(),
+      tuned_gait_ ? WriteGaitString(*tuned_gait_) : std::string());
 }
 
 void LivePanel::LoadRunSettings(const std::optional<RunSettings>& run) {
@@ -134,6 +150,20 @@ void LivePanel::LoadRunSettings(const std::optional<RunSettings>& run) {
   speed_ = o.speed;
   controller_.Set(o.controller, o.gait, run ? run->lua_script : "",
                   o.external_name);
+  tuned_gait_.reset();
+  if (run && !run->tuned_gait.empty()) {
+    try {
+      tuned_gait_ = ReadGaitString(run->tuned_gait, "<run><tunedGait>");
+      const std::vector<double> p = tuned_gait_->parameters.ToVector();
+      for (int i = 0; i < GaitParameters::kVectorSize; ++i) {
+        parameters_[i] = static_cast<float>(p[i]);
+      }
+    } catch (const GaitFileError& e) {
+      message_ =
+          std::string("the design's tuned gait is not used: ") + e.what();
+      message_is_note_ = false;
+    }
+  }
 }
 
 RunOptions LivePanel::FormRun() const {

@@ -113,6 +113,16 @@ void LivePanel::DrawSteering() {
       changed |= ImGui::DragFloat(label.c_str(), &parameters_[i], 0.01f);
     }
     if (changed) {
+      // Kept for Save and the next Run: the design runs as it was left.
+      Gait tuned;
+      tuned.name = "tuned";
+      if (robot != nullptr && robot->gait) {
+        tuned.kind =
+            ParseGaitKind(robot->gait->kind).value_or(GaitKind::kLinear);
+      }
+      tuned.parameters = GaitParameters::FromVector(
+          std::vector<double>(std::begin(parameters_), std::end(parameters_)));
+      tuned_gait_ = tuned;
       Send([&](StudioOutbox* out) {
         session_->SetGaitParameters(
             followed_,

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "gait_controller/gait_file.h"
+#include "gait_controller/gait_presets.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "sim_core/overlap_check.h"
 #include "sim_core/scenario_xml.h"
@@ -98,6 +100,46 @@ TEST(DesignRun, ClockAndSpeedFlagsOverTheSavedRunSettings) {
   EXPECT_TRUE(HasArgs(Spec(run, "gait-case_study"), {"--gait", "forward"}));
   EXPECT_TRUE(HasArgs(Spec(run, "sim"), {"--clock", "realtime"}));
   EXPECT_TRUE(HasArgs(Spec(run, "sim"), {"--speed", "2.5"}));
+}
+
+// A design saved by the studio after tuning the gait in its Run panel.
+std::string DesignWithTunedGait(const std::string& dir,
+                                const std::string& tuned_gait) {
+  Scenario s = ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
+  s.run.emplace();
+  s.run->gait = "forward";
+  s.run->tuned_gait = tuned_gait;
+  const std::string file = dir + "/tuned.xml";
+  WriteScenarioFile(s, file);
+  return file;
+}
+
+TEST(DesignRun, StartsTheRobotsWithTheGaitTunedAndSavedInTheDesign) {
+  Gait tuned = *FindGaitPreset("forward");
+  tuned.name = "tuned";
+  tuned.parameters.amplitude_pitch = 0.8125;
+  tuned.parameters.period = 3.5;
+  DesignRunFlags flags;
+  flags.out = TempDir("design_run_tuned");
+  flags.file = DesignWithTunedGait(flags.out, WriteGaitString(tuned));
+  const DesignRun run(Argv0(), flags);
+  const std::string gait_file = flags.out + "/tuned.tuned.gait.xml";
+  EXPECT_TRUE(HasArgs(Spec(run, "gait-case_study"), {"--gait", gait_file}));
+  const Gait back = ReadGaitFile(gait_file);
+  EXPECT_EQ(back.parameters.amplitude_pitch, 0.8125);
+  EXPECT_EQ(back.parameters.period, 3.5);
+}
+
+TEST(DesignRun, ABrokenTunedGaitIsRefusedNamingTheFileAndField) {
+  DesignRunFlags flags;
+  flags.out = TempDir("design_run_tuned_bad");
+  flags.file = DesignWithTunedGait(flags.out, "<gait><A_pitch>1</A_pitch>");
+  try {
+    const DesignRun run(Argv0(), flags);
+    FAIL() << "a broken tuned gait was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(flags.file + ": <run><tunedGait>"));
+  }
 }
 
 TEST(DesignRun, LcmDefaultUrlIsUsedWhenNoLcmUrlIsGiven) {

@@ -63,6 +63,25 @@ TEST(SavedRun, TheScriptIsSavedOnlyForALuaController) {
   EXPECT_EQ(SettingsFromRunOptions(LuaForm(), "x = 1").lua_script, "x = 1");
 }
 
+TEST(SavedRun, ATunedGaitIsSavedReopenedAndOnlyForTheGaitController) {
+  const std::string tuned = "<gait name=\"tuned\" kind=\"linear\"/>";
+  RunOptions gait_form;
+  EXPECT_EQ(SettingsFromRunOptions(gait_form, "", tuned).tuned_gait, tuned);
+  EXPECT_EQ(SettingsFromRunOptions(LuaForm(), "x = 1", tuned).tuned_gait, "");
+
+  const std::string path = testing::TempDir("saved_run_tuned") + "/d.xml";
+  ChainScenarioOptions chain;
+  chain.chain.modules = 2;
+  WriteScenarioFile(MakeChainScenario(chain), path);
+  {
+    Design design = Design::Open(path);
+    design.SetRunSettings(SettingsFromRunOptions(gait_form, "", tuned));
+    EXPECT_TRUE(design.dirty());
+    design.Save();
+  }
+  EXPECT_EQ(Design::Open(path).scenario().run->tuned_gait, tuned);
+}
+
 TEST(SavedRun, SettingsNoRunCouldUseAreRefused) {
   Design design;
   RunSettings run;
