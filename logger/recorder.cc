@@ -18,26 +18,6 @@
 namespace mrsim {
 namespace {
 
-// Warnings per channel before further ones are only counted.
-constexpr int kMaxReports = 50;
-// Rows remembered for the re-send check. A pipelined lockstep simulator
-// re-sends the states it awaits (up to actuation delay + 1) and its
-// controllers re-answer them; eight covers every delay mrsim-sim takes.
-constexpr size_t kRecentRows = 8;
-
-int64_t Fingerprint(const uint8_t* data) {
-  uint64_t v = 0;
-  for (int k = 0; k < 8; ++k) v = (v << 8) | data[k];
-  return static_cast<int64_t>(v);
-}
-
-std::string Hex(int64_t v) {
-  char buf[24];
-  std::snprintf(buf, sizeof(buf), "0x%016llx",
-                static_cast<unsigned long long>(v));
-  return buf;
-}
-
 std::unique_ptr<MessageFlattener> MakeFlattener(const LcmTypeRegistry& registry,
                                                 const LcmStruct& type) {
   if (type.full_name() == "mrsim.robot_state_t") {
@@ -96,11 +76,13 @@ void Recorder::OnMessage(const std::string& channel, const void* data,
       }
       return;
     }
-    it = channels_.emplace(channel, Channel{}).first;
-    it->second.stats.channel = channel;
+    it = channels_
+             .emplace(channel, Channel(ChannelLedger(channel, options_.report)))
+             .first;
   }
   Channel& ch = it->second;
-  ++ch.stats.messages;
+  ChannelStats& stats = ch.ledger.stats();
+  ++stats.messages;
   if (failed()) return;
   try {
     Record(ch, static_cast<const uint8_t*>(data), size);
@@ -110,34 +92,21 @@ void Recorder::OnMessage(const std::string& channel, const void* data,
 }
 
 void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
-  if (size < 8) {
-    ++ch.stats.malformed;
-    Report(ch, ch.stats.channel + ": message of " + std::to_string(size) +
-                   " bytes is too short to be LCM; dropped");
-    return;
-  }
-  const int64_t hash = Fingerprint(data);
+  ChannelLedger& ledger = ch.ledger;
+  ChannelStats& stats = ledger.stats();
+  if (!ledger.CheckSize(size)) return;
+  const int64_t hash = LcmFingerprint(data);
   if (!ch.flattener) {
     const LcmStruct* type = registry_.FindByHash(hash);
     if (type == nullptr) {
-      ++ch.stats.unknown_type;
-      if (ch.stats.unknown_type == 1) {
-        Report(ch, ch.stats.channel + ": unknown message type (fingerprint " +
-                       Hex(hash) + "); its messages are counted and skipped");
-      }
+      ledger.UnknownType(hash);
       return;
     }
     ch.hash = hash;
     ch.flattener = MakeFlattener(registry_, *type);
-    ch.stats.type = type->full_name();
+    stats.type = type->full_name();
   } else if (hash != ch.hash) {
-    ++ch.stats.other_type;
-    if (ch.stats.other_type == 1) {
-      Report(ch, ch.stats.channel +
-                     ": a message of another type (fingerprint " + Hex(hash) +
-                     ") on a " + ch.stats.type +
-                     " channel; such messages are counted and skipped");
-    }
+    ledger.OtherType(hash);
     return;
   }
   // A message signed by a program with a key (docs/security.md) carries a
@@ -147,95 +116,47 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
       (MessageAuth::SizeWithoutTrailer(data, size) == size ||
        !ch.flattener->Flatten(data, MessageAuth::SizeWithoutTrailer(data, size),
                               &ch.row))) {
-    ++ch.stats.malformed;
-    Report(ch, ch.stats.channel + ": malformed " + ch.stats.type +
-                   " message of " + std::to_string(size) + " bytes; dropped");
+    ledger.Malformed(size);
     return;
   }
-  if (ch.row.has_seq) {
-    ch.stats.has_seq = true;
-    if (IsRepeat(ch)) return;
-    const SeqTracker::Event e = ch.seq.Add(ch.row.seq);
-    if (e.missing > 0) {
-      Report(ch, ch.stats.channel + ": gap: seq " +
-                     std::to_string(e.first_missing) +
-                     (e.missing > 1 ? ".." + std::to_string(e.first_missing +
-                                                            e.missing - 1)
-                                    : "") +
-                     " missing (" + std::to_string(e.missing) + " messages)");
-    } else if (e.jumped) {
-      Report(ch, ch.stats.channel + ": seq jumped from " +
-                     std::to_string(e.previous) + " to " +
-                     std::to_string(ch.row.seq) +
-                     " (publisher restarted, or a forged number); not "
-                     "counted as missing");
-    } else if (e.went_back) {
-      Report(ch, ch.stats.channel + ": seq went back from " +
-                     std::to_string(e.previous) + " to " +
-                     std::to_string(ch.row.seq) + " (publisher restarted?)");
-    }
-  }
+  if (ch.row.has_seq && !ledger.TakeSeq(ch.row.seq, ch.row.values)) return;
   if (!ch.writer || ch.flattener->shape_version() != ch.shape_version) {
-    if (ch.stats.files.size() >= kMaxPartFiles &&
+    if (stats.files.size() >= kMaxPartFiles &&
         ch.flattener->columns() != ch.part_columns) {
-      if (ch.stats.dropped++ == 0) {
-        Report(ch, ch.stats.channel + ": message shape changed again after " +
-                       std::to_string(kMaxPartFiles) +
-                       " files; rows of further shapes are counted and "
-                       "dropped");
+      if (stats.dropped++ == 0) {
+        ledger.Report(stats.channel + ": message shape changed again after " +
+                      std::to_string(kMaxPartFiles) +
+                      " files; rows of further shapes are counted and "
+                      "dropped");
       }
       return;
     }
-    if (ch.stats.files.size() >= kMaxPartFiles) {
+    if (stats.files.size() >= kMaxPartFiles) {
       ch.shape_version = ch.flattener->shape_version();  // back to its shape
     } else {
       OpenPart(ch);
     }
   }
   ch.writer->WriteLine(ch.row.values);
-  ++ch.stats.rows;
-  if (ch.row.has_seq) Remember(ch);
-}
-
-bool Recorder::IsRepeat(Channel& ch) {
-  // Same seq, same row: the publisher sent it again. A restarted
-  // publisher's seq goes back too, but its rows differ (or it went back
-  // further than the last few rows), so they are written and reported.
-  for (const auto& [seq, values] : ch.recent) {
-    if (seq == ch.row.seq && values == ch.row.values) {
-      ++ch.stats.repeats;
-      return true;
-    }
-  }
-  return false;
-}
-
-void Recorder::Remember(Channel& ch) {
+  ++stats.rows;
   // Swapped, not copied: the flatteners clear the row before they write,
   // so the evicted string's buffer serves the next message.
-  if (ch.recent.size() < kRecentRows) {
-    ch.recent.emplace_back(ch.row.seq, std::string());
-    ch.recent.back().second.swap(ch.row.values);
-    return;
-  }
-  ch.recent[ch.recent_next].first = ch.row.seq;
-  ch.recent[ch.recent_next].second.swap(ch.row.values);
-  ch.recent_next = (ch.recent_next + 1) % kRecentRows;
+  if (ch.row.has_seq) ledger.Remember(ch.row.seq, &ch.row.values);
 }
 
 void Recorder::OpenPart(Channel& ch) {
+  ChannelStats& stats = ch.ledger.stats();
   if (ch.writer) ch.writer->Flush();
-  const size_t part = ch.stats.files.size() + 1;
-  std::string path = options_.out_dir + "/" +
-                     ChannelFileStem(ch.stats.channel) +
+  const size_t part = stats.files.size() + 1;
+  std::string path = options_.out_dir + "/" + ChannelFileStem(stats.channel) +
                      (part > 1 ? ".part" + std::to_string(part) : "") + ".csv";
   if (part > 1) {
-    Report(ch, ch.stats.channel +
-                   ": message shape changed (array lengths); continuing in " +
-                   path);
+    ch.ledger.Report(stats.channel +
+                     ": message shape changed (array lengths); continuing in " +
+                     path);
   }
   ch.writer = std::make_unique<CsvWriter>(path);
-  ch.stats.files.push_back(path);
+  stats.files.push_back(path);
   ch.shape_version = ch.flattener->shape_version();
   ch.part_columns = ch.flattener->columns();
   std::string header;
@@ -244,16 +165,6 @@ void Recorder::OpenPart(Channel& ch) {
     header += name;
   }
   ch.writer->WriteLine(header);
-}
-
-void Recorder::Report(Channel& ch, const std::string& text) {
-  ++ch.reports;
-  if (ch.reports < kMaxReports) {
-    options_.report(text);
-  } else if (ch.reports == kMaxReports) {
-    options_.report(ch.stats.channel +
-                    ": further warnings on this channel are only counted");
-  }
 }
 
 void Recorder::Flush() {
@@ -270,15 +181,6 @@ void Recorder::Flush() {
     if (error_.empty()) error_ = first_error;
     throw std::runtime_error(first_error);
   }
-}
-
-ChannelStats WithSeqCounts(ChannelStats stats, const SeqTracker& seq) {
-  stats.gaps = seq.gaps();
-  stats.missing = seq.missing();
-  stats.back_jumps = seq.back_jumps();
-  stats.first_seq = seq.first();
-  stats.last_seq = seq.last();
-  return stats;
 }
 
 std::string ChannelSummaryLine(const ChannelStats& s, const char* written) {
@@ -309,10 +211,21 @@ std::string ChannelSummaryLine(const ChannelStats& s, const char* written) {
   return os.str();
 }
 
+std::string ChannelSummaryLines(const std::vector<ChannelStats>& stats,
+                                const char* written, int64_t* missing) {
+  std::string out;
+  *missing = 0;
+  for (const ChannelStats& s : stats) {
+    out += ChannelSummaryLine(s, written);
+    *missing += s.missing;
+  }
+  return out;
+}
+
 std::vector<ChannelStats> Recorder::Stats() const {
   std::vector<ChannelStats> out;
   for (const auto& [name, ch] : channels_) {
-    out.push_back(WithSeqCounts(ch.stats, ch.seq));
+    out.push_back(ch.ledger.Stats());
   }
   return out;
 }
@@ -320,10 +233,7 @@ std::vector<ChannelStats> Recorder::Stats() const {
 std::string Recorder::Summary() const {
   std::ostringstream os;
   int64_t missing = 0;
-  for (const ChannelStats& s : Stats()) {
-    os << ChannelSummaryLine(s, "rows");
-    missing += s.missing;
-  }
+  os << ChannelSummaryLines(Stats(), "rows", &missing);
   os << "  total: " << messages_ << " messages on " << channels_.size()
      << " channels, " << missing << " missing by seq";
   if (extra_channel_messages_ > 0) {
@@ -335,8 +245,9 @@ std::string Recorder::Summary() const {
 
 std::string Recorder::CsvPath(const std::string& channel) const {
   auto it = channels_.find(channel);
-  if (it == channels_.end() || it->second.stats.files.empty()) return "";
-  return it->second.stats.files.front();
+  if (it == channels_.end()) return "";
+  const ChannelStats& stats = it->second.ledger.stats();
+  return stats.files.empty() ? "" : stats.files.front();
 }
 
 }  // namespace mrsim

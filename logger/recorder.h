@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "logger/channel_ledger.h"
+#include "logger/channel_stats.h"
 #include "logger/csv_writer.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/message_flattener.h"
@@ -21,36 +23,14 @@
 
 namespace mrsim {
 
-// What happened on one channel.
-struct ChannelStats {
-  std::string channel;
-  std::string type;  // full type name, or empty when unknown
-  int64_t messages = 0;
-  int64_t rows = 0;
-  int64_t malformed = 0;     // bytes that are not a valid message
-  int64_t unknown_type = 0;  // fingerprint not in the registry
-  int64_t other_type = 0;    // a second type on a channel
-  int64_t gaps = 0;
-  int64_t missing = 0;
-  int64_t back_jumps = 0;
-  int64_t repeats = 0;  // re-sends skipped (see Recorder)
-  // Rows of yet another shape once the channel has Recorder::kMaxPartFiles
-  // files: dropped, so decodable garbage cannot fill a folder.
-  int64_t dropped = 0;
-  bool has_seq = false;
-  int64_t first_seq = 0;
-  int64_t last_seq = 0;
-  std::vector<std::string> files;
-};
-
-// `stats` with the seq counts of `seq` (gaps, missing, jumps back, first
-// and last) filled in.
-ChannelStats WithSeqCounts(ChannelStats stats, const SeqTracker& seq);
-
 // One channel's line of a recorder's summary, the same for the CSV and the
 // MCAP logger: "  CH: TYPE, N messages, N <written>, seq A..B, G gaps (M
 // missing)...", ending in a newline.
 std::string ChannelSummaryLine(const ChannelStats& s, const char* written);
+// ChannelSummaryLine of every channel, and (to *missing) the messages
+// missing by seq over all of them.
+std::string ChannelSummaryLines(const std::vector<ChannelStats>& stats,
+                                const char* written, int64_t* missing);
 
 struct RecorderOptions {
   std::string out_dir = ".";
@@ -95,26 +75,18 @@ class Recorder {
 
  private:
   struct Channel {
-    ChannelStats stats;
+    explicit Channel(ChannelLedger l) : ledger(std::move(l)) {}
+    ChannelLedger ledger;
     int64_t hash = 0;
     std::unique_ptr<MessageFlattener> flattener;
     std::unique_ptr<CsvWriter> writer;
     uint64_t shape_version = 0;
     std::vector<std::string> part_columns;  // the open file's header
-    SeqTracker seq;
     FlatRow row;
-    int reports = 0;
-    // The last rows written with their seq, a ring.
-    std::vector<std::pair<int64_t, std::string>> recent;
-    size_t recent_next = 0;
   };
 
   void Record(Channel& ch, const uint8_t* data, size_t size);
-  // True (and counted) when ch.row is one of ch.recent again.
-  bool IsRepeat(Channel& ch);
-  void Remember(Channel& ch);
   void OpenPart(Channel& ch);
-  void Report(Channel& ch, const std::string& text);
 
   const LcmTypeRegistry& registry_;
   RecorderOptions options_;

@@ -5,28 +5,6 @@
 #include <stdexcept>
 
 namespace mrsim {
-namespace {
-
-constexpr int kMaxReports = 50;
-// As the CSV Recorder: a lockstep simulator re-sends up to delay + 1
-// states.
-constexpr size_t kRecentMessages = 8;
-
-int64_t Fingerprint(const uint8_t* data) {
-  uint64_t v = 0;
-  for (int k = 0; k < 8; ++k) v = (v << 8) | data[k];
-  return static_cast<int64_t>(v);
-}
-
-std::string Hex(int64_t v) {
-  char buf[24];
-  std::snprintf(buf, sizeof(buf), "0x%016llx",
-                static_cast<unsigned long long>(v));
-  return buf;
-}
-
-}  // namespace
-
 McapRecorder::McapRecorder(McapRecorderOptions options)
     : options_(std::move(options)) {
   if (!options_.report) options_.report = [](const std::string&) {};
@@ -56,12 +34,13 @@ void McapRecorder::OnMessage(const std::string& channel, const void* data,
       }
       return;
     }
-    it = channels_.emplace(channel, Channel{}).first;
-    it->second.stats.channel = channel;
-    it->second.stats.files.push_back(options_.path);
+    it = channels_
+             .emplace(channel, Channel(ChannelLedger(channel, options_.report)))
+             .first;
+    it->second.ledger.stats().files.push_back(options_.path);
   }
   Channel& ch = it->second;
-  ++ch.stats.messages;
+  ++ch.ledger.stats().messages;
   if (failed()) return;
   // LCM's receive times can go back a few ms (its first datagrams); a
   // file's log times do not, so readers play it in the order heard.
@@ -76,24 +55,17 @@ void McapRecorder::OnMessage(const std::string& channel, const void* data,
 
 void McapRecorder::Record(Channel& ch, const uint8_t* data, size_t size,
                           uint64_t time) {
-  if (size < 8) {
-    ++ch.stats.malformed;
-    Report(ch, ch.stats.channel + ": message of " + std::to_string(size) +
-                   " bytes is too short to be LCM; dropped");
-    return;
-  }
-  const int64_t hash = Fingerprint(data);
+  ChannelLedger& ledger = ch.ledger;
+  ChannelStats& stats = ledger.stats();
+  if (!ledger.CheckSize(size)) return;
+  const int64_t hash = LcmFingerprint(data);
   if (ch.type == nullptr) {
     ch.type = FindMessageJsonType(hash);
     if (ch.type == nullptr) {
-      ++ch.stats.unknown_type;
-      if (ch.stats.unknown_type == 1) {
-        Report(ch, ch.stats.channel + ": unknown message type (fingerprint " +
-                       Hex(hash) + "); its messages are counted and skipped");
-      }
+      ledger.UnknownType(hash);
       return;
     }
-    ch.stats.type = ch.type->name;
+    stats.type = ch.type->name;
     auto schema = schema_of_type_.find(hash);
     if (schema == schema_of_type_.end()) {
       schema =
@@ -102,68 +74,26 @@ void McapRecorder::Record(Channel& ch, const uint8_t* data, size_t size,
                                                 ch.type->schema))
               .first;
     }
-    ch.id = writer_->AddChannel(schema->second, ch.stats.channel, "json");
+    ch.id = writer_->AddChannel(schema->second, stats.channel, "json");
   } else if (hash != ch.type->fingerprint) {
-    ++ch.stats.other_type;
-    if (ch.stats.other_type == 1) {
-      Report(ch, ch.stats.channel +
-                     ": a message of another type (fingerprint " + Hex(hash) +
-                     ") on a " + ch.stats.type +
-                     " channel; such messages are counted and skipped");
-    }
+    ledger.OtherType(hash);
     return;
   }
   json_.Clear();
   int64_t seq = 0;
   if (!ch.type->to_json(data, size, json_, &seq)) {
-    ++ch.stats.malformed;
-    Report(ch, ch.stats.channel + ": malformed " + ch.stats.type +
-                   " message of " + std::to_string(size) + " bytes; dropped");
+    ledger.Malformed(size);
     return;
   }
   const std::string_view text = json_.view();
-  if (ch.type->has_seq) {
-    ch.stats.has_seq = true;
-    for (const auto& [s, seen] : ch.recent) {
-      if (s == seq && seen == text) {
-        ++ch.stats.repeats;
-        return;
-      }
-    }
-    const SeqTracker::Event e = ch.seq.Add(seq);
-    if (e.missing > 0) {
-      Report(ch, ch.stats.channel + ": gap: seq " +
-                     std::to_string(e.first_missing) +
-                     (e.missing > 1 ? ".." + std::to_string(e.first_missing +
-                                                            e.missing - 1)
-                                    : "") +
-                     " missing (" + std::to_string(e.missing) + " messages)");
-    } else if (e.jumped) {
-      Report(ch, ch.stats.channel + ": seq jumped from " +
-                     std::to_string(e.previous) + " to " + std::to_string(seq) +
-                     " (publisher restarted, or a forged number); not "
-                     "counted as missing");
-    } else if (e.went_back) {
-      Report(ch, ch.stats.channel + ": seq went back from " +
-                     std::to_string(e.previous) + " to " + std::to_string(seq) +
-                     " (publisher restarted?)");
-    }
-  }
+  if (ch.type->has_seq && !ledger.TakeSeq(seq, text)) return;
   // MCAP's sequence is 32 bits: the message's own seq, cut to them.
   const auto sequence =
       ch.type->has_seq ? static_cast<uint32_t>(seq) : ch.count;
   ++ch.count;
   writer_->WriteMessage(ch.id, sequence, time, time, text);
-  ++ch.stats.rows;
-  if (ch.type->has_seq) {
-    if (ch.recent.size() < kRecentMessages) {
-      ch.recent.emplace_back(seq, std::string(text));
-    } else {
-      ch.recent[ch.recent_next].first = seq;
-      ch.recent[ch.recent_next].second.assign(text.data(), text.size());
-      ch.recent_next = (ch.recent_next + 1) % kRecentMessages;
-    }
-  }
+  ++stats.rows;
+  if (ch.type->has_seq) ledger.Remember(seq, text);
   if (writer_->chunk_messages() > 0 &&
       time - writer_->chunk_start_time() >= options_.chunk_period_ns &&
       time > writer_->chunk_start_time()) {
@@ -190,20 +120,10 @@ void McapRecorder::Finish() {
   }
 }
 
-void McapRecorder::Report(Channel& ch, const std::string& text) {
-  ++ch.reports;
-  if (ch.reports < kMaxReports) {
-    options_.report(text);
-  } else if (ch.reports == kMaxReports) {
-    options_.report(ch.stats.channel +
-                    ": further warnings on this channel are only counted");
-  }
-}
-
 std::vector<ChannelStats> McapRecorder::Stats() const {
   std::vector<ChannelStats> out;
   for (const auto& [name, ch] : channels_) {
-    out.push_back(WithSeqCounts(ch.stats, ch.seq));
+    out.push_back(ch.ledger.Stats());
   }
   return out;
 }
@@ -211,10 +131,7 @@ std::vector<ChannelStats> McapRecorder::Stats() const {
 std::string McapRecorder::Summary() const {
   std::ostringstream os;
   int64_t missing = 0;
-  for (const ChannelStats& s : Stats()) {
-    os << ChannelSummaryLine(s, "written");
-    missing += s.missing;
-  }
+  os << ChannelSummaryLines(Stats(), "written", &missing);
   os << "  total: " << messages_ << " messages on " << channels_.size()
      << " channels, " << missing << " missing by seq, " << writer_->messages()
      << " in " << writer_->chunks() << " chunks of " << options_.path;

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "lcmtypes/json/json_writer.h"
+#include "logger/channel_ledger.h"
 #include "logger/mcap/mcap_writer.h"
 #include "logger/recorder.h"
-#include "logger/seq_tracker.h"
 #include "mrsim/message_json.hpp"
 
 namespace mrsim {
@@ -69,19 +69,14 @@ class McapRecorder {
 
  private:
   struct Channel {
-    ChannelStats stats;
+    explicit Channel(ChannelLedger l) : ledger(std::move(l)) {}
+    ChannelLedger ledger;
     const MessageJsonType* type = nullptr;
     uint16_t id = 0;
-    SeqTracker seq;
     uint32_t count = 0;
-    int reports = 0;
-    // The last messages written with their seq, a ring (re-send check).
-    std::vector<std::pair<int64_t, std::string>> recent;
-    size_t recent_next = 0;
   };
 
   void Record(Channel& ch, const uint8_t* data, size_t size, uint64_t time);
-  void Report(Channel& ch, const std::string& text);
 
   McapRecorderOptions options_;
   std::unique_ptr<mcap::McapWriter> writer_;
