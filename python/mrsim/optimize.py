@@ -57,7 +57,8 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
              farm: bool = False, workers: Optional[int] = None,
              progress: Optional[Callable[[Dict[str, float]], None]] = None,
              extra_args: tuple = (), task: Optional[str] = None,
-             genes: Optional[str] = None) -> Dict[str, Any]:
+             genes: Optional[str] = None,
+             controller: Optional[str] = None) -> Dict[str, Any]:
     """Runs mrsim-opt on a scenario file and a genome file into out_dir
     (resumed when out_dir holds a checkpoint of the same problem).
 
@@ -69,6 +70,14 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
     genes; a task name that is not in the suite raises ValueError naming
     the known ones before anything runs.
 
+    controller: what the genes drive (mrsim-opt --controller,
+    docs/optimizer.md): "gait" (default), "cpg", "lua:FILE" (a Lua
+    script whose declared params are the genes) or "mlp:H" / "mlp:H1,H2"
+    (a neural network's weights). A Lua script or a network brings its
+    own genes: give no ``genes``, and a ``genome`` file only for body
+    genes. The best controller is written to out_dir (best_controller.lua,
+    best_network.xml).
+
     workers: local threads (default: one per core; not with farm, whose
     mrsim-worker processes join by themselves). progress(row) is called with each new row of generations.csv (a dict
     generation, best, mean, worst, best_so_far, failed and the genes).
@@ -78,7 +87,14 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
         raise TypeError("optimize: out_dir is required")
     if (scenario is None) == (task is None):
         raise TypeError("optimize: give exactly one of scenario and task")
-    if (genome is None) == (genes is None):
+    own_genes = controller is not None and controller.split(":")[0] in (
+        "lua", "mlp")
+    if own_genes:
+        if genes is not None:
+            raise TypeError("optimize: controller %s brings its own genes; "
+                            "give a genome file only for body genes"
+                            % controller)
+    elif (genome is None) == (genes is None):
         raise TypeError("optimize: give exactly one of genome and genes")
     if task is not None and task.replace("_", "-") not in _core.task_names():
         raise ValueError("optimize: unknown task '%s': expected one of %s" %
@@ -89,8 +105,12 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
     args = [_program("mrsim-opt")]
     args += (["--task", task] if task is not None
              else [os.fspath(scenario)])  # type: ignore[arg-type]
-    args += (["--genes", genes] if genes is not None
-             else ["--genome", os.fspath(genome)])  # type: ignore[arg-type]
+    if genes is not None:
+        args += ["--genes", genes]
+    elif genome is not None:
+        args += ["--genome", os.fspath(genome)]
+    if controller is not None:
+        args += ["--controller", controller]
     args += ["--out", os.fspath(out_dir), "--algorithm",
              algorithm, "--generations", str(int(generations)), "--quiet"]
     if workers is not None and not farm:

@@ -63,3 +63,26 @@ def test_run_task_scores_an_episode_like_mrsim_tasks():
         "flat", seconds=1.0)  # deterministic
     with pytest.raises(ValueError):
         mrsim.run_task("moon")
+
+
+def test_optimize_tunes_a_lua_controllers_declared_params(tmp_path):
+    out = str(tmp_path / "lua")
+    script = source("examples/optimise/serpenoid_params.lua")
+    result = mrsim.optimize(task="flat", controller="lua:" + script,
+                            out_dir=out, algorithm="random", generations=1,
+                            population=2, seed=1, episode=0.5, workers=1)
+    g = result["generations"]
+    assert len(g["best"]) == 1
+    # The script's declared params are the genes, with their names.
+    assert "amplitude" in g and "phase_lag" in g
+    best = open(os.path.join(out, "best_controller.lua")).read()
+    assert "function step" in best
+
+
+def test_optimize_refuses_gait_genes_for_a_controller_with_its_own(tmp_path):
+    with pytest.raises(TypeError) as e:
+        mrsim.optimize(task="flat", genes="sine",
+                       controller="lua:" + source(
+                           "examples/optimise/serpenoid_params.lua"),
+                       out_dir=str(tmp_path / "o"))
+    assert "its own genes" in str(e.value)
