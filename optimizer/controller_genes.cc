@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "lua_controller/lua_script.h"
+#include "optimizer/mlp_genes.h"
 
 namespace mrsim {
 
@@ -70,6 +71,8 @@ GenomeSpec ControllerGenome(const ControllerSpec& controller,
       return *user;
     case ControllerSpec::Kind::kLua:
       return LuaGenome(controller, user);
+    case ControllerSpec::Kind::kMlp:
+      return MlpGenome(controller, user);
   }
   throw GenomeError("unknown controller kind");
 }

@@ -6,19 +6,22 @@
 #include <stdexcept>
 
 #include "common/input_limits.h"
+#include "nn_controller/mlp_shape.h"
 
 namespace mrsim {
 
 const EnumTable<ControllerSpec::Kind>& ControllerSpec::Kinds() {
   static const EnumTable<Kind> kKinds("controller kind",
                                       {{ControllerSpec::Kind::kGait, "gait"},
-                                       {ControllerSpec::Kind::kLua, "lua"}});
+                                       {ControllerSpec::Kind::kLua, "lua"},
+                                       {ControllerSpec::Kind::kMlp, "mlp"}});
   return kKinds;
 }
 
 namespace {
 
-constexpr const char* kFlagHelp = "expected gait, cpg or lua:FILE";
+constexpr const char* kFlagHelp =
+    "expected gait, cpg, lua:FILE or mlp:H (mlp:H1,H2)";
 
 // The name a script goes by: its file name, without the folders.
 std::string ScriptName(const std::string& path) {
@@ -54,6 +57,14 @@ ControllerSpec ParseControllerFlag(const std::string& text, bool* cpg_genes) {
     spec.name = ScriptName(path);
     return spec;
   }
+  const std::string mlp = "mlp:";
+  if (text.rfind(mlp, 0) == 0) {
+    spec.kind = ControllerSpec::Kind::kMlp;
+    spec.hidden =
+        ParseHiddenLayers(text.substr(mlp.size()), "--controller " + text);
+    spec.name = text;
+    return spec;
+  }
   throw std::invalid_argument(
       fmt::format("--controller '{}': {}", text, kFlagHelp));
 }
@@ -61,8 +72,14 @@ ControllerSpec ParseControllerFlag(const std::string& text, bool* cpg_genes) {
 std::string EncodeControllerSpec(const ControllerSpec& spec) {
   if (spec.is_gait()) return "";
   // The name is a file name (no newline); the source, the rest, verbatim.
-  return fmt::format("kind={}\nname={}\n\n{}",
-                     ControllerSpec::Kinds().Name(spec.kind), spec.name,
+  // A network's shape: its hidden layers and the joints it was made for.
+  const std::string shape =
+      spec.kind == ControllerSpec::Kind::kMlp
+          ? fmt::format("hidden={}\njoints={}\n", HiddenLayersText(spec.hidden),
+                        spec.joints)
+          : "";
+  return fmt::format("kind={}\nname={}\n{}\n{}",
+                     ControllerSpec::Kinds().Name(spec.kind), spec.name, shape,
                      spec.source);
 }
 
@@ -89,12 +106,29 @@ ControllerSpec DecodeControllerSpec(const std::string& text,
       have_kind = true;
     } else if (key == "name") {
       spec.name = value;
+    } else if (key == "hidden") {
+      spec.hidden = ParseHiddenLayers(value, where + " hidden");
+    } else if (key == "joints") {
+      const bool digits =
+          !value.empty() && value.size() <= 5 &&
+          value.find_first_not_of("0123456789") == std::string::npos;
+      spec.joints = digits ? std::stoi(value) : 0;
+      if (spec.joints < 1 || spec.joints > MlpShape::kMaxJoints) {
+        throw std::invalid_argument(
+            fmt::format("{} joints: expected 1 to {}, got '{}'", where,
+                        MlpShape::kMaxJoints, value));
+      }
     } else {
       throw std::invalid_argument(where + ": unknown field '" + key + "'");
     }
   }
   if (!have_kind) throw std::invalid_argument(where + ": no kind");
   spec.source = text.substr(pos);
+  if (spec.kind == ControllerSpec::Kind::kMlp &&
+      (spec.hidden.empty() || spec.joints == 0 || !spec.source.empty())) {
+    throw std::invalid_argument(
+        where + ": a network needs hidden= and joints= and no body");
+  }
   if (spec.kind == ControllerSpec::Kind::kLua) {
     if (spec.source.size() > kMaxLuaScriptBytes) {
       throw std::invalid_argument(

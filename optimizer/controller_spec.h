@@ -14,6 +14,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "common/enum_table.h"
 
@@ -23,7 +24,8 @@ struct ControllerSpec {
   // kGait: the built-in gait (its genes in the genome; `cpg` on the
   // command line is the gait with the CPG genes). kLua: a Lua script whose
   // declared parameters are the genes (lua_script.h, LuaParameter).
-  enum class Kind { kGait, kLua };
+  // kMlp: a neural network whose weights are the genes (mlp_genes.h).
+  enum class Kind { kGait, kLua, kMlp };
   // The words of --controller and of the payload for each kind.
   static const EnumTable<Kind>& Kinds();
 
@@ -32,14 +34,20 @@ struct ControllerSpec {
   // error messages and best_controller.lua's header).
   std::string source;
   std::string name;
+  // kMlp: the hidden layer sizes (mlp:8 -> {8}) and the robot's hinge
+  // count, which fixes the network's size (ResolveMlpJoints; 0 until
+  // resolved).
+  std::vector<int> hidden;
+  int joints = 0;
 
   bool is_gait() const { return kind == Kind::kGait; }
 };
 
 // What --controller says. "gait" and "cpg" (the gait; cpg_genes says the
 // default genome is the CPG one); "lua:FILE" reads FILE (at most
-// kMaxLuaScriptBytes). Throws std::invalid_argument naming the flag and
-// what it accepts, or the file that does not read.
+// kMaxLuaScriptBytes); "mlp:H" or "mlp:H1,H2" a network with those hidden
+// layers (its joints still to resolve). Throws std::invalid_argument naming the
+// flag and what it accepts, or the file that does not read.
 ControllerSpec ParseControllerFlag(const std::string& text,
                                    bool* cpg_genes = nullptr);
 

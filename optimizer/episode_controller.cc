@@ -7,6 +7,8 @@
 
 #include "optimizer/episode.h"
 #include "optimizer/lua_episode_controller.h"
+#include "optimizer/mlp_episode_controller.h"
+#include "optimizer/mlp_genes.h"
 
 namespace mrsim {
 
@@ -19,6 +21,9 @@ std::unique_ptr<EpisodeController> MakeEpisodeController(
     case ControllerSpec::Kind::kLua:
       return std::make_unique<LuaEpisodeController>(
           problem.controller, problem.genome, genome, axes);
+    case ControllerSpec::Kind::kMlp:
+      return std::make_unique<MlpEpisodeController>(MlpNetworkOfGenome(
+          MlpShapeOf(problem.controller), problem.genome, genome));
   }
   throw ControllerError("unknown controller kind");
 }

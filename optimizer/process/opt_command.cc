@@ -20,6 +20,7 @@
 #include "common/lcm_url.h"
 #include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
+#include "nn_controller/network_file.h"
 #include "optimizer/algorithm_registry.h"
 #include "optimizer/best_lua_script.h"
 #include "optimizer/body_genes.h"
@@ -28,6 +29,7 @@
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/local_evaluator.h"
+#include "optimizer/mlp_genes.h"
 #include "optimizer/problem_codec.h"
 #include "optimizer/process/opt_progress_reporter.h"
 #include "optimizer/task.h"
@@ -85,8 +87,8 @@ void WriteReplayLaunch(const std::string& path, const std::string& dir,
   WriteFileAtomically(path, out.str());
 }
 
-// The best controller's file: best_gait.xml, or best_controller.lua for a
-// Lua script. Returns its name.
+// The best controller's file: best_gait.xml, best_controller.lua for a
+// Lua script, best_network.xml for a network (mrsim-nn). Returns its name.
 std::string WriteBestControllerFile(const Problem& problem, const Genome& best,
                                     const std::string& dir) {
   switch (problem.controller.kind) {
@@ -98,6 +100,11 @@ std::string WriteBestControllerFile(const Problem& problem, const Genome& best,
           dir + "/best_controller.lua",
           BestLuaScript(problem.controller, problem.genome, best));
       return "best_controller.lua";
+    case ControllerSpec::Kind::kMlp:
+      WriteNetworkFile(MlpNetworkOfGenome(MlpShapeOf(problem.controller),
+                                          problem.genome, best),
+                       dir + "/best_network.xml", "optimised");
+      return "best_network.xml";
   }
   throw std::logic_error("unknown controller kind");
 }
@@ -107,19 +114,26 @@ std::string ReplayControllerProcess(const Problem& problem,
                                     const std::string& file,
                                     const std::string& robot,
                                     const std::string& scenario) {
-  const std::string program =
-      problem.controller.is_gait() ? "mrsim-gait" : "mrsim-lua";
-  const std::string name = problem.controller.is_gait() ? "gait" : "lua";
+  // mrsim-nn reads the joint count from the state: no --scenario.
+  const bool mlp = problem.controller.kind == ControllerSpec::Kind::kMlp;
+  const std::string program = problem.controller.is_gait() ? "mrsim-gait"
+                              : mlp                        ? "mrsim-nn"
+                                                           : "mrsim-lua";
+  const std::string name = problem.controller.is_gait() ? "gait"
+                           : mlp                        ? "nn"
+                                                        : "lua";
+  const double rate = 1.0 / problem.episode.control_period;
   const std::string what =
       problem.controller.is_gait()
-          ? " --gait " + file
-          : fmt::format(" --script {} --rate {}", file,
-                        1.0 / problem.episode.control_period);
+          ? fmt::format(" --scenario {} --gait {}", scenario, file)
+      : mlp ? fmt::format(" --net {} --rate {}", file, rate)
+            : fmt::format(" --scenario {} --script {} --rate {}", scenario,
+                          file, rate);
   return fmt::format(
       "  <process name=\"{0}\" program=\"{1}\" delay=\"0.3\"\n"
-      "           args=\"--robot {2} --scenario {3}{4} --lcm-url ${{lcm_url}} "
+      "           args=\"--robot {2}{3} --lcm-url ${{lcm_url}} "
       "--name {0}\"/>\n",
-      name, program, robot, scenario, what);
+      name, program, robot, what);
 }
 
 // The best individual's controller, scenario, genome and replay launch
@@ -422,6 +436,11 @@ OptSetup PrepareOpt(const OptCommand& c) {
       user = BuiltInGenome(c.genes);
     } else if (cpg_genes) {
       user = BuiltInGenome("cpg");
+    }
+    if (problem.controller.kind == ControllerSpec::Kind::kMlp) {
+      // The network's size follows the robot's joint count.
+      ResolveMlpJoints(&problem.controller, problem.scenario,
+                       user ? user->robot : "");
     }
     problem.genome =
         ControllerGenome(problem.controller, user ? &*user : nullptr);
