@@ -32,6 +32,7 @@ using Hdl = websocketpp::connection_hdl;
 // what is over their own limits.
 constexpr size_t kMaxMessageSize = 1 << 20;
 constexpr auto kTickPeriod = std::chrono::milliseconds(20);
+constexpr int kSendBuffer = 128 * 1024;
 
 uint64_t NowNs() {
   return static_cast<uint64_t>(
@@ -62,6 +63,15 @@ class FoxgloveServer::Impl {
     server_.set_message_handler(
         [this](Hdl h, WsServer::message_ptr m) { Message(h, m); });
     server_.set_http_handler([this](Hdl h) { Http(h); });
+    // The kernel's buffer for a client is bounded too (Linux grows it to
+    // megabytes otherwise): a client that stops reading is noticed, and
+    // its frames dropped, within a fraction of a second of data.
+    server_.set_socket_init_handler([](Hdl, asio::ip::tcp::socket& socket) {
+      asio::error_code ignored;
+      socket.set_option(asio::socket_base::send_buffer_size(kSendBuffer),
+                        ignored);
+      socket.set_option(asio::ip::tcp::no_delay(true), ignored);
+    });
     const std::string where =
         options_.bind + ":" + std::to_string(options_.port);
     const asio::ip::address address = asio::ip::make_address(options_.bind, ec);
@@ -134,8 +144,10 @@ class FoxgloveServer::Impl {
  private:
   struct Peer {
     Hdl hdl;
+    std::string address;
     ClientOutbox outbox;
     bool closing = false;
+    bool told_dropping = false;
   };
 
   // Under mutex_ (released before publishing). Never touches a socket:
@@ -144,9 +156,19 @@ class FoxgloveServer::Impl {
     for (Outgoing& frame : out.send) {
       auto it = peers_.find(frame.client);
       if (it == peers_.end() || it->second.closing) continue;
-      if (!it->second.outbox.Push(std::move(frame))) {
-        it->second.closing = true;
+      Peer& peer = it->second;
+      if (!peer.outbox.Push(std::move(frame))) {
+        peer.closing = true;
         ++counts_.closed_overflow;
+        options_.warn("client " + std::to_string(it->first) + " (" +
+                      peer.address +
+                      ") closed: its announcements alone overflow its queue");
+      } else if (peer.outbox.dropped() > 0 && !peer.told_dropping) {
+        peer.told_dropping = true;
+        options_.warn("client " + std::to_string(it->first) + " (" +
+                      peer.address +
+                      ") reads slower than the simulation publishes: its "
+                      "oldest frames are dropped");
       }
     }
     for (const ClientId id : out.close) {
@@ -238,7 +260,8 @@ class FoxgloveServer::Impl {
     std::unique_lock<std::mutex> lock(mutex_);
     const ClientId id = next_id_++;
     ids_[h] = id;
-    peers_.emplace(id, Peer{h, ClientOutbox(), false});
+    peers_.emplace(
+        id, Peer{h, ec ? "?" : peer.to_string(), ClientOutbox(), false, false});
     ++counts_.connections;
     Deliver(bridge_.Connect(id, may_control, NowNs()), lock);
   }

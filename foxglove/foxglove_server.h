@@ -26,7 +26,7 @@ struct FoxgloveServerOptions {
   size_t max_clients = 64;
   // Bytes a client's socket may have unsent before the server stops handing
   // it more (the rest waits in its outbox).
-  size_t max_buffered = 1 << 20;
+  size_t max_buffered = 256 * 1024;
   // Called on the server thread for each control to publish (thread-safe
   // publishing, as SignedLcm's).
   std::function<void(const sim_control_t&)> publish;

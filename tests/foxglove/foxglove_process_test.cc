@@ -3,8 +3,14 @@
 // over ws): with each subprotocol name, serverInfo, channels with JSON
 // Schemas, the scene, transforms equal to the states and time that never
 // goes back; a client without the control token is refused a pause, one
-// with it is not.
+// with it is not; a client that stops reading loses its oldest frames
+// while the others are served as before.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <regex>
@@ -59,15 +65,70 @@ void ExpectClientCheck(const std::string& dir, const std::string& name,
   EXPECT_EQ(node.Wait(120), 0) << name << ": " << node.Output();
 }
 
+// A Foxglove client that subscribes and then never reads: a raw socket
+// with a tiny receive buffer.
+class StuckClient {
+ public:
+  explicit StuckClient(int port) : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
+    const int small = 4096;
+    setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    EXPECT_EQ(
+        connect(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    Send(
+        "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\n"
+        "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+        "Sec-WebSocket-Version: 13\r\n"
+        "Sec-WebSocket-Protocol: foxglove.websocket.v1\r\n\r\n");
+    std::string reply;
+    char c = 0;
+    pollfd p{fd_, POLLIN, 0};
+    while (reply.find("\r\n\r\n") == std::string::npos &&
+           poll(&p, 1, 30000) == 1 && read(fd_, &c, 1) == 1) {
+      reply.push_back(c);
+    }
+    EXPECT_EQ(reply.rfind("HTTP/1.1 101", 0), 0u) << reply;
+  }
+  ~StuckClient() { close(fd_); }
+  StuckClient(const StuckClient&) = delete;
+  StuckClient& operator=(const StuckClient&) = delete;
+
+  // One masked text frame (a zero mask: the payload goes as it is).
+  void SendText(const std::string& text) {
+    std::string frame = "\x81";
+    ASSERT_LT(text.size(), 65536u);
+    if (text.size() < 126) {
+      frame.push_back(static_cast<char>(0x80 | text.size()));
+    } else {
+      frame.push_back(static_cast<char>(0x80 | 126));
+      frame.push_back(static_cast<char>(text.size() >> 8));
+      frame.push_back(static_cast<char>(text.size() & 0xff));
+    }
+    frame.append(4, '\0');
+    Send(frame + text);
+  }
+
+ private:
+  void Send(const std::string& bytes) {
+    ASSERT_EQ(write(fd_, bytes.data(), bytes.size()),
+              static_cast<ssize_t>(bytes.size()));
+  }
+  int fd_;
+};
+
 class FoxgloveProcess : public ::testing::Test {
  protected:
-  void Start(int port, const std::vector<std::string>& extra) {
+  void Start(int port, const std::vector<std::string>& extra,
+             const std::string& rate = "50") {
     dir_ = TempDir("foxglove_process_" + std::to_string(port));
     const std::string url = TestLcmUrl(port);
     sim_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{BinaryPath("sim_core/sim_process/mrsim-sim"),
                                  WriteSnake(dir_), "--lcm-url", url, "--rate",
-                                 "50"},
+                                 rate},
         dir_ + "/sim.txt");
     std::vector<std::string> argv = {
         BinaryPath("foxglove/process/mrsim-foxglove"),
@@ -85,11 +146,13 @@ class FoxgloveProcess : public ::testing::Test {
     const std::string out = fox_->Output();
     ASSERT_TRUE(
         std::regex_search(out, m, std::regex("ws://127\\.0\\.0\\.1:(\\d+)")));
+    port_ = std::stoi(m[1].str());
     ws_url_ = "ws://127.0.0.1:" + m[1].str() + "/";
   }
 
   std::string dir_;
   std::string ws_url_;
+  int port_ = 0;
   std::unique_ptr<ChildProcess> sim_;
   std::unique_ptr<ChildProcess> fox_;
 };
@@ -130,6 +193,24 @@ TEST_F(FoxgloveProcess, OnlyAClientWithTheControlTokenMayPause) {
       {"control", ws_url_ + "?token=" + key_hex, "foxglove.sdk.v1", "ok"});
   EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
   EXPECT_NE(fox_->Output().find("1 service calls refused"), std::string::npos)
+      << fox_->Output();
+}
+
+TEST_F(FoxgloveProcess, AClientThatReadsNothingLosesFramesOthersAreServed) {
+  const std::string skip = NodeMissing();
+  if (!skip.empty()) GTEST_SKIP() << skip;
+  Start(8132, {}, "100");
+  StuckClient stuck(port_);
+  // The scene, the transforms and (once heard) two JSON channels.
+  stuck.SendText(R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1},)"
+                 R"({"id":2,"channelId":2},{"id":3,"channelId":3},)"
+                 R"({"id":4,"channelId":4}]})");
+  EXPECT_TRUE(fox_->WaitForOutput("oldest frames are dropped", 120))
+      << fox_->Output();
+  ExpectClientCheck(dir_, "beside_stuck",
+                    {"watch", ws_url_, "foxglove.websocket.v1", "snake"});
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  EXPECT_EQ(fox_->Output().find(" 0 frames dropped"), std::string::npos)
       << fox_->Output();
 }
 
