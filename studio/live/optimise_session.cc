@@ -64,9 +64,13 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
   spec.name = "opt";
   spec.program = "mrsim-opt";
   spec.required = true;
+  // The gait's genes are the genome's; a script or a network brings its own.
+  const bool gait = o.controller == "gait";
+  const std::string controller =
+      o.controller == "lua" ? "lua:" + ScriptPath(o) : o.controller;
   spec.args = {o.scenario_path,
-               "--genome",
-               genome_path,
+               gait ? "--genome" : "--controller",
+               gait ? genome_path : controller,
                "--out",
                o.out_dir,
                "--algorithm",
@@ -128,14 +132,34 @@ std::string OptimiseSession::ProgressUrl(const OptimiseOptions& o) {
   return ResolveLcmUrl(o.progress_url.empty() ? o.lcm_url : o.progress_url);
 }
 
+std::string OptimiseSession::ScriptPath(const OptimiseOptions& o) {
+  return o.out_dir + "/studio.controller.lua";
+}
+
+std::string OptimiseSession::BestFileName(const OptimiseOptions& o) {
+  if (o.controller == "lua") return "best_controller.lua";
+  if (o.controller.rfind("mlp", 0) == 0) return "best_network.xml";
+  return "best_gait.xml";
+}
+
 void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
   Stop();
   pending_replay_ = -1;
-  options.genome.Validate("the studio's genome");
+  const bool gait = options.controller == "gait";
+  if (gait) options.genome.Validate("the studio's genome");
+  if (options.controller == "lua" && options.lua_source.empty()) {
+    throw std::invalid_argument(
+        "optimise: the design has no Lua script (write one under Run's "
+        "controller: Lua script)");
+  }
   std::filesystem::create_directories(options.out_dir);
   const std::string genome_path = options.out_dir + "/studio.genome.xml";
   const ProcessSpec spec = Spec(options, genome_path);
-  WriteFileAtomically(genome_path, WriteGenomeString(options.genome));
+  if (gait) {
+    WriteFileAtomically(genome_path, WriteGenomeString(options.genome));
+  } else if (options.controller == "lua") {
+    WriteFileAtomically(ScriptPath(options), options.lua_source);
+  }
   options_ = options;
   progress_ = OptimiseProgress{};
   progress_.generations = options.generations;

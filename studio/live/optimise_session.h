@@ -31,6 +31,12 @@ struct OptimiseOptions {
   // gait is the base unless base_gait names one.
   std::string task;
   std::string out_dir;
+  // What the genes drive (mrsim-opt --controller, docs/optimizer.md):
+  // "gait" (the genome below), "lua" (lua_source, the design's script: its
+  // declared params are the genes and `genome` is not used) or "mlp:H" /
+  // "mlp:H1,H2" (a network's weights).
+  std::string controller = "gait";
+  std::string lua_source;
   GenomeSpec genome;
   std::string algorithm = "cmaes";  // a name of Algorithms()
   int generations = 10;
@@ -87,7 +93,15 @@ class OptimiseSession {
   static ProcessSpec Spec(const OptimiseOptions& options,
                           const std::string& genome_path);
 
-  // Writes OUT/studio.genome.xml and starts mrsim-opt. Throws naming what
+  // Where Start writes the design's Lua script for mrsim-opt
+  // (OUT/studio.controller.lua).
+  static std::string ScriptPath(const OptimiseOptions& options);
+  // The file mrsim-opt writes the best controller to, by what the genes
+  // drive: best_gait.xml, best_controller.lua or best_network.xml.
+  static std::string BestFileName(const OptimiseOptions& options);
+
+  // Writes OUT/studio.genome.xml (the gait) or OUT/studio.controller.lua (a
+  // Lua script) and starts mrsim-opt. Throws naming what
   // is wrong (genome, options, program not found).
   void Start(const OptimiseOptions& options, WallTime now = WallClock::now());
   void Stop();

@@ -3,6 +3,8 @@
 // Part of LivePanel (live_panel.h), one file per section.
 #include "gait_controller/gait_presets.h"
 #include "optimizer/algorithm_registry.h"
+#include "optimizer/controller_genes.h"
+#include "optimizer/controller_spec.h"
 #include "optimizer/task.h"
 #include "studio/ui/live_panel.h"
 #include "studio/ui/live_panel_common.h"
@@ -85,9 +87,73 @@ void LivePanel::DrawOptimiseSettings() {
   ImGui::Unindent(8);
 }
 
-void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
-  // The optimiser's registry: a new algorithm shows up here by itself.
-  const std::vector<AlgorithmInfo>& algorithms = Algorithms();
+bool LivePanel::DrawGenesDrive() {
+  const char* const drives[] = {"the gait", "the design's Lua script",
+                                "a neural network"};
+  ImGui::SetNextItemWidth(-110);
+  ImGui::Combo("genes drive", &genes_drive_, drives, IM_ARRAYSIZE(drives));
+  RecordItem(layout_, "genes drive");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "What the optimiser tunes (mrsim-opt --controller): the built-in\n"
+        "gait's parameters, the params your Lua script declares, or the\n"
+        "weights of a small neural network (docs/optimizer.md)");
+  }
+  if (genes_drive_ == 2) {
+    ImGui::SetNextItemWidth(80);
+    ImGui::InputText("hidden layer sizes", &mlp_hidden_);
+    RecordItem(layout_, "hidden layer sizes");
+    ImGui::TextDisabled(
+        "the network's weights are the genes (mrsim-nn runs it)");
+    return false;
+  }
+  if (genes_drive_ != 1) return true;
+  const std::string& source = controller_.lua_source();
+  if (source != lua_genes_source_) {
+    lua_genes_source_ = source;
+    lua_genes_ = GenomeSpec{};
+    lua_genes_error_.clear();
+    try {
+      ControllerSpec spec;
+      spec.kind = ControllerSpec::Kind::kLua;
+      spec.source = source;
+      spec.name = "the design's script";
+      lua_genes_ = ControllerGenome(spec, nullptr);
+    } catch (const std::exception& e) {
+      lua_genes_error_ = e.what();
+    }
+  }
+  if (!lua_genes_error_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
+    ImGui::TextWrapped("%s", lua_genes_error_.c_str());
+    ImGui::PopStyleColor();
+    RecordItem(layout_, "lua genes error");
+    return false;
+  }
+  // Read from the script's params table: ranges are edited there.
+  ImGui::TextDisabled("genes: the params the script declares");
+  if (ImGui::BeginTable("lua genes", 4,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    for (const char* h : {"param", "lower", "upper", "start"}) {
+      ImGui::TableSetupColumn(h);
+    }
+    ImGui::TableHeadersRow();
+    for (const GeneSpec& g : lua_genes_.genes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(g.name.c_str());
+      for (double v : {g.lower, g.upper, g.start}) {
+        ImGui::TableNextColumn();
+        ImGui::Text("%.4g", v);
+      }
+    }
+    ImGui::EndTable();
+  }
+  RecordItem(layout_, "lua genes " + std::to_string(lua_genes_.size()));
+  return false;
+}
+
+void LivePanel::DrawGenome(const LiveDesign& design) {
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("genome", &genome_path_);
   if (RecordedButton(layout_, "Load genome")) {
@@ -124,6 +190,12 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
     }
     ImGui::EndTable();
   }
+}
+
+void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
+  // The optimiser's registry: a new algorithm shows up here by itself.
+  const std::vector<AlgorithmInfo>& algorithms = Algorithms();
+  if (DrawGenesDrive()) DrawGenome(design);
   ImGui::SetNextItemWidth(90);
   ImGui::Combo(
       "algorithm", &algorithm_,
@@ -175,10 +247,16 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       if (task.empty() && (design.path.empty() || design.dirty)) {
         throw std::invalid_argument("save the design first");
       }
-      if (genome_.genes.empty()) {
+      OptimiseOptions o;
+      if (genes_drive_ == 0 && genome_.genes.empty()) {
         genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
       }
-      OptimiseOptions o;
+      if (genes_drive_ == 1) {
+        o.controller = "lua";
+        o.lua_source = controller_.lua_source();
+      } else if (genes_drive_ == 2) {
+        o.controller = "mlp:" + mlp_hidden_;
+      }
       o.scenario_path = design.path;
       o.out_dir = opt_dir_;
       o.genome = genome_;
@@ -284,11 +362,12 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
           p.stopped ? " (Start continues from there)" : "");
       // mrsim-opt writes the best so far on a stop too.
       std::error_code ec;
-      const std::filesystem::path best =
-          std::filesystem::path(optimise_.options().out_dir) / "best_gait.xml";
+      const OptimiseOptions& run = optimise_.options();
+      const std::filesystem::path best = std::filesystem::path(run.out_dir) /
+                                         OptimiseSession::BestFileName(run);
       if (!p.rows.empty() && std::filesystem::exists(best, ec)) {
         ImGui::TextWrapped(
-            "best gait: %s",
+            "best %s: %s", run.controller == "gait" ? "gait" : "controller",
             std::filesystem::absolute(best, ec).string().c_str());
       }
     }
@@ -317,6 +396,15 @@ void LivePanel::WatchBest() {
   if (!best) {
     message_ = "no generation finished yet";
     message_is_note_ = false;
+    return;
+  }
+  if (optimise_.options().controller != "gait") {
+    // Its controller is a program of its own (mrsim-lua, mrsim-nn), not
+    // gait values to send to the running design: mrsim-opt's replay runs
+    // it, once the run has written it (at its end, or on Stop).
+    message_ = "the best controller plays with: mrsim launch " +
+               optimise_.options().out_dir + "/replay.launch";
+    message_is_note_ = true;
     return;
   }
   Play(*best);

@@ -125,6 +125,12 @@ class LivePanel {
   void DrawOptimise(const LiveDesign& design, float width);
   // Fitness, base gait and the chosen algorithm's own settings.
   void DrawOptimiseSettings();
+  // What the genes drive (the gait, the design's Lua script, a network)
+  // and, for a script, its declared params; returns whether the gait's
+  // genome is the one to edit.
+  bool DrawGenesDrive();
+  // The gait's genome: its file and the table of its genes.
+  void DrawGenome(const LiveDesign& design);
   void WatchBest();
   // Plays an optimisation's individual live: its gait sent to the running
   // design, or (body genes, or nothing running) a run of its scenario.
@@ -144,6 +150,15 @@ class LivePanel {
   TaskPicker task_picker_;
   GenomeSpec genome_;
   std::string genome_path_ = "scenarios/forward_gait.genome.xml";
+  // What the genes drive: 0 the gait (genome_), 1 the design's Lua script
+  // (its declared params), 2 a neural network of mlp_hidden_ ("8", "8,8").
+  int genes_drive_ = 0;
+  std::string mlp_hidden_ = "8";
+  // The Lua script's declared params as genes, made again only when the
+  // script changes (running its top level every frame would cost a frame).
+  std::string lua_genes_source_;
+  GenomeSpec lua_genes_;
+  std::string lua_genes_error_;
   std::string opt_dir_ = "optimise";
   // The last PNG export's outcome, shown under the plot it is for.
   std::pair<const PlotSeries*, std::string> png_note_;

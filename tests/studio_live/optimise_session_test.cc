@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "studio/live/best_replay.h"
@@ -106,6 +108,58 @@ TEST(OptimiseSession, SpecWithATaskPassesTheTaskInsteadOfTheDesign) {
   EXPECT_TRUE(Has(OptimiseSession::Spec(o, "g.xml").args, "serpenoid"));
   o.task.clear();  // neither a task nor a saved design
   EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
+}
+
+TEST(OptimiseSession, TheDesignsLuaScriptOrANetworkBringTheirOwnGenes) {
+  OptimiseOptions o;
+  o.scenario_path = "snake.xml";
+  o.out_dir = "out";
+  o.controller = "lua";
+  std::vector<std::string> args = OptimiseSession::Spec(o, "g.xml").args;
+  EXPECT_TRUE(Has(args, "lua:out/studio.controller.lua"));
+  EXPECT_FALSE(Has(args, "--genome")) << "the script's params are the genes";
+  EXPECT_EQ(OptimiseSession::BestFileName(o), "best_controller.lua");
+  o.controller = "mlp:8";
+  args = OptimiseSession::Spec(o, "g.xml").args;
+  EXPECT_TRUE(Has(args, "--controller"));
+  EXPECT_TRUE(Has(args, "mlp:8"));
+  EXPECT_EQ(OptimiseSession::BestFileName(o), "best_network.xml");
+  o.controller = "gait";
+  EXPECT_TRUE(Has(OptimiseSession::Spec(o, "g.xml").args, "--genome"));
+  EXPECT_EQ(OptimiseSession::BestFileName(o), "best_gait.xml");
+}
+
+TEST(OptimiseSession, ALuaScriptsParamsAreOptimisedAsTheWindowStartsIt) {
+  const std::string dir = TempDir("optimise_session_lua");
+  OptimiseSession session({Programs()});
+  OptimiseOptions o = SnakeRun(dir, "forward_gait.genome.xml");
+  o.controller = "lua";
+  std::ifstream in(SourcePath("examples/optimise/serpenoid_params.lua"));
+  std::stringstream script;
+  script << in.rdbuf();
+  o.lua_source = script.str();
+  o.algorithm = "random";
+  o.generations = 1;
+  o.population = 2;
+  o.episode_s = 0.5;
+  session.Start(o);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!session.progress().finished &&
+         std::chrono::steady_clock::now() < end) {
+    session.Poll(100);
+  }
+  session.Poll();
+  const std::string console = Console(session);
+  ASSERT_TRUE(session.progress().finished) << console;
+  EXPECT_EQ(session.progress().exit_code, 0) << console;
+  ASSERT_EQ(session.progress().rows.size(), 1u) << console;
+  EXPECT_TRUE(session.BestGenes().count("amplitude")) << console;
+  EXPECT_TRUE(std::filesystem::exists(o.out_dir + "/best_controller.lua"));
+  EXPECT_FALSE(std::filesystem::exists(o.out_dir + "/studio.genome.xml"));
+
+  // A design without a script cannot optimise one.
+  o.lua_source.clear();
+  EXPECT_THROW(session.Start(o), std::invalid_argument);
 }
 
 // The panel's figures come from mrsim-opt's opt_progress_t, not its text:
