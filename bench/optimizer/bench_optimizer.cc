@@ -5,11 +5,11 @@
 // random search; (3) CMA-ES against the GA at equal evaluations over 5
 // seeds; (4) the same episodes on 1 and 2 local threads, which bound the
 // farm's speed-up (and the CPU this machine gives us, for context), and a
-// worker's episode cost against a bare mj_step loop; (5) a network's
-// episodes per CPU second over the gait's (mlp_episode_efficiency.h). The
-// farm's figures come from interleaved rounds, each printed with its
-// spread.
-// LCM ports 7920-7929.
+// worker's episode cost against a bare mj_step loop; (5) a Lua
+// controller's episodes per CPU second over the gait's
+// (lua_episode_efficiency.h), and a network's (mlp_episode_efficiency.h).
+// The farm's figures come from interleaved rounds, each printed with its
+// spread. LCM ports 7920-7929.
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 #include <signal.h>
@@ -29,6 +29,7 @@
 
 #include "bench/common/cpu_available.h"
 #include "bench/common/paired_ratio.h"
+#include "bench/optimizer/lua_episode_efficiency.h"
 #include "bench/optimizer/mlp_episode_efficiency.h"
 #include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
@@ -299,10 +300,13 @@ int main(int argc, char** argv) {
   const bool farm_only = argc > 1 && std::string(argv[1]) == "--farm-only";
   // --cmaes-only: just CMA-ES against the GA.
   const bool cmaes_only = argc > 1 && std::string(argv[1]) == "--cmaes-only";
+  // --lua-only: just the Lua controller's episodes against the gait's.
+  const bool lua_only = argc > 1 && std::string(argv[1]) == "--lua-only";
   // --mlp-only: just the network's episodes against the gait's.
   const bool mlp_only = argc > 1 && std::string(argv[1]) == "--mlp-only";
   try {
     if (cmaes_only) return CmaesVsGa();
+    if (lua_only) return mrsim::BenchLuaEpisodeEfficiency();
     if (mlp_only) return mrsim::BenchMlpEpisodeEfficiency();
     // The CPU this machine gives us, for context: the spin's bound on two
     // processes is printed beside the farm's figures.
@@ -402,6 +406,7 @@ int main(int argc, char** argv) {
     if (farm_only) return 0;
 
     if (CmaesVsGa() != 0) return 1;
+    if (mrsim::BenchLuaEpisodeEfficiency() != 0) return 1;
     if (mrsim::BenchMlpEpisodeEfficiency() != 0) return 1;
 
     // Optimised gait vs the preset: 20 s episodes, same budget each.
