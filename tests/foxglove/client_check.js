@@ -8,6 +8,11 @@
 //     a SceneUpdate drawing the robot's frames; FrameTransforms whose poses
 //     equal the robot's state of the same time (its JSON channel); time
 //     that never goes back.
+//   node client_check.js count URL SUBPROTOCOL
+//     (for bench/foxglove) subscribes to every channel, prints
+//     "subscribed" once /mrsim/tf is, and on SIGTERM one JSON line of the
+//     frames it got per topic (robot_tf: the robots' transforms, one per
+//     state); decodes little more than the frame headers.
 //   node client_check.js control URL SUBPROTOCOL EXPECT
 //     calls /mrsim/pause: EXPECT "refused" (a serviceCallFailure) or "ok"
 //     (a response with ok true).
@@ -115,6 +120,11 @@ client.on("advertise", (list) => {
     } catch (e) {
       badSchemas.push(c.topic + ": " + e);
     }
+    if (mode === "count") {
+      topics.set(client.subscribe(c.id), c.topic);
+      if (c.topic === "/mrsim/tf") console.log("subscribed");
+      continue;
+    }
     if (mode !== "watch") continue;
     if (c.topic === "/mrsim/scene" || c.topic === "/mrsim/tf" ||
         c.topic === `MRSIM_STATE_${arg}`) {
@@ -129,8 +139,21 @@ client.on("time", (t) => {
   ++times;
   check();
 });
+const counts = {};
 client.on("message", (m) => {
   const topic = topics.get(m.subscriptionId);
+  if (mode === "count") {
+    counts[topic] = (counts[topic] || 0) + 1;
+    if (topic === "/mrsim/tf") {
+      // A robot's transforms, not the scene objects' (one per state).
+      const head = new Uint8Array(m.data.buffer, m.data.byteOffset,
+        Math.min(m.data.byteLength, 160));
+      if (!decoder.decode(head).includes('"scene/')) {
+        counts.robot_tf = (counts.robot_tf || 0) + 1;
+      }
+    }
+    return;
+  }
   const payload = JSON.parse(decoder.decode(m.data));
   const time = m.timestamp.toString();
   if (topic === "/mrsim/scene") {
@@ -168,6 +191,13 @@ if (mode === "control") {
     seen.response = response;
     finish(arg === "ok" && r.callId === kCallId && response.ok === true,
       "a response: " + JSON.stringify(response));
+  });
+} else if (mode === "count") {
+  clearTimeout(deadline);
+  process.on("SIGTERM", () => {
+    seen.counts = counts;
+    seen.times = times;
+    finish(true);
   });
 } else if (mode !== "watch") {
   finish(false, "unknown mode " + mode);
