@@ -17,7 +17,7 @@ packages=(
   dpkg-dev help2man desktop-file-utils
   slurm-wlm munge
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
-  libzstd-dev nodejs
+  libzstd-dev libdeflate-dev nodejs
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev
 )
 # npm: Debian's package, unless the nodejs installed brings its own (as
