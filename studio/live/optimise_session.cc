@@ -98,6 +98,12 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                     fmt::format("{:g}", f.w_energy), "--w-drift",
                     fmt::format("{:g}", f.w_drift), "--w-fall",
                     fmt::format("{:g}", f.w_fall)});
+  if (o.robust.episodes != 0) {
+    o.robust.Validate();
+    spec.args.insert(spec.args.end(),
+                     {"--robust", std::to_string(o.robust.episodes),
+                      "--robust-mode", o.robust.mode});
+  }
   const AlgorithmInfo& info = AlgorithmInfoOf(ParseAlgorithm(o.algorithm));
   for (const auto& setting : o.algorithm_settings) {
     // A named copy: C++17 lambdas cannot capture a structured binding.

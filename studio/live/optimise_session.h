@@ -46,6 +46,10 @@ struct OptimiseOptions {
   std::string base_gait = "forward";  // preset name or gait file (--gait)
   // The fitness (mrsim-opt --distance, --w-*; docs/optimizer.md).
   FitnessSettings fitness;
+  // Robust fitness (mrsim-opt --robust K --robust-mode): each genome's
+  // episode in K worlds of the reality gap (docs/optimizer.md); 0: the
+  // nominal world only.
+  RobustSettings robust;
   // Settings of the chosen algorithm by flag ("pso-c1" -> 2.0), each one
   // of its registry row's (AlgorithmInfo::settings); the rest keep
   // mrsim-opt's defaults.

@@ -59,6 +59,27 @@ void LivePanel::DrawOptimiseSettings() {
     RecordItem(layout_, w.label);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", w.help);
   }
+  // The reality gap (docs/optimizer.md): a gait that works in K perturbed
+  // worlds rather than only in the nominal one.
+  ImGui::SetNextItemWidth(90);
+  if (ImGui::InputInt("robust episodes", &robust_.episodes, 0, 0,
+                      kNumberFlags)) {
+    robust_.episodes =
+        std::clamp(robust_.episodes, 0, RobustSettings::kMaxEpisodes);
+  }
+  RecordItem(layout_, "robust episodes");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "K > 0: each genome runs K episodes, each in a world of the "
+        "reality gap\n(friction, masses, servo gains and noise varied as a "
+        "real robot's are),\nand scores their mean or worst (--robust K)");
+  }
+  ImGui::SameLine();
+  bool worst = robust_.mode == "worst";
+  if (ImGui::Checkbox("worst of them", &worst)) {
+    robust_.mode = worst ? "worst" : "mean";
+  }
+  RecordItem(layout_, "robust worst");
   ImGui::SetNextItemWidth(-90);
   ImGui::InputText("base gait", &base_gait_);
   RecordItem(layout_, "base gait");
@@ -163,6 +184,16 @@ void LivePanel::DrawGenome(const LiveDesign& design) {
     } catch (const std::exception& e) {
       message_ = e.what();
       message_is_note_ = false;
+    }
+  }
+  // The built-in gene sets (mrsim-opt --genes): every gait parameter, and
+  // those with the CPG's (docs/optimizer.md).
+  for (const char* set : {"sine", "cpg"}) {
+    ImGui::SameLine();
+    const std::string label = std::string(set) + " genes";
+    if (RecordedButton(layout_, label.c_str())) {
+      genome_ = BuiltInGenome(set);
+      message_.clear();
     }
   }
   if (!genome_.genes.empty() &&
@@ -272,6 +303,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.seed = static_cast<unsigned>(std::max(0, seed_));
       o.episode_s = episode_;
       o.fitness = fitness_;
+      o.robust = robust_;
       o.base_gait = base_gait_;
       for (const AlgorithmSetting& setting :
            algorithms.at(algorithm_).settings) {

@@ -166,6 +166,7 @@ class LivePanel {
   // The form's fitness, base gait and algorithm settings (each algorithm's
   // own from the registry, AlgorithmInfo::settings).
   FitnessSettings fitness_;
+  RobustSettings robust_;
   std::string base_gait_ = "forward";
   AlgorithmSettings algorithm_settings_;
   int generations_ = 10;

@@ -43,6 +43,19 @@ TEST(OptimiseSpec, FitnessWeightsDistanceModeAndBaseGaitReachMrsimOpt) {
   EXPECT_EQ(After(spec.args, "--gait"), "turn_left");
 }
 
+TEST(OptimiseSpec, RobustFitnessReachesMrsimOptOnlyWhenAsked) {
+  OptimiseOptions o = Options();
+  EXPECT_EQ(After(OptimiseSession::Spec(o, "g.xml").args, "--robust"), "")
+      << "the nominal world: mrsim-opt's default";
+  o.robust.episodes = 4;
+  o.robust.mode = "worst";
+  const ProcessSpec spec = OptimiseSession::Spec(o, "g.xml");
+  EXPECT_EQ(After(spec.args, "--robust"), "4");
+  EXPECT_EQ(After(spec.args, "--robust-mode"), "worst");
+  o.robust.mode = "median";
+  EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
+}
+
 TEST(OptimiseSpec, TheChosenAlgorithmsOwnSettingsArePassed) {
   OptimiseOptions o = Options();
   o.algorithm = "pso";
