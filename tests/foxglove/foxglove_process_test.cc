@@ -12,6 +12,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -65,11 +66,12 @@ void ExpectClientCheck(const std::string& dir, const std::string& name,
   EXPECT_EQ(node.Wait(120), 0) << name << ": " << node.Output();
 }
 
-// A Foxglove client that subscribes and then never reads: a raw socket
-// with a tiny receive buffer.
-class StuckClient {
+// A Foxglove client on a raw socket with a tiny receive buffer: it reads
+// only when told to (a client that stops reading), and sends what it is
+// given (a hostile one).
+class RawClient {
  public:
-  explicit StuckClient(int port) : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
+  explicit RawClient(int port) : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
     const int small = 4096;
     setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
     sockaddr_in address{};
@@ -92,20 +94,39 @@ class StuckClient {
     }
     EXPECT_EQ(reply.rfind("HTTP/1.1 101", 0), 0u) << reply;
   }
-  ~StuckClient() { close(fd_); }
-  StuckClient(const StuckClient&) = delete;
-  StuckClient& operator=(const StuckClient&) = delete;
+  ~RawClient() { close(fd_); }
+
+  // Reads (and drops) what arrives until the server closes the
+  // connection (true) or timeout_s passes (false).
+  bool WaitClosed(double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() +
+                     std::chrono::duration<double>(timeout_s);
+    char buf[65536];
+    while (std::chrono::steady_clock::now() < end) {
+      pollfd p{fd_, POLLIN, 0};
+      if (poll(&p, 1, 100) != 1) continue;
+      const ssize_t n = read(fd_, buf, sizeof buf);
+      if (n <= 0) return true;
+    }
+    return false;
+  }
+  RawClient(const RawClient&) = delete;
+  RawClient& operator=(const RawClient&) = delete;
 
   // One masked text frame (a zero mask: the payload goes as it is).
   void SendText(const std::string& text) {
     std::string frame = "\x81";
-    ASSERT_LT(text.size(), 65536u);
     if (text.size() < 126) {
       frame.push_back(static_cast<char>(0x80 | text.size()));
-    } else {
+    } else if (text.size() < 65536) {
       frame.push_back(static_cast<char>(0x80 | 126));
       frame.push_back(static_cast<char>(text.size() >> 8));
       frame.push_back(static_cast<char>(text.size() & 0xff));
+    } else {
+      frame.push_back(static_cast<char>(0x80 | 127));
+      for (int k = 7; k >= 0; --k) {
+        frame.push_back(static_cast<char>((text.size() >> (8 * k)) & 0xff));
+      }
     }
     frame.append(4, '\0');
     Send(frame + text);
@@ -113,8 +134,12 @@ class StuckClient {
 
  private:
   void Send(const std::string& bytes) {
-    ASSERT_EQ(write(fd_, bytes.data(), bytes.size()),
-              static_cast<ssize_t>(bytes.size()));
+    size_t sent = 0;
+    while (sent < bytes.size()) {
+      const ssize_t n = write(fd_, bytes.data() + sent, bytes.size() - sent);
+      if (n <= 0) return;  // the server closed first
+      sent += static_cast<size_t>(n);
+    }
   }
   int fd_;
 };
@@ -200,7 +225,7 @@ TEST_F(FoxgloveProcess, AClientThatReadsNothingLosesFramesOthersAreServed) {
   const std::string skip = NodeMissing();
   if (!skip.empty()) GTEST_SKIP() << skip;
   Start(8132, {}, "100");
-  StuckClient stuck(port_);
+  RawClient stuck(port_);
   // The scene, the transforms and (once heard) two JSON channels.
   stuck.SendText(R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1},)"
                  R"({"id":2,"channelId":2},{"id":3,"channelId":3},)"
@@ -211,6 +236,22 @@ TEST_F(FoxgloveProcess, AClientThatReadsNothingLosesFramesOthersAreServed) {
                     {"watch", ws_url_, "foxglove.websocket.v1", "snake"});
   EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
   EXPECT_EQ(fox_->Output().find(" 0 frames dropped"), std::string::npos)
+      << fox_->Output();
+}
+
+TEST_F(FoxgloveProcess, HostileFramesAreRefusedCountedAndAHugeOneCloses) {
+  Start(8133, {});
+  RawClient hostile(port_);
+  hostile.SendText("{not json");
+  hostile.SendText(R"({"op":"launchMissiles"})");
+  hostile.SendText(
+      R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":99}]})");
+  hostile.SendText(std::string(2 << 20, ' '));  // 2 MB
+  EXPECT_TRUE(hostile.WaitClosed(60));
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  EXPECT_NE(fox_->Output().find("2 client messages malformed (1 unknown ops, "
+                                "1 too big), 1 subscriptions"),
+            std::string::npos)
       << fox_->Output();
 }
 
