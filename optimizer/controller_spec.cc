@@ -62,7 +62,7 @@ ControllerSpec ParseControllerFlag(const std::string& text, bool* cpg_genes) {
     spec.kind = ControllerSpec::Kind::kMlp;
     spec.hidden =
         ParseHiddenLayers(text.substr(mlp.size()), "--controller " + text);
-    spec.name = text;
+    spec.name = HiddenLayersText(spec.hidden);  // "controller=mlp:8,8"
     return spec;
   }
   throw std::invalid_argument(

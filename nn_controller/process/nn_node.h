@@ -1,7 +1,7 @@
 // mrsim-nn's logic as a plain state machine: answers each state of one
 // robot with the targets of a neural-network controller (MlpNetwork; the
 // state's sim time is its clock, so a lockstep run is the same every time
-// and equals the optimiser's episode, network_runner.h). Decoded messages
+// and equals the optimiser's episode, MlpEpisodeController). Decoded messages
 // and the wall time in, joint commands out; NnServer is the LCM adapter.
 // The network takes no steering, so the node sends no gait status (the
 // studio and mrsim-ctl then see the robot as not steerable, which it is

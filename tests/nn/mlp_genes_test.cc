@@ -30,6 +30,7 @@ TEST(MlpController, FlagGivesTheHiddenLayersAndRefusesNonsense) {
   const ControllerSpec spec = ParseControllerFlag("mlp:16,4");
   EXPECT_EQ(spec.kind, ControllerSpec::Kind::kMlp);
   EXPECT_EQ(spec.hidden, (std::vector<int>{16, 4}));
+  EXPECT_EQ(spec.name, "16,4");  // resume names controller=mlp:16,4
   for (const char* bad : {"mlp:", "mlp:0", "mlp:x", "mlp:8,", "mlp"}) {
     try {
       ParseControllerFlag(bad);

@@ -1,6 +1,6 @@
 // The network controller: its shape fixes the weight count (the genome
-// size), its targets stay in range and are the same for the same weights
-// and state, and it runs a robot in process.
+// size), and its targets stay in range and are the same for the same
+// weights and state.
 #include "nn_controller/mlp_network.h"
 
 #include <gtest/gtest.h>
@@ -8,8 +8,6 @@
 #include <cmath>
 
 #include "nn_controller/network_genes.h"
-#include "nn_controller/network_runner.h"
-#include "sim_core/chain_builder.h"
 
 namespace mrsim {
 namespace {
@@ -85,25 +83,6 @@ TEST(MlpNetwork, RefusesWrongWeightsPeriodAndJointCount) {
   EXPECT_THROW(MlpNetwork(shape, Weights(n), 0.0), std::invalid_argument);
   MlpNetwork net(shape, Weights(n), 2.0);
   EXPECT_THROW(net.Evaluate(Observation(5, 0)), std::invalid_argument);
-}
-
-TEST(NetworkRunner, DrivesTheChainAndRepeatsBitForBit) {
-  ChainOptions options;
-  options.modules = 6;
-  Scenario scenario;
-  scenario.robots.push_back(MakeChain(options));
-  MlpShape shape = Shape(0, {4});
-  double end_x[2];
-  for (double& x : end_x) {
-    Physics physics(scenario);
-    shape.joints = physics.joint_count(0);
-    MlpNetwork net(shape, Weights(shape.WeightCount(), 1.5), 1.5);
-    const GaitRunResult run = RunNetwork(physics, 0, net, 1.0);
-    EXPECT_EQ(run.periods, 100);
-    EXPECT_GT(run.energy, 0);
-    x = run.com_end.x();
-  }
-  EXPECT_EQ(end_x[0], end_x[1]);
 }
 
 }  // namespace

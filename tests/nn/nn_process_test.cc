@@ -8,7 +8,8 @@
 #include <fstream>
 
 #include "nn_controller/network_file.h"
-#include "nn_controller/network_runner.h"
+#include "optimizer/episode_controller.h"
+#include "optimizer/mlp_episode_controller.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/physics.h"
@@ -59,10 +60,10 @@ TEST(NnProcess, LockstepRunEndsWhereTheInProcessRunEnds) {
   EXPECT_NE(nn.Output().find("answered 301 states"), std::string::npos)
       << nn.Output();
 
-  // The same network from its file, in process.
+  // The same network from its file, as an optimiser's episode runs it.
   Physics physics(ReadScenarioFile(path));
-  MlpNetwork network = ReadNetworkFile(net_path).network;
-  const GaitRunResult run = RunNetwork(physics, 0, network, 3.0, 0.01);
+  MlpEpisodeController network(ReadNetworkFile(net_path).network);
+  const ControllerRunResult run = RunController(physics, 0, network, 3.0, 0.01);
   const auto final_state = LoadCheckpoint(dir + "/final.checkpoint");
   EXPECT_EQ(final_state->time(), physics.time());
   EXPECT_TRUE(final_state->SaveState() == physics.SaveState());
