@@ -8,6 +8,8 @@
 #include "common/cli_exit.h"
 #include "gait_controller/gait_file.h"
 #include "lcmtypes/runtime/version.h"
+#include "optimizer/process/opt_command.h"
+#include "optimizer/process/optimiser_table.h"
 #include "optimizer/task.h"
 #include "optimizer/task_table.h"
 
@@ -24,10 +26,21 @@ int main(int argc, char** argv) {
       ->needs(task);
   app.add_option("--seconds", c.seconds, "Episode length (default: the task's)")
       ->check(CLI::PositiveNumber);
-  app.add_flag("--markdown", c.markdown,
-               "Print the tables of docs/tasks.md: the tasks and every "
-               "compared gait's fitness on each (a minute or two)")
-      ->excludes(task);
+  auto* markdown =
+      app.add_flag("--markdown", c.markdown,
+                   "Print the tables of docs/tasks.md: the tasks and every "
+                   "compared gait's fitness on each (a minute or two)")
+          ->excludes(task);
+  bool optimisers = false;
+  int jobs = 0;
+  app.add_flag("--optimisers", optimisers,
+               "With --markdown: the optimiser table too, every row's "
+               "mrsim-opt run on every task (long: progress on stderr)")
+      ->needs(markdown);
+  app.add_option("-j,--jobs", jobs,
+                 "Optimiser cells run at once (0: one per core; each is "
+                 "one single-threaded run, so the table is the same)")
+      ->check(CLI::NonNegativeNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& err) {
@@ -35,11 +48,20 @@ int main(int argc, char** argv) {
   }
   try {
     fmt::print("{}", mrsim::RunTaskCommand(c));
+    if (c.markdown && optimisers) {
+      std::fflush(stdout);
+      fmt::print("\n{}", mrsim::OptimiserResultsMarkdown(jobs, [](auto& l) {
+                   fmt::print(stderr, "mrsim-tasks: {}\n", l);
+                 }));
+    }
     return 0;
   } catch (const mrsim::GaitFileError& err) {
     fmt::print(stderr, "mrsim-tasks: {}\n", err.what());
     return 2;
   } catch (const mrsim::TaskError& err) {
+    fmt::print(stderr, "mrsim-tasks: {}\n", err.what());
+    return 2;
+  } catch (const mrsim::OptInputError& err) {  // e.g. the Lua row's script
     fmt::print(stderr, "mrsim-tasks: {}\n", err.what());
     return 2;
   } catch (const std::exception& err) {

@@ -3,8 +3,10 @@
 # so docs that drift from the code fail here instead of misleading.
 #
 #   cmake -DMRSIM_TASKS=<mrsim-tasks> -DMRSIM_DOC=<docs/tasks.md>
-#         -P tests/optimizer/tasks_doc_check.cmake
-execute_process(COMMAND ${MRSIM_TASKS} --markdown
+#         [-DMRSIM_TASKS_ARGS=--optimisers] -P tests/optimizer/tasks_doc_check.cmake
+#
+# MRSIM_TASKS_ARGS: more flags (--optimisers: the optimiser table too).
+execute_process(COMMAND ${MRSIM_TASKS} --markdown ${MRSIM_TASKS_ARGS}
   OUTPUT_VARIABLE tables ERROR_VARIABLE err RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "mrsim-tasks --markdown failed (${rc}): ${err}")
@@ -32,6 +34,6 @@ if(NOT missing STREQUAL "")
   # Unformatted, so it can be pasted as it is.
   message("${missing}")
   message(FATAL_ERROR
-    "${MRSIM_DOC} does not hold the tables above as mrsim-tasks --markdown "
+    "${MRSIM_DOC} does not hold the tables above as mrsim-tasks --markdown ${MRSIM_TASKS_ARGS} "
     "prints them: paste the command's output over the old tables.")
 endif()
