@@ -76,8 +76,8 @@ class FoxgloveServer::Impl {
         options_.bind + ":" + std::to_string(options_.port);
     const asio::ip::address address = asio::ip::make_address(options_.bind, ec);
     if (ec) {
-      throw std::runtime_error("--bind " + options_.bind +
-                               ": not an IP address (" + ec.message() + ")");
+      throw std::invalid_argument("--bind " + options_.bind +
+                                  ": not an IP address (" + ec.message() + ")");
     }
     server_.listen(asio::ip::tcp::endpoint(address, options_.port), ec);
     if (ec)
@@ -104,6 +104,7 @@ class FoxgloveServer::Impl {
 
   ~Impl() {
     server_.get_io_service().post([this] {
+      stopping_ = true;
       asio::error_code ec;
       server_.stop_listening(ec);
       timer_->cancel();
@@ -213,7 +214,7 @@ class FoxgloveServer::Impl {
   void ArmTimer() {
     timer_->expires_after(kTickPeriod);
     timer_->async_wait([this](const asio::error_code& ec) {
-      if (ec) return;  // cancelled: stopping
+      if (ec || stopping_) return;  // cancelled: stopping
       {
         std::unique_lock<std::mutex> lock(mutex_);
         Deliver(bridge_.Tick(NowNs()), lock);
@@ -317,6 +318,7 @@ class FoxgloveServer::Impl {
   ClientId next_id_ = 1;
   Counts counts_;
   std::atomic<bool> flush_posted_{false};
+  bool stopping_ = false;  // server thread only
   std::unique_ptr<asio::steady_timer> timer_;
   uint16_t port_ = 0;
   std::future<void> stopped_;

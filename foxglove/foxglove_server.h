@@ -44,7 +44,8 @@ class FoxgloveServer {
     int64_t closed_overflow = 0;     // clients closed for a full outbox
   };
 
-  // Listens (throws std::runtime_error naming bind:port when it cannot)
+  // Listens (throws std::invalid_argument for a bind that is no IP
+  // address, std::runtime_error naming bind:port when it cannot listen)
   // and starts the server thread.
   FoxgloveServer(FoxgloveBridgeOptions bridge, FoxgloveServerOptions options);
   ~FoxgloveServer();  // stops the thread, closing every connection

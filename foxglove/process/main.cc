@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   } catch (const mrsim::UsageError& e) {
     std::fprintf(stderr, "mrsim-foxglove: %s\n", e.what());
     return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "mrsim-foxglove: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrsim-foxglove: error: %s\n", e.what());
     return 1;
