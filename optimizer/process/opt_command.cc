@@ -319,6 +319,9 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                "Afterwards show the best in mrsim-sim + mrsim-gait + "
                "mrsim-view (via mrsim launch)");
   app.add_flag("--quiet", c.quiet, "Only the final summary");
+  app.add_flag("--allow-overlap", c.allow_overlap,
+               "Optimise a scenario whose parts overlap at the start "
+               "(refused otherwise, as mrsim-sim refuses to run it)");
 }
 
 OptSetup PrepareOpt(const OptCommand& c) {
@@ -458,8 +461,14 @@ OptSetup PrepareOpt(const OptCommand& c) {
         GaitOfGenome(problem, problem.genome.StartGenome()).parameters);
     // The body the genes start from must be clear of the scene, as
     // mrsim-sim requires of a file; individuals that grow into it later
-    // are failed ones (RunEpisode).
-    if (GenomeBuildsTheBody(problem.genome)) {
+    // are failed ones (RunEpisode). A scenario file is checked whatever
+    // the genes (its overlap would score the physics' explosion as
+    // distance); a task's world is built to its own rules (the pole task
+    // squeezes the pole on purpose).
+    const bool checked =
+        !c.allow_overlap &&
+        (c.task.empty() || GenomeBuildsTheBody(problem.genome));
+    if (checked) {
       RefuseOverlaps(ApplyBodyGenes(problem.scenario, problem.genome,
                                     problem.genome.StartGenome()));
     }
@@ -469,7 +478,8 @@ OptSetup PrepareOpt(const OptCommand& c) {
     throw OptInputError(
         std::string("the body the genome starts from: ") + err.what() +
         "\nparts must not overlap at the start: move them apart in the "
-        "scenario, or change the body genes' start values");
+        "scenario, or change the body genes' start values, or allow overlap "
+        "(--allow-overlap) to optimise it anyway");
   } catch (const std::exception& err) {
     throw OptInputError(err.what());
   }

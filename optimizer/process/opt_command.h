@@ -55,6 +55,9 @@ struct OptCommand {
   bool no_start = false;
   bool replay = false;
   bool quiet = false;
+  // Optimise a scenario file whose parts overlap at the start (mrsim-sim
+  // --allow-overlap's words); refused otherwise, as mrsim-sim refuses it.
+  bool allow_overlap = false;
   int slurm = 0;  // --slurm N: workers submitted as one Slurm array job
   std::vector<std::string> slurm_options;  // --slurm-opt, sbatch options
   int hub_port = 0;                        // --hub PORT: start LCM's TCP hub

@@ -98,6 +98,7 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
                     fmt::format("{:g}", f.w_energy), "--w-drift",
                     fmt::format("{:g}", f.w_drift), "--w-fall",
                     fmt::format("{:g}", f.w_fall)});
+  if (o.allow_overlap) spec.args.push_back("--allow-overlap");
   if (o.robust.episodes != 0) {
     o.robust.Validate();
     spec.args.insert(spec.args.end(),

@@ -50,6 +50,9 @@ struct OptimiseOptions {
   // episode in K worlds of the reality gap (docs/optimizer.md); 0: the
   // nominal world only.
   RobustSettings robust;
+  // The Run section's "allow overlap" box (mrsim-opt --allow-overlap): a
+  // design whose parts overlap at the start is optimised anyway.
+  bool allow_overlap = false;
   // Settings of the chosen algorithm by flag ("pso-c1" -> 2.0), each one
   // of its registry row's (AlgorithmInfo::settings); the rest keep
   // mrsim-opt's defaults.

@@ -304,6 +304,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       o.episode_s = episode_;
       o.fitness = fitness_;
       o.robust = robust_;
+      o.allow_overlap = allow_overlap_;
       o.base_gait = base_gait_;
       for (const AlgorithmSetting& setting :
            algorithms.at(algorithm_).settings) {

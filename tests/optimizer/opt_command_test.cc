@@ -177,7 +177,9 @@ class StoppingEvaluator : public BatchEvaluator {
 // lock its holder left behind when killed is taken over.
 // A body genome starting from a body that overlaps the scene (the case
 // study's ball put in module 0) is refused before any episode, naming the
-// parts as mrsim-sim does; a gait-only genome runs the file as it is.
+// parts as mrsim-sim does; so is a gait-only genome on that file (its
+// episodes would score the physics pushing the ball out as distance),
+// unless the user allows overlap as mrsim-sim's flag does.
 TEST(OptCommand, AStartBodyOverlappingTheSceneIsRefusedNamingItsParts) {
   const std::string dir = testing::TempDir("opt_command_overlap");
   Scenario s =
@@ -201,8 +203,16 @@ TEST(OptCommand, AStartBodyOverlappingTheSceneIsRefusedNamingItsParts) {
   std::ofstream(gait) << R"(<genome>
   <gene name="A_pitch" lower="0" upper="1.5" start="1"/>
 </genome>)";
-  EXPECT_NO_THROW(PrepareOpt(
-      Parse({scenario, "--genome", gait, "--out", dir + "/gait_only"})));
+  try {
+    PrepareOpt(Parse({scenario, "--genome", gait, "--out", dir + "/gait"}));
+    ADD_FAILURE() << "an overlapping file was optimised with gait genes";
+  } catch (const OptInputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("scene object 'ball' by "), std::string::npos) << what;
+    EXPECT_NE(what.find("--allow-overlap"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(PrepareOpt(Parse({scenario, "--genome", gait, "--out",
+                                    dir + "/allowed", "--allow-overlap"})));
 }
 
 TEST(OptCommand, ARunFolderIsLockedWhileARunWritesIt) {

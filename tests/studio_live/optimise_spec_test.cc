@@ -56,6 +56,16 @@ TEST(OptimiseSpec, RobustFitnessReachesMrsimOptOnlyWhenAsked) {
   EXPECT_THROW(OptimiseSession::Spec(o, "g.xml"), std::invalid_argument);
 }
 
+TEST(OptimiseSpec, AllowingOverlapInRunAllowsItInTheOptimiserToo) {
+  OptimiseOptions o = Options();
+  auto has = [](const std::vector<std::string>& args) {
+    return std::find(args.begin(), args.end(), "--allow-overlap") != args.end();
+  };
+  EXPECT_FALSE(has(OptimiseSession::Spec(o, "g.xml").args));
+  o.allow_overlap = true;
+  EXPECT_TRUE(has(OptimiseSession::Spec(o, "g.xml").args));
+}
+
 TEST(OptimiseSpec, TheChosenAlgorithmsOwnSettingsArePassed) {
   OptimiseOptions o = Options();
   o.algorithm = "pso";
