@@ -21,7 +21,14 @@ const EnumTable<ControllerSpec::Kind>& ControllerSpec::Kinds() {
 namespace {
 
 constexpr const char* kFlagHelp =
-    "expected gait, cpg, lua:FILE or mlp:H (mlp:H1,H2)";
+    "expected gait, cpg, lua:FILE or mlp:H (mlp:H1,H2; +imu, +sensors "
+    "for those inputs)";
+
+// The network's name in resume messages and best_network.xml: "8,8+imu".
+std::string MlpName(const ControllerSpec& spec) {
+  return HiddenLayersText(spec.hidden) + (spec.imu ? "+imu" : "") +
+         (spec.sensors != 0 ? "+sensors" : "");
+}
 
 // The name a script goes by: its file name, without the folders.
 std::string ScriptName(const std::string& path) {
@@ -60,9 +67,27 @@ ControllerSpec ParseControllerFlag(const std::string& text, bool* cpg_genes) {
   const std::string mlp = "mlp:";
   if (text.rfind(mlp, 0) == 0) {
     spec.kind = ControllerSpec::Kind::kMlp;
-    spec.hidden =
-        ParseHiddenLayers(text.substr(mlp.size()), "--controller " + text);
-    spec.name = HiddenLayersText(spec.hidden);  // "controller=mlp:8,8"
+    std::string rest = text.substr(mlp.size());
+    const size_t plus = rest.find('+');
+    const std::string layers = rest.substr(0, plus);
+    rest = plus == std::string::npos ? "" : rest.substr(plus);
+    spec.hidden = ParseHiddenLayers(layers, "--controller " + text);
+    while (!rest.empty()) {  // "+imu", "+sensors", each at most once
+      const size_t next = rest.find('+', 1);
+      const std::string input = rest.substr(1, next - 1);
+      rest = next == std::string::npos ? "" : rest.substr(next);
+      if (input == "imu" && !spec.imu) {
+        spec.imu = true;
+      } else if (input == "sensors" && spec.sensors == 0) {
+        spec.sensors = -1;  // the robot's count, once resolved
+      } else {
+        throw std::invalid_argument(fmt::format(
+            "--controller '{}': input '+{}' (expected +imu and/or +sensors, "
+            "each once)",
+            text, input));
+      }
+    }
+    spec.name = MlpName(spec);  // "controller=mlp:8,8+imu"
     return spec;
   }
   throw std::invalid_argument(
@@ -75,8 +100,11 @@ std::string EncodeControllerSpec(const ControllerSpec& spec) {
   // A network's shape: its hidden layers and the joints it was made for.
   const std::string shape =
       spec.kind == ControllerSpec::Kind::kMlp
-          ? fmt::format("hidden={}\njoints={}\n", HiddenLayersText(spec.hidden),
-                        spec.joints)
+          ? fmt::format(
+                "hidden={}\njoints={}\n{}{}", HiddenLayersText(spec.hidden),
+                spec.joints, spec.imu ? "imu=1\n" : "",
+                spec.sensors != 0 ? fmt::format("sensors={}\n", spec.sensors)
+                                  : "")
           : "";
   return fmt::format("kind={}\nname={}\n{}\n{}",
                      ControllerSpec::Kinds().Name(spec.kind), spec.name, shape,
@@ -117,6 +145,18 @@ ControllerSpec DecodeControllerSpec(const std::string& text,
         throw std::invalid_argument(
             fmt::format("{} joints: expected 1 to {}, got '{}'", where,
                         MlpShape::kMaxJoints, value));
+      }
+    } else if (key == "imu" && value == "1") {
+      spec.imu = true;
+    } else if (key == "sensors") {
+      const bool digits =
+          !value.empty() && value.size() <= 5 &&
+          value.find_first_not_of("0123456789") == std::string::npos;
+      spec.sensors = digits ? std::stoi(value) : 0;
+      if (spec.sensors < 1 || spec.sensors > MlpShape::kMaxSensors) {
+        throw std::invalid_argument(
+            fmt::format("{} sensors: expected 1 to {}, got '{}'", where,
+                        MlpShape::kMaxSensors, value));
       }
     } else {
       throw std::invalid_argument(where + ": unknown field '" + key + "'");

@@ -39,6 +39,11 @@ struct ControllerSpec {
   // resolved).
   std::vector<int> hidden;
   int joints = 0;
+  // kMlp: the optional inputs (mlp:H+imu+sensors, docs/nn.md): the robot's
+  // orientation and CoM velocity, and its sensor values (sensors: -1 until
+  // ResolveMlpJoints counts the robot's; then how many, 0: none).
+  bool imu = false;
+  int sensors = 0;
 
   bool is_gait() const { return kind == Kind::kGait; }
 };
@@ -46,7 +51,8 @@ struct ControllerSpec {
 // What --controller says. "gait" and "cpg" (the gait; cpg_genes says the
 // default genome is the CPG one); "lua:FILE" reads FILE (at most
 // kMaxLuaScriptBytes); "mlp:H" or "mlp:H1,H2" a network with those hidden
-// layers (its joints still to resolve). Throws std::invalid_argument naming the
+// layers (its joints still to resolve), with "+imu" and/or "+sensors"
+// after them for those inputs. Throws std::invalid_argument naming the
 // flag and what it accepts, or the file that does not read.
 ControllerSpec ParseControllerFlag(const std::string& text,
                                    bool* cpg_genes = nullptr);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "nn_controller/network_genes.h"
+#include "nn_controller/nn_observation.h"
 #include "optimizer/body_genes.h"
 #include "sim_core/physics.h"
 
@@ -15,6 +16,8 @@ MlpShape MlpShapeOf(const ControllerSpec& controller) {
   MlpShape shape;
   shape.joints = controller.joints;
   shape.hidden = controller.hidden;
+  shape.imu = controller.imu;
+  shape.sensors = std::max(controller.sensors, 0);
   return shape;
 }
 
@@ -31,6 +34,17 @@ void ResolveMlpJoints(ControllerSpec* controller, const Scenario& scenario,
                     ControllerSpec::Kinds().Name(controller->kind)));
   }
   controller->joints = joints;
+  if (controller->sensors < 0) {
+    // Every value the robot's sensor modules give, as mrsim-nn reads them
+    // (nn_observation.h): a force, then the distances, per module.
+    NnObservation seen;
+    ObservationOf(Physics(scenario).ReadRobotState(index), &seen);
+    controller->sensors = static_cast<int>(seen.sensor_values.size());
+    if (controller->sensors == 0) {
+      throw GenomeError(
+          "mlp +sensors: the robot has no force or distance sensor to read");
+    }
+  }
 }
 
 GenomeSpec MlpGenome(const ControllerSpec& controller, const GenomeSpec* user) {

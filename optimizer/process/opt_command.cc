@@ -721,10 +721,17 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
   const std::string best_file = WriteBestFiles(
       c, setup.problem, result, outcome.best_dir, outcome.launch);
 
+  // A network's hundreds of weights are no line to read: they are in
+  // best_genome.xml.
+  constexpr int kGenesPrinted = 24;
   std::string genes;
-  for (int i = 0; i < setup.problem.genome.size(); ++i) {
+  for (int i = 0; i < setup.problem.genome.size() && i < kGenesPrinted; ++i) {
     genes += fmt::format(" {}={}", setup.problem.genome.genes[i].name,
                          result.best[i]);
+  }
+  if (setup.problem.genome.size() > kGenesPrinted) {
+    genes += fmt::format(" ... ({} genes in all, in best_genome.xml)",
+                         setup.problem.genome.size());
   }
   const EvalResult& b = result.best_result;
   fmt::print(out,

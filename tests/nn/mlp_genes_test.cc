@@ -13,6 +13,8 @@
 #include "optimizer/episode.h"
 #include "optimizer/problem_codec.h"
 #include "optimizer/task.h"
+#include "sim_core/scenario_xml.h"
+#include "tests/common/child_process.h"
 
 namespace mrsim {
 namespace {
@@ -85,6 +87,43 @@ TEST(MlpController, PayloadKeepsTheShapeAndEpisodesRepeatBitForBit) {
   EXPECT_EQ(a.fitness, b.fitness);
   EXPECT_EQ(a.energy, b.energy);
   EXPECT_NE(a.distance, 0);
+}
+
+TEST(MlpController, ImuAndSensorInputsWidenTheNetworkAndTravelInThePayload) {
+  // The case study: six sensor modules with force plates, a distance
+  // sensor at the front.
+  const Task task = MakeTask("flat");
+  Problem p = TaskProblem(task, task.gait, GenomeSpec{}, 0.5);
+  p.scenario =
+      ReadScenarioFile(testing::SourcePath("scenarios/case_study.xml"));
+  auto genes_of = [&](const std::string& flag) {
+    p.controller = ParseControllerFlag(flag);
+    ResolveMlpJoints(&p.controller, p.scenario, "");
+    p.genome = ControllerGenome(p.controller, nullptr);
+    return p.genome.size();
+  };
+  const int plain = genes_of("mlp:4");
+  const int with_imu = genes_of("mlp:4+imu");
+  EXPECT_EQ(with_imu - plain, MlpShape::kImuInputs * 4);  // 7 inputs x 4
+  const int with_all = genes_of("mlp:4+imu+sensors");
+  EXPECT_EQ(p.controller.name, "4+imu+sensors");
+  EXPECT_GE(p.controller.sensors, 7) << "six forces and a distance at least";
+  EXPECT_EQ(with_all - with_imu, p.controller.sensors * 4);
+
+  const Problem back = DecodeProblem(EncodeProblem(p), "test");
+  EXPECT_TRUE(back.controller.imu);
+  EXPECT_EQ(back.controller.sensors, p.controller.sensors);
+  Genome genome = p.genome.StartGenome();
+  for (size_t i = 1; i < genome.size(); ++i) genome[i] = std::sin(0.7 * i);
+  const EvalResult a = RunEpisode(p, genome);
+  EXPECT_FALSE(a.failed);
+  EXPECT_EQ(a.fitness, RunEpisode(back, genome).fitness);
+
+  for (const char* bad : {"mlp:4+gps", "mlp:4+imu+imu", "mlp:4+"}) {
+    EXPECT_THROW(ParseControllerFlag(bad), std::invalid_argument) << bad;
+  }
+  // The tasks' snake carries no sensor: +sensors has nothing to read.
+  EXPECT_THROW(FlatMlpProblem("mlp:4+sensors"), GenomeError);
 }
 
 TEST(MlpController, APayloadWithoutItsJointsIsRefused) {
