@@ -1,5 +1,6 @@
 #include "logger/channel_ledger.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace mrsim {
@@ -32,6 +33,12 @@ ChannelStats ChannelLedger::Stats() const {
   s.back_jumps = seq_.back_jumps();
   s.first_seq = seq_.first();
   s.last_seq = seq_.last();
+  if (seq_.count() == 0 && sparse_count_ > 0) {
+    s.gaps = sparse_gaps_;
+    s.missing = sparse_missing_;
+    s.first_seq = sparse_first_;
+    s.last_seq = sparse_last_;
+  }
   return s;
 }
 
@@ -58,10 +65,24 @@ void ChannelLedger::OtherType(int64_t fingerprint) {
   }
 }
 
-void ChannelLedger::Malformed(size_t size) {
+void ChannelLedger::Malformed(size_t size, const std::string& why) {
   ++stats_.malformed;
   Report(stats_.channel + ": malformed " + stats_.type + " message of " +
-         std::to_string(size) + " bytes; dropped");
+         std::to_string(size) + " bytes" +
+         (why.empty() ? "" : " (" + why + ")") + "; dropped");
+}
+
+void ChannelLedger::TakeSparseSeq(int64_t seq, int64_t missing,
+                                  const std::string& gap_text) {
+  stats_.has_seq = true;
+  if (sparse_count_++ == 0) sparse_first_ = sparse_last_ = seq;
+  sparse_first_ = std::min(sparse_first_, seq);
+  sparse_last_ = std::max(sparse_last_, seq);
+  if (missing > 0) {
+    ++sparse_gaps_;
+    sparse_missing_ += missing;
+    Report(stats_.channel + ": gap: " + gap_text);
+  }
 }
 
 bool ChannelLedger::TakeSeq(int64_t seq, std::string_view content) {

@@ -49,8 +49,9 @@ class ChannelLedger {
   // Counted; the first one on the channel is reported.
   void UnknownType(int64_t fingerprint);
   void OtherType(int64_t fingerprint);
-  // Counted and reported: size bytes of stats().type that do not decode.
-  void Malformed(size_t size);
+  // Counted and reported: size bytes of stats().type that do not decode
+  // (`why`, when given, says which field was wrong).
+  void Malformed(size_t size, const std::string& why = "");
 
   // A message of seq whose content (the text written for it) is `content`:
   // false when it is a re-send of one just written (same seq, same
@@ -64,6 +65,13 @@ class ChannelLedger {
   void Remember(int64_t seq, std::string_view content);
   void Remember(int64_t seq, std::string* content);
 
+  // For a stream whose seq steps by more than one by design (a camera
+  // pictures every few states, each picture carrying its state's seq):
+  // only the seq range is tracked, and the caller, which knows the
+  // stream's period, tells how many messages it found missing just before
+  // this one (counted as one gap, reported with `gap_text`).
+  void TakeSparseSeq(int64_t seq, int64_t missing, const std::string& gap_text);
+
   void Report(const std::string& text);
 
  private:
@@ -76,6 +84,12 @@ class ChannelLedger {
   // The last messages written with their seq, a ring.
   std::vector<std::pair<int64_t, std::string>> recent_;
   size_t recent_next_ = 0;
+  // TakeSparseSeq's counts (used when TakeSeq saw nothing).
+  int64_t sparse_count_ = 0;
+  int64_t sparse_first_ = 0;
+  int64_t sparse_last_ = 0;
+  int64_t sparse_gaps_ = 0;
+  int64_t sparse_missing_ = 0;
 };
 
 }  // namespace mrsim

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/message_auth.h"
 #include "logger/generic_flattener.h"
 #include "logger/robot_state_flattener.h"
@@ -37,6 +38,25 @@ std::string ChannelFileStem(const std::string& channel) {
   }
   if (out.empty() || out == "." || out == "..") out = "_" + out;
   return out;
+}
+
+std::string CameraFolderStemOf(const std::string& channel) {
+  static const std::string kMark = ChannelNamed("camera").infix;
+  const size_t at = channel.find(kMark);
+  return "camera_" + ChannelFileStem(at == std::string::npos
+                                         ? channel
+                                         : channel.substr(at + kMark.size()));
+}
+
+std::string Recorder::CameraFolderStem(const std::string& channel) {
+  // Two prefixes' channels of one robot name (recorded together with
+  // --channels) must not write into one folder.
+  std::string stem = CameraFolderStemOf(channel);
+  if (!camera_stems_.insert(stem).second) {
+    stem = "camera_" + ChannelFileStem(channel);
+    camera_stems_.insert(stem);
+  }
+  return stem;
 }
 
 Recorder::Recorder(const LcmTypeRegistry& registry, RecorderOptions options)
@@ -96,17 +116,26 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
   ChannelStats& stats = ledger.stats();
   if (!ledger.CheckSize(size)) return;
   const int64_t hash = LcmFingerprint(data);
-  if (!ch.flattener) {
+  if (!ch.flattener && !ch.camera) {
     const LcmStruct* type = registry_.FindByHash(hash);
     if (type == nullptr) {
       ledger.UnknownType(hash);
       return;
     }
     ch.hash = hash;
-    ch.flattener = MakeFlattener(registry_, *type);
     stats.type = type->full_name();
+    if (stats.type == "mrsim.camera_image_t") {
+      ch.camera = std::make_unique<CameraChannelRecorder>(
+          options_.out_dir, CameraFolderStem(stats.channel));
+    } else {
+      ch.flattener = MakeFlattener(registry_, *type);
+    }
   } else if (hash != ch.hash) {
     ledger.OtherType(hash);
+    return;
+  }
+  if (ch.camera) {
+    ch.camera->Record(data, size, ledger);
     return;
   }
   // A message signed by a program with a key (docs/security.md) carries a
@@ -170,6 +199,13 @@ void Recorder::OpenPart(Channel& ch) {
 void Recorder::Flush() {
   std::string first_error;
   for (auto& [name, ch] : channels_) {
+    if (ch.camera) {
+      try {
+        ch.camera->Flush();
+      } catch (const std::exception& e) {
+        if (first_error.empty()) first_error = e.what();
+      }
+    }
     if (!ch.writer || ch.writer->failed()) continue;
     try {
       ch.writer->Flush();

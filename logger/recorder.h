@@ -3,17 +3,21 @@
 // messages, sequence gaps, and re-sends (the same row under a seq just
 // written, as when a lockstep simulator re-sends a state its controller has
 // not answered: written once). Live logging and .lcmlog
-// replay both feed it, so both give the same bytes.
+// replay both feed it, so both give the same bytes. Camera channels
+// (camera_image_t) are written as pictures instead: a PNG sequence and an
+// index per camera (CameraChannelRecorder).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "logger/camera_channel_recorder.h"
 #include "logger/channel_ledger.h"
 #include "logger/channel_stats.h"
 #include "logger/csv_writer.h"
@@ -79,6 +83,7 @@ class Recorder {
     ChannelLedger ledger;
     int64_t hash = 0;
     std::unique_ptr<MessageFlattener> flattener;
+    std::unique_ptr<CameraChannelRecorder> camera;  // camera_image_t only
     std::unique_ptr<CsvWriter> writer;
     uint64_t shape_version = 0;
     std::vector<std::string> part_columns;  // the open file's header
@@ -87,14 +92,20 @@ class Recorder {
 
   void Record(Channel& ch, const uint8_t* data, size_t size);
   void OpenPart(Channel& ch);
+  std::string CameraFolderStem(const std::string& channel);
 
   const LcmTypeRegistry& registry_;
   RecorderOptions options_;
   std::map<std::string, Channel> channels_;
+  std::set<std::string> camera_stems_;  // taken by a camera channel
   std::string error_;
   int64_t messages_ = 0;
   int64_t extra_channel_messages_ = 0;
 };
+
+// Where a camera channel's pictures go: camera_<robot>_<camera>/ (the
+// robot from <prefix>_CAMERA_<robot>), see docs/logger.md.
+std::string CameraFolderStemOf(const std::string& channel);
 
 // A channel name as a file name: characters other than letters, digits,
 // '_', '-' and '.' become '_'.
