@@ -299,14 +299,20 @@ class FoxgloveServer::Impl {
 
   void Http(Hdl h) {
     WsServer::connection_ptr con = server_.get_con_from_hdl(h);
-    // The place for a page of mrsim's own later; for now where to connect.
-    con->set_status(websocketpp::http::status_code::ok);
-    con->append_header("Content-Type", "text/plain; charset=utf-8");
-    con->set_body(
-        "mrsim-foxglove: open Foxglove or Lichtblick and connect to "
-        "ws://<this host>:" +
-        std::to_string(port_) +
-        " (Foxglove WebSocket). See docs/foxglove.md.\n");
+    const std::string& method = con->get_request().get_method();
+    HttpReply reply;
+    if (method == "GET" || method == "HEAD") {
+      reply = options_.web.Serve(con->get_request().get_uri(), port_);
+    } else {
+      reply = {405, "text/plain; charset=utf-8", "GET only\n"};
+      con->append_header("Allow", "GET, HEAD");
+    }
+    con->set_status(
+        static_cast<websocketpp::http::status_code::value>(reply.status));
+    con->append_header("Content-Type", reply.content_type);
+    con->append_header("X-Content-Type-Options", "nosniff");
+    con->append_header("Cache-Control", "no-cache");
+    con->set_body(std::move(reply.body));
   }
 
   FoxgloveServerOptions options_;

@@ -4,8 +4,8 @@
 // socket: what each client is to get goes into its bounded ClientOutbox,
 // and the server thread sends from there as fast as the client reads
 // (a slow client loses its oldest data, the simulator never waits). Plain
-// HTTP requests get a short page saying where to connect; a page of its own
-// can be served from the same handler later.
+// HTTP requests on the same port get the browser page (web_assets.h), or a
+// short hint of where to connect when its files were not found.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include <string>
 
 #include "foxglove/foxglove_bridge.h"
+#include "foxglove/web_assets.h"
 
 namespace mrsim::foxglove {
 
@@ -30,6 +31,8 @@ struct FoxgloveServerOptions {
   // Called on the server thread for each control to publish (thread-safe
   // publishing, as SignedLcm's).
   std::function<void(const sim_control_t&)> publish;
+  // The browser page's files, served over HTTP (none: the hint).
+  WebAssets web;
   // Warnings (a client closed, a listener error); may be empty.
   std::function<void(const std::string&)> warn;
 };

@@ -19,19 +19,21 @@ packages=(
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
   libzstd-dev libdeflate-dev nodejs
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev
+  chromium
 )
 # npm: Debian's package, unless the nodejs installed brings its own (as
 # NodeSource's does, which conflicts with Debian's npm).
 if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
 
 # The npm packages the MCAP and Foxglove tests use (tests/mcap: MCAP's
-# reference reader; tests/foxglove: Foxglove's WebSocket client; each pinned
-# by its package-lock.json): fetched once, then nothing is fetched again
+# reference reader; tests/foxglove: Foxglove's WebSocket client) and
+# three.js for mrsim-foxglove's browser page (foxglove/web), each pinned
+# by its package-lock.json: fetched once, then nothing is fetched again
 # until a lock file changes, so later runs work offline.
 npm_packages() {
   local root dir
   root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-  for dir in "$root/tests/mcap" "$root/tests/foxglove"; do
+  for dir in "$root/tests/mcap" "$root/tests/foxglove" "$root/foxglove/web"; do
     if [ -f "$dir/node_modules/.package-lock.json" ] &&
        [ ! "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
       continue

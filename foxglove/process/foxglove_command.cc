@@ -58,6 +58,7 @@ int RunFoxglove(const FoxgloveCommand& c, SignedLcm& lcm, std::FILE* err) {
     server_options.control_token =
         foxglove::ControlTokenFromKeyFile(c.control_key);
   }
+  server_options.web = foxglove::WebAssets(foxglove::WebAssets::FindDir());
   const std::string control_channel = SimControlChannel(c.prefix);
   server_options.publish = [&lcm, control_channel](const sim_control_t& m) {
     lcm.publish(control_channel, &m);
@@ -80,6 +81,14 @@ int RunFoxglove(const FoxgloveCommand& c, SignedLcm& lcm, std::FILE* err) {
                c.prefix.c_str(), lcm.Describe().c_str(),
                c.control_key.empty() ? "clients on this host"
                                      : "clients with the token");
+  if (server_options.web.available()) {
+    std::fprintf(err, "mrsim-foxglove: the browser page: http://%s:%u/\n",
+                 c.bind == "0.0.0.0" ? "<this host>" : c.bind.c_str(),
+                 static_cast<unsigned>(server.port()));
+  } else {
+    std::fprintf(err, "mrsim-foxglove: no browser page: %s\n",
+                 server_options.web.why().c_str());
+  }
   std::fflush(err);
   while (!StopRequested()) HandleFor(lcm, 100);
   lcm.unsubscribe(sub);
