@@ -147,21 +147,25 @@ int64_t Written(const std::string& output) {
 struct Round {
   double ours = 0, theirs = 0;
   int64_t lost = 0;
+  int64_t mcap_bytes = 0, lcmlog_bytes = 0;
 };
 
-Round RunRound(const std::filesystem::path& dir, int round, double seconds) {
+Round RunRound(const std::filesystem::path& dir, int round, double seconds,
+               const std::string& compression) {
   const std::string tag = std::to_string(round);
-  Child ours(
-      {
-          MRSIM_LOG_EXE,
-          "--lcm-url",
-          kUrl,
-          "--mcap",
-          (dir / ("run" + tag + ".mcap")).string(),
-          "--channels",
-          kChannel,
-      },
-      (dir / ("mrsim-log" + tag + ".txt")).string());
+  std::vector<std::string> argv = {
+      MRSIM_LOG_EXE,
+      "--lcm-url",
+      kUrl,
+      "--mcap",
+      (dir / ("run" + tag + ".mcap")).string(),
+      "--channels",
+      kChannel,
+  };
+  if (!compression.empty()) {
+    argv.insert(argv.end(), {"--mcap-compression", compression});
+  }
+  Child ours(argv, (dir / ("mrsim-log" + tag + ".txt")).string());
   Child theirs({"/usr/bin/lcm-logger", std::string("--lcm-url=") + kUrl,
                 (dir / ("run" + tag + ".lcmlog")).string()},
                (dir / ("lcm-logger" + tag + ".txt")).string());
@@ -191,6 +195,10 @@ Round RunRound(const std::filesystem::path& dir, int round, double seconds) {
   }
   r.lost = total - Written(ours.Output());
   std::error_code ec;
+  r.mcap_bytes = static_cast<int64_t>(
+      std::filesystem::file_size(dir / ("run" + tag + ".mcap"), ec));
+  r.lcmlog_bytes = static_cast<int64_t>(
+      std::filesystem::file_size(dir / ("run" + tag + ".lcmlog"), ec));
   std::filesystem::remove(dir / ("run" + tag + ".mcap"), ec);
   std::filesystem::remove(dir / ("run" + tag + ".lcmlog"), ec);
   return r;
@@ -206,11 +214,23 @@ double Setting(int argc, char** argv, const char* flag, const char* env,
   return v;
 }
 
+// The value after `flag` on the command line, or fallback.
+std::string TextSetting(int argc, char** argv, const char* flag,
+                        const std::string& fallback) {
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::string(argv[i]) == flag) return argv[i + 1];
+  }
+  return fallback;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const double seconds =
       Setting(argc, argv, "--seconds", "MRSIM_BENCH_MCAP_SECONDS", 10);
+  // --mcap-compression X is passed on to mrsim-log (default: its own).
+  const std::string compression =
+      TextSetting(argc, argv, "--mcap-compression", "");
   const int rounds = static_cast<int>(
       Setting(argc, argv, "--rounds", "MRSIM_BENCH_MCAP_ROUNDS", 6));
   if (!(seconds > 0) || rounds < 1) {
@@ -226,11 +246,14 @@ int main(int argc, char** argv) {
     std::vector<double> ours, theirs;
     int64_t lost = 0;
     for (int i = 0; i < rounds; ++i) {
-      const Round r = RunRound(dir, i, seconds);
+      const Round r = RunRound(dir, i, seconds, compression);
       std::fprintf(stderr,
                    "bench_mcap_logger: round %d: mrsim-log --mcap %.2f s CPU, "
-                   "lcm-logger %.2f s CPU, %lld lost\n",
-                   i + 1, r.ours, r.theirs, static_cast<long long>(r.lost));
+                   "lcm-logger %.2f s CPU, %lld lost; files %.1f MB MCAP, "
+                   "%.1f MB lcmlog\n",
+                   i + 1, r.ours, r.theirs, static_cast<long long>(r.lost),
+                   static_cast<double>(r.mcap_bytes) / 1e6,
+                   static_cast<double>(r.lcmlog_bytes) / 1e6);
       ours.push_back(r.ours);
       theirs.push_back(r.theirs);
       lost += r.lost;

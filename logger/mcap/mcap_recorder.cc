@@ -11,6 +11,7 @@ McapRecorder::McapRecorder(McapRecorderOptions options)
   mcap::McapWriterOptions writer_options;
   writer_options.library = "mrsim-log";
   writer_options.chunk_size = options_.chunk_size;
+  writer_options.compression = options_.compression;
   const std::filesystem::path parent =
       std::filesystem::path(options_.path).parent_path();
   std::error_code ec;
@@ -86,14 +87,17 @@ void McapRecorder::Record(Channel& ch, const uint8_t* data, size_t size,
     return;
   }
   const std::string_view text = json_.view();
-  if (ch.type->has_seq && !ledger.TakeSeq(seq, text)) return;
+  // The re-send check keeps and compares the LCM bytes: the JSON is made
+  // from them, and is about 2.4 times their size to copy.
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  if (ch.type->has_seq && !ledger.TakeSeq(seq, bytes)) return;
   // MCAP's sequence is 32 bits: the message's own seq, cut to them.
   const auto sequence =
       ch.type->has_seq ? static_cast<uint32_t>(seq) : ch.count;
   ++ch.count;
   writer_->WriteMessage(ch.id, sequence, time, time, text);
   ++stats.rows;
-  if (ch.type->has_seq) ledger.Remember(seq, text);
+  if (ch.type->has_seq) ledger.Remember(seq, bytes);
   if (writer_->chunk_messages() > 0 &&
       time - writer_->chunk_start_time() >= options_.chunk_period_ns &&
       time > writer_->chunk_start_time()) {

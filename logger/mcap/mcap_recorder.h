@@ -32,6 +32,7 @@ struct McapRecorderOptions {
   // time) than the newest, or chunk_size bytes.
   uint64_t chunk_period_ns = 1000000000;
   size_t chunk_size = 1 << 20;
+  mcap::ChunkCompression compression = mcap::ChunkCompression::kZstd;
 };
 
 class McapRecorder {

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <libdeflate.h>
+#include <sys/uio.h>
 #include <unistd.h>
 #include <zstd.h>
 
@@ -78,6 +79,38 @@ void McapWriter::Write(const std::string& bytes) {
   offset_ += bytes.size();
 }
 
+void McapWriter::WriteAll(const std::string_view* pieces, size_t count) {
+  std::vector<iovec> iov;
+  size_t total = 0;
+  for (size_t i = 0; i < count; ++i) {
+    if (pieces[i].empty()) continue;
+    iov.push_back({const_cast<char*>(pieces[i].data()), pieces[i].size()});
+    total += pieces[i].size();
+  }
+  size_t first = 0;
+  while (first < iov.size()) {
+    const ssize_t n =
+        ::writev(fd_, iov.data() + first, static_cast<int>(iov.size() - first));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      broken_ = true;  // as in Write
+      throw std::runtime_error("cannot write " + path_ + ": " +
+                               std::strerror(errno));
+    }
+    // A short write: go on from where it stopped.
+    auto left = static_cast<size_t>(n);
+    while (first < iov.size() && left >= iov[first].iov_len) {
+      left -= iov[first].iov_len;
+      ++first;
+    }
+    if (left > 0) {
+      iov[first].iov_base = static_cast<char*>(iov[first].iov_base) + left;
+      iov[first].iov_len -= left;
+    }
+  }
+  offset_ += total;
+}
+
 uint16_t McapWriter::AddSchema(std::string_view name, std::string_view encoding,
                                std::string_view data) {
   if (schema_records_.size() >= 65535) {
@@ -149,14 +182,21 @@ void McapWriter::WriteMessage(uint16_t channel_id, uint32_t sequence,
 void McapWriter::CloseChunk() {
   if (chunk_.size() == 0 || finished_ || broken_) return;
   const std::string& records = chunk_.bytes();
+  const bool zstd = options_.compression == ChunkCompression::kZstd;
   const uint32_t crc = Crc32(0, records.data(), records.size());
-  compressed_.resize(ZSTD_compressBound(records.size()));
-  const size_t packed =
-      ZSTD_compress2(static_cast<ZSTD_CCtx*>(zstd_), compressed_.data(),
-                     compressed_.size(), records.data(), records.size());
-  if (ZSTD_isError(packed)) {
-    throw std::runtime_error(path_ + ": zstd: " + ZSTD_getErrorName(packed));
+  size_t packed = records.size();
+  if (zstd) {
+    compressed_.resize(ZSTD_compressBound(records.size()));
+    packed = ZSTD_compress2(static_cast<ZSTD_CCtx*>(zstd_), compressed_.data(),
+                            compressed_.size(), records.data(), records.size());
+    if (ZSTD_isError(packed)) {
+      throw std::runtime_error(path_ + ": zstd: " + ZSTD_getErrorName(packed));
+    }
   }
+  // The chunk's records as stored, written from where they are (no copy).
+  const std::string_view payload =
+      zstd ? std::string_view(compressed_.data(), packed)
+           : std::string_view(records);
   ChunkIndex ci{};
   ci.start_time = chunk_messages_ > 0 ? chunk_start_ : 0;
   ci.end_time = chunk_messages_ > 0 ? chunk_end_ : 0;
@@ -169,31 +209,36 @@ void McapWriter::CloseChunk() {
   out_.U64(ci.end_time);
   out_.U64(records.size());
   out_.U32(crc);
-  out_.Str("zstd");
+  out_.Str(zstd ? "zstd" : "");
   out_.U64(packed);
-  out_.Raw(std::string_view(compressed_.data(), packed));
-  out_.EndRecord(at);
-  ci.length = out_.size();
+  // The record's length counts the payload that follows out_.
+  out_.PutU64(at, out_.size() - at - 8 + packed);
+  ci.length = out_.size() + packed;
   // The message indexes, one per channel with messages here, by id.
+  indexes_.clear();
   std::sort(chunk_channels_.begin(), chunk_channels_.end());
   for (uint16_t channel : chunk_channels_) {
-    ci.index_offsets.emplace_back(channel, offset_ + out_.size());
+    ci.index_offsets.emplace_back(channel,
+                                  offset_ + ci.length + indexes_.size());
     const auto& entries = chunk_index_[channel];
-    const size_t r = out_.BeginRecord(Op::kMessageIndex);
-    out_.U16(channel);
-    out_.U32(static_cast<uint32_t>(entries.size() * 16));
+    const size_t r = indexes_.BeginRecord(Op::kMessageIndex);
+    indexes_.U16(channel);
+    indexes_.U32(static_cast<uint32_t>(entries.size() * 16));
     for (const auto& [time, where] : entries) {
-      out_.U64(time);
-      out_.U64(where);
+      indexes_.U64(time);
+      indexes_.U64(where);
     }
-    out_.EndRecord(r);
+    indexes_.EndRecord(r);
     chunk_index_[channel].clear();
   }
-  ci.index_length = out_.size() - ci.length;
-  data_crc_ = Crc32(data_crc_, out_.bytes().data(), out_.size());
+  ci.index_length = indexes_.size();
+  const std::string_view pieces[] = {out_.bytes(), payload, indexes_.bytes()};
+  for (const std::string_view piece : pieces) {
+    data_crc_ = Crc32(data_crc_, piece.data(), piece.size());
+  }
   // One write: the chunk is in the file whole, or (killed during it) cut
   // off at the end, where a reader stops.
-  Write(out_.bytes());
+  WriteAll(pieces, 3);
   chunk_indexes_.push_back(std::move(ci));
   chunk_channels_.clear();
   chunk_.clear();
@@ -263,7 +308,7 @@ void McapWriter::Finish() {
         out_.U64(where);
       }
       out_.U64(ci.index_length);
-      out_.Str("zstd");
+      out_.Str(options_.compression == ChunkCompression::kZstd ? "zstd" : "");
       out_.U64(ci.compressed_size);
       out_.U64(ci.uncompressed_size);
       out_.EndRecord(at);

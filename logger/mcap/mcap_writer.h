@@ -23,11 +23,19 @@
 
 namespace mrsim::mcap {
 
+// How chunks are stored. Every MCAP reader reads both (the spec requires
+// uncompressed chunks; zstd is the format's standard compression).
+enum class ChunkCompression {
+  kZstd,  // about 7x smaller on mrsim JSON, for most of the writer's CPU
+  kNone,  // no compression CPU; the file is about 2.4x the .lcmlog
+};
+
 struct McapWriterOptions {
   std::string profile;  // "" : none of the well-known profiles
   std::string library = "mrsim";
   // Uncompressed bytes after which a chunk is closed by itself.
   size_t chunk_size = 1 << 20;
+  ChunkCompression compression = ChunkCompression::kZstd;
   int zstd_level = 1;  // the fastest standard level: about 6x on mrsim JSON
 };
 
@@ -75,6 +83,9 @@ class McapWriter {
   };
   // Appends bytes to the file (and the data CRC while in the data section).
   void Write(const std::string& bytes);
+  // Appends the pieces in order with one writev(2) (as one write: a chunk
+  // is in the file whole or cut off at its end).
+  void WriteAll(const std::string_view* pieces, size_t count);
 
   std::string path_;
   McapWriterOptions options_;
@@ -97,6 +108,7 @@ class McapWriter {
   std::vector<uint16_t> chunk_channels_;  // channels with messages in it
   std::string compressed_;
   RecordBuffer out_;
+  RecordBuffer indexes_;  // the closing chunk's message indexes
 
   std::vector<ChunkIndex> chunk_indexes_;
   uint64_t message_count_ = 0;

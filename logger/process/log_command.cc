@@ -367,6 +367,13 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
       app.add_option("--mcap", opt.mcap,
                      "write one indexed MCAP file (JSON messages with JSON "
                      "Schemas, for Foxglove and PlotJuggler) instead of CSVs");
+  app.add_option("--mcap-compression", opt.mcap_compression,
+                 "how --mcap stores its chunks: zstd (a file about a third "
+                 "of the .lcmlog's size) or none (no compression CPU, a file "
+                 "about 2.4 times the .lcmlog's); every MCAP reader reads both")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"zstd", "none"}))
+      ->needs(mcap);
   app.add_option("--types", opt.types,
                  "extra .lcm files or folders with message definitions "
                  "(CSV only)")
@@ -455,6 +462,9 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
     McapRecorderOptions mcap_options;
     mcap_options.path = opt.mcap;
     mcap_options.report = report;
+    mcap_options.compression = opt.mcap_compression == "none"
+                                   ? mcap::ChunkCompression::kNone
+                                   : mcap::ChunkCompression::kZstd;
     sink = std::make_unique<McapSink>(mcap_options);
   }
   LogSink& recorder = *sink;

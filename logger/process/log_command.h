@@ -31,6 +31,8 @@ struct LogCommand {
   std::string out_dir = ".";
   std::string from_log;
   std::string mcap;  // --mcap FILE: one MCAP file instead of the CSVs
+  // --mcap-compression: "zstd" or "none" (the chunks as they are).
+  std::string mcap_compression = "zstd";
   std::vector<std::string> types;
   std::vector<std::string> plots;
   int64_t recv_buf_size = 8 << 20;

@@ -36,9 +36,11 @@ std::vector<Got> ReadAll(const std::string& bytes, McapSummary* summary) {
 
 // Two channels, `n` messages each, chunks of about `chunk` bytes.
 std::string WriteFile(const std::string& path, int n, size_t chunk,
-                      bool finish = true) {
+                      bool finish = true,
+                      ChunkCompression compression = ChunkCompression::kZstd) {
   McapWriterOptions options;
   options.chunk_size = chunk;
+  options.compression = compression;
   {
     McapWriter w(path, options);
     const uint16_t schema = w.AddSchema("t", "jsonschema", "{}");
@@ -126,6 +128,45 @@ TEST(McapFile, AChangedByteInAChunkOrTheSummaryIsRefusedNamingItsOffset) {
     EXPECT_NE(std::string(e.what()).find("test.mcap: byte "), std::string::npos)
         << e.what();
   }
+}
+
+TEST(McapFile, UncompressedChunksReadBackWholeOrCutAndAreCrcChecked) {
+  const std::string path = testing::TempDir("mcap_none") + "/a.mcap";
+  const std::string bytes =
+      WriteFile(path, 300, 2048, true, ChunkCompression::kNone);
+  // The records are in the file as they are, and the chunks say so.
+  EXPECT_NE(bytes.find("{\"i\":299}"), std::string::npos);
+  EXPECT_EQ(bytes.find("zstd"), std::string::npos);
+  McapSummary summary;
+  const std::vector<Got> got = ReadAll(bytes, &summary);
+  ASSERT_EQ(got.size(), 600u);
+  EXPECT_TRUE(summary.complete);
+  EXPECT_GT(summary.chunks, 1);
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].sequence, i / 2);
+    EXPECT_EQ(got[i].data, "{\"i\":" + std::to_string(i / 2) + "}");
+  }
+  // A changed digit in a message is caught by its chunk's CRC.
+  std::string bad = bytes;
+  const size_t digit = bytes.find("{\"i\":123}") + 5;
+  bad[digit] = '4';
+  EXPECT_THROW(ReadAll(bad, &summary), McapError);
+  // Cut anywhere (a killed writer): its whole chunks, in order.
+  const std::string unfinished =
+      WriteFile(path, 300, 2048, false, ChunkCompression::kNone);
+  size_t previous = 0;
+  for (size_t cut = 8; cut <= unfinished.size(); cut += 97) {
+    McapSummary cut_summary;
+    const std::vector<Got> some =
+        ReadAll(unfinished.substr(0, cut), &cut_summary);
+    EXPECT_FALSE(cut_summary.complete);
+    EXPECT_GE(some.size(), previous) << "cut at " << cut;
+    previous = some.size();
+    for (size_t i = 0; i < some.size(); ++i) {
+      EXPECT_EQ(some[i].sequence, i / 2) << "cut at " << cut;
+    }
+  }
+  EXPECT_EQ(previous, 600u);
 }
 
 TEST(McapFile, ForgedLengthsAreRefusedBeforeAnythingIsAllocated) {

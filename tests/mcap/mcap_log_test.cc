@@ -157,7 +157,7 @@ TEST(McapLog, KilledLoggerLeavesAFileReadUpToItsLastChunk) {
       << json.substr(0, 300);
 }
 
-TEST(McapLog, LcmLoggerLogConvertsToAnIndexedFile) {
+TEST(McapLog, LcmLoggerLogConvertsToAnIndexedFileCompressedOrNot) {
   const std::string skip = NodeMissing();
   if (!skip.empty()) GTEST_SKIP() << skip;
   const std::string dir = TempDir("mcap_log_from");
@@ -185,6 +185,16 @@ TEST(McapLog, LcmLoggerLogConvertsToAnIndexedFile) {
   const std::string json = ReadWithNode("indexed", mcap);
   EXPECT_EQ(Count(json, kStateChannel), 250) << json.substr(0, 300);
   EXPECT_NE(json.find("\"messageCount\":250"), std::string::npos) << json;
+  // Uncompressed chunks (less CPU, a larger file) read the same.
+  const std::string plain = dir + "/plain.mcap";
+  ChildProcess convert_plain({LogExe(), "--from", lcmlog, "--mcap", plain,
+                              "--mcap-compression", "none"},
+                             dir + "/convert_plain.txt");
+  ASSERT_EQ(convert_plain.Wait(60), 0) << convert_plain.Output();
+  const std::string plain_json = ReadWithNode("indexed", plain);
+  EXPECT_EQ(Count(plain_json, kStateChannel), 250) << plain_json.substr(0, 300);
+  EXPECT_NE(plain_json.find("\"dataSectionCrc\":true"), std::string::npos)
+      << plain_json.substr(0, 300);
 }
 
 }  // namespace
