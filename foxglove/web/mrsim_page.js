@@ -261,7 +261,8 @@ ws.onmessage = (event) => {
     else if (m.op === "serviceCallFailure") {
       const name = pendingCalls.get(m.callId) ?? "call";
       pendingCalls.delete(m.callId);
-      say(`${name}: ${m.message}`, "refused");
+      const why = String(m.message ?? "refused");
+      say(why.startsWith(name) ? why : `${name}: ${why}`, "refused");
     } else if (m.op === "status" && m.level >= 1) say(m.message, "refused");
     return;
   }

@@ -4,7 +4,8 @@
 // waits until the page says it has drawn the robot), and the screenshot
 // shows the robot in its colour on a canvas that is not blank, with sim
 // time and the real-time factor filled in. A Pause from the page is
-// carried out (the page is on this host).
+// carried out (the page is on this host); with a control key, the page
+// shows the refusal unless its URL carries the key's token.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 
@@ -15,6 +16,8 @@
 #include <set>
 #include <string>
 
+#include "foxglove/control_access.h"
+#include "lcmtypes/runtime/message_key.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
@@ -70,9 +73,9 @@ bool IsRobotOrange(const unsigned char* p) {
 
 class BrowserPage : public ::testing::Test {
  protected:
-  void SetUp() override {
-    chromium_ = FindChromium(skip_);
-    if (chromium_.empty()) return;
+  void SetUp() override { chromium_ = FindChromium(skip_); }
+
+  void Start(const std::vector<std::string>& extra) {
     dir_ = TempDir("foxglove_browser");
     ChainOptions options;
     options.modules = 4;
@@ -87,11 +90,16 @@ class BrowserPage : public ::testing::Test {
                                  dir_ + "/snake.xml", "--lcm-url", url,
                                  "--rate", "50"},
         dir_ + "/sim.txt");
-    fox_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{BinaryPath("foxglove/process/mrsim-foxglove"),
-                                 "--lcm-url", url, "--port", "0", "--bind",
-                                 "127.0.0.1"},
-        dir_ + "/foxglove.txt");
+    std::vector<std::string> argv = {
+        BinaryPath("foxglove/process/mrsim-foxglove"),
+        "--lcm-url",
+        url,
+        "--port",
+        "0",
+        "--bind",
+        "127.0.0.1"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    fox_ = std::make_unique<ChildProcess>(argv, dir_ + "/foxglove.txt");
     ASSERT_TRUE(fox_->WaitForOutput("the browser page: http://", 30))
         << fox_->Output();
     std::smatch m;
@@ -104,12 +112,12 @@ class BrowserPage : public ::testing::Test {
 
   // page_screenshot.js's exit status and its JSON line.
   int Screenshot(const std::string& png, const std::string& press,
-                 std::string& line) {
+                 std::string& line, const std::string& query = "") {
     std::vector<std::string> argv = {"/usr/bin/env"};
     if (!press.empty()) argv.push_back("PRESS=" + press);
     argv.insert(argv.end(),
                 {"node", SourcePath("tests/foxglove/page_screenshot.js"),
-                 chromium_, page_url_, png, "900x600"});
+                 chromium_, page_url_ + query, png, "900x600"});
     ChildProcess node(argv, png + ".txt");
     const int status = node.Wait(150);
     line = node.Output();
@@ -126,6 +134,7 @@ class BrowserPage : public ::testing::Test {
 
 TEST_F(BrowserPage, AScreenshotShowsTheRobotSimTimeAndRealTimeFactor) {
   if (chromium_.empty()) GTEST_SKIP() << skip_;
+  Start({});
   const std::string png_path = dir_ + "/page.png";
   std::string line;
   ASSERT_EQ(Screenshot(png_path, "", line), 0) << line;
@@ -157,12 +166,35 @@ TEST_F(BrowserPage, AScreenshotShowsTheRobotSimTimeAndRealTimeFactor) {
 
 TEST_F(BrowserPage, ItsPauseButtonPausesTheSimulator) {
   if (chromium_.empty()) GTEST_SKIP() << skip_;
+  Start({});
   std::string line;
   ASSERT_EQ(Screenshot(dir_ + "/paused.png", "pause", line), 0) << line;
   EXPECT_NE(line.find(R"("message":"/mrsim/pause: done")"), std::string::npos)
       << line;
   EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
   EXPECT_NE(fox_->Output().find(" 0 service calls refused"), std::string::npos)
+      << fox_->Output();
+}
+
+TEST_F(BrowserPage, WithAControlKeyItShowsTheRefusalUnlessItsUrlHasTheToken) {
+  if (chromium_.empty()) GTEST_SKIP() << skip_;
+  const std::string key = TempDir("foxglove_browser_key") + "/control.key";
+  WriteKeyFile(key);
+  Start({"--control-key", key});
+  std::string line;
+  ASSERT_EQ(Screenshot(dir_ + "/refused.png", "pause", line), 0) << line;
+  EXPECT_TRUE(std::regex_search(
+      line, std::regex(R"("message":"/mrsim/pause: refused: this client may )"
+                       R"(not control)")))
+      << line;
+  ASSERT_EQ(Screenshot(dir_ + "/token.png", "pause", line,
+                       "?token=" + foxglove::ControlTokenFromKeyFile(key)),
+            0)
+      << line;
+  EXPECT_NE(line.find(R"("message":"/mrsim/pause: done")"), std::string::npos)
+      << line;
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  EXPECT_NE(fox_->Output().find(" 1 service calls refused"), std::string::npos)
       << fox_->Output();
 }
 
