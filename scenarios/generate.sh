@@ -69,6 +69,21 @@ sed -i -e '/<scene>/,/<\/position>/{s|<x>0</x>|<x>-1.6</x>|;s|<y>0</y>|<y>-1.6</
 sed -i -e 's|</SensorModule>|<imu /></SensorModule>|' imu_snake.xml
 "$tool" convert imu_snake.xml imu_snake.xml
 
+# A 6-module pitch-yaw snake with a camera looking ahead from a sensor
+# module in front of module 0 (160x120 at 30 pictures per simulated
+# second, turned 10 degrees down), a red ball 1.2 m ahead and 0.5 m to its
+# left to see and steer to (docs/camera.md), and two boxes to its right.
+"$tool" new --modules 6 --pattern pitch-yaw --sensors=-1 --friction 0.5 \
+  --name camera_snake -o camera_snake.xml
+sed -i -e 's|</SensorModule>|<cameras><Camera><sensorPosition>4</sensorPosition><tilt>10</tilt></Camera></cameras></SensorModule>|' \
+  camera_snake.xml
+{
+  object ball Sphere 0.15 0.15 0.15 1.2 0.5 0.075 0.2 true
+  object box1 Box 0.1 0.1 0.2 0.9 -0.6 0.1 1 true
+  object box2 Box 0.1 0.1 0.2 1.6 -0.3 0.1 1 true
+} | add_objects camera_snake.xml
+"$tool" convert camera_snake.xml camera_snake.xml
+
 # snake11 with how to run it saved (<run>): lockstep at 100 Hz, driven by
 # the serpenoid Lua template carried in the file (docs/sim.md, "A design's
 # saved run settings").
@@ -91,3 +106,4 @@ rm -f run.part
 "$tool" validate case_study.xml
 "$tool" validate terrain.xml
 "$tool" validate imu_snake.xml
+"$tool" validate camera_snake.xml

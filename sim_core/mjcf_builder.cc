@@ -116,6 +116,14 @@ struct SiteSpec {
   std::string rgba = "";
 };
 
+// A fixed MuJoCo camera on a body (a kCamera sensor), in the body's frame.
+struct CameraSpec {
+  std::string name;
+  Vector3d pos = Vector3d::Zero();
+  Quaterniond quat = Quaterniond::Identity();
+  double fovy = 45;  // deg
+};
+
 // An element with attributes, e.g. an asset.
 struct ElementSpec {
   std::string tag;
@@ -137,6 +145,7 @@ struct BodySpec {
   double lower = 0, upper = 0;
   std::vector<GeomSpec> geoms;
   std::vector<SiteSpec> sites;
+  std::vector<CameraSpec> cameras;
 };
 
 struct ActuatorSpec {
@@ -325,6 +334,32 @@ void AddCentreMarker(const std::string& site, const SensorKind& kind,
   }
 }
 
+// What shows a camera in the viewer and the studio: its frustum's four
+// edges as thin capsules from the lens, as far as the module is small.
+// Sites only, which a camera's own picture leaves out
+// (CameraImageRenderer), so it never sees its own marker.
+void AddFrustumMarker(const std::string& site, const SensorKind& kind,
+                      const SensorCamera& c, const Vector3d& half,
+                      BodySpec* body) {
+  const double length = std::clamp(1.2 * half.minCoeff(), 0.01, 0.05);
+  const double t = std::tan(c.camera.fovy * M_PI / 360);
+  const double aspect =
+      static_cast<double>(c.camera.width) / std::max(1, c.camera.height);
+  const char* names[4] = {"/f0", "/f1", "/f2", "/f3"};
+  for (int i = 0; i < 4; ++i) {
+    // Corner directions in the camera frame (looking along -z).
+    const Vector3d local((i & 1 ? 1 : -1) * t * aspect, (i & 2 ? 1 : -1) * t,
+                         -1);
+    const Vector3d dir = (c.rotation * local).normalized();
+    SiteSpec edge{site + names[i], c.position + dir * (length / 2),
+                  Quaterniond::FromTwoVectors(Vector3d::UnitZ(), dir)};
+    edge.type = "capsule";
+    edge.size = Vector3d(0.04 * length, length / 2, 0);
+    edge.rgba = Vec(kind.rgb) + " 1";
+    body->sites.push_back(edge);
+  }
+}
+
 void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
                                    const SensorModule& sm, int body) {
   // Every kind the same way by its mount (sensor_kind.h): a site per
@@ -393,6 +428,13 @@ void Builder::AddSensorModuleParts(const std::string& robot_name, int index,
             g.kind = kind.look;
             bodies_[body].geoms.push_back(g);
           }
+          break;
+        }
+        case SensorMount::kCamera: {
+          const SensorCamera c = kind.camera(sm, k);
+          bodies_[body].cameras.push_back(
+              {site, c.position, c.rotation, c.camera.fovy});
+          AddFrustumMarker(site, kind, c, half, &bodies_[body]);
           break;
         }
       }
@@ -1005,6 +1047,14 @@ void Builder::WriteBody(tinyxml2::XMLPrinter& out, int index) const {
       out.PushAttribute("rgba", site.rgba.c_str());
     }
     if (site.rangefinder) out.PushAttribute("group", "4");
+    out.CloseElement();
+  }
+  for (const CameraSpec& c : b.cameras) {
+    out.OpenElement("camera");
+    out.PushAttribute("name", c.name.c_str());
+    out.PushAttribute("pos", Vec(c.pos).c_str());
+    out.PushAttribute("quat", Quat(c.quat).c_str());
+    out.PushAttribute("fovy", Num(c.fovy).c_str());
     out.CloseElement();
   }
   for (int c : b.children) WriteBody(out, c);

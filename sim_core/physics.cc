@@ -531,6 +531,7 @@ void Physics::Impl::Index(const MjcfInfo& info) {
       si.body = Id(mjOBJ_BODY, mjcf_names::SensorModuleBody(ri.name, k));
       ri.bodies.push_back(si.body);
       for (const SensorKind& kind : SensorKinds()) {
+        if (kind.read == nullptr) continue;  // a camera: nothing to read
         for (int i = 0; i < kind.count(sm); ++i) {
           SensorModuleIndex::KindInstance inst{&kind, i, kind.face(sm, i), {}};
           for (const SensorMujoco& ms : kind.mujoco) {

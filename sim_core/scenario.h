@@ -123,9 +123,29 @@ struct Imu {
   int seed = 0;
 };
 
+// A camera on a face of a sensor module, looking out along the face's
+// normal (tilted by `tilt` about its horizontal axis): what the robot sees,
+// rendered by mrsim-camera or Simulation.camera_image from the module's
+// pose at `rate` pictures per simulated second. Pixel noise of standard
+// deviation `noise` (grey levels, 0..255) is drawn from `seed`, the state's
+// seq and the pixel: the same seed gives the same pictures (docs/camera.md).
+struct Camera {
+  std::string guid;
+  int sensor_position = 4;  // front
+  double fovy = 60.0;       // deg, vertical field of view
+  int width = 160;          // px
+  int height = 120;         // px
+  double rate = 30.0;       // pictures per simulated second
+  double near_clip = 0.01;  // m
+  double far_clip = 10.0;   // m
+  double tilt = 0.0;        // deg, positive looks down
+  double noise = 0.0;       // grey levels
+  int seed = 0;
+};
+
 // A box between two modules (left_mod_nr/right_mod_nr, -1 = chain end)
-// carrying at most one force sensor, up to six distance sensors and at most
-// one IMU (the kinds: sensor_kind.h).
+// carrying at most one force sensor, up to six distance sensors, at most
+// one IMU and up to six cameras (the kinds: sensor_kind.h).
 struct SensorModule {
   std::string guid;
   int left_mod_nr = -1;
@@ -143,6 +163,7 @@ struct SensorModule {
   double mass = 0.05;
   std::string material_name = "plastic";
   std::optional<Imu> imu;
+  std::vector<Camera> cameras;
 };
 
 // A chain of modules with sensor modules between them. `locks` are the rigid
@@ -256,6 +277,7 @@ bool operator==(const Module& a, const Module& b);
 bool operator==(const ForceSensor& a, const ForceSensor& b);
 bool operator==(const DistanceSensor& a, const DistanceSensor& b);
 bool operator==(const Imu& a, const Imu& b);
+bool operator==(const Camera& a, const Camera& b);
 bool operator==(const SensorModule& a, const SensorModule& b);
 bool operator==(const Robot& a, const Robot& b);
 bool operator==(const Scene& a, const Scene& b);
@@ -274,6 +296,7 @@ inline bool operator!=(const DistanceSensor& a, const DistanceSensor& b) {
   return !(a == b);
 }
 inline bool operator!=(const Imu& a, const Imu& b) { return !(a == b); }
+inline bool operator!=(const Camera& a, const Camera& b) { return !(a == b); }
 inline bool operator!=(const SensorModule& a, const SensorModule& b) {
   return !(a == b);
 }

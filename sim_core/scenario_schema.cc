@@ -420,6 +420,7 @@ std::vector<FieldRef> FieldsOf(SensorModule& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(ForceSensor& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(DistanceSensor& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(Imu& part) { return Collect(part); }
+std::vector<FieldRef> FieldsOf(Camera& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(Scene& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(SceneObject& part) { return Collect(part); }
 std::vector<FieldRef> FieldsOf(ContactFriction& part) { return Collect(part); }

@@ -51,6 +51,12 @@ inline constexpr double kMaxLength = 1e4;      // m: sizes, scales, ranges
 inline constexpr double kMaxMass = 1e6;        // kg
 inline constexpr double kMinTimestep = 1e-6;   // s: shorter never advances
 inline constexpr double kMaxTimestep = 1;      // s
+// A camera's picture (px): one raw RGB picture of the largest size (900 kB)
+// still fits the image message's `max:` (camera_image_t.lcm) and is
+// rendered on the CPU in a few milliseconds.
+inline constexpr int kMaxCameraWidth = 640;
+inline constexpr int kMaxCameraHeight = 480;
+inline constexpr double kMaxCameraRate = 120;  // pictures per simulated s
 // Parts in one list (modules of a robot, scene objects, ...): the reader
 // stops at the first beyond, before building any.
 inline constexpr int kMaxListItems = 10000;
@@ -185,6 +191,7 @@ enum class ChildCount {
   X(kForceSensor, "forceSensor", ForceSensor)             \
   X(kDistanceSensor, "DistanceSensor", DistanceSensor)    \
   X(kImu, "imu", Imu)                                     \
+  X(kCamera, "Camera", Camera)                            \
   X(kScene, "scene", Scene)                               \
   X(kSceneObject, "SceneObject", SceneObject)             \
   X(kContactFriction, "ContactFriction", ContactFriction) \
@@ -271,6 +278,7 @@ std::vector<FieldRef> FieldsOf(SensorModule& part);
 std::vector<FieldRef> FieldsOf(ForceSensor& part);
 std::vector<FieldRef> FieldsOf(DistanceSensor& part);
 std::vector<FieldRef> FieldsOf(Imu& part);
+std::vector<FieldRef> FieldsOf(Camera& part);
 std::vector<FieldRef> FieldsOf(Scene& part);
 std::vector<FieldRef> FieldsOf(SceneObject& part);
 std::vector<FieldRef> FieldsOf(ContactFriction& part);

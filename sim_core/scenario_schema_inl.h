@@ -399,6 +399,80 @@ void Describe(V& v, Imu& s) {
 }
 
 template <typename V>
+void Describe(V& v, Camera& s) {
+  static const FieldInfo kGuid{
+      "guid",   "id",
+      "guid",   "",
+      L::Any(), "Id of the camera (optional; nothing refers to it)",
+      false,    Geometry::kNone,
+      false,    true};
+  static const FieldInfo kFace{"sensorPosition",
+                               "face",
+                               "sensor_position",
+                               "",
+                               L::Range(0, 5, kSensorFaceList),
+                               "Face of the sensor module the camera looks out "
+                               "of, along the face's normal"};
+  static const FieldInfo kFovy{
+      "fovy",           "vertical field of view",
+      "fovy",           "deg",
+      L::Range(1, 170), "Angle the picture spans from bottom to top"};
+  static const FieldInfo kWidth{
+      "width",        "width", "width", "px", L::Range(16, kMaxCameraWidth),
+      "Picture width"};
+  static const FieldInfo kHeight{
+      "height",        "height", "height", "px", L::Range(16, kMaxCameraHeight),
+      "Picture height"};
+  static const FieldInfo kRate{
+      "rate",
+      "frame rate",
+      "rate",
+      "Hz",
+      L::Positive().Within(kMaxCameraRate),
+      "Pictures per simulated second (at most one per published state)"};
+  static const FieldInfo kNear{"near",      "near clip",
+                               "near_clip", "m",
+                               L::Size(),   "Nothing closer than this is drawn",
+                               false,       G::kLength};
+  static const FieldInfo kFar{"far",      "far clip",
+                              "far_clip", "m",
+                              L::Size(),  "Nothing farther than this is drawn",
+                              false,      G::kLength};
+  static const FieldInfo kTilt{
+      "tilt",
+      "tilt",
+      "tilt",
+      "deg",
+      L::Range(-89, 89),
+      "Turn of the view about its horizontal axis; "
+      "positive looks down (for a side face: toward the "
+      "module's bottom)"};
+  static const FieldInfo kNoise{
+      "noise",
+      "pixel noise",
+      "noise",
+      "",
+      L::Range(0, 255),
+      "Standard deviation of each pixel's white noise in grey levels "
+      "(0..255); 0: none"};
+  static const FieldInfo kSeed{
+      "seed",   "noise seed",
+      "seed",   "",
+      L::Any(), "Seed of the noise: the same seed gives the same pictures"};
+  v.Field(kGuid, s.guid);
+  v.Field(kFace, s.sensor_position);
+  v.Field(kFovy, s.fovy);
+  v.Field(kWidth, s.width);
+  v.Field(kHeight, s.height);
+  v.Field(kRate, s.rate);
+  v.Field(kNear, s.near_clip);
+  v.Field(kFar, s.far_clip);
+  v.Field(kTilt, s.tilt);
+  v.Field(kNoise, s.noise);
+  v.Field(kSeed, s.seed);
+}
+
+template <typename V>
 void Describe(V& v, SensorModule& s) {
   static const FieldInfo kGuid{"guid",        "id",
                                "guid",        "",
@@ -460,6 +534,13 @@ void Describe(V& v, SensorModule& s) {
   static const ChildInfo kImu{
       "imu", "", "imu",
       "At most one IMU (accelerometer and gyroscope) at the box's centre"};
+  static const ChildInfo kCameras = [] {
+    ChildInfo c = Wrapper("cameras", "Camera", "cameras",
+                          "Up to six cameras, one per face", false);
+    c.max_items = 6;
+    c.omit_when_empty = true;
+    return c;
+  }();
   static const FieldInfo kSize{"size", "size",          "size",
                                "m",    L::Size(),       "Extents of the box",
                                false,  G::kLengthVector};
@@ -496,6 +577,7 @@ void Describe(V& v, SensorModule& s) {
   v.Field(kMass, s.mass);
   v.Field(kMaterial, s.material_name);
   v.Optional(kImu, s.imu);
+  v.List(kCameras, s.cameras);
 }
 
 template <typename V>

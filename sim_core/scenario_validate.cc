@@ -296,7 +296,28 @@ class Validator {
   void After(const DistanceSensor& d, bool) {
     sensors_[robot_].insert(d.guid);
     if (warnings_ != nullptr && robot_ >= 0 && sensor_module_ != nullptr) {
-      CheckRayLeavesClearOfTheRobot(*sensor_module_, d);
+      Eigen::Vector3d dir = d.ray_direction;
+      if (!(dir.norm() > 0) || !dir.allFinite()) {
+        if (d.sensor_position >= 0 && d.sensor_position <= 5) {
+          dir = SensorFaceNormal(d.sensor_position);
+        }
+      }
+      CheckViewLeavesClearOfTheRobot(*sensor_module_, d.sensor_position, dir,
+                                     false);
+    }
+  }
+  void Before(const Camera&) {}
+  void After(const Camera& c, bool) {
+    if (!(c.far_clip > c.near_clip)) {
+      Fail(path_ + "/far",
+           fmt::format("far ({} m) must be beyond near ({} m): the camera "
+                       "would draw nothing",
+                       c.far_clip, c.near_clip));
+    }
+    if (warnings_ != nullptr && robot_ >= 0 && sensor_module_ != nullptr &&
+        c.sensor_position >= 0 && c.sensor_position <= 5) {
+      CheckViewLeavesClearOfTheRobot(*sensor_module_, c.sensor_position,
+                                     SensorFaceNormal(c.sensor_position), true);
     }
   }
 
@@ -601,14 +622,14 @@ class Validator {
   // A warning, not a refusal: the design still runs (the original MRSim
   // ran such files, e.g. its thesis's Appendix F, whose frames of
   // <scale>10</scale> enclose the sensor module in front of them).
-  void CheckRayLeavesClearOfTheRobot(const SensorModule& sm,
-                                     const DistanceSensor& d) {
+  // A camera looking out of such a face sees only that neighbour.
+  void CheckViewLeavesClearOfTheRobot(const SensorModule& sm, int face,
+                                      const Eigen::Vector3d& dir, bool camera) {
     // Faces and sizes out of range are told on their own.
-    if (d.sensor_position < 0 || d.sensor_position > 5) return;
+    if (face < 0 || face > 5) return;
     if (!(sm.size.minCoeff() > 0) || !sm.position.allFinite()) return;
-    const Eigen::Vector3d n = SensorFaceNormal(d.sensor_position);
-    Eigen::Vector3d dir = d.ray_direction;
-    if (!(dir.norm() > 0) || !dir.allFinite()) dir = n;
+    if (!(dir.norm() > 0) || !dir.allFinite()) return;
+    const Eigen::Vector3d n = SensorFaceNormal(face);
     // Where the ray leaves its own module (which it skips): at once through
     // its face, or, looking back through the module, out of another face.
     const Eigen::Vector3d half = sm.size / 2;
@@ -648,16 +669,22 @@ class Validator {
       }
     }
     if (hit.empty()) return;
-    Warn(
-        path_ + "/sensorPosition",
-        fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
-                    "sensor module, so it would read about 0 the whole run; "
-                    "put the sensor on a face that looks out{}",
-                    d.sensor_position, kSensorFaceNames[d.sensor_position], hit,
-                    d.sensor_position == 4 ? " (for a sensor looking ahead: "
-                                             "a sensor module in front of "
-                                             "module 0)"
-                                           : ""));
+    const char* ahead = face == 4 ? " (for a sensor looking ahead: a sensor "
+                                    "module in front of module 0)"
+                                  : "";
+    if (camera) {
+      Warn(path_ + "/sensorPosition",
+           fmt::format("the camera on face {} ({}) looks straight into '{}', "
+                       "so it would see only that part of its own robot; put "
+                       "it on a face that looks out{}",
+                       face, kSensorFaceNames[face], hit, ahead));
+      return;
+    }
+    Warn(path_ + "/sensorPosition",
+         fmt::format("the ray of face {} ({}) runs into '{}' as it leaves its "
+                     "sensor module, so it would read about 0 the whole run; "
+                     "put the sensor on a face that looks out{}",
+                     face, kSensorFaceNames[face], hit, ahead));
   }
 
   const Scenario& s_;

@@ -156,11 +156,54 @@ SensorKind ImuKind() {
   return k;
 }
 
+// -------------------------------------------------------------- camera
+// A MuJoCo camera at a face's centre looking along the face's normal, the
+// picture's up the module's +z (for the top and bottom faces its +x, the
+// chain's forward), turned down by `tilt`. No channels: its pictures are
+// rendered outside the physics.
+SensorKind CameraKind() {
+  SensorKind k{"camera",
+               "camera",
+               PartKind::kCamera,
+               Eigen::Vector3d(0.85, 0.3, 0.85),  // magenta
+               {}};
+  k.count = [](const SensorModule& sm) {
+    return static_cast<int>(sm.cameras.size());
+  };
+  k.face = [](const SensorModule& sm, int i) {
+    return sm.cameras.at(i).sensor_position;
+  };
+  k.member = "cameras";
+  k.many = true;
+  k.mount = SensorMount::kCamera;
+  k.camera = [](const SensorModule& sm, int i) {
+    SensorCamera c;
+    c.camera = sm.cameras.at(i);
+    c.face = c.camera.sensor_position;
+    const Eigen::Vector3d n = SensorFaceNormal(c.face);
+    c.position = n * std::abs(n.dot(sm.size / 2));
+    const Eigen::Vector3d up0 = std::abs(n.z()) > 0.5
+                                    ? Eigen::Vector3d::UnitX().eval()
+                                    : Eigen::Vector3d::UnitZ().eval();
+    const double t = c.camera.tilt * 3.14159265358979323846 / 180;
+    const Eigen::Vector3d forward = std::cos(t) * n - std::sin(t) * up0;
+    const Eigen::Vector3d up = std::sin(t) * n + std::cos(t) * up0;
+    Eigen::Matrix3d axes;
+    axes.col(0) = forward.cross(up);  // right
+    axes.col(1) = up;
+    axes.col(2) = -forward;
+    c.rotation = Eigen::Quaterniond(axes).normalized();
+    return c;
+  };
+  k.fields = [](SensorModule& sm, int i) { return FieldsOf(sm.cameras.at(i)); };
+  return k;
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& SensorKinds() {
   static const std::vector<SensorKind> kinds = {ForceKind(), DistanceKind(),
-                                                ImuKind()};
+                                                ImuKind(), CameraKind()};
   return kinds;
 }
 

@@ -51,6 +51,11 @@ enum class SensorMount {
   // physics casts a ray from it that skips the module and its plates, and
   // hands the distance to `read` (the distance sensor).
   kRay,
+  // A MuJoCo <camera> on a face looking out (SensorKind::camera), with a
+  // small frustum of marker sites. The physics reads nothing from it: its
+  // pictures are rendered from the module's pose by whoever wants them
+  // (mrsim-camera, Simulation.camera_image; viewer/camera_image_renderer.h).
+  kCamera,
 };
 
 // A kPlate instance, in its sensor module's frame.
@@ -72,6 +77,15 @@ struct SensorRay {
   double max_range = 0.0;
   Eigen::Vector3d look_size = Eigen::Vector3d::Zero();
   double look_mass = 0.0;
+};
+
+// A kCamera instance, in its sensor module's frame: MuJoCo's camera frame
+// (x right, y up, looking along -z) at the centre of face `face`.
+struct SensorCamera {
+  int face = 4;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Camera camera;  // the part: field of view, size, rate, clipping, noise
 };
 
 // What `read` gets: the instance, its MuJoCo sensors' values (in
@@ -112,10 +126,12 @@ struct SensorKind {
   SensorMount mount = SensorMount::kCentre;
   SensorPlate (*plate)(const SensorModule& sm, int k) = nullptr;
   SensorRay (*ray)(const SensorModule& sm, int k) = nullptr;
+  SensorCamera (*camera)(const SensorModule& sm, int k) = nullptr;
   PartLook look = PartLook::kSensorModule;
   // MuJoCo's own sensors on the instance's site (mjcf_names::SensorKindSite):
   // the builder adds them, the physics reads their values and calls `read`
-  // for each instance, which fills channels.size() values.
+  // for each instance, which fills channels.size() values. A kind with no
+  // channels (the camera) has no `read` and nothing in the state.
   std::vector<SensorMujoco> mujoco = {};
   void (*read)(const SensorReadInput& in, double* out) = nullptr;
   // Where the values land in the state. nullptr: a SensorReading in

@@ -104,6 +104,8 @@ TEST_F(LuaNodeTest, ScriptSeesTheRobotsOrientationAndHeading) {
 TEST_F(LuaNodeTest, ScriptReadsEverySensorKindByName) {
   for (const SensorKind& kind : SensorKinds()) {
     SCOPED_TRACE(kind.name);
+    // A camera's pictures are no reading of the state.
+    if (kind.read == nullptr) continue;
     const int channels = static_cast<int>(kind.channels.size());
     ASSERT_GT(channels, 0);
     // The force plate is one per module, on no face; others two.

@@ -183,11 +183,14 @@ TEST(PhysicsImu, ModuleWithoutImuHasNoReadings) {
 TEST(SensorKinds, EveryKindHasWhatTheBuilderPhysicsAndStudioNeed) {
   for (const SensorKind& kind : SensorKinds()) {
     EXPECT_EQ(FindSensorKind(kind.name), &kind);
-    EXPECT_FALSE(kind.channels.empty()) << kind.name;
     EXPECT_NE(kind.count, nullptr) << kind.name;
     EXPECT_NE(kind.face, nullptr) << kind.name;
-    // Every kind is read by the physics the same way.
-    EXPECT_NE(kind.read, nullptr) << kind.name;
+    // Every kind but the camera is read by the physics the same way; a
+    // camera's pictures are rendered outside it.
+    const bool camera = kind.mount == SensorMount::kCamera;
+    EXPECT_EQ(kind.channels.empty(), camera) << kind.name;
+    EXPECT_EQ(kind.read == nullptr, camera) << kind.name;
+    EXPECT_EQ(camera, kind.camera != nullptr) << kind.name;
     EXPECT_EQ(kind.mount == SensorMount::kPlate, kind.plate != nullptr)
         << kind.name;
     EXPECT_EQ(kind.mount == SensorMount::kRay, kind.ray != nullptr)
@@ -200,10 +203,11 @@ TEST(SensorKinds, EveryKindHasWhatTheBuilderPhysicsAndStudioNeed) {
     EXPECT_NE(kind.fields, nullptr) << kind.name;
     EXPECT_NE(std::string(kind.member), "") << kind.name;
   }
-  // The three kinds a sensor module carries, by their mounts.
+  // The four kinds a sensor module carries, by their mounts.
   EXPECT_EQ(FindSensorKind("force")->mount, SensorMount::kPlate);
   EXPECT_EQ(FindSensorKind("distance")->mount, SensorMount::kRay);
   EXPECT_EQ(FindSensorKind("imu")->mount, SensorMount::kCentre);
+  EXPECT_EQ(FindSensorKind("camera")->mount, SensorMount::kCamera);
   EXPECT_EQ(FindSensorKind("sonar"), nullptr);
 }
 

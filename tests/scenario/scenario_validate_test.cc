@@ -128,6 +128,28 @@ std::vector<Rule> BuilderRules() {
       {"sensor module mass",
        [](Scenario& s) { s.robots[0].sensor_modules[0].mass = 0; },
        sm1 + "/mass", "expected a positive value"},
+      {"camera wider than a picture may be",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].cameras.emplace_back().width = 4000;
+       },
+       sm1 + "/cameras/Camera[1]/width", "expected 16..640"},
+      {"camera frame rate zero",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].cameras.emplace_back().rate = 0;
+       },
+       sm1 + "/cameras/Camera[1]/rate", "expected a positive value"},
+      {"camera field of view",
+       [](Scenario& s) {
+         s.robots[0].sensor_modules[0].cameras.emplace_back().fovy = 180;
+       },
+       sm1 + "/cameras/Camera[1]/fovy", "expected 1..170"},
+      {"camera far before near",
+       [](Scenario& s) {
+         Camera& c = s.robots[0].sensor_modules[0].cameras.emplace_back();
+         c.near_clip = 0.5;
+         c.far_clip = 0.2;
+       },
+       sm1 + "/cameras/Camera[1]/far", "must be beyond near"},
       {"sensor module size",
        [](Scenario& s) { s.robots[0].sensor_modules[0].size.x() = -1; },
        sm1 + "/size", "expected positive x, y, z"},
@@ -284,6 +306,24 @@ TEST(ScenarioValidate, EveryBuilderRuleIsRefusedByTheReaderBuilderAndPhysics) {
 // A ray that starts inside another part of its robot reads about 0 the
 // whole run: told as a warning at the sensor's face, never refused, since
 // files the original MRSim ran hold such rays (its Appendix F).
+// A camera on a face turned to a neighbour sees only that neighbour.
+TEST(ScenarioValidate, ACameraLookingIntoItsOwnRobotIsAWarning) {
+  const std::string dir = TempDir("validate_camera_warning");
+  Scenario s = Base(dir);
+  Camera& c = s.robots[0].sensor_modules[0].cameras.emplace_back();
+  c.sensor_position = 4;  // the front: looks out
+  EXPECT_TRUE(ScenarioWarnings(s).empty());
+  c.sensor_position = 5;  // the back: module 0
+  EXPECT_NO_THROW(ValidateScenario(s));
+  const std::vector<ScenarioWarning> warnings = ScenarioWarnings(s);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].path,
+            std::string(kSm1) + "/cameras/Camera[1]/sensorPosition");
+  EXPECT_THAT(warnings[0].message,
+              HasSubstr("the camera on face 5 (back) looks straight into "
+                        "'r/m0/f0', so it would see only that"));
+}
+
 TEST(ScenarioValidate, ARayRunningIntoTheRobotIsAWarningNotARefusal) {
   const std::string dir = TempDir("validate_ray_warning");
   const std::string sm1 = "Scenario/robot[1]/sensorModules/SensorModule[1]";

@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "sim_core/chain_builder.h"
+#include "sim_core/mjcf_builder.h"
 #include "sim_core/scenario_schema.h"
 #include "sim_core/scenario_validate.h"
 #include "sim_core/scenario_xml.h"
@@ -58,6 +59,41 @@ TEST(ScenarioImu, NegativeNoiseIsRefusedNamingTheField) {
   }
 }
 
+TEST(ScenarioCamera, RoundTripsThroughXmlWithEveryField) {
+  Scenario s = ChainWithImu();
+  Camera c;
+  c.guid = "eye";
+  c.sensor_position = 2;
+  c.fovy = 75;
+  c.width = 320;
+  c.height = 200;
+  c.rate = 15;
+  c.near_clip = 0.02;
+  c.far_clip = 4;
+  c.tilt = -12.5;
+  c.noise = 3;
+  c.seed = 9;
+  s.robots[0].sensor_modules[0].cameras = {c, Camera{}};
+  const std::string xml = WriteScenarioString(s);
+  EXPECT_NE(xml.find("<cameras>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<tilt>-12.5</tilt>"), std::string::npos) << xml;
+  const Scenario back = ReadScenarioString(xml, "camera.xml", "");
+  ASSERT_EQ(back.robots[0].sensor_modules[0].cameras.size(), 2u);
+  EXPECT_EQ(back, s);
+  // A design without cameras keeps its files as they were.
+  s.robots[0].sensor_modules[0].cameras.clear();
+  EXPECT_EQ(WriteScenarioString(s).find("<cameras"), std::string::npos);
+}
+
+TEST(ScenarioCamera, ACameraIsAMujocoCameraLookingOutOfItsFace) {
+  Scenario s = ChainWithImu();
+  s.robots[0].sensor_modules[0].cameras.emplace_back().fovy = 50;
+  const std::string mjcf = BuildMjcf(s);
+  EXPECT_NE(mjcf.find("<camera name=\"snake/sm0/camera\""), std::string::npos)
+      << mjcf;
+  EXPECT_NE(mjcf.find("fovy=\"50\""), std::string::npos);
+}
+
 // Changes a field to another valid-looking value of its type.
 void Change(const FieldRef& field) {
   std::visit(
@@ -106,6 +142,7 @@ TEST(ScenarioEquality, EveryFieldTheSchemaListsCounts) {
   ExpectEveryFieldCounts(robot.modules[0].joint);
   ExpectEveryFieldCounts(robot.sensor_modules[0]);
   ExpectEveryFieldCounts(*robot.sensor_modules[0].imu);
+  ExpectEveryFieldCounts(Camera{});
   ExpectEveryFieldCounts(ForceSensor{});
   ExpectEveryFieldCounts(DistanceSensor{});
   ExpectEveryFieldCounts(Scene{});
