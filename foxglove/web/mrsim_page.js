@@ -190,7 +190,7 @@ function render() {
       camera.position.add(delta);
       if (snapCamera) {
         const offset = camera.position.clone().sub(controls.target);
-        offset.setLength(Math.min(Math.max(6 * e.radius, 0.8), 20));
+        offset.setLength(Math.min(Math.max(4.5 * e.radius, 0.7), 20));
         camera.position.copy(controls.target).add(offset);
         snapCamera = false;
       }
@@ -410,6 +410,7 @@ function drawPlot() {
   const pad = 0.08 * (hi - lo);
   lo -= pad; hi += pad;
   const t1 = finite[finite.length - 1][0], t0 = Math.max(finite[0][0], t1 - kPlotSeconds);
+  plot.dataset.span = (t1 - t0).toFixed(2);  // sim seconds shown
   const x = (t) => left + (w - left - right) * (t1 > t0 ? (t - t0) / (t1 - t0) : 1);
   const y = (v) => top + (h - top - bottom) * (1 - (v - lo) / (hi - lo));
   g.fillStyle = "#9aa6b8";

@@ -8,6 +8,7 @@
 // Prints one JSON line (title, the page's sim time and real-time factor
 // texts, the service message after pressing Pause when PRESS=pause);
 // exits 0 once the screenshot is written, 1 (saying why) otherwise.
+// MIN_PLOT_SPAN=S: also wait until the plot shows S sim seconds.
 "use strict";
 const { spawn } = require("child_process");
 const fs = require("fs");
@@ -112,6 +113,9 @@ async function drive(target) {
   }, kDeadlineMs - 10000);
   await until("document.title === 'mrsim: live' && document.getElementById('rtf').textContent !== '–'" +
               " && document.getElementById('value').textContent !== ''");
+  if (process.env.MIN_PLOT_SPAN) {  // for pictures: a plot of some length
+    await until(`Number(document.getElementById('plot').dataset.span) >= ${Number(process.env.MIN_PLOT_SPAN)}`);
+  }
   if (process.env.PRESS) {
     await evaluate(`document.getElementById('${process.env.PRESS}').click()`);
     await until("!/sent|^$/.test(document.getElementById('message').textContent)");
