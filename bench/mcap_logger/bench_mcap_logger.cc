@@ -8,7 +8,9 @@
 //   BENCH mcap_logger_lost <n> msgs           sent but not in the MCAP file
 // Rounds: --rounds N (default 6), each --seconds S (default 10: the
 // logger's start-up, a few tens of ms of CPU, is then under 1 %), or
-// $MRSIM_BENCH_MCAP_ROUNDS / $MRSIM_BENCH_MCAP_SECONDS.
+// $MRSIM_BENCH_MCAP_ROUNDS / $MRSIM_BENCH_MCAP_SECONDS. --mcap-compression
+// C is passed on to mrsim-log (default: its own, zstd); each round prints
+// both files' sizes, the other side of that choice.
 #include <signal.h>
 #include <unistd.h>
 
