@@ -545,6 +545,27 @@ int CallStep(lua_State* L, StepCall* call) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "sensors");
+  lua_createtable(L, static_cast<int>(s.cameras.size()), 0);
+  for (size_t i = 0; i < s.cameras.size(); ++i) {
+    const LuaRobotState::Camera& c = s.cameras[i];
+    lua_createtable(L, 0, 7);
+    lua_pushinteger(L, c.width);
+    lua_setfield(L, -2, "width");
+    lua_pushinteger(L, c.height);
+    lua_setfield(L, -2, "height");
+    lua_pushinteger(L, c.seq);
+    lua_setfield(L, -2, "seq");
+    lua_pushnumber(L, c.sim_time);
+    lua_setfield(L, -2, "sim_time");
+    lua_pushinteger(L, c.grey_width);
+    lua_setfield(L, -2, "grey_width");
+    lua_pushinteger(L, c.grey_height);
+    lua_setfield(L, -2, "grey_height");
+    PushArray(L, c.grey);
+    lua_setfield(L, -2, "grey");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "cameras");
   if (!s.axes.empty()) {
     lua_createtable(L, static_cast<int>(s.axes.size()), 0);
     for (size_t i = 0; i < s.axes.size(); ++i) {

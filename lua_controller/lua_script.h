@@ -75,6 +75,19 @@ struct LuaRobotState {
     std::vector<Reading> readings;  // every sensor of the module, any kind
   };
   std::vector<Sensor> sensors;
+  // The robot's cameras in camera_image_t's numbering (state.cameras[k + 1]
+  // is camera k): the picture mrsim-lua picked for this state (docs/lua.md,
+  // "Cameras"), seq -1 and empty grey when none has come yet.
+  struct Camera {
+    int width = 0;  // the picture's size (px)
+    int height = 0;
+    int64_t seq = -1;  // the state it shows
+    double sim_time = 0;
+    int grey_width = 0;  // the thumbnail's size
+    int grey_height = 0;
+    std::vector<double> grey;  // row-major, top row first, 0..1
+  };
+  std::vector<Camera> cameras;
 };
 
 // A tunable constant the script declares (mrsim-opt --controller lua:FILE

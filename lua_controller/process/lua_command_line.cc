@@ -59,6 +59,10 @@ void LuaCommandLine::AddFlags(CLI::App& app) {
   app.add_option("--script", script_path,
                  "Lua file defining step(t, state) (docs/gait.md); default: "
                  "the script saved in --scenario (<run><luaScript>)");
+  app.add_option("--camera-sender", options.camera_sender,
+                 "Sender name of the camera process (mrsim-camera) whose "
+                 "answers say a state's pictures were all sent (docs/lua.md)")
+      ->capture_default_str();
   app.add_flag("--check", check_only,
                "Only load the script: report a syntax error with its line "
                "(exit 2) or say it is fine (exit 0)");
@@ -74,6 +78,22 @@ void LuaCommandLine::Finish() {
                                  "joints, pitch first");
   options.robot = controller.robot;
   options.sender = controller.sender;
+  if (!check_only && !controller.scenario_path.empty()) {
+    // The robot's cameras: in lockstep the node then waits for the camera
+    // process from the first state (docs/lua.md, "Cameras").
+    try {
+      options.cameras = -1;
+      for (const Robot& r : ReadScenarioFile(controller.scenario_path).robots) {
+        if (r.name != options.robot) continue;
+        options.cameras = 0;
+        for (const SensorModule& m : r.sensor_modules) {
+          options.cameras += static_cast<int>(m.cameras.size());
+        }
+      }
+    } catch (const std::exception&) {
+      options.cameras = -1;  // the axes' reading says what is wrong
+    }
+  }
 }
 
 std::string LuaCommandLine::StartLine() const {

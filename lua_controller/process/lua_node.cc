@@ -7,7 +7,9 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "camera/camera_image_codec.h"
 #include "lcmtypes/runtime/channels.h"
+#include "lua_controller/grey_thumbnail.h"
 #include "lua_controller/lua_robot_state_fill.h"
 #include "sim_core/codec/state_message.h"
 
@@ -48,8 +50,119 @@ WallTime LuaNode::Tick(WallTime now, LuaOutbox* out) {
   if (takes_gait_commands() && error_.empty() && now >= next_heartbeat_) {
     PublishStatus(now, out);
   }
-  const WallTime next = AfterSeconds(now, 0.5);
-  return takes_gait_commands() ? std::min(next, next_heartbeat_) : next;
+  ReleaseWaiting(now, out);
+  WallTime next = AfterSeconds(now, 0.5);
+  if (takes_gait_commands()) next = std::min(next, next_heartbeat_);
+  if (!waiting_.empty()) {
+    // Soon: a status saying the clock is not lockstep releases them too.
+    next = std::min({next, AfterSeconds(now, 0.05),
+                     AfterSeconds(waiting_.front().since, kCameraWait)});
+  }
+  return next;
+}
+
+bool LuaNode::WaitsForCamera(int64_t seq) const {
+  return options_.cameras != 0 && watch_.may_be_lockstep() && !camera_silent_ &&
+         (options_.cameras > 0 || camera_heard_) && seq > camera_answered_ &&
+         seq > last_processed_seq_;
+}
+
+void LuaNode::ReleaseWaiting(WallTime now, LuaOutbox* out, bool make_room) {
+  while (!waiting_.empty() && error_.empty()) {
+    const Waiting& w = waiting_.front();
+    if (WaitsForCamera(w.state.seq)) {
+      if (make_room) {
+        make_room = false;
+        Log(fmt::format(
+            "state seq {} answered without waiting for {}'s pictures: {} "
+            "states wait already",
+            w.state.seq, options_.camera_sender, waiting_.size()));
+      } else if (SecondsBetween(w.since, now) < kCameraWait) {
+        break;
+      } else {
+        ++counters_.camera_timeouts;
+        camera_silent_ = true;
+        Log(fmt::format(
+            "no answer from {} to state seq {} in {} s: answering without "
+            "its pictures, and not waiting for them until it is heard "
+            "again (this run may differ from a rerun)",
+            options_.camera_sender, w.state.seq, kCameraWait));
+      }
+    }
+    const robot_state_t state = std::move(waiting_.front().state);
+    waiting_.pop_front();
+    Process(state, out);
+    make_room = false;
+  }
+}
+
+void LuaNode::OnCameraImage(const camera_image_t& image, WallTime now,
+                            LuaOutbox* out) {
+  if (options_.cameras == 0 || image.robot != options_.robot) return;
+  if (image.camera < 0 || image.camera >= kMaxCameras ||
+      !std::isfinite(image.sim_time)) {
+    ++counters_.pictures_malformed;
+    return;
+  }
+  CameraPicture picture;
+  try {
+    picture = DecodeCameraImage(image);
+  } catch (const std::invalid_argument& e) {
+    if (counters_.pictures_malformed++ == 0) {
+      Log(fmt::format("a picture of camera {} dropped: {}", image.camera,
+                      e.what()));
+    }
+    return;
+  }
+  const GreyThumbnail thumb =
+      MakeGreyThumbnail(picture.width, picture.height, picture.rgb.data());
+  LuaRobotState::Camera c;
+  c.width = picture.width;
+  c.height = picture.height;
+  c.seq = image.seq;
+  c.sim_time = image.sim_time;
+  c.grey_width = thumb.width;
+  c.grey_height = thumb.height;
+  c.grey = thumb.grey;
+  if (pictures_.size() <= static_cast<size_t>(image.camera)) {
+    pictures_.resize(static_cast<size_t>(image.camera) + 1);
+  }
+  auto& kept = pictures_[static_cast<size_t>(image.camera)];
+  kept.push_back(std::move(c));
+  if (kept.size() > kPicturesKept) kept.pop_front();
+  ++counters_.pictures_received;
+  camera_heard_ = true;
+  camera_silent_ = false;
+  ReleaseWaiting(now, out);
+}
+
+void LuaNode::OnCommand(const joint_command_t& command, WallTime now,
+                        LuaOutbox* out) {
+  if (command.sender != options_.camera_sender ||
+      command.robot != options_.robot) {
+    return;
+  }
+  camera_answered_ = std::max(camera_answered_, command.state_seq);
+  camera_heard_ = true;
+  camera_silent_ = false;
+  ReleaseWaiting(now, out);
+}
+
+// The newest picture of each camera that shows this state or an earlier
+// one: in lockstep all of them have come (the camera process answered the
+// state after sending them), so every run picks the same.
+void LuaNode::FillCameras(int64_t seq) {
+  const size_t n =
+      std::max(options_.cameras > 0 ? static_cast<size_t>(options_.cameras) : 0,
+               pictures_.size());
+  input_.cameras.assign(n, LuaRobotState::Camera{});
+  for (size_t k = 0; k < pictures_.size(); ++k) {
+    const LuaRobotState::Camera* best = nullptr;
+    for (const LuaRobotState::Camera& c : pictures_[k]) {
+      if (c.seq <= seq && (best == nullptr || c.seq >= best->seq)) best = &c;
+    }
+    if (best != nullptr) input_.cameras[k] = *best;
+  }
 }
 
 void LuaNode::PublishStatus(WallTime now, LuaOutbox* out) {
@@ -136,6 +249,25 @@ void LuaNode::OnState(const robot_state_t& state, WallTime now,
                       LuaOutbox* out) {
   watch_.Heard(now);
   if (!error_.empty()) return;
+  if (state.robot == options_.robot &&
+      (WaitsForCamera(state.seq) ||
+       (!waiting_.empty() && state.seq > last_processed_seq_))) {
+    for (const Waiting& w : waiting_) {
+      if (w.state.seq == state.seq) return;  // sent again while it waits
+    }
+    if (waiting_.size() >= kMaxWaiting) ReleaseWaiting(now, out, true);
+    waiting_.push_back({state, now});
+    ++counters_.states_waited;
+    ReleaseWaiting(now, out);  // in order, behind states that wait
+    return;
+  }
+  Process(state, out);
+}
+
+void LuaNode::Process(const robot_state_t& state, LuaOutbox* out) {
+  if (state.robot == options_.robot) {
+    last_processed_seq_ = std::max(last_processed_seq_, state.seq);
+  }
   try {
     HandleState(state, out);
   } catch (const LuaScriptError& e) {
@@ -203,6 +335,7 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
   // physics (lua_robot_state_fill.h).
   FillLuaRobotState(FromRobotStateMessage(state), &input_);
   input_.axes = *axes_;
+  FillCameras(state.seq);
   std::vector<double> targets = script_->Step(state.sim_time, input_);
 
   out->Add(CommandChannel(options_.prefix, options_.robot),
@@ -219,10 +352,19 @@ void LuaNode::HandleState(const robot_state_t& state, LuaOutbox* out) {
 std::string LuaNode::Summary() const {
   const LuaNodeCounters& n = counters_;
   return fmt::format(
-      "{}: answered {} states ({} repeated, {} skipped), malformed messages "
-      "{}",
-      options_.robot, n.states_answered, n.states_repeated, n.states_skipped,
-      n.messages_malformed);
+             "{}: answered {} states ({} repeated, {} skipped), malformed "
+             "messages "
+             "{}",
+             options_.robot, n.states_answered, n.states_repeated,
+             n.states_skipped, n.messages_malformed) +
+         (options_.cameras != 0 &&
+                  n.pictures_received + n.pictures_malformed > 0
+              ? fmt::format(
+                    ", pictures {} ({} malformed), states waited for {} {} "
+                    "({} timed out)",
+                    n.pictures_received, n.pictures_malformed,
+                    options_.camera_sender, n.states_waited, n.camera_timeouts)
+              : "");
 }
 
 }  // namespace mrsim

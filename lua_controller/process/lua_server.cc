@@ -56,6 +56,21 @@ LuaServer::LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node)
     gait->setQueueCapacity(100);
     subscriptions_.push_back(gait);
   }
+  if (options.cameras != 0) {
+    lcm::Subscription* camera = lcm_.subscribe(
+        ChannelName(ChannelNamed("camera"), options.prefix, options.robot),
+        &LuaServer::OnCameraImage, this);
+    lcm::Subscription* answers =
+        lcm_.subscribe(CommandChannel(options.prefix, options.robot),
+                       &LuaServer::OnCommand, this);
+    if (camera == nullptr || answers == nullptr) {
+      throw std::runtime_error("cannot subscribe to the LCM channels");
+    }
+    camera->setQueueCapacity(16);  // pictures are large
+    answers->setQueueCapacity(100);
+    subscriptions_.push_back(camera);
+    subscriptions_.push_back(answers);
+  }
 }
 
 LuaServer::~LuaServer() {
@@ -98,6 +113,31 @@ void LuaServer::OnGaitCommand(const lcm::ReceiveBuffer* rbuf,
     PublishAll(lcm_, &outbox_, &buffer_);
   } catch (...) {
     node_.OnMalformedGaitCommand();
+  }
+}
+
+void LuaServer::OnCameraImage(const lcm::ReceiveBuffer* rbuf,
+                              const std::string&) {
+  try {
+    if (!DecodeMessage(rbuf, &image_)) {
+      node_.OnMalformedCameraImage();
+      return;
+    }
+    node_.OnCameraImage(image_, WallClock::now(), &outbox_);
+    PublishAll(lcm_, &outbox_, &buffer_);
+  } catch (...) {
+    node_.OnMalformedCameraImage();
+  }
+}
+
+// Other controllers' commands are the simulator's to check and count.
+void LuaServer::OnCommand(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  try {
+    if (DecodeMessage(rbuf, &answer_)) {
+      node_.OnCommand(answer_, WallClock::now(), &outbox_);
+      PublishAll(lcm_, &outbox_, &buffer_);
+    }
+  } catch (...) {
   }
 }
 

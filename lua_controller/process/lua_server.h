@@ -17,8 +17,10 @@ namespace mrsim {
 
 class LuaServer {
  public:
-  // Subscribes STATE_<robot> and SIM_STATUS, and GAIT_<robot> when the
-  // script takes steering (on_gait_command). Throws std::runtime_error if
+  // Subscribes STATE_<robot> and SIM_STATUS, GAIT_<robot> when the
+  // script takes steering (on_gait_command), and CAMERA_<robot> and
+  // COMMAND_<robot> (the camera process's answers) unless the robot has
+  // no camera (options.cameras == 0). Throws std::runtime_error if
   // LCM cannot subscribe.
   LuaServer(SignedLcm& lcm, LuaNodeOptions options, LuaNode node);
   ~LuaServer();
@@ -36,6 +38,9 @@ class LuaServer {
   void OnSimStatus(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void OnGaitCommand(const lcm::ReceiveBuffer* rbuf,
                      const std::string& channel);
+  void OnCameraImage(const lcm::ReceiveBuffer* rbuf,
+                     const std::string& channel);
+  void OnCommand(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
 
   SignedLcm& lcm_;
   LuaNode node_;
@@ -44,6 +49,8 @@ class LuaServer {
   robot_state_t state_;
   sim_status_t status_;
   gait_command_t command_;
+  camera_image_t image_;
+  joint_command_t answer_;
   std::vector<uint8_t> buffer_;
 };
 

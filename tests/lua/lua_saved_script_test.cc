@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,37 @@ TEST(LuaSavedScript, ASavedScriptWithAnErrorNamesItsLine) {
     EXPECT_NE(std::string(e.what()).find("luaScript"), std::string::npos)
         << e.what();
   }
+}
+
+// The robot's cameras from --scenario: mrsim-lua then waits for the camera
+// process from the first state in lockstep (docs/lua.md); none, and it
+// reads no picture.
+TEST(LuaSavedScript, TheScenarioSaysHowManyCamerasTheRobotHas) {
+  ChainScenarioOptions options;
+  options.chain.name = "snake";
+  options.chain.modules = 2;
+  options.chain.sensor_after = {-1};
+  Scenario scenario = MakeChainScenario(options);
+  ASSERT_EQ(scenario.robots[0].sensor_modules.size(), 1u);
+  const std::string dir = testing::TempDir("lua_cameras");
+  const std::string plain = dir + "/plain.xml";
+  WriteScenarioFile(scenario, plain);
+  scenario.robots[0].sensor_modules[0].cameras.resize(2);
+  scenario.robots[0].sensor_modules[0].cameras[1].sensor_position = 0;
+  const std::string seeing = dir + "/cameras.xml";
+  WriteScenarioFile(scenario, seeing);
+  const std::string script = dir + "/ctl.lua";
+  { std::ofstream(script) << "function step(t, s) return {0} end\n"; }
+  LuaCommandLine with, without, unknown;
+  Parse(&with, {"--robot", "snake", "--scenario", seeing, "--script", script});
+  EXPECT_EQ(with.options.cameras, 2);
+  Parse(&without,
+        {"--robot", "snake", "--scenario", plain, "--script", script});
+  EXPECT_EQ(without.options.cameras, 0);
+  Parse(&unknown,
+        {"--robot", "snake", "--script", script, "--camera-sender", "cam-1"});
+  EXPECT_EQ(unknown.options.cameras, -1);
+  EXPECT_EQ(unknown.options.camera_sender, "cam-1");
 }
 
 }  // namespace
