@@ -1,10 +1,12 @@
 """BENCH lines of the Python package (see bench/python/CMakeLists.txt)."""
 
 import argparse
+import math
 import os
 import re
 import resource
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -35,6 +37,40 @@ def ask_tell_us(genes, population, generations):
         g = opt.ask()
         opt.tell(-(g * g).sum(axis=1))
     return (time.perf_counter() - start) / (generations * population) * 1e6
+
+
+def median_and_spread(values):
+    """Median, and the width of its distribution-free 95 % confidence
+    interval (order statistics n/2 -+ 0.98 sqrt(n)) over it, as
+    bench/common/paired_ratio.h reports spreads."""
+    v = sorted(values)
+    n = len(v)
+    median = (v[(n - 1) // 2] + v[n // 2]) / 2
+    half = 0.98 * math.sqrt(n)
+    lo = v[max(0, int(math.floor(n / 2 - half)))]
+    hi = v[min(n - 1, int(math.ceil(n / 2 + half)))]
+    return median, (hi - lo) / median
+
+
+def camera_python(source_dir, rounds):
+    """(Python ms, C++ ms, pair ratios) of one 160x120 picture of an
+    in-process Simulation: Simulation.camera_image() (render, copy into
+    numpy, GIL released and taken back) against the same render timed
+    inside C++, interleaved round by round (A B, then B A)."""
+    sys.path.insert(0, os.path.join(source_dir, "tests", "python"))
+    from camera_scenario import camera_snake
+    sim = mrsim.Simulation(camera_snake(width=160, height=120))
+    sim.camera_image()  # the GL context and the renderer, made once
+    py, cpp = [], []
+    for r in range(rounds):
+        for which in ((0, 1) if r % 2 == 0 else (1, 0)):
+            if which == 0:
+                start = time.perf_counter()
+                sim.camera_image()
+                py.append(time.perf_counter() - start)
+            else:
+                cpp.append(mrsim._core._time_cpp_camera(sim))
+    return py, cpp
 
 
 def real_time_factor(output):
@@ -120,6 +156,18 @@ def main():
     print("ask/tell (CMA-ES, 10 genes, population 16): %s us per individual"
           % " ".join("%.2f" % r for r in runs))
     print("BENCH ask_tell_overhead_us %.2f us" % runs[len(runs) // 2])
+
+    py, cpp = camera_python(args.source_dir, 200)
+    ms, spread = median_and_spread([1e3 * v for v in py])
+    ratio, ratio_spread = median_and_spread(
+        [p / c for p, c in zip(py, cpp) if c > 0])
+    print("camera_image 160x120: Python %.2f ms, C++ render %.2f ms "
+          "(medians of 200 interleaved pairs)" %
+          (ms, 1e3 * median_and_spread(cpp)[0]))
+    print("BENCH camera_python_ms %.2f ms" % ms)
+    print("BENCH camera_python_ms_spread %.1f %%" % (100 * spread))
+    print("BENCH camera_python_ratio %.3f ratio" % ratio)
+    print("BENCH camera_python_ratio_spread %.1f %%" % (100 * ratio_spread))
 
     with tempfile.TemporaryDirectory() as work:
         gait, python = [], []

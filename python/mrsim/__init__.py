@@ -7,7 +7,8 @@ mrsim._core); nothing is implemented a second time in Python.
   bad files raise ``ScenarioError`` naming file, line and field.
 - Simulation in process: ``sim = Simulation(scenario)``, ``sim.step(n)``
   (GIL released), ``sim.state()`` (numpy arrays), joint targets,
-  ``detach``/``attach``, checkpoints.
+  ``detach``/``attach``, checkpoints; ``sim.camera_image()`` renders a
+  robot's camera as an (H, W, 3) uint8 array, ``sim.cameras()`` lists them.
 - Gaits: ``Gait("forward")``, ``gait.targets(t, state)``,
   ``sim.set_controller(gait); sim.run(10)``.
 - Episodes and the optimiser: ``run_episode``, ``run_task("pole")``,
@@ -15,10 +16,12 @@ mrsim._core); nothing is implemented a second time in Python.
 - mrsim-opt's algorithms on a Python objective: ``Optimizer("cmaes",
   genes=[("x", -5, 5)], seed=1)``, ``ask()``, ``tell(fitness)``, ``best``.
 - Logs: ``read_csv_folder``, ``read_lcm_log``, ``read_mcap`` (dicts of numpy arrays).
-- LCM: ``Node`` (states, commands, lockstep, simulator control; signed
+- LCM: ``Node`` (states, camera pictures as numpy arrays, commands,
+  lockstep, simulator control; signed
   with a key file, ``KeyFileError`` when it cannot be used).
 - Gymnasium-style environment: ``mrsim.env.ChainEnv`` (``task="pole"``:
-  a task of the suite, ``task_names()``, ``Scenario.task(name)``).
+  a task of the suite, ``task_names()``, ``Scenario.task(name)``;
+  ``observation="camera"``: pixels).
 """
 
 from ._core import (  # noqa: F401

@@ -23,15 +23,17 @@ except ImportError:  # pragma: no cover - depends on the machine
 
 
 class Box:
-    """A box of float64 vectors (gymnasium.spaces.Box's interface)."""
+    """A box of float64 vectors, or of uint8 pixels
+    (gymnasium.spaces.Box's interface)."""
 
-    def __init__(self, low, high, seed: Optional[int] = None) -> None:
-        self.low = np.asarray(low, dtype=np.float64)
-        self.high = np.asarray(high, dtype=np.float64)
+    def __init__(self, low, high, seed: Optional[int] = None,
+                 dtype: Any = np.float64) -> None:
+        self.dtype = np.dtype(dtype)
+        self.low = np.asarray(low, dtype=self.dtype)
+        self.high = np.asarray(high, dtype=self.dtype)
         if self.low.shape != self.high.shape:
             raise ValueError("low and high: expected the same shape")
         self.shape = self.low.shape
-        self.dtype = np.dtype(np.float64)
         self._rng = np.random.default_rng(seed)
 
     def seed(self, seed: Optional[int] = None) -> None:
@@ -40,6 +42,9 @@ class Box:
 
     def sample(self) -> np.ndarray:
         """A uniform sample (infinite bounds: standard normal)."""
+        if self.dtype == np.uint8:
+            return self._rng.integers(self.low, self.high, endpoint=True,
+                                      dtype=np.uint8)
         finite = np.isfinite(self.low) & np.isfinite(self.high)
         out = self._rng.standard_normal(self.shape)
         out[finite] = self._rng.uniform(self.low[finite], self.high[finite])
@@ -47,7 +52,10 @@ class Box:
 
     def contains(self, x) -> bool:
         """True when x has the shape and lies within the bounds."""
-        x = np.asarray(x, dtype=np.float64)
+        x = np.asarray(x)
+        if self.dtype == np.uint8 and x.dtype != np.uint8:
+            return False
+        x = x.astype(self.dtype, copy=False)
         return x.shape == self.shape and bool(
             np.all(x >= self.low) and np.all(x <= self.high))
 
@@ -56,19 +64,19 @@ class Box:
                                     self.high.max(initial=0), self.shape)
 
 
-def _box(low, high):
+def _box(low, high, dtype: Any = np.float64):
     if _gym is not None:
-        return _gym.spaces.Box(np.asarray(low, dtype=np.float64),
-                               np.asarray(high, dtype=np.float64),
-                               dtype=np.float64)
-    return Box(low, high)
+        return _gym.spaces.Box(np.asarray(low, dtype=dtype),
+                               np.asarray(high, dtype=dtype), dtype=dtype)
+    return Box(low, high, dtype=dtype)
 
 
 _Base = _gym.Env if _gym is not None else object
 
 #: Observations: "joints" (angles and speeds), "full" (also the centre of
-#: mass, its velocity and the module orientations).
-OBSERVATIONS = ("joints", "full")
+#: mass, its velocity and the module orientations), "camera" (the pixels
+#: of the robot's first camera: uint8 (H, W, 3)).
+OBSERVATIONS = ("joints", "full", "camera")
 #: Rewards: "forward" (centre-of-mass travel along +x per step), "net"
 #: (horizontal travel in any direction), "up" (rise along +z), or a
 #: callable reward(previous_state, state, action) -> float.
@@ -92,7 +100,10 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
         its world, and its fitness as the default reward). reward: default
         "forward" (a task's own: "forward" or "up"). An action holds joint targets (rad), applied for
         control_period s; an episode is truncated after episode_seconds.
-        A simulation that becomes unstable terminates the episode."""
+        A simulation that becomes unstable terminates the episode.
+        observation: "joints", "full" or "camera" (what the robot's first
+        camera sees, rendered in process; ValueError when the robot has
+        no camera)."""
         if observation not in OBSERVATIONS:
             raise ValueError("observation: expected one of %s, got %r" %
                              (", ".join(OBSERVATIONS), observation))
@@ -127,14 +138,29 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
         low, high = self.sim.joint_limits(robot)
         self.action_space = _box(low, high)
         n = len(low)
-        size = 2 * n if observation == "joints" else \
-            2 * n + 6 + 4 * len(self.sim.state(robot).module_pose)
-        self.observation_space = _box(np.full(size, -np.inf),
-                                      np.full(size, np.inf))
+        if observation == "camera":
+            cameras = self.sim.cameras(robot)
+            if not cameras:
+                name = robot if isinstance(robot, str) else \
+                    self.sim.robots[robot]
+                raise ValueError(
+                    "observation='camera': robot %r of the scenario has no "
+                    "camera (add a <Camera> to a sensor module's <cameras>, "
+                    "docs/camera.md)" % name)
+            shape = (cameras[0]["height"], cameras[0]["width"], 3)
+            self.observation_space = _box(np.zeros(shape),
+                                          np.full(shape, 255), np.uint8)
+        else:
+            size = 2 * n if observation == "joints" else \
+                2 * n + 6 + 4 * len(self.sim.state(robot).module_pose)
+            self.observation_space = _box(np.full(size, -np.inf),
+                                          np.full(size, np.inf))
         self._state = None
         self.np_random = np.random.default_rng()
 
     def _obs(self, s) -> np.ndarray:
+        if self.observation == "camera":
+            return self.sim.camera_image(self.robot, 0)
         parts = [s.joint_angle, s.joint_speed]
         if self.observation == "full":
             parts += [s.com, s.com_velocity, s.module_pose[:, 3:].ravel()]

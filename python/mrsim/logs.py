@@ -3,7 +3,8 @@
 ``read_csv_folder(folder)`` reads every CSV mrsim-log wrote into
 ``{channel: {column: array}}``; ``read_lcm_log(path)`` does the same for an
 lcm-logger log, decoding with the logger's own C++ flatteners, so both give
-the same column names (``time``, ``module3.joint.angle``, ``com.x``, ...).
+the same column names (``time``, ``module3.joint.angle``, ``com.x``, ...);
+its camera pictures come as numpy arrays (column ``image``).
 ``read_mcap(path)`` reads an MCAP file of mrsim-log --mcap (JSON messages)
 into the same shape, columns named by the JSON paths of the message's
 fields (``modules.3.position.0``, ``com.1``). ``pandas.DataFrame(logs[channel])``
@@ -75,8 +76,11 @@ def read_csv_folder(folder: str) -> Dict[str, Dict[str, object]]:
 def read_lcm_log(path: str,
                  channels: Optional[str] = None) -> Dict[str, Dict[str, object]]:
     """An lcm-logger log: {channel: {column: array}}, columns named as
-    mrsim-log names them plus 'log_time' (s). channels: a regex of the
-    channels to read (default: all)."""
+    mrsim-log names them plus 'log_time' (s). A camera channel
+    (<prefix>_CAMERA_<robot>) has the picture messages' fields (seq,
+    sim_time, camera, name, width, height, encoding, ...) and 'image': a
+    list of (H, W, 3) uint8 arrays (JPEGs decoded; malformed pictures are
+    left out). channels: a regex of the channels to read (default: all)."""
     return _core.read_lcm_log(os.fspath(path), channels or "")
 
 

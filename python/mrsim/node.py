@@ -24,6 +24,16 @@ A controller in lockstep (``mrsim-sim --clock lockstep --controllers NAME``)::
 
 Like mrsim-gait, the node answers a state the simulator sends again (it
 waits for it) with the same command, and never hands the same state twice.
+
+Camera pictures (mrsim-camera, docs/camera.md) come as Messages whose
+``image`` is an (H, W, 3) uint8 numpy array (JPEGs decoded), beside the
+message's fields (``seq``, ``time``, ``camera``, ``name``, ...)::
+
+    for picture in node.images("snake", timeout=5):
+        red = picture.image[:, :, 0]
+
+A picture whose sizes, bytes or JPEG disagree is counted in ``malformed``
+and dropped, like any message that does not decode.
 """
 
 from __future__ import annotations
@@ -183,8 +193,9 @@ class Node:
 
     def subscribe(self, what: str, robot: Optional[str] = None,
                   callback: Optional[Callable[[Any], None]] = None) -> None:
-        """Listens to a channel of CHANNELS: 'state' (mrsim.State objects)
-        or 'gait_status' of a robot, 'scene', 'sim_status', or any other
+        """Listens to a channel of CHANNELS: 'state' (mrsim.State objects),
+        'camera' (pictures: Messages with an image array) or 'gait_status'
+        of a robot, 'scene', 'sim_status', or any other
         ('command', 'run', ...; a Message with every field);
         callback(message) is called from spin_once()."""
         key = self._channel_of(what, robot)
@@ -211,6 +222,11 @@ class Node:
     def on_sim_status(self, callback: Callable[[Any], None]) -> None:
         """callback(status) for every simulator status."""
         self.subscribe("sim_status", None, callback)
+
+    def on_image(self, robot: str, callback: Callable[[Any], None]) -> None:
+        """callback(picture) for every camera picture of the robot (a
+        Message; picture.image: (H, W, 3) uint8)."""
+        self.subscribe("camera", robot, callback)
 
     def on_gait_status(self, robot: str,
                        callback: Callable[[Any], None]) -> None:
@@ -276,6 +292,25 @@ class Node:
                 yield queue.popleft()
             try:
                 yield self._next(key, timeout)
+            except TimeoutError:
+                return
+
+    def next_image(self, robot: str, camera: Optional[int] = None,
+                   timeout: Optional[float] = 5.0) -> Message:
+        """The next camera picture of the robot (of its camera `camera`
+        when given): a Message with image ((H, W, 3) uint8), seq, time,
+        camera, name, width, height, encoding; raises TimeoutError."""
+        return self._next(self._channel_of("camera", robot), timeout,
+                          lambda m: camera is None or m.camera == camera)
+
+    def images(self, robot: str, camera: Optional[int] = None,
+               timeout: Optional[float] = 5.0) -> Iterator[Message]:
+        """Iterates over the robot's camera pictures (of camera `camera`
+        when given) as next_image() gives them; ends when none comes
+        within timeout s (None: waits forever)."""
+        while True:
+            try:
+                yield self.next_image(robot, camera, timeout)
             except TimeoutError:
                 return
 

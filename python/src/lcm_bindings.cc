@@ -12,6 +12,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -19,11 +20,13 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "camera/camera_image_codec.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
 #include "lcmtypes/runtime/lcm_loop.h"
@@ -129,6 +132,24 @@ py::object ToPython(const gait_status_t& m) {
   return d;
 }
 
+// The picture as an (H, W, 3) uint8 array.
+py::array_t<std::uint8_t> ImageArray(const CameraPicture& p) {
+  py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(p.height),
+                                 static_cast<py::ssize_t>(p.width),
+                                 py::ssize_t{3}});
+  std::copy(p.rgb.begin(), p.rgb.end(), out.mutable_data());
+  return out;
+}
+
+// Every field, plus image: the picture DecodeCameraImage checked (and
+// decoded, for a JPEG); time: sim_time.
+py::object ToPython(const camera_image_t& m, const CameraPicture& picture) {
+  py::dict d = MessageToDict(m);
+  d["time"] = m.sim_time;
+  d["image"] = ImageArray(picture);
+  return d;
+}
+
 template <class T>
 T Get(const py::dict& d, const char* key, T fallback) {
   return d.contains(key) ? d[key].cast<T>() : fallback;
@@ -181,7 +202,11 @@ class Transport {
     while (!queue_.empty()) {
       Item& item = queue_.front();
       const auto* state = std::get_if<robot_state_t>(&item.message);
-      if (item.as_state && state != nullptr) {
+      const auto* image = std::get_if<camera_image_t>(&item.message);
+      if (image != nullptr && item.picture) {
+        out.append(py::make_tuple(item.channel, "camera_image_t",
+                                  ToPython(*image, *item.picture)));
+      } else if (item.as_state && state != nullptr) {
         out.append(py::make_tuple(
             item.channel, "state",
             std::make_shared<StateObject>(StateObject::FromMessage(*state))));
@@ -279,6 +304,7 @@ class Transport {
     std::string channel;
     Message message;
     bool as_state;
+    std::optional<CameraPicture> picture;  // of a camera_image_t
   };
 
   template <size_t I = 0>
@@ -295,10 +321,20 @@ class Transport {
   static void OnMessage(const lcm::ReceiveBuffer* rbuf,
                         const std::string& channel, Sub* sub) {
     Transport* self = sub->owner;
-    Item item{channel, Message{}, sub->as_state};
+    Item item{channel, Message{}, sub->as_state, std::nullopt};
     if (!DecodeAs(sub->type, rbuf, &item.message)) {
       ++self->malformed_;
       return;
+    }
+    // A picture whose sizes, bytes or JPEG disagree is malformed too (the
+    // GIL is released here: JPEGs decode while Python runs).
+    if (const auto* image = std::get_if<camera_image_t>(&item.message)) {
+      try {
+        item.picture = DecodeCameraImage(*image);
+      } catch (const std::exception&) {
+        ++self->malformed_;
+        return;
+      }
     }
     const auto* state = std::get_if<robot_state_t>(&item.message);
     if (item.as_state && state != nullptr && !self->FirstTime(*state)) return;

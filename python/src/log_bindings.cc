@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "camera/camera_image_codec.h"
+#include "lcmtypes/runtime/decode.h"
 #include "logger/csv_columns.h"
 #include "logger/generic_flattener.h"
 #include "logger/lcm_type_registry.h"
@@ -147,6 +149,76 @@ int64_t Fingerprint(const uint8_t* data, size_t size) {
   return static_cast<int64_t>(h);
 }
 
+// The pictures of a camera channel (camera_image_t), checked and decoded
+// by the camera codec: each picture an (H, W, 3) uint8 array in column
+// "image" beside the message's other fields.
+struct CameraColumns {
+  std::vector<CameraImageHeader> headers;
+  std::vector<std::string> encodings;
+  std::vector<CameraPicture> pictures;
+  std::vector<double> utimes;
+  std::vector<double> log_times;
+
+  // False when the message does not decode or its picture is malformed.
+  bool Add(const uint8_t* data, size_t size, double log_time) {
+    camera_image_t m;
+    if (!DecodeMessage(data, size, &m)) return false;
+    try {
+      pictures.push_back(DecodeCameraImage(m));
+    } catch (const std::exception&) {
+      return false;
+    }
+    headers.push_back(CameraImageHeaderOf(m));
+    encodings.push_back(m.encoding);
+    utimes.push_back(static_cast<double>(m.utime));
+    log_times.push_back(log_time);
+    return true;
+  }
+
+  py::dict ToPython() const {
+    const auto numbers = [&](auto field) {
+      std::vector<double> v;
+      for (const CameraImageHeader& h : headers) {
+        v.push_back(static_cast<double>(field(h)));
+      }
+      return py::array_t<double>(v.size(), v.data());
+    };
+    const auto texts = [&](auto field) {
+      py::list v;
+      for (const CameraImageHeader& h : headers) v.append(field(h));
+      return v;
+    };
+    py::dict d;
+    d["utime"] = py::array_t<double>(utimes.size(), utimes.data());
+    d["seq"] = numbers([](const CameraImageHeader& h) { return h.seq; });
+    d["robot"] = texts([](const CameraImageHeader& h) { return h.robot; });
+    d["sender"] = texts([](const CameraImageHeader& h) { return h.sender; });
+    d["camera"] = numbers([](const CameraImageHeader& h) { return h.camera; });
+    d["sensor_module"] =
+        numbers([](const CameraImageHeader& h) { return h.sensor_module; });
+    d["name"] = texts([](const CameraImageHeader& h) { return h.name; });
+    d["sim_time"] =
+        numbers([](const CameraImageHeader& h) { return h.sim_time; });
+    std::vector<double> widths, heights;
+    py::list images;
+    for (const CameraPicture& p : pictures) {
+      widths.push_back(p.width);
+      heights.push_back(p.height);
+      py::array_t<std::uint8_t> a({static_cast<py::ssize_t>(p.height),
+                                   static_cast<py::ssize_t>(p.width),
+                                   py::ssize_t{3}});
+      std::copy(p.rgb.begin(), p.rgb.end(), a.mutable_data());
+      images.append(a);
+    }
+    d["width"] = py::array_t<double>(widths.size(), widths.data());
+    d["height"] = py::array_t<double>(heights.size(), heights.data());
+    d["encoding"] = encodings;
+    d["image"] = images;
+    d["log_time"] = py::array_t<double>(log_times.size(), log_times.data());
+    return d;
+  }
+};
+
 py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw PlotInputError(path + ": cannot open as an LCM log");
@@ -156,6 +228,7 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
     std::unique_ptr<MessageFlattener> flattener;
     int64_t hash = 0;
     Table table;
+    std::unique_ptr<CameraColumns> camera;  // a camera_image_t channel
     int64_t undecoded = 0;
   };
   std::map<std::string, Channel> by_channel;
@@ -176,6 +249,14 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
         order.push_back(e->channel);
       }
       Channel& ch = it->second;
+      if (hash == camera_image_t::getHash()) {
+        if (!ch.camera) ch.camera = std::make_unique<CameraColumns>();
+        if (!ch.camera->Add(data, size,
+                            static_cast<double>(e->timestamp) / 1e6)) {
+          ++ch.undecoded;
+        }
+        continue;
+      }
       if (!ch.flattener || ch.hash != hash) {
         const LcmStruct* type = registry.FindByHash(hash);
         if (type == nullptr) {
@@ -209,6 +290,10 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
   py::dict out;
   for (const std::string& name : order) {
     const Channel& ch = by_channel.at(name);
+    if (ch.camera) {
+      out[py::str(name)] = ch.camera->ToPython();
+      continue;
+    }
     py::dict columns = ch.table.ToPython();
     out[py::str(name)] = columns;
   }
@@ -279,9 +364,11 @@ naming the file and line of a malformed row.)doc");
         R"doc(
 An lcm-logger log: {channel: {column: array}} with the column names
 mrsim-log gives (decoded by the logger's flatteners), plus 'log_time' (s,
-when the message was logged). channels: a regex of the channels to read
-(default all). Messages of unknown types or that do not decode are left
-out. Raises LogError when the file is not an LCM log.)doc");
+when the message was logged). A camera channel (camera_image_t) has the
+message's fields and 'image': a list of (H, W, 3) uint8 arrays, JPEGs
+decoded. channels: a regex of the channels to read (default all).
+Messages of unknown types or that do not decode (a picture whose sizes,
+bytes or JPEG disagree among them) are left out. Raises LogError when the file is not an LCM log.)doc");
   m.def("read_mcap_messages", &ReadMcapMessages, py::arg("path"),
         py::arg("channels") = "",
         R"doc(

@@ -19,6 +19,7 @@
 #include "gait_controller/gait_runner.h"
 #include "python/src/bindings.h"
 #include "python/src/gait_object.h"
+#include "python/src/simulation_cameras.h"
 #include "python/src/state_object.h"
 #include "sim_core/checkpoint.h"
 #include "sim_core/physics.h"
@@ -141,9 +142,55 @@ class Simulation {
 
   int steps_per_period() const { return steps_per_period_; }
 
+  // Seconds of one render of robot `robot`'s camera `camera` inside C++
+  // (the benchmark baseline of camera_image: no Python around it).
+  double TimeCameraRender(int robot, int camera) {
+    const int c = SimulationCameras::Resolve(physics_->scenario(), robot,
+                                             physics_->robot_name(robot),
+                                             camera, std::string());
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto start = std::chrono::steady_clock::now();
+    cameras_.Render(*physics_, robot, c, 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                         start)
+        .count();
+  }
+
+  // Robot `robot`'s camera (index, or MuJoCo name when it is a str) as an
+  // (H, W, 3) uint8 array, rendered with the GIL released.
+  py::array_t<std::uint8_t> CameraImage(int robot, const py::object& camera,
+                                        const std::optional<int64_t>& seq) {
+    const bool by_name = py::isinstance<py::str>(camera);
+    const int c = SimulationCameras::Resolve(
+        physics_->scenario(), robot, physics_->robot_name(robot),
+        by_name ? 0 : camera.cast<int>(),
+        by_name ? camera.cast<std::string>() : std::string());
+    int width = 0, height = 0;
+    for (const RobotCamera& rc :
+         SimulationCameras::Of(physics_->scenario(), robot)) {
+      if (rc.camera == c) width = rc.part.width, height = rc.part.height;
+    }
+    std::vector<std::uint8_t> rgb;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      // Without a seq the noise is keyed by the physics steps taken.
+      const int64_t key =
+          seq ? *seq : std::llround(physics_->time() / physics_->timestep());
+      rgb = cameras_.Render(*physics_, robot, c, key);
+    }
+    py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(height),
+                                   static_cast<py::ssize_t>(width),
+                                   py::ssize_t{3}});
+    std::copy(rgb.begin(), rgb.end(), out.mutable_data());
+    return out;
+  }
+
  private:
   std::unique_ptr<Physics> physics_;
   std::mutex mutex_;
+  SimulationCameras cameras_;
   std::vector<std::vector<Axis>> axes_;
   py::object controller_ = py::none();
   int controller_robot_ = 0;
@@ -361,6 +408,54 @@ be built.)doc");
       "Re-makes a released lock; it pulls its parts back to their pose in "
       "the scenario.");
   c.def(
+      "cameras",
+      [](Simulation& s, const py::object& robot) {
+        py::list out;
+        for (const RobotCamera& rc :
+             SimulationCameras::Of(s.physics().scenario(), s.Robot(robot))) {
+          py::dict d;
+          d["camera"] = rc.camera;
+          d["name"] = rc.name;
+          d["sensor_module"] = rc.sensor_module;
+          d["width"] = rc.part.width;
+          d["height"] = rc.part.height;
+          d["fovy"] = rc.part.fovy;
+          d["rate"] = rc.part.rate;
+          d["near"] = rc.part.near_clip;
+          d["far"] = rc.part.far_clip;
+          d["tilt"] = rc.part.tilt;
+          d["noise"] = rc.part.noise;
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("robot") = 0, R"doc(
+The cameras of a robot (the <Camera> parts of its sensor modules), in the
+order camera_image() and camera_image_t number them: dicts of camera (the
+index), name (MuJoCo's "<robot>/sm<k>/camera<i>"), sensor_module, width,
+height (px), fovy, tilt (deg), rate (Hz), near, far (m) and noise. Empty
+for a robot without cameras.)doc");
+  c.def(
+      "camera_image",
+      [](Simulation& s, const py::object& robot, const py::object& camera,
+         std::optional<int64_t> seq) {
+        if (!py::isinstance<py::int_>(camera) &&
+            !py::isinstance<py::str>(camera)) {
+          throw py::type_error("camera: expected an index or a camera name");
+        }
+        return s.CameraImage(s.Robot(robot), camera, seq);
+      },
+      py::arg("robot") = 0, py::arg("camera") = 0, py::arg("seq") = py::none(),
+      R"doc(
+What a robot's camera sees now: an (H, W, 3) uint8 array, RGB, top row
+first, rendered in this process by the renderer mrsim-camera uses (off-
+screen OpenGL: EGL, no display needed; made on the first call) with the GIL
+released. camera: an index of cameras() or a camera's name. seq keys the
+camera's pixel noise (default: the physics steps taken), so the same state
+and seq give the same picture bit for bit. Raises IndexError naming the
+robots or cameras that exist, RuntimeError naming what OpenGL could not
+make. Call it from one thread at a time.)doc");
+  c.def(
       "set_controller",
       [](Simulation& s, py::object controller, const py::object& robot,
          double period) {
@@ -412,6 +507,14 @@ lockstep with mrsim-gait.)doc");
       py::arg("simulation"), py::arg("n"),
       "Seconds of Physics::Step(n) on this simulation timed in C++ (the "
       "benchmark baseline of Simulation.step).");
+  m.def(
+      "_time_cpp_camera",
+      [](Simulation& s, const py::object& robot, int camera) {
+        return s.TimeCameraRender(s.Robot(robot), camera);
+      },
+      py::arg("simulation"), py::arg("robot") = 0, py::arg("camera") = 0,
+      "Seconds of one CameraImageRenderer::Render of a camera timed in C++ "
+      "(the benchmark baseline of Simulation.camera_image).");
 }
 
 }  // namespace mrsim::python

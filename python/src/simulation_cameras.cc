@@ -1,0 +1,117 @@
+#include "python/src/simulation_cameras.h"
+
+#include <dlfcn.h>
+
+#include <mutex>
+#include <stdexcept>
+
+namespace mrsim::python {
+namespace {
+
+// MuJoCo's OpenGL loader finds eglGetProcAddress among the process's
+// global symbols; an extension module's libraries are loaded local to it,
+// so libEGL is promoted to global once, before the first context.
+void MakeEglGlobal() {
+  static const bool done = [] {
+    dlopen("libEGL.so.1", RTLD_NOW | RTLD_GLOBAL | RTLD_NOLOAD);
+    return true;
+  }();
+  (void)done;
+}
+
+// One GL context for the process, alive while a simulation renders.
+std::mutex& RenderMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+std::shared_ptr<GlContext> SharedGlContext() {
+  static std::weak_ptr<GlContext> shared;
+  std::shared_ptr<GlContext> gl = shared.lock();
+  if (gl == nullptr) {
+    MakeEglGlobal();
+    gl = std::make_shared<GlContext>();
+    shared = gl;
+  }
+  return gl;
+}
+
+std::string Listing(const std::vector<RobotCamera>& cameras) {
+  std::string out;
+  for (const RobotCamera& c : cameras) {
+    out += (out.empty() ? "" : ", ") + std::to_string(c.camera) + " '" +
+           c.name + "' " + std::to_string(c.part.width) + "x" +
+           std::to_string(c.part.height);
+  }
+  return out;
+}
+
+}  // namespace
+
+SimulationCameras::~SimulationCameras() {
+  if (renderer_ == nullptr) return;
+  // The renderer's OpenGL objects are freed in the shared context.
+  std::lock_guard<std::mutex> lock(RenderMutex());
+  try {
+    gl_->MakeCurrent();
+  } catch (const std::exception&) {
+    // No context to free them in: they go with the process.
+    static_cast<void>(renderer_.release());
+    return;
+  }
+  renderer_.reset();
+}
+
+std::vector<RobotCamera> SimulationCameras::Of(const Scenario& scenario,
+                                               int robot) {
+  std::vector<RobotCamera> out;
+  for (RobotCamera& c : RobotCameras(scenario)) {
+    if (c.robot == robot) out.push_back(std::move(c));
+  }
+  return out;
+}
+
+int SimulationCameras::Resolve(const Scenario& scenario, int robot,
+                               const std::string& robot_name, int camera,
+                               const std::string& name) {
+  const std::vector<RobotCamera> cameras = Of(scenario, robot);
+  if (cameras.empty()) {
+    throw std::out_of_range("robot '" + robot_name +
+                            "' has no camera (a <Camera> in a sensor "
+                            "module's <cameras>: docs/camera.md)");
+  }
+  for (const RobotCamera& c : cameras) {
+    if (name.empty() ? c.camera == camera : c.name == name) return c.camera;
+  }
+  throw std::out_of_range(
+      "camera " + (name.empty() ? std::to_string(camera) : "'" + name + "'") +
+      ": robot '" + robot_name + "' has " + std::to_string(cameras.size()) +
+      " camera(s): " + Listing(cameras));
+}
+
+std::vector<std::uint8_t> SimulationCameras::Render(const Physics& physics,
+                                                    int robot, int camera,
+                                                    std::int64_t seq) {
+  std::lock_guard<std::mutex> lock(RenderMutex());
+  if (gl_ == nullptr) gl_ = SharedGlContext();
+  gl_->MakeCurrent();
+  // A reset or a checkpoint loaded may rebuild the model (a released lock).
+  if (renderer_ == nullptr || model_ != physics.model()) {
+    renderer_.reset();
+    renderer_ = std::make_unique<CameraImageRenderer>(physics.model(),
+                                                      physics.scenario());
+    model_ = physics.model();
+  }
+  const int index = renderer_->Find(robot, camera);
+  if (index < 0) {
+    throw std::out_of_range("camera " + std::to_string(camera) + " of robot " +
+                            std::to_string(robot) + " is not in the model");
+  }
+  std::vector<std::uint8_t> rgb;
+  // data(), not mutable_data(): rendering reads the poses and changes no
+  // state, so a split world's view is not marked as poked.
+  renderer_->Render(index, const_cast<mjData*>(physics.data()), seq, &rgb);
+  return rgb;
+}
+
+}  // namespace mrsim::python
