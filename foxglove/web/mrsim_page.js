@@ -329,16 +329,31 @@ $("step").onclick = () => callService("/mrsim/step", { steps: 1 });
 // ---- the plot of one column of a robot's state ----
 const stateChannels = new Map();  // robot -> channel
 const columnSelect = $("column");
-let plotted = null;               // {robot, path}
+let plotRobot = "";               // whose state is subscribed to and plotted
+let plotPath = "";                // its column ("" until its first state)
+let listedRobot = "";             // whose columns the list shows
 let points = [];                  // [sim time, value]
 
 function addStateChannel(c) {
   const robot = c.topic.replace(/^.*_STATE_/, "");
   stateChannels.set(robot, c);
-  if (!plotted) {
-    // Columns are named once the first state shows how many joints it has.
+  if (!plotRobot) {
+    plotRobot = robot;
     subscribe(c, (s) => onState(robot, s));
+  } else if (listedRobot) {
+    columnSelect.add(new Option(`${robot}: …`, `${robot}\n`));
   }
+}
+
+// The list: the plotted robot's columns (named once its first state shows
+// how many joints and sensors it has), then one entry per other robot.
+function listColumns(robot, s) {
+  while (columnSelect.options.length > 0) columnSelect.remove(0);
+  for (const col of columnsOf(s)) columnSelect.add(new Option(`${robot}: ${col}`, `${robot}\n${col}`));
+  for (const other of [...stateChannels.keys()].sort()) {
+    if (other !== robot) columnSelect.add(new Option(`${other}: …`, `${other}\n`));
+  }
+  listedRobot = robot;
 }
 
 // The columns worth plotting: scalars, joints, centre of mass, sensors.
@@ -362,16 +377,13 @@ function valueAt(s, path) {
 }
 
 function onState(robot, s) {
-  if (!plotted) {
-    for (const col of columnsOf(s)) columnSelect.add(new Option(`${robot}: ${col}`, `${robot}\n${col}`));
-    columnSelect.remove(0);
-    const first = columnsOf(s)[0] ?? "heading";
-    plotted = { robot, path: first };
-    columnSelect.value = `${robot}\n${first}`;
-    for (const [other, c] of stateChannels) if (other !== robot) unsubscribe(c.id);
+  if (robot !== plotRobot) return;
+  if (listedRobot !== robot) {
+    listColumns(robot, s);
+    if (!plotPath) plotPath = columnsOf(s)[0] ?? "heading";
+    columnSelect.value = `${robot}\n${plotPath}`;
   }
-  if (robot !== plotted.robot) return;
-  const t = s.sim_time, v = valueAt(s, plotted.path);
+  const t = s.sim_time, v = valueAt(s, plotPath);
   if (points.length > 0 && t < points[points.length - 1][0]) points = [];  // a reset
   points.push([t, v]);
   while (points.length > kMaxPlotPoints || (points.length > 0 && points[0][0] < t - kPlotSeconds)) points.shift();
@@ -380,15 +392,19 @@ function onState(robot, s) {
 }
 columnSelect.addEventListener("change", () => {
   const [robot, path] = columnSelect.value.split("\n");
-  if (!path) return;
-  if (plotted && robot !== plotted.robot) {
-    const old = stateChannels.get(plotted.robot);
+  if (robot !== plotRobot) {
+    // Another robot: its state instead (its columns are listed once its
+    // first state arrives).
+    const old = stateChannels.get(plotRobot);
     if (old) unsubscribe(old.id);
+    plotRobot = robot;
+    listedRobot = "";
     const c = stateChannels.get(robot);
     if (c) subscribe(c, (s) => onState(robot, s));
   }
-  plotted = { robot, path };
+  plotPath = path;
   points = [];
+  $("value").textContent = "";
   drawPlot();
 });
 
