@@ -454,7 +454,7 @@ released. camera: an index of cameras() or a camera's name. seq keys the
 camera's pixel noise (default: the physics steps taken), so the same state
 and seq give the same picture bit for bit. Raises IndexError naming the
 robots or cameras that exist, RuntimeError naming what OpenGL could not
-make. Call it from one thread at a time.)doc");
+make. Any thread may call it; renders are serialised.)doc");
   c.def(
       "set_controller",
       [](Simulation& s, py::object controller, const py::object& robot,

@@ -1,5 +1,6 @@
 #include "python/src/simulation_cameras.h"
 
+#include <EGL/egl.h>
 #include <dlfcn.h>
 
 #include <mutex>
@@ -36,6 +37,20 @@ std::shared_ptr<GlContext> SharedGlContext() {
   return gl;
 }
 
+// The shared context current on the calling thread while it lives, then
+// released, so that the next render may come from another Python thread
+// (EGL refuses a context current on another thread).
+class CurrentGl {
+ public:
+  explicit CurrentGl(GlContext& gl) { gl.MakeCurrent(); }
+  ~CurrentGl() {
+    eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE,
+                   EGL_NO_CONTEXT);
+  }
+  CurrentGl(const CurrentGl&) = delete;
+  CurrentGl& operator=(const CurrentGl&) = delete;
+};
+
 std::string Listing(const std::vector<RobotCamera>& cameras) {
   std::string out;
   for (const RobotCamera& c : cameras) {
@@ -53,13 +68,12 @@ SimulationCameras::~SimulationCameras() {
   // The renderer's OpenGL objects are freed in the shared context.
   std::lock_guard<std::mutex> lock(RenderMutex());
   try {
-    gl_->MakeCurrent();
+    CurrentGl current(*gl_);
+    renderer_.reset();
   } catch (const std::exception&) {
     // No context to free them in: they go with the process.
     static_cast<void>(renderer_.release());
-    return;
   }
-  renderer_.reset();
 }
 
 std::vector<RobotCamera> SimulationCameras::Of(const Scenario& scenario,
@@ -94,7 +108,7 @@ std::vector<std::uint8_t> SimulationCameras::Render(const Physics& physics,
                                                     std::int64_t seq) {
   std::lock_guard<std::mutex> lock(RenderMutex());
   if (gl_ == nullptr) gl_ = SharedGlContext();
-  gl_->MakeCurrent();
+  CurrentGl current(*gl_);
   // A reset or a checkpoint loaded may rebuild the model (a released lock).
   if (renderer_ == nullptr || model_ != physics.model()) {
     renderer_.reset();

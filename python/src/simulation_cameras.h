@@ -37,8 +37,9 @@ class SimulationCameras {
 
   // Robot `robot`'s camera `camera` as the physics poses it now: height x
   // width x 3 bytes, red first, top row first. `seq` keys the pixel noise.
-  // Makes the shared GL context current on the calling thread; renders of
-  // all simulations are serialised. Throws
+  // Makes the shared GL context current on the calling thread for the
+  // render (any thread may render; renders of all simulations are
+  // serialised). Throws
   // std::runtime_error naming what OpenGL could not make.
   std::vector<std::uint8_t> Render(const Physics& physics, int robot,
                                    int camera, std::int64_t seq);

@@ -6,6 +6,7 @@ the steering example gets the snake closer to the red ball."""
 import os
 import subprocess
 import sys
+import threading
 
 import numpy as np
 import pytest
@@ -57,6 +58,24 @@ def test_the_same_state_gives_the_same_picture(sim):
     assert np.array_equal(sim.camera_image(), sim.camera_image())
     assert np.array_equal(sim.camera_image(camera="snake/sm0/camera"),
                           sim.camera_image(camera=0))
+
+
+def test_pictures_can_be_taken_from_other_threads(sim):
+    expected = sim.camera_image()
+    other = mrsim.Simulation(camera_snake(ball=(0.6, 0.0)))
+    got = []
+
+    def take():
+        got.append(sim.camera_image())
+        got.append(other.camera_image())
+
+    threads = [threading.Thread(target=take) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(got) == 6
+    assert all(np.array_equal(g, expected) for g in got)
 
 
 def test_the_picture_follows_the_simulation():
