@@ -101,12 +101,12 @@ std::optional<GeneRange> GeneRangeOf(const std::string& name) {
       {"cpg_feedback", {-kMaxCpgFeedbackGain, kMaxCpgFeedbackGain, false}},
       // The scenario's physical bounds (scenario_schema.h): a genome must
       // not make a body the validator refuses, or a billion modules.
-      {"module_count", {1, kMaxModules, false}},
+      {"module_count", {1, kMaxModules, false, kMaxModulesWhy}},
       {"module_mass", {0, kMaxMass, true}},
       {"module_scale", {0, kMaxLength, true}},
       {"joint_kp", {0, kMaxAnyValue, false}},
       {"joint_max_vel", {0, kMaxAnyValue, true}},
-      {"sensor_after", {-1, kMaxModules - 1, false}}};
+      {"sensor_after", {-1, kMaxModules - 1, false, kMaxModulesWhy}}};
   const auto it = kRanges.find(name);
   if (it == kRanges.end()) return std::nullopt;
   return it->second;
@@ -149,9 +149,12 @@ void GenomeSpec::Validate(const std::string& source) const {
               : std::vector<std::pair<const char*, double>>{{"start", g.start}};
       for (const auto& [what, v] : checked) {
         if (outside(v)) {
-          throw GenomeError(where + fmt::format(": {} {} is outside what {} "
-                                                "can take ({})",
-                                                what, v, g.name, can_take));
+          throw GenomeError(
+              where + fmt::format(": {} {} is outside what {} can take ({}{})",
+                                  what, v, g.name, can_take,
+                                  range->why != nullptr && v > range->max
+                                      ? std::string("; ") + range->why
+                                      : std::string()));
         }
       }
     }

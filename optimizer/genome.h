@@ -38,7 +38,8 @@ inline const std::vector<std::string>& BodyGeneNames() {
 struct GeneRange {
   double min;
   double max;
-  bool min_exclusive;  // min itself is not allowed (a mass, a scale)
+  bool min_exclusive;         // min itself is not allowed (a mass, a scale)
+  const char* why = nullptr;  // why max is the limit, when it is a choice
 };
 std::optional<GeneRange> GeneRangeOf(const std::string& name);
 

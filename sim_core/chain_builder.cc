@@ -65,7 +65,8 @@ Robot MakeChain(const ChainOptions& options) {
     // A billion modules would be built before anything refused them.
     throw std::invalid_argument("MakeChain: modules must be at most " +
                                 std::to_string(kMaxModules) + ", got " +
-                                std::to_string(options.modules));
+                                std::to_string(options.modules) + " (" +
+                                kMaxModulesWhy + ")");
   }
   if (!(options.frame_size.minCoeff() > 0)) {
     throw std::invalid_argument("MakeChain: frame_size must be positive");

@@ -690,12 +690,20 @@ void Describe(V& v, SceneObject& o) {
                                 "shape",  "",
                                 L::Any(), "Box, Sphere, Cylinder or Capsule",
                                 true};
+  // A static object is welded to the world: its mass moves nothing, so
+  // the studio does not offer it (REQ-1.4.5); files keep it.
   static const FieldInfo kMass{"mass",
                                "mass",
                                "mass",
                                "kg",
                                L::NonNegative().Within(kMaxMass),
-                               "Mass; positive unless the object is static"};
+                               "Mass; positive unless the object is static",
+                               false,
+                               G::kNone,
+                               false,
+                               false,
+                               nullptr,
+                               "!isStatic"};
   static const FieldInfo kStatic{
       "isStatic", "fixed in place", "is_static",
       "",         L::Any(),         "Fixed to the world where it is placed"};

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sim_core/scenario_schema.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -114,7 +115,8 @@ TEST(OptimizerGenome, HostileFilesAreRefusedWithTheirLine) {
   EXPECT_EQ(error("<genome>\n<gene name=\"module_count\" lower=\"1\" "
                   "upper=\"1e9\" start=\"2\"/>\n</genome>"),
             "g.xml:2: gene 'module_count': upper 1000000000 is outside what "
-            "module_count can take (>= 1 and <= 1000)");
+            "module_count can take (>= 1 and <= 1000; " +
+                std::string(kMaxModulesWhy) + ")");
   EXPECT_NE(error("<genome>\n<gene name=\"module_count\" lower=\"-5\" "
                   "upper=\"3\" start=\"2\"/>\n</genome>")
                 .find("g.xml:2: gene 'module_count': lower -5"),

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim_core/scenario_schema.h"
 #include "sim_core/scenario_xml.h"
 #include "tests/common/child_process.h"
 
@@ -167,6 +168,23 @@ TEST(ChainBuilder, SensorModulesSitBetweenTheirModules) {
   EXPECT_GT(ray.position.x(), front.position.x() + front.size.x() / 2);
   ASSERT_EQ(front.distance_sensor_locks.size(), 1u);
   EXPECT_EQ(front.distance_sensor_locks[0].right_frame_guid, ray.guid);
+}
+
+// The cap is a choice, so refusing it says why (REQ-2.4.3).
+TEST(ChainBuilder, MoreModulesThanTheCapAreRefusedSayingWhy) {
+  ChainOptions o;
+  o.modules = kMaxModules + 1;
+  try {
+    MakeChain(o);
+    FAIL() << "1001 modules were built";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 1000, got 1001"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("cube of its joints"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ChainBuilder, RejectsBadOptions) {
