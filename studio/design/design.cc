@@ -610,6 +610,68 @@ void Design::RemoveDistanceSensor(int k) {
   Commit(std::move(next), selection_);
 }
 
+void Design::AddCamera(int face) {
+  Scenario next = scenario_;
+  MountCamera(&SelectedSensorModule(&next), face);
+  RefuseUselessRay(scenario_, next);
+  Commit(std::move(next), selection_);
+}
+
+std::vector<int> Design::OpenCameraFaces() const {
+  std::vector<int> faces;
+  if (selection_.kind != SelectionKind::kSensorModule) return faces;
+  for (int face = 0; face < 6; ++face) {
+    Scenario next = scenario_;
+    try {
+      MountCamera(&SelectedSensorModule(&next), face);
+      ValidateScenario(next);
+      RefuseUselessRay(scenario_, next);
+      faces.push_back(face);
+    } catch (const std::exception&) {
+      // taken, full, or looking into the robot
+    }
+  }
+  return faces;
+}
+
+void Design::MountCamera(SensorModule* sm, int face) {
+  if (face < 0 || face > 5) {
+    throw DesignError("face " + std::to_string(face) + ": expected 0..5 (" +
+                      std::string(kSensorFaceList) + ")");
+  }
+  if (sm->cameras.size() >= 6) {
+    throw DesignError("a sensor module carries at most six cameras");
+  }
+  for (const Camera& c : sm->cameras) {
+    if (c.sensor_position == face) {
+      throw DesignError("face " + std::to_string(face) + " (" +
+                        kSensorFaceNames[face] + ") already has a camera");
+    }
+  }
+  auto used = [&](const std::string& guid) {
+    for (const Camera& c : sm->cameras) {
+      if (c.guid == guid) return true;
+    }
+    return false;
+  };
+  int k = 0;
+  while (used(sm->guid + "/c" + std::to_string(k))) ++k;
+  Camera camera;
+  camera.guid = sm->guid + "/c" + std::to_string(k);
+  camera.sensor_position = face;
+  sm->cameras.push_back(camera);
+}
+
+void Design::RemoveCamera(int k) {
+  Scenario next = scenario_;
+  SensorModule& sm = SelectedSensorModule(&next);
+  if (k < 0 || k >= static_cast<int>(sm.cameras.size())) {
+    throw DesignError("no camera " + std::to_string(k));
+  }
+  sm.cameras.erase(sm.cameras.begin() + k);
+  Commit(std::move(next), selection_);
+}
+
 namespace {
 
 FieldRef FindField(Scenario& s, const FieldAddress& a) {

@@ -115,6 +115,15 @@ class Design {
   std::vector<int> OpenRayFaces() const;
   // Removes distance sensor `k` of the selected sensor module.
   void RemoveDistanceSensor(int k);
+  // A camera (sensor_kind.h's "camera", default picture) on face `face`
+  // of the selected sensor module, looking out of that face; one per face,
+  // at most six. Refused on a face that looks into the robot (it would see
+  // only its neighbour).
+  void AddCamera(int face);
+  // The faces AddCamera would take on the selected sensor module.
+  std::vector<int> OpenCameraFaces() const;
+  // Removes camera `k` of the selected sensor module.
+  void RemoveCamera(int k);
   // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
   void SetField(const FieldAddress& address, const std::string& text);
   // Terrain: an image (empty: flat ground), brightest-pixel height and
@@ -180,6 +189,9 @@ class Design {
   SensorModule& SelectedSensorModule(Scenario* next) const;
   // Mounts a ray on `face` of `sm`, or throws DesignError (not validated).
   static void AddRay(SensorModule* sm, int face);
+  // Mounts a camera on `face` of `sm`, or throws DesignError (not
+  // validated).
+  static void MountCamera(SensorModule* sm, int face);
 
   Scenario scenario_;
   Selection selection_;

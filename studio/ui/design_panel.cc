@@ -149,7 +149,8 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
         const SensorModule& sm = robot.sensor_modules[slot.source];
         label = "  S" + std::to_string(slot.source) + "  sensor module" +
                 (sm.force_sensor ? " +plate" : "") +
-                (sm.distance_sensors.empty() ? "" : " +ray");
+                (sm.distance_sensors.empty() ? "" : " +ray") +
+                (sm.cameras.empty() ? "" : " +cam");
         look = Look::kSensorModule;
       } else {
         label = "  " + std::to_string(slot.source) + "  " +

@@ -291,7 +291,50 @@ void InspectorPanel::DrawSensorMounts(StudioContext& studio,
     }
     ImGui::PopID();
   }
+  DrawCameras(studio, sm, sel);
   ImGui::Separator();
+}
+
+void InspectorPanel::DrawCameras(StudioContext& studio, const SensorModule& sm,
+                                 const Selection& sel) {
+  if (studio.design.revision() != camera_face_revision_ ||
+      !(sel == camera_face_selection_)) {
+    camera_face_revision_ = studio.design.revision();
+    camera_face_selection_ = sel;
+    const std::vector<int> open = studio.design.OpenCameraFaces();
+    // Front first (a camera looking ahead), else the first face open.
+    if (!open.empty() &&
+        std::find(open.begin(), open.end(), camera_face_) == open.end()) {
+      camera_face_ = std::find(open.begin(), open.end(), 4) != open.end()
+                         ? 4
+                         : open.front();
+    }
+  }
+  ImGui::SetNextItemWidth(90);
+  ImGui::Combo("##camera face", &camera_face_, kSensorFaceNames.data(),
+               static_cast<int>(kSensorFaceNames.size()));
+  ImGui::SameLine();
+  if (studio.Button("add camera")) {
+    studio.Try("add the camera",
+               [&] { studio.design.AddCamera(camera_face_); });
+  }
+  for (size_t k = 0; k < sm.cameras.size(); ++k) {
+    const Camera& c = sm.cameras[k];
+    ImGui::PushID(static_cast<int>(100 + k));
+    ImGui::Text(
+        "camera %zu: %s, %dx%d", k,
+        c.sensor_position >= 0 &&
+                c.sensor_position < static_cast<int>(kSensorFaceNames.size())
+            ? kSensorFaceNames[c.sensor_position]
+            : "?",
+        c.width, c.height);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) {
+      studio.Try([&] { studio.design.RemoveCamera(static_cast<int>(k)); });
+    }
+    studio.Record("remove camera " + std::to_string(k));
+    ImGui::PopID();
+  }
 }
 
 }  // namespace mrsim::studio

@@ -1,6 +1,7 @@
 // The right column of the studio window (unless the Run panel is shown):
 // every field of the selected part, straight from the scenario schema,
-// checked as typed; a sensor module's force plate and distance sensors.
+// checked as typed; a sensor module's force plate, distance sensors and
+// cameras.
 #pragma once
 
 #include <functional>
@@ -20,6 +21,10 @@ class InspectorPanel {
   // Force plate on/off and distance sensors of the selected sensor module.
   void DrawSensorMounts(StudioContext& studio, const Scenario& view,
                         const Selection& sel);
+  // The module's cameras: a face picker, "add camera", and each camera
+  // with its remove button (its fields are a group above).
+  void DrawCameras(StudioContext& studio, const SensorModule& sm,
+                   const Selection& sel);
 
   // An InputText for `key` that keeps what is typed until Enter or leaving
   // the field: `check` throws on text it refuses (shown as typed), `apply`
@@ -41,6 +46,9 @@ class InspectorPanel {
   // it moves to a face that would be accepted when they change.
   long ray_face_revision_ = -1;
   Selection ray_face_selection_;
+  int camera_face_ = 4;  // face for "add camera", defaulted as ray_face_
+  long camera_face_revision_ = -1;
+  Selection camera_face_selection_;
 };
 
 }  // namespace mrsim::studio

@@ -406,6 +406,72 @@ TEST(StudioDesign, DistanceSensorsGoOnEveryFaceThatLooksOut) {
             4u);
 }
 
+// The camera (sensor_kind.h's "camera", a kind of many like the distance
+// sensor) is added per face of the selected sensor module, refused where
+// it would see only its own robot, shown by the inspector with its fields,
+// and removed; the simulator builds the MuJoCo camera from the saved file.
+TEST(StudioDesign, CamerasAreAddedPerFaceEditedAndRemoved) {
+  Design d = TwoSensorModules();
+  d.Select({SelectionKind::kSensorModule, 0, 1});
+  // Between two modules the front and back faces look into them.
+  EXPECT_EQ(d.OpenCameraFaces(), (std::vector<int>{0, 1, 2, 3}));
+  for (int face : {4, 5}) {
+    try {
+      d.AddCamera(face);
+      ADD_FAILURE() << "a camera on face " << face << " was added";
+    } catch (const DesignError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("would see only that part"));
+    }
+  }
+  d.AddCamera(1);
+  d.AddCamera(3);
+  EXPECT_THROW(d.AddCamera(1), DesignError);  // face taken
+  EXPECT_EQ(d.OpenCameraFaces(), (std::vector<int>{0, 2}));
+  const SensorModule& sm = d.scenario().robots[0].sensor_modules[1];
+  ASSERT_EQ(sm.cameras.size(), 2u);
+  EXPECT_EQ(sm.cameras[0].sensor_position, 1);
+  EXPECT_EQ(sm.cameras[1].sensor_position, 3);
+  EXPECT_NE(sm.cameras[0].guid, sm.cameras[1].guid);
+  EXPECT_EQ(sm.cameras[0].width, Camera().width);  // the default picture
+
+  // The inspector: one group per camera, titled by the kind's label.
+  const Selection sel{SelectionKind::kSensorModule, 0, 1};
+  Scenario copy = d.scenario();
+  std::vector<std::string> titles;
+  std::set<std::string> fields;
+  for (const FieldGroup& g : InspectorFields(copy, sel)) {
+    if (g.sub.rfind("cameras[", 0) != 0) continue;
+    titles.push_back(g.title);
+    for (const FieldRef& f : g.fields) fields.insert(f.info().xml);
+  }
+  EXPECT_EQ(titles, (std::vector<std::string>{"Camera 0", "Camera 1"}));
+  for (const char* xml : {"sensorPosition", "fovy", "width", "height", "rate",
+                          "near", "far", "tilt", "noise", "seed"}) {
+    EXPECT_TRUE(fields.count(xml)) << xml;
+  }
+  d.SetField({sel, "cameras[1]", "width"}, "320");
+  EXPECT_EQ(d.FieldText({sel, "cameras[1]", "width"}), "320");
+  EXPECT_THROW(d.SetField({sel, "cameras[1]", "width"}, "100000"), DesignError);
+  // Turned to look into the neighbour module: refused like a ray.
+  EXPECT_THROW(d.SetField({sel, "cameras[0]", "sensorPosition"}, "4"),
+               DesignError);
+
+  // The simulator builds it from the file: two MuJoCo cameras.
+  {
+    const Physics physics(ReadScenarioString(Bytes(d), "cameras", ""));
+    EXPECT_EQ(physics.model()->ncam, 2);
+  }
+  d.RemoveCamera(0);
+  ASSERT_EQ(d.scenario().robots[0].sensor_modules[1].cameras.size(), 1u);
+  EXPECT_EQ(d.scenario().robots[0].sensor_modules[1].cameras[0].width, 320);
+  EXPECT_THROW(d.RemoveCamera(5), DesignError);
+  d.Undo();
+  EXPECT_EQ(d.scenario().robots[0].sensor_modules[1].cameras.size(), 2u);
+  const Scenario back = ReadScenarioString(Bytes(d), "cameras", "");
+  EXPECT_EQ(back.robots[0].sensor_modules[1].cameras,
+            d.scenario().robots[0].sensor_modules[1].cameras);
+}
+
 TEST(StudioDesign, ASensorModuleAtTheTailLooksOutOfItsBack) {
   Design d;
   d.AddPart(NextPart::kPitchModule, Where::kTail);
