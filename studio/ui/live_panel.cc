@@ -241,6 +241,7 @@ void LivePanel::Draw(float x, float y, float w, float h,
   if (RecordedHeader(layout_, "Steering", true)) {
     DrawSteering();
   }
+  DrawCamera(design.camera, w);
   if (RecordedHeader(layout_, "Locks", false)) DrawLocks();
   if (RecordedHeader(layout_, "Recording", false)) DrawRecording();
   if (RecordedHeader(layout_, "Plots", false)) DrawPlots(w);

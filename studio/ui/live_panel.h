@@ -1,11 +1,12 @@
 // The studio's Run panel (Dear ImGui): run the design or attach to a
 // simulation, simulator controls, steering buttons and arrow keys, gait
-// parameters, recording, live plots and the children's console. A thin
-// face over studio/live (LiveSession, LiveLink, LiveRunner): every button
-// is one LCM message or one process a script could send or start. One file
-// per section: live_panel.cc (connection, keys, overlay, the panel's frame)
-// and live_<section>_section.cc (Run, Simulator, Steering, Locks, Recording,
-// Plots, Optimise, Console), sharing live_panel_common.h.
+// parameters, recording, live plots, a camera's picture and the children's
+// console. A thin face over studio/live (LiveSession, LiveLink,
+// LiveRunner): every button is one LCM message or one process a script
+// could send or start. One file per section: live_panel.cc (connection, keys,
+// overlay, the panel's frame) and live_<section>_section.cc (Run, Simulator,
+// Steering, Camera, Locks, Recording, Plots, Optimise, Console), sharing
+// live_panel_common.h.
 #pragma once
 
 #include <functional>
@@ -33,6 +34,8 @@
 
 namespace mrsim::studio {
 
+class CameraFeed;
+
 // What the panel needs to know of the design.
 struct LiveDesign {
   std::string path;  // saved file, "" before the first save
@@ -45,6 +48,8 @@ struct LiveDesign {
   // Saves the design as Save does; returns its path once saved, "" when
   // it is not (Save As asks where first, or saving failed).
   std::function<std::string()> save;
+  // The shown robots' camera pictures (the Camera section); null: none.
+  CameraFeed* camera = nullptr;
 };
 
 class LivePanel {
@@ -104,6 +109,8 @@ class LivePanel {
   int live_scenario_revision() const { return replay_revision_; }
   // The robot steered by keys and buttons ("" when none is heard).
   const std::string& followed() const { return followed_; }
+  // The Camera section was open in the last Draw: its picture is wanted.
+  bool camera_shown() const { return camera_shown_; }
   // Whether the 3-D view's camera moves with the running robots.
   bool camera_follows() const { return camera_follows_; }
 
@@ -122,6 +129,8 @@ class LivePanel {
   void DrawLocks();
   void DrawPlots(float width);
   void DrawConsole(float height);
+  // The chosen camera's picture and the chooser (live_camera_section.cc).
+  void DrawCamera(CameraFeed* feed, float width);
   void DrawOptimise(const LiveDesign& design, float width);
   // Fitness, base gait and the chosen algorithm's own settings.
   void DrawOptimiseSettings();
@@ -201,6 +210,7 @@ class LivePanel {
   double rate_ = 100;
   double speed_ = 1;
   bool camera_follows_ = true;
+  bool camera_shown_ = false;  // the Camera section was open
   int step_periods_ = 10;
   float strength_ = 1;
   float parameters_[GaitParameters::kVectorSize] = {1, 0, 2.5f, 0, 4, 0, 0};

@@ -93,6 +93,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   }
   physics_ = std::move(physics);
   data_ = physics_->mutable_data();
+  ++builds_;
   dragging_ = false;  // a drag's saved poses were the old model's
   // Poses only: the preview draws the initial state, no dynamics needed.
   mj_kinematics(m, data_);

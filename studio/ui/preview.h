@@ -54,6 +54,11 @@ class Preview {
   const mjModel* model() const {
     return physics_ ? physics_->model() : nullptr;
   }
+  // The poses drawn (the design's, or a live run's after ShowStates); null
+  // before the first successful Rebuild.
+  mjData* data() { return data_; }
+  // Grows by one on every successful Rebuild (a new model()).
+  long builds() const { return builds_; }
 
   // Binds the window (or off-screen) framebuffer for drawing.
   void Bind(bool offscreen);
@@ -123,6 +128,7 @@ class Preview {
   int height_;
   std::unique_ptr<Physics> physics_;
   mjData* data_ = nullptr;  // owned by physics_
+  long builds_ = 0;
   std::vector<GeomPart> geoms_;
   std::vector<int> flagged_;
   std::vector<RaySite> rays_;

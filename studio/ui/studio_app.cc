@@ -67,6 +67,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
       studio_.SaveFile();
       return studio_.design.dirty() ? std::string() : studio_.design.path();
     };
+    run.camera = studio_.camera_feed.get();
     live.Draw(panels.right.x, 0, panels.right.w, panels.right.h, run);
   } else if (panels.right.w > 0) {
     inspector_.Draw(studio_, ToPanelRect(panels.right));
@@ -88,6 +89,7 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
   view_ = view;
   HandleViewInput(view, panels.view.x, panels.view.y);
   UpdatePreview();
+  if (panels.right.w > 0 && studio_.show_run) UpdateCameraFeed();
 
   ImGui::Render();
   // Clear the whole frame, then the 3-D view, then the panels over it.
@@ -122,6 +124,10 @@ void StudioApp::Frame(int width, int height, bool offscreen) {
     std::snprintf(scale, sizeof(scale), "%.2f", studio_.panels.ui_scale);
     layout.State("ui scale", scale);
     layout.State("video", studio_.video.recording() ? "recording" : "stopped");
+    const CameraFeed& feed = *studio_.camera_feed;
+    layout.State("camera pictures", std::to_string(feed.rendered()));
+    layout.State("camera seq", std::to_string(feed.picture().seq));
+    layout.State("camera cameras", std::to_string(feed.cameras().size()));
     char seconds[32];
     std::snprintf(seconds, sizeof(seconds), "%.1f", studio_.video.seconds());
     layout.State("video seconds", seconds);
@@ -174,6 +180,33 @@ void StudioApp::UpdatePreview() {
   } else if (preview.live()) {
     preview.ShowDesign();
   }
+}
+
+void StudioApp::UpdateCameraFeed() {
+  Preview& preview = *studio_.preview;
+  CameraFeed& feed = *studio_.camera_feed;
+  const LivePanel& live = *studio_.live;
+  if (!preview.has_model()) return;
+  if (feed.key() != preview.builds()) {
+    const Scenario* replay = live.live_scenario();
+    feed.SetModel(preview.model(), replay ? *replay : studio_.design.scenario(),
+                  preview.builds());
+  }
+  // Rendered only while the section shows it: a picture costs CPU.
+  if (!live.camera_shown() || feed.cameras().empty()) return;
+  // The time and state the view shows the camera's robot at; the design's
+  // own pose is no state (-1) at 0 s.
+  double sim_time = 0;
+  std::int64_t seq = -1;
+  const LiveRobot* robot =
+      preview.live() && live.connected()
+          ? live.session().robot(feed.cameras()[feed.selected()].robot_name)
+          : nullptr;
+  if (robot != nullptr && robot->states > 0) {
+    sim_time = robot->state.sim_time;
+    seq = robot->state.seq;
+  }
+  feed.Update(preview.data(), sim_time, seq);
 }
 
 void StudioApp::RecordState(const mjrRect& view, int height) {

@@ -55,6 +55,8 @@ class StudioApp {
   // The right column shows the Run panel (F5) instead of the Inspector.
   void ShowRunPanel(bool show) { studio_.show_run = show; }
   Preview& preview() { return *studio_.preview; }
+  // The Run panel's camera picture (camera_feed.h).
+  const CameraFeed& camera_feed() const { return *studio_.camera_feed; }
   // The 3-D view's OpenGL viewport in the last frame (benchmarks).
   const mjrRect& view() const { return view_; }
   // Why the preview could not be built from the design ("" when it was).
@@ -70,6 +72,8 @@ class StudioApp {
   // The preview follows the design (or a live run's body): one rebuild per
   // change, then the states of a running simulation.
   void UpdatePreview();
+  // The Run panel's camera picture from the preview's model and poses.
+  void UpdateCameraFeed();
   // --layout-dump: selection, file, open dialog, message, part positions.
   void RecordState(const mjrRect& view, int height);
 

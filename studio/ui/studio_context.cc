@@ -18,6 +18,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
     : design(std::move(design_in)),
       options(options_in),
       preview(std::make_unique<Preview>(options_in.width, options_in.height)),
+      camera_feed(std::make_unique<CameraFeed>()),
       layout(options_in.layout_dump),
       live(std::make_unique<LivePanel>(ProgramSearchPath(""), &layout)),
       recent(options_in.recent_store) {

@@ -14,6 +14,7 @@
 #include "studio/design/design.h"
 #include "studio/design/panel_layout.h"
 #include "studio/design/recent_files.h"
+#include "studio/ui/camera_feed.h"
 #include "studio/ui/file_browser.h"
 #include "studio/ui/layout_recorder.h"
 #include "studio/ui/live_panel.h"
@@ -56,6 +57,9 @@ struct StudioContext {
   Design design;
   AppOptions options;
   std::unique_ptr<Preview> preview;
+  // The Run panel's camera picture, rendered with the preview's model and
+  // poses (after it: destroyed first, while the context is current).
+  std::unique_ptr<CameraFeed> camera_feed;
   LayoutRecorder layout;
   std::unique_ptr<LivePanel> live;
   RecentFiles recent;

@@ -1,9 +1,11 @@
 // The studio's Run panel in the real window under its own Xvfb: Run starts
 // the case study, a real Up key press drives it forward, Pause stops sim
-// time and Step 10 advances it by 0.1 s.
+// time and Step 10 advances it by 0.1 s; a design with a head camera shows
+// the camera's picture live.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -27,9 +29,10 @@ struct Live {
   double com_x = 0;
 };
 
-Live ReadLive(const std::string& layout) {
+Live ReadLive(const std::string& layout,
+              const std::string& robot = "case_study") {
   Live live;
-  std::istringstream in(ReadLayout(layout)["live case_study"]);
+  std::istringstream in(ReadLayout(layout)["live " + robot]);
   in >> live.sim_time >> live.com_x;
   return live;
 }
@@ -54,11 +57,14 @@ void Click(const std::string& layout, const std::string& widget) {
 // panel's paths are relative to it) and running: Run pressed, states heard.
 class StudioRun : public ::testing::Test {
  protected:
-  void OpenAndRun(const std::string& name, int port) {
+  // `scenario` (from the source tree) runs; `robot` is heard.
+  void OpenAndRun(const std::string& name, int port,
+                  const std::string& scenario = "scenarios/case_study.xml",
+                  const std::string& robot = "case_study") {
     dir_ = TempDir(name);
     layout_ = dir_ + "/layout.txt";
-    fs::copy_file(SourcePath("scenarios/case_study.xml"),
-                  dir_ + "/case_study.xml");
+    const std::string file = fs::path(scenario).filename().string();
+    fs::copy_file(SourcePath(scenario), dir_ + "/" + file);
     // The Optimise panel's default genome, relative to where it runs.
     fs::create_directories(dir_ + "/scenarios");
     fs::copy_file(SourcePath("scenarios/forward_gait.genome.xml"),
@@ -72,14 +78,15 @@ class StudioRun : public ::testing::Test {
         std::vector<std::string>{
             "/bin/sh", "-c",
             "cd '" + dir_ + "' && exec '" + BinaryPath("studio/mrsim-studio") +
-                "' --layout-dump layout.txt case_study.xml"},
+                "' --layout-dump layout.txt '" + file + "'"},
         dir_ + "/studio.log");
     ASSERT_TRUE(WaitForLayout(layout_, "revision", "0")) << studio_->Output();
     front_as_designed_ = ReadLayout(layout_)["part module 0 0"];
     ASSERT_FALSE(front_as_designed_.empty());
     ASSERT_TRUE(Xdotool({"key", "F5"}));
     Click(layout_, "Run");
-    ASSERT_TRUE(WaitUntil([&] { return ReadLive(layout_).sim_time >= 0; }, 120))
+    ASSERT_TRUE(
+        WaitUntil([&] { return ReadLive(layout_, robot).sim_time >= 0; }, 120))
         << studio_->Output();
   }
 
@@ -245,6 +252,36 @@ TEST_F(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
   ASSERT_TRUE(idle) << ReadLayout(layout)["live busy"];
   ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
   EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
+}
+
+// A design with a head camera: while it runs, the Run panel's Camera
+// section shows the camera's picture of the states the studio hears,
+// rendered again as sim time passes frames.
+TEST_F(StudioRun, TheCameraSectionShowsTheHeadCameraLive) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(OpenAndRun("studio_camera_window", 7982,
+                                     "scenarios/camera_snake.xml",
+                                     "camera_snake"));
+  EXPECT_EQ(ReadLayout(layout_)["camera cameras"], "1");
+  int x = 0, y = 0;
+  ASSERT_TRUE(WaitUntil(
+      [&] { return WidgetCentre(layout_, "camera picture", &x, &y); }, 120))
+      << studio_->Output();
+  // A picture of a state heard (seq >= 0), then newer ones.
+  std::int64_t first = -1;
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        first = std::atoll(ReadLayout(layout_)["camera seq"].c_str());
+        return first >= 0;
+      },
+      120))
+      << studio_->Output();
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return std::atoll(ReadLayout(layout_)["camera seq"].c_str()) > first;
+      },
+      120))
+      << studio_->Output();
 }
 
 }  // namespace
