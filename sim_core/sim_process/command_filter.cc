@@ -32,6 +32,8 @@ const char* ToString(CommandVerdict verdict) {
       return "sender is not a lockstep controller";
     case CommandVerdict::kRepeat:
       return "repeat of an accepted command";
+    case CommandVerdict::kEmptyIgnored:
+      return "answer without targets outside lockstep";
   }
   return "?";
 }
@@ -86,11 +88,19 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
     return CommandVerdict::kNotController;
   }
   const int expected = joint_counts_[robot];
-  if (cmd.num_joints != expected ||
-      static_cast<int>(cmd.target.size()) != expected) {
+  // num_joints says how many targets there are: lcm-gen's decode leaves a
+  // reused message's old targets in place when it is 0.
+  const bool empty = cmd.num_joints == 0;
+  // Outside lockstep nobody waits for an answer, and an empty one taken as
+  // the newest would make a real controller's answer to an older state look
+  // stale: ignored before it touches any history.
+  if (empty && expected > 0 && !lockstep) return CommandVerdict::kEmptyIgnored;
+  if (!empty && (cmd.num_joints != expected ||
+                 static_cast<int>(cmd.target.size()) != expected)) {
     return CommandVerdict::kWrongJointCount;
   }
-  for (double t : cmd.target) {
+  for (int j = 0; j < cmd.num_joints; ++j) {
+    const double t = cmd.target[j];
     if (!std::isfinite(t) || std::abs(t) > kMaxCommandTarget) {
       return CommandVerdict::kBadValue;
     }
@@ -119,8 +129,10 @@ CommandVerdict CommandFilter::Check(const joint_command_t& cmd,
         cmd.seq <= h.last_seq) {
       return CommandVerdict::kStaleSeq;  // duplicate or reordered answer
     }
-    newest_state_seq_[robot] =
-        std::max(newest_state_seq_[robot], cmd.state_seq);
+    if (!empty) {
+      newest_state_seq_[robot] =
+          std::max(newest_state_seq_[robot], cmd.state_seq);
+    }
   }
   h.accepted = true;
   h.last_state_seq = cmd.state_seq;

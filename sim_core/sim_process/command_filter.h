@@ -1,6 +1,9 @@
 // Decides whether a decoded joint command may move a robot: right robot,
 // right joint count, finite targets within |pi|, and a sequence that is not
 // stale. Pure bookkeeping (no LCM, no physics) so the rules are testable.
+// A command without targets (num_joints 0) is an answer that moves nothing:
+// how a lockstep party that only watches (mrsim-camera) keeps the simulator
+// waiting until it has seen each state.
 #pragma once
 
 #include <cstdint>
@@ -21,8 +24,10 @@ enum class CommandVerdict {
   kUnknownRobot,     // robot not in the scenario, or not the channel's robot
   kStaleSeq,         // answers an older state, repeats a seq, or a bad seq
   kNotController,    // lockstep: sender not among --controllers
-  kRepeat,  // a command this sender had accepted, again (its answer to a
-            // re-sent state): not an error, and it moves nothing again
+  kRepeat,        // a command this sender had accepted, again (its answer to a
+                  // re-sent state): not an error, and it moves nothing again
+  kEmptyIgnored,  // no targets (num_joints 0) outside lockstep: a lockstep
+                  // answer sent anyway; moves nothing, not an error
 };
 const char* ToString(CommandVerdict verdict);
 
@@ -44,7 +49,9 @@ class CommandFilter {
   // commands must answer a state (state_seq >= 0) and come from one of
   // `controllers`, answering a state in [oldest_state_seq, latest] (-1:
   // the latest only; pipelined lockstep also takes the state still
-  // awaited). Accepted commands update the sequence history.
+  // awaited). Accepted commands update the sequence history. A command
+  // without targets is accepted in lockstep (an answer that moves nothing:
+  // the caller records it and applies nothing) and kEmptyIgnored otherwise.
   CommandVerdict Check(const joint_command_t& cmd,
                        const std::string& channel_robot,
                        int64_t latest_state_seq, bool lockstep,

@@ -449,6 +449,9 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
     case CommandVerdict::kRepeat:
       ++repeated_commands_;
       return;
+    case CommandVerdict::kEmptyIgnored:
+      ++empty_answers_;
+      return;
     case CommandVerdict::kNotController:
       ++rejected_sender_;
       if (refused_senders_.size() < kMaxNamedRefusedSenders) {
@@ -476,6 +479,12 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
   auto& answered = answers.answered[cmd.sender];
   answered.resize(n, false);
   answered[r] = true;
+  if (cmd.num_joints == 0) {
+    // An answer that moves nothing (mrsim-camera): the state is answered,
+    // a real controller's command for it still applies.
+    ++empty_answers_;
+    return;
+  }
   if (answers.command[r]) {
     ++superseded_;
     // When several controllers drive one robot, the one listed last in
@@ -637,6 +646,9 @@ std::string SimNode::Summary() const {
   out << "; commands applied " << s.commands_applied;
   if (repeated_commands_ > 0) {
     out << " (" << repeated_commands_ << " repeats ignored)";
+  }
+  if (empty_answers_ > 0) {
+    out << " (" << empty_answers_ << " answers without targets)";
   }
   out << ", rejected " << s.commands_rejected << " (joint count "
       << s.rejected_joint_count << ", value " << s.rejected_value << ", robot "

@@ -179,6 +179,9 @@ class SimNode {
   // a silent one.
   std::set<std::string> refused_senders_;
   int64_t repeated_commands_ = 0;  // CommandVerdict::kRepeat
+  // Answers without targets: lockstep answers that move nothing, and
+  // (kEmptyIgnored) the same outside lockstep.
+  int64_t empty_answers_ = 0;
   int64_t malformed_ = 0;
   int64_t superseded_ = 0;
   int64_t control_gaps_ = 0;

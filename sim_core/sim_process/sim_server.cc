@@ -99,6 +99,9 @@ void SimServer::Flush() {
 void SimServer::OnCommand(const lcm::ReceiveBuffer* rbuf,
                           const std::string& channel) {
   try {
+    // lcm-gen's decode does not empty an array whose count is 0: an
+    // answer without targets must not carry the previous command's.
+    command_.target.clear();
     if (!DecodeMessage(rbuf, &command_)) {
       node_.OnMalformed("");
       return;

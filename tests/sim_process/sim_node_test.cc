@@ -668,5 +668,110 @@ TEST(SimNode, DurationStopsAndWritesTheExitCheckpoint) {
   EXPECT_EQ(*d.node().stopped(), StopReason::kDuration);
 }
 
+// mrsim-camera's answer: no targets, state_seq of the state it pictured.
+joint_command_t EmptyAnswer(const robot_state_t& state,
+                            const std::string& sender, int64_t seq) {
+  joint_command_t cmd{};
+  cmd.utime = state.utime;
+  cmd.seq = seq;
+  cmd.robot = state.robot;
+  cmd.sender = sender;
+  cmd.state_seq = state.seq;
+  cmd.num_joints = 0;
+  return cmd;
+}
+
+// Lockstep with a camera among --controllers: the simulator waits for the
+// camera's answer too, and that answer moves nothing, so the run is the
+// in-process loop of the real controller bit for bit.
+TEST(SimNode, LockstepWaitsForAnEmptyAnswerThatMovesNothing) {
+  SimOptions o = Lockstep();
+  o.controllers = {"ctl", "mrsim-camera"};
+  Driver d(o);
+  d.Command(Answer(d.states_.back(), "ctl", 1));
+  // Past --lockstep-timeout (2 s of fake time): the wait names who is late.
+  d.RunUntil([] { return false; }, 2.1);
+  EXPECT_EQ(d.node().status().state_seq, 0);
+  EXPECT_EQ(d.node().status().waiting_for, "mrsim-camera");
+  int64_t ctl_seq = 1, camera_seq = 0;
+  d.Command(EmptyAnswer(d.states_.back(), "mrsim-camera", ++camera_seq));
+  d.Tick();
+  ASSERT_EQ(d.node().status().state_seq, 1);
+  int64_t answered = 0;
+  while (d.node().status().state_seq < 150) {
+    const robot_state_t& s = d.states_.back();
+    if (s.seq > answered) {
+      // The camera answers first or last: the same run either way.
+      if (s.seq % 2 == 0) {
+        d.Command(EmptyAnswer(s, "mrsim-camera", ++camera_seq));
+      }
+      d.Command(Answer(s, "ctl", ++ctl_seq));
+      if (s.seq % 2 == 1) {
+        d.Command(EmptyAnswer(s, "mrsim-camera", ++camera_seq));
+      }
+      answered = s.seq;
+    }
+    d.Tick();
+  }
+  ExpectSameState(InProcessRun(Snake(), 150, 0), d.states_.back());
+  const sim_status_t s = d.node().status();
+  EXPECT_EQ(s.commands_applied, 150);
+  EXPECT_EQ(s.commands_rejected, 0);
+  EXPECT_EQ(s.messages_dropped, 0);  // the camera replaced nothing
+  EXPECT_NE(d.node().Summary().find("(150 answers without targets)"),
+            std::string::npos)
+      << d.node().Summary();
+}
+
+// The camera as the only lockstep party: the robot keeps its targets.
+TEST(SimNode, AnEmptyAnswerAloneKeepsTheTargets) {
+  SimOptions o = Lockstep();
+  o.controllers = {"mrsim-camera"};
+  Driver d(o);
+  const std::vector<double> before = d.node().physics().joint_targets(0);
+  for (int64_t k = 1; k <= 5; ++k) {
+    joint_command_t cmd = EmptyAnswer(d.states_.back(), "mrsim-camera", k);
+    // num_joints decides: lcm-gen's decode into a reused message leaves
+    // the previous command's targets behind when it is 0.
+    if (k % 2 == 0) cmd.target.assign(5, 9.0);
+    d.Command(cmd);
+    d.Tick();
+  }
+  EXPECT_EQ(d.node().status().state_seq, 5);
+  EXPECT_EQ(d.node().physics().joint_targets(0), before);
+  EXPECT_EQ(d.node().status().commands_applied, 0);
+  EXPECT_EQ(d.node().status().commands_rejected, 0);
+}
+
+// Realtime and fast wait for nobody: an empty answer is ignored, is no
+// rejection, and does not make a controller's answer to an older state
+// stale.
+TEST(SimNode, OutsideLockstepAnEmptyAnswerIsIgnoredHarmlessly) {
+  SimOptions o;
+  o.clock = ClockMode::kFast;
+  o.paused = true;
+  Driver d(o);
+  EXPECT_EQ(d.Control(sim_control_t::STEP, 2).control_ok, true);
+  d.RunUntil([&] { return d.node().status().state_seq >= 2; }, 10);
+  ASSERT_GE(d.states_.size(), 3u);
+  const std::vector<double> before = d.node().physics().joint_targets(0);
+  d.Command(EmptyAnswer(d.states_.back(), "mrsim-camera", 1));
+  joint_command_t late = Answer(d.states_[1], "ctl", 1);
+  late.target.assign(late.target.size(), 0.25);
+  d.Command(late);
+  EXPECT_EQ(d.Control(sim_control_t::STEP, 1).control_ok, true);
+  d.Tick();
+  const sim_status_t s = d.node().status();
+  EXPECT_EQ(s.commands_rejected, 0);
+  EXPECT_EQ(s.commands_applied, 1);
+  EXPECT_NE(d.node().physics().joint_targets(0), before);
+  // A command with some but not all targets is still refused.
+  joint_command_t short_one = Answer(d.states_.back(), "ctl", 2);
+  short_one.target.pop_back();
+  short_one.num_joints = static_cast<int32_t>(short_one.target.size());
+  d.Command(short_one);
+  EXPECT_EQ(d.node().status().rejected_joint_count, 1);
+}
+
 }  // namespace
 }  // namespace mrsim::testing
