@@ -181,7 +181,7 @@ Description: simulator for chain-based modular robots
  MuJoCo physics, drive it with gait controllers, log and plot its sensors,
  record it to video and optimise its gait and body on a farm of hosts.
  Every part is its own process talking LCM: mrsim-sim, mrsim-gait,
- mrsim-log, mrsim-view, mrsim-opt and mrsim-worker, mrsim launch for
+ mrsim-log, mrsim-view, mrsim-camera, mrsim-opt and mrsim-worker, mrsim launch for
  launch files, and mrsim-studio to design robots in a window. Includes
  the mrsim Python package, the bundled scenarios and launch files
  (/usr/share/mrsim) and the documentation.
