@@ -149,9 +149,16 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
     return;
   }
   if (ch.row.has_seq && !ledger.TakeSeq(ch.row.seq, ch.row.values)) return;
-  if (!ch.writer || ch.flattener->shape_version() != ch.shape_version) {
-    if (stats.files.size() >= kMaxPartFiles &&
-        ch.flattener->columns() != ch.part_columns) {
+  if (ch.parts.empty() || ch.flattener->shape_version() != ch.shape_version) {
+    const std::vector<std::string>& columns = ch.flattener->columns();
+    size_t found = 0;
+    while (found < ch.parts.size() && ch.parts[found].columns != columns) {
+      ++found;
+    }
+    if (found < ch.parts.size()) {
+      ch.current = found;  // back to a shape it had
+      ch.shape_version = ch.flattener->shape_version();
+    } else if (ch.parts.size() >= kMaxPartFiles) {
       if (stats.dropped++ == 0) {
         ledger.Report(stats.channel + ": message shape changed again after " +
                       std::to_string(kMaxPartFiles) +
@@ -159,14 +166,11 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
                       "dropped");
       }
       return;
-    }
-    if (stats.files.size() >= kMaxPartFiles) {
-      ch.shape_version = ch.flattener->shape_version();  // back to its shape
     } else {
       OpenPart(ch);
     }
   }
-  ch.writer->WriteLine(ch.row.values);
+  ch.parts[ch.current].writer->WriteLine(ch.row.values);
   ++stats.rows;
   // Swapped, not copied: the flatteners clear the row before they write,
   // so the evicted string's buffer serves the next message.
@@ -175,25 +179,27 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
 
 void Recorder::OpenPart(Channel& ch) {
   ChannelStats& stats = ch.ledger.stats();
-  if (ch.writer) ch.writer->Flush();
   const size_t part = stats.files.size() + 1;
   std::string path = options_.out_dir + "/" + ChannelFileStem(stats.channel) +
                      (part > 1 ? ".part" + std::to_string(part) : "") + ".csv";
   if (part > 1) {
     ch.ledger.Report(stats.channel +
-                     ": message shape changed (array lengths); continuing in " +
+                     ": message shape changed (array lengths); messages of "
+                     "the new shape go to " +
                      path);
   }
-  ch.writer = std::make_unique<CsvWriter>(path);
+  Channel::Part& p = ch.parts.emplace_back();
+  p.writer = std::make_unique<CsvWriter>(path);
+  p.columns = ch.flattener->columns();
   stats.files.push_back(path);
+  ch.current = ch.parts.size() - 1;
   ch.shape_version = ch.flattener->shape_version();
-  ch.part_columns = ch.flattener->columns();
   std::string header;
-  for (const std::string& name : ch.flattener->columns()) {
+  for (const std::string& name : p.columns) {
     if (!header.empty()) header.push_back(',');
     header += name;
   }
-  ch.writer->WriteLine(header);
+  p.writer->WriteLine(header);
 }
 
 void Recorder::Flush() {
@@ -206,11 +212,13 @@ void Recorder::Flush() {
         if (first_error.empty()) first_error = e.what();
       }
     }
-    if (!ch.writer || ch.writer->failed()) continue;
-    try {
-      ch.writer->Flush();
-    } catch (const std::exception& e) {
-      if (first_error.empty()) first_error = e.what();
+    for (Channel::Part& p : ch.parts) {
+      if (p.writer->failed()) continue;
+      try {
+        p.writer->Flush();
+      } catch (const std::exception& e) {
+        if (first_error.empty()) first_error = e.what();
+      }
     }
   }
   if (!first_error.empty()) {

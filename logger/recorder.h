@@ -84,9 +84,17 @@ class Recorder {
     int64_t hash = 0;
     std::unique_ptr<MessageFlattener> flattener;
     std::unique_ptr<CameraChannelRecorder> camera;  // camera_image_t only
-    std::unique_ptr<CsvWriter> writer;
+    // One file per shape (its header): a message of a shape seen before
+    // goes back to that shape's file, so a channel whose shapes alternate
+    // (the camera's answers without joints among a controller's) does not
+    // run out of files.
+    struct Part {
+      std::vector<std::string> columns;
+      std::unique_ptr<CsvWriter> writer;
+    };
+    std::vector<Part> parts;
+    size_t current = 0;  // the part of the flattener's shape
     uint64_t shape_version = 0;
-    std::vector<std::string> part_columns;  // the open file's header
     FlatRow row;
   };
 

@@ -77,6 +77,33 @@ TEST(LoggerRecorder, ShapeChangeContinuesInANewPartWithItsOwnHeader) {
   EXPECT_TRUE(cap.Has("part2.csv"));
 }
 
+// A shape seen before goes back to its own file: a command channel where
+// the camera's answers (no joints) alternate with a controller's does not
+// use up the files.
+TEST(LoggerRecorder, AlternatingShapesKeepOneFileEach) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_alternating");
+  Capture cap;
+  {
+    Recorder rec(registry, cap.Options(dir));
+    for (int64_t seq = 0; seq < 40; ++seq) {
+      Send(rec, "MRSIM_STATE_a",
+           testing::KnownRobotState(seq, seq % 2 == 0 ? 3 : 2, 0));
+    }
+    rec.Flush();
+    const auto stats = rec.Stats();
+    EXPECT_EQ(stats[0].files.size(), 2u);
+    EXPECT_EQ(stats[0].rows, 40);
+    EXPECT_EQ(stats[0].dropped, 0);
+  }
+  const auto even = testing::ReadCsvFile(dir + "/MRSIM_STATE_a.csv");
+  const auto odd = testing::ReadCsvFile(dir + "/MRSIM_STATE_a.part2.csv");
+  ASSERT_EQ(even.rows.size(), 20u);
+  ASSERT_EQ(odd.rows.size(), 20u);
+  EXPECT_EQ(even.rows[1][even.Column("seq")], "2");
+  EXPECT_EQ(odd.rows[1][odd.Column("seq")], "3");
+}
+
 // Traffic that decodes but changes shape with every message (a forged or
 // confused sender) must not become hundreds of part files: after
 // kMaxPartFiles the rows of new shapes are counted, with one warning, and
