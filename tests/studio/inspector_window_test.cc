@@ -1,5 +1,5 @@
 // The inspector of the real mrsim-studio under its own Xvfb, typed into
-// with real key events (xdotool), as a student would.
+// and clicked with real events (xdotool), as a student would.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -103,6 +103,42 @@ TEST_F(StudioInspectorWindow, NinetyTypedInYawTurnsTheObjectAboutUp) {
   const Eigen::Vector3d along = crate.quat_rotation * Eigen::Vector3d::UnitX();
   EXPECT_TRUE(along.isApprox(Eigen::Vector3d::UnitY(), 1e-9))
       << along.transpose();
+  studio_->Stop();
+}
+
+// A camera added from the inspector (on the face its picker offers) shows
+// its fields, and its remove button takes it off again; the saved file has
+// the head camera alone.
+TEST_F(StudioInspectorWindow, AddCameraShowsItsFieldsAndRemoveTakesItOff) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  dir_ = TempDir("studio_inspector_camera");
+  const std::string file = dir_ + "/camera_snake.xml";
+  fs::copy_file(SourcePath("scenarios/camera_snake.xml"), file);
+  Start(file, {"--select", "sensor_module 0"});
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "sensor_module 0 0"));
+  int x = 0, y = 0;
+  ASSERT_TRUE(WidgetCentre(layout_, "add camera", &x, &y));
+  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "revision", "1"))
+      << ReadLayout(layout_)["message"];
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout_).count("widget field cameras[1]/fovy") > 0;
+      },
+      90));
+  ASSERT_TRUE(WidgetCentre(layout_, "remove camera 1", &x, &y));
+  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "revision", "2"))
+      << ReadLayout(layout_)["message"];
+  ASSERT_TRUE(WidgetCentre(layout_, "Save", &x, &y));
+  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "dirty", "0"))
+      << ReadLayout(layout_)["message"];
+  const Scenario saved = ReadScenarioFile(file);
+  const Scenario original =
+      ReadScenarioFile(SourcePath("scenarios/camera_snake.xml"));
+  EXPECT_EQ(saved.robots.at(0).sensor_modules.at(0).cameras,
+            original.robots.at(0).sensor_modules.at(0).cameras);
   studio_->Stop();
 }
 
