@@ -6,8 +6,13 @@
 // time and the real-time factor filled in. A Pause from the page is
 // carried out (the page is on this host); with a control key, the page
 // shows the refusal unless its URL carries the key's token.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <stb/stb_image.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -46,6 +51,36 @@ std::string FindChromium(std::string& why) {
   }
   why = "chromium is not installed: scripts/install_deps.sh installs it";
   return "";
+}
+
+// One plain HTTP request to 127.0.0.1:port; the whole reply (the server
+// closes the connection after it), or what came before the deadline.
+std::string HttpRequest(int port, const std::string& request) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string reply;
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+      write(fd, request.data(), request.size()) ==
+          static_cast<ssize_t>(request.size())) {
+    char buf[65536];
+    pollfd p{fd, POLLIN, 0};
+    while (poll(&p, 1, 30000) == 1) {
+      const ssize_t n = read(fd, buf, sizeof buf);
+      if (n <= 0) break;
+      reply.append(buf, static_cast<size_t>(n));
+    }
+  }
+  close(fd);
+  return reply;
+}
+
+std::string Get(int port, const std::string& path) {
+  return HttpRequest(port, "GET " + path +
+                               " HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                               "Connection: close\r\n\r\n");
 }
 
 struct Png {
@@ -108,6 +143,7 @@ class BrowserPage : public ::testing::Test {
         out, m,
         std::regex("the browser page: (http://127\\.0\\.0\\.1:\\d+/)")));
     page_url_ = m[1].str();
+    port_ = std::stoi(page_url_.substr(page_url_.rfind(':') + 1));
   }
 
   // page_screenshot.js's exit status and its JSON line.
@@ -128,9 +164,43 @@ class BrowserPage : public ::testing::Test {
   std::string chromium_;
   std::string dir_;
   std::string page_url_;
+  int port_ = 0;
   std::unique_ptr<ChildProcess> sim_;
   std::unique_ptr<ChildProcess> fox_;
 };
+
+// Over a real socket, without a browser: the shipped files with their
+// Content-Type, 404 for any other path, 405 for anything but GET.
+TEST_F(BrowserPage, ServesOnlyItsFilesOverHttp) {
+  if (!std::filesystem::exists(
+          BinaryPath("foxglove/process/web/three.core.js"))) {
+    GTEST_SKIP() << "three.js is not in the build: scripts/install_deps.sh "
+                    "installs it (npm ci in foxglove/web), then rebuild";
+  }
+  Start({});
+  std::string reply = Get(port_, "/");
+  EXPECT_EQ(reply.rfind("HTTP/1.1 200", 0), 0u) << reply.substr(0, 200);
+  EXPECT_NE(reply.find("Content-Type: text/html; charset=utf-8"),
+            std::string::npos);
+  EXPECT_NE(reply.find("<script type=\"module\" src=\"./mrsim_page.js\">"),
+            std::string::npos);
+  reply = Get(port_, "/three.core.js");
+  EXPECT_EQ(reply.rfind("HTTP/1.1 200", 0), 0u) << reply.substr(0, 200);
+  EXPECT_NE(reply.find("Content-Type: text/javascript; charset=utf-8"),
+            std::string::npos);
+  EXPECT_GT(reply.size(), 100000u);
+  for (const char* path :
+       {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd",
+        "/web/index.html", "/CMakeLists.txt"}) {
+    reply = Get(port_, path);
+    EXPECT_EQ(reply.rfind("HTTP/1.1 404", 0), 0u) << path << ": " << reply;
+    EXPECT_EQ(reply.find("root:"), std::string::npos) << path;
+  }
+  reply = HttpRequest(port_,
+                      "POST / HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: "
+                      "0\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(reply.rfind("HTTP/1.1 405", 0), 0u) << reply;
+}
 
 TEST_F(BrowserPage, AScreenshotShowsTheRobotSimTimeAndRealTimeFactor) {
   if (chromium_.empty()) GTEST_SKIP() << skip_;
