@@ -4,6 +4,8 @@
 #include <EGL/eglext.h>
 
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +45,19 @@ EGLDisplay OpenDisplay(std::string* platform) {
   return display;
 }
 
+// EGL hands every caller the same display, and eglTerminate ends every
+// context on it: contexts alive at once (two simulations rendering
+// cameras, a studio and its renderer) count their display's users, and
+// the last one terminates it.
+std::mutex& DisplayUsersMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+std::map<EGLDisplay, int>& DisplayUsers() {
+  static std::map<EGLDisplay, int> users;
+  return users;
+}
+
 }  // namespace
 
 struct GlContext::Impl {
@@ -56,13 +71,21 @@ struct GlContext::Impl {
     eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
     if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-    eglTerminate(display);
+    const std::lock_guard<std::mutex> lock(DisplayUsersMutex());
+    if (--DisplayUsers()[display] <= 0) {
+      DisplayUsers().erase(display);
+      eglTerminate(display);
+    }
   }
 };
 
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   std::string platform;
-  impl_->display = OpenDisplay(&platform);
+  {
+    const std::lock_guard<std::mutex> lock(DisplayUsersMutex());
+    impl_->display = OpenDisplay(&platform);
+    ++DisplayUsers()[impl_->display];
+  }
   // The default surface type is a window; off-screen configs only offer
   // pbuffers, so ask for one (MuJoCo renders into its own framebuffer).
   const EGLint config_attributes[] = {EGL_RED_SIZE,

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "sim_core/chain_builder.h"
@@ -117,6 +118,21 @@ TEST(CameraRenderer, TheSameStateGivesTheSamePictureBitForBit) {
   EXPECT_EQ(first, again);
   // The noise is drawn per state: another seq, other noise.
   EXPECT_NE(first, later);
+}
+
+// Two simulations rendering cameras in one process (Python, the studio):
+// the one that goes first must not take the other's display with it.
+TEST(CameraRenderer, AContextOutlivesAnotherOnTheSameDisplay) {
+  const Scenario s = RedBallAhead(0.4);
+  Physics physics(s);
+  auto first = std::make_unique<GlContext>();
+  GlContext second;
+  first.reset();
+  second.MakeCurrent();
+  CameraImageRenderer renderer(physics.model(), s);
+  std::vector<std::uint8_t> rgb;
+  renderer.Render(0, physics.mutable_data(), 0, &rgb);
+  EXPECT_GT(RedShare(rgb, 80, 60, 30, 50), 0.1);
 }
 
 }  // namespace
