@@ -613,6 +613,26 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
   EXPECT_TRUE(quat);
 }
 
+// A static object is welded to the world: its mass moves nothing, so the
+// inspector offers it only for a movable one (REQ-1.4.5).
+TEST(StudioInspector, AStaticObjectsMassIsNotOffered) {
+  Scenario s = MakeChainScenario(ChainScenarioOptions{});
+  SceneObject& rock = s.scene_objects.emplace_back();
+  rock.guid = "rock";
+  const Selection object{SelectionKind::kSceneObject, 0, 0};
+  auto offers_mass = [&]() {
+    for (const FieldGroup& g : InspectorFields(s, object)) {
+      for (const FieldRef& f : g.fields) {
+        if (std::string(f.info().xml) == "mass") return true;
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(offers_mass());
+  rock.is_static = true;
+  EXPECT_FALSE(offers_mass());
+}
+
 TEST(StudioInspector, DirectionalFrictionsAreOfferedOnlyWhenDirectionalIsOn) {
   Scenario s = MakeChainScenario(ChainScenarioOptions{});
   s.contact_frictions.emplace_back();
