@@ -216,8 +216,10 @@ void CameraNode::Flush(CameraOutbox* out) {
 
 void CameraNode::Picture(const Period& period, CameraOutbox* out) {
   const std::vector<RobotCamera>& cameras = renderer_->cameras();
-  if (period.sim_time < last_time_) {
-    // A reset or a checkpoint load took the time back: start over there.
+  if (last_time_ < 0 || period.sim_time < last_time_) {
+    // The first period heard (a camera started after the simulator has
+    // missed nothing it could have pictured), or a reset or a checkpoint
+    // load took the time back: the frames start there.
     for (size_t k = 0; k < imaged_.size(); ++k) {
       next_slot_[k] = SlotOf(period.sim_time, cameras[imaged_[k]].part.rate);
     }

@@ -198,6 +198,20 @@ TEST(CameraNode, RealtimePicturesTheNewestStateCountsDropsAndNeverAnswers) {
       << node.Summary();
 }
 
+// A camera started after the simulator: the frames it never heard of are
+// not drops.
+TEST(CameraNode, FramesStartAtTheFirstStateHeard) {
+  FakeRenderer renderer(30);
+  CameraNode node(Options(ClockMode::kRealtime), &renderer, WallTime{});
+  CameraOutbox out;
+  Period(node, 50, &out);
+  node.Flush(&out);
+  Period(node, 54, &out);
+  node.Flush(&out);
+  EXPECT_EQ(PicturedSeqs(out), (std::vector<std::int64_t>{50, 54}));
+  EXPECT_EQ(node.counters().dropped, 0);
+}
+
 TEST(CameraNode, ATimeGoingBackStartsTheFramesOverThere) {
   FakeRenderer renderer(10);
   CameraNode node(Options(ClockMode::kLockstep), &renderer, WallTime{});
