@@ -7,6 +7,8 @@ mrsim._core); nothing is implemented a second time in Python.
   bad files raise ``ScenarioError`` naming file, line and field.
 - Simulation in process: ``sim = Simulation(scenario)``, ``sim.step(n)``
   (GIL released), ``sim.state()`` (numpy arrays), joint targets,
+  parts overlapping at the start refused (``OverlapError``, as mrsim-sim)
+  unless ``allow_overlap=True``,
   ``detach``/``attach``, checkpoints; ``sim.camera_image()`` renders a
   robot's camera as an (H, W, 3) uint8 array, ``sim.cameras()`` lists them.
 - Gaits: ``Gait("forward")``, ``gait.targets(t, state)``,
@@ -32,6 +34,7 @@ from ._core import (  # noqa: F401
     KeyFileError,
     LogError,
     Optimizer,
+    OverlapError,
     PhysicsError,
     Scenario,
     ScenarioError,
@@ -60,7 +63,7 @@ def load_scenario(path, frame=None, length_scale=1.0):
 
 __all__ = [
     "CheckpointError", "ControlError", "Gait", "GaitError", "GenomeError",
-    "KeyFileError", "LogError", "Message", "Node", "Optimizer", "POSE_FIELDS", "PhysicsError", "Scenario",
+    "KeyFileError", "LogError", "Message", "Node", "Optimizer", "OverlapError", "POSE_FIELDS", "PhysicsError", "Scenario",
     "ScenarioError", "Simulation", "State", "gait_parameter_names",
     "gait_presets", "load_scenario", "optimize", "read_csv",
     "read_csv_folder", "read_generations", "read_lcm_log", "read_mcap",

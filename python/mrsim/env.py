@@ -94,7 +94,8 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
                  observation: str = "joints",
                  reward: Union[str, Callable[..., float], None] = None,
                  render_mode: Optional[str] = None,
-                 task: Optional[str] = None) -> None:
+                 task: Optional[str] = None,
+                 allow_overlap: bool = False) -> None:
         """scenario: a Scenario, a scenario file, or None for an 8-module
         pitch-yaw chain; task: a task of the suite instead (docs/tasks.md:
         its world, and its fitness as the default reward). reward: default
@@ -103,7 +104,11 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
         A simulation that becomes unstable terminates the episode.
         observation: "joints", "full" or "camera" (what the robot's first
         camera sees, rendered in process; ValueError when the robot has
-        no camera)."""
+        no camera). A scenario whose parts overlap at the start raises
+        mrsim.OverlapError naming them, as mrsim.Simulation does, unless
+        allow_overlap=True; a task's world is built to its own rules (the
+        pole task squeezes the pole on purpose) and is not checked, as
+        mrsim-opt --task does not check it."""
         if observation not in OBSERVATIONS:
             raise ValueError("observation: expected one of %s, got %r" %
                              (", ".join(OBSERVATIONS), observation))
@@ -111,6 +116,7 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
             if scenario is not None:
                 raise ValueError("give a scenario or a task, not both")
             scenario = _core.Scenario.task(task)
+            allow_overlap = True
             if reward is None:
                 reward = _core.task_info(task)["fitness"]
         if reward is None:
@@ -124,7 +130,7 @@ class ChainEnv(_Base):  # type: ignore[misc, valid-type]
             scenario = _core.Scenario.chain(modules=8, pattern="pitch-yaw",
                                             friction=0.8)
         self.render_mode = render_mode
-        self.sim = _core.Simulation(scenario)
+        self.sim = _core.Simulation(scenario, allow_overlap=allow_overlap)
         self.robot = robot
         self.episode_seconds = float(episode_seconds)
         steps = control_period / self.sim.timestep

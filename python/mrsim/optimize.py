@@ -58,7 +58,8 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
              progress: Optional[Callable[[Dict[str, float]], None]] = None,
              extra_args: tuple = (), task: Optional[str] = None,
              genes: Optional[str] = None,
-             controller: Optional[str] = None) -> Dict[str, Any]:
+             controller: Optional[str] = None,
+             allow_overlap: bool = False) -> Dict[str, Any]:
     """Runs mrsim-opt on a scenario file and a genome file into out_dir
     (resumed when out_dir holds a checkpoint of the same problem).
 
@@ -77,6 +78,10 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
     own genes: give no ``genes``, and a ``genome`` file only for body
     genes. The best controller is written to out_dir (best_controller.lua,
     best_network.xml).
+
+    allow_overlap: optimise a scenario whose parts overlap at the start
+    (mrsim-opt --allow-overlap); otherwise mrsim-opt refuses it, naming
+    the overlapping parts, and this raises RuntimeError with its message.
 
     workers: local threads (default: one per core; not with farm, whose
     mrsim-worker processes join by themselves). progress(row) is called with each new row of generations.csv (a dict
@@ -121,6 +126,8 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
             args += [flag, str(value)]
     if farm:
         args.append("--farm")
+    if allow_overlap:
+        args.append("--allow-overlap")
     args += list(extra_args)
     csv = os.path.join(os.fspath(out_dir), "generations.csv")
     seen = 0

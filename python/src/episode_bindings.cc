@@ -10,6 +10,7 @@
 #include "optimizer/task.h"
 #include "python/src/bindings.h"
 #include "python/src/gait_object.h"
+#include "sim_core/overlap_check.h"
 
 namespace py = pybind11;
 
@@ -36,7 +37,7 @@ void BindEpisode(py::module_& m) {
       [](const Scenario& scenario, const std::shared_ptr<GaitObject>& gait,
          double duration, double control_period, const std::string& robot,
          const std::string& distance_mode, double w_distance, double w_speed,
-         double w_energy, double w_drift, double w_fall) {
+         double w_energy, double w_drift, double w_fall, bool allow_overlap) {
         Problem problem;
         problem.scenario = scenario;
         problem.genome.robot = robot;
@@ -54,6 +55,9 @@ void BindEpisode(py::module_& m) {
         EvalResult r;
         {
           py::gil_scoped_release release;
+          // As mrsim-opt refuses a scenario file: an overlap would score
+          // the physics pushing the parts apart as distance.
+          if (!allow_overlap) RefuseOverlaps(problem.scenario);
           r = RunEpisode(problem, Genome{});
         }
         return ResultDict(r);
@@ -62,7 +66,8 @@ void BindEpisode(py::module_& m) {
       py::arg("control_period") = 0.01, py::arg("robot") = "",
       py::arg("distance_mode") = "forward", py::arg("w_distance") = 1.0,
       py::arg("w_speed") = 0.0, py::arg("w_energy") = 0.0,
-      py::arg("w_drift") = 0.0, py::arg("w_fall") = 0.0, R"doc(
+      py::arg("w_drift") = 0.0, py::arg("w_fall") = 0.0, py::kw_only(),
+      py::arg("allow_overlap") = false, R"doc(
 Runs one optimiser episode: the gait on the scenario's robot (robot name,
 default the first) for `duration` s of sim time at full speed, scored as
 mrsim-opt scores it:
@@ -70,7 +75,9 @@ mrsim-opt scores it:
             - drift*w_drift - fell*w_fall
 Returns a dict with fitness, distance (m), speed (m/s), energy (J),
 drift (m), fell (fraction of time upside down) and failed (unstable).
-distance_mode: 'forward' (+x), 'net' or 'up' (+z). The GIL is released meanwhile.)doc");
+distance_mode: 'forward' (+x), 'net' or 'up' (+z). The GIL is released meanwhile.
+A scenario whose parts overlap at the start raises OverlapError naming
+them, as mrsim-opt refuses it, unless allow_overlap=True.)doc");
   m.def(
       "run_task",
       [](const std::string& task, const py::object& gait, double seconds) {

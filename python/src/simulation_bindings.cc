@@ -22,6 +22,7 @@
 #include "python/src/simulation_cameras.h"
 #include "python/src/state_object.h"
 #include "sim_core/checkpoint.h"
+#include "sim_core/overlap_check.h"
 #include "sim_core/physics.h"
 #include "sim_core/scenario_xml.h"
 #include "sim_core/scene_object_state.h"
@@ -197,12 +198,29 @@ class Simulation {
   int steps_per_period_ = 0;
 };
 
-Scenario ScenarioOf(const py::object& scenario) {
-  if (py::isinstance<py::str>(scenario) ||
-      py::hasattr(scenario, "__fspath__")) {
-    return ReadScenarioFile(py::str(scenario).cast<std::string>());
+// The physics of a Scenario or a file's path, refused as mrsim-sim
+// refuses it when parts overlap at the start, unless `allow_overlap`: the
+// check runs on the model just built (no second compile) and names a
+// file's lines as the reader does.
+std::unique_ptr<Physics> BuildPhysics(const py::object& scenario,
+                                      bool allow_overlap) {
+  ScenarioSource source;
+  const bool from_file =
+      py::isinstance<py::str>(scenario) || py::hasattr(scenario, "__fspath__");
+  Scenario s;
+  if (from_file) {
+    ScenarioReadOptions read;
+    read.source_out = &source;
+    const py::object path = py::module_::import("os").attr("fspath")(scenario);
+    s = ReadScenarioFile(path.cast<std::string>(), read);
+  } else {
+    s = scenario.cast<Scenario>();
   }
-  return scenario.cast<Scenario>();
+  auto physics = std::make_unique<Physics>(s);
+  if (!allow_overlap) {
+    RefuseOverlapsInModel(s, physics->model(), from_file ? &source : nullptr);
+  }
+  return physics;
 }
 
 py::array_t<double> ArrayOf(const std::vector<double>& v) {
@@ -216,14 +234,20 @@ void BindSimulation(py::module_& m) {
 A MuJoCo simulation of a scenario, in this process: the physics mrsim-sim
 runs, stepped from Python. step(n) releases the GIL, so other Python
 threads run meanwhile. Robots are given by index or name everywhere.)doc");
-  c.def(py::init([](const py::object& scenario) {
+  c.def(py::init([](const py::object& scenario, bool allow_overlap) {
           return std::make_unique<Simulation>(
-              std::make_unique<Physics>(ScenarioOf(scenario)));
+              BuildPhysics(scenario, allow_overlap));
         }),
-        py::arg("scenario"), R"doc(
+        py::arg("scenario"), py::kw_only(), py::arg("allow_overlap") = false,
+        R"doc(
 Builds the physics of a Scenario (or of a scenario file's path). Raises
 ScenarioError for a bad scenario, RuntimeError naming a part that cannot
-be built.)doc");
+be built. Parts that overlap at the start (two parts, a part and a scene
+object, or anything and the terrain, deeper than 1 mm in the pose the
+scenario gives) are refused as mrsim-sim refuses them: OverlapError (a
+ScenarioError) naming each pair, unless allow_overlap=True (mrsim-sim's
+--allow-overlap: the physics then pushes the parts apart at the first
+step).)doc");
   c.def_static(
       "load_checkpoint",
       [](const std::string& path) {
