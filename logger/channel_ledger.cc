@@ -33,6 +33,15 @@ ChannelStats ChannelLedger::Stats() const {
   s.back_jumps = seq_.back_jumps();
   s.first_seq = seq_.first();
   s.last_seq = seq_.last();
+  for (const auto& [sender, t] : other_senders_) {
+    s.gaps += t.gaps();
+    s.missing += t.missing();
+    s.back_jumps += t.back_jumps();
+    if (seq_.count() == 0) {
+      s.first_seq = t.first();
+      s.last_seq = t.last();
+    }
+  }
   if (seq_.count() == 0 && sparse_count_ > 0) {
     s.gaps = sparse_gaps_;
     s.missing = sparse_missing_;
@@ -85,7 +94,8 @@ void ChannelLedger::TakeSparseSeq(int64_t seq, int64_t missing,
   }
 }
 
-bool ChannelLedger::TakeSeq(int64_t seq, std::string_view content) {
+bool ChannelLedger::TakeSeq(int64_t seq, std::string_view content,
+                            std::string_view sender) {
   stats_.has_seq = true;
   // Same seq, same content: the publisher sent it again. A restarted
   // publisher's seq goes back too, but its messages differ (or it went back
@@ -96,20 +106,36 @@ bool ChannelLedger::TakeSeq(int64_t seq, std::string_view content) {
       return false;
     }
   }
-  const SeqTracker::Event e = seq_.Add(seq);
+  if (!have_first_sender_) {
+    have_first_sender_ = true;
+    first_sender_ = sender;
+  }
+  SeqTracker* tracker = &seq_;
+  std::string who;
+  if (sender != first_sender_) {
+    auto it = other_senders_.find(sender);
+    if (it == other_senders_.end() && other_senders_.size() + 1 < kMaxSenders) {
+      it = other_senders_.emplace(std::string(sender), SeqTracker()).first;
+    }
+    if (it != other_senders_.end()) {
+      tracker = &it->second;
+      who = " (sender " + std::string(sender) + ")";
+    }
+  }
+  const SeqTracker::Event e = tracker->Add(seq);
   if (e.missing > 0) {
-    Report(stats_.channel + ": gap: seq " + std::to_string(e.first_missing) +
-           (e.missing > 1
-                ? ".." + std::to_string(e.first_missing + e.missing - 1)
-                : "") +
-           " missing (" + std::to_string(e.missing) + " messages)");
+    Report(
+        stats_.channel + who + ": gap: seq " + std::to_string(e.first_missing) +
+        (e.missing > 1 ? ".." + std::to_string(e.first_missing + e.missing - 1)
+                       : "") +
+        " missing (" + std::to_string(e.missing) + " messages)");
   } else if (e.jumped) {
-    Report(stats_.channel + ": seq jumped from " + std::to_string(e.previous) +
-           " to " + std::to_string(seq) +
+    Report(stats_.channel + who + ": seq jumped from " +
+           std::to_string(e.previous) + " to " + std::to_string(seq) +
            " (publisher restarted, or a forged number); not counted as "
            "missing");
   } else if (e.went_back) {
-    Report(stats_.channel + ": seq went back from " +
+    Report(stats_.channel + who + ": seq went back from " +
            std::to_string(e.previous) + " to " + std::to_string(seq) +
            " (publisher restarted?)");
   }

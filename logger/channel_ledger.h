@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -58,7 +59,13 @@ class ChannelLedger {
   // content), which is counted, not written; otherwise the seq is tracked
   // and its gaps, jumps and steps back reported, and the caller writes it,
   // then calls Remember.
-  bool TakeSeq(int64_t seq, std::string_view content);
+  // `sender`: the message's own sender field, when its type has one. Each
+  // sender's seq is followed on its own (at most kMaxSenders per channel;
+  // the rest share the first's), so two senders numbering their messages
+  // independently on one channel are no gaps or jumps back.
+  bool TakeSeq(int64_t seq, std::string_view content,
+               std::string_view sender = {});
+  static constexpr size_t kMaxSenders = 16;
   // Keeps the written message for the re-send check: copied into a
   // buffer of the window, or swapped with *content (which then holds an
   // evicted message's buffer, for the next one).
@@ -79,7 +86,10 @@ class ChannelLedger {
 
   ChannelStats stats_;
   ReportFn report_;
-  SeqTracker seq_;
+  SeqTracker seq_;  // the first sender's (or that of a type without one)
+  std::string first_sender_;
+  bool have_first_sender_ = false;
+  std::map<std::string, SeqTracker, std::less<>> other_senders_;
   int reports_ = 0;
   // The last messages written with their seq, a ring.
   std::vector<std::pair<int64_t, std::string>> recent_;

@@ -110,6 +110,7 @@ class Walker {
 
   size_t left() const { return left_; }
   bool has_seq() const { return has_seq_; }
+  const std::string& sender() const { return sender_; }
   int64_t seq() const { return seq_; }
 
   bool Struct(const Layout& s, const std::string& prefix, bool top) {
@@ -140,6 +141,7 @@ class Walker {
         return Struct(*m.child, name, false);
       }
       int64_t iv = 0;
+      capture_sender_ = top && m.kind == Kind::kString && m.name == "sender";
       if (!Scalar(m.kind, name, &iv, utime)) return false;
       ints_[base + mi] = iv;
       if (top && m.kind == Kind::kInt64 && m.name == "seq") {
@@ -234,6 +236,11 @@ class Walker {
       const int64_t len = static_cast<int32_t>(BigEndian(b, 4));
       if (len < 1 || !Take(static_cast<size_t>(len), &b)) return false;
       if (b[len - 1] != 0) return false;
+      if (capture_sender_) {
+        const char* text = reinterpret_cast<const char*>(b);
+        sender_.assign(text, std::strlen(text));
+        capture_sender_ = false;
+      }
       Cell(name);
       if (values_ != nullptr) {
         const char* text = reinterpret_cast<const char*>(b);
@@ -295,6 +302,8 @@ class Walker {
   std::vector<int64_t> dims_;
   bool first_cell_ = true;
   bool has_seq_ = false;
+  bool capture_sender_ = false;
+  std::string sender_;
   int64_t seq_ = 0;
 };
 
@@ -403,6 +412,7 @@ bool GenericFlattener::Flatten(const uint8_t* data, size_t size, FlatRow* row) {
   if (!w.Struct(*layouts_[0], "", true) || w.left() != 0) return false;
   row->has_seq = w.has_seq();
   row->seq = w.seq();
+  row->sender = w.sender();
   if (!have_shape_ || shape_ != last_shape_) {
     std::vector<std::string> names;
     Walker named(data + 8, size - 8, nullptr, &names, nullptr);

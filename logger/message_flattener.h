@@ -13,6 +13,10 @@ struct FlatRow {
   std::string values;  // cells joined by ',', no line break
   bool has_seq = false;
   int64_t seq = 0;
+  // The message's top-level `sender` string when it has one: senders
+  // sharing a channel (a controller and mrsim-camera's lockstep answers on
+  // a command channel) number their messages each on their own.
+  std::string sender;
 };
 
 class MessageFlattener {

@@ -148,7 +148,10 @@ void Recorder::Record(Channel& ch, const uint8_t* data, size_t size) {
     ledger.Malformed(size);
     return;
   }
-  if (ch.row.has_seq && !ledger.TakeSeq(ch.row.seq, ch.row.values)) return;
+  if (ch.row.has_seq &&
+      !ledger.TakeSeq(ch.row.seq, ch.row.values, ch.row.sender)) {
+    return;
+  }
   if (ch.parts.empty() || ch.flattener->shape_version() != ch.shape_version) {
     const std::vector<std::string>& columns = ch.flattener->columns();
     size_t found = 0;

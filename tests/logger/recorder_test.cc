@@ -12,6 +12,7 @@
 #include "logger/csv_writer.h"
 #include "logger/message_queue.h"
 #include "logger/seq_tracker.h"
+#include "mrsim/joint_command_t.hpp"
 #include "tests/common/child_process.h"
 #include "tests/logger/csv_reader.h"
 #include "tests/logger/test_messages.h"
@@ -102,6 +103,39 @@ TEST(LoggerRecorder, AlternatingShapesKeepOneFileEach) {
   ASSERT_EQ(odd.rows.size(), 20u);
   EXPECT_EQ(even.rows[1][even.Column("seq")], "2");
   EXPECT_EQ(odd.rows[1][odd.Column("seq")], "3");
+}
+
+// A controller and mrsim-camera's lockstep answers share a command
+// channel, each numbering its commands on its own: no gaps or jumps back,
+// while a command one of them lost is still a gap, named by its sender.
+TEST(LoggerRecorder, TwoSendersOnOneChannelEachKeepTheirOwnSeq) {
+  const LcmTypeRegistry registry = LcmTypeRegistry::WithBuiltinTypes();
+  const std::string dir = testing::TempDir("recorder_two_senders");
+  Capture cap;
+  Recorder rec(registry, cap.Options(dir));
+  auto send = [&rec](const std::string& sender, int64_t seq, int joints) {
+    joint_command_t cmd;
+    cmd.seq = seq;
+    cmd.robot = "snake";
+    cmd.sender = sender;
+    cmd.state_seq = seq;
+    cmd.num_joints = joints;
+    cmd.target.assign(joints, 0.1);
+    std::vector<uint8_t> b(static_cast<size_t>(cmd.getEncodedSize()));
+    cmd.encode(b.data(), 0, static_cast<int>(b.size()));
+    rec.OnMessage("MRSIM_COMMAND_snake", b.data(), b.size());
+  };
+  for (int64_t k = 0; k < 20; ++k) {
+    send("mrsim-lua", 100 + k, 3);
+    if (k != 7) send("mrsim-camera", k, 0);  // the camera's 7th is lost
+  }
+  rec.Flush();
+  const auto stats = rec.Stats();
+  ASSERT_EQ(stats.size(), 1u);
+  EXPECT_EQ(stats[0].gaps, 1);
+  EXPECT_EQ(stats[0].missing, 1);
+  EXPECT_EQ(stats[0].back_jumps, 0);
+  EXPECT_TRUE(cap.Has("MRSIM_COMMAND_snake (sender mrsim-camera): gap: seq 7"));
 }
 
 // Traffic that decodes but changes shape with every message (a forged or
