@@ -1,13 +1,18 @@
 #include "foxglove/foxglove_bridge.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
 
+#include "camera/camera_image_codec.h"
+#include "foxglove/camera_image_json.h"
 #include "foxglove/foxglove_protocol.h"
 #include "foxglove/foxglove_schemas.h"
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/decode.h"
+#include "mrsim/camera_image_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/scene_state_t.hpp"
 #include "mrsim/sim_status_t.hpp"
@@ -385,18 +390,73 @@ FoxgloveBridge::Channel* FoxgloveBridge::ChannelFor(const std::string& topic,
     Channel& ch = channels_[known->second - 1];
     return ch.type == type ? &ch : nullptr;
   }
+  const bool camera = type->fingerprint == camera_image_t::getHash();
+  return NewChannel(
+      {0, topic, type->name,
+       camera ? CameraImageWithoutBytesSchema() : type->schema, type},
+      out);
+}
+
+FoxgloveBridge::Channel* FoxgloveBridge::NewChannel(Channel channel,
+                                                    BridgeOutput& out) {
   if (channels_.size() >= options_.max_channels) {
     ++counts_.channels_over_limit;
     return nullptr;
   }
-  const auto id = static_cast<uint32_t>(channels_.size() + 1);
-  channels_.push_back({id, topic, type->name, type->schema, type});
-  channel_of_topic_[topic] = id;
+  channel.id = static_cast<uint32_t>(channels_.size() + 1);
+  channel_of_topic_[channel.topic] = channel.id;
+  channels_.push_back(std::move(channel));
   const std::string advertise = AdvertiseJson({&channels_.back()});
   for (const auto& [client, c] : clients_) {
     out.send.push_back({client, false, false, advertise});
   }
   return &channels_.back();
+}
+
+void FoxgloveBridge::OnCameraImage(const std::string& channel,
+                                   const MessageJsonType* type,
+                                   const void* data, size_t size,
+                                   BridgeOutput& out) {
+  camera_image_t msg;
+  if (!DecodeMessage(data, size, &msg)) {
+    ++counts_.lcm_malformed;
+    return;
+  }
+  try {
+    DecodeCameraImage(msg);
+  } catch (const std::invalid_argument&) {
+    ++counts_.lcm_malformed;
+    return;
+  }
+  // A camera keeps its channel: a picture of the other encoding on it (a
+  // camera restarted with other settings) is dropped, as Foxglove could
+  // not read it with the advertised schema.
+  const std::string topic =
+      "/camera/" + msg.robot + "/" + std::to_string(msg.camera);
+  const char* schema_name = FoxgloveImageSchemaName(msg);
+  Channel* image = nullptr;
+  const auto known = channel_of_topic_.find(topic);
+  if (known == channel_of_topic_.end()) {
+    image = NewChannel(
+        {0, topic, schema_name, FoxgloveImageSchema(msg), nullptr}, out);
+  } else if (channels_[known->second - 1].schema_name == schema_name) {
+    image = &channels_[known->second - 1];
+  }
+  if (image != nullptr && AnySubscriber(image->id)) {
+    // The picture's sim time on the protocol's timeline (the same as sim
+    // time until a reset), so it lines up with /mrsim/tf.
+    constexpr int64_t kMaxUtime = INT64_MAX / 1000;
+    const int64_t utime = std::clamp<int64_t>(msg.utime, 0, kMaxUtime);
+    json_.Clear();
+    WriteFoxgloveImageJson(
+        msg, static_cast<uint64_t>(utime) * 1000 + offset_ns_, json_);
+    SendToSubscribers(image->id, json_.view(), timeline_ns_, true, out);
+  }
+  Channel* ch = ChannelFor(channel, type, out);
+  if (ch == nullptr || !AnySubscriber(ch->id)) return;
+  json_.Clear();
+  WriteCameraImageWithoutBytes(msg, json_);
+  SendToSubscribers(ch->id, json_.view(), timeline_ns_, true, out);
 }
 
 BridgeOutput FoxgloveBridge::OnLcm(const std::string& channel, const void* data,
@@ -439,6 +499,9 @@ BridgeOutput FoxgloveBridge::OnLcm(const std::string& channel, const void* data,
                         scene_.FrameTransformsJson(state, timeline_ns_),
                         timeline_ns_, true, out);
     }
+  } else if (type->fingerprint == camera_image_t::getHash()) {
+    OnCameraImage(channel, type, data, size, out);
+    return out;
   } else if (type->fingerprint == sim_status_t::getHash() &&
              !pending_.empty()) {
     sim_status_t status;

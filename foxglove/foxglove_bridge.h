@@ -8,6 +8,10 @@
 //  - "/mrsim/tf" (foxglove.FrameTransforms): each state's frame poses;
 //  - every mrsim LCM channel heard, by its name, as JSON with the JSON
 //    Schema generated from its .lcm file (mrsim/message_json.hpp);
+//    camera_image_t without its bytes (foxglove/camera_image_json.h);
+//  - each camera heard as "/camera/<robot>/<camera>": foxglove.RawImage
+//    (rgb8) or foxglove.CompressedImage (jpeg), checked by
+//    DecodeCameraImage;
 //  - sim time as the protocol's `time` (it never goes back: after a reset
 //    the timeline goes on from where it was);
 //  - the simulator's controls as services (/mrsim/pause, resume, step,
@@ -138,6 +142,9 @@ class FoxgloveBridge {
   void AdvanceTime(int64_t utime, BridgeOutput& out);
   Channel* ChannelFor(const std::string& topic, const MessageJsonType* type,
                       BridgeOutput& out);
+  Channel* NewChannel(Channel channel, BridgeOutput& out);
+  void OnCameraImage(const std::string& channel, const MessageJsonType* type,
+                     const void* data, size_t size, BridgeOutput& out);
 
   FoxgloveBridgeOptions options_;
   std::vector<Channel> channels_;  // index id - 1

@@ -43,6 +43,21 @@ const char* const kFrameTransformsSchema =
     R"("translation":)" MRSIM_VECTOR3_SCHEMA
     R"(,"rotation":)" MRSIM_QUATERNION_SCHEMA "}}}}}";
 
+const char* const kRawImageSchema =
+    R"({"title":"foxglove.RawImage","type":"object","properties":{)"
+    R"("timestamp":)" MRSIM_TIME_SCHEMA R"(,"frame_id":{"type":"string"},)"
+    R"("width":{"type":"integer","minimum":0},)"
+    R"("height":{"type":"integer","minimum":0},)"
+    R"("encoding":{"type":"string"},)"
+    R"("step":{"type":"integer","minimum":0},)"
+    R"("data":{"type":"string","contentEncoding":"base64"}}})";
+
+const char* const kCompressedImageSchema =
+    R"({"title":"foxglove.CompressedImage","type":"object","properties":{)"
+    R"("timestamp":)" MRSIM_TIME_SCHEMA R"(,"frame_id":{"type":"string"},)"
+    R"("data":{"type":"string","contentEncoding":"base64"},)"
+    R"("format":{"type":"string"}}})";
+
 const char* const kEmptyRequestSchema = R"({"type":"object","properties":{}})";
 const char* const kStepRequestSchema =
     R"({"type":"object","properties":{"steps":{"type":"integer","minimum":1,)"
