@@ -13,6 +13,10 @@
 //     "subscribed" once /mrsim/tf is, and on SIGTERM one JSON line of the
 //     frames it got per topic (robot_tf: the robots' transforms, one per
 //     state); decodes little more than the frame headers.
+//   node client_check.js image URL SUBPROTOCOL ROBOT
+//     a camera channel /camera/ROBOT/K advertised as foxglove.RawImage with
+//     its JSON Schema, and a picture on it whose base64 data is width x
+//     height x 3 bytes.
 //   node client_check.js control URL SUBPROTOCOL EXPECT
 //     calls /mrsim/pause: EXPECT "refused" (a serviceCallFailure) or "ok"
 //     (a response with ok true).
@@ -125,6 +129,13 @@ client.on("advertise", (list) => {
       if (c.topic === "/mrsim/tf") console.log("subscribed");
       continue;
     }
+    if (mode === "image" && c.topic.startsWith(`/camera/${arg}/`)) {
+      if (c.schemaName !== "foxglove.RawImage") {
+        finish(false, `${c.topic}: schema ${c.schemaName}`);
+      }
+      seen.camera = { topic: c.topic, schemaName: c.schemaName };
+      topics.set(client.subscribe(c.id), c.topic);
+    }
     if (mode !== "watch") continue;
     if (c.topic === "/mrsim/scene" || c.topic === "/mrsim/tf" ||
         c.topic === `MRSIM_STATE_${arg}`) {
@@ -156,6 +167,15 @@ client.on("message", (m) => {
   }
   const payload = JSON.parse(decoder.decode(m.data));
   const time = m.timestamp.toString();
+  if (mode === "image") {
+    const bytes = Buffer.from(payload.data, "base64").length;
+    seen.image = { width: payload.width, height: payload.height, bytes,
+      frame_id: payload.frame_id, timestamp: payload.timestamp };
+    const ok = payload.encoding === "rgb8" && bytes > 0 &&
+      payload.step === payload.width * 3 &&
+      bytes === payload.width * payload.height * 3;
+    finish(ok, ok ? "" : "a picture that disagrees with its size");
+  }
   if (topic === "/mrsim/scene") {
     sceneFrames = payload.entities.filter(
       (e) => e.frame_id.startsWith(`${arg}/frame_`) && e.cubes.length === 1).length;
@@ -199,6 +219,6 @@ if (mode === "control") {
     seen.times = times;
     finish(true);
   });
-} else if (mode !== "watch") {
+} else if (mode !== "watch" && mode !== "image") {
   finish(false, "unknown mode " + mode);
 }

@@ -4,7 +4,8 @@
 // Schemas, the scene, transforms equal to the states and time that never
 // goes back; a client without the control token is refused a pause, one
 // with it is not; a client that stops reading loses its oldest frames
-// while the others are served as before.
+// while the others are served as before; a camera's pictures reach the
+// client as foxglove.RawImage.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -14,9 +15,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <lcm/lcm-cpp.hpp>
 #include <regex>
 #include <string>
+#include <thread>
 
+#include "camera/camera_image_codec.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "sim_core/chain_builder.h"
 #include "sim_core/scenario_xml.h"
@@ -237,6 +241,37 @@ TEST_F(FoxgloveProcess, AClientThatReadsNothingLosesFramesOthersAreServed) {
   EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
   EXPECT_EQ(fox_->Output().find(" 0 frames dropped"), std::string::npos)
       << fox_->Output();
+}
+
+TEST_F(FoxgloveProcess, FoxgloveClientGetsACamerasPicturesAsRawImages) {
+  const std::string skip = NodeMissing();
+  if (!skip.empty()) GTEST_SKIP() << skip;
+  Start(8135, {});
+  CameraImageHeader header;
+  header.robot = "snake";
+  header.name = "snake/sm0/camera0";
+  header.sim_time = 1.0;
+  CameraPicture picture{32, 24, std::vector<uint8_t>(32 * 24 * 3, 200)};
+  const camera_image_t msg = EncodeCameraImage(header, picture);
+  lcm::LCM lcm(TestLcmUrl(8135));
+  ASSERT_TRUE(lcm.good());
+  ChildProcess node(
+      {"/usr/bin/env", "node", SourcePath("tests/foxglove/client_check.js"),
+       "image", ws_url_, "foxglove.websocket.v1", "snake"},
+      dir_ + "/image.txt");
+  // The camera publishes at its rate until the client has seen a picture
+  // (pacing the publisher, not waiting on the client).
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (node.running() && std::chrono::steady_clock::now() < end) {
+    lcm.publish("MRSIM_CAMERA_snake", &msg);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(node.Wait(10), 0) << node.Output();
+  EXPECT_NE(node.Output().find(R"("camera":{"topic":"/camera/snake/0",)"
+                               R"("schemaName":"foxglove.RawImage"})"),
+            std::string::npos)
+      << node.Output();
+  EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
 }
 
 TEST_F(FoxgloveProcess, HostileFramesAreRefusedCountedAndAHugeOneCloses) {
