@@ -99,7 +99,7 @@ int RunFoxglove(const FoxgloveCommand& c, SignedLcm& lcm, std::FILE* err) {
                "refused, %lld frames dropped for slow clients, %lld client "
                "messages malformed (%lld unknown ops, %lld too big), %lld "
                "subscriptions and %lld service calls refused, %lld clients "
-               "closed\n",
+               "closed, %lld LCM messages malformed\n",
                static_cast<long long>(s.connections),
                static_cast<long long>(s.refused_handshakes),
                static_cast<long long>(s.dropped_frames),
@@ -108,7 +108,8 @@ int RunFoxglove(const FoxgloveCommand& c, SignedLcm& lcm, std::FILE* err) {
                static_cast<long long>(s.too_big),
                static_cast<long long>(b.refused_subscriptions),
                static_cast<long long>(b.refused_calls),
-               static_cast<long long>(b.closed + s.closed_overflow));
+               static_cast<long long>(b.closed + s.closed_overflow),
+               static_cast<long long>(b.lcm_malformed));
   return 0;
 }
 

@@ -5,7 +5,7 @@
 // goes back; a client without the control token is refused a pause, one
 // with it is not; a client that stops reading loses its oldest frames
 // while the others are served as before; a camera's pictures reach the
-// client as foxglove.RawImage.
+// client as foxglove.RawImage, malformed ones are counted.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -253,6 +253,8 @@ TEST_F(FoxgloveProcess, FoxgloveClientGetsACamerasPicturesAsRawImages) {
   header.sim_time = 1.0;
   CameraPicture picture{32, 24, std::vector<uint8_t>(32 * 24 * 3, 200)};
   const camera_image_t msg = EncodeCameraImage(header, picture);
+  camera_image_t malformed = msg;
+  malformed.width = 31;  // disagrees with its bytes
   lcm::LCM lcm(TestLcmUrl(8135));
   ASSERT_TRUE(lcm.good());
   ChildProcess node(
@@ -264,6 +266,7 @@ TEST_F(FoxgloveProcess, FoxgloveClientGetsACamerasPicturesAsRawImages) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (node.running() && std::chrono::steady_clock::now() < end) {
     lcm.publish("MRSIM_CAMERA_snake", &msg);
+    lcm.publish("MRSIM_CAMERA_snake", &malformed);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   EXPECT_EQ(node.Wait(10), 0) << node.Output();
@@ -272,6 +275,10 @@ TEST_F(FoxgloveProcess, FoxgloveClientGetsACamerasPicturesAsRawImages) {
             std::string::npos)
       << node.Output();
   EXPECT_EQ(fox_->Stop(10), 0) << fox_->Output();
+  // The malformed pictures are counted, never shown.
+  EXPECT_TRUE(std::regex_search(
+      fox_->Output(), std::regex("[1-9][0-9]* LCM messages malformed")))
+      << fox_->Output();
 }
 
 TEST_F(FoxgloveProcess, HostileFramesAreRefusedCountedAndAHugeOneCloses) {
