@@ -5,10 +5,12 @@
 
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
+#include "lcmtypes/runtime/version.h"
 
 namespace mrsim {
 
 void CameraCommandLine::AddFlags(CLI::App& app) {
+  app.set_version_flag("--version", VersionLine("mrsim-camera"));
   app.add_option("--scenario", scenario_path,
                  "Scenario file mrsim-sim runs (its cameras are pictured)")
       ->required();
