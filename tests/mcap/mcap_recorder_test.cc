@@ -11,6 +11,7 @@
 
 #include "lcmtypes/json/json_writer.h"
 #include "logger/mcap/mcap_reader.h"
+#include "mrsim/joint_command_t.hpp"
 #include "mrsim/message_json.hpp"
 #include "mrsim/sim_status_t.hpp"
 #include "tests/common/child_process.h"
@@ -176,6 +177,31 @@ TEST(MessageJson, AMessageThatIsNotWellFormedWritesNothing) {
   bytes.pop_back();
   EXPECT_FALSE(t->to_json(bytes.data(), bytes.size(), out, &seq));
   EXPECT_EQ(out.size(), 0u);
+}
+
+// In lockstep mrsim-camera answers with commands without targets between a
+// controller's: each is written as it came, none with the one before's
+// targets (the writer reuses its decoded message).
+TEST(MessageJson, AnEmptyArrayAfterAFullOneIsWrittenEmpty) {
+  const MessageJsonType* t = FindMessageJsonType(joint_command_t::getHash());
+  ASSERT_NE(t, nullptr);
+  auto json_of = [t](int joints) {
+    joint_command_t cmd;
+    cmd.robot = "snake";
+    cmd.sender = joints > 0 ? "gait" : "mrsim-camera";
+    cmd.num_joints = joints;
+    cmd.target.assign(joints, 0.25);
+    std::vector<uint8_t> b(static_cast<size_t>(cmd.getEncodedSize()));
+    cmd.encode(b.data(), 0, static_cast<int>(b.size()));
+    JsonWriter out;
+    int64_t seq = 0;
+    EXPECT_TRUE(t->to_json(b.data(), b.size(), out, &seq));
+    return std::string(out.view());
+  };
+  EXPECT_NE(json_of(3).find("\"target\":[0.25,0.25,0.25]"), std::string::npos);
+  const std::string empty = json_of(0);
+  EXPECT_NE(empty.find("\"num_joints\":0,\"target\":[]"), std::string::npos)
+      << empty;
 }
 
 }  // namespace
