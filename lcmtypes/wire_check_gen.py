@@ -285,6 +285,40 @@ class Generator:
         out.append("}")
         return out
 
+    def needs_clear(self, full, seen=None):
+        """True when a struct holds a length-counted array, itself or in a
+        member struct."""
+        seen = seen or set()
+        if full in seen:
+            return False
+        seen.add(full)
+        for m in self.by_name[full].members:
+            if any(isinstance(d, str) for d in m.dims):
+                return True
+            if m.type in self.by_name and self.needs_clear(m.type, seen):
+                return True
+        return False
+
+    def clear(self, s):
+        """ClearEmpty_<type>: lcm-gen's decode leaves an array as it was
+        when its length is 0, so a message decoded into a reused one would
+        keep the last message's elements; this empties them."""
+        cpp = "::" + s.full.replace(".", "::")
+        out = [f"inline void ClearEmpty_{c_name(s.full)}({cpp}& m) {{"]
+        for m in s.members:
+            nested = m.type in self.by_name and self.needs_clear(m.type)
+            if m.dims and isinstance(m.dims[0], str):
+                out.append(f"  if (m.{m.dims[0]} <= 0) m.{m.name}.clear();")
+            if nested and m.dims:
+                out.append(f"  for (auto& e : m.{m.name}) "
+                           f"ClearEmpty_{c_name(m.type)}(e);")
+            elif nested:
+                out.append(f"  ClearEmpty_{c_name(m.type)}(m.{m.name});")
+        if len(out) == 1:
+            out.append("  (void)m;")
+        out.append("}")
+        return out
+
     def order(self):
         done, result = set(), []
 
@@ -320,6 +354,8 @@ class Generator:
         for s in self.order():
             out += self.struct(s)
             out.append("")
+            out += self.clear(s)
+            out.append("")
         out += ["}  // namespace wire_check", ""]
         for s in sorted(self.by_name.values(), key=lambda s: s.full):
             cpp = "::" + s.full.replace(".", "::")
@@ -331,6 +367,10 @@ class Generator:
                 f'  return r.Fingerprint({cpp}::getHash(), "{s.name}") &&',
                 f"         wire_check::Check_{c_name(s.full)}(r) && "
                 f'r.AtEnd("{s.name}");',
+                "}",
+                "template <>",
+                f"inline void ClearEmptyArrays<{cpp}>({cpp}* msg) {{",
+                f"  wire_check::ClearEmpty_{c_name(s.full)}(*msg);",
                 "}",
                 "",
             ]

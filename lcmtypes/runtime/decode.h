@@ -48,8 +48,12 @@ bool DecodeMessage(const void* data, size_t size, Message* msg,
   }
   try {
     // The check bounds size by the types' maxima, far below INT32_MAX.
-    return msg->decode(data, 0, static_cast<int>(size)) ==
-           static_cast<int>(size);
+    if (msg->decode(data, 0, static_cast<int>(size)) !=
+        static_cast<int>(size)) {
+      return false;
+    }
+    ClearEmptyArrays(msg);
+    return true;
   } catch (...) {
     return false;  // out of memory: the message is dropped like a bad one
   }

@@ -24,6 +24,11 @@ struct WireError {
 // in mrsim/wire_check.hpp.
 template <class Message>
 bool CheckWire(const void* data, size_t size, WireError* error);
+// Empties the arrays of a decoded message whose length is 0: lcm-gen's
+// decode leaves them as they were, so a message decoded into a reused one
+// would keep the last message's elements (generated in wire_check.hpp).
+template <class Message>
+void ClearEmptyArrays(Message* msg);
 
 class WireReader {
  public:

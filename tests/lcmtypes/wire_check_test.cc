@@ -174,6 +174,54 @@ TEST(WireCheck, ArrayOverItsDeclaredMaximumIsRefusedEvenWhenTheBytesAreThere) {
   EXPECT_TRUE(CheckWire<joint_command_t>(bytes.data(), bytes.size(), &error));
 }
 
+// Processes decode into a reused message: one whose array is empty must
+// not keep the previous message's elements (lcm-gen's decode leaves them),
+// nor a nested one (a sensor module's readings).
+TEST(DecodeMessage, AnEmptyArrayAfterAFullOneDecodesEmpty) {
+  auto encode = [](const auto& msg) {
+    std::vector<uint8_t> b(static_cast<size_t>(msg.getEncodedSize()));
+    msg.encode(b.data(), 0, static_cast<int>(b.size()));
+    return b;
+  };
+  mrsim::joint_command_t full{};
+  full.robot = "snake";
+  full.sender = "gait";
+  full.num_joints = 3;
+  full.target = {0.1, 0.2, 0.3};
+  mrsim::joint_command_t empty = full;
+  empty.sender = "mrsim-camera";
+  empty.num_joints = 0;
+  empty.target.clear();
+  mrsim::joint_command_t reused{};
+  const auto a = encode(full);
+  ASSERT_TRUE(mrsim::DecodeMessage(a.data(), a.size(), &reused));
+  EXPECT_EQ(reused.target.size(), 3u);
+  const auto b = encode(empty);
+  ASSERT_TRUE(mrsim::DecodeMessage(b.data(), b.size(), &reused));
+  EXPECT_TRUE(reused.target.empty());
+
+  mrsim::robot_state_t state{};
+  state.robot = "snake";
+  state.num_sensor_modules = 1;
+  state.sensor_modules.resize(1, mrsim::sensor_module_state_t{});
+  mrsim::sensor_reading_t reading{};
+  reading.kind = "imu";
+  reading.num_values = 2;
+  reading.values = {1.0, 2.0};
+  state.sensor_modules[0].num_readings = 1;
+  state.sensor_modules[0].readings = {reading};
+  mrsim::robot_state_t bare = state;
+  bare.sensor_modules[0].num_readings = 0;
+  bare.sensor_modules[0].readings.clear();
+  mrsim::robot_state_t reused_state{};
+  const auto c = encode(state);
+  ASSERT_TRUE(mrsim::DecodeMessage(c.data(), c.size(), &reused_state));
+  EXPECT_EQ(reused_state.sensor_modules.at(0).readings.size(), 1u);
+  const auto d = encode(bare);
+  ASSERT_TRUE(mrsim::DecodeMessage(d.data(), d.size(), &reused_state));
+  EXPECT_TRUE(reused_state.sensor_modules.at(0).readings.empty());
+}
+
 }  // namespace
 
 TEST(WireCheck,
