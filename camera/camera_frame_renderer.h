@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "camera/camera_image_codec.h"
-#include "sim_core/robot_state.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/physics/scene_object_state.h"
 #include "viewer/camera_image_renderer.h"
 
 namespace mrsim {

@@ -7,7 +7,7 @@
 
 #include "mrsim/wire_check.hpp"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario/scenario_schema.h"
 
 namespace mrsim {
 namespace {

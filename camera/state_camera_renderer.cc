@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "sim_core/model_compiler.h"
-#include "sim_core/mujoco_data.h"
+#include "sim_core/mjcf/model_compiler.h"
+#include "sim_core/mujoco/mujoco_data.h"
 
 namespace mrsim {
 

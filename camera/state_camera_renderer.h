@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "camera/camera_frame_renderer.h"
-#include "sim_core/mujoco_ptr.h"
-#include "sim_core/scenario.h"
+#include "sim_core/mujoco/mujoco_ptr.h"
+#include "sim_core/scenario/scenario.h"
 #include "viewer/gl_context.h"
 #include "viewer/state_pose_mapper.h"
 

@@ -1,12 +1,12 @@
 # Layering enforced by the build. Sources include project headers by their
-# path from the repository root ("sim_core/scenario.h"), but the repository
+# path from the repository root ("sim_core/scenario/scenario.h"), but the repository
 # root is on no target's include path. Instead each source folder has its
 # own include root in the build tree,
 #   <build>/include_roots/<folder, / as +>/<folder>/<header>.h
 # holding a symbolic link to each header of that folder (not of its
 # subfolders: sim_core/sim_process is another library than sim_core).
 # Every target sees its own folder's root; a library publishes it to the
-# targets that link it. So "sim_core/scenario.h" compiles only in a target
+# targets that link it. So "sim_core/scenario/scenario.h" compiles only in a target
 # that is in sim_core/ or links mrsim::sim_core, directly or through another
 # library's public dependencies. See docs/architecture.md.
 set(MRSIM_INCLUDE_ROOTS ${PROJECT_BINARY_DIR}/include_roots)

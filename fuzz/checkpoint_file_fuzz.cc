@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "sim_core/checkpoint.h"
-#include "sim_core/mujoco_handlers.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool kHandlers = (mrsim::InstallMujocoHandlers(), true);

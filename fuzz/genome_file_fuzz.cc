@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "optimizer/genome.h"
+#include "optimizer/search/genome.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string xml(reinterpret_cast<const char*>(data), size);

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sim_core/base64.h"
-#include "sim_core/terrain.h"
+#include "sim_core/mesh/base64.h"
+#include "sim_core/scenario/terrain.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   mrsim::Scene scene;

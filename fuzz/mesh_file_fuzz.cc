@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sim_core/mesh_check.h"
-#include "sim_core/mujoco_handlers.h"
+#include "sim_core/mesh/mesh_check.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool kHandlers = (mrsim::InstallMujocoHandlers(), true);

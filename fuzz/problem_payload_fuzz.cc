@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "lua_controller/lua_script.h"
-#include "optimizer/problem_codec.h"
+#include "optimizer/episode/problem_codec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string payload(reinterpret_cast<const char*>(data), size);

@@ -7,9 +7,9 @@
 #include <exception>
 #include <string>
 
-#include "sim_core/model_compiler.h"
-#include "sim_core/mujoco_handlers.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/mjcf/model_compiler.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace {
 

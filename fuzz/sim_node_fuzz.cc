@@ -13,8 +13,8 @@
 
 #include "fuzz/hostile_input.h"
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "sim_core/sim_process/sim_node.h"
 
 namespace {

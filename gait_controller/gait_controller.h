@@ -15,7 +15,7 @@
 #include "gait_controller/gait.h"
 #include "gait_controller/gait_parameters.h"
 #include "gait_controller/motion.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

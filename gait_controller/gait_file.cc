@@ -15,7 +15,7 @@
 #include "common/input_limits.h"
 #include "common/xml_error_text.h"
 #include "gait_controller/gait_presets.h"
-#include "sim_core/xml_writer.h"
+#include "sim_core/scenario/xml_writer.h"
 
 namespace mrsim {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "gait_controller/gait_controller.h"
-#include "sim_core/physics.h"
-#include "sim_core/robot_state.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/robot_state.h"
 
 namespace mrsim {
 

@@ -7,7 +7,7 @@
 
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "gait_controller/gait.h"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace mrsim {
 

@@ -15,10 +15,10 @@
 #include "launcher/run_options.h"
 #include "launcher/run_summary.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 namespace {

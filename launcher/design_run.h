@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "launcher/launch_command.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace CLI {
 class App;

@@ -8,8 +8,8 @@
 #include "launcher/design_run.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/overlap_check.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/export/overlap_check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

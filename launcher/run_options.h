@@ -12,7 +12,7 @@
 #include "common/clock_mode.h"
 #include "launcher/launch_file.h"
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/run_settings.h"
+#include "sim_core/scenario/run_settings.h"
 
 namespace mrsim {
 

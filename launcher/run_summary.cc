@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim_core/mjcf_names.h"
+#include "sim_core/mjcf/mjcf_names.h"
 
 namespace mrsim {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 

@@ -7,8 +7,8 @@
 #include "common/cli_exit.h"
 #include "common/version.h"
 #include "launcher/run_summary.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 int main(int argc, char** argv) {
   try {

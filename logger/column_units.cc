@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "mrsim/field_units.hpp"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 namespace {

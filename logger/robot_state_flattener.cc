@@ -4,7 +4,7 @@
 
 #include "lcmtypes/runtime/decode.h"
 #include "logger/csv_format.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 namespace {

@@ -15,7 +15,7 @@
 #include "logger/lcm_type_registry.h"
 #include "logger/message_flattener.h"
 #include "mrsim/robot_state_t.hpp"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "lua_controller/lua_script.h"
-#include "sim_core/robot_state.h"
+#include "sim_core/scenario/robot_state.h"
 
 namespace mrsim {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "sim_core/robot_state.h"
+#include "sim_core/scenario/robot_state.h"
 
 namespace mrsim {
 

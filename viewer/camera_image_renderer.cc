@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "common/hash.h"
-#include "sim_core/mjcf_names.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/mjcf/mjcf_names.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

@@ -12,8 +12,8 @@
 #include <deque>
 #include <vector>
 
-#include "sim_core/robot_state.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/physics/scene_object_state.h"
 
 namespace mrsim {
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/mujoco_data.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/mujoco/mujoco_data.h"
 
 namespace mrsim {
 namespace {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/robot_state.h"
-#include "sim_core/scenario.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/scenario/scenario.h"
+#include "sim_core/physics/scene_object_state.h"
 #include "viewer/renderer.h"
 
 namespace mrsim {

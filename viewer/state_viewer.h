@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
-#include "sim_core/robot_state.h"
-#include "sim_core/scenario.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/scenario/scenario.h"
 #include "viewer/camera_control.h"
 #include "viewer/renderer.h"
 #include "viewer/state_pose_mapper.h"

@@ -26,8 +26,8 @@
 #include "camera/state_camera_renderer.h"
 #include "common/subprocess.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 namespace {

@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 
 namespace {
 

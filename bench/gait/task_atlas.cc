@@ -1,6 +1,6 @@
 #include "bench/gait/task_atlas.h"
 
-#include "optimizer/task.h"
+#include "optimizer/episode/task.h"
 
 namespace mrsim {
 

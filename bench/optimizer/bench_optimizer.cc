@@ -33,14 +33,14 @@
 #include "bench/optimizer/mlp_episode_efficiency.h"
 #include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
-#include "optimizer/episode.h"
-#include "optimizer/episode_physics_pool.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/episode_physics_pool.h"
 #include "optimizer/farm/farm_evaluator.h"
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/problem_codec.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/episode/problem_codec.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace {
 

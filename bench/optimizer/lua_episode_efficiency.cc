@@ -6,11 +6,11 @@
 #include <string>
 
 #include "bench/common/paired_ratio.h"
-#include "optimizer/controller_genes.h"
-#include "optimizer/episode.h"
-#include "optimizer/episode_physics_pool.h"
-#include "optimizer/problem_codec.h"
-#include "optimizer/task.h"
+#include "optimizer/episode/controller_genes.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/episode_physics_pool.h"
+#include "optimizer/episode/problem_codec.h"
+#include "optimizer/episode/task.h"
 
 namespace mrsim {
 namespace {

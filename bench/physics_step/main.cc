@@ -25,10 +25,10 @@
 
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace {
 

@@ -3,11 +3,11 @@
 #include <vector>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/problem_codec.h"
-#include "optimizer/task.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/episode/problem_codec.h"
+#include "optimizer/episode/task.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <string>
 
-#include "optimizer/episode.h"
-#include "optimizer/genome.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/search/genome.h"
 
 namespace mrsim {
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/task.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/episode/task.h"
 
 namespace {
 

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "bench/common/paired_ratio.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "viewer/camera_control.h"
 #include "viewer/frame_writer.h"
 #include "viewer/gl_context.h"

@@ -12,7 +12,7 @@
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-camera: publish what the scenario's cameras see"};

@@ -7,8 +7,8 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 int main(int argc, char** argv) {
   if (argc < 2) {

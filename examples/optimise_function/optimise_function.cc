@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "optimizer/algorithm.h"
-#include "optimizer/genome.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/search/genome.h"
 
 namespace {
 

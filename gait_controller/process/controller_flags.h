@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/auth_flags.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

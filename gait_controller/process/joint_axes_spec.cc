@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 

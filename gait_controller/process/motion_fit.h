@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gait_controller/motion.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

@@ -7,7 +7,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 

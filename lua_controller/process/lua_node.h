@@ -31,7 +31,7 @@
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_status_t.hpp"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/signed_lcm.h"
-#include "optimizer/batch_evaluator.h"
+#include "optimizer/search/batch_evaluator.h"
 #include "optimizer/farm/farm_link.h"
 #include "optimizer/farm/farm_master_core.h"
 

@@ -18,11 +18,11 @@
 #include <vector>
 
 #include "lcmtypes/runtime/message_key.h"
-#include "optimizer/eval_result.h"
+#include "optimizer/search/eval_result.h"
 #include "optimizer/farm/build_fingerprint.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"
-#include "optimizer/genome.h"
+#include "optimizer/search/genome.h"
 
 namespace mrsim {
 

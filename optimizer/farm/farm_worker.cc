@@ -8,7 +8,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "optimizer/episode.h"
+#include "optimizer/episode/episode.h"
 
 namespace mrsim {
 namespace {

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/signed_lcm.h"
-#include "optimizer/episode_physics_pool.h"
+#include "optimizer/episode/episode_physics_pool.h"
 #include "optimizer/farm/farm_link.h"
 #include "optimizer/farm/farm_worker_core.h"
 

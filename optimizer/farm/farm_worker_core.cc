@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "common/hash.h"
-#include "optimizer/problem_codec.h"
+#include "optimizer/episode/problem_codec.h"
 
 namespace mrsim {
 namespace {

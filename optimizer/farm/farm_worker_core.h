@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "lcmtypes/runtime/message_key.h"
-#include "optimizer/episode.h"
+#include "optimizer/episode/episode.h"
 #include "optimizer/farm/build_fingerprint.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_outbox.h"

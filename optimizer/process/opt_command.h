@@ -15,11 +15,11 @@
 #include "common/file_lock.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "mrsim/opt_progress_t.hpp"
-#include "optimizer/algorithm.h"
-#include "optimizer/batch_evaluator.h"
-#include "optimizer/episode.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/search/batch_evaluator.h"
+#include "optimizer/episode/episode.h"
 #include "optimizer/farm/farm_channels.h"
-#include "optimizer/optimization_run.h"
+#include "optimizer/search/optimization_run.h"
 #include "optimizer/slurm/farm_cluster.h"
 
 namespace CLI {

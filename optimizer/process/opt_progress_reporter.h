@@ -8,7 +8,7 @@
 #include <string>
 
 #include "mrsim/opt_progress_t.hpp"
-#include "optimizer/optimization_run.h"
+#include "optimizer/search/optimization_run.h"
 
 namespace mrsim {
 

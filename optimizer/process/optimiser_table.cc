@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "optimizer/process/opt_command.h"
-#include "optimizer/task.h"
+#include "optimizer/episode/task.h"
 
 namespace mrsim {
 

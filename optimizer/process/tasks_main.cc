@@ -10,8 +10,8 @@
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/opt_command.h"
 #include "optimizer/process/optimiser_table.h"
-#include "optimizer/task.h"
-#include "optimizer/task_table.h"
+#include "optimizer/episode/task.h"
+#include "optimizer/episode/task_table.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-tasks: the task suite (docs/tasks.md)"};

@@ -1,4 +1,4 @@
-// mrsim.run_episode: one optimiser episode (optimizer/episode.h) of a gait
+// mrsim.run_episode: one optimiser episode (optimizer/episode/episode.h) of a gait
 // on a scenario, scored with the optimiser's fitness.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -6,11 +6,11 @@
 #include <memory>
 #include <string>
 
-#include "optimizer/episode.h"
-#include "optimizer/task.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/task.h"
 #include "python/src/bindings.h"
 #include "python/src/gait_object.h"
-#include "sim_core/overlap_check.h"
+#include "sim_core/export/overlap_check.h"
 
 namespace py = pybind11;
 

@@ -9,12 +9,12 @@
 
 #include "gait_controller/gait_file.h"
 #include "logger/csv_columns.h"
-#include "optimizer/genome.h"
+#include "optimizer/search/genome.h"
 #include "python/src/bindings.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_validate.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_validate.h"
 
 namespace py = pybind11;
 

@@ -15,7 +15,7 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/motion.h"
 #include "gait_controller/process/joint_axes_spec.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::python {
 

@@ -1,4 +1,4 @@
-// mrsim.Optimizer: mrsim-opt's algorithms (optimizer/algorithm.h) in
+// mrsim.Optimizer: mrsim-opt's algorithms (optimizer/search/algorithm.h) in
 // ask/tell form for an objective written in Python. The algorithms are
 // built as RunOptimization builds them (one per island, seeded by
 // IslandSeed), so the same seed, settings and fitness values give the
@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "optimizer/algorithm.h"
-#include "optimizer/algorithm_registry.h"
-#include "optimizer/episode.h"
-#include "optimizer/eval_result.h"
-#include "optimizer/genome.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/search/algorithm_registry.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/search/eval_result.h"
+#include "optimizer/search/genome.h"
 #include "python/src/bindings.h"
 
 namespace py = pybind11;

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "optimizer/task.h"
+#include "optimizer/episode/task.h"
 #include "python/src/bindings.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace py = pybind11;
 

@@ -21,11 +21,11 @@
 #include "python/src/gait_object.h"
 #include "python/src/simulation_cameras.h"
 #include "python/src/state_object.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/physics/scene_object_state.h"
 
 namespace py = pybind11;
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "viewer/camera_image_renderer.h"
 #include "viewer/gl_context.h"
 

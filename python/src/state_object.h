@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "mrsim/robot_state_t.hpp"
-#include "sim_core/robot_state.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::python {
 

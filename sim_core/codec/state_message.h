@@ -10,8 +10,8 @@
 
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/scene_state_t.hpp"
-#include "sim_core/robot_state.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/physics/scene_object_state.h"
 
 namespace mrsim {
 

@@ -8,13 +8,13 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/scenario.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/scenario/scenario.h"
 #include "sim_core/scenario_tool/scenario_summary.h"
 #include "sim_core/scenario_tool/schema_table.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/stl_export.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/export/stl_export.h"
 
 namespace mrsim {
 namespace {

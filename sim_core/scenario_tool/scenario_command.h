@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace CLI {
 class App;

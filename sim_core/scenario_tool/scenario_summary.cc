@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "sim_core/terrain.h"
+#include "sim_core/scenario/terrain.h"
 
 namespace mrsim {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 

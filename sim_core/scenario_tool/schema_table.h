@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario/scenario_schema.h"
 
 namespace mrsim {
 

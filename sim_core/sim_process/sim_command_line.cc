@@ -4,9 +4,9 @@
 
 #include "common/enum_option.h"
 #include "lcmtypes/runtime/version.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 

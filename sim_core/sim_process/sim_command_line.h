@@ -9,7 +9,7 @@
 
 #include "lcmtypes/runtime/auth_flags.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "sim_core/sim_process/sim_options.h"
 
 namespace mrsim {

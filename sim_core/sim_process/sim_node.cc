@@ -8,9 +8,9 @@
 
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/seq_gap.h"
-#include "sim_core/checkpoint.h"
+#include "sim_core/physics/checkpoint.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/physics/scene_object_state.h"
 
 namespace mrsim {
 namespace {

@@ -17,7 +17,7 @@
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "sim_core/sim_process/command_filter.h"
 #include "sim_core/sim_process/sim_options.h"
 #include "sim_core/sim_process/sim_outbox.h"
@@ -76,7 +76,7 @@ class SimNode {
   const SimOptions& options() const { return options_; }
   int steps_per_period() const { return steps_per_period_; }
   double period() const { return period_; }  // s of sim time
-  // Checkpoint files (sim_core/checkpoint.h). Loading needs the scenario
+  // Checkpoint files (sim_core/physics/checkpoint.h). Loading needs the scenario
   // that runs. Throw std::runtime_error naming the path.
   void SaveCheckpoint(const std::string& path) const;
   void LoadCheckpoint(const std::string& path);

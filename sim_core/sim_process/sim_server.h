@@ -17,7 +17,7 @@
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "sim_core/sim_process/sim_node.h"
 #include "sim_core/sim_process/sim_options.h"
 #include "sim_core/sim_process/sim_outbox.h"

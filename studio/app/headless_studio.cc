@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "studio/design/panel_layout.h"
-#include "studio/ui/gui_setup.h"
+#include "studio/ui/widgets/gui_setup.h"
 
 namespace mrsim::studio {
 

@@ -7,7 +7,7 @@
 #include "common/cli_exit.h"
 #include "lcmtypes/runtime/message_key.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/app/headless_studio.h"
 #include "studio/app/studio_flags.h"
 #include "studio/app/window_studio.h"

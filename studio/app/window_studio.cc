@@ -10,8 +10,8 @@
 
 #include "studio/app/frame_pacer.h"
 #include "studio/design/panel_layout.h"
-#include "studio/ui/gui_setup.h"
-#include "studio/ui/software_gl.h"
+#include "studio/ui/widgets/gui_setup.h"
+#include "studio/ui/view/software_gl.h"
 
 namespace mrsim::studio {
 namespace {

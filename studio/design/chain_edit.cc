@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "sim_core/face_geometry.h"
-#include "sim_core/frame_mesh.h"
+#include "sim_core/scenario/face_geometry.h"
+#include "sim_core/export/frame_mesh.h"
 
 namespace mrsim::studio {
 namespace {

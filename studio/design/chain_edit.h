@@ -1,5 +1,5 @@
 // Structural edits of a chain robot (insert, remove, reorder parts). The
-// robot is laid out again with MakeChain's geometry (sim_core/chain_builder.h)
+// robot is laid out again with MakeChain's geometry (sim_core/scenario/chain_builder.h)
 // so a chain built part by part equals what `mrsim-scenario new` makes; the
 // fields a user edited on existing parts (masses, materials, gains, limits,
 // sensors) are carried over.
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::studio {
 

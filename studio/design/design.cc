@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/embed_assets.h"
-#include "sim_core/face_geometry.h"
-#include "sim_core/frame_mesh.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/sensor_face.h"
+#include "sim_core/scenario/embed_assets.h"
+#include "sim_core/scenario/face_geometry.h"
+#include "sim_core/export/frame_mesh.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/scenario/sensor_face.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/ground_move.h"
 #include "studio/design/inspector_fields.h"

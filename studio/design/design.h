@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario.h"
+#include "sim_core/scenario/sensor_kind.h"
 #include "studio/design/ground_move.h"
 #include "studio/design/selection.h"
 
@@ -40,7 +40,7 @@ struct FieldAddress {
   std::string field;
 };
 
-// The options of `mrsim-scenario new` (sim_core/chain_builder.h).
+// The options of `mrsim-scenario new` (sim_core/scenario/chain_builder.h).
 using TemplateOptions = ChainScenarioOptions;
 // The scenario `mrsim-scenario new` writes for these options (the same
 // MakeChainScenario); throws DesignError for impossible options.
@@ -157,7 +157,7 @@ class Design {
 
   // Writes the file (atomically); throws std::runtime_error naming it.
   // With embed_assets, the file carries the terrain image and mesh files
-  // as base64 (sim_core/embed_assets.h), the design on screen keeps its
+  // as base64 (sim_core/scenario/embed_assets.h), the design on screen keeps its
   // paths.
   void Save(bool embed_assets = false);
   void SaveAs(const std::string& path, bool embed_assets = false);

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::studio {
 

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "sim_core/embedded_mesh.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/mesh/embedded_mesh.h"
+#include "sim_core/scenario/sensor_kind.h"
 #include "studio/design/inert_fields.h"
 
 namespace mrsim::studio {

@@ -2,5 +2,5 @@
 // one validator from: sim_core, so the inspector names no field itself.
 #pragma once
 
-#include "sim_core/scenario_schema.h"
-#include "sim_core/scenario_validate.h"
+#include "sim_core/scenario/scenario_schema.h"
+#include "sim_core/scenario/scenario_validate.h"

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario/scenario_schema.h"
 
 namespace mrsim::studio {
 

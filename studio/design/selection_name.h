@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 #include "studio/design/selection.h"
 
 namespace mrsim::studio {

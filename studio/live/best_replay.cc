@@ -3,9 +3,9 @@
 #include <filesystem>
 
 #include "gait_controller/gait_file.h"
-#include "optimizer/body_genes.h"
-#include "optimizer/episode.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/body_genes.h"
+#include "optimizer/episode/episode.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim::studio {
 

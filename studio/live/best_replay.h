@@ -8,7 +8,7 @@
 #include <string>
 
 #include "gait_controller/gait.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 #include "studio/live/live_runner.h"
 #include "studio/live/optimise_session.h"
 

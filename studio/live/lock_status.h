@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "mrsim/robot_state_t.hpp"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::studio {
 

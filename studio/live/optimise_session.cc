@@ -16,7 +16,7 @@
 #include "common/lcm_url.h"
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
-#include "optimizer/algorithm_registry.h"
+#include "optimizer/search/algorithm_registry.h"
 #include "optimizer/farm/farm_channels.h"
 
 namespace mrsim::studio {

@@ -18,8 +18,8 @@
 #include "launcher/process_group.h"
 #include "lcmtypes/runtime/outbox.h"
 #include "mrsim/opt_progress_t.hpp"
-#include "optimizer/episode.h"
-#include "optimizer/genome.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/search/genome.h"
 #include "studio/live/opt_progress_link.h"
 #include "studio/live/stall_watch.h"
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "sim_core/run_settings.h"
+#include "sim_core/scenario/run_settings.h"
 #include "studio/live/live_runner.h"
 
 namespace mrsim::studio {

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "sim_core/codec/state_message.h"
-#include "studio/ui/gui_setup.h"
-#include "studio/ui/panel_background.h"
-#include "studio/ui/print_section.h"
+#include "studio/ui/widgets/gui_setup.h"
+#include "studio/ui/widgets/panel_background.h"
+#include "studio/ui/dialogs/print_section.h"
 
 namespace mrsim::studio {
 namespace {

@@ -13,17 +13,17 @@
 #include <utility>
 #include <vector>
 
-#include "studio/ui/busy_quit_dialog.h"
-#include "studio/ui/design_panel.h"
-#include "studio/ui/file_dialog.h"
-#include "studio/ui/ground_handles.h"
-#include "studio/ui/help_overlay.h"
-#include "studio/ui/inspector_panel.h"
-#include "studio/ui/refusal_dialog.h"
-#include "studio/ui/status_bar.h"
+#include "studio/ui/dialogs/busy_quit_dialog.h"
+#include "studio/ui/panels/design_panel.h"
+#include "studio/ui/dialogs/file_dialog.h"
+#include "studio/ui/panels/ground_handles.h"
+#include "studio/ui/dialogs/help_overlay.h"
+#include "studio/ui/panels/inspector_panel.h"
+#include "studio/ui/dialogs/refusal_dialog.h"
+#include "studio/ui/panels/status_bar.h"
 #include "studio/ui/studio_context.h"
-#include "studio/ui/template_dialog.h"
-#include "studio/ui/unsaved_dialog.h"
+#include "studio/ui/dialogs/template_dialog.h"
+#include "studio/ui/dialogs/unsaved_dialog.h"
 
 namespace mrsim::studio {
 

@@ -8,9 +8,9 @@
 
 #include "common/data_dir.h"
 #include "launcher/program_locator.h"
-#include "sim_core/embed_assets.h"
-#include "sim_core/scenario_validate.h"
-#include "studio/ui/widgets.h"
+#include "sim_core/scenario/embed_assets.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "studio/ui/widgets/widgets.h"
 
 namespace mrsim::studio {
 

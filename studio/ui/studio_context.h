@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/overlap_check.h"
+#include "sim_core/export/overlap_check.h"
 #include "studio/design/design.h"
 #include "studio/design/panel_layout.h"
 #include "studio/design/recent_files.h"
-#include "studio/ui/camera_feed.h"
-#include "studio/ui/file_browser.h"
-#include "studio/ui/layout_recorder.h"
-#include "studio/ui/live_panel.h"
-#include "studio/ui/preview.h"
-#include "studio/ui/view_recorder.h"
+#include "studio/ui/view/camera_feed.h"
+#include "studio/ui/widgets/file_browser.h"
+#include "studio/ui/widgets/layout_recorder.h"
+#include "studio/ui/run/live_panel.h"
+#include "studio/ui/view/preview.h"
+#include "studio/ui/view/view_recorder.h"
 
 namespace mrsim::studio {
 

@@ -15,9 +15,9 @@
 
 #include "camera/camera_image_codec.h"
 #include "camera/state_camera_renderer.h"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 namespace {

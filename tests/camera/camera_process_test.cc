@@ -15,8 +15,8 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "mrsim/camera_image_t.hpp"
 #include "mrsim/robot_state_t.hpp"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "viewer/camera_image_renderer.h"
 #include "viewer/gl_context.h"
 

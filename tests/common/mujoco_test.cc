@@ -5,7 +5,7 @@
 #include <atomic>
 #include <mutex>
 
-#include "sim_core/mujoco_handlers.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
 
 namespace mrsim::testing {
 namespace {

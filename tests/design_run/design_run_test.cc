@@ -17,8 +17,8 @@
 #include "gait_controller/gait_file.h"
 #include "gait_controller/gait_presets.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/design_run/overlapping_design.h"
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::testing {

@@ -23,8 +23,8 @@
 
 #include "foxglove/control_access.h"
 #include "lcmtypes/runtime/message_key.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

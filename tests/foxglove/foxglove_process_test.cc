@@ -22,8 +22,8 @@
 
 #include "camera/camera_image_codec.h"
 #include "lcmtypes/runtime/message_key.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -9,8 +9,8 @@
 
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 namespace {

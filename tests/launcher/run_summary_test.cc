@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace mrsim {
 namespace {

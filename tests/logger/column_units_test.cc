@@ -10,8 +10,8 @@
 #include <string>
 
 #include "logger/plot.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/scenario/sensor_kind.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/logger/csv_reader.h"

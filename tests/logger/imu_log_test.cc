@@ -5,7 +5,7 @@
 #include <charconv>
 #include <string>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/logger/csv_reader.h"

@@ -11,7 +11,7 @@
 #include "lcmtypes/runtime/channels.h"
 #include "lua_controller/lua_templates.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/scenario/sensor_kind.h"
 
 namespace mrsim {
 namespace {

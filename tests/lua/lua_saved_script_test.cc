@@ -10,8 +10,8 @@
 
 #include "lcmtypes/runtime/usage_error.h"
 #include "lua_controller/process/lua_command_line.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/parse_flags.h"
 

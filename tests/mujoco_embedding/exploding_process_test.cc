@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/mujoco_embedding/exploding_scenario.h"

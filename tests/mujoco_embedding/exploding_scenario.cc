@@ -1,6 +1,6 @@
 #include "tests/mujoco_embedding/exploding_scenario.h"
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace mrsim::testing {
 

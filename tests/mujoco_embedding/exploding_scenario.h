@@ -2,7 +2,7 @@
 // chain with a far too large timestep.
 #pragma once
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::testing {
 

@@ -1,4 +1,4 @@
-#include "sim_core/mujoco_handlers.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <string>
 
-#include "optimizer/episode.h"
-#include "optimizer/local_evaluator.h"
-#include "sim_core/physics.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/search/local_evaluator.h"
+#include "sim_core/physics/physics.h"
 #include "tests/common/child_process.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/mujoco_embedding/exploding_scenario.h"

@@ -2,18 +2,18 @@
 // weight per connection, symmetric limits, sized by the robot's joints),
 // body genes alongside, the problem payload a farm worker receives, and
 // episodes that repeat bit for bit.
-#include "optimizer/mlp_genes.h"
+#include "optimizer/episode/mlp_genes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "nn_controller/network_genes.h"
-#include "optimizer/controller_genes.h"
-#include "optimizer/episode.h"
-#include "optimizer/problem_codec.h"
-#include "optimizer/task.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/controller_genes.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/problem_codec.h"
+#include "optimizer/episode/task.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

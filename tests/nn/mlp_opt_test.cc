@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/checkpoint.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -9,9 +9,9 @@
 #include <cmath>
 
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 namespace {

@@ -8,12 +8,12 @@
 #include <fstream>
 
 #include "nn_controller/network_file.h"
-#include "optimizer/episode_controller.h"
-#include "optimizer/mlp_episode_controller.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/episode_controller.h"
+#include "optimizer/episode/mlp_episode_controller.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

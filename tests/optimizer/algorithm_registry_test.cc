@@ -1,7 +1,7 @@
 // The registry of optimiser algorithms is the one list: every row builds
 // its algorithm, names parse and print through it, and docs/optimizer.md
 // describes exactly the algorithms it holds, in its order.
-#include "optimizer/algorithm_registry.h"
+#include "optimizer/search/algorithm_registry.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "optimizer/algorithm.h"
-#include "optimizer/episode.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/episode/episode.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -94,7 +94,7 @@ TEST(AlgorithmRegistry, DocsListEveryAlgorithmOfTheRegistryInOrder) {
   for (const AlgorithmInfo& info : Algorithms()) registry.push_back(info.name);
   EXPECT_EQ(DocumentedAlgorithms(), registry)
       << "docs/optimizer.md's \"## Algorithms\" bullets and "
-         "optimizer/algorithm_registry.cc disagree";
+         "optimizer/search/algorithm_registry.cc disagree";
 }
 
 TEST(SettingEnums, ParseAndPrintThroughOneTable) {

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/test_functions.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/search/test_functions.h"
 
 namespace mrsim {
 namespace {

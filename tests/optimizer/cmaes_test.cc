@@ -1,13 +1,13 @@
-#include "optimizer/cmaes.h"
+#include "optimizer/search/cmaes.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/test_functions.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/search/test_functions.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

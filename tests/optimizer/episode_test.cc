@@ -1,17 +1,17 @@
-#include "optimizer/episode.h"
+#include "optimizer/episode/episode.h"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/body_genes.h"
-#include "optimizer/episode_physics_pool.h"
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/problem_codec.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/body_genes.h"
+#include "optimizer/episode/episode_physics_pool.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/episode/problem_codec.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

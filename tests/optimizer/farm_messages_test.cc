@@ -9,11 +9,11 @@
 
 #include "gait_controller/gait_presets.h"
 #include "mrsim/opt_result_t.hpp"
-#include "optimizer/episode.h"
+#include "optimizer/episode/episode.h"
 #include "optimizer/farm/farm_channels.h"
 #include "optimizer/farm/farm_evaluator.h"
-#include "optimizer/problem_codec.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/problem_codec.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 

@@ -1,8 +1,8 @@
-#include "optimizer/genome.h"
+#include "optimizer/search/genome.h"
 
 #include <gtest/gtest.h>
 
-#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario/scenario_schema.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -10,14 +10,14 @@
 
 #include "common/hash.h"
 #include "lua_controller/lua_script.h"
-#include "optimizer/best_lua_script.h"
-#include "optimizer/controller_genes.h"
-#include "optimizer/episode.h"
+#include "optimizer/episode/best_lua_script.h"
+#include "optimizer/episode/controller_genes.h"
+#include "optimizer/episode/episode.h"
 #include "optimizer/farm/farm_master_core.h"
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/problem_codec.h"
-#include "optimizer/task.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/episode/problem_codec.h"
+#include "optimizer/episode/task.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

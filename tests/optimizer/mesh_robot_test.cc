@@ -6,10 +6,10 @@
 #include <fstream>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/body_genes.h"
-#include "optimizer/episode.h"
-#include "optimizer/problem_codec.h"
-#include "sim_core/chain_builder.h"
+#include "optimizer/episode/body_genes.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/problem_codec.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

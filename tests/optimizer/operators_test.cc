@@ -1,9 +1,9 @@
-#include "optimizer/operators.h"
+#include "optimizer/search/operators.h"
 
 #include <gtest/gtest.h>
 
-#include "optimizer/genetic_algorithm.h"
-#include "optimizer/test_functions.h"
+#include "optimizer/search/genetic_algorithm.h"
+#include "optimizer/search/test_functions.h"
 
 namespace mrsim {
 namespace {

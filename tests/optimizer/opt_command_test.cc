@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "optimizer/farm/farm_master_core.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/episode.h"
-#include "optimizer/problem_codec.h"
-#include "sim_core/chain_builder.h"
+#include "optimizer/episode/episode.h"
+#include "optimizer/episode/problem_codec.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace mrsim {
 namespace {

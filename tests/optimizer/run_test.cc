@@ -5,9 +5,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "optimizer/local_evaluator.h"
-#include "optimizer/optimization_run.h"
-#include "optimizer/test_functions.h"
+#include "optimizer/search/local_evaluator.h"
+#include "optimizer/search/optimization_run.h"
+#include "optimizer/search/test_functions.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -18,7 +18,7 @@
 
 #include "optimizer/farm/farm_master_core.h"
 #include "optimizer/farm/farm_worker_core.h"
-#include "optimizer/random.h"
+#include "optimizer/search/random.h"
 
 namespace mrsim::testing {
 

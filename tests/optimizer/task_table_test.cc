@@ -1,7 +1,7 @@
 // The tables of docs/tasks.md and the rest of mrsim-tasks' output, made
 // from the task suite (the docs check, Docs.TasksTablesAreTheCommands,
 // compares them with docs/tasks.md).
-#include "optimizer/task_table.h"
+#include "optimizer/episode/task_table.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 #include <set>
 
 #include "gait_controller/gait_presets.h"
-#include "optimizer/task.h"
-#include "sim_core/scenario_xml.h"
+#include "optimizer/episode/task.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 namespace {

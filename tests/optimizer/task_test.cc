@@ -1,6 +1,6 @@
 // The task suite: every task builds, is the same each time, scores with
 // its own fitness; mrsim-opt takes --task and --genes.
-#include "optimizer/task.h"
+#include "optimizer/episode/task.h"
 
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "optimizer/genome.h"
+#include "optimizer/search/genome.h"
 #include "optimizer/process/opt_command.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

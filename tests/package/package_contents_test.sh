@@ -105,9 +105,9 @@ echo "$dry" | grep -q "^sim (required): $tree/usr/bin/mrsim-sim " ||
 # mrsim-dev: headers, static libraries and the CMake package.
 dpkg-deb -c "$dev" | awk '{print $NF}' | sed 's|^\./|/|' >"$out/dev_contents.txt"
 # (lib/ or lib/<multiarch>/, as the tree was configured.)
-for want in /usr/include/mrsim/sim_core/scenario.h /usr/include/mrsim/common/data_dir.h \
+for want in /usr/include/mrsim/sim_core/scenario/scenario.h /usr/include/mrsim/common/data_dir.h \
             '/usr/lib/(.*/)?cmake/mrsim/mrsimConfig.cmake' '/usr/lib/(.*/)?cmake/mrsim/mrsimTargets.cmake' \
-            '/usr/lib/(.*/)?libmrsim_sim_core.a'; do
+            '/usr/lib/(.*/)?libmrsim_sim_physics.a'; do
   grep -qxE -- "$want" "$out/dev_contents.txt" || bad "mrsim-dev.deb has no $want"
 done
 case "$(dpkg-deb -f "$dev" Depends)" in

@@ -1,4 +1,4 @@
-#include "sim_core/box_union.h"
+#include "sim_core/mesh/box_union.h"
 
 #include <gtest/gtest.h>
 

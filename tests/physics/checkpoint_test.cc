@@ -1,4 +1,4 @@
-#include "sim_core/checkpoint.h"
+#include "sim_core/physics/checkpoint.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "tests/common/child_process.h"
 #include "tests/physics/test_scenes.h"
 
@@ -204,7 +204,7 @@ TEST(Checkpoint, VersionOneStateStillLoads) {
 
 // tests/physics/data holds two checkpoints mrsim-sim wrote (version-4 state)
 // before the state's arrays were listed in one table
-// (sim_core/physics_state_fields.h): the run of scenarios/imu_snake.xml at
+// (sim_core/physics/physics_state_fields.h): the run of scenarios/imu_snake.xml at
 // 0.2 s and, from the same start, at 0.3 s. Loading the first and stepping
 // on must give the second bit for bit.
 TEST(Checkpoint, OneWrittenBeforeTheStateTableStillLoads) {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <string>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/model_compiler.h"
-#include "sim_core/mujoco_handlers.h"
-#include "sim_core/mujoco_ptr.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/model_compiler.h"
+#include "sim_core/mujoco/mujoco_handlers.h"
+#include "sim_core/mujoco/mujoco_ptr.h"
+#include "sim_core/physics/physics.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"
 

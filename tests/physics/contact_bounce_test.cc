@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {

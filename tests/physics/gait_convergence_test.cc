@@ -16,8 +16,8 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

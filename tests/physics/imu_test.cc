@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <string>
 
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/physics.h"
-#include "sim_core/sensor_kind.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/sensor_kind.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/physics/physics.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {

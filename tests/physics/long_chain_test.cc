@@ -9,9 +9,9 @@
 
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/physics/physics.h"
 #include "tests/common/child_process.h"
 #include "tests/physics/test_scenes.h"
 

@@ -1,4 +1,4 @@
-#include "sim_core/mjcf_builder.h"
+#include "sim_core/mjcf/mjcf_builder.h"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -8,13 +8,13 @@
 #include <fstream>
 #include <memory>
 
-#include "sim_core/base64.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/contact_model.h"
-#include "sim_core/model_compiler.h"
-#include "sim_core/mujoco_ptr.h"
-#include "sim_core/physics.h"
-#include "sim_core/terrain.h"
+#include "sim_core/mesh/base64.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/contact_model.h"
+#include "sim_core/mjcf/model_compiler.h"
+#include "sim_core/mujoco/mujoco_ptr.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/terrain.h"
 #include "tests/common/child_process.h"
 #include "tests/physics/test_scenes.h"
 

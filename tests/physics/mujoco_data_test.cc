@@ -1,16 +1,16 @@
 // mjData memory: MuJoCo 2.2 zeroes njmax-sized constraint arrays it may
 // never use; MakeMjData / ResetMjData give those pages back without
 // changing any result.
-#include "sim_core/mujoco_data.h"
+#include "sim_core/mujoco/mujoco_data.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/model_compiler.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/model_compiler.h"
+#include "sim_core/physics/physics.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"
 

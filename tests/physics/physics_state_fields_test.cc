@@ -1,7 +1,7 @@
-// The physics state's table (sim_core/physics_state_fields.h) is what every
+// The physics state's table (sim_core/physics/physics_state_fields.h) is what every
 // copy of the state carries: each array it lists for checkpoints comes back
 // bit for bit from a save and a load, in one world and in a split scene.
-#include "sim_core/physics_state_fields.h"
+#include "sim_core/physics/physics_state_fields.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "tests/physics/test_scenes.h"
 
 namespace mrsim {

@@ -1,13 +1,13 @@
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/terrain.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/scenario/terrain.h"
 #include "tests/common/child_process.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"

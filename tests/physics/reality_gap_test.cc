@@ -1,15 +1,15 @@
 // The reality gap (docs/physics.md, "The reality gap"): per-episode
 // randomisation within its ranges, per-step servo and sensor imperfections,
 // and the same seed giving the same run.
-#include "sim_core/reality_gap.h"
+#include "sim_core/physics/reality_gap.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 namespace {

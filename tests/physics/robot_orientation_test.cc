@@ -1,7 +1,7 @@
 // The state's whole-robot orientation (docs/sim.md, "The robot's
 // orientation"): a robot placed turned reports that turn from t=0 on, and
 // keeps reporting where it faces while it drives.
-#include "sim_core/robot_orientation.h"
+#include "sim_core/physics/robot_orientation.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include "gait_controller/gait_controller.h"
 #include "gait_controller/gait_presets.h"
 #include "gait_controller/gait_runner.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 
 namespace mrsim {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::testing {
 

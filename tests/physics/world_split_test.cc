@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/physics.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/physics/scene_object_state.h"
 #include "tests/common/mujoco_test.h"
 #include "tests/physics/test_scenes.h"
 

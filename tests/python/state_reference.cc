@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace {
 

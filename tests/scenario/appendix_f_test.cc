@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "sim_core/scenario_tool/scenario_command.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

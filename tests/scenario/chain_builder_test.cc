@@ -1,6 +1,6 @@
 // MakeChain: the geometry documented in chain_builder.h, which the physics,
 // gait and other components rely on.
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim_core/scenario_schema.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_schema.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

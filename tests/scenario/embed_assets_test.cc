@@ -1,7 +1,7 @@
 // A design saved with "Embed terrain and meshes": the file carries its mesh
 // and height image, reads back equal and builds where the files are gone;
 // a file that cannot be read is named.
-#include "sim_core/embed_assets.h"
+#include "sim_core/scenario/embed_assets.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/embedded_mesh.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mesh/embedded_mesh.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -1,4 +1,4 @@
-#include "sim_core/mesh_check.h"
+#include "sim_core/mesh/mesh_check.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/obj_check.h"
+#include "sim_core/mesh/obj_check.h"
 
 namespace mrsim {
 namespace {

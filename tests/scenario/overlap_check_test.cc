@@ -1,16 +1,16 @@
 // Parts overlapping at the start are found with MuJoCo's own collision
 // and named as the file names them; a robot lying on the ground with its
 // parts face to face is fine.
-#include "sim_core/overlap_check.h"
+#include "sim_core/export/overlap_check.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <sstream>
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario_tool/scenario_command.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

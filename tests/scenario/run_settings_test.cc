@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 namespace {

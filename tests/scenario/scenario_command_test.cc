@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/parse_flags.h"
 

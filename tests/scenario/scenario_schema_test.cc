@@ -1,7 +1,7 @@
 // The schema table: what the inspector relies on (fields by part kind, text
 // in and out with the schema's messages, units, limits, defaults) and what
 // frame and unit conversion take from it.
-#include "sim_core/scenario_schema.h"
+#include "sim_core/scenario/scenario_schema.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,11 +10,11 @@
 #include <set>
 #include <string>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario.h"
 #include "sim_core/scenario_tool/schema_table.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/sensor_face.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/scenario/sensor_face.h"
 
 namespace mrsim {
 namespace {

@@ -2,7 +2,7 @@
 // enforce on their own is refused, with the same element path, by the file
 // reader (file:line: path) and by BuildMjcf and Physics on a scenario built
 // in memory; and what validates builds.
-#include "sim_core/scenario_validate.h"
+#include "sim_core/scenario/scenario_validate.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

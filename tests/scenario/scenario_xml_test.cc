@@ -1,6 +1,6 @@
 // Scenario files: round trips, the Unity frame, and every validation error
 // naming the file, line, element path and what was expected.
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/base64.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario.h"
+#include "sim_core/mesh/base64.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -4,11 +4,11 @@
 
 #include <variant>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_builder.h"
-#include "sim_core/scenario_schema.h"
-#include "sim_core/scenario_validate.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/mjcf_builder.h"
+#include "sim_core/scenario/scenario_schema.h"
+#include "sim_core/scenario/scenario_validate.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim {
 namespace {

@@ -1,7 +1,7 @@
 // Export for printing: every STL written is a closed surface a slicer
 // accepts, at the part's real size, and the parts list counts what the
 // robot is made of.
-#include "sim_core/stl_export.h"
+#include "sim_core/export/stl_export.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@
 #include <map>
 #include <sstream>
 
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario_tool/scenario_command.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/triangle_mesh.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/mesh/triangle_mesh.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

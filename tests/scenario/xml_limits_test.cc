@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "common/input_limits.h"
-#include "sim_core/base64.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_schema.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/mesh/base64.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_schema.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {

@@ -19,8 +19,8 @@
 #include "mrsim/robot_state_t.hpp"
 #include "mrsim/sim_control_t.hpp"
 #include "mrsim/sim_status_t.hpp"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::testing {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
 #include "sim_core/codec/state_message.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/wave_law.h"

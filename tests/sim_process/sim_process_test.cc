@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "mrsim/joint_command_t.hpp"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/sim_client.h"
 #include "tests/sim_process/wave_law.h"

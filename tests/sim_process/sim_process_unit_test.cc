@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/checkpoint.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/checkpoint.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/sim_process/command_filter.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "tests/common/child_process.h"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/sim_process/sim_command_line.h"
 #include "tests/common/child_process.h"
 #include "tests/common/parse_flags.h"

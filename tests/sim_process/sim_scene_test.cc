@@ -9,12 +9,12 @@
 
 #include "lcmtypes/runtime/channels.h"
 #include "mrsim/scene_state_t.hpp"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/mjcf_names.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/scene_object_state.h"
+#include "sim_core/mjcf/mjcf_names.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/physics/scene_object_state.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/sim_client.h"
 

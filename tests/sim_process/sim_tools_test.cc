@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/sim_client.h"
 

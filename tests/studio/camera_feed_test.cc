@@ -3,15 +3,15 @@
 // mrsim-camera uses, from the poses the 3-D view draws), renders at the
 // camera's rate in simulated time, keeps the chosen camera across rebuilds,
 // and the studio fills it from its own preview when the Run panel shows.
-#include "studio/ui/camera_feed.h"
+#include "studio/ui/view/camera_feed.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "studio/app/headless_studio.h"
 #include "studio/design/design.h"
 #include "studio/ui/studio_app.h"

@@ -1,5 +1,5 @@
 // The Run panel's controller choice keeps what an opened design says.
-#include "studio/ui/controller_panel.h"
+#include "studio/ui/run/controller_panel.h"
 
 #include <gtest/gtest.h>
 

@@ -13,12 +13,12 @@
 #include <set>
 #include <sstream>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/embedded_mesh.h"
-#include "sim_core/face_geometry.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/triangle_mesh.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mesh/embedded_mesh.h"
+#include "sim_core/scenario/face_geometry.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/mesh/triangle_mesh.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/inspector_fields.h"
 #include "tests/common/child_process.h"

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/design.h"
 #include "studio/design/ground_move.h"

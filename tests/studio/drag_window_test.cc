@@ -10,7 +10,7 @@
 #include <memory>
 #include <sstream>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/ground_move.h"
 #include "tests/common/child_process.h"

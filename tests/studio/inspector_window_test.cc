@@ -6,7 +6,7 @@
 #include <memory>
 #include <sstream>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/studio/studio_test_util.h"

@@ -1,11 +1,11 @@
 // The live view's distance rays: from the sensor's site where the state
 // puts it, along the sensor's direction, as long as the reading.
-#include "studio/ui/live_rays.h"
+#include "studio/ui/view/live_rays.h"
 
 #include <gtest/gtest.h>
 
-#include "sim_core/mjcf_names.h"
-#include "sim_core/physics.h"
+#include "sim_core/mjcf/mjcf_names.h"
+#include "sim_core/physics/physics.h"
 #include "tests/viewer/viewer_test_util.h"
 
 namespace mrsim::studio {

@@ -2,15 +2,15 @@
 // shows exactly the model the physics builds from the saved file, and what
 // it draws after rebuilding in place (context kept) equals a fresh window
 // on that file.
-#include "studio/ui/preview.h"
+#include "studio/ui/view/preview.h"
 
 #include <GL/gl.h>
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/app/headless_studio.h"
 #include "studio/design/design.h"
 #include "studio/ui/studio_app.h"

@@ -10,13 +10,13 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/embed_assets.h"
-#include "sim_core/embedded_mesh.h"
-#include "sim_core/overlap_check.h"
-#include "sim_core/scenario_xml.h"
-#include "sim_core/stl_export.h"
-#include "sim_core/triangle_mesh.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/embed_assets.h"
+#include "sim_core/mesh/embedded_mesh.h"
+#include "sim_core/export/overlap_check.h"
+#include "sim_core/scenario/scenario_xml.h"
+#include "sim_core/export/stl_export.h"
+#include "sim_core/mesh/triangle_mesh.h"
 #include "tests/common/child_process.h"
 #include "tests/studio/studio_test_util.h"
 

@@ -1,7 +1,7 @@
 // What the studio changes in MuJoCo's drawing on software GL (llvmpipe)
 // keeps the picture: the infinite floor drawn as one plane looks like
 // MuJoCo's grid, and a released drag draws the design as before it.
-#include "studio/ui/software_gl.h"
+#include "studio/ui/view/software_gl.h"
 
 #include <GL/gl.h>
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 
 #include "studio/app/headless_studio.h"
 #include "studio/design/design.h"
-#include "studio/ui/preview.h"
+#include "studio/ui/view/preview.h"
 #include "studio/ui/studio_app.h"
 #include "tests/common/child_process.h"
 

@@ -12,7 +12,7 @@
 #include <opencv2/videoio.hpp>
 #include <sstream>
 
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/studio/studio_test_util.h"

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "gait_controller/gait_file.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim::studio {

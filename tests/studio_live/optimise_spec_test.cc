@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "optimizer/algorithm.h"
-#include "optimizer/algorithm_registry.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/search/algorithm_registry.h"
 #include "studio/live/optimise_session.h"
 
 namespace mrsim::studio {

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/design/design.h"
 #include "tests/common/child_process.h"
 

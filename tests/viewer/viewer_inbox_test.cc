@@ -12,7 +12,7 @@
 #include "mrsim/gait_status_t.hpp"
 #include "mrsim/sim_status_t.hpp"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
+#include "sim_core/physics/physics.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/frame_scheduler.h"
 #include "viewer/gl_context.h"

@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/chain_builder.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/common/wait_until.h"
 #include "tests/viewer/viewer_test_util.h"

@@ -8,8 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
-#include "sim_core/physics.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/frame_pump.h"

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/physics/physics.h"
 #include "tests/common/child_process.h"
 #include "tests/viewer/viewer_test_util.h"
 #include "viewer/camera_control.h"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "sim_core/chain_builder.h"
-#include "sim_core/mjcf_names.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/mjcf/mjcf_names.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace mrsim::testing {
 

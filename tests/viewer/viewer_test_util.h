@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "sim_core/physics.h"
-#include "sim_core/robot_state.h"
-#include "sim_core/scenario.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/robot_state.h"
+#include "sim_core/scenario/scenario.h"
 #include "viewer/renderer.h"
 #include "viewer/state_viewer.h"
 

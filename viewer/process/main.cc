@@ -11,7 +11,7 @@
 #include "lcmtypes/runtime/signed_lcm.h"
 #include "lcmtypes/runtime/stop_signal.h"
 #include "lcmtypes/runtime/usage_error.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "viewer/process/view_command.h"
 #include "viewer/process/view_options.h"
 

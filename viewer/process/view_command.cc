@@ -13,7 +13,7 @@
 #include "lcmtypes/runtime/lcm_loop.h"
 #include "lcmtypes/runtime/simulator_watch.h"
 #include "lcmtypes/runtime/stop_signal.h"
-#include "sim_core/scenario_xml.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "viewer/frame_pump.h"
 #include "viewer/gl_context.h"
 #include "viewer/live_window.h"

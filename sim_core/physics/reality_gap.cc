@@ -1,0 +1,159 @@
+#include "sim_core/physics/reality_gap.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mrsim {
+namespace {
+
+uint64_t SplitMix(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Uniform in (0, 1), 53 bits.
+double Unit(uint64_t bits) { return ((bits >> 11) + 0.5) * 0x1.0p-53; }
+
+// Draws factors U(1-r, 1+r) in a fixed order from one seed.
+class Factors {
+ public:
+  explicit Factors(uint64_t seed) : state_(SplitMix(seed ^ 0x5EEDull)) {}
+  double operator()(double range) {
+    state_ = SplitMix(state_);
+    return 1.0 + range * (2.0 * Unit(state_) - 1.0);
+  }
+
+ private:
+  uint64_t state_;
+};
+
+void Check(const char* name, double value, double max) {
+  if (!std::isfinite(value) || value < 0 || value > max) {
+    throw std::invalid_argument(fmt::format(
+        "reality gap: {} must be between 0 and {}, got {}", name, max, value));
+  }
+}
+
+}  // namespace
+
+RealityGap RealityGap::Typical() {
+  RealityGap g;
+  g.sensor_noise = 0.05;
+  g.sensor_bias = 0.05;
+  g.joint_noise = 0.01;
+  g.motor_noise = 0.1;
+  g.latency = 0.02;
+  g.backlash = 0.02;
+  g.max_accel = 100;
+  g.friction_range = 0.3;
+  g.mass_range = 0.1;
+  g.gain_range = 0.2;
+  g.terrain_range = 0.2;
+  return g;
+}
+
+bool RealityGap::any_per_step() const {
+  return sensor_noise > 0 || sensor_bias > 0 || joint_noise > 0 ||
+         motor_noise > 0 || latency > 0 || backlash > 0 || max_accel > 0;
+}
+
+void RealityGap::Validate() const {
+  Check("sensor_noise", sensor_noise, 1);
+  Check("sensor_bias", sensor_bias, 0.99);
+  Check("joint_noise (rad)", joint_noise, 1);
+  Check("motor_noise (rad/s)", motor_noise, 100);
+  Check("latency (s)", latency, 1);
+  Check("backlash (rad)", backlash, 0.5);
+  Check("max_accel (rad/s^2)", max_accel, 1e6);
+  Check("friction_range", friction_range, 0.99);
+  Check("mass_range", mass_range, 0.99);
+  Check("gain_range", gain_range, 0.99);
+  Check("terrain_range", terrain_range, 0.99);
+}
+
+RealityGap RealityGap::ForEpisode(uint64_t index) const {
+  RealityGap g = *this;
+  g.seed = SplitMix(seed ^ SplitMix(index + 1));
+  return g;
+}
+
+double GapNormal(uint64_t seed, uint64_t step, uint64_t channel) {
+  const uint64_t a = SplitMix(seed ^ SplitMix(step ^ SplitMix(channel)));
+  const uint64_t b = SplitMix(a);
+  // Box-Muller.
+  return std::sqrt(-2.0 * std::log(Unit(a))) * std::cos(2 * M_PI * Unit(b));
+}
+
+void AddSensorNoise(const RealityGap& gap, uint64_t step, int robot,
+                    const std::vector<std::vector<double>>& max_distance,
+                    RobotState* state) {
+  // Channels: robot, kind (0 joint, 1 force, 2 distance), index; the bias
+  // of a channel is its noise at a step no run reaches.
+  constexpr uint64_t kBiasStep = ~0ull;
+  auto channel = [robot](uint64_t kind, uint64_t index) {
+    return (static_cast<uint64_t>(robot) << 40) | (kind << 32) | index;
+  };
+  auto bias = [&](uint64_t ch) {
+    return 1.0 +
+           gap.sensor_bias * std::tanh(GapNormal(gap.seed, kBiasStep, ch));
+  };
+  auto reading = [&](double value, uint64_t ch) {
+    return std::max(
+        0.0, value * bias(ch) *
+                 (1.0 + gap.sensor_noise * GapNormal(gap.seed, step, ch)));
+  };
+  for (size_t j = 0; j < state->joints.size(); ++j) {
+    state->joints[j].angle +=
+        gap.joint_noise * GapNormal(gap.seed, step, channel(0, j));
+  }
+  for (size_t k = 0; k < state->sensor_modules.size(); ++k) {
+    SensorModuleState& sm = state->sensor_modules[k];
+    if (sm.has_force) sm.force = reading(sm.force, channel(1, k));
+    for (size_t d = 0; d < sm.distances.size(); ++d) {
+      double v = reading(sm.distances[d], channel(2, (k << 8) | d));
+      if (k < max_distance.size() && d < max_distance[k].size()) {
+        v = std::min(v, max_distance[k][d]);
+      }
+      sm.distances[d] = v;
+    }
+  }
+}
+
+Scenario PerturbScenario(const Scenario& scenario, const RealityGap& gap) {
+  gap.Validate();
+  Scenario s = scenario;
+  Factors draw(gap.seed);
+  // A fixed order (the scenario's), so the same gap gives the same world.
+  for (ContactFriction& c : s.contact_frictions) {
+    const double f = draw(gap.friction_range);
+    c.friction *= f;
+    c.forward_friction *= f;
+    c.backward_friction *= f;
+    c.lateral_friction *= f;
+  }
+  for (Robot& r : s.robots) {
+    for (Module& m : r.modules) {
+      for (Frame& f : m.frames) f.mass *= draw(gap.mass_range);
+      if (m.joint.type == JointType::kHinge) {
+        m.joint.kp *= draw(gap.gain_range);
+        m.joint.velocity_gain *= draw(gap.gain_range);
+        m.joint.max_torque *= draw(gap.gain_range);
+      }
+    }
+    for (SensorModule& sm : r.sensor_modules) {
+      sm.mass *= draw(gap.mass_range);
+      if (sm.force_sensor) sm.force_sensor->mass *= draw(gap.mass_range);
+    }
+  }
+  for (SceneObject& o : s.scene_objects) o.mass *= draw(gap.mass_range);
+  s.scene.height *= draw(gap.terrain_range);
+  return s;
+}
+
+}  // namespace mrsim

@@ -1,0 +1,54 @@
+// The right column of the studio window (unless the Run panel is shown):
+// every field of the selected part, straight from the scenario schema,
+// checked as typed; a sensor module's force plate, distance sensors and
+// cameras.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+
+#include "studio/ui/widgets/panel.h"
+#include "studio/ui/studio_context.h"
+
+namespace mrsim::studio {
+
+class InspectorPanel {
+ public:
+  void Draw(StudioContext& studio, const PanelRect& rect);
+
+ private:
+  // Force plate on/off and distance sensors of the selected sensor module.
+  void DrawSensorMounts(StudioContext& studio, const Scenario& view,
+                        const Selection& sel);
+  // The module's cameras: a face picker, "add camera", and each camera
+  // with its remove button (its fields are a group above).
+  void DrawCameras(StudioContext& studio, const SensorModule& sm,
+                   const Selection& sel);
+
+  // An InputText for `key` that keeps what is typed until Enter or leaving
+  // the field: `check` throws on text it refuses (shown as typed), `apply`
+  // writes the text to the design. True when applied.
+  bool TextField(const std::string& key, const std::string& current,
+                 const std::function<void(const std::string&)>& check,
+                 const std::function<void(const std::string&)>& apply);
+  // A quaternion field as roll, pitch and yaw in degrees, one row each.
+  void DrawEulerDegrees(StudioContext& studio, const FieldRef& f,
+                        const FieldAddress& address, const std::string& key,
+                        float left);
+
+  std::map<std::string, std::string> field_errors_;  // by field key
+  std::map<std::string, std::string> field_edits_;   // text being typed
+  long fields_revision_ = -1;  // the design the two maps above are for
+  Selection fields_selection_;
+  int ray_face_ = 4;  // face for "add distance sensor": front
+  // The design revision and selection ray_face_ was last defaulted for:
+  // it moves to a face that would be accepted when they change.
+  long ray_face_revision_ = -1;
+  Selection ray_face_selection_;
+  int camera_face_ = 4;  // face for "add camera", defaulted as ray_face_
+  long camera_face_revision_ = -1;
+  Selection camera_face_selection_;
+};
+
+}  // namespace mrsim::studio
