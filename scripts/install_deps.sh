@@ -12,7 +12,7 @@ packages=(
   libcli11-dev libfmt-dev libssl-dev
   libosmesa6-dev libglfw3-dev libegl-dev libegl-mesa0 xvfb
   libimgui-dev xdotool fonts-dejavu-core
-  clang-format clang libfuzzer-14-dev
+  clang-format clang libfuzzer-14-dev lld
   iproute2 nftables
   dpkg-dev help2man desktop-file-utils
   slurm-wlm munge

@@ -32,11 +32,14 @@ jobs="$(nproc)"
 
 bash "$root/scripts/install_deps.sh"
 mkdir -p "$build"
-flags=()
-# A sanitizer build is for finding errors, not for speed: -O1 -g1 compiles
-# in about half the time of -O2 -g and keeps file:line in every report.
-[ -n "$sanitize" ] && flags=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG")
+# -g1 (file:line in every backtrace and report, no local variables)
+# compiles in about half the time of -g: physics.cc took 40 s against 76 s
+# on a loaded 2-core machine. A sanitizer build is for finding errors, not
+# for speed: -O1 on top. For a debugger, configure a build of your own.
+opt=-O2
+[ -n "$sanitize" ] && opt=-O1
+flags=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$opt -g1 -DNDEBUG"
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$opt -g1 -DNDEBUG")
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMRSIM_WERROR=ON \
   -DMRSIM_SANITIZE="$sanitize" -DMRSIM_BUILD_BENCH="$([ -z "$sanitize" ] && echo ON || echo OFF)" \
   "${flags[@]}" >/dev/null
