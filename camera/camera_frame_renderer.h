@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "camera/camera_image_codec.h"
-#include "sim_core/scenario/robot_state.h"
 #include "sim_core/physics/scene_object_state.h"
+#include "sim_core/scenario/robot_state.h"
 #include "viewer/camera_image_renderer.h"
 
 namespace mrsim {
@@ -21,8 +21,8 @@ class CameraFrameRenderer {
 
   // The scenario's robot names, in scenario order.
   virtual const std::vector<std::string>& robots() const = 0;
-  // Every camera of those robots (RobotCameras order).
-  virtual const std::vector<RobotCamera>& cameras() const = 0;
+  // Every camera of the scenario (ScenarioCameras order).
+  virtual const std::vector<ScenarioCamera>& cameras() const = 0;
   // Empty when `state` fits robot `robot` (StatePoseMapper::Check), else
   // what is wrong.
   virtual std::string Check(int robot, const RobotState& state) const = 0;

@@ -41,10 +41,16 @@ CameraNode::CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
                                 " (expected 1..100)");
   }
   const std::vector<std::string>& robots = renderer_->robots();
+  const std::vector<ScenarioCamera>& cameras = renderer_->cameras();
+  // --robot names a robot, or the owner of cameras on no robot ("loose",
+  // "scene").
   bool found = options_.robot.empty();
   for (size_t r = 0; r < robots.size(); ++r) {
     channels_[StateChannel(options_.prefix, robots[r])] = static_cast<int>(r);
     found = found || robots[r] == options_.robot;
+  }
+  for (const ScenarioCamera& c : cameras) {
+    found = found || c.owner == options_.robot;
   }
   if (!found) {
     std::string names;
@@ -52,23 +58,32 @@ CameraNode::CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
       names += (names.empty() ? "" : ", ") + r;
     throw std::invalid_argument("--robot '" + options_.robot +
                                 "' is not a robot of the scenario (it has " +
-                                names + ")");
+                                names +
+                                ") nor the owner of its cameras on no "
+                                "robot ('loose', 'scene')");
   }
   robot_imaged_.assign(robots.size(), false);
-  const std::vector<RobotCamera>& cameras = renderer_->cameras();
+  bool world = false;  // a camera on no robot is pictured
   for (size_t i = 0; i < cameras.size(); ++i) {
-    if (!options_.robot.empty() && cameras[i].robot_name != options_.robot) {
+    if (!options_.robot.empty() && cameras[i].owner != options_.robot) {
       continue;
     }
     imaged_.push_back(static_cast<int>(i));
-    robot_imaged_.at(cameras[i].robot) = true;
+    if (cameras[i].robot >= 0) {
+      robot_imaged_.at(cameras[i].robot) = true;
+    } else {
+      world = true;
+    }
   }
+  // A camera on the world shows every robot, and any robot's controller
+  // may wait for its pictures: in lockstep every robot is answered.
+  if (world) robot_imaged_.assign(robots.size(), true);
   if (imaged_.empty()) {
     throw std::invalid_argument(
         options_.robot.empty()
             ? "the scenario has no camera (a <Camera> in a sensor module's "
-              "<cameras>)"
-            : "robot '" + options_.robot + "' has no camera");
+              "or a scene object's <cameras>)"
+            : "'" + options_.robot + "' has no camera");
   }
   next_slot_.assign(imaged_.size(), 0);
   answers_.resize(robots.size());
@@ -215,7 +230,7 @@ void CameraNode::Flush(CameraOutbox* out) {
 }
 
 void CameraNode::Picture(const Period& period, CameraOutbox* out) {
-  const std::vector<RobotCamera>& cameras = renderer_->cameras();
+  const std::vector<ScenarioCamera>& cameras = renderer_->cameras();
   if (last_time_ < 0 || period.sim_time < last_time_) {
     // The first period heard (a camera started after the simulator has
     // missed nothing it could have pictured), or a reset or a checkpoint
@@ -232,14 +247,14 @@ void CameraNode::Picture(const Period& period, CameraOutbox* out) {
   if (newest != scenes_.begin()) scene = &std::prev(newest)->second;
 
   for (size_t k = 0; k < imaged_.size(); ++k) {
-    const RobotCamera& camera = cameras[imaged_[k]];
+    const ScenarioCamera& camera = cameras[imaged_[k]];
     const std::int64_t slot = SlotOf(period.sim_time, camera.part.rate);
     if (slot < next_slot_[k]) continue;  // not due
     counters_.dropped += slot - next_slot_[k];
     next_slot_[k] = slot + 1;
     renderer_->Render(imaged_[k], states, scene, period.seq, &picture_);
     CameraImageHeader header;
-    header.robot = camera.robot_name;
+    header.robot = camera.owner;
     header.sender = options_.sender;
     header.camera = camera.camera;
     header.sensor_module = camera.sensor_module;
@@ -248,7 +263,7 @@ void CameraNode::Picture(const Period& period, CameraOutbox* out) {
     header.sim_time = period.sim_time;
     camera_image_t msg =
         EncodeCameraImage(header, picture_, options_.jpeg_quality);
-    out->Add(CameraChannel(options_.prefix, camera.robot_name), std::move(msg));
+    out->Add(CameraChannel(options_.prefix, camera.owner), std::move(msg));
     ++counters_.pictures;
   }
   // Scenes older than this period will never be shown again.

@@ -7,7 +7,8 @@
 // seq. Camera k's frame j is due at sim time j / rate, decided from the
 // states' sim time, never the wall clock, so which states are pictured is
 // the same on every machine. Lockstep: every due state is pictured as it
-// completes, then each robot imaged is answered with a joint_command_t
+// completes, then each robot imaged (every robot, when a camera on no
+// robot is pictured) is answered with a joint_command_t
 // without targets (the simulator waits for it and moves nothing with it).
 // Realtime and fast: nothing is answered, so the simulator never waits;
 // Flush pictures only the newest complete state, and a frame slot passed
@@ -37,11 +38,13 @@ using CameraOutbox = Outbox<camera_image_t, joint_command_t>;
 
 inline constexpr char kDefaultCameraSender[] = "mrsim-camera";
 
-// <prefix>_CAMERA_<robot>: camera_image_t.
+// <prefix>_CAMERA_<owner>: camera_image_t of the cameras of `owner`, a
+// robot's name, or "loose" (the loose sensor modules') or "scene" (the
+// scene objects'): ScenarioCamera::owner.
 inline std::string CameraChannel(const std::string& prefix,
-                                 const std::string& robot) {
+                                 const std::string& owner) {
   static constexpr const ChannelSpec& kSpec = ChannelNamed("camera");
-  return ChannelName(kSpec, prefix, robot);
+  return ChannelName(kSpec, prefix, owner);
 }
 
 struct CameraNodeOptions {
@@ -50,7 +53,9 @@ struct CameraNodeOptions {
   // mrsim-sim --controllers lists).
   std::string sender = kDefaultCameraSender;
   ClockMode clock = ClockMode::kRealtime;
-  std::string robot;     // only this robot's cameras; empty: every robot's
+  // Only this robot's cameras (or "loose"/"scene": those on no robot);
+  // empty: every camera of the scenario.
+  std::string robot;
   int jpeg_quality = 0;  // 0: rgb8; 1..100: JPEG of that quality
   bool exit_with_sim = false;
 };
@@ -70,9 +75,9 @@ class CameraNode {
   static constexpr double kMaxSimTime = 1e9;
 
   // `renderer` must outlive the node. Throws std::invalid_argument when
-  // options.robot is no robot of the scenario, when the robots imaged have
-  // no camera (lockstep would wait for nothing), or on a JPEG quality
-  // outside 0..100.
+  // options.robot is no robot of the scenario nor a camera owner, when
+  // there is no camera to picture (lockstep would wait for nothing), or on
+  // a JPEG quality outside 0..100.
   CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
              WallTime now);
 
@@ -126,7 +131,7 @@ class CameraNode {
   CameraFrameRenderer* renderer_;
   std::map<std::string, int> channels_;  // state channel -> robot
   std::vector<int> imaged_;
-  std::vector<bool> robot_imaged_;       // per robot: has a camera pictured
+  std::vector<bool> robot_imaged_;       // per robot: answered in lockstep
   std::vector<std::int64_t> next_slot_;  // per imaged camera
   double last_time_ = -1;                // sim time of the last period pictured
 

@@ -21,7 +21,7 @@ StateCameraRenderer::StateCameraRenderer(const Scenario& scenario) {
 
 StateCameraRenderer::~StateCameraRenderer() = default;
 
-const std::vector<RobotCamera>& StateCameraRenderer::cameras() const {
+const std::vector<ScenarioCamera>& StateCameraRenderer::cameras() const {
   return renderer_->cameras();
 }
 

@@ -24,7 +24,7 @@ class StateCameraRenderer : public CameraFrameRenderer {
   ~StateCameraRenderer() override;
 
   const std::vector<std::string>& robots() const override { return robots_; }
-  const std::vector<RobotCamera>& cameras() const override;
+  const std::vector<ScenarioCamera>& cameras() const override;
   std::string Check(int robot, const RobotState& state) const override;
   std::string CheckScene(
       const std::vector<SceneObjectState>& scene) const override;

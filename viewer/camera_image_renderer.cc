@@ -11,26 +11,54 @@
 
 namespace mrsim {
 
-std::vector<RobotCamera> RobotCameras(const Scenario& scenario) {
-  std::vector<RobotCamera> out;
+namespace {
+
+// The cameras of one owner's sensor modules (a robot's, or the loose ones).
+void AddSensorModuleCameras(const std::vector<SensorModule>& sensor_modules,
+                            const std::string& owner, int robot,
+                            std::vector<ScenarioCamera>* out) {
+  int n = 0;
+  for (size_t k = 0; k < sensor_modules.size(); ++k) {
+    const SensorModule& sm = sensor_modules[k];
+    for (size_t i = 0; i < sm.cameras.size(); ++i) {
+      ScenarioCamera c;
+      c.owner = owner;
+      c.robot = robot;
+      c.camera = n++;
+      c.sensor_module = static_cast<int>(k);
+      c.part_guid = sm.guid;
+      c.name = mjcf_names::SensorKindSite(owner, static_cast<int>(k), "camera",
+                                          static_cast<int>(i));
+      c.part = sm.cameras[i];
+      out->push_back(std::move(c));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<ScenarioCamera> ScenarioCameras(const Scenario& scenario) {
+  std::vector<ScenarioCamera> out;
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
-    const Robot& robot = scenario.robots[r];
-    const std::string name =
-        mjcf_names::RobotName(scenario, static_cast<int>(r));
-    int n = 0;
-    for (size_t k = 0; k < robot.sensor_modules.size(); ++k) {
-      const SensorModule& sm = robot.sensor_modules[k];
-      for (size_t i = 0; i < sm.cameras.size(); ++i) {
-        RobotCamera c;
-        c.robot = static_cast<int>(r);
-        c.robot_name = name;
-        c.camera = n++;
-        c.sensor_module = static_cast<int>(k);
-        c.name = mjcf_names::SensorKindSite(name, static_cast<int>(k), "camera",
-                                            static_cast<int>(i));
-        c.part = sm.cameras[i];
-        out.push_back(std::move(c));
-      }
+    AddSensorModuleCameras(scenario.robots[r].sensor_modules,
+                           mjcf_names::RobotName(scenario, static_cast<int>(r)),
+                           static_cast<int>(r), &out);
+  }
+  AddSensorModuleCameras(scenario.loose_sensor_modules,
+                         mjcf_names::LooseRobot(), -1, &out);
+  int n = 0;
+  for (size_t o = 0; o < scenario.scene_objects.size(); ++o) {
+    const SceneObject& object = scenario.scene_objects[o];
+    for (size_t i = 0; i < object.cameras.size(); ++i) {
+      ScenarioCamera c;
+      c.owner = kSceneOwnerName;
+      c.camera = n++;
+      c.scene_object = static_cast<int>(o);
+      c.part_guid = object.guid;
+      c.name = mjcf_names::SceneObjectCamera(static_cast<int>(o),
+                                             static_cast<int>(i));
+      c.part = object.cameras[i];
+      out.push_back(std::move(c));
     }
   }
   return out;
@@ -38,12 +66,12 @@ std::vector<RobotCamera> RobotCameras(const Scenario& scenario) {
 
 CameraImageRenderer::CameraImageRenderer(const mjModel* model,
                                          const Scenario& scenario)
-    : model_(model), cameras_(RobotCameras(scenario)) {
+    : model_(model), cameras_(ScenarioCameras(scenario)) {
   if (model == nullptr) {
     throw std::invalid_argument("CameraImageRenderer: null model");
   }
   int width = 16, height = 16;
-  for (RobotCamera& c : cameras_) {
+  for (ScenarioCamera& c : cameras_) {
     c.mj_camera = mj_name2id(model, mjOBJ_CAMERA, c.name.c_str());
     if (c.mj_camera < 0) {
       throw std::runtime_error("camera '" + c.name + "' is not in the model");
@@ -90,9 +118,9 @@ CameraImageRenderer::~CameraImageRenderer() {
   mjv_freeScene(&scene_);
 }
 
-int CameraImageRenderer::Find(int robot, int camera) const {
+int CameraImageRenderer::Find(const std::string& owner, int camera) const {
   for (size_t i = 0; i < cameras_.size(); ++i) {
-    if (cameras_[i].robot == robot && cameras_[i].camera == camera) {
+    if (cameras_[i].owner == owner && cameras_[i].camera == camera) {
       return static_cast<int>(i);
     }
   }
@@ -101,12 +129,17 @@ int CameraImageRenderer::Find(int robot, int camera) const {
 
 void CameraImageRenderer::Render(int index, mjData* data, std::int64_t seq,
                                  std::vector<std::uint8_t>* rgb) {
-  const RobotCamera& c = cameras_.at(static_cast<size_t>(index));
+  const ScenarioCamera& c = cameras_.at(static_cast<size_t>(index));
   const int w = c.part.width, h = c.part.height;
   mjvCamera cam;
   mjv_defaultCamera(&cam);
   cam.type = mjCAMERA_FIXED;
   cam.fixedcamid = c.mj_camera;
+  // mjv_updateScene places the headlight from the scene's camera before it
+  // moves that camera to `cam`: without this, a picture would be lit from
+  // wherever the previous one was taken (another camera's pose), so the
+  // same state would not always give the same picture.
+  mjv_updateCamera(model_, data, &cam, &scene_);
   mjv_updateScene(model_, data, &option_, nullptr, &cam, mjCAT_ALL, &scene_);
   // The camera's own clipping planes (MuJoCo's are one pair for the whole
   // model, in units of its extent); the frustum keeps its field of view.
@@ -131,10 +164,13 @@ void CameraImageRenderer::Render(int index, mjData* data, std::int64_t seq,
     std::memcpy(rgb->data() + row * y, raw_.data() + row * (h - 1 - y), row);
   }
   if (c.part.noise > 0) {
-    // The same seed, robot, camera and state give the same noise.
+    // The same seed, owner, camera and state give the same noise (a
+    // robot by its index, the loose parts and the scene by their names).
+    const std::uint64_t owner = c.robot >= 0
+                                    ? static_cast<std::uint64_t>(c.robot)
+                                    : Fnv1a64(c.owner.data(), c.owner.size());
     const std::uint64_t ids[4] = {static_cast<std::uint64_t>(c.part.seed),
-                                  static_cast<std::uint64_t>(c.robot),
-                                  static_cast<std::uint64_t>(c.camera),
+                                  owner, static_cast<std::uint64_t>(c.camera),
                                   static_cast<std::uint64_t>(seq)};
     const std::uint64_t key = Fnv1a64(ids, sizeof ids);
     for (size_t i = 0; i < rgb->size(); ++i) {

@@ -1,9 +1,10 @@
-// What a scenario's robot cameras (<Camera> parts of sensor modules) see:
-// each camera's picture rendered off-screen by MuJoCo from the poses in an
-// mjData (the physics' own, or one StatePoseMapper posed from states),
-// with the camera's field of view, size, clipping and seeded pixel noise.
-// The one renderer mrsim-camera, Python's Simulation.camera_image and the
-// studio share. Needs a current OpenGL context (GlContext or a window).
+// What a scenario's cameras (<Camera> parts of robots' and loose sensor
+// modules and of scene objects) see: each camera's picture rendered
+// off-screen by MuJoCo from the poses in an mjData (the physics' own, or
+// one StatePoseMapper posed from states), with the camera's field of view,
+// size, clipping and seeded pixel noise. The one renderer mrsim-camera,
+// Python's Simulation.camera_image and the studio share. Needs a current
+// OpenGL context (GlContext or a window).
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -16,20 +17,30 @@
 
 namespace mrsim {
 
-// One camera of one robot, numbered as camera_image_t numbers them.
-struct RobotCamera {
-  int robot = 0;  // index in the scenario's robots
-  std::string robot_name;
-  int camera = 0;         // index among the robot's cameras
-  int sensor_module = 0;  // index of its sensor module in the robot
-  std::string name;       // its MuJoCo camera, "<robot>/sm<k>/camera<i>"
-  int mj_camera = -1;     // id in the model
+// One camera of the scenario, numbered as camera_image_t numbers them:
+// from 0 within its owner, the robot it is on, or "loose" (the loose
+// sensor modules) or "scene" (the scene objects; kLooseOwnerName,
+// kSceneOwnerName). The owner is the message's `robot` and the end of its
+// channel, <prefix>_CAMERA_<owner> (docs/camera.md).
+struct ScenarioCamera {
+  std::string owner;       // robot name, "loose" or "scene"
+  int robot = -1;          // index in the scenario's robots; -1: none
+  int camera = 0;          // index among the owner's cameras
+  int sensor_module = -1;  // its sensor module in the robot or the loose
+                           // list; -1 on a scene object
+  int scene_object = -1;   // its scene object; -1 on a sensor module
+  std::string part_guid;   // guid of its sensor module or scene object
+  std::string name;        // its MuJoCo camera, "<owner>/sm<k>/camera<i>"
+                           // or "scene/obj<k>/camera<i>"
+  int mj_camera = -1;      // id in the model
   Camera part;
 };
 
-// Every camera of the scenario's robots, in robot order, then sensor-module
-// order, then each module's <cameras> order.
-std::vector<RobotCamera> RobotCameras(const Scenario& scenario);
+// Every camera of the scenario: the robots' in robot order, then
+// sensor-module order, then each module's <cameras> order; then the loose
+// sensor modules' ("loose"), then the scene objects' ("scene"), in the
+// same way.
+std::vector<ScenarioCamera> ScenarioCameras(const Scenario& scenario);
 
 class CameraImageRenderer {
  public:
@@ -41,9 +52,10 @@ class CameraImageRenderer {
   CameraImageRenderer(const CameraImageRenderer&) = delete;
   CameraImageRenderer& operator=(const CameraImageRenderer&) = delete;
 
-  const std::vector<RobotCamera>& cameras() const { return cameras_; }
-  // Index in cameras() of robot `robot`'s camera `camera`, or -1.
-  int Find(int robot, int camera) const;
+  const std::vector<ScenarioCamera>& cameras() const { return cameras_; }
+  // Index in cameras() of camera `camera` of `owner` (a robot's name,
+  // "loose" or "scene"), or -1.
+  int Find(const std::string& owner, int camera) const;
 
   // Renders cameras()[index] from the poses in `data` (cam_xpos/cam_xmat
   // and every geom's; mj_forward or StatePoseMapper::Apply filled them)
@@ -55,7 +67,7 @@ class CameraImageRenderer {
 
  private:
   const mjModel* model_;
-  std::vector<RobotCamera> cameras_;
+  std::vector<ScenarioCamera> cameras_;
   mjvScene scene_;
   mjvOption option_;
   mjrContext context_;

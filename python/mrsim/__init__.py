@@ -10,7 +10,8 @@ mrsim._core); nothing is implemented a second time in Python.
   parts overlapping at the start refused (``OverlapError``, as mrsim-sim)
   unless ``allow_overlap=True``,
   ``detach``/``attach``, checkpoints; ``sim.camera_image()`` renders a
-  robot's camera as an (H, W, 3) uint8 array, ``sim.cameras()`` lists them.
+  robot's camera as an (H, W, 3) uint8 array (``sim.camera_image("scene")``
+  a scene object's), ``sim.cameras()`` lists them.
 - Gaits: ``Gait("forward")``, ``gait.targets(t, state)``,
   ``sim.set_controller(gait); sim.run(10)``.
 - Episodes and the optimiser: ``run_episode``, ``run_task("pole")``,

@@ -225,7 +225,8 @@ class Node:
 
     def on_image(self, robot: str, callback: Callable[[Any], None]) -> None:
         """callback(picture) for every camera picture of the robot (a
-        Message; picture.image: (H, W, 3) uint8)."""
+        Message; picture.image: (H, W, 3) uint8). robot "scene" ("loose"):
+        the scene objects' (loose sensor modules') cameras."""
         self.subscribe("camera", robot, callback)
 
     def on_gait_status(self, robot: str,
@@ -298,8 +299,10 @@ class Node:
     def next_image(self, robot: str, camera: Optional[int] = None,
                    timeout: Optional[float] = 5.0) -> Message:
         """The next camera picture of the robot (of its camera `camera`
-        when given): a Message with image ((H, W, 3) uint8), seq, time,
-        camera, name, width, height, encoding; raises TimeoutError."""
+        when given; robot "scene" or "loose": of the scene objects' or the
+        loose sensor modules' cameras): a Message with image ((H, W, 3)
+        uint8), seq, time, camera, name, width, height, encoding; raises
+        TimeoutError."""
         return self._next(self._channel_of("camera", robot), timeout,
                           lambda m: camera is None or m.camera == camera)
 

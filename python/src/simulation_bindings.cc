@@ -21,11 +21,11 @@
 #include "python/src/gait_object.h"
 #include "python/src/simulation_cameras.h"
 #include "python/src/state_object.h"
-#include "sim_core/physics/checkpoint.h"
 #include "sim_core/export/overlap_check.h"
+#include "sim_core/physics/checkpoint.h"
 #include "sim_core/physics/physics.h"
-#include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/physics/scene_object_state.h"
+#include "sim_core/scenario/scenario_xml.h"
 
 namespace py = pybind11;
 
@@ -61,6 +61,19 @@ class Simulation {
       throw py::key_error("no robot '" + name + "' (robots: " + names + ")");
     }
     return i;
+  }
+
+  // Whose cameras `robot` names: a robot (index or name), or "loose" /
+  // "scene" for the cameras on loose sensor modules / scene objects.
+  std::string CameraOwner(const py::object& robot) const {
+    if (py::isinstance<py::str>(robot)) {
+      const std::string name = robot.cast<std::string>();
+      if (physics_->robot_index(name) < 0 &&
+          (name == kSceneOwnerName || name == kLooseOwnerName)) {
+        return name;
+      }
+    }
+    return physics_->robot_name(Robot(robot));
   }
 
   std::shared_ptr<StateObject> State(int robot) {
@@ -143,33 +156,32 @@ class Simulation {
 
   int steps_per_period() const { return steps_per_period_; }
 
-  // Seconds of one render of robot `robot`'s camera `camera` inside C++
-  // (the benchmark baseline of camera_image: no Python around it).
-  double TimeCameraRender(int robot, int camera) {
-    const int c = SimulationCameras::Resolve(physics_->scenario(), robot,
-                                             physics_->robot_name(robot),
+  // Seconds of one render of `owner`'s camera `camera` inside C++ (the
+  // benchmark baseline of camera_image: no Python around it).
+  double TimeCameraRender(const std::string& owner, int camera) {
+    const int c = SimulationCameras::Resolve(physics_->scenario(), owner,
                                              camera, std::string());
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(mutex_);
     const auto start = std::chrono::steady_clock::now();
-    cameras_.Render(*physics_, robot, c, 0);
+    cameras_.Render(*physics_, owner, c, 0);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                          start)
         .count();
   }
 
-  // Robot `robot`'s camera (index, or MuJoCo name when it is a str) as an
+  // `owner`'s camera (index, or MuJoCo name when it is a str) as an
   // (H, W, 3) uint8 array, rendered with the GIL released.
-  py::array_t<std::uint8_t> CameraImage(int robot, const py::object& camera,
+  py::array_t<std::uint8_t> CameraImage(const std::string& owner,
+                                        const py::object& camera,
                                         const std::optional<int64_t>& seq) {
     const bool by_name = py::isinstance<py::str>(camera);
     const int c = SimulationCameras::Resolve(
-        physics_->scenario(), robot, physics_->robot_name(robot),
-        by_name ? 0 : camera.cast<int>(),
+        physics_->scenario(), owner, by_name ? 0 : camera.cast<int>(),
         by_name ? camera.cast<std::string>() : std::string());
     int width = 0, height = 0;
-    for (const RobotCamera& rc :
-         SimulationCameras::Of(physics_->scenario(), robot)) {
+    for (const ScenarioCamera& rc :
+         SimulationCameras::Of(physics_->scenario(), owner)) {
       if (rc.camera == c) width = rc.part.width, height = rc.part.height;
     }
     std::vector<std::uint8_t> rgb;
@@ -179,7 +191,7 @@ class Simulation {
       // Without a seq the noise is keyed by the physics steps taken.
       const int64_t key =
           seq ? *seq : std::llround(physics_->time() / physics_->timestep());
-      rgb = cameras_.Render(*physics_, robot, c, key);
+      rgb = cameras_.Render(*physics_, owner, c, key);
     }
     py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(height),
                                    static_cast<py::ssize_t>(width),
@@ -435,12 +447,14 @@ step).)doc");
       "cameras",
       [](Simulation& s, const py::object& robot) {
         py::list out;
-        for (const RobotCamera& rc :
-             SimulationCameras::Of(s.physics().scenario(), s.Robot(robot))) {
+        for (const ScenarioCamera& rc : SimulationCameras::Of(
+                 s.physics().scenario(), s.CameraOwner(robot))) {
           py::dict d;
           d["camera"] = rc.camera;
           d["name"] = rc.name;
+          d["owner"] = rc.owner;
           d["sensor_module"] = rc.sensor_module;
+          d["scene_object"] = rc.scene_object;
           d["width"] = rc.part.width;
           d["height"] = rc.part.height;
           d["fovy"] = rc.part.fovy;
@@ -454,11 +468,15 @@ step).)doc");
         return out;
       },
       py::arg("robot") = 0, R"doc(
-The cameras of a robot (the <Camera> parts of its sensor modules), in the
-order camera_image() and camera_image_t number them: dicts of camera (the
-index), name (MuJoCo's "<robot>/sm<k>/camera<i>"), sensor_module, width,
-height (px), fovy, tilt (deg), rate (Hz), near, far (m) and noise. Empty
-for a robot without cameras.)doc");
+The cameras of a robot (the <Camera> parts of its sensor modules), or with
+robot="scene" those of the scene objects, with robot="loose" those of the
+loose sensor modules, in the order camera_image() and camera_image_t
+number them: dicts of camera (the index), name (MuJoCo's
+"<robot>/sm<k>/camera<i>", "scene/obj<k>/camera<i>"), owner (the robot's
+name, "scene" or "loose": camera_image_t's robot), sensor_module (-1 on a
+scene object), scene_object (-1 on a sensor module), width, height (px),
+fovy, tilt (deg), rate (Hz), near, far (m) and noise. Empty for an owner
+without cameras.)doc");
   c.def(
       "camera_image",
       [](Simulation& s, const py::object& robot, const py::object& camera,
@@ -467,14 +485,16 @@ for a robot without cameras.)doc");
             !py::isinstance<py::str>(camera)) {
           throw py::type_error("camera: expected an index or a camera name");
         }
-        return s.CameraImage(s.Robot(robot), camera, seq);
+        return s.CameraImage(s.CameraOwner(robot), camera, seq);
       },
       py::arg("robot") = 0, py::arg("camera") = 0, py::arg("seq") = py::none(),
       R"doc(
-What a robot's camera sees now: an (H, W, 3) uint8 array, RGB, top row
-first, rendered in this process by the renderer mrsim-camera uses (off-
-screen OpenGL: EGL, no display needed; made on the first call) with the GIL
-released. camera: an index of cameras() or a camera's name. seq keys the
+What a camera sees now: an (H, W, 3) uint8 array, RGB, top row first.
+robot: a robot (index or name) whose camera it is, or "scene" (a scene
+object's camera: sim.camera_image("scene", 0) is the first) or "loose" (a
+loose sensor module's). Rendered in this process by the renderer
+mrsim-camera uses (off-screen OpenGL: EGL, no display needed; made on the
+first call) with the GIL released. camera: an index of cameras() or a camera's name. seq keys the
 camera's pixel noise (default: the physics steps taken), so the same state
 and seq give the same picture bit for bit. Raises IndexError naming the
 robots or cameras that exist, RuntimeError naming what OpenGL could not
@@ -534,7 +554,7 @@ lockstep with mrsim-gait.)doc");
   m.def(
       "_time_cpp_camera",
       [](Simulation& s, const py::object& robot, int camera) {
-        return s.TimeCameraRender(s.Robot(robot), camera);
+        return s.TimeCameraRender(s.CameraOwner(robot), camera);
       },
       py::arg("simulation"), py::arg("robot") = 0, py::arg("camera") = 0,
       "Seconds of one CameraImageRenderer::Render of a camera timed in C++ "

@@ -51,14 +51,21 @@ class CurrentGl {
   CurrentGl& operator=(const CurrentGl&) = delete;
 };
 
-std::string Listing(const std::vector<RobotCamera>& cameras) {
+std::string Listing(const std::vector<ScenarioCamera>& cameras) {
   std::string out;
-  for (const RobotCamera& c : cameras) {
+  for (const ScenarioCamera& c : cameras) {
     out += (out.empty() ? "" : ", ") + std::to_string(c.camera) + " '" +
            c.name + "' " + std::to_string(c.part.width) + "x" +
            std::to_string(c.part.height);
   }
   return out;
+}
+
+// "robot 'snake' has", "the scene objects have", ...
+std::string OwnerHas(const std::string& owner) {
+  if (owner == kSceneOwnerName) return "the scene objects have";
+  if (owner == kLooseOwnerName) return "the loose sensor modules have";
+  return "robot '" + owner + "' has";
 }
 
 }  // namespace
@@ -76,35 +83,36 @@ SimulationCameras::~SimulationCameras() {
   }
 }
 
-std::vector<RobotCamera> SimulationCameras::Of(const Scenario& scenario,
-                                               int robot) {
-  std::vector<RobotCamera> out;
-  for (RobotCamera& c : RobotCameras(scenario)) {
-    if (c.robot == robot) out.push_back(std::move(c));
+std::vector<ScenarioCamera> SimulationCameras::Of(const Scenario& scenario,
+                                                  const std::string& owner) {
+  std::vector<ScenarioCamera> out;
+  for (ScenarioCamera& c : ScenarioCameras(scenario)) {
+    if (c.owner == owner) out.push_back(std::move(c));
   }
   return out;
 }
 
-int SimulationCameras::Resolve(const Scenario& scenario, int robot,
-                               const std::string& robot_name, int camera,
+int SimulationCameras::Resolve(const Scenario& scenario,
+                               const std::string& owner, int camera,
                                const std::string& name) {
-  const std::vector<RobotCamera> cameras = Of(scenario, robot);
+  const std::vector<ScenarioCamera> cameras = Of(scenario, owner);
   if (cameras.empty()) {
-    throw std::out_of_range("robot '" + robot_name +
-                            "' has no camera (a <Camera> in a sensor "
-                            "module's <cameras>: docs/camera.md)");
+    throw std::out_of_range(OwnerHas(owner) +
+                            " no camera (a <Camera> in a sensor module's or "
+                            "a scene object's <cameras>: docs/camera.md)");
   }
-  for (const RobotCamera& c : cameras) {
+  for (const ScenarioCamera& c : cameras) {
     if (name.empty() ? c.camera == camera : c.name == name) return c.camera;
   }
   throw std::out_of_range(
       "camera " + (name.empty() ? std::to_string(camera) : "'" + name + "'") +
-      ": robot '" + robot_name + "' has " + std::to_string(cameras.size()) +
+      ": " + OwnerHas(owner) + " " + std::to_string(cameras.size()) +
       " camera(s): " + Listing(cameras));
 }
 
 std::vector<std::uint8_t> SimulationCameras::Render(const Physics& physics,
-                                                    int robot, int camera,
+                                                    const std::string& owner,
+                                                    int camera,
                                                     std::int64_t seq) {
   std::lock_guard<std::mutex> lock(RenderMutex());
   if (gl_ == nullptr) gl_ = SharedGlContext();
@@ -116,10 +124,10 @@ std::vector<std::uint8_t> SimulationCameras::Render(const Physics& physics,
                                                       physics.scenario());
     model_ = physics.model();
   }
-  const int index = renderer_->Find(robot, camera);
+  const int index = renderer_->Find(owner, camera);
   if (index < 0) {
-    throw std::out_of_range("camera " + std::to_string(camera) + " of robot " +
-                            std::to_string(robot) + " is not in the model");
+    throw std::out_of_range("camera " + std::to_string(camera) + " of '" +
+                            owner + "' is not in the model");
   }
   std::vector<std::uint8_t> rgb;
   // data(), not mutable_data(): rendering reads the poses and changes no

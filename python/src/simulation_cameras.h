@@ -24,25 +24,26 @@ class SimulationCameras {
   SimulationCameras(const SimulationCameras&) = delete;
   SimulationCameras& operator=(const SimulationCameras&) = delete;
 
-  // The cameras of robot `robot` of `scenario`, camera_image_t's numbering
-  // (no OpenGL needed).
-  static std::vector<RobotCamera> Of(const Scenario& scenario, int robot);
+  // The cameras of `owner` in `scenario` (a robot's name, "loose" or
+  // "scene"), camera_image_t's numbering (no OpenGL needed).
+  static std::vector<ScenarioCamera> Of(const Scenario& scenario,
+                                        const std::string& owner);
 
-  // Which of robot `robot`'s cameras `camera` is (its index, or the
-  // MuJoCo name "<robot>/sm<k>/camera<i>" when `name` is not empty). Throws
-  // std::out_of_range naming the cameras the robot has.
-  static int Resolve(const Scenario& scenario, int robot,
-                     const std::string& robot_name, int camera,
-                     const std::string& name);
+  // Which of `owner`'s cameras `camera` is (its index, or the MuJoCo name
+  // "<owner>/sm<k>/camera<i>" when `name` is not empty). Throws
+  // std::out_of_range naming the cameras the owner has.
+  static int Resolve(const Scenario& scenario, const std::string& owner,
+                     int camera, const std::string& name);
 
-  // Robot `robot`'s camera `camera` as the physics poses it now: height x
+  // `owner`'s camera `camera` as the physics poses it now: height x
   // width x 3 bytes, red first, top row first. `seq` keys the pixel noise.
   // Makes the shared GL context current on the calling thread for the
   // render (any thread may render; renders of all simulations are
   // serialised). Throws
   // std::runtime_error naming what OpenGL could not make.
-  std::vector<std::uint8_t> Render(const Physics& physics, int robot,
-                                   int camera, std::int64_t seq);
+  std::vector<std::uint8_t> Render(const Physics& physics,
+                                   const std::string& owner, int camera,
+                                   std::int64_t seq);
 
  private:
   std::shared_ptr<GlContext> gl_;  // the process's, while anyone renders

@@ -17,8 +17,8 @@
 
 #include "common/hash.h"
 #include "sim_core/mesh/box_union.h"
-#include "sim_core/mjcf/contact_model.h"
 #include "sim_core/mesh/embedded_mesh.h"
+#include "sim_core/mjcf/contact_model.h"
 #include "sim_core/scenario/face_geometry.h"
 #include "sim_core/scenario/part_look.h"
 #include "sim_core/scenario/scenario_validate.h"
@@ -784,6 +784,23 @@ void Builder::AddSceneObjects() {
       g.mass = 1.0;  // irrelevant for a body welded to the world
     }
     bodies_[body].geoms.push_back(g);
+    // Its cameras, on the faces of the box around it, as a sensor
+    // module's: on a static object, a fixed view of the world.
+    const SensorKind* camera_kind = FindSensorKind("camera");
+    const Vector3d box = SceneObjectBox(o);
+    for (size_t k = 0; k < o.cameras.size(); ++k) {
+      SensorCamera c;
+      c.camera = o.cameras[k];
+      c.face = c.camera.sensor_position;
+      const CameraPose pose = CameraOnFace(c.camera, box);
+      c.position = pose.position;
+      c.rotation = pose.rotation;
+      const std::string camera_name = mjcf_names::SceneObjectCamera(
+          static_cast<int>(i), static_cast<int>(k));
+      bodies_[body].cameras.push_back(
+          {camera_name, c.position, c.rotation, c.camera.fovy});
+      AddFrustumMarker(camera_name, *camera_kind, c, box / 2, &bodies_[body]);
+    }
   }
 }
 
@@ -1073,8 +1090,8 @@ std::string Builder::Build() {
   }
   if (!s_.loose_frames.empty() || !s_.loose_sensor_modules.empty()) {
     std::vector<MjcfLock> locks;
-    AddRobot("loose", {}, s_.loose_sensor_modules, s_.loose_frames,
-             s_.loose_joints, false, &locks);
+    AddRobot(mjcf_names::LooseRobot(), {}, s_.loose_sensor_modules,
+             s_.loose_frames, s_.loose_joints, false, &locks);
   }
   AddSceneObjects();
   AddTerrain();

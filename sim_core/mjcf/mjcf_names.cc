@@ -45,8 +45,12 @@ std::string Weld(const std::string& robot, const std::string& lock) {
   return robot + "/weld/" + lock;
 }
 std::string SceneObject(int index) {
-  return "scene/obj" + std::to_string(index);
+  return std::string(kSceneOwnerName) + "/obj" + std::to_string(index);
 }
+std::string SceneObjectCamera(int index, int k) {
+  return SceneObject(index) + "/camera" + (k == 0 ? "" : std::to_string(k));
+}
+std::string LooseRobot() { return kLooseOwnerName; }
 std::string Terrain() { return "scene/terrain"; }
 }  // namespace mjcf_names
 

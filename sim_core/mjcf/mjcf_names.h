@@ -34,6 +34,11 @@ std::string DistanceSite(const std::string& robot, int sm, int k);
 std::string Weld(const std::string& robot,
                  const std::string& lock);  // "r/weld/<lock name>"
 std::string SceneObject(int index);         // "scene/obj<i>"
-std::string Terrain();                      // "scene/terrain" (hfield or plane)
+// Camera k of scene object `index`, named as a sensor module's:
+// "scene/obj2/camera" (k > 0: "scene/obj2/camera1").
+std::string SceneObjectCamera(int index, int k);
+// The robot name the loose parts' bodies go by: "loose" ("loose/sm0").
+std::string LooseRobot();
+std::string Terrain();  // "scene/terrain" (hfield or plane)
 }  // namespace mjcf_names
 }  // namespace mrsim

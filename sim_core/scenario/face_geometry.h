@@ -26,4 +26,23 @@ struct PlatePose {
 };
 PlatePose ForcePlatePose(const SensorModule& sm);
 
+// Where a camera sits on a face (camera.sensor_position) of a box of full
+// extents `size` centred on its part's origin (a sensor module, or the box
+// around a scene object): at the face's centre, in MuJoCo's camera frame (x
+// right, y up, looking along -z) looking out along the face's normal, its
+// picture's up the part's +z (for the top and bottom faces its +x), turned
+// down by camera.tilt. Throws std::out_of_range as SensorFaceNormal.
+struct CameraPose {
+  Eigen::Vector3d position;
+  Eigen::Quaterniond rotation;
+};
+CameraPose CameraOnFace(const Camera& camera, const Eigen::Vector3d& size);
+
+// The full extents of the box around a scene object, whose faces its
+// cameras sit on: a Box's size; a sphere's diameter (size.x) on every axis;
+// a cylinder's or capsule's diameter (size.x) across and length (size.z)
+// along z. The sphere, cylinder and capsule touch each face at its centre,
+// so a camera there sits on the object's surface.
+Eigen::Vector3d SceneObjectBox(const SceneObject& object);
+
 }  // namespace mrsim

@@ -123,12 +123,14 @@ struct Imu {
   int seed = 0;
 };
 
-// A camera on a face of a sensor module, looking out along the face's
-// normal (tilted by `tilt` about its horizontal axis): what the robot sees,
-// rendered by mrsim-camera or Simulation.camera_image from the module's
-// pose at `rate` pictures per simulated second. Pixel noise of standard
-// deviation `noise` (grey levels, 0..255) is drawn from `seed`, the state's
-// seq and the pixel: the same seed gives the same pictures (docs/camera.md).
+// A camera on a face of a sensor module (or of the box around a scene
+// object), looking out along the face's normal (tilted by `tilt` about its
+// horizontal axis): what the robot sees, or, on a static scene object, a
+// fixed view of the world, rendered by mrsim-camera or
+// Simulation.camera_image from its part's pose at `rate` pictures per
+// simulated second. Pixel noise of standard deviation `noise` (grey
+// levels, 0..255) is drawn from `seed`, the state's seq and the pixel: the
+// same seed gives the same pictures (docs/camera.md).
 struct Camera {
   std::string guid;
   int sensor_position = 4;  // front
@@ -201,6 +203,9 @@ struct SceneObject {
   PrimitiveShape shape = PrimitiveShape::kBox;
   double mass = 0.1;
   bool is_static = false;
+  // Up to six, one per face of the box around the object (SceneObjectBox,
+  // face_geometry.h); on a static object, a fixed camera on the world.
+  std::vector<Camera> cameras;
 };
 
 // Contact parameters for a pair of materials (order does not matter).
@@ -246,6 +251,13 @@ struct SimulationSettings {
   double timestep = 0.002;  // s
   Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);
 };
+
+// The names parts outside any robot go by in MJCF names ("scene/obj2",
+// "loose/sm0") and as the owner of their cameras (camera_image_t.robot,
+// the channel <prefix>_CAMERA_scene; docs/camera.md): no robot may take
+// them.
+inline constexpr char kSceneOwnerName[] = "scene";
+inline constexpr char kLooseOwnerName[] = "loose";
 
 // Everything needed to start a simulation. Frames, joints, sensor modules
 // and scene objects may also appear without a robot (loose_* lists).

@@ -411,7 +411,8 @@ void Describe(V& v, Camera& s) {
                                "sensor_position",
                                "",
                                L::Range(0, 5, kSensorFaceList),
-                               "Face of the sensor module the camera looks out "
+                               "Face of its sensor module (or of the box "
+                               "around its scene object) the camera looks out "
                                "of, along the face's normal"};
   static const FieldInfo kFovy{
       "fovy",           "vertical field of view",
@@ -707,6 +708,19 @@ void Describe(V& v, SceneObject& o) {
   static const FieldInfo kStatic{
       "isStatic", "fixed in place", "is_static",
       "",         L::Any(),         "Fixed to the world where it is placed"};
+  // A camera sits on a face of the box around the object (a sphere's,
+  // cylinder's or capsule's touches it there), like a sensor module's: one
+  // convention for both, and the studio's face picker serves both.
+  static const ChildInfo kCameras = [] {
+    ChildInfo c = Wrapper("cameras", "Camera", "cameras",
+                          "Up to six cameras, one per face of the box "
+                          "around the object; on a static object, a fixed "
+                          "view of the world",
+                          false);
+    c.max_items = 6;
+    c.omit_when_empty = true;
+    return c;
+  }();
   v.Field(kGuid, o.guid);
   v.Field(kSize, o.size);
   DescribePose(v, o.position, o.rotation, o.quat_rotation);
@@ -714,6 +728,7 @@ void Describe(V& v, SceneObject& o) {
   v.Field(kShape, o.shape);
   v.Field(kMass, o.mass);
   v.Field(kStatic, o.is_static);
+  v.List(kCameras, o.cameras);
 }
 
 template <typename V>

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "sim_core/mesh/embedded_mesh.h"
-#include "sim_core/scenario/face_geometry.h"
 #include "sim_core/mesh/mesh_check.h"
+#include "sim_core/scenario/face_geometry.h"
 #include "sim_core/scenario/scenario_schema_inl.h"
 #include "sim_core/scenario/terrain.h"
 
@@ -183,6 +183,15 @@ class Validator {
            "'" +
                name + "'");
     }
+    if (name == kSceneOwnerName || name == kLooseOwnerName) {
+      Fail(
+          path_ + "/name",
+          fmt::format(
+              "'{}' names the scenario's {} (their MuJoCo bodies and "
+              "their cameras' channel), not a robot: choose another "
+              "robot name",
+              name, name == kSceneOwnerName ? "scene objects" : "loose parts"));
+    }
     auto [it, inserted] = robot_names_.emplace(name, path_ + "/name");
     if (!inserted) {
       Fail(path_ + "/name",
@@ -260,6 +269,7 @@ class Validator {
   }
   void After(const SensorModule& sm, bool) {
     in_sensor_module_ = false;
+    sensor_module_ = nullptr;
     AddGuid(sm.guid, true);
     if (robot_ < 0) return;
     CheckAboveTheGround(sm.position, sm.quat_rotation, sm.size,
@@ -314,7 +324,10 @@ class Validator {
                        "would draw nothing",
                        c.far_clip, c.near_clip));
     }
-    if (warnings_ != nullptr && robot_ >= 0 && sensor_module_ != nullptr &&
+    // A robot's sensor module or a loose one (looking into the loose
+    // parts beside it); a scene object's camera sits on the box around
+    // it, so it never looks into its own part.
+    if (warnings_ != nullptr && sensor_module_ != nullptr &&
         c.sensor_position >= 0 && c.sensor_position <= 5) {
       CheckViewLeavesClearOfTheRobot(*sensor_module_, c.sensor_position,
                                      SensorFaceNormal(c.sensor_position), true);
@@ -654,15 +667,21 @@ class Validator {
       return (local.cwiseAbs().array() < size.array() / 2).all();
     };
     std::string hit;
-    const Robot& r = s_.robots[robot_];
-    for (const Module& m : r.modules) {
-      for (const Frame& f : m.frames) {
-        if (!f.is_mesh() && inside(f.position, f.quat_rotation, f.scale)) {
-          hit = f.guid;
-        }
+    const auto frame_in_view = [&](const Frame& f) {
+      if (!f.is_mesh() && inside(f.position, f.quat_rotation, f.scale)) {
+        hit = f.guid;
       }
+    };
+    if (robot_ >= 0) {
+      for (const Module& m : s_.robots[robot_].modules) {
+        for (const Frame& f : m.frames) frame_in_view(f);
+      }
+    } else {
+      for (const Frame& f : s_.loose_frames) frame_in_view(f);
     }
-    for (const SensorModule& other : r.sensor_modules) {
+    for (const SensorModule& other : robot_ >= 0
+                                         ? s_.robots[robot_].sensor_modules
+                                         : s_.loose_sensor_modules) {
       if (&other != &sm &&
           inside(other.position, other.quat_rotation, other.size)) {
         hit = other.guid;
@@ -675,9 +694,12 @@ class Validator {
     if (camera) {
       Warn(path_ + "/sensorPosition",
            fmt::format("the camera on face {} ({}) looks straight into '{}', "
-                       "so it would see only that part of its own robot; put "
-                       "it on a face that looks out{}",
-                       face, kSensorFaceNames[face], hit, ahead));
+                       "so it would see only {}; put it on a face that looks "
+                       "out{}",
+                       face, kSensorFaceNames[face], hit,
+                       robot_ >= 0 ? "that part of its own robot"
+                                   : "that loose part beside it",
+                       ahead));
       return;
     }
     Warn(path_ + "/sensorPosition",

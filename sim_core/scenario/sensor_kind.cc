@@ -180,19 +180,9 @@ SensorKind CameraKind() {
     SensorCamera c;
     c.camera = sm.cameras.at(i);
     c.face = c.camera.sensor_position;
-    const Eigen::Vector3d n = SensorFaceNormal(c.face);
-    c.position = n * std::abs(n.dot(sm.size / 2));
-    const Eigen::Vector3d up0 = std::abs(n.z()) > 0.5
-                                    ? Eigen::Vector3d::UnitX().eval()
-                                    : Eigen::Vector3d::UnitZ().eval();
-    const double t = c.camera.tilt * 3.14159265358979323846 / 180;
-    const Eigen::Vector3d forward = std::cos(t) * n - std::sin(t) * up0;
-    const Eigen::Vector3d up = std::sin(t) * n + std::cos(t) * up0;
-    Eigen::Matrix3d axes;
-    axes.col(0) = forward.cross(up);  // right
-    axes.col(1) = up;
-    axes.col(2) = -forward;
-    c.rotation = Eigen::Quaterniond(axes).normalized();
+    const CameraPose pose = CameraOnFace(c.camera, sm.size);
+    c.position = pose.position;
+    c.rotation = pose.rotation;
     return c;
   };
   k.fields = [](SensorModule& sm, int i) { return FieldsOf(sm.cameras.at(i)); };

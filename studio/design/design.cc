@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/export/frame_mesh.h"
 #include "sim_core/scenario/embed_assets.h"
 #include "sim_core/scenario/face_geometry.h"
-#include "sim_core/export/frame_mesh.h"
 #include "sim_core/scenario/scenario_validate.h"
 #include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/scenario/sensor_face.h"
@@ -610,20 +610,40 @@ void Design::RemoveDistanceSensor(int k) {
   Commit(std::move(next), selection_);
 }
 
+std::vector<Camera>& Design::SelectedCameras(Scenario* next,
+                                             std::string* owner_guid) const {
+  if (selection_.kind == SelectionKind::kSceneObject) {
+    SceneObject& o = next->scene_objects.at(selection_.index);
+    *owner_guid = o.guid;
+    return o.cameras;
+  }
+  if (selection_.kind != SelectionKind::kSensorModule) {
+    throw DesignError("select a sensor module or a scene object first");
+  }
+  SensorModule& sm = SelectedSensorModule(next);
+  *owner_guid = sm.guid;
+  return sm.cameras;
+}
+
 void Design::AddCamera(int face) {
   Scenario next = scenario_;
-  MountCamera(&SelectedSensorModule(&next), face);
+  std::string guid;
+  MountCamera(&SelectedCameras(&next, &guid), guid, face);
   RefuseUselessRay(scenario_, next);
   Commit(std::move(next), selection_);
 }
 
 std::vector<int> Design::OpenCameraFaces() const {
   std::vector<int> faces;
-  if (selection_.kind != SelectionKind::kSensorModule) return faces;
+  if (selection_.kind != SelectionKind::kSensorModule &&
+      selection_.kind != SelectionKind::kSceneObject) {
+    return faces;
+  }
   for (int face = 0; face < 6; ++face) {
     Scenario next = scenario_;
     try {
-      MountCamera(&SelectedSensorModule(&next), face);
+      std::string guid;
+      MountCamera(&SelectedCameras(&next, &guid), guid, face);
       ValidateScenario(next);
       RefuseUselessRay(scenario_, next);
       faces.push_back(face);
@@ -634,41 +654,43 @@ std::vector<int> Design::OpenCameraFaces() const {
   return faces;
 }
 
-void Design::MountCamera(SensorModule* sm, int face) {
+void Design::MountCamera(std::vector<Camera>* cameras,
+                         const std::string& owner_guid, int face) {
   if (face < 0 || face > 5) {
     throw DesignError("face " + std::to_string(face) + ": expected 0..5 (" +
                       std::string(kSensorFaceList) + ")");
   }
-  if (sm->cameras.size() >= 6) {
-    throw DesignError("a sensor module carries at most six cameras");
+  if (cameras->size() >= 6) {
+    throw DesignError("a part carries at most six cameras");
   }
-  for (const Camera& c : sm->cameras) {
+  for (const Camera& c : *cameras) {
     if (c.sensor_position == face) {
       throw DesignError("face " + std::to_string(face) + " (" +
                         kSensorFaceNames[face] + ") already has a camera");
     }
   }
   auto used = [&](const std::string& guid) {
-    for (const Camera& c : sm->cameras) {
+    for (const Camera& c : *cameras) {
       if (c.guid == guid) return true;
     }
     return false;
   };
   int k = 0;
-  while (used(sm->guid + "/c" + std::to_string(k))) ++k;
+  while (used(owner_guid + "/c" + std::to_string(k))) ++k;
   Camera camera;
-  camera.guid = sm->guid + "/c" + std::to_string(k);
+  camera.guid = owner_guid + "/c" + std::to_string(k);
   camera.sensor_position = face;
-  sm->cameras.push_back(camera);
+  cameras->push_back(camera);
 }
 
 void Design::RemoveCamera(int k) {
   Scenario next = scenario_;
-  SensorModule& sm = SelectedSensorModule(&next);
-  if (k < 0 || k >= static_cast<int>(sm.cameras.size())) {
+  std::string guid;
+  std::vector<Camera>& cameras = SelectedCameras(&next, &guid);
+  if (k < 0 || k >= static_cast<int>(cameras.size())) {
     throw DesignError("no camera " + std::to_string(k));
   }
-  sm.cameras.erase(sm.cameras.begin() + k);
+  cameras.erase(cameras.begin() + k);
   Commit(std::move(next), selection_);
 }
 

@@ -116,13 +116,15 @@ class Design {
   // Removes distance sensor `k` of the selected sensor module.
   void RemoveDistanceSensor(int k);
   // A camera (sensor_kind.h's "camera", default picture) on face `face`
-  // of the selected sensor module, looking out of that face; one per face,
-  // at most six. Refused on a face that looks into the robot (it would see
-  // only its neighbour).
+  // of the selected sensor module or scene object (a face of the box
+  // around it; on a static object, a fixed view of the world), looking out
+  // of that face; one per face, at most six. Refused on a face that looks
+  // into the robot (it would see only its neighbour).
   void AddCamera(int face);
-  // The faces AddCamera would take on the selected sensor module.
+  // The faces AddCamera would take on the selected sensor module or scene
+  // object.
   std::vector<int> OpenCameraFaces() const;
-  // Removes camera `k` of the selected sensor module.
+  // Removes camera `k` of the selected sensor module or scene object.
   void RemoveCamera(int k);
   // Sets one field from text, e.g. SetField({sel, "joint", "Kp"}, "12").
   void SetField(const FieldAddress& address, const std::string& text);
@@ -157,8 +159,8 @@ class Design {
 
   // Writes the file (atomically); throws std::runtime_error naming it.
   // With embed_assets, the file carries the terrain image and mesh files
-  // as base64 (sim_core/scenario/embed_assets.h), the design on screen keeps its
-  // paths.
+  // as base64 (sim_core/scenario/embed_assets.h), the design on screen keeps
+  // its paths.
   void Save(bool embed_assets = false);
   void SaveAs(const std::string& path, bool embed_assets = false);
 
@@ -189,9 +191,15 @@ class Design {
   SensorModule& SelectedSensorModule(Scenario* next) const;
   // Mounts a ray on `face` of `sm`, or throws DesignError (not validated).
   static void AddRay(SensorModule* sm, int face);
-  // Mounts a camera on `face` of `sm`, or throws DesignError (not
-  // validated).
-  static void MountCamera(SensorModule* sm, int face);
+  // The cameras of the selected sensor module or scene object in `next`
+  // and its guid (the new cameras' guids start with it), or throws
+  // DesignError.
+  std::vector<Camera>& SelectedCameras(Scenario* next,
+                                       std::string* owner_guid) const;
+  // Mounts a camera on `face` of a part carrying `cameras`, or throws
+  // DesignError (not validated).
+  static void MountCamera(std::vector<Camera>* cameras,
+                          const std::string& owner_guid, int face);
 
   Scenario scenario_;
   Selection selection_;

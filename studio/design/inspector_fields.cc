@@ -81,9 +81,15 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       break;
     case SelectionKind::kSceneObject:
       if (in(sel.index, s.scene_objects.size())) {
+        SceneObject& o = s.scene_objects[sel.index];
         groups.push_back(
-            {"", "Scene object",
-             WithoutInert(FieldsOf(s.scene_objects[sel.index]), {"rotation"})});
+            {"", "Scene object", WithoutInert(FieldsOf(o), {"rotation"})});
+        // Its cameras, as a sensor module's: "cameras[k]", "Camera k".
+        for (size_t k = 0; k < o.cameras.size(); ++k) {
+          groups.push_back({"cameras[" + std::to_string(k) + "]",
+                            "Camera " + std::to_string(k),
+                            FieldsOf(o.cameras[k])});
+        }
       }
       break;
     case SelectionKind::kScene:

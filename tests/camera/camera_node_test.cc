@@ -15,9 +15,9 @@
 
 #include "camera/camera_image_codec.h"
 #include "camera/state_camera_renderer.h"
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
 #include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
 
 namespace mrsim {
 namespace {
@@ -26,18 +26,30 @@ namespace {
 // whose bytes are the seq.
 class FakeRenderer : public CameraFrameRenderer {
  public:
-  explicit FakeRenderer(double rate = 30) {
-    RobotCamera c;
+  // `scene_camera`: a fixed camera on scene object 0 as well.
+  explicit FakeRenderer(double rate = 30, bool scene_camera = false) {
+    ScenarioCamera c;
     c.robot = 0;
-    c.robot_name = "a";
+    c.owner = "a";
+    c.sensor_module = 0;
     c.name = "a/sm0/camera";
     c.part.width = 16;
     c.part.height = 16;
     c.part.rate = rate;
     cameras_.push_back(c);
+    if (scene_camera) {
+      c.robot = -1;
+      c.owner = "scene";
+      c.sensor_module = -1;
+      c.scene_object = 0;
+      c.name = "scene/obj0/camera";
+      cameras_.push_back(c);
+    }
   }
   const std::vector<std::string>& robots() const override { return robots_; }
-  const std::vector<RobotCamera>& cameras() const override { return cameras_; }
+  const std::vector<ScenarioCamera>& cameras() const override {
+    return cameras_;
+  }
   std::string Check(int, const RobotState& state) const override {
     return state.joints.size() == 2 ? "" : "expected 2 joints";
   }
@@ -60,7 +72,7 @@ class FakeRenderer : public CameraFrameRenderer {
 
  private:
   std::vector<std::string> robots_ = {"a", "b"};
-  std::vector<RobotCamera> cameras_;
+  std::vector<ScenarioCamera> cameras_;
 };
 
 robot_state_t State(const std::string& robot, std::int64_t seq,
@@ -167,6 +179,39 @@ TEST(CameraNode, LockstepAnswersEveryStateAfterItsPicture) {
   EXPECT_EQ(answer->seq, first.seq);
   EXPECT_EQ(answer->state_seq, 1);
   EXPECT_EQ(renderer.renders, 1);
+}
+
+// A camera on a scene object (on no robot) publishes on
+// <prefix>_CAMERA_scene; it shows every robot, so in lockstep every robot
+// is answered, whichever robot's controller waits for its pictures.
+TEST(CameraNode, ASceneCameraPublishesOnTheSceneChannelAndAnswersEveryRobot) {
+  FakeRenderer renderer(30, /*scene_camera=*/true);
+  for (const std::string only : {"", "scene"}) {
+    SCOPED_TRACE("--robot '" + only + "'");
+    CameraNodeOptions o = Options(ClockMode::kLockstep);
+    o.robot = only;
+    CameraNode node(o, &renderer, WallTime{});
+    CameraOutbox out;
+    Period(node, 0, &out);
+    std::vector<std::string> pictures, answers;
+    for (const auto& [channel, msg] : out.messages) {
+      if (const auto* image = std::get_if<camera_image_t>(&msg)) {
+        pictures.push_back(
+            channel + " " + image->robot + " " + std::to_string(image->camera) +
+            " " + std::to_string(image->sensor_module) + " " + image->name);
+      } else {
+        answers.push_back(channel);
+      }
+    }
+    std::vector<std::string> expected = {
+        "MRSIM_CAMERA_scene scene 0 -1 scene/obj0/camera"};
+    if (only.empty()) {
+      expected.insert(expected.begin(), "MRSIM_CAMERA_a a 0 0 a/sm0/camera");
+    }
+    EXPECT_EQ(pictures, expected);
+    EXPECT_EQ(answers,
+              (std::vector<std::string>{"MRSIM_COMMAND_a", "MRSIM_COMMAND_b"}));
+  }
 }
 
 TEST(CameraNode, RealtimePicturesTheNewestStateCountsDropsAndNeverAnswers) {
@@ -320,6 +365,54 @@ TEST(CameraNode, TheSameStateGivesTheSamePictureBitForBitRgbAndJpeg) {
   const CameraPicture jpeg = DecodeCameraImage(images[1]);
   EXPECT_EQ(jpeg.width, 48);
   EXPECT_EQ(jpeg.height, 32);
+}
+
+// mrsim-camera with a fixed camera on a static post looking back at the
+// ball along -x, rendered for real from the robot's state: the picture
+// goes on MRSIM_CAMERA_scene and shows the red ball in its middle.
+TEST(CameraNode, AFixedSceneCameraIsPicturedFromTheStatesOnTheSceneChannel) {
+  Scenario s = SnakeWithCamera();
+  s.robots[0].sensor_modules[0].cameras.clear();
+  SceneObject post;
+  post.guid = "post";
+  post.size = Eigen::Vector3d::Constant(0.04);
+  post.position = s.scene_objects[0].position + Eigen::Vector3d(0.5, 0, 0.1);
+  post.is_static = true;
+  Camera camera;
+  camera.sensor_position = 5;  // back: looks along -x, at the ball
+  camera.tilt = 11;
+  camera.width = 48;
+  camera.height = 32;
+  post.cameras.push_back(camera);
+  s.scene_objects.push_back(post);
+  Physics physics(s);
+  StateCameraRenderer renderer(s);
+  CameraNode node(Options(ClockMode::kLockstep), &renderer, WallTime{});
+  CameraOutbox out;
+  node.OnState("MRSIM_STATE_eye",
+               ToRobotStateMessage(physics.ReadRobotState(0), 3), WallTime{},
+               &out);
+  ASSERT_EQ(out.messages.size(), 2u);  // the picture, the answer
+  EXPECT_EQ(out.messages[0].first, "MRSIM_CAMERA_scene");
+  EXPECT_EQ(out.messages[1].first, "MRSIM_COMMAND_eye");
+  const auto& image = std::get<camera_image_t>(out.messages[0].second);
+  EXPECT_EQ(image.robot, "scene");
+  EXPECT_EQ(image.name, "scene/obj1/camera");
+  EXPECT_EQ(image.sensor_module, -1);
+  EXPECT_EQ(image.seq, 3);
+  const CameraPicture picture = DecodeCameraImage(image);
+  int red_middle = 0, red_edges = 0;
+  for (int y = 0; y < picture.height; ++y) {
+    for (int x = 0; x < picture.width; ++x) {
+      const std::uint8_t* p =
+          &picture.rgb[(static_cast<size_t>(y) * picture.width + x) * 3];
+      const bool red = p[0] > 120 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
+      if (x >= 18 && x < 30) red_middle += red;
+      if (x < 6 || x >= 42) red_edges += red;
+    }
+  }
+  EXPECT_GT(red_middle, 8);
+  EXPECT_EQ(red_edges, 0);
 }
 
 TEST(CameraNode, AStateThatDoesNotFitTheScenarioIsMalformed) {

@@ -54,6 +54,31 @@ def test_a_ball_to_the_left_is_left_in_the_picture():
     assert column is not None and column < 30
 
 
+def test_a_fixed_camera_on_a_scene_object_sees_the_ball():
+    # A post 0.6 m beyond the ball, 0.2 m up, looking back at it.
+    watched = mrsim.Simulation(camera_snake(ball=(0.6, 0.0),
+                                            post=(1.2, 0.0, 0.2),
+                                            post_tilt=12))
+    cameras = watched.cameras("scene")
+    assert len(cameras) == 1
+    assert cameras[0]["name"] == "scene/obj1/camera"
+    assert cameras[0]["owner"] == "scene"
+    assert cameras[0]["scene_object"] == 1
+    assert cameras[0]["sensor_module"] == -1
+    assert len(watched.cameras()) == 1  # the robot's own
+    image = watched.camera_image("scene", 0)
+    assert image.shape == (60, 80, 3)
+    column, share = red_columns(image)
+    assert share > 0.01
+    assert 30 < column < 50
+    assert np.array_equal(image,
+                          watched.camera_image("scene", "scene/obj1/camera"))
+    with pytest.raises(IndexError, match="the scene objects have 1 camera"):
+        watched.camera_image("scene", 3)
+    with pytest.raises(IndexError, match="the loose sensor modules have no"):
+        watched.camera_image("loose")
+
+
 def test_the_same_state_gives_the_same_picture(sim):
     assert np.array_equal(sim.camera_image(), sim.camera_image())
     assert np.array_equal(sim.camera_image(camera="snake/sm0/camera"),

@@ -15,9 +15,9 @@
 #include <utility>
 #include <vector>
 
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/mjcf/mjcf_builder.h"
 #include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
@@ -190,6 +190,39 @@ std::vector<Rule> BuilderRules() {
        [](Scenario& s) { s.scene_objects[0].size.z() = 0; },
        "Scenario/sceneObjects/SceneObject[1]/size",
        "expected positive x, y, z"},
+      {"scene object camera face",
+       [](Scenario& s) {
+         s.scene_objects[0].cameras.emplace_back().sensor_position = 6;
+       },
+       "Scenario/sceneObjects/SceneObject[1]/cameras/Camera[1]/sensorPosition",
+       "expected 0..5"},
+      {"scene object camera taller than a picture may be",
+       [](Scenario& s) {
+         s.scene_objects[0].cameras.emplace_back().height = 960;
+       },
+       "Scenario/sceneObjects/SceneObject[1]/cameras/Camera[1]/height",
+       "expected 16..480"},
+      {"scene object camera faster than 120 pictures a second",
+       [](Scenario& s) {
+         s.scene_objects[0].cameras.emplace_back().rate = 500;
+       },
+       "Scenario/sceneObjects/SceneObject[1]/cameras/Camera[1]/rate",
+       "expected"},
+      {"loose sensor module camera far before near",
+       [](Scenario& s) {
+         SensorModule sm;
+         sm.guid = "loose eye";
+         sm.position = Eigen::Vector3d(1, 0.5, 0.3);
+         Camera& c = sm.cameras.emplace_back();
+         c.near_clip = 2;
+         c.far_clip = 1;
+         s.loose_sensor_modules.push_back(sm);
+       },
+       "Scenario/sensorModules/SensorModule[1]/cameras/Camera[1]/far",
+       "must be beyond near"},
+      {"a robot named as the scene objects' cameras' owner",
+       [](Scenario& s) { s.robots[0].name = "scene"; },
+       "Scenario/robot[1]/name", "names the scenario's scene objects"},
       {"moving scene object of mass 0",
        [](Scenario& s) { s.scene_objects[0].mass = 0; },
        "Scenario/sceneObjects/SceneObject[1]/mass",
@@ -322,6 +355,31 @@ TEST(ScenarioValidate, ACameraLookingIntoItsOwnRobotIsAWarning) {
   EXPECT_THAT(warnings[0].message,
               HasSubstr("the camera on face 5 (back) looks straight into "
                         "'r/m0/f0', so it would see only that"));
+}
+
+// The same for a loose sensor module turned to a loose part beside it; a
+// scene object's camera, on the box around it, looks out.
+TEST(ScenarioValidate, ALooseCameraLookingIntoALoosePartIsAWarning) {
+  const std::string dir = TempDir("validate_loose_camera_warning");
+  Scenario s = Base(dir);
+  SensorModule sm;
+  sm.guid = "loose eye";
+  // Just in front (+x) of the loose frame 'loose0' at (1, 0, 0.3).
+  sm.position = Eigen::Vector3d(1.05, 0, 0.3);
+  Camera& c = sm.cameras.emplace_back();
+  c.sensor_position = 4;  // the front: looks out
+  s.loose_sensor_modules.push_back(sm);
+  s.scene_objects[0].cameras.emplace_back().sensor_position = 5;
+  EXPECT_TRUE(ScenarioWarnings(s).empty());
+  s.loose_sensor_modules[0].cameras[0].sensor_position = 5;  // the back
+  const std::vector<ScenarioWarning> warnings = ScenarioWarnings(s);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].path,
+            "Scenario/sensorModules/SensorModule[1]/cameras/Camera[1]/"
+            "sensorPosition");
+  EXPECT_THAT(warnings[0].message,
+              HasSubstr("the camera on face 5 (back) looks straight into "
+                        "'loose0', so it would see only that loose part"));
 }
 
 TEST(ScenarioValidate, ARayRunningIntoTheRobotIsAWarningNotARefusal) {

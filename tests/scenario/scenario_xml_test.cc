@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "sim_core/mesh/base64.h"
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/physics/checkpoint.h"
 #include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario/scenario.h"
 #include "tests/common/child_process.h"
 
@@ -205,6 +205,22 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   ramp.shape = PrimitiveShape::kCapsule;
   ramp.is_static = true;
   ramp.mass = 0;
+  // A fixed camera on the static ramp (every field off its default), and
+  // one on the moving ball.
+  Camera cctv;
+  cctv.guid = "cctv";
+  cctv.sensor_position = 1;
+  cctv.fovy = 42.5;
+  cctv.width = 320;
+  cctv.height = 200;
+  cctv.rate = 12.5;
+  cctv.near_clip = 0.05;
+  cctv.far_clip = 25;
+  cctv.tilt = 30;
+  cctv.noise = 2.5;
+  cctv.seed = 11;
+  ramp.cameras = {cctv};
+  ball.cameras.emplace_back().sensor_position = 2;
   SceneObject can;
   can.guid = "can";
   can.shape = PrimitiveShape::kCylinder;
@@ -233,6 +249,7 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   s.loose_frames.push_back(loose);
   SensorModule loose_sensor;
   loose_sensor.guid = "loose_sensor";
+  loose_sensor.cameras.emplace_back().tilt = -15;
   s.loose_sensor_modules.push_back(loose_sensor);
   Joint hinge;
   hinge.guid = "loose_hinge";
@@ -271,6 +288,15 @@ TEST(ScenarioXml, RoundTripKeepsEveryField) {
   EXPECT_TRUE(changed != s);
   changed = back;
   changed.robots[0].modules[1].frames[0].quat_rotation.coeffs()[3] += 1e-16;
+  EXPECT_TRUE(changed != s);
+  // A scene object's and a loose sensor module's cameras are kept too.
+  ASSERT_EQ(back.scene_objects[1].cameras.size(), 1u);
+  EXPECT_EQ(back.scene_objects[1].cameras[0].far_clip, 25);
+  changed = back;
+  changed.scene_objects[1].cameras[0].seed = 12;
+  EXPECT_TRUE(changed != s);
+  changed = back;
+  changed.loose_sensor_modules[0].cameras[0].tilt = 0;
   EXPECT_TRUE(changed != s);
 }
 

@@ -13,12 +13,12 @@
 #include <set>
 #include <sstream>
 
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/mesh/embedded_mesh.h"
-#include "sim_core/scenario/face_geometry.h"
-#include "sim_core/physics/physics.h"
-#include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/mesh/triangle_mesh.h"
+#include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/face_geometry.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "studio/design/chain_edit.h"
 #include "studio/design/inspector_fields.h"
 #include "tests/common/child_process.h"
@@ -470,6 +470,58 @@ TEST(StudioDesign, CamerasAreAddedPerFaceEditedAndRemoved) {
   const Scenario back = ReadScenarioString(Bytes(d), "cameras", "");
   EXPECT_EQ(back.robots[0].sensor_modules[1].cameras,
             d.scenario().robots[0].sensor_modules[1].cameras);
+}
+
+// A scene object carries cameras as a sensor module does: added per face
+// of the box around it (a static one is a fixed camera on the world),
+// edited in the inspector's "Camera k" group, saved and built as
+// scene/obj<k>/camera, removed.
+TEST(StudioDesign, ASceneObjectGetsCamerasPerFace) {
+  Design d = TwoSensorModules();
+  d.AddObject(ObjectKind::kBox);
+  const Selection sel = d.selection();
+  ASSERT_EQ(sel.kind, SelectionKind::kSceneObject);
+  EXPECT_EQ(d.OpenCameraFaces(), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  d.SetField({sel, "", "isStatic"}, "true");
+  d.AddCamera(5);
+  d.AddCamera(1);
+  EXPECT_THROW(d.AddCamera(5), DesignError);  // face taken
+  EXPECT_EQ(d.OpenCameraFaces(), (std::vector<int>{0, 2, 3, 4}));
+  const SceneObject& o = d.scenario().scene_objects.at(sel.index);
+  ASSERT_EQ(o.cameras.size(), 2u);
+  EXPECT_EQ(o.cameras[0].sensor_position, 5);
+  EXPECT_EQ(o.cameras[0].guid, o.guid + "/c0");
+
+  Scenario copy = d.scenario();
+  std::vector<std::string> titles;
+  for (const FieldGroup& g : InspectorFields(copy, sel)) {
+    titles.push_back(g.title);
+  }
+  EXPECT_EQ(titles,
+            (std::vector<std::string>{"Scene object", "Camera 0", "Camera 1"}));
+  d.SetField({sel, "cameras[0]", "tilt"}, "15");
+  EXPECT_EQ(d.FieldText({sel, "cameras[0]", "tilt"}), "15");
+  EXPECT_THROW(d.SetField({sel, "cameras[0]", "height"}, "4000"), DesignError);
+
+  const Scenario back = ReadScenarioString(Bytes(d), "object_cameras", "");
+  EXPECT_EQ(back.scene_objects.at(sel.index).cameras,
+            d.scenario().scene_objects.at(sel.index).cameras);
+  {
+    const Physics physics(back);
+    EXPECT_GE(
+        mj_name2id(
+            physics.model(), mjOBJ_CAMERA,
+            ("scene/obj" + std::to_string(sel.index) + "/camera").c_str()),
+        0);
+  }
+  d.RemoveCamera(0);
+  ASSERT_EQ(d.scenario().scene_objects.at(sel.index).cameras.size(), 1u);
+  EXPECT_EQ(d.scenario().scene_objects.at(sel.index).cameras[0].sensor_position,
+            1);
+  // Nothing selected that carries cameras: refused, no faces offered.
+  d.Select({SelectionKind::kModule, 0, 0});
+  EXPECT_TRUE(d.OpenCameraFaces().empty());
+  EXPECT_THROW(d.AddCamera(4), DesignError);
 }
 
 TEST(StudioDesign, ASensorModuleAtTheTailLooksOutOfItsBack) {

@@ -65,6 +65,11 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   }
   if (sel.kind == SelectionKind::kSensorModule)
     DrawSensorMounts(studio, view, sel);
+  if (sel.kind == SelectionKind::kSceneObject && sel.index >= 0 &&
+      sel.index < static_cast<int>(view.scene_objects.size())) {
+    DrawCameras(studio, view.scene_objects[sel.index].cameras, sel);
+    ImGui::Separator();
+  }
   for (const FieldGroup& g : groups) {
     if (!ImGui::CollapsingHeader(g.title.c_str(),
                                  ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -291,11 +296,12 @@ void InspectorPanel::DrawSensorMounts(StudioContext& studio,
     }
     ImGui::PopID();
   }
-  DrawCameras(studio, sm, sel);
+  DrawCameras(studio, sm.cameras, sel);
   ImGui::Separator();
 }
 
-void InspectorPanel::DrawCameras(StudioContext& studio, const SensorModule& sm,
+void InspectorPanel::DrawCameras(StudioContext& studio,
+                                 const std::vector<Camera>& cameras,
                                  const Selection& sel) {
   if (studio.design.revision() != camera_face_revision_ ||
       !(sel == camera_face_selection_)) {
@@ -318,8 +324,8 @@ void InspectorPanel::DrawCameras(StudioContext& studio, const SensorModule& sm,
     studio.Try("add the camera",
                [&] { studio.design.AddCamera(camera_face_); });
   }
-  for (size_t k = 0; k < sm.cameras.size(); ++k) {
-    const Camera& c = sm.cameras[k];
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    const Camera& c = cameras[k];
     ImGui::PushID(static_cast<int>(100 + k));
     ImGui::Text(
         "camera %zu: %s, %dx%d", k,

@@ -1,15 +1,16 @@
 // The right column of the studio window (unless the Run panel is shown):
 // every field of the selected part, straight from the scenario schema,
 // checked as typed; a sensor module's force plate, distance sensors and
-// cameras.
+// cameras, a scene object's cameras.
 #pragma once
 
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
-#include "studio/ui/widgets/panel.h"
 #include "studio/ui/studio_context.h"
+#include "studio/ui/widgets/panel.h"
 
 namespace mrsim::studio {
 
@@ -21,9 +22,10 @@ class InspectorPanel {
   // Force plate on/off and distance sensors of the selected sensor module.
   void DrawSensorMounts(StudioContext& studio, const Scenario& view,
                         const Selection& sel);
-  // The module's cameras: a face picker, "add camera", and each camera
-  // with its remove button (its fields are a group above).
-  void DrawCameras(StudioContext& studio, const SensorModule& sm,
+  // The cameras of the selected sensor module or scene object: a face
+  // picker, "add camera", and each camera with its remove button (its
+  // fields are a group below).
+  void DrawCameras(StudioContext& studio, const std::vector<Camera>& cameras,
                    const Selection& sel);
 
   // An InputText for `key` that keeps what is typed until Enter or leaving

@@ -19,9 +19,10 @@ void CameraFeed::SetModel(const mjModel* model, const Scenario& scenario,
                           long key) {
   // The chosen camera by what it is, not its place in the list: a camera
   // added in front of it keeps the picture on the same camera.
-  int robot = -1, camera = -1;
+  std::string owner;
+  int camera = -1;
   if (selected_ < static_cast<int>(cameras().size())) {
-    robot = cameras()[selected_].robot;
+    owner = cameras()[selected_].owner;
     camera = cameras()[selected_].camera;
   }
   renderer_.reset();
@@ -29,14 +30,14 @@ void CameraFeed::SetModel(const mjModel* model, const Scenario& scenario,
   error_.clear();
   picture_ = FeedPicture();
   due_ = true;
-  if (model == nullptr || RobotCameras(scenario).empty()) return;
+  if (model == nullptr || ScenarioCameras(scenario).empty()) return;
   try {
     renderer_ = std::make_unique<CameraImageRenderer>(model, scenario);
   } catch (const std::exception& e) {
     error_ = std::string("no camera picture: ") + e.what();
     return;
   }
-  const int found = renderer_->Find(robot, camera);
+  const int found = renderer_->Find(owner, camera);
   selected_ = found >= 0 ? found : 0;
 }
 
@@ -47,19 +48,23 @@ void CameraFeed::Clear() {
   due_ = true;
 }
 
-const std::vector<RobotCamera>& CameraFeed::cameras() const {
+const std::vector<ScenarioCamera>& CameraFeed::cameras() const {
   return renderer_ ? renderer_->cameras() : none_;
 }
 
 std::vector<std::string> CameraFeed::Labels() const {
   std::vector<std::string> labels;
-  for (const RobotCamera& c : cameras()) {
+  for (const ScenarioCamera& c : cameras()) {
     const int face = c.part.sensor_position;
-    labels.push_back(c.robot_name + " camera " + std::to_string(c.camera) +
-                     ": S" + std::to_string(c.sensor_module) + " " +
-                     (face >= 0 && face < 6 ? kSensorFaceNames[face] : "?") +
-                     ", " + std::to_string(c.part.width) + "x" +
-                     std::to_string(c.part.height));
+    // A sensor module as the chain list names it (S<k>), a scene object
+    // by its guid.
+    const std::string part = c.scene_object >= 0
+                                 ? c.part_guid
+                                 : "S" + std::to_string(c.sensor_module);
+    labels.push_back(
+        c.owner + " camera " + std::to_string(c.camera) + ": " + part + " " +
+        (face >= 0 && face < 6 ? kSensorFaceNames[face] : "?") + ", " +
+        std::to_string(c.part.width) + "x" + std::to_string(c.part.height));
   }
   return labels;
 }
@@ -73,7 +78,7 @@ void CameraFeed::Select(int index) {
 
 bool CameraFeed::Update(mjData* data, double sim_time, std::int64_t seq) {
   if (!renderer_ || data == nullptr || cameras().empty()) return false;
-  const RobotCamera& c = cameras()[selected_];
+  const ScenarioCamera& c = cameras()[selected_];
   // Time going back is a new run (or a reset): its frames start again.
   const bool restarted = picture_.seq >= 0 && sim_time < picture_.sim_time;
   if (!due_ && !restarted && sim_time < next_time_ - 1e-9) return false;

@@ -42,15 +42,15 @@ class CameraFeed {
   // The model the view draws, built from `scenario`; `key` changes with
   // every rebuild. A new key makes the renderer again and forgets the
   // picture, keeping the chosen camera when the new model has it (same
-  // robot, same camera number). `model` must outlive the next SetModel.
+  // owner, same camera number). `model` must outlive the next SetModel.
   // A renderer OpenGL cannot make leaves no cameras and says why (error()).
   void SetModel(const mjModel* model, const Scenario& scenario, long key);
   // Forgets the model (no cameras) until the next SetModel.
   void Clear();
   long key() const { return key_; }
 
-  // Every camera of the scenario's robots, as camera_image_t numbers them.
-  const std::vector<RobotCamera>& cameras() const;
+  // Every camera of the scenario, as camera_image_t numbers them.
+  const std::vector<ScenarioCamera>& cameras() const;
   // Words for the chooser: "snake camera 0: S1 front, 160x120".
   std::vector<std::string> Labels() const;
   int selected() const { return selected_; }
@@ -74,7 +74,7 @@ class CameraFeed {
   void Upload();
 
   std::unique_ptr<CameraImageRenderer> renderer_;
-  std::vector<RobotCamera> none_;
+  std::vector<ScenarioCamera> none_;
   long key_ = -1;
   int selected_ = 0;
   bool due_ = true;
