@@ -82,6 +82,14 @@ DirectionalFriction::DirectionalFriction(const Scenario& scenario,
   empty_ = rules_.empty() && !wheels;
 }
 
+std::unique_ptr<PhysicsEffect> DirectionalFriction::Make(
+    const PhysicsEffectInput& input) {
+  auto friction =
+      std::make_unique<DirectionalFriction>(input.scenario, input.model);
+  if (friction->empty()) return nullptr;
+  return friction;
+}
+
 const DirectionalFriction::Rule* DirectionalFriction::Find(const mjModel* m,
                                                            int g1, int g2,
                                                            int* side) const {
@@ -119,7 +127,7 @@ const DirectionalFriction::Rule* DirectionalFriction::Find(const mjModel* m,
   return nullptr;
 }
 
-void DirectionalFriction::Apply(const mjModel* m, mjData* d) const {
+void DirectionalFriction::AdjustContacts(const mjModel* m, mjData* d) const {
   if (empty_ || d->ncon == 0) return;
   const int nv = m->nv;
   mjMARKSTACK;

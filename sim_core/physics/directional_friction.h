@@ -1,20 +1,22 @@
-// Directional friction: orients each contact's friction by the frame of the
-// part that touches (forward, backward and lateral coefficients, passive
-// wheels). MuJoCo 2.2 makes every contact isotropic about its normal with
-// an arbitrary tangent frame; between collision detection and constraint
-// building this turns the first tangent onto the part's forward axis and
-// sets the coefficients (docs/physics.md, "Directional friction").
+// The physics effect "directional_friction": orients each contact's friction by
+// the frame of the part that touches (forward, backward and lateral
+// coefficients, passive wheels). MuJoCo 2.2 makes every contact isotropic about
+// its normal with an arbitrary tangent frame; between collision detection and
+// constraint building this turns the first tangent onto the part's forward axis
+// and sets the coefficients (docs/physics.md, "Directional friction").
 #pragma once
 
 #include <mujoco/mujoco.h>
 
+#include <memory>
 #include <vector>
 
+#include "sim_core/physics/physics_effect.h"
 #include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
 
-class DirectionalFriction {
+class DirectionalFriction : public PhysicsEffect {
  public:
   // Sliding friction along a passive wheel's rolling direction (both
   // ways): a small caster's rolling resistance.
@@ -23,15 +25,18 @@ class DirectionalFriction {
   // Reads which geoms of `model` (built from `scenario` by BuildMjcf) have
   // a directional ContactFriction entry or passive wheels.
   DirectionalFriction(const Scenario& scenario, const mjModel* model);
+  // Its PhysicsEffectKinds() row: nullptr when it is empty().
+  static std::unique_ptr<PhysicsEffect> Make(const PhysicsEffectInput& input);
 
-  // No geom has directional friction: Apply would change nothing.
+  // No directional entry and no passive wheels: AdjustContacts would
+  // change nothing (an entry whose materials no geom has still counts).
   bool empty() const { return empty_; }
 
   // Rewrites the frame, friction and dim of every contact in d->contact
   // that involves a directional part. Call after mj_collision and before
   // mj_makeConstraint; needs the kinematics of the state (mj_kinematics,
   // mj_comPos). Uses d's stack, allocates nothing.
-  void Apply(const mjModel* m, mjData* d) const;
+  void AdjustContacts(const mjModel* m, mjData* d) const override;
 
  private:
   struct Rule {

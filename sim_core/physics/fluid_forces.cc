@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "sim_core/mjcf/mjcf_builder.h"
 
@@ -72,8 +71,15 @@ FluidForces::FluidForces(const mjModel* m,
   }
 }
 
-void FluidForces::Apply(const mjModel* m, const mjData* d, mjtNum* xfrc) const {
-  std::memset(xfrc, 0, sizeof(mjtNum) * 6 * m->nbody);
+std::unique_ptr<PhysicsEffect> FluidForces::Make(
+    const PhysicsEffectInput& input) {
+  if (input.scenario.fluid_regions.empty()) return nullptr;
+  return std::make_unique<FluidForces>(input.model,
+                                       input.scenario.fluid_regions);
+}
+
+void FluidForces::AddBodyForces(const mjModel* m, const mjData* d,
+                                mjtNum* xfrc) const {
   const mjtNum* gravity = m->opt.gravity;
   for (const FluidRegion& region : regions_) {
     const Eigen::Vector3d lo = region.position - region.size / 2;

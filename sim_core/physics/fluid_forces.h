@@ -1,11 +1,14 @@
-// Buoyancy and drag of water and air regions (Scenario::fluid_regions),
-// applied through mjData::xfrc_applied before each step.
+// The physics effect "fluids": buoyancy and drag of water and air regions
+// (Scenario::fluid_regions), applied through mjData::xfrc_applied before
+// each step.
 #pragma once
 
 #include <mujoco/mujoco.h>
 
+#include <memory>
 #include <vector>
 
+#include "sim_core/physics/physics_effect.h"
 #include "sim_core/scenario/scenario.h"
 
 namespace mrsim {
@@ -15,16 +18,19 @@ namespace mrsim {
 // the submerged slice, plus drag against the region's flow velocity,
 // quadratic 0.5 rho Cd A |v| v with Cd = 1 and A = pi r^2 (r: radius of the
 // sphere of equal volume) and linear (Stokes) 6 pi mu r v; rotation is
-// damped likewise. Precomputes everything in the constructor; Apply()
-// allocates nothing.
-class FluidForces {
+// damped likewise. Precomputes everything in the constructor;
+// AddBodyForces allocates nothing.
+class FluidForces : public PhysicsEffect {
  public:
   FluidForces(const mjModel* m, const std::vector<FluidRegion>& regions);
+  // Its PhysicsEffectKinds() row: nullptr when the scenario has no region.
+  static std::unique_ptr<PhysicsEffect> Make(const PhysicsEffectInput& input);
 
   bool empty() const { return regions_.empty(); }
-  // Overwrites `xfrc` (nbody x 6, usually d->xfrc_applied) with the fluid
-  // forces of the kinematics in d (after mj_step1 / mj_forward).
-  void Apply(const mjModel* m, const mjData* d, mjtNum* xfrc) const;
+  // Adds to `xfrc` (nbody x 6, usually d->xfrc_applied) the fluid forces
+  // of the kinematics in d (after mj_step1 / mj_forward).
+  void AddBodyForces(const mjModel* m, const mjData* d,
+                     mjtNum* xfrc) const override;
 
  private:
   struct Geom {

@@ -3,8 +3,8 @@
 namespace mrsim {
 
 void ForwardPosition(const mjModel* m, mjData* d,
-                     const DirectionalFriction* friction) {
-  if (!friction || friction->empty()) {
+                     const ContactEffects& contacts) {
+  if (contacts.empty()) {
     mj_fwdPosition(m, d);
     return;
   }
@@ -18,20 +18,20 @@ void ForwardPosition(const mjModel* m, mjData* d,
   mj_crb(m, d);
   mj_factorM(m, d);
   mj_collision(m, d);
-  friction->Apply(m, d);
+  for (const PhysicsEffect* effect : contacts) effect->AdjustContacts(m, d);
   mj_makeConstraint(m, d);
   mj_transmission(m, d);
   mj_projectConstraint(m, d);
 }
 
-void Step1(const mjModel* m, mjData* d, const DirectionalFriction* friction) {
-  if (!friction || friction->empty()) {
+void Step1(const mjModel* m, mjData* d, const ContactEffects& contacts) {
+  if (contacts.empty()) {
     mj_step1(m, d);
     return;
   }
   mj_checkPos(m, d);
   mj_checkVel(m, d);
-  ForwardPosition(m, d, friction);
+  ForwardPosition(m, d, contacts);
   mj_sensorPos(m, d);
   if (m->opt.enableflags & mjENBL_ENERGY) mj_energyPos(m, d);
   mj_fwdVelocity(m, d);
@@ -40,12 +40,12 @@ void Step1(const mjModel* m, mjData* d, const DirectionalFriction* friction) {
   if (mjcb_control) mjcb_control(m, d);
 }
 
-void Forward(const mjModel* m, mjData* d, const DirectionalFriction* friction) {
-  if (!friction || friction->empty()) {
+void Forward(const mjModel* m, mjData* d, const ContactEffects& contacts) {
+  if (contacts.empty()) {
     mj_forward(m, d);
     return;
   }
-  ForwardPosition(m, d, friction);
+  ForwardPosition(m, d, contacts);
   mj_sensorPos(m, d);
   if (m->opt.enableflags & mjENBL_ENERGY) mj_energyPos(m, d);
   mj_forwardSkip(m, d, mjSTAGE_POS, 0);

@@ -10,20 +10,20 @@
 #include <stdexcept>
 
 #include "common/hash.h"
-#include "sim_core/physics/directional_friction.h"
-#include "sim_core/physics/distance_ray.h"
-#include "sim_core/physics/fluid_forces.h"
-#include "sim_core/physics/forward_pipeline.h"
 #include "sim_core/mjcf/mjcf_builder.h"
 #include "sim_core/mjcf/model_compiler.h"
 #include "sim_core/mujoco/mujoco_data.h"
 #include "sim_core/mujoco/mujoco_handlers.h"
+#include "sim_core/physics/distance_ray.h"
+#include "sim_core/physics/forward_pipeline.h"
+#include "sim_core/physics/physics_effect_kinds.h"
+#include "sim_core/physics/physics_effects.h"
 #include "sim_core/physics/physics_state_fields.h"
 #include "sim_core/physics/robot_orientation.h"
+#include "sim_core/physics/world_split.h"
 #include "sim_core/scenario/scenario_validate.h"
 #include "sim_core/scenario/sensor_kind.h"
 #include "sim_core/scenario/terrain.h"
-#include "sim_core/physics/world_split.h"
 
 namespace mrsim {
 namespace {
@@ -127,15 +127,7 @@ bool InCheckpoint(const PhysicsStateField& f, int version) {
 }  // namespace
 
 struct Physics::Impl {
-  struct Servo {
-    int joint = -1;
-    int qpos = 0;
-    int dof = 0;
-    int actuator = -1;
-    int module = 0;
-    Axis axis = Axis::kPitch;
-    double kp = 0, max_vel = 0, lower = 0, upper = 0;
-  };
+  using Servo = HingeServo;
   struct SensorModuleIndex {
     int body = -1;
     int plate = -1;  // the first kPlate instance's body: rays skip it
@@ -155,12 +147,12 @@ struct Physics::Impl {
     std::string name;
     int eq = -1;  // weld equality; -1: a rigid tree link (always attached)
   };
-  struct RobotIndex {
+  // Servos and targets in the ServoRobot part, which the control effects
+  // see (servo_robots).
+  struct RobotIndex : ServoRobot {
     std::string name;
     std::vector<LockIndex> locks;
     std::vector<int> frame_bodies;  // two per module
-    std::vector<Servo> servos;
-    std::vector<double> targets;
     std::vector<SensorModuleIndex> sensor_modules;
     std::vector<int> bodies;  // every body of the robot, for the CoM
   };
@@ -191,9 +183,17 @@ struct Physics::Impl {
   // an mjData of a long chain is large (njmax^2).
   mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
-  std::unique_ptr<FluidForces> fluids;
-  // Contacts oriented by their part's frame (empty: MuJoCo's own steps).
-  std::unique_ptr<DirectionalFriction> friction;
+  std::vector<const ServoRobot*> servo_robots;  // robots, as effects see them
+  // The reality gap's per-step part (SetRealityGap); off by default. Kept
+  // across rebuilds and Reset(); an input of the effects.
+  RealityGap gap;
+  // What this Physics adds to MuJoCo's model (physics_effect_kinds.h),
+  // made from the scenario, the model and the gap by MakeEffects.
+  PhysicsEffects effects;
+  void MakeEffects() {
+    effects = PhysicsEffects(PhysicsEffectInput{scenario, model.get(), gap});
+    effects.Restart(servo_robots);
+  }
   std::array<int, mjNWARNING> warnings{};
   std::vector<mjtByte> eq_active0;  // the model's initial eq_active
   std::vector<double> eq_break;     // per equality: break force, 0 never
@@ -231,28 +231,15 @@ struct Physics::Impl {
     for (int w = 0; w < mjNWARNING; ++w) warnings[w] = data->warning[w].number;
   }
   LockIndex& FindLock(const std::string& robot, const std::string& lock);
-  // The reality gap's per-step part (SetRealityGap); off by default.
-  RealityGap gap;
-  bool gap_on = false;
-  // Latency: the last latency_steps + 1 target vectors per robot, a ring.
-  int latency_steps = 0;
-  int ring_next = 0;
-  std::vector<std::vector<std::vector<double>>> target_ring;
-  void ResetGapHistory() {
-    ring_next = 0;
-    target_ring.assign(robots.size(), {});
-    for (size_t r = 0; r < robots.size(); ++r) {
-      target_ring[r].assign(latency_steps + 1, robots[r].targets);
-    }
-  }
   uint64_t StepIndex(const mjData* d) const {
     return static_cast<uint64_t>(std::llround(d->time / model->opt.timestep));
   }
-  // advance: a real step (pushes the latency ring); false for the force
-  // readings' private forward, which replays the last commands instead.
+  // The servos' commands for the next step of d: the nominal law, or the
+  // control effect's (the reality gap). advance: a real step; false for
+  // the force readings' private forward, which replays the last commands.
   void ComputeControls(mjData* d, bool advance = true) {
-    if (gap_on) {
-      GapControls(d, advance);
+    if (PhysicsEffect* effect = effects.controls()) {
+      effect->Controls(model.get(), servo_robots, d, advance);
       return;
     }
     for (const RobotIndex& r : robots) {
@@ -264,14 +251,17 @@ struct Physics::Impl {
       }
     }
   }
-  void GapControls(mjData* d, bool advance);
   // The body forces the next step of state `from` applies, into `to`
-  // (may be `from`): the fluids' when the scene has any (they replace the
-  // whole array), else from's own. Step and the force readings' forward
-  // both come here, so they cannot differ.
+  // (may be `from`): the body-force effects' (fluids) when any is built
+  // (they replace the whole array), else from's own. Step and the force
+  // readings' forward both come here, so they cannot differ.
   void ApplyBodyForces(const mjData* from, mjData* to) const {
-    if (!fluids->empty()) {
-      fluids->Apply(model.get(), from, to->xfrc_applied);
+    const std::vector<const PhysicsEffect*>& forces = effects.body_forces();
+    if (!forces.empty()) {
+      std::memset(to->xfrc_applied, 0, sizeof(mjtNum) * 6 * model->nbody);
+      for (const PhysicsEffect* effect : forces) {
+        effect->AddBodyForces(model.get(), from, to->xfrc_applied);
+      }
     } else if (to != from) {
       mju_copy(to->xfrc_applied, from->xfrc_applied, 6 * model->nbody);
     }
@@ -289,9 +279,9 @@ struct Physics::Impl {
   void Step1() {
     const int contacts = data->warning[mjWARN_CONTACTFULL].number;
     const int rows = data->warning[mjWARN_CNSTRFULL].number;
-    // MuJoCo's own mj_step1, or its stages with contacts turned to their
-    // part's frame in between (directional friction).
-    ::mrsim::Step1(model.get(), data.get(), friction.get());
+    // MuJoCo's own mj_step1, or its stages with the contact effects in
+    // between (directional friction).
+    ::mrsim::Step1(model.get(), data.get(), effects.contacts());
     if (data->warning[mjWARN_CONTACTFULL].number != contacts ||
         data->warning[mjWARN_CNSTRFULL].number != rows) {
       MakeRoom();
@@ -317,37 +307,6 @@ struct Physics::Impl {
     return ri.servos[j];
   }
 };
-
-void Physics::Impl::GapControls(mjData* d, bool advance) {
-  if (!advance) return;  // d->ctrl holds the commands of the last step
-  const uint64_t step = StepIndex(d);
-  const int oldest = (ring_next + 1) % (latency_steps + 1);
-  const double dt = model->opt.timestep;
-  for (size_t ri = 0; ri < robots.size(); ++ri) {
-    const RobotIndex& r = robots[ri];
-    target_ring[ri][ring_next] = r.targets;
-    const std::vector<double>& targets = target_ring[ri][oldest];
-    for (size_t j = 0; j < r.servos.size(); ++j) {
-      const Servo& s = r.servos[j];
-      double e = targets[j] - d->qpos[s.qpos];
-      // Backlash: the output turns freely within +-backlash/2 of the motor.
-      const double half = gap.backlash / 2;
-      e = std::abs(e) <= half ? 0.0 : e - std::copysign(half, e);
-      double u = s.kp * e;
-      if (gap.motor_noise > 0) {
-        u += gap.motor_noise *
-             GapNormal(gap.seed, step, (GlobalId(ri) << 32) | (1ull << 31) | j);
-      }
-      u = std::clamp(u, -s.max_vel, s.max_vel);
-      if (gap.max_accel > 0) {
-        const double prev = d->ctrl[s.actuator];
-        u = std::clamp(u, prev - gap.max_accel * dt, prev + gap.max_accel * dt);
-      }
-      d->ctrl[s.actuator] = u;
-    }
-  }
-  ring_next = (ring_next + 1) % (latency_steps + 1);
-}
 
 void Physics::Impl::Build() {
   std::vector<std::vector<double>> old_targets;
@@ -375,9 +334,7 @@ void Physics::Impl::Build() {
   }
   scratch.reset();
   qpos_integrated.assign(m->nq, 0);
-  fluids = std::make_unique<FluidForces>(m, scenario.fluid_regions);
-  friction = std::make_unique<DirectionalFriction>(scenario, m);
-  ResetGapHistory();
+  MakeEffects();
   AfterStateChange();
 }
 
@@ -492,6 +449,7 @@ void Physics::Impl::Index(const MjcfInfo& info) {
   for (size_t r = 0; r < scenario.robots.size(); ++r) {
     const Robot& robot = scenario.robots[r];
     RobotIndex ri;
+    ri.id = GlobalId(r);
     ri.name = mjcf_names::RobotName(scenario, r);
     for (const MjcfLock& l : info.robot_locks.at(r)) {
       LockIndex li;
@@ -558,6 +516,8 @@ void Physics::Impl::Index(const MjcfInfo& info) {
     }
     robots.push_back(std::move(ri));
   }
+  servo_robots.clear();
+  for (const RobotIndex& r : robots) servo_robots.push_back(&r);
 }
 
 void Physics::Impl::MakeRoom() {
@@ -611,7 +571,7 @@ void Physics::Impl::MakeRoom() {
     data = std::move(grown);
     scratch.reset();
     warnings.fill(0);  // the counters of the new mjData
-    ::mrsim::Step1(m, data.get(), friction.get());
+    ::mrsim::Step1(m, data.get(), effects.contacts());
   }
 }
 
@@ -699,7 +659,7 @@ Physics::Physics(const Scenario& part, std::vector<int> global_ids,
 
 Physics::~Physics() = default;
 
-// The hot path: servo law, optional fluids, one MuJoCo step split as
+// The hot path: servo law, body forces, one MuJoCo step split as
 // step2 (dynamics + integration of the current state) then step1 (the new
 // state's kinematics), so poses read between steps are current.
 void Physics::Step() {
@@ -732,10 +692,25 @@ void Physics::SetRealityGap(const RealityGap& gap) {
     return;
   }
   impl_->gap = gap;
-  impl_->gap_on = gap.any_per_step();
-  impl_->latency_steps =
-      static_cast<int>(std::llround(gap.latency / impl_->model->opt.timestep));
-  impl_->ResetGapHistory();
+  impl_->MakeEffects();
+}
+
+std::vector<std::string> Physics::effects() const {
+  if (!impl_->split) return impl_->effects.names();
+  // Every world runs the effects its part of the scene needs.
+  std::vector<std::string> out;
+  for (const PhysicsEffectKind& kind : PhysicsEffectKinds()) {
+    for (int r = 0; r < robot_count(); ++r) {
+      int local = 0;
+      const std::vector<std::string> names =
+          impl_->split->world_of(r, &local).effects();
+      if (std::find(names.begin(), names.end(), kind.name) != names.end()) {
+        out.push_back(kind.name);
+        break;
+      }
+    }
+  }
+  return out;
 }
 
 void Physics::Reset() {
@@ -757,7 +732,7 @@ void Physics::Reset() {
       r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
     }
   }
-  impl_->ResetGapHistory();
+  impl_->effects.Restart(impl_->servo_robots);
   impl_->AfterStateChange();
 }
 
@@ -930,7 +905,7 @@ RobotState Physics::ReadRobotState(int robot) const {
       }
     }
     impl_->ComputeControls(s, false);
-    Forward(m, s, impl_->friction.get());
+    Forward(m, s, impl_->effects.contacts());
   }
   for (size_t smi = 0; smi < r.sensor_modules.size(); ++smi) {
     const Impl::SensorModuleIndex& si = r.sensor_modules[smi];
@@ -984,14 +959,15 @@ RobotState Physics::ReadRobotState(int robot) const {
     state.com_velocity /= mass;
   }
   FillRobotOrientation(&state);
-  if (impl_->gap_on) {
+  if (!impl_->effects.readings().empty()) {
     std::vector<std::vector<double>> max_distance;
     for (const auto& si : r.sensor_modules) {
       max_distance.push_back(si.max_distance);
     }
-    AddSensorNoise(impl_->gap, impl_->StepIndex(d),
-                   static_cast<int>(impl_->GlobalId(robot)), max_distance,
-                   &state);
+    for (const PhysicsEffect* effect : impl_->effects.readings()) {
+      effect->AdjustReadings(impl_->StepIndex(d), impl_->GlobalId(robot),
+                             max_distance, &state);
+    }
   }
   return state;
 }
@@ -1316,16 +1292,16 @@ void Physics::AbsorbState(const std::vector<const Physics*>& parts) {
     for (const PhysicsStateField& f : kPhysicsStateFields) {
       if (!(f.copies & kStateMerge) || f.stage == StateStage::kAfter) continue;
       if (f.per == StatePer::kTarget) {
+        // And the effects' history of them (the reality gap's latency).
+        std::vector<int> to_robot(from.robots.size(), -1);
         for (size_t r = 0; r < from.robots.size(); ++r) {
           for (size_t k = 0; k < to.robots.size(); ++k) {
             if (to.robots[k].name != from.robots[r].name) continue;
             to.robots[k].targets = from.robots[r].targets;
-            if (k < to.target_ring.size() && r < from.target_ring.size()) {
-              to.target_ring[k] = from.target_ring[r];
-            }
+            to_robot[r] = static_cast<int>(k);
           }
         }
-        to.ring_next = from.ring_next;
+        to.effects.Absorb(from.effects, to_robot);
       } else if (f.array == nullptr) {
         // In the merged world's Refresh below, the pose of every part is
         // computed from its integrated qpos, as in its own world.

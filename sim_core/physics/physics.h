@@ -83,6 +83,11 @@ class Physics {
   // per-episode parts are PerturbScenario's). Reset() keeps it; a default
   // RealityGap turns it off. Throws std::invalid_argument as Validate.
   void SetRealityGap(const RealityGap& gap);
+  // The physics effects this scene runs, by their names in
+  // PhysicsEffectKinds() (physics_effect_kinds.h) and in its order: those
+  // its scenario and reality gap give something to do ("fluids",
+  // "directional_friction", "reality_gap"); the others cost nothing.
+  std::vector<std::string> effects() const;
   Eigen::Vector3d CenterOfMass(int robot) const;
 
   // The full physics state (lock states, time, qpos and qpos before the

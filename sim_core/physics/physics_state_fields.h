@@ -99,8 +99,8 @@ constexpr std::array<PhysicsStateField, 17> kPhysicsStateFields = {{
      StateStage::kBefore, 1},
     {"qfrc_applied", &mjData::qfrc_applied, StatePer::kDof,
      kStateAllCopies | kStateView, StateStage::kBefore, 1},
-    // The forward copy takes the fluid forces instead when a scene has
-    // fluids (FluidForces::Apply writes the whole array, as a step does).
+    // The forward copy takes the body-force effects' forces instead when
+    // one is built (they own the whole array then, as in a step).
     {"xfrc_applied", &mjData::xfrc_applied, StatePer::kBody,
      kStateAllCopies | kStateView, StateStage::kBefore, 1},
     // Torques and sensor values of the last step: mj_step1 does not

@@ -125,6 +125,80 @@ void AddSensorNoise(const RealityGap& gap, uint64_t step, int robot,
   }
 }
 
+RealityGapEffect::RealityGapEffect(const RealityGap& gap, const mjModel* m)
+    : gap_(gap),
+      latency_steps_(
+          static_cast<int>(std::llround(gap.latency / m->opt.timestep))) {}
+
+std::unique_ptr<PhysicsEffect> RealityGapEffect::Make(
+    const PhysicsEffectInput& input) {
+  if (!input.gap.any_per_step()) return nullptr;
+  return std::make_unique<RealityGapEffect>(input.gap, input.model);
+}
+
+void RealityGapEffect::Controls(const mjModel* m,
+                                const std::vector<const ServoRobot*>& robots,
+                                mjData* d, bool advance) {
+  if (!advance) return;  // d->ctrl holds the commands of the last step
+  const uint64_t step =
+      static_cast<uint64_t>(std::llround(d->time / m->opt.timestep));
+  const int oldest = (ring_next_ + 1) % (latency_steps_ + 1);
+  const double dt = m->opt.timestep;
+  for (size_t ri = 0; ri < robots.size(); ++ri) {
+    const ServoRobot& r = *robots[ri];
+    target_ring_[ri][ring_next_] = r.targets;
+    const std::vector<double>& targets = target_ring_[ri][oldest];
+    for (size_t j = 0; j < r.servos.size(); ++j) {
+      const HingeServo& s = r.servos[j];
+      double e = targets[j] - d->qpos[s.qpos];
+      // Backlash: the output turns freely within +-backlash/2 of the motor.
+      const double half = gap_.backlash / 2;
+      e = std::abs(e) <= half ? 0.0 : e - std::copysign(half, e);
+      double u = s.kp * e;
+      if (gap_.motor_noise > 0) {
+        u += gap_.motor_noise *
+             GapNormal(gap_.seed, step, (r.id << 32) | (1ull << 31) | j);
+      }
+      u = std::clamp(u, -s.max_vel, s.max_vel);
+      if (gap_.max_accel > 0) {
+        const double prev = d->ctrl[s.actuator];
+        u = std::clamp(u, prev - gap_.max_accel * dt,
+                       prev + gap_.max_accel * dt);
+      }
+      d->ctrl[s.actuator] = u;
+    }
+  }
+  ring_next_ = (ring_next_ + 1) % (latency_steps_ + 1);
+}
+
+void RealityGapEffect::AdjustReadings(
+    uint64_t step, uint64_t robot,
+    const std::vector<std::vector<double>>& max_distance,
+    RobotState* state) const {
+  AddSensorNoise(gap_, step, static_cast<int>(robot), max_distance, state);
+}
+
+void RealityGapEffect::Restart(const std::vector<const ServoRobot*>& robots) {
+  ring_next_ = 0;
+  target_ring_.assign(robots.size(), {});
+  for (size_t r = 0; r < robots.size(); ++r) {
+    target_ring_[r].assign(latency_steps_ + 1, robots[r]->targets);
+  }
+}
+
+void RealityGapEffect::Absorb(const PhysicsEffect& from,
+                              const std::vector<int>& to_robot) {
+  const auto& other = static_cast<const RealityGapEffect&>(from);
+  for (size_t r = 0; r < to_robot.size(); ++r) {
+    const int k = to_robot[r];
+    if (k >= 0 && static_cast<size_t>(k) < target_ring_.size() &&
+        r < other.target_ring_.size()) {
+      target_ring_[k] = other.target_ring_[r];
+    }
+  }
+  ring_next_ = other.ring_next_;
+}
+
 Scenario PerturbScenario(const Scenario& scenario, const RealityGap& gap) {
   gap.Validate();
   Scenario s = scenario;

@@ -2,11 +2,15 @@
 // model does not. Per-step imperfections of sensors and servos (applied by
 // Physics::SetRealityGap) and per-episode randomisation of the world
 // (PerturbScenario), all drawn from one seed: the same seed gives the same
-// episode bit for bit (docs/physics.md, "The reality gap").
+// episode bit for bit (docs/physics.md, "The reality gap"). The per-step
+// part is the physics effect "reality_gap" (RealityGapEffect).
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
+#include "sim_core/physics/physics_effect.h"
 #include "sim_core/scenario/robot_state.h"
 #include "sim_core/scenario/scenario.h"
 
@@ -56,5 +60,33 @@ double GapNormal(uint64_t seed, uint64_t step, uint64_t channel);
 void AddSensorNoise(const RealityGap& gap, uint64_t step, int robot,
                     const std::vector<std::vector<double>>& max_distance,
                     RobotState* state);
+
+// The physics effect "reality_gap": the gap's per-step part. Takes the
+// servo law (latency, backlash, motor noise, slew limit) and adds sensor
+// noise to readings. Keeps the latency queue: the last latency / timestep
+// + 1 target vectors per robot, a ring, restarted from the current targets
+// when built and at Reset, carried when worlds merge, not checkpointed.
+class RealityGapEffect : public PhysicsEffect {
+ public:
+  RealityGapEffect(const RealityGap& gap, const mjModel* m);
+  // Its PhysicsEffectKinds() row: nullptr when the gap has nothing to do
+  // per step (RealityGap::any_per_step).
+  static std::unique_ptr<PhysicsEffect> Make(const PhysicsEffectInput& input);
+
+  void Controls(const mjModel* m, const std::vector<const ServoRobot*>& robots,
+                mjData* d, bool advance) override;
+  void AdjustReadings(uint64_t step, uint64_t robot,
+                      const std::vector<std::vector<double>>& max_distance,
+                      RobotState* state) const override;
+  void Restart(const std::vector<const ServoRobot*>& robots) override;
+  void Absorb(const PhysicsEffect& from,
+              const std::vector<int>& to_robot) override;
+
+ private:
+  RealityGap gap_;
+  int latency_steps_ = 0;
+  int ring_next_ = 0;
+  std::vector<std::vector<std::vector<double>>> target_ring_;
+};
 
 }  // namespace mrsim
