@@ -60,6 +60,21 @@ int main(int argc, char** argv) {
   }
   const std::string dir = argv[1];
   const robot_state_t state = testing::KnownRobotState(7, 5, 1);
+  // A 4x2 picture as mrsim-camera sends one (rgb8: 3 bytes a pixel).
+  camera_image_t image{};
+  image.seq = 7;
+  image.robot = "snake";
+  image.sender = "mrsim-camera";
+  image.name = "snake/sm0/camera";
+  image.sim_time = 0.5;
+  image.width = 4;
+  image.height = 2;
+  image.encoding = "rgb8";
+  image.num_bytes = 4 * 2 * 3;
+  for (int i = 0; i < image.num_bytes; ++i) {
+    image.data.push_back(static_cast<uint8_t>(i * 10));
+  }
+  Write(dir, "camera_image_t", image);
   gait_command_t gc{};
   gc.seq = 3;
   gc.sender = "mrsim-ctl";
