@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "sim_core/codec/state_message.h"
+#include "studio/ui/dialogs/print_section.h"
 #include "studio/ui/widgets/gui_setup.h"
 #include "studio/ui/widgets/panel_background.h"
-#include "studio/ui/dialogs/print_section.h"
 
 namespace mrsim::studio {
 namespace {
@@ -198,10 +198,17 @@ void StudioApp::UpdateCameraFeed() {
   // own pose is no state (-1) at 0 s.
   double sim_time = 0;
   std::int64_t seq = -1;
-  const LiveRobot* robot =
-      preview.live() && live.connected()
-          ? live.session().robot(feed.cameras()[feed.selected()].robot_name)
-          : nullptr;
+  // A camera on no robot (a scene object's) shows the run as the first
+  // robot's newest state does.
+  const ScenarioCamera& camera = feed.cameras()[feed.selected()];
+  const Scenario* replay = live.live_scenario();
+  const Scenario& shown = replay ? *replay : studio_.design.scenario();
+  const std::string owner = camera.robot >= 0      ? camera.owner
+                            : shown.robots.empty() ? std::string()
+                                                   : RobotName(shown, 0);
+  const LiveRobot* robot = preview.live() && live.connected()
+                               ? live.session().robot(owner)
+                               : nullptr;
   if (robot != nullptr && robot->states > 0) {
     sim_time = robot->state.sim_time;
     seq = robot->state.seq;
