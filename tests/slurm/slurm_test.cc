@@ -24,19 +24,12 @@ int Port(int port) {
 
 std::vector<std::string> OptArgs(const std::string& out) {
   return {BinaryPath("optimizer/process/mrsim-opt"),
-          SourcePath("scenarios/snake11.xml"),
-          "--genome",
-          SourcePath("scenarios/forward_gait.genome.xml"),
-          "--out",
-          out,
-          "--episode",
-          "1",
-          "--population",
-          "8",
-          "--generations",
-          "24",
-          "--seed",
-          "11"};
+          SourcePath("scenarios/snake11.xml"), "--genome",
+          SourcePath("scenarios/forward_gait.genome.xml"), "--out", out,
+          "--episode", "1", "--population", "8",
+          // Long enough that the requeued task, held back by Slurm and
+          // then started, still finds the run going under load.
+          "--generations", "48", "--seed", "11"};
 }
 
 int Count(const std::string& text, const std::string& what) {
@@ -75,7 +68,7 @@ TEST(SlurmFarm, WorkersCancelledAndAddedMidRunGiveTheLocalResult) {
   const std::string job = m[1];
 
   // Two of its tasks go (as a preemption or a user's scancel would) ...
-  ASSERT_TRUE(opt.WaitForOutput("generation 2 of 24", 120.0))
+  ASSERT_TRUE(opt.WaitForOutput("generation 2 of 48", 120.0))
       << opt.Output() << cluster.Logs();
   for (const char* task : {"_0", "_1"}) {
     const CommandOutput out = cluster.Run({"scancel", job + task});
@@ -93,7 +86,15 @@ TEST(SlurmFarm, WorkersCancelledAndAddedMidRunGiveTheLocalResult) {
       added.output.substr(0, added.output.find_first_of(";\n"));
 
   // One more is requeued, as Slurm does when its node fails: it comes
-  // back as a new worker.
+  // back as a new worker. Slurm requeues only a task that has started
+  // ("Job is pending execution" otherwise), and under load a node can take
+  // its time to start it.
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return cluster.Tasks(job).find("_2 RUNNING") != std::string::npos;
+      },
+      120.0, 0.1))
+      << cluster.Tasks(job) << opt.Output() << cluster.Logs();
   const CommandOutput requeued =
       cluster.Run({"scontrol", "requeue", job + "_2"});
   ASSERT_EQ(requeued.exit_code, 0) << requeued.output;
