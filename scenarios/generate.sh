@@ -101,8 +101,27 @@ sed -e '/<\/settings>/r run.part' snake11.xml >lua_serpenoid.xml
 rm -f run.part
 "$tool" convert lua_serpenoid.xml lua_serpenoid.xml
 
+# snake11 with how to optimise it saved (<optimization>): mrsim-opt
+# optimise_snake.xml runs CMA-ES on the seven sine genes for a short budget
+# (docs/optimizer.md, "The setup in the design file").
+{
+  echo '  <optimization>'
+  echo '    <algorithm>cmaes</algorithm>'
+  echo '    <generations>4</generations>'
+  echo '    <population>4</population>'
+  echo '    <seed>3</seed>'
+  echo '    <episode>2</episode>'
+  echo '    <genes>sine</genes>'
+  echo '    <wEnergy>0.01</wEnergy>'
+  echo '  </optimization>'
+} >opt.part
+sed -e '/<\/settings>/r opt.part' snake11.xml >optimise_snake.xml
+rm -f opt.part
+"$tool" convert optimise_snake.xml optimise_snake.xml
+
 "$tool" validate snake11.xml
 "$tool" validate lua_serpenoid.xml
+"$tool" validate optimise_snake.xml
 "$tool" validate case_study.xml
 "$tool" validate terrain.xml
 "$tool" validate imu_snake.xml

@@ -141,6 +141,7 @@ MRSIM_SCHEMA_EQUAL(ContactFriction)
 MRSIM_SCHEMA_EQUAL(FluidRegion)
 MRSIM_SCHEMA_EQUAL(SimulationSettings)
 MRSIM_SCHEMA_EQUAL(RunSettings)
+MRSIM_SCHEMA_EQUAL(OptimizationSettings)
 MRSIM_SCHEMA_EQUAL(Scenario)
 #undef MRSIM_SCHEMA_EQUAL
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/scenario/optimization_settings.h"
 #include "sim_core/scenario/run_settings.h"
 
 namespace mrsim {
@@ -270,6 +271,9 @@ struct Scenario {
   SimulationSettings settings;
   // How to run it (clock, rate, controller); none: as mrsim-sim defaults.
   std::optional<RunSettings> run;
+  // How to optimise it (mrsim-opt FILE, the studio's Optimise); none: as
+  // mrsim-opt's flags default.
+  std::optional<OptimizationSettings> optimization;
   std::vector<Frame> loose_frames;
   std::vector<Joint> loose_joints;
   std::vector<SensorModule> loose_sensor_modules;

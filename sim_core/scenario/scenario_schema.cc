@@ -429,6 +429,9 @@ std::vector<FieldRef> FieldsOf(SimulationSettings& part) {
   return Collect(part);
 }
 std::vector<FieldRef> FieldsOf(RunSettings& part) { return Collect(part); }
+std::vector<FieldRef> FieldsOf(OptimizationSettings& part) {
+  return Collect(part);
+}
 
 const std::vector<FieldSpec>& FieldSpecsOf(PartKind kind) {
   return SpecsOf(kind).first;

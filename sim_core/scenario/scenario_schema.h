@@ -197,7 +197,8 @@ enum class ChildCount {
   X(kContactFriction, "ContactFriction", ContactFriction) \
   X(kFluidRegion, "FluidRegion", FluidRegion)             \
   X(kSettings, "settings", SimulationSettings)            \
-  X(kRunSettings, "run", RunSettings)
+  X(kRunSettings, "run", RunSettings)                     \
+  X(kOptimizationSettings, "optimization", OptimizationSettings)
 
 // What kind of part a child is.
 enum class PartKind {
@@ -285,6 +286,7 @@ std::vector<FieldRef> FieldsOf(ContactFriction& part);
 std::vector<FieldRef> FieldsOf(FluidRegion& part);
 std::vector<FieldRef> FieldsOf(SimulationSettings& part);
 std::vector<FieldRef> FieldsOf(RunSettings& part);
+std::vector<FieldRef> FieldsOf(OptimizationSettings& part);
 
 // A field of a kind of part, without an instance: for listings and docs.
 struct FieldSpec {

@@ -996,6 +996,145 @@ void Describe(V& v, RunSettings& r) {
   v.Field(kExternal, r.external_name);
 }
 
+// A text field of <optimization> left out of the file when empty.
+inline FieldInfo OptionalText(const char* xml, const char* label,
+                              const char* member, size_t max_bytes,
+                              const char* help) {
+  FieldInfo f{xml, label, member, "", L::TextUpTo(max_bytes), help};
+  f.omit_when = "";
+  return f;
+}
+
+template <typename V>
+void Describe(V& v, OptimizationSettings& o) {
+  static const FieldInfo kAlgorithm{
+      "algorithm",
+      "algorithm",
+      "algorithm",
+      "",
+      L::TextUpTo(kMaxOptimizationWordBytes, true),
+      "The search algorithm: ga, sa, pso, cmaes or random (mrsim-opt "
+      "--algorithm)"};
+  static const FieldInfo kGenerations{
+      "generations",    "generations",
+      "generations",    "",
+      L::Range(1, 1e8), "Generations to run (mrsim-opt --generations)"};
+  static const FieldInfo kPopulation{
+      "population",     "population",
+      "population",     "",
+      L::Range(1, 1e6), "Individuals per generation (mrsim-opt --population)"};
+  static const FieldInfo kSeed{
+      "seed",           "seed",
+      "seed",           "",
+      L::NonNegative(), "Seed of the run's random engine (mrsim-opt --seed)"};
+  static const FieldInfo kEpisode{
+      "episode",
+      "episode length",
+      "episode",
+      "s",
+      L::Positive().Within(1e6),
+      "Simulated time each individual runs (mrsim-opt --episode)"};
+  static const FieldInfo kController{
+      "controller",
+      "genes drive",
+      "controller",
+      "",
+      L::TextUpTo(kMaxOptimizationWordBytes, true),
+      "What the genes drive: gait, cpg, lua (the <run> element's script), "
+      "lua:FILE or mlp:H (mrsim-opt --controller)"};
+  static const FieldInfo kGenes = OptionalText(
+      "genes", "built-in gene set", "genes", kMaxOptimizationWordBytes,
+      "The gait's genes as a built-in set: sine or cpg (mrsim-opt --genes); "
+      "instead of genome");
+  static const FieldInfo kGenome = OptionalText(
+      "genome", "genome", "genome", kMaxGenomeTextBytes,
+      "The genes as a genome file's text (docs/optimizer.md; mrsim-opt "
+      "--genome); instead of genes");
+  static const FieldInfo kTask = OptionalText(
+      "task", "task", "task", kMaxOptimizationWordBytes,
+      "A task of the suite optimised instead of this design's world "
+      "(mrsim-opt --task; mrsim tasks lists them)");
+  static const FieldInfo kBaseGait = OptionalText(
+      "baseGait", "base gait", "base_gait", kMaxPathBytes,
+      "The gait the genes modify: a preset or a gait file beside the design; "
+      "empty: forward, or the task's own (mrsim-opt --gait)");
+  static const FieldInfo kDistance{
+      "distance",
+      "distance scored",
+      "distance",
+      "",
+      L::TextUpTo(kMaxOptimizationWordBytes, true),
+      "Distance scored: forward (+x), net (any direction) or up (+z) "
+      "(mrsim-opt --distance)"};
+  static const FieldInfo kWDistance{
+      "wDistance", "weight of distance",         "w_distance", "1/m",
+      L::Any(),    "Fitness per metre travelled"};
+  static const FieldInfo kWSpeed{"wSpeed", "weight of speed", "w_speed", "s/m",
+                                 L::Any(), "Fitness per m/s"};
+  static const FieldInfo kWEnergy{"wEnergy",  "weight of energy",
+                                  "w_energy", "1/J",
+                                  L::Any(),   "Fitness subtracted per joule"};
+  static const FieldInfo kWDrift{
+      "wDrift",  "weight of drift",
+      "w_drift", "1/m",
+      L::Any(),  "Fitness subtracted per metre of sideways drift"};
+  static const FieldInfo kWFall{
+      "wFall",  "weight of falling",
+      "w_fall", "",
+      L::Any(), "Fitness subtracted per fraction of the episode upside down"};
+  static const FieldInfo kRobust{
+      "robust",
+      "robust episodes",
+      "robust",
+      "",
+      L::Range(0, 1000),
+      "K > 0: each genome's fitness over K worlds of the reality gap "
+      "(mrsim-opt --robust)"};
+  static const FieldInfo kRobustMode{
+      "robustMode",
+      "robust score",
+      "robust_mode",
+      "",
+      L::TextUpTo(kMaxOptimizationWordBytes, true),
+      "mean or worst of the K perturbed episodes (mrsim-opt --robust-mode)"};
+  static const FieldInfo kAllowOverlap = [] {
+    FieldInfo f{"allowOverlap",
+                "allow overlap",
+                "allow_overlap",
+                "",
+                L::Any(),
+                "Optimise even when parts overlap at the start (mrsim-opt "
+                "--allow-overlap)"};
+    f.omit_when = "false";
+    return f;
+  }();
+  static const FieldInfo kSettings = OptionalText(
+      "algorithmSettings", "algorithm settings", "algorithm_settings",
+      kMaxAlgorithmSettingsBytes,
+      "The algorithm's own settings, flag=value words (cmaes-sigma=0.2), "
+      "each a flag of mrsim-opt");
+  v.Field(kAlgorithm, o.algorithm);
+  v.Field(kGenerations, o.generations);
+  v.Field(kPopulation, o.population);
+  v.Field(kSeed, o.seed);
+  v.Field(kEpisode, o.episode);
+  v.Field(kController, o.controller);
+  v.Field(kGenes, o.genes);
+  v.Field(kGenome, o.genome);
+  v.Field(kTask, o.task);
+  v.Field(kBaseGait, o.base_gait);
+  v.Field(kDistance, o.distance);
+  v.Field(kWDistance, o.w_distance);
+  v.Field(kWSpeed, o.w_speed);
+  v.Field(kWEnergy, o.w_energy);
+  v.Field(kWDrift, o.w_drift);
+  v.Field(kWFall, o.w_fall);
+  v.Field(kRobust, o.robust);
+  v.Field(kRobustMode, o.robust_mode);
+  v.Field(kAllowOverlap, o.allow_overlap);
+  v.Field(kSettings, o.algorithm_settings);
+}
+
 template <typename V>
 void Describe(V& v, Scenario& s) {
   static const ChildInfo kRobot{"robot", "", "robots",
@@ -1018,6 +1157,10 @@ void Describe(V& v, Scenario& s) {
   static const ChildInfo kRun{
       "run", "", "run",
       "How to run it: clock, rate, controller (mrsim-sim FILE uses it)"};
+  static const ChildInfo kOptimization{
+      "optimization", "", "optimization",
+      "How to optimise it: algorithm, budget, fitness, genes (mrsim-opt "
+      "FILE uses it)"};
   static const ChildInfo kFrames = [] {
     ChildInfo c = Wrapper("frames", "Frame", "loose_frames",
                           "Frames without a robot", false);
@@ -1045,6 +1188,7 @@ void Describe(V& v, Scenario& s) {
   v.List(kFluids, s.fluid_regions);
   v.Child(kSettings, s.settings);
   v.Optional(kRun, s.run);
+  v.Optional(kOptimization, s.optimization);
   v.List(kFrames, s.loose_frames);
   v.List(kSensorModules, s.loose_sensor_modules);
   v.List(kJoints, s.loose_joints);

@@ -370,6 +370,16 @@ class Validator {
     }
   }
 
+  // One source of genes, as mrsim-opt's --genes and --genome exclude each
+  // other; what the words mean the optimizer checks (opt_file_setup.h).
+  void After(const OptimizationSettings& o, bool) {
+    if (!o.genes.empty() && !o.genome.empty()) {
+      Fail(path_ + "/genes",
+           "expected genes or genome, not both (a built-in gene set, or "
+           "the genes written out)");
+    }
+  }
+
   void Before(const SceneObject&) {}
   void After(const SceneObject& o, bool) {
     AddGuid(o.guid, false);
