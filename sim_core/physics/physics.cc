@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -155,6 +156,8 @@ struct Physics::Impl {
     std::vector<int> frame_bodies;  // two per module
     std::vector<SensorModuleIndex> sensor_modules;
     std::vector<int> bodies;  // every body of the robot, for the CoM
+    // Hinges without a servo (the loose parts' joints): read, not driven.
+    std::vector<int> passive_joints;
   };
 
   Scenario scenario;
@@ -183,6 +186,9 @@ struct Physics::Impl {
   // an mjData of a long chain is large (njmax^2).
   mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
+  // The parts outside any robot (Scenario::loose_*), read as one more
+  // state under kLooseOwnerName; no servos, so the effects never see it.
+  std::optional<RobotIndex> loose;
   std::vector<const ServoRobot*> servo_robots;  // robots, as effects see them
   // The reality gap's per-step part (SetRealityGap); off by default. Kept
   // across rebuilds and Reset(); an input of the effects.
@@ -221,6 +227,15 @@ struct Physics::Impl {
     if (split && view_poked) split->PushView(data.get());
   }
   void Index(const MjcfInfo& info);
+  void IndexSensorModules(const std::vector<SensorModule>& sensor_modules,
+                          RobotIndex* ri) const;
+  void IndexLooseParts();
+  // The state of robot (or loose parts) `r`, whose sensor modules are
+  // `sensor_modules`; `id` keys the sensors' noise; `robot` is the robot's
+  // index for the reading effects, -1 for the loose parts (none apply).
+  RobotState Read(const RobotIndex& r,
+                  const std::vector<SensorModule>& sensor_modules, uint64_t id,
+                  int robot);
   void TransferState(const mjModel* om, const mjData* od);
   void BreakOverloadedLocks();
   // Recomputes the current state's kinematics and constraints after the
@@ -483,41 +498,72 @@ void Physics::Impl::Index(const MjcfInfo& info) {
       ri.servos.push_back(s);
       ri.targets.push_back(std::clamp(0.0, s.lower, s.upper));
     }
-    for (size_t k = 0; k < robot.sensor_modules.size(); ++k) {
-      const SensorModule& sm = robot.sensor_modules[k];
-      SensorModuleIndex si;
-      si.body = Id(mjOBJ_BODY, mjcf_names::SensorModuleBody(ri.name, k));
-      ri.bodies.push_back(si.body);
-      for (const SensorKind& kind : SensorKinds()) {
-        if (kind.read == nullptr) continue;  // a camera: nothing to read
-        for (int i = 0; i < kind.count(sm); ++i) {
-          SensorModuleIndex::KindInstance inst{&kind, i, kind.face(sm, i), {}};
-          for (const SensorMujoco& ms : kind.mujoco) {
-            const int sensor =
-                Id(mjOBJ_SENSOR, mjcf_names::SensorKindSensor(
-                                     ri.name, k, kind.name, i, ms.suffix));
-            inst.adr.push_back(m->sensor_adr[sensor]);
-          }
-          if (kind.mount == SensorMount::kPlate) {
-            const int plate = Id(mjOBJ_BODY, mjcf_names::SensorKindBody(
-                                                 ri.name, k, kind.name, i));
-            ri.bodies.push_back(plate);
-            if (si.plate < 0) si.plate = plate;
-          } else if (kind.mount == SensorMount::kRay) {
-            inst.site = Id(mjOBJ_SITE, mjcf_names::SensorKindSite(
-                                           ri.name, k, kind.name, i));
-            inst.max_range = kind.ray(sm, i).max_range;
-            si.max_distance.push_back(inst.max_range);
-          }
-          si.kinds.push_back(std::move(inst));
-        }
-      }
-      ri.sensor_modules.push_back(si);
-    }
+    IndexSensorModules(robot.sensor_modules, &ri);
     robots.push_back(std::move(ri));
   }
   servo_robots.clear();
   for (const RobotIndex& r : robots) servo_robots.push_back(&r);
+  IndexLooseParts();
+}
+
+void Physics::Impl::IndexSensorModules(
+    const std::vector<SensorModule>& sensor_modules, RobotIndex* ri) const {
+  const mjModel* m = model.get();
+  for (size_t k = 0; k < sensor_modules.size(); ++k) {
+    const SensorModule& sm = sensor_modules[k];
+    SensorModuleIndex si;
+    si.body = Id(mjOBJ_BODY, mjcf_names::SensorModuleBody(ri->name, k));
+    ri->bodies.push_back(si.body);
+    for (const SensorKind& kind : SensorKinds()) {
+      if (kind.read == nullptr) continue;  // a camera: nothing to read
+      for (int i = 0; i < kind.count(sm); ++i) {
+        SensorModuleIndex::KindInstance inst{&kind, i, kind.face(sm, i), {}};
+        for (const SensorMujoco& ms : kind.mujoco) {
+          const int sensor =
+              Id(mjOBJ_SENSOR, mjcf_names::SensorKindSensor(
+                                   ri->name, k, kind.name, i, ms.suffix));
+          inst.adr.push_back(m->sensor_adr[sensor]);
+        }
+        if (kind.mount == SensorMount::kPlate) {
+          const int plate = Id(mjOBJ_BODY, mjcf_names::SensorKindBody(
+                                               ri->name, k, kind.name, i));
+          ri->bodies.push_back(plate);
+          if (si.plate < 0) si.plate = plate;
+        } else if (kind.mount == SensorMount::kRay) {
+          inst.site = Id(mjOBJ_SITE,
+                         mjcf_names::SensorKindSite(ri->name, k, kind.name, i));
+          inst.max_range = kind.ray(sm, i).max_range;
+          si.max_distance.push_back(inst.max_range);
+        }
+        si.kinds.push_back(std::move(inst));
+      }
+    }
+    ri->sensor_modules.push_back(si);
+  }
+}
+
+void Physics::Impl::IndexLooseParts() {
+  loose.reset();
+  if (scenario.loose_frames.empty() && scenario.loose_sensor_modules.empty()) {
+    return;
+  }
+  RobotIndex ri;
+  ri.name = mjcf_names::LooseRobot();
+  ri.id = scenario.robots.size();  // after every robot: its own noise keys
+  for (size_t i = 0; i < scenario.loose_frames.size(); ++i) {
+    // The builder names a loose frame's body "<loose>/f<i>".
+    const int b = Id(mjOBJ_BODY, ri.name + "/f" + std::to_string(i));
+    ri.frame_bodies.push_back(b);
+    ri.bodies.push_back(b);
+  }
+  for (size_t k = 0; k < scenario.loose_joints.size(); ++k) {
+    if (scenario.loose_joints[k].type != JointType::kHinge) continue;
+    // Every hinge is a tree edge (ConnectTree), "<loose>/j<k>/hinge".
+    ri.passive_joints.push_back(
+        Id(mjOBJ_JOINT, ri.name + "/j" + std::to_string(k) + "/hinge"));
+  }
+  IndexSensorModules(scenario.loose_sensor_modules, &ri);
+  loose = std::move(ri);
 }
 
 void Physics::Impl::MakeRoom() {
@@ -856,21 +902,40 @@ RobotState Physics::ReadRobotState(int robot) const {
     int local = 0;
     return impl_->split->world_of(robot, &local).ReadRobotState(local);
   }
-  const Impl::RobotIndex& r = impl_->robot(robot);
-  const mjModel* m = impl_->model.get();
-  const mjData* d = impl_->data.get();
+  return impl_->Read(impl_->robot(robot),
+                     impl_->scenario.robots.at(robot).sensor_modules,
+                     impl_->GlobalId(robot), robot);
+}
+
+bool Physics::has_loose_parts() const { return impl_->loose.has_value(); }
+
+RobotState Physics::ReadLooseState() const {
+  if (!impl_->loose) {
+    throw std::logic_error(
+        "the scenario has no loose frames or sensor modules");
+  }
+  return impl_->Read(*impl_->loose, impl_->scenario.loose_sensor_modules,
+                     impl_->loose->id, -1);
+}
+
+RobotState Physics::Impl::Read(const RobotIndex& r,
+                               const std::vector<SensorModule>& sensor_modules,
+                               uint64_t id, int robot) {
+  const mjModel* m = model.get();
+  const mjData* d = data.get();
   RobotState state;
   state.time = d->time;
   state.robot = r.name;
   for (int b : r.frame_bodies) state.frames.push_back(BodyPose(d, b));
-  for (size_t i = 0; i + 1 < state.frames.size(); i += 2) {
+  // A robot's frames come two per module; loose frames one by one.
+  for (size_t i = 0; robot >= 0 && i + 1 < state.frames.size(); i += 2) {
     Pose p;
     p.position = (state.frames[i].position + state.frames[i + 1].position) / 2;
     p.orientation =
         state.frames[i].orientation.slerp(0.5, state.frames[i + 1].orientation);
     state.modules.push_back(p);
   }
-  for (const Impl::Servo& s : r.servos) {
+  for (const Servo& s : r.servos) {
     JointState j;
     j.angle = d->qpos[s.qpos];
     j.speed = d->qvel[s.dof];
@@ -879,6 +944,16 @@ RobotState Physics::ReadRobotState(int robot) const {
     j.world.position =
         Eigen::Vector3d(d->xanchor[3 * s.joint], d->xanchor[3 * s.joint + 1],
                         d->xanchor[3 * s.joint + 2]);
+    state.joints.push_back(j);
+  }
+  for (int joint : r.passive_joints) {
+    JointState j;  // no servo: no actuator torque
+    j.angle = d->qpos[m->jnt_qposadr[joint]];
+    j.speed = d->qvel[m->jnt_dofadr[joint]];
+    j.world = BodyPose(d, m->jnt_bodyid[joint]);
+    j.world.position =
+        Eigen::Vector3d(d->xanchor[3 * joint], d->xanchor[3 * joint + 1],
+                        d->xanchor[3 * joint + 2]);
     state.joints.push_back(j);
   }
   bool need_forces = false;
@@ -890,48 +965,44 @@ RobotState Physics::ReadRobotState(int robot) const {
   if (need_forces) {
     // Contact forces of the current state: a full forward pass on a copy,
     // with the controls the next step would apply.
-    if (!impl_->scratch) impl_->scratch = MakeMjData(m);
-    if (!impl_->scratch)
-      throw std::runtime_error("MuJoCo cannot allocate data");
-    mjData* s = impl_->scratch.get();
+    if (!scratch) scratch = MakeMjData(m);
+    if (!scratch) throw std::runtime_error("MuJoCo cannot allocate data");
+    mjData* s = scratch.get();
     s->time = d->time;
     for (const PhysicsStateField& f : kPhysicsStateFields) {
       const int n = StateSize(m, f.per);
       if (!(f.copies & kStateForward) || n == 0) continue;
       if (f.array == &mjData::xfrc_applied) {
-        impl_->ApplyBodyForces(d, s);  // as the next step will
+        ApplyBodyForces(d, s);  // as the next step will
       } else {
         mju_copy(s->*f.array, d->*f.array, n);
       }
     }
-    impl_->ComputeControls(s, false);
-    Forward(m, s, impl_->effects.contacts());
+    ComputeControls(s, false);
+    Forward(m, s, effects.contacts());
   }
   for (size_t smi = 0; smi < r.sensor_modules.size(); ++smi) {
-    const Impl::SensorModuleIndex& si = r.sensor_modules[smi];
+    const SensorModuleIndex& si = r.sensor_modules[smi];
     SensorModuleState sm;
     sm.pose = BodyPose(d, si.body);
     for (const auto& inst : si.kinds) {
       SensorReadInput in;
-      in.sensor_module =
-          &impl_->scenario.robots.at(robot).sensor_modules.at(smi);
+      in.sensor_module = &sensor_modules.at(smi);
       in.instance = inst.k;
       for (int adr : inst.adr) {
-        in.mujoco.push_back(impl_->scratch->sensordata + adr);
+        in.mujoco.push_back(scratch->sensordata + adr);
       }
       if (inst.site >= 0) {
         in.ray =
             CastDistanceRay(m, d, inst.site, si.plate, inst.max_range).distance;
-        if (impl_->other_rays) {  // the robots in the scene's other worlds
-          in.ray =
-              std::min(in.ray, impl_->other_rays(d->site_xpos + 3 * inst.site,
-                                                 d->site_xmat + 9 * inst.site,
-                                                 inst.max_range));
+        if (other_rays) {  // the robots in the scene's other worlds
+          in.ray = std::min(
+              in.ray, other_rays(d->site_xpos + 3 * inst.site,
+                                 d->site_xmat + 9 * inst.site, inst.max_range));
         }
       }
       in.time = d->time;
-      const uint64_t ids[3] = {impl_->GlobalId(robot), smi,
-                               static_cast<uint64_t>(inst.k)};
+      const uint64_t ids[3] = {id, smi, static_cast<uint64_t>(inst.k)};
       in.key = Fnv1a64(ids, sizeof ids);
       std::vector<double> values(inst.kind->channels.size());
       inst.kind->read(in, values.data());
@@ -959,14 +1030,13 @@ RobotState Physics::ReadRobotState(int robot) const {
     state.com_velocity /= mass;
   }
   FillRobotOrientation(&state);
-  if (!impl_->effects.readings().empty()) {
+  if (robot >= 0 && !effects.readings().empty()) {
     std::vector<std::vector<double>> max_distance;
     for (const auto& si : r.sensor_modules) {
       max_distance.push_back(si.max_distance);
     }
-    for (const PhysicsEffect* effect : impl_->effects.readings()) {
-      effect->AdjustReadings(impl_->StepIndex(d), impl_->GlobalId(robot),
-                             max_distance, &state);
+    for (const PhysicsEffect* effect : effects.readings()) {
+      effect->AdjustReadings(StepIndex(d), id, max_distance, &state);
     }
   }
   return state;

@@ -77,6 +77,15 @@ class Physics {
   // ray casts, so they are computed here, never in Step(). Uses a private
   // scratch mjData: do not call it on one Physics from two threads at once.
   RobotState ReadRobotState(int robot) const;
+  // Whether the scenario has loose frames or sensor modules (Scenario::
+  // loose_*), and their state as ReadRobotState gives a robot's, under the
+  // owner name kLooseOwnerName: `frames` one pose per loose frame in
+  // scenario order (no `modules`), `joints` the loose hinges in scenario
+  // order (no servo: torque 0), `sensor_modules` the loose sensor modules
+  // with their readings (no reality-gap noise), `com` theirs together.
+  // ReadLooseState throws std::logic_error when there are none.
+  bool has_loose_parts() const;
+  RobotState ReadLooseState() const;
 
   // Per-step imperfections of servos and sensors from now on (motor noise,
   // latency, backlash, acceleration limit, sensor noise and bias; the

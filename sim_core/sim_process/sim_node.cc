@@ -8,8 +8,8 @@
 
 #include "lcmtypes/runtime/channels.h"
 #include "lcmtypes/runtime/seq_gap.h"
-#include "sim_core/physics/checkpoint.h"
 #include "sim_core/codec/state_message.h"
+#include "sim_core/physics/checkpoint.h"
 #include "sim_core/physics/scene_object_state.h"
 
 namespace mrsim {
@@ -276,6 +276,13 @@ SimNode::Published SimNode::ReadStates() const {
     published.messages.emplace_back(
         SceneChannel(options_.prefix),
         ToSceneStateMessage(scene, physics_->time(), state_seq_));
+  }
+  // The parts outside any robot, as a robot_state_t of the owner "loose",
+  // so every reader of robot states (logger, Python, camera) reads them.
+  if (physics_->has_loose_parts()) {
+    published.messages.emplace_back(
+        StateChannel(options_.prefix, kLooseOwnerName),
+        ToRobotStateMessage(physics_->ReadLooseState(), state_seq_));
   }
   for (int r = 0; r < physics_->robot_count(); ++r) {
     const std::string& name = physics_->robot_name(r);

@@ -386,6 +386,63 @@ TEST(PhysicsLooseParts, LooseFramesAndJointsAreSimulated) {
   EXPECT_NEAR(physics.data()->xpos[3 * body + 2], 0.025, 0.005);
 }
 
+// Loose parts read as a robot's state under the owner "loose": where they
+// are after the physics moved them, not where the scenario put them.
+TEST(PhysicsLooseParts, LooseStateIsWhereThePhysicsMovedThem) {
+  Scenario s = testing::FlatScenario();
+  for (int f = 0; f < 2; ++f) {
+    Frame frame;
+    frame.guid = "loose" + std::to_string(f);
+    frame.position = Eigen::Vector3d(0.025 - 0.05 * f, 1.0, 0.3);
+    s.loose_frames.push_back(frame);
+  }
+  Joint hinge;
+  hinge.guid = "free hinge";
+  hinge.left_frame_guid = "loose0";
+  hinge.right_frame_guid = "loose1";
+  s.loose_joints.push_back(hinge);
+  SensorModule eye;
+  eye.guid = "eye";
+  eye.position = Eigen::Vector3d(0, -1.0, 0.2);
+  eye.imu = Imu{};
+  DistanceSensor ray;
+  ray.sensor_position = 0;
+  eye.distance_sensors.push_back(ray);
+  s.loose_sensor_modules.push_back(eye);
+  Physics physics(s);
+  ASSERT_TRUE(physics.has_loose_parts());
+
+  const RobotState start = physics.ReadLooseState();
+  EXPECT_EQ(start.robot, kLooseOwnerName);
+  ASSERT_EQ(start.frames.size(), 2u);  // one per loose frame
+  EXPECT_TRUE(start.modules.empty());
+  ASSERT_EQ(start.joints.size(), 1u);
+  ASSERT_EQ(start.sensor_modules.size(), 1u);
+  EXPECT_NEAR(start.frames[1].position.x(), -0.025, 1e-9);
+  EXPECT_NEAR(start.frames[1].position.z(), 0.3, 1e-9);
+  EXPECT_NEAR(start.sensor_modules[0].pose.position.z(), 0.2, 1e-9);
+
+  physics.Step(1000);  // 2 s: they fell and came to rest
+  const RobotState rest = physics.ReadLooseState();
+  EXPECT_NEAR(rest.frames[1].position.z(), 0.025, 0.005);
+  EXPECT_NEAR(rest.sensor_modules[0].pose.position.z(), 0.025, 0.005);
+  EXPECT_NEAR(rest.time, physics.time(), 1e-12);
+  EXPECT_EQ(rest.joints[0].torque, 0.0);  // no servo
+  EXPECT_TRUE(std::isfinite(rest.joints[0].angle));
+  EXPECT_LT(rest.com.z(), 0.05);
+  // The readings are the module's: one distance, the IMU at rest reads
+  // gravity along its up axis.
+  ASSERT_EQ(rest.sensor_modules[0].distances.size(), 1u);
+  EXPECT_GT(rest.sensor_modules[0].distances[0], 0.0);
+  ASSERT_EQ(rest.sensor_modules[0].readings.size(), 1u);
+  EXPECT_EQ(rest.sensor_modules[0].readings[0].kind, "imu");
+  EXPECT_NEAR(rest.sensor_modules[0].readings[0].values[2], 9.81, 0.2);
+
+  Physics none(testing::FlatScenario());
+  EXPECT_FALSE(none.has_loose_parts());
+  EXPECT_THROW(none.ReadLooseState(), std::logic_error);
+}
+
 TEST(PhysicsExamples, ExampleScenariosRun) {
   for (const char* name : {"snake11.xml", "case_study.xml", "terrain.xml"}) {
     SCOPED_TRACE(name);

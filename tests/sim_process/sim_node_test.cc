@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "lcmtypes/runtime/channels.h"
-#include "sim_core/scenario/chain_builder.h"
-#include "sim_core/physics/checkpoint.h"
 #include "sim_core/codec/state_message.h"
+#include "sim_core/physics/checkpoint.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/wave_law.h"
 
@@ -771,6 +771,69 @@ TEST(SimNode, OutsideLockstepAnEmptyAnswerIsIgnoredHarmlessly) {
   short_one.num_joints = static_cast<int32_t>(short_one.target.size());
   d.Command(short_one);
   EXPECT_EQ(d.node().status().rejected_joint_count, 1);
+}
+
+}  // namespace
+}  // namespace mrsim::testing
+
+namespace mrsim::testing {
+namespace {
+
+// A snake and, 1 m beside it, a loose sensor module dropped from 0.2 m.
+Scenario SnakeAndALooseModule() {
+  Scenario s = Snake();
+  SensorModule eye;
+  eye.guid = "eye";
+  eye.position = Eigen::Vector3d(0, 1.0, 0.2);
+  eye.imu = Imu{};
+  s.loose_sensor_modules.push_back(eye);
+  return s;
+}
+
+std::vector<robot_state_t> LooseStates(const Driver& d) {
+  std::vector<robot_state_t> loose;
+  for (const robot_state_t& s : d.states_) {
+    if (s.robot == kLooseOwnerName) loose.push_back(s);
+  }
+  return loose;
+}
+
+// The loose parts' state goes out on <prefix>_STATE_loose with every
+// period's robot states (same seq and time), where the physics moved them,
+// and again after a reset.
+TEST(SimNode, LoosePartsStateIsPublishedEveryPeriodAndAfterReset) {
+  Driver d(Lockstep(), SnakeAndALooseModule());
+  DriveLockstep(d, 100);
+  const std::vector<robot_state_t> loose = LooseStates(d);
+  ASSERT_GE(loose.size(), 100u);
+  std::map<int64_t, double> snake_time;
+  for (const robot_state_t& s : d.states_) {
+    if (s.robot == "snake") snake_time[s.seq] = s.sim_time;
+  }
+  for (const robot_state_t& s : loose) {
+    ASSERT_EQ(snake_time.count(s.seq), 1u) << s.seq;
+    EXPECT_EQ(snake_time[s.seq], s.sim_time);
+    ASSERT_EQ(s.num_sensor_modules, 1);
+    EXPECT_EQ(s.num_frames, 0);
+  }
+  EXPECT_NEAR(loose.front().sensor_modules[0].pose.position[2], 0.2, 1e-9);
+  // After 1 s it lies on the ground.
+  EXPECT_NEAR(loose.back().sensor_modules[0].pose.position[2], 0.025, 0.005);
+  EXPECT_NEAR(loose.back().sensor_modules[0].pose.position[1], 1.0, 0.01);
+  ASSERT_EQ(loose.back().sensor_modules[0].num_readings, 1);
+
+  const size_t before = LooseStates(d).size();
+  EXPECT_TRUE(d.Control(sim_control_t::RESET).control_ok);
+  const std::vector<robot_state_t> after = LooseStates(d);
+  ASSERT_GT(after.size(), before);
+  EXPECT_EQ(after.back().sim_time, 0.0);
+  EXPECT_NEAR(after.back().sensor_modules[0].pose.position[2], 0.2, 1e-9);
+}
+
+TEST(SimNode, NoLoosePartsNoLooseState) {
+  Driver d(Lockstep());
+  DriveLockstep(d, 5);
+  EXPECT_TRUE(LooseStates(d).empty());
 }
 
 }  // namespace
