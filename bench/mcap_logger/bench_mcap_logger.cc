@@ -6,8 +6,9 @@
 //                                            lcm-logger's; target <= 1.5
 //   BENCH mcap_logger_cpu_ratio_spread <X> %
 //   BENCH mcap_logger_lost <n> msgs           sent but not in the MCAP file
-// Rounds: --rounds N (default 6), each --seconds S (default 10: the
-// logger's start-up, a few tens of ms of CPU, is then under 1 %), or
+// Rounds: --rounds N (default 6), each --seconds S (default 10; the
+// start-up is counted: mrsim-log's, about 0.1 s of CPU while it loads
+// OpenCV through the camera codec, is some 5 % of a 10 s round), or
 // $MRSIM_BENCH_MCAP_ROUNDS / $MRSIM_BENCH_MCAP_SECONDS. --mcap-compression
 // C is passed on to mrsim-log (default: its own, zstd); each round prints
 // both files' sizes, the other side of that choice.
