@@ -29,12 +29,21 @@ class CameraFrameRenderer {
   // Empty when `scene` fits the scenario's movable scene objects.
   virtual std::string CheckScene(
       const std::vector<SceneObjectState>& scene) const = 0;
+  // Whether the scenario has loose frames or sensor modules, whose state
+  // mrsim-sim publishes on <prefix>_STATE_loose.
+  virtual bool has_loose_parts() const { return false; }
+  // Empty when `loose` fits the scenario's loose parts, else what is wrong.
+  virtual std::string CheckLoose(const RobotState& loose) const {
+    (void)loose;
+    return "";
+  }
   // cameras()[camera]'s picture with robot r posed from states[r] (null:
-  // as built) and the scene objects from `scene` (null: as built). `seq`
-  // keys the pixel noise.
+  // as built), the scene objects from `scene` and the loose parts from
+  // `loose` (null: as built). `seq` keys the pixel noise.
   virtual void Render(int camera, const std::vector<const RobotState*>& states,
                       const std::vector<SceneObjectState>* scene,
-                      std::int64_t seq, CameraPicture* picture) = 0;
+                      const RobotState* loose, std::int64_t seq,
+                      CameraPicture* picture) = 0;
 };
 
 }  // namespace mrsim

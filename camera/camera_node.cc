@@ -85,6 +85,9 @@ CameraNode::CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
               "or a scene object's <cameras>)"
             : "'" + options_.robot + "' has no camera");
   }
+  if (renderer_->has_loose_parts()) {
+    loose_channel_ = StateChannel(options_.prefix, kLooseOwnerName);
+  }
   next_slot_.assign(imaged_.size(), 0);
   answers_.resize(robots.size());
   gathering_.states.resize(robots.size());
@@ -93,6 +96,7 @@ CameraNode::CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
 std::vector<std::string> CameraNode::StateChannels() const {
   std::vector<std::string> out;
   for (const auto& [channel, robot] : channels_) out.push_back(channel);
+  if (!loose_channel_.empty()) out.push_back(loose_channel_);
   return out;
 }
 
@@ -149,8 +153,41 @@ void CameraNode::OnScene(const scene_state_t& scene, WallTime now) {
   while (scenes_.size() > kKeptScenes) scenes_.erase(scenes_.begin());
 }
 
+void CameraNode::OnLoose(const robot_state_t& msg, WallTime now) {
+  watch_.Heard(now);
+  if (msg.robot != kLooseOwnerName) {
+    Malformed(loose_channel_ + ": state of robot '" + msg.robot + "'");
+    return;
+  }
+  if (msg.seq < 0 || msg.utime < 0 || !(msg.sim_time >= 0) ||
+      msg.sim_time > kMaxSimTime) {
+    Malformed(loose_channel_ +
+              ": negative seq or time, or a time beyond 1e9 s");
+    return;
+  }
+  RobotState state;
+  try {
+    state = FromRobotStateMessage(msg);
+  } catch (const std::exception& e) {
+    Malformed(loose_channel_ + ": " + e.what());
+    return;
+  }
+  const std::string problem = renderer_->CheckLoose(state);
+  if (!problem.empty()) {
+    Malformed(loose_channel_ + ": " + problem);
+    return;
+  }
+  if (msg.seq <= done_seq_) return;  // a re-send of a state already used
+  looses_[msg.seq] = std::move(state);
+  while (looses_.size() > kKeptScenes) looses_.erase(looses_.begin());
+}
+
 void CameraNode::OnState(const std::string& channel, const robot_state_t& msg,
                          WallTime now, CameraOutbox* out) {
+  if (!loose_channel_.empty() && channel == loose_channel_) {
+    OnLoose(msg, now);
+    return;
+  }
   watch_.Heard(now);
   const auto it = channels_.find(channel);
   if (it == channels_.end()) {
@@ -245,6 +282,11 @@ void CameraNode::Picture(const Period& period, CameraOutbox* out) {
   const std::vector<SceneObjectState>* scene = nullptr;
   auto newest = scenes_.upper_bound(period.seq);
   if (newest != scenes_.begin()) scene = &std::prev(newest)->second;
+  const RobotState* loose = nullptr;
+  auto newest_loose = looses_.upper_bound(period.seq);
+  if (newest_loose != looses_.begin()) {
+    loose = &std::prev(newest_loose)->second;
+  }
 
   for (size_t k = 0; k < imaged_.size(); ++k) {
     const ScenarioCamera& camera = cameras[imaged_[k]];
@@ -252,7 +294,7 @@ void CameraNode::Picture(const Period& period, CameraOutbox* out) {
     if (slot < next_slot_[k]) continue;  // not due
     counters_.dropped += slot - next_slot_[k];
     next_slot_[k] = slot + 1;
-    renderer_->Render(imaged_[k], states, scene, period.seq, &picture_);
+    renderer_->Render(imaged_[k], states, scene, loose, period.seq, &picture_);
     CameraImageHeader header;
     header.robot = camera.owner;
     header.sender = options_.sender;
@@ -268,6 +310,7 @@ void CameraNode::Picture(const Period& period, CameraOutbox* out) {
   }
   // Scenes older than this period will never be shown again.
   scenes_.erase(scenes_.begin(), scenes_.lower_bound(period.seq));
+  looses_.erase(looses_.begin(), looses_.lower_bound(period.seq));
 }
 
 void CameraNode::Answer(const Period& period, CameraOutbox* out) {

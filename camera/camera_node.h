@@ -81,7 +81,8 @@ class CameraNode {
   CameraNode(CameraNodeOptions options, CameraFrameRenderer* renderer,
              WallTime now);
 
-  // StateChannel(prefix, robot) of every robot of the scenario.
+  // StateChannel(prefix, robot) of every robot of the scenario, and
+  // StateChannel(prefix, "loose") when it has loose parts.
   std::vector<std::string> StateChannels() const;
   const CameraNodeOptions& options() const { return options_; }
   // Indices in the renderer's cameras() of the cameras pictured.
@@ -92,6 +93,9 @@ class CameraNode {
   void OnState(const std::string& channel, const robot_state_t& state,
                WallTime now, CameraOutbox* out);
   void OnScene(const scene_state_t& scene, WallTime now);
+  // The loose parts' state (<prefix>_STATE_loose; OnState passes it on):
+  // a period shows the newest one not after it.
+  void OnLoose(const robot_state_t& loose, WallTime now);
   void OnSimStatus(const sim_status_t& status, WallTime now);
   // A message that did not decode; `what` names it (may be empty).
   void OnMalformed(const std::string& what);
@@ -145,6 +149,10 @@ class CameraNode {
   // Scene states by seq (the newest few): a period shows the newest scene
   // not after it.
   std::map<std::int64_t, std::vector<SceneObjectState>> scenes_;
+  // The same for the loose parts' states; loose_channel_ is empty when
+  // the scenario has no loose parts.
+  std::string loose_channel_;
+  std::map<std::int64_t, RobotState> looses_;
 
   SimulatorWatch watch_;
   CameraNodeCounters counters_;

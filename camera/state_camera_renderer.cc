@@ -17,6 +17,8 @@ StateCameraRenderer::StateCameraRenderer(const Scenario& scenario) {
     robots_.push_back(mapper_->robot_name(r));
   }
   renderer_ = std::make_unique<CameraImageRenderer>(model_.get(), scenario);
+  has_loose_parts_ =
+      !scenario.loose_frames.empty() || !scenario.loose_sensor_modules.empty();
 }
 
 StateCameraRenderer::~StateCameraRenderer() = default;
@@ -35,12 +37,17 @@ std::string StateCameraRenderer::CheckScene(
   return mapper_->CheckScene(scene);
 }
 
+std::string StateCameraRenderer::CheckLoose(const RobotState& loose) const {
+  return mapper_->CheckLoose(loose);
+}
+
 void StateCameraRenderer::Render(int camera,
                                  const std::vector<const RobotState*>& states,
                                  const std::vector<SceneObjectState>* scene,
-                                 std::int64_t seq, CameraPicture* picture) {
+                                 const RobotState* loose, std::int64_t seq,
+                                 CameraPicture* picture) {
   gl_.MakeCurrent();
-  mapper_->Apply(states, data_.get(), scene);
+  mapper_->Apply(states, data_.get(), scene, loose);
   const Camera& part = renderer_->cameras().at(camera).part;
   picture->width = part.width;
   picture->height = part.height;

@@ -28,12 +28,16 @@ class StateCameraRenderer : public CameraFrameRenderer {
   std::string Check(int robot, const RobotState& state) const override;
   std::string CheckScene(
       const std::vector<SceneObjectState>& scene) const override;
+  bool has_loose_parts() const override { return has_loose_parts_; }
+  std::string CheckLoose(const RobotState& loose) const override;
   void Render(int camera, const std::vector<const RobotState*>& states,
-              const std::vector<SceneObjectState>* scene, std::int64_t seq,
+              const std::vector<SceneObjectState>* scene,
+              const RobotState* loose, std::int64_t seq,
               CameraPicture* picture) override;
 
  private:
   std::vector<std::string> robots_;
+  bool has_loose_parts_ = false;
   GlContext gl_;
   MjModelPtr model_;
   MjDataPtr data_;

@@ -192,16 +192,41 @@ StatePoseMapper::StatePoseMapper(const mjModel* model, const Scenario& scenario)
     scene_bodies_[i] = body;
   }
 
+  // Loose frames and sensor modules, posed by the loose state (frames,
+  // then sensor modules, as for a robot); their plates ride along.
+  loose_frames_ = static_cast<int>(scenario.loose_frames.size());
+  loose_sensor_modules_ =
+      static_cast<int>(scenario.loose_sensor_modules.size());
+  const std::string loose = mjcf_names::LooseRobot();
+  auto map_loose = [&](const std::string& name, int part) {
+    const int body = mj_name2id(m, mjOBJ_BODY, name.c_str());
+    if (body <= 0 || sources_[body].kind != BodySource::kBuilt) return -1;
+    sources_[body].kind = BodySource::kLoose;
+    sources_[body].part = part;
+    return body;
+  };
+  for (int i = 0; i < loose_frames_; ++i) {
+    map_loose(loose + "/f" + std::to_string(i), i);  // as the builder names it
+  }
+  for (int k = 0; k < loose_sensor_modules_; ++k) {
+    const int body =
+        map_loose(mjcf_names::SensorModuleBody(loose, k), loose_frames_ + k);
+    const int plate =
+        mj_name2id(m, mjOBJ_BODY, mjcf_names::PlateBody(loose, k).c_str());
+    if (body > 0 && plate > 0) attach_by_name.emplace_back(plate, body);
+  }
+
   // Everything else that moves with a robot: bodies below a state body in
   // the tree, then named plates and sensors welded to a sensor module.
+  auto posed = [&](int b) {
+    return sources_[b].kind == BodySource::kState ||
+           sources_[b].kind == BodySource::kScene ||
+           sources_[b].kind == BodySource::kLoose;
+  };
   for (int b = 1; b < m->nbody; ++b) {
-    if (sources_[b].kind == BodySource::kState ||
-        sources_[b].kind == BodySource::kScene) {
-      continue;
-    }
+    if (posed(b)) continue;
     for (int a = m->body_parentid[b]; a > 0; a = m->body_parentid[a]) {
-      if (sources_[a].kind == BodySource::kState ||
-          sources_[a].kind == BodySource::kScene) {
+      if (posed(a)) {
         sources_[b].kind = BodySource::kAttached;
         sources_[b].anchor = a;
         sources_[b].offset = compose(inverse(built_[a]), built_[b]);
@@ -280,13 +305,31 @@ std::string StatePoseMapper::CheckScene(
   return "";
 }
 
+std::string StatePoseMapper::CheckLoose(const RobotState& loose) const {
+  if (static_cast<int>(loose.frames.size()) != loose_frames_ ||
+      static_cast<int>(loose.sensor_modules.size()) != loose_sensor_modules_) {
+    return "loose parts: " + std::to_string(loose.frames.size()) +
+           " frames and " + std::to_string(loose.sensor_modules.size()) +
+           " sensor modules, expected " + std::to_string(loose_frames_) +
+           " and " + std::to_string(loose_sensor_modules_);
+  }
+  if (!std::isfinite(loose.time)) return "non-finite time";
+  for (const auto& f : loose.frames) {
+    if (!Finite(f)) return "non-finite or zero-quaternion frame pose";
+  }
+  for (const auto& sm : loose.sensor_modules) {
+    if (!Finite(sm.pose)) return "non-finite sensor module pose";
+  }
+  return "";
+}
+
 void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
                             mjData* d,
-                            const std::vector<SceneObjectState>* scene) const {
+                            const std::vector<SceneObjectState>* scene,
+                            const RobotState* loose) const {
   const mjModel* m = model_;
   std::vector<Pose> pose(built_);
-  auto part_pose = [&](int robot, int part) {
-    const RobotState& s = *states[robot];
+  auto state_part_pose = [](const RobotState& s, int part) {
     const int frames = static_cast<int>(s.frames.size());
     const mrsim::Pose& src =
         part < frames ? s.frames[part] : s.sensor_modules[part - frames].pose;
@@ -294,6 +337,9 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
     r.p = src.position;
     r.q = src.orientation.normalized();
     return r;
+  };
+  auto part_pose = [&](int robot, int part) {
+    return state_part_pose(*states[robot], part);
   };
   auto compose = [](const Pose& a, const Pose& b) {
     Pose r;
@@ -309,6 +355,8 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
     const BodySource& src = sources_[b];
     if (src.kind == BodySource::kState && has_state(src.robot)) {
       pose[b] = compose(part_pose(src.robot, src.part), src.offset);
+    } else if (src.kind == BodySource::kLoose && loose != nullptr) {
+      pose[b] = state_part_pose(*loose, src.part);
     }
   }
   std::vector<bool> scene_posed(m->nbody, false);
@@ -329,7 +377,8 @@ void StatePoseMapper::Apply(const std::vector<const RobotState*>& states,
     if (src.kind != BodySource::kAttached) continue;
     const BodySource& anchor = sources_[src.anchor];
     if ((anchor.kind == BodySource::kState && has_state(anchor.robot)) ||
-        (anchor.kind == BodySource::kScene && scene_posed[src.anchor])) {
+        (anchor.kind == BodySource::kScene && scene_posed[src.anchor]) ||
+        (anchor.kind == BodySource::kLoose && loose != nullptr)) {
       pose[b] = compose(pose[src.anchor], src.offset);
     }
   }

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "sim_core/physics/scene_object_state.h"
 #include "sim_core/scenario/robot_state.h"
 #include "sim_core/scenario/scenario.h"
-#include "sim_core/physics/scene_object_state.h"
 #include "viewer/renderer.h"
 
 namespace mrsim {
@@ -40,13 +40,20 @@ class StatePoseMapper {
   // the scenario (each at most once) with a finite pose; else what is wrong.
   std::string CheckScene(const std::vector<SceneObjectState>& scene) const;
 
+  // Empty when `loose` fits the scenario's loose parts (the state mrsim-sim
+  // publishes on <prefix>_STATE_loose: a frame per loose frame, a sensor
+  // module per loose sensor module, finite poses); else what is wrong.
+  std::string CheckLoose(const RobotState& loose) const;
+
   // Poses every body: robot r from states[r] (null: as built), the scene
-  // objects listed in `scene` from it (null or unlisted: as built),
+  // objects listed in `scene` from it (null or unlisted: as built), the
+  // loose frames and sensor modules from `loose` (null: as built),
   // everything else as built. Fills xpos, xquat, xmat, xipos, geom_*,
   // site_*, lights and cameras; `data` must have seen one mj_forward.
-  // States must pass Check, the scene CheckScene.
+  // States must pass Check, the scene CheckScene, loose CheckLoose.
   void Apply(const std::vector<const RobotState*>& states, mjData* data,
-             const std::vector<SceneObjectState>* scene = nullptr) const;
+             const std::vector<SceneObjectState>* scene = nullptr,
+             const RobotState* loose = nullptr) const;
 
   // The distance-sensor rays of a robot in the pose of the last Apply, each
   // as long as the distance the state reports.
@@ -60,9 +67,10 @@ class StatePoseMapper {
   };
   // Where a body's pose comes from on each Apply.
   struct BodySource {
-    enum Kind { kBuilt, kState, kAttached, kScene } kind = kBuilt;
+    enum Kind { kBuilt, kState, kAttached, kScene, kLoose } kind = kBuilt;
     int robot = -1;
-    int part = -1;  // kState: frames then sensor modules, flat; kScene: object
+    // kState, kLoose: frames then sensor modules, flat; kScene: object
+    int part = -1;
     int anchor = -1;  // kAttached: body id of a kState body
     Pose offset;      // kState: body in part frame; kAttached: in anchor frame
   };
@@ -88,6 +96,8 @@ class StatePoseMapper {
   std::vector<Pose> built_;          // per body, at qpos0
   // Per scenario scene object: its body when movable, else -1.
   std::vector<int> scene_bodies_;
+  int loose_frames_ = 0;
+  int loose_sensor_modules_ = 0;
 };
 
 }  // namespace mrsim

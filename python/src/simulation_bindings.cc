@@ -392,6 +392,22 @@ step).)doc");
       "The robot's state now (mrsim.State), exactly what mrsim-sim "
       "publishes.");
   c.def(
+      "loose_state",
+      [](Simulation& s) -> std::shared_ptr<StateObject> {
+        auto state = std::make_shared<StateObject>();
+        {
+          std::lock_guard<std::mutex> lock(s.mutex());
+          if (!s.physics().has_loose_parts()) return nullptr;
+          state->state = s.physics().ReadLooseState();
+        }
+        return state;
+      },
+      "The loose parts' state now (mrsim.State of the owner 'loose': "
+      "frames one per loose frame, joints the loose hinges, sensor "
+      "modules with their readings), what mrsim-sim publishes on "
+      "<prefix>_STATE_loose; None when the scenario has no loose frame "
+      "or sensor module.");
+  c.def(
       "scene_objects",
       [](Simulation& s) {
         std::vector<SceneObjectState> objects;

@@ -16,6 +16,7 @@
 #include "lcmtypes/runtime/decode.h"
 #include "logger/generic_flattener.h"
 #include "logger/robot_state_flattener.h"
+#include "sim_core/scenario/scenario.h"
 
 namespace mrsim::studio {
 namespace {
@@ -205,6 +206,10 @@ void LiveSession::OnMessage(const std::string& channel, const uint8_t* data,
       }
       if (msg.robot != name) {
         Drop(channel, "the state of robot '" + msg.robot + "'", true);
+        return;
+      }
+      if (name == kLooseOwnerName) {  // the loose parts: no robot to steer
+        loose_ = std::move(msg);
         return;
       }
       LiveRobot& robot = robots_[name];

@@ -127,8 +127,10 @@ class LiveSession {
   int64_t SetGait(const std::string& robot, const std::string& gait,
                   WallTime now, StudioOutbox* out);
 
-  // Robots heard, in name order.
+  // Robots heard, in name order (not the loose parts: loose()).
   std::vector<const LiveRobot*> robots() const;
+  // The loose parts' newest state (<prefix>_STATE_loose), when heard.
+  const std::optional<robot_state_t>& loose() const { return loose_; }
   const LiveRobot* robot(const std::string& name) const;
   const std::optional<sim_status_t>& sim_status() const { return status_; }
   const std::optional<scene_state_t>& scene() const { return scene_; }
@@ -177,6 +179,7 @@ class LiveSession {
   std::map<std::string, LiveRobot> robots_;
   std::optional<sim_status_t> status_;
   std::optional<scene_state_t> scene_;
+  std::optional<robot_state_t> loose_;
   std::vector<LiveRequest> requests_;
   int64_t next_seq_ = 1;
   std::map<std::string, std::unique_ptr<ChannelReader>> readers_;

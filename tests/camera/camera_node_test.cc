@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -56,10 +57,15 @@ class FakeRenderer : public CameraFrameRenderer {
   std::string CheckScene(const std::vector<SceneObjectState>&) const override {
     return "";
   }
+  bool has_loose_parts() const override { return loose_parts; }
+  std::string CheckLoose(const RobotState& loose) const override {
+    return loose.sensor_modules.size() == 1 ? "" : "expected 1 sensor module";
+  }
   void Render(int camera, const std::vector<const RobotState*>& states,
-              const std::vector<SceneObjectState>*, std::int64_t seq,
-              CameraPicture* picture) override {
+              const std::vector<SceneObjectState>*, const RobotState* loose,
+              std::int64_t seq, CameraPicture* picture) override {
     ++renders;
+    loose_time = loose != nullptr ? loose->time : -1;
     posed_with = 0;
     for (const RobotState* s : states) posed_with += s != nullptr;
     picture->width = cameras_[camera].part.width;
@@ -69,6 +75,8 @@ class FakeRenderer : public CameraFrameRenderer {
 
   int renders = 0;
   int posed_with = 0;
+  bool loose_parts = false;
+  double loose_time = -1;  // of the loose state of the last Render; -1 none
 
  private:
   std::vector<std::string> robots_ = {"a", "b"};
@@ -477,6 +485,132 @@ TEST(CameraNode, HostilePicturesAreRefusedNamingTheField) {
   refuse(m, "num_bytes");
   EXPECT_EQ(refused, 6);
   EXPECT_EQ(DecodeCameraImage(good).rgb, picture.rgb);
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+// A loose sensor module's camera is drawn where the loose state of the
+// period puts it: the node listens to <prefix>_STATE_loose, keeps the
+// newest state not after the period and hands it to the renderer.
+TEST(CameraNode, LooseStateOfThePeriodPosesTheLooseParts) {
+  FakeRenderer renderer(100);
+  renderer.loose_parts = true;
+  CameraNode node(Options(ClockMode::kLockstep), &renderer, WallTime{});
+  const std::vector<std::string> channels = node.StateChannels();
+  EXPECT_NE(std::find(channels.begin(), channels.end(), "MRSIM_STATE_loose"),
+            channels.end());
+  CameraOutbox out;
+  Period(node, 0, &out);
+  EXPECT_EQ(renderer.loose_time, -1);  // none heard yet: as built
+  for (std::int64_t seq = 1; seq <= 3; ++seq) {
+    robot_state_t loose = State(kLooseOwnerName, seq, seq * 0.01);
+    loose.joints.clear();
+    loose.num_joints = 0;
+    loose.sensor_modules.resize(1);
+    loose.sensor_modules[0].pose.orientation[0] = 1;
+    loose.num_sensor_modules = 1;
+    node.OnState("MRSIM_STATE_loose", loose, WallTime{}, &out);
+    Period(node, seq, &out);
+    EXPECT_DOUBLE_EQ(renderer.loose_time, seq * 0.01);
+  }
+  EXPECT_EQ(node.counters().malformed, 0) << node.last_error();
+  // Not the scenario's loose parts: counted, never drawn.
+  robot_state_t bad = State(kLooseOwnerName, 4, 0.04);
+  node.OnState("MRSIM_STATE_loose", bad, WallTime{}, &out);
+  EXPECT_EQ(node.counters().malformed, 1);
+  Period(node, 4, &out);
+  EXPECT_DOUBLE_EQ(renderer.loose_time, 0.03);
+
+  FakeRenderer without(100);
+  CameraNode plain(Options(ClockMode::kLockstep), &without, WallTime{});
+  const std::vector<std::string> plain_channels = plain.StateChannels();
+  EXPECT_EQ(std::find(plain_channels.begin(), plain_channels.end(),
+                      "MRSIM_STATE_loose"),
+            plain_channels.end());
+}
+
+}  // namespace
+}  // namespace mrsim
+
+namespace mrsim {
+namespace {
+
+// Red pixels in columns [x0, x1) of a picture.
+int RedPixels(const CameraPicture& picture, int x0, int x1) {
+  int red = 0;
+  for (int y = 0; y < picture.height; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const std::uint8_t* p =
+          &picture.rgb[(static_cast<size_t>(y) * picture.width + x) * 3];
+      red += p[0] > 120 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
+    }
+  }
+  return red;
+}
+
+// A loose sensor module's camera built 1 m to the side of the red ball,
+// which the simulation has moved in front of it: mrsim-camera pictures it
+// from the published loose state, so the ball is in the middle.
+TEST(CameraNode, ALooseModulesCameraLooksFromWhereTheLooseStatePutsIt) {
+  Scenario s = SnakeWithCamera();
+  const SensorModule& head = s.robots[0].sensor_modules[0];
+  SensorModule eye;
+  eye.guid = "loose eye";
+  eye.position = head.position + Eigen::Vector3d(0.2, 1.0, 0);
+  Camera camera;
+  camera.width = 48;
+  camera.height = 32;
+  eye.cameras.push_back(camera);
+  s.loose_sensor_modules.push_back(eye);
+  Physics physics(s);
+  StateCameraRenderer renderer(s);
+  CameraNodeOptions options = Options(ClockMode::kLockstep);
+  options.robot = kLooseOwnerName;
+  CameraNode node(options, &renderer, WallTime{});
+  CameraOutbox out;
+  const robot_state_t robot = ToRobotStateMessage(physics.ReadRobotState(0), 0);
+  auto picture = [&]() {
+    node.OnState("MRSIM_STATE_eye", robot, WallTime{}, &out);
+    EXPECT_EQ(node.counters().malformed, 0) << node.last_error();
+    for (const auto& [channel, msg] : out.messages) {
+      if (const auto* image = std::get_if<camera_image_t>(&msg)) {
+        EXPECT_EQ(channel, "MRSIM_CAMERA_loose");
+        return DecodeCameraImage(*image);
+      }
+    }
+    ADD_FAILURE() << "no picture";
+    return CameraPicture{};
+  };
+  // No loose state heard: as built, looking past the ball.
+  const CameraPicture built = picture();
+  ASSERT_EQ(built.width, 48);
+  EXPECT_EQ(RedPixels(built, 0, 48), 0);
+  // The loose state has it 1 m over, the ball 0.2 m ahead of it. Each
+  // period is a new frame slot: its time is after the last picture's.
+  robot_state_t loose = ToRobotStateMessage(physics.ReadLooseState(), 1);
+  loose.sensor_modules[0].pose.position[1] -= 1.0;
+  loose.sim_time = 1.0;
+  loose.utime = 1000000;
+  node.OnState("MRSIM_STATE_loose", loose, WallTime{}, &out);
+  out.clear();
+  robot_state_t r = robot;
+  r.seq = 1;
+  r.sim_time = 1.0;
+  r.utime = 1000000;
+  node.OnState("MRSIM_STATE_eye", r, WallTime{}, &out);
+  EXPECT_EQ(node.counters().malformed, 0) << node.last_error();
+  const camera_image_t* image = nullptr;
+  for (const auto& [channel, msg] : out.messages) {
+    if (const auto* i = std::get_if<camera_image_t>(&msg)) image = i;
+  }
+  ASSERT_NE(image, nullptr);
+  const CameraPicture moved = DecodeCameraImage(*image);
+  EXPECT_GT(RedPixels(moved, 18, 30), 8);
+  EXPECT_EQ(RedPixels(moved, 0, 6) + RedPixels(moved, 42, 48), 0);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // End to end: a sensor module's IMU simulated by mrsim-sim, published on
-// LCM and logged by mrsim-log as CSV columns, at rest reading gravity.
+// LCM and logged by mrsim-log as CSV columns, at rest reading gravity; a
+// loose sensor module (no robot) dropped beside it, logged from
+// <prefix>_STATE_loose where it landed.
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -30,6 +32,10 @@ TEST(ImuEndToEnd, SimulatedPublishedAndLoggedAsCsvColumns) {
   sm.imu = Imu{};
   robot.sensor_modules.push_back(sm);
   s.robots.push_back(robot);
+  SensorModule loose = sm;
+  loose.guid = "loose eye";
+  loose.position = Eigen::Vector3d(0, 1.0, 0.2);
+  s.loose_sensor_modules.push_back(loose);
   const std::string scenario = dir + "/imu.xml";
   WriteScenarioFile(s, scenario);
 
@@ -61,6 +67,25 @@ TEST(ImuEndToEnd, SimulatedPublishedAndLoggedAsCsvColumns) {
   std::from_chars(last[gx].data(), last[gx].data() + last[gx].size(), gyro_x);
   EXPECT_NEAR(accel_z, 9.81, 0.1);
   EXPECT_NEAR(gyro_x, 0.0, 0.01);
+
+  // The loose module fell from 0.2 m and lies on the ground, reading
+  // gravity: its pose and readings are in the log, not the scenario's.
+  const testing::CsvFile loose_csv =
+      testing::ReadCsvFile(dir + "/csv/MRSIM_STATE_loose.csv");
+  const int lz = loose_csv.Column("sensor_module0.z");
+  const int laz = loose_csv.Column("sensor_module0.imu.accel.z");
+  ASSERT_GE(lz, 0) << loose_csv.text.substr(0, 2000);
+  ASSERT_GE(laz, 0);
+  ASSERT_GE(loose_csv.rows.size(), 50u);
+  const std::vector<std::string>& landed = loose_csv.rows.back();
+  double loose_z = 1;
+  double loose_accel_z = 0;
+  std::from_chars(landed[lz].data(), landed[lz].data() + landed[lz].size(),
+                  loose_z);
+  std::from_chars(landed[laz].data(), landed[laz].data() + landed[laz].size(),
+                  loose_accel_z);
+  EXPECT_NEAR(loose_z, 0.025, 0.005);
+  EXPECT_NEAR(loose_accel_z, 9.81, 0.1);
 }
 
 }  // namespace

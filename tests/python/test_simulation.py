@@ -132,3 +132,26 @@ def test_step_lets_other_threads_run(sim):
         count += 1
     t.join()
     assert count > 1000
+
+
+def _with_loose_module(scenario):
+    """The scenario with a loose sensor module 1 m beside the robot, 0.2 m
+    up."""
+    xml = scenario.to_xml()
+    end = xml.rindex("</")
+    loose = ("<sensorModules><SensorModule><guid>eye</guid>"
+             "<position><x>0</x><y>1</y><z>0.2</z></position>"
+             "</SensorModule></sensorModules>")
+    return mrsim.Scenario.from_xml(xml[:end] + loose + xml[end:])
+
+
+def test_loose_state_is_where_the_physics_moved_the_loose_parts(sim):
+    assert sim.loose_state() is None  # no loose parts
+    loose = mrsim.Simulation(_with_loose_module(
+        mrsim.Scenario.chain(modules=3)))
+    start = loose.loose_state()
+    assert start.robot == "loose"
+    assert start.sensor_pose[0][2] == pytest.approx(0.2)
+    loose.step(1000)
+    assert loose.loose_state().sensor_pose[0][2] == pytest.approx(
+        0.025, abs=0.005)

@@ -80,6 +80,21 @@ TEST_F(LiveSessionTest, ListsTheRobotsItHearsAndMarksSilentOnes) {
   EXPECT_EQ(session_.robot("snake")->state.seq, 1);
 }
 
+// The loose parts' state (<prefix>_STATE_loose) is no robot to list or
+// steer: it is kept apart, newest first.
+TEST_F(LiveSessionTest, LoosePartsStateIsKeptApartFromTheRobots) {
+  Hear("TEST_STATE_snake", testing::KnownRobotState(0, 4, 1, "snake"));
+  Hear("TEST_STATE_loose", testing::KnownRobotState(0, 0, 2, "loose"));
+  Hear("TEST_STATE_loose", testing::KnownRobotState(1, 0, 2, "loose"));
+  const auto robots = session_.robots();
+  ASSERT_EQ(robots.size(), 1u);
+  EXPECT_EQ(robots[0]->name, "snake");
+  ASSERT_TRUE(session_.loose().has_value());
+  EXPECT_EQ(session_.loose()->seq, 1);
+  EXPECT_EQ(session_.loose()->num_sensor_modules, 2);
+  EXPECT_EQ(session_.malformed() + session_.foreign(), 0);
+}
+
 TEST_F(LiveSessionTest, PlotBufferHoldsExactlyTheValuesTheStatesCarried) {
   PlotSeries& force =
       session_.AddPlot("TEST_STATE_snake", "sensor_module0.force", 0.02);
