@@ -21,18 +21,18 @@
 #include "common/wall_time.h"
 #include "gait_controller/gait_file.h"
 #include "nn_controller/network_file.h"
-#include "optimizer/search/algorithm_registry.h"
 #include "optimizer/episode/best_lua_script.h"
 #include "optimizer/episode/body_genes.h"
 #include "optimizer/episode/controller_genes.h"
 #include "optimizer/episode/episode_physics_pool.h"
-#include "optimizer/farm/farm_channels.h"
-#include "optimizer/farm/farm_evaluator.h"
-#include "optimizer/search/local_evaluator.h"
 #include "optimizer/episode/mlp_genes.h"
 #include "optimizer/episode/problem_codec.h"
-#include "optimizer/process/opt_progress_reporter.h"
 #include "optimizer/episode/task.h"
+#include "optimizer/farm/farm_channels.h"
+#include "optimizer/farm/farm_evaluator.h"
+#include "optimizer/process/opt_progress_reporter.h"
+#include "optimizer/search/algorithm_registry.h"
+#include "optimizer/search/local_evaluator.h"
 #include "sim_core/export/overlap_check.h"
 #include "sim_core/scenario/scenario_xml.h"
 
@@ -200,11 +200,12 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "What the genes drive: gait (the built-in gait, --genome "
                  "or --genes), cpg (the gait with the CPG genes by "
                  "default), lua:FILE (a Lua script; its declared params "
-                 "are the genes, plus any body genes of --genome)")
+                 "are the genes, plus any body genes of --genome), lua "
+                 "(the scenario's own <run> script), mlp:H (a network)")
       ->capture_default_str();
   app.add_option("--out", c.out_dir,
-                 "Output directory (checkpoint, CSVs, best)")
-      ->required();
+                 "Output directory (checkpoint, CSVs, best); default: "
+                 "opt-<scenario or task name> in the working folder");
   app.add_option("--progress-url", c.progress_url,
                  "Also publish opt_progress_t on <prefix>_PROGRESS over this "
                  "LCM URL after every generation and at the end");
@@ -328,6 +329,9 @@ OptSetup PrepareOpt(const OptCommand& c) {
   OptSetup setup;
   Problem& problem = setup.problem;
   try {
+    if (c.out_dir.empty()) {
+      throw OptInputError("--out: expected the run's output folder");
+    }
     AlgorithmSettings a = c.algorithm;
     a.include_start = !c.no_start;
     a.Validate();
@@ -421,7 +425,18 @@ OptSetup PrepareOpt(const OptCommand& c) {
     EmbedAssets(problem.scenario);
     bool cpg_genes = false;
     try {
-      problem.controller = ParseControllerFlag(c.controller, &cpg_genes);
+      if (c.controller == "lua") {  // the design's own script
+        if (c.lua_source.empty()) {
+          throw OptInputError(
+              "--controller lua: the scenario has no Lua script in its <run> "
+              "element; give lua:FILE");
+        }
+        problem.controller.kind = ControllerSpec::Kind::kLua;
+        problem.controller.source = c.lua_source;
+        problem.controller.name = "the design's script";
+      } else {
+        problem.controller = ParseControllerFlag(c.controller, &cpg_genes);
+      }
     } catch (const std::invalid_argument& err) {
       throw OptInputError(err.what());
     }
@@ -437,6 +452,8 @@ OptSetup PrepareOpt(const OptCommand& c) {
       user = ReadGenomeFile(c.genome_path);
     } else if (!c.genes.empty()) {
       user = BuiltInGenome(c.genes);
+    } else if (!c.genome_text.empty()) {
+      user = ReadGenomeString(c.genome_text, c.genome_source);
     } else if (cpg_genes) {
       user = BuiltInGenome("cpg");
     }

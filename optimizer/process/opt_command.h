@@ -15,10 +15,10 @@
 #include "common/file_lock.h"
 #include "lcmtypes/runtime/auth_flags.h"
 #include "mrsim/opt_progress_t.hpp"
-#include "optimizer/search/algorithm.h"
-#include "optimizer/search/batch_evaluator.h"
 #include "optimizer/episode/episode.h"
 #include "optimizer/farm/farm_channels.h"
+#include "optimizer/search/algorithm.h"
+#include "optimizer/search/batch_evaluator.h"
 #include "optimizer/search/optimization_run.h"
 #include "optimizer/slurm/farm_cluster.h"
 
@@ -33,8 +33,15 @@ struct OptCommand {
   std::string scenario_path;
   std::string task;  // a task of the suite instead of a scenario (task.h)
   std::string genome_path;
+  // A genome's text instead of a file (the design's <optimization><genome>,
+  // opt_file_setup.h) and what names it in errors.
+  std::string genome_text;
+  std::string genome_source;
+  // What --controller lua runs: the design's <run> script.
+  std::string lua_source;
   std::string genes;  // a built-in genome instead of --genome: sine | cpg
-  // --controller: gait | cpg | lua:FILE (controller_spec.h)
+  // --controller: gait | cpg | lua (the design's script) | lua:FILE |
+  // mlp:H (controller_spec.h)
   std::string controller = "gait";
   std::string out_dir;
   std::string workers = "local:0";  // local:K threads (0: one per core)

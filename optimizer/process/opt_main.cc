@@ -1,7 +1,6 @@
-// mrsim-opt: optimises a gait (and body) for a scenario, generation by
-// generation, on local threads or a farm of mrsim-worker processes over
-// LCM; checkpoints every generation and continues when run again
-// (docs/optimizer.md). The work is in opt_command.h.
+// mrsim-opt: optimises a gait (and body) for a scenario on local threads or
+// a farm of mrsim-worker processes; checkpoints every generation and goes
+// on when run again (docs/optimizer.md). The work is in opt_command.h.
 #include <fmt/format.h>
 #include <signal.h>
 
@@ -14,6 +13,7 @@
 #include "lcmtypes/runtime/usage_error.h"
 #include "lcmtypes/runtime/version.h"
 #include "optimizer/process/opt_command.h"
+#include "optimizer/process/opt_file_setup.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mrsim-opt: optimise a gait and body for a scenario"};
@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
   }
   try {
     mrsim::InstallStopHandlers();
-    command.auth.ExportToChildren();  // --replay's processes
+    command.auth.ExportToChildren();       // --replay's processes
+    mrsim::ApplyFileSetup(app, &command);  // the design's <optimization>
     const mrsim::OptSetup setup = mrsim::PrepareOpt(command);
     signal(SIGPIPE, SIG_IGN);  // a tcpq hub that goes away: re-connect
     const auto log = mrsim::OptLog(command);
@@ -40,8 +41,7 @@ int main(int argc, char** argv) {
     const auto publish = mrsim::MakeProgressPublisher(command, &progress);
     const mrsim::OptOutcome outcome = mrsim::RunOpt(
         command, setup, *evaluator, stdout, stderr, cluster.get(), publish);
-    // Unfinished: 128 + the signal, as a shell reports it, so a script can
-    // tell it from a finished run.
+    // Unfinished: 128 + the signal, as a shell reports it.
     if (outcome.stopped) return 128 + std::max(mrsim::StopSignal(), SIGINT);
     if (!command.replay) return 0;
     evaluator.reset();

@@ -51,7 +51,8 @@ def read_generations(out_dir: str) -> Dict[str, Any]:
 
 def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
              out_dir: Optional[str] = None,
-             algorithm: str = "ga", generations: int = 10,
+             algorithm: Optional[str] = None,
+             generations: Optional[int] = None,
              population: Optional[int] = None, seed: Optional[int] = None,
              episode: Optional[float] = None, gait: Optional[str] = None,
              farm: bool = False, workers: Optional[int] = None,
@@ -70,6 +71,12 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
     the CPG's). Exactly one of scenario and task, and one of genome and
     genes; a task name that is not in the suite raises ValueError naming
     the known ones before anything runs.
+
+    A scenario file that carries its optimisation setup (<optimization>,
+    docs/optimizer.md "The setup in the design file") gives every setting
+    left as None here, its genes too (then give neither genome nor genes);
+    an argument given overrides the file. Without a setup in the file the
+    settings left as None are mrsim-opt's defaults (ga, 20 generations).
 
     controller: what the genes drive (mrsim-opt --controller,
     docs/optimizer.md): "gait" (default), "cpg", "lua:FILE" (a Lua
@@ -99,7 +106,10 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
             raise TypeError("optimize: controller %s brings its own genes; "
                             "give a genome file only for body genes"
                             % controller)
-    elif (genome is None) == (genes is None):
+    elif genome is not None and genes is not None:
+        raise TypeError("optimize: give one of genome and genes, not both")
+    elif task is not None and genome is None and genes is None:
+        # A scenario file may carry its genes; a task has none of its own.
         raise TypeError("optimize: give exactly one of genome and genes")
     if task is not None and task.replace("_", "-") not in _core.task_names():
         raise ValueError("optimize: unknown task '%s': expected one of %s" %
@@ -116,8 +126,11 @@ def optimize(scenario: Optional[str] = None, genome: Optional[str] = None,
         args += ["--genome", os.fspath(genome)]
     if controller is not None:
         args += ["--controller", controller]
-    args += ["--out", os.fspath(out_dir), "--algorithm",
-             algorithm, "--generations", str(int(generations)), "--quiet"]
+    args += ["--out", os.fspath(out_dir), "--quiet"]
+    if algorithm is not None:
+        args += ["--algorithm", algorithm]
+    if generations is not None:
+        args += ["--generations", str(int(generations))]
     if workers is not None and not farm:
         args += ["--workers", "local:%d" % workers]
     for flag, value in (("--population", population), ("--seed", seed),

@@ -86,3 +86,21 @@ def test_optimize_refuses_gait_genes_for_a_controller_with_its_own(tmp_path):
                            "examples/optimise/serpenoid_params.lua"),
                        out_dir=str(tmp_path / "o"))
     assert "its own genes" in str(e.value)
+
+
+def test_optimize_uses_the_setup_saved_in_the_scenario_file(tmp_path):
+    # scenarios/optimise_snake.xml: CMA-ES, 4 generations of 4, the sine
+    # genes, seed 3, 2 s episodes; generations given here override it.
+    out = str(tmp_path / "file")
+    result = mrsim.optimize(source("scenarios/optimise_snake.xml"),
+                            out_dir=out, generations=1, episode=0.5,
+                            workers=1)
+    assert len(result["generations"]["best"]) == 1
+    assert "A_yaw" in result["generations"]  # the sine genes, from the file
+    flags = str(tmp_path / "flags")
+    same = mrsim.optimize(source("scenarios/snake11.xml"), genes="sine",
+                          out_dir=flags, algorithm="cmaes", generations=1,
+                          population=4, seed=3, episode=0.5, workers=1,
+                          extra_args=("--w-energy", "0.01"))
+    assert (result["generations"]["best"][0] ==
+            same["generations"]["best"][0])
