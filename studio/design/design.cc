@@ -919,6 +919,20 @@ void Design::SetRunSettings(const RunSettings& run) {
   dirty_ = WriteScenarioString(scenario_) != saved_text_;
 }
 
+void Design::SetOptimizationSettings(
+    const std::optional<OptimizationSettings>& setup) {
+  if (scenario_.optimization == setup) return;
+  Scenario probe;  // the rules of <optimization> alone
+  probe.optimization = setup;
+  try {
+    ValidateScenario(probe);
+  } catch (const ScenarioError& e) {
+    throw DesignError("optimisation setup: " + e.path() + ": " + e.message());
+  }
+  scenario_.optimization = setup;
+  dirty_ = WriteScenarioString(scenario_) != saved_text_;
+}
+
 void Design::Save(bool embed_assets) {
   if (path_.empty()) throw std::runtime_error("no file name: use Save As");
   if (embed_assets) {

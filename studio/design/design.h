@@ -156,6 +156,11 @@ class Design {
   // when they differ from the file's. Throws DesignError for settings no
   // run could use (a Lua controller without a script, a bad name).
   void SetRunSettings(const RunSettings& run);
+  // How to optimise the design (saved with it, <optimization>; none: not
+  // saved), as SetRunSettings: not an undo step, dirty when it differs
+  // from the file's. Throws DesignError for values the file cannot hold.
+  void SetOptimizationSettings(
+      const std::optional<OptimizationSettings>& setup);
 
   // Writes the file (atomically); throws std::runtime_error naming it.
   // With embed_assets, the file carries the terrain image and mesh files

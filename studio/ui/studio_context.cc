@@ -27,6 +27,7 @@ StudioContext::StudioContext(Design design_in, const AppOptions& options_in)
   show_template = options.open_template;
   embed_on_save = !NamesAssetFiles(design.scenario());
   live->LoadRunSettings(design.scenario().run);
+  live->LoadOptimisation(design.scenario().optimization);
   if (!design.path().empty() && std::filesystem::exists(design.path())) {
     recent.Add(design.path());
   }
@@ -137,6 +138,7 @@ void StudioContext::OpenFile(const std::string& path) {
     design = Design::Open(path);
     embed_on_save = !NamesAssetFiles(design.scenario());
     live->LoadRunSettings(design.scenario().run);
+    live->LoadOptimisation(design.scenario().optimization);
     built_revision = -1;
     recent.Add(path);
     Note(design.note());
@@ -163,6 +165,7 @@ std::string StudioContext::OpenFolder() const {
 
 void StudioContext::StoreRunSettings() {
   design.SetRunSettings(live->FormRunSettings());
+  design.SetOptimizationSettings(live->FormOptimisation());
 }
 
 void StudioContext::BrowseSaveAs() {

@@ -14,12 +14,12 @@
 #include "studio/design/design.h"
 #include "studio/design/panel_layout.h"
 #include "studio/design/recent_files.h"
-#include "studio/ui/view/camera_feed.h"
-#include "studio/ui/widgets/file_browser.h"
-#include "studio/ui/widgets/layout_recorder.h"
 #include "studio/ui/run/live_panel.h"
+#include "studio/ui/view/camera_feed.h"
 #include "studio/ui/view/preview.h"
 #include "studio/ui/view/view_recorder.h"
+#include "studio/ui/widgets/file_browser.h"
+#include "studio/ui/widgets/layout_recorder.h"
 
 namespace mrsim::studio {
 
@@ -108,7 +108,8 @@ struct StudioContext {
   void RequestClose();
   void OpenFile(const std::string& path);
   void SaveFile();
-  // The Run panel's form into the design, so Save writes how to run it.
+  // The Run panel's form and the Optimise section's into the design, so
+  // Save writes how to run and optimise it.
   // Throws DesignError for a form no run could use.
   void StoreRunSettings();
   // Starts a video of the 3-D view beside the design (else in the

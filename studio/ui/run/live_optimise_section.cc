@@ -2,10 +2,11 @@
 // progress curves, and playing an individual live.
 // Part of LivePanel (live_panel.h), one file per section.
 #include "gait_controller/gait_presets.h"
-#include "optimizer/search/algorithm_registry.h"
 #include "optimizer/episode/controller_genes.h"
 #include "optimizer/episode/controller_spec.h"
 #include "optimizer/episode/task.h"
+#include "optimizer/search/algorithm_registry.h"
+#include "studio/live/saved_optimisation.h"
 #include "studio/ui/run/live_panel.h"
 #include "studio/ui/run/live_panel_common.h"
 
@@ -262,7 +263,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::InputInt("population", &population_, 0, 0, kNumberFlags);
   RecordItem(layout_, "population");
   ImGui::SetNextItemWidth(80);
-  ImGui::InputFloat("episode s", &episode_, 0, 0, "%.1f", kNumberFlags);
+  ImGui::InputDouble("episode s", &episode_, 0, 0, "%.1f", kNumberFlags);
   RecordItem(layout_, "episode");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
@@ -278,37 +279,16 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
       if (task.empty() && (design.path.empty() || design.dirty)) {
         throw std::invalid_argument("save the design first");
       }
-      OptimiseOptions o;
       if (genes_drive_ == 0 && genome_.genes.empty()) {
         genome_ = ReadGenomeFile(GenomePathFor(genome_path_, design.path));
       }
-      if (genes_drive_ == 1) {
-        o.controller = "lua";
-        o.lua_source = controller_.lua_source();
-      } else if (genes_drive_ == 2) {
-        o.controller = "mlp:" + mlp_hidden_;
-      }
+      OptimiseOptions o = FormOptimiseOptions();
       o.scenario_path = design.path;
       o.out_dir = opt_dir_;
-      o.genome = genome_;
       if (!design.robots.empty()) o.genome.robot = design.robots.front();
       if (!task.empty()) {  // the task's world, robot and own gait
-        o.task = task;
         o.genome.robot = kTaskRobot;
         o.base_gait.clear();
-      }
-      o.algorithm = algorithms.at(algorithm_).name;
-      o.generations = generations_;
-      o.population = population_;
-      o.seed = static_cast<unsigned>(std::max(0, seed_));
-      o.episode_s = episode_;
-      o.fitness = fitness_;
-      o.robust = robust_;
-      o.allow_overlap = allow_overlap_;
-      o.base_gait = base_gait_;
-      for (const AlgorithmSetting& setting :
-           algorithms.at(algorithm_).settings) {
-        o.algorithm_settings[setting.flag] = setting.Get(algorithm_settings_);
       }
       o.farm = farm_;
       o.islands = farm_ ? islands_ : 1;
@@ -485,6 +465,75 @@ void LivePanel::EndReplay() {
   if (replay_) ++replay_revision_;
   replay_.reset();
   watching_.clear();
+}
+
+OptimiseOptions LivePanel::FormOptimiseOptions() const {
+  OptimiseOptions o;
+  if (genes_drive_ == 1) {
+    o.controller = "lua";
+    o.lua_source = controller_.lua_source();
+  } else if (genes_drive_ == 2) {
+    o.controller = "mlp:" + mlp_hidden_;
+  }
+  o.genome = genome_;
+  o.task = task_picker_.task();
+  const AlgorithmInfo& info = Algorithms().at(algorithm_);
+  o.algorithm = info.name;
+  o.generations = generations_;
+  o.population = population_;
+  o.seed = static_cast<unsigned>(std::max(0, seed_));
+  o.episode_s = episode_;
+  o.fitness = fitness_;
+  o.robust = robust_;
+  o.allow_overlap = allow_overlap_;
+  o.base_gait = base_gait_;
+  for (const AlgorithmSetting& setting : info.settings) {
+    o.algorithm_settings[setting.flag] = setting.Get(algorithm_settings_);
+  }
+  return o;
+}
+
+std::optional<OptimizationSettings> LivePanel::FormOptimisation() const {
+  OptimizationSettings s = SavedOptimisation(FormOptimiseOptions());
+  if (!had_optimisation_ && s == opened_optimisation_) return std::nullopt;
+  return s;
+}
+
+void LivePanel::LoadOptimisation(
+    const std::optional<OptimizationSettings>& saved) {
+  had_optimisation_ = saved.has_value();
+  if (saved) {
+    try {
+      const OptimiseOptions o = OptionsFromSaved(*saved, OptimiseOptions{});
+      algorithm_ = AlgorithmIndex(ParseAlgorithm(o.algorithm));
+      generations_ = o.generations;
+      population_ = o.population;
+      seed_ = static_cast<int>(o.seed);
+      episode_ = o.episode_s;
+      genes_drive_ = o.controller == "lua"                ? 1
+                     : o.controller.rfind("mlp:", 0) == 0 ? 2
+                                                          : 0;
+      if (genes_drive_ == 2) mlp_hidden_ = o.controller.substr(4);
+      if (!o.genome.genes.empty()) genome_ = o.genome;
+      task_picker_.Pick(o.task);
+      base_gait_ = o.base_gait;
+      fitness_ = o.fitness;
+      robust_ = o.robust;
+      allow_overlap_ = o.allow_overlap;
+      for (const AlgorithmSetting& setting :
+           Algorithms().at(algorithm_).settings) {
+        const auto at = o.algorithm_settings.find(setting.flag);
+        if (at != o.algorithm_settings.end()) {
+          setting.Set(&algorithm_settings_, at->second);
+        }
+      }
+    } catch (const std::exception& e) {
+      message_ = std::string("the design's optimisation setup is not used: ") +
+                 e.what();
+      message_is_note_ = false;
+    }
+  }
+  opened_optimisation_ = SavedOptimisation(FormOptimiseOptions());
 }
 
 }  // namespace mrsim::studio

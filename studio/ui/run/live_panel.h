@@ -20,9 +20,9 @@
 
 #include "gait_controller/gait.h"
 #include "gait_controller/gait_parameters.h"
+#include "optimizer/episode/episode.h"
 #include "optimizer/search/algorithm.h"
 #include "optimizer/search/algorithm_registry.h"
-#include "optimizer/episode/episode.h"
 #include "studio/live/best_replay.h"
 #include "studio/live/live_link.h"
 #include "studio/live/live_runner.h"
@@ -82,6 +82,12 @@ class LivePanel {
   // Fills the Run form from an opened design's saved run settings; none
   // (a file from before they were saved): the defaults.
   void LoadRunSettings(const std::optional<RunSettings>& run);
+  // The Optimise form as Save writes it into the design (<optimization>);
+  // none while a design without one has the form as it opened.
+  std::optional<OptimizationSettings> FormOptimisation() const;
+  // Fills the Optimise form from an opened design's saved setup; none: the
+  // form as it was (a note says when the setup cannot be shown).
+  void LoadOptimisation(const std::optional<OptimizationSettings>& saved);
   // Something live is shown (a simulation heard, processes or an
   // optimisation running): the window redraws at a steady rate.
   bool animating() const {
@@ -147,6 +153,8 @@ class LivePanel {
   void EndReplay();
   // The run settings of the form (clock, rate, speed, URL, prefix).
   RunOptions FormRun() const;
+  // The Optimise form's settings (not the design, folder or farm).
+  OptimiseOptions FormOptimiseOptions() const;
   // Whether the followed robot can be steered, in the words the panel
   // shows: the session's view, told who drives the robot when this window
   // started the run.
@@ -181,7 +189,11 @@ class LivePanel {
   int generations_ = 10;
   int population_ = 8;
   int seed_ = 1;
-  float episode_ = 5;
+  double episode_ = 5;
+  // Whether the opened design had an optimisation setup, and the form's
+  // as it opened: a design without one gets one only once it is changed.
+  bool had_optimisation_ = false;
+  OptimizationSettings opened_optimisation_;
   bool farm_ = false;
   int islands_ = 1;
   int jump_to_ = 1;

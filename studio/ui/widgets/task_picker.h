@@ -14,10 +14,10 @@ class TaskPicker {
   void Draw();
   // The picked task's name; empty: the design.
   const std::string& task() const { return task_; }
-
- private:
+  // Picks task `name` (empty: the design), as choosing it in the combo.
   void Pick(const std::string& name);
 
+ private:
   std::string task_;
   std::string about_;  // the tooltip: what the task scores, its gait
 };
