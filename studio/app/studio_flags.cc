@@ -15,7 +15,8 @@ void AddStudioFlags(CLI::App* cli, StudioFlags* f) {
   cli->add_option("--select", f->select,
                   "Select this before the first frame: a robot or object "
                   "by name, [ROBOT ]module N, [ROBOT ]sensor_module N, "
-                  "terrain, settings or none");
+                  "[ROBOT ]lock N, loose_frame N, loose_joint N, "
+                  "loose_sensor_module N, terrain, settings or none");
   cli->add_option("--drag", f->drag,
                   "With --screenshot: press the left button at X0 Y0, drag "
                   "to X1 Y1 and take the picture while it is held (window "

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "sim_core/scenario/face_geometry.h"
 #include "sim_core/export/frame_mesh.h"
+#include "sim_core/scenario/face_geometry.h"
 
 namespace mrsim::studio {
 namespace {
@@ -94,7 +94,93 @@ void Place(Eigen::Vector3d* to, const Eigen::Vector3d& target) {
   if ((*to - target).norm() > 1e-9) *to = target;
 }
 
+// The guids a slot's part goes by: a module's two frames, a sensor
+// module's own.
+std::vector<std::string> SlotGuids(const Robot& robot, const ChainSlot& slot) {
+  if (slot.sensor) return {robot.sensor_modules.at(slot.source).guid};
+  const Module& m = robot.modules.at(slot.source);
+  return {m.frames[0].guid, m.frames[1].guid};
+}
+
+// Place in ChainOrder of the part named `guid`, or -1.
+int SlotOfGuid(const Robot& robot, const std::vector<ChainSlot>& slots,
+               const std::string& guid) {
+  for (size_t i = 0; i < slots.size(); ++i) {
+    for (const std::string& g : SlotGuids(robot, slots[i])) {
+      if (g == guid) return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+// The old robot's locks on the new one: break forces of the chain's locks
+// that join the same parts, and loop locks whose parts remain.
+void CarryLocks(const Robot& old, const std::vector<ChainSlot>& slots,
+                Robot* robot) {
+  std::map<std::string, std::string> renamed;
+  int module = 0, sensor = 0;
+  for (const ChainSlot& slot : slots) {
+    const ChainSlot now{slot.sensor, slot.sensor ? sensor++ : module++,
+                        slot.axis};
+    if (slot.source < 0) continue;
+    const std::vector<std::string> from = SlotGuids(old, slot);
+    const std::vector<std::string> to = SlotGuids(*robot, now);
+    for (size_t k = 0; k < from.size(); ++k) renamed[from[k]] = to[k];
+  }
+  auto same_ends = [](const Joint& a, const std::string& l,
+                      const std::string& r) {
+    return (a.left_frame_guid == l && a.right_frame_guid == r) ||
+           (a.left_frame_guid == r && a.right_frame_guid == l);
+  };
+  std::vector<Joint> loops;
+  for (const Joint& lock : old.locks) {
+    auto l = renamed.find(lock.left_frame_guid);
+    auto r = renamed.find(lock.right_frame_guid);
+    if (l == renamed.end() || r == renamed.end()) continue;
+    if (IsChainLock(old, lock)) {
+      for (Joint& made : robot->locks) {
+        if (same_ends(made, l->second, r->second)) {
+          made.break_force = lock.break_force;
+        }
+      }
+      continue;
+    }
+    Joint loop = lock;
+    loop.left_frame_guid = l->second;
+    loop.right_frame_guid = r->second;
+    loops.push_back(loop);
+  }
+  for (Joint& loop : loops) {
+    bool taken = false;
+    for (const Joint& j : robot->locks) taken = taken || j.guid == loop.guid;
+    for (int k = 0; taken; ++k) {
+      loop.guid = robot->name + "/loop" + std::to_string(k);
+      taken = false;
+      for (const Joint& j : robot->locks) taken = taken || j.guid == loop.guid;
+      for (const Joint& j : loops) {
+        taken = taken || (&j != &loop && j.guid == loop.guid);
+      }
+    }
+    robot->locks.push_back(loop);
+  }
+}
+
 }  // namespace
+
+bool IsChainLock(const Robot& robot, const Joint& lock) {
+  const std::vector<ChainSlot> slots = ChainOrder(robot);
+  // The back of one part to the front of the next: a module's back frame
+  // (frames[1]) or front frame (frames[0]), a sensor module itself.
+  auto joins = [&](const std::string& back, const std::string& front) {
+    const int a = SlotOfGuid(robot, slots, back);
+    const int b = SlotOfGuid(robot, slots, front);
+    if (a < 0 || b != a + 1) return false;
+    return SlotGuids(robot, slots[a]).back() == back &&
+           SlotGuids(robot, slots[b]).front() == front;
+  };
+  return joins(lock.left_frame_guid, lock.right_frame_guid) ||
+         joins(lock.right_frame_guid, lock.left_frame_guid);
+}
 
 std::vector<ChainSlot> ChainOrder(const Robot& robot) {
   std::vector<ChainSlot> slots;
@@ -224,6 +310,7 @@ Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
       }
     }
   }
+  CarryLocks(old, slots, &robot);
   Restack(&robot, base_dir);
   return robot;
 }

@@ -1,8 +1,8 @@
 // Structural edits of a chain robot (insert, remove, reorder parts). The
-// robot is laid out again with MakeChain's geometry (sim_core/scenario/chain_builder.h)
-// so a chain built part by part equals what `mrsim-scenario new` makes; the
-// fields a user edited on existing parts (masses, materials, gains, limits,
-// sensors) are carried over.
+// robot is laid out again with MakeChain's geometry
+// (sim_core/scenario/chain_builder.h) so a chain built part by part equals what
+// `mrsim-scenario new` makes; the fields a user edited on existing parts
+// (masses, materials, gains, limits, sensors) are carried over.
 #pragma once
 
 #include <optional>
@@ -37,9 +37,17 @@ ChainOptions OptionsOf(const Robot& robot);
 // sensor modules next to each other.
 // A new module takes the mesh frames (shape and scale) of the first
 // module of its kind in `old` that has them. Mesh frames are measured with
-// `base_dir` (Restack).
+// `base_dir` (Restack). The chain's locks keep their breaking force when
+// they join the same two parts again; loop locks whose two parts remain
+// are carried, naming the parts by their new guids.
 Robot Relayout(const Robot& old, const std::vector<ChainSlot>& slots,
                const ChainOptions& options, const std::string& base_dir = "");
+
+// A lock of `robot` that joins the back of one part to the front of the
+// next in the chain (ChainOrder; a module's back and front frames, a
+// sensor module itself): the chain's own, which Relayout makes again. Any other
+// lock closes a loop (or braces two parts apart) and Relayout carries it.
+bool IsChainLock(const Robot& robot, const Joint& lock);
 
 // Puts the force plate and distance sensors of `sm` on the centres of
 // their faces (sensorPosition) of the module as it is now, as the physics

@@ -178,7 +178,8 @@ void Design::Select(const Selection& selection) {
 }
 
 int Design::TargetRobot() const {
-  if (IsChainPart(selection_) || selection_.kind == SelectionKind::kRobot) {
+  if (IsChainPart(selection_) || selection_.kind == SelectionKind::kRobot ||
+      selection_.kind == SelectionKind::kLock) {
     return selection_.robot;
   }
   return scenario_.robots.empty() ? -1 : 0;
@@ -422,10 +423,242 @@ void Design::RemoveSelected() {
     case SelectionKind::kContactFriction:
       after = erase(next.contact_frictions);
       break;
+    case SelectionKind::kLock:
+      DetachLock();
+      return;
+    case SelectionKind::kLooseJoint:
+      after = erase(next.loose_joints);
+      break;
+    case SelectionKind::kLooseFrame:
+    case SelectionKind::kLooseSensorModule: {
+      const std::string guid =
+          sel.kind == SelectionKind::kLooseFrame
+              ? next.loose_frames.at(sel.index).guid
+              : next.loose_sensor_modules.at(sel.index).guid;
+      after = sel.kind == SelectionKind::kLooseFrame
+                  ? erase(next.loose_frames)
+                  : erase(next.loose_sensor_modules);
+      // Its joints join nothing now.
+      auto& joints = next.loose_joints;
+      joints.erase(std::remove_if(joints.begin(), joints.end(),
+                                  [&](const Joint& j) {
+                                    return j.left_frame_guid == guid ||
+                                           j.right_frame_guid == guid;
+                                  }),
+                   joints.end());
+      break;
+    }
     default:
-      throw DesignError("select a part, object, region or contact to remove");
+      throw DesignError(
+          "select a part, object, region, contact, lock or loose part to "
+          "remove");
   }
   Commit(std::move(next), after);
+}
+
+namespace {
+
+// Every guid the scenario's parts go by, so a new part's is unique.
+std::set<std::string> AllGuids(const Scenario& s) {
+  std::set<std::string> g;
+  auto sensor_module = [&](const SensorModule& sm) {
+    g.insert(sm.guid);
+    for (const DistanceSensor& d : sm.distance_sensors) g.insert(d.guid);
+    for (const Camera& c : sm.cameras) g.insert(c.guid);
+  };
+  for (const Robot& r : s.robots) {
+    for (const Module& m : r.modules) {
+      g.insert(m.frames[0].guid);
+      g.insert(m.frames[1].guid);
+      g.insert(m.joint.guid);
+    }
+    for (const SensorModule& sm : r.sensor_modules) sensor_module(sm);
+    for (const Joint& j : r.locks) g.insert(j.guid);
+  }
+  for (const SceneObject& o : s.scene_objects) g.insert(o.guid);
+  for (const FluidRegion& f : s.fluid_regions) g.insert(f.guid);
+  for (const Frame& f : s.loose_frames) g.insert(f.guid);
+  for (const Joint& j : s.loose_joints) g.insert(j.guid);
+  for (const SensorModule& sm : s.loose_sensor_modules) sensor_module(sm);
+  return g;
+}
+
+std::string FreshGuid(const std::set<std::string>& used,
+                      const std::string& base) {
+  for (int i = 0;; ++i) {
+    const std::string g = base + std::to_string(i);
+    if (!used.count(g)) return g;
+  }
+}
+
+// The parts of `robot` a lock may join, in chain order, named in words.
+std::vector<LockEnd> EndsOf(const Robot& robot) {
+  std::vector<LockEnd> ends;
+  for (const ChainSlot& slot : ChainOrder(robot)) {
+    if (slot.sensor) {
+      ends.push_back({robot.sensor_modules[slot.source].guid,
+                      "S" + std::to_string(slot.source) + " sensor module"});
+      continue;
+    }
+    const Module& m = robot.modules[slot.source];
+    for (int f = 0; f < 2; ++f) {
+      ends.push_back(
+          {m.frames[f].guid,
+           "module " + std::to_string(slot.source) + " " + FrameName(f)});
+    }
+  }
+  return ends;
+}
+
+// Whether a hinge or lock of `robot` joins `a` and `b` directly.
+bool Joined(const Robot& robot, const std::string& a, const std::string& b) {
+  auto joins = [&](const Joint& j) {
+    return (j.left_frame_guid == a && j.right_frame_guid == b) ||
+           (j.left_frame_guid == b && j.right_frame_guid == a);
+  };
+  for (const Module& m : robot.modules) {
+    if (joins(m.joint)) return true;
+  }
+  for (const Joint& j : robot.locks) {
+    if (joins(j)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void Design::AddLoose(LoosePart part) {
+  Scenario next = scenario_;
+  std::set<std::string> used = AllGuids(next);
+  // Beside the robots, on their ground, 0.3 m to their right (-y), each
+  // new loose part a little further back than the last.
+  double right = INFINITY;
+  double ground = 0.0;
+  double x = 0.0;
+  for (const Robot& r : next.robots) {
+    for (const Module& m : r.modules) right = std::min(right, m.position.y());
+    for (const SensorModule& sm : r.sensor_modules) {
+      right = std::min(right, sm.position.y());
+    }
+  }
+  if (!next.robots.empty() && !next.robots[0].modules.empty()) {
+    const ChainOptions options = OptionsOf(next.robots[0]);
+    ground = options.origin.z();
+    x = options.origin.x();
+  }
+  const double y = (std::isfinite(right) ? right : 0.0) - 0.3;
+  x -= 0.15 * static_cast<double>(next.loose_frames.size() +
+                                  next.loose_sensor_modules.size());
+  Selection selected;
+  auto frame_at = [&](double fx) {
+    Frame f;
+    f.guid = FreshGuid(used, "loose/f");
+    used.insert(f.guid);
+    f.position = Eigen::Vector3d(fx, y, ground + f.scale.z() / 2);
+    next.loose_frames.push_back(f);
+    return f.guid;
+  };
+  switch (part) {
+    case LoosePart::kFrame:
+      frame_at(x);
+      selected = {SelectionKind::kLooseFrame, 0,
+                  static_cast<int>(next.loose_frames.size()) - 1};
+      break;
+    case LoosePart::kSensorModule: {
+      SensorModule sm;
+      sm.guid = FreshGuid(used, "loose/s");
+      sm.position = Eigen::Vector3d(x, y, ground + sm.size.z() / 2);
+      next.loose_sensor_modules.push_back(sm);
+      selected = {SelectionKind::kLooseSensorModule, 0,
+                  static_cast<int>(next.loose_sensor_modules.size()) - 1};
+      break;
+    }
+    case LoosePart::kHinge: {
+      // Two frames touching along x, the hinge at their faces about y.
+      const double half = Frame().scale.x() / 2;
+      Joint j;
+      j.guid = FreshGuid(used, "loose/j");
+      j.type = JointType::kHinge;
+      j.left_frame_guid = frame_at(x + half);
+      j.right_frame_guid = frame_at(x - half);
+      next.loose_joints.push_back(j);
+      selected = {SelectionKind::kLooseJoint, 0,
+                  static_cast<int>(next.loose_joints.size()) - 1};
+      break;
+    }
+  }
+  Commit(std::move(next), selected);
+}
+
+void Design::DetachLock() {
+  if (selection_.kind != SelectionKind::kLock) {
+    throw DesignError("select a lock first");
+  }
+  Scenario next = scenario_;
+  Robot& robot = next.robots.at(selection_.robot);
+  if (selection_.index < 0 ||
+      selection_.index >= static_cast<int>(robot.locks.size())) {
+    throw DesignError("there is no lock " + std::to_string(selection_.index));
+  }
+  if (IsChainLock(robot, robot.locks[selection_.index])) {
+    throw DesignError(
+        "this lock holds the chain together (it joins two parts next to "
+        "each other): remove or move a part instead, or set a breaking "
+        "force so it breaks during the run");
+  }
+  robot.locks.erase(robot.locks.begin() + selection_.index);
+  Commit(std::move(next), {SelectionKind::kRobot, selection_.robot, 0});
+}
+
+std::vector<LockEnd> Design::LockEnds(int robot) const {
+  if (robot < 0 || robot >= static_cast<int>(scenario_.robots.size())) {
+    return {};
+  }
+  return EndsOf(scenario_.robots[robot]);
+}
+
+std::vector<LockEnd> Design::AttachableTo(int robot,
+                                          const std::string& from) const {
+  std::vector<LockEnd> out;
+  if (robot < 0 || robot >= static_cast<int>(scenario_.robots.size())) {
+    return out;
+  }
+  const Robot& r = scenario_.robots[robot];
+  for (const LockEnd& end : EndsOf(r)) {
+    if (end.guid != from && !Joined(r, from, end.guid)) out.push_back(end);
+  }
+  return out;
+}
+
+void Design::AttachLock(int robot, const std::string& a, const std::string& b) {
+  if (robot < 0 || robot >= static_cast<int>(scenario_.robots.size())) {
+    throw DesignError("there is no robot " + std::to_string(robot));
+  }
+  Scenario next = scenario_;
+  Robot& r = next.robots[robot];
+  std::string a_name, b_name;
+  for (const LockEnd& end : EndsOf(r)) {
+    if (end.guid == a) a_name = end.name;
+    if (end.guid == b) b_name = end.name;
+  }
+  if (a_name.empty() || b_name.empty()) {
+    throw DesignError("a lock joins two frames or sensor modules of " +
+                      RobotName(next, robot));
+  }
+  if (a == b) throw DesignError("a lock joins two different parts");
+  if (Joined(r, a, b)) {
+    throw DesignError(a_name + " and " + b_name + " are joined already");
+  }
+  std::set<std::string> used = AllGuids(next);
+  Joint lock;
+  lock.guid = FreshGuid(used, RobotName(next, robot) + "/loop");
+  lock.type = JointType::kLock;
+  lock.left_frame_guid = a;
+  lock.right_frame_guid = b;
+  r.locks.push_back(lock);
+  const Selection selected{SelectionKind::kLock, robot,
+                           static_cast<int>(r.locks.size()) - 1};
+  Commit(std::move(next), selected);
 }
 
 void Design::MoveSelected(int steps) {

@@ -26,6 +26,16 @@ enum class NextPart { kPitchModule, kYawModule, kSensorModule };
 // Where AddPart puts the new part in the chain.
 enum class Where { kAfterSelection, kFront, kTail };
 enum class ObjectKind { kBall, kBox, kCylinder, kCapsule, kRamp };
+// A part without a robot (Scenario::loose_*): a frame, a sensor module, or
+// a hinge (two loose frames joined by a loose joint).
+enum class LoosePart { kFrame, kSensorModule, kHinge };
+
+// A part of a robot a lock may join: a frame or a sensor module, by guid,
+// with its name in words ("module 2 back frame", "S0 sensor module").
+struct LockEnd {
+  std::string guid;
+  std::string name;
+};
 
 // One field of one part: the part, the sub-part ("" for the part itself,
 // "frames[0]", "frames[1]", "joint", "force_sensor", "distance_sensors[k]")
@@ -93,9 +103,30 @@ class Design {
   void AddRobot();
   void AddFluid(FluidKind kind);
   void AddContact();
-  // Removes the selected module, sensor module, object, fluid region or
-  // contact pair.
+  // A loose part (LoosePart) beside the robots (behind and to the right of
+  // every robot, next to earlier loose parts), resting on the ground;
+  // selects it (a hinge: its joint).
+  void AddLoose(LoosePart part);
+  // Removes the selected module, sensor module, object, fluid region,
+  // contact pair, lock (as DetachLock) or loose part (a loose frame or
+  // sensor module takes the loose joints naming it along).
   void RemoveSelected();
+  // Removes the selected lock from its robot. Refused when it holds the
+  // robot together (a chain's lock: the parts behind it would drift
+  // apart); a loop-closing lock detaches.
+  void DetachLock();
+  // The parts of robot `robot`, frames and sensor modules in chain order,
+  // that a lock may join.
+  std::vector<LockEnd> LockEnds(int robot) const;
+  // The parts of the selected robot part's robot that a lock from `from`
+  // may join: not `from` itself, nor a part a hinge or lock joins it to
+  // already.
+  std::vector<LockEnd> AttachableTo(int robot, const std::string& from) const;
+  // A lock between two parts (guids of frames or sensor modules) of robot
+  // `robot` that nothing joins directly yet: a part of the chain's next to
+  // another, or one that closes a loop (MuJoCo keeps the two at the pose
+  // they have in the design: a weld). Selects it.
+  void AttachLock(int robot, const std::string& a, const std::string& b);
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);

@@ -43,8 +43,7 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
         // A module's joint is its hinge: Lock would be refused, and a lock
         // never breaks there.
         groups.push_back(
-            {"joint", "Joint",
-             WithoutInert(FieldsOf(m.joint), {"type", "breakForce"})});
+            {"joint", "Joint", JointFields(m.joint, JointPlace::kModule)});
         groups.push_back({"frames[0]", Capitalised(FrameName(0)),
                           WithoutInert(FieldsOf(m.frames[0]), {"rotation"})});
         groups.push_back({"frames[1]", Capitalised(FrameName(1)),
@@ -93,7 +92,7 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       }
       break;
     case SelectionKind::kScene:
-      groups.push_back({"", "Terrain", FieldsOf(s.scene)});
+      groups.push_back({"", "Terrain", TerrainFields(s.scene)});
       break;
     case SelectionKind::kFluidRegion:
       if (in(sel.index, s.fluid_regions.size())) {
@@ -109,6 +108,42 @@ std::vector<FieldGroup> InspectorFields(Scenario& s, const Selection& sel) {
       break;
     case SelectionKind::kSettings:
       groups.push_back({"", "Simulation", FieldsOf(s.settings)});
+      break;
+    case SelectionKind::kLock:
+      if (robot_ok() && in(sel.index, s.robots[sel.robot].locks.size())) {
+        groups.push_back({"", "Lock",
+                          JointFields(s.robots[sel.robot].locks[sel.index],
+                                      JointPlace::kRobotLock)});
+      }
+      break;
+    case SelectionKind::kLooseFrame:
+      if (in(sel.index, s.loose_frames.size())) {
+        groups.push_back(
+            {"", "Loose frame",
+             WithoutInert(FieldsOf(s.loose_frames[sel.index]), {"rotation"})});
+      }
+      break;
+    case SelectionKind::kLooseJoint:
+      if (in(sel.index, s.loose_joints.size())) {
+        groups.push_back(
+            {"", "Loose joint",
+             JointFields(s.loose_joints[sel.index], JointPlace::kLoose)});
+      }
+      break;
+    case SelectionKind::kLooseSensorModule:
+      if (in(sel.index, s.loose_sensor_modules.size())) {
+        SensorModule& sm = s.loose_sensor_modules[sel.index];
+        groups.push_back(
+            {"", "Loose sensor module",
+             WithoutInert(FieldsOf(sm), {"rotation", "forceLockPosition",
+                                         "distanceLockPosition", "leftMod_Nr",
+                                         "rightMod_Nr"})});
+        for (size_t k = 0; k < sm.cameras.size(); ++k) {
+          groups.push_back({"cameras[" + std::to_string(k) + "]",
+                            "Camera " + std::to_string(k),
+                            FieldsOf(sm.cameras[k])});
+        }
+      }
       break;
     case SelectionKind::kNone:
       break;
@@ -139,6 +174,14 @@ const char* ToString(SelectionKind kind) {
       return "contact";
     case SelectionKind::kSettings:
       return "settings";
+    case SelectionKind::kLock:
+      return "lock";
+    case SelectionKind::kLooseFrame:
+      return "loose_frame";
+    case SelectionKind::kLooseJoint:
+      return "loose_joint";
+    case SelectionKind::kLooseSensorModule:
+      return "loose_sensor_module";
   }
   return "?";
 }

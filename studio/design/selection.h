@@ -9,6 +9,9 @@
 
 namespace mrsim::studio {
 
+// Where the selection kinds of loose parts start (see SelectionKind).
+inline constexpr int kLoosePartKinds = 1000;
+
 // What kind of part a selection names: nothing, or one of the scenario
 // schema's part kinds (mrsim::PartKind, the one list of kinds) that the
 // studio lets a user pick, each with the schema kind's value, so a
@@ -28,6 +31,17 @@ enum class SelectionKind {
   // index into Scenario::contact_frictions
   kContactFriction = static_cast<int>(PartKind::kContactFriction),
   kSettings = static_cast<int>(PartKind::kSettings),  // Scenario::settings
+  // robot, index into Robot::locks (a lock between two of its parts)
+  kLock = static_cast<int>(PartKind::kJoint),
+  // index into Scenario::loose_frames
+  kLooseFrame = static_cast<int>(PartKind::kFrame),
+  // Parts without a robot whose schema kind a robot's part already takes:
+  // the kind's value past every PartKind.
+  // index into Scenario::loose_joints
+  kLooseJoint = kLoosePartKinds + static_cast<int>(PartKind::kJoint),
+  // index into Scenario::loose_sensor_modules
+  kLooseSensorModule =
+      kLoosePartKinds + static_cast<int>(PartKind::kSensorModule),
 };
 
 struct Selection {

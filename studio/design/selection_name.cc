@@ -53,6 +53,25 @@ Selection SelectionNamed(const Scenario& s, const std::string& name) {
     if (sensor >= 0 && sensor < static_cast<int>(r.sensor_modules.size())) {
       return {SelectionKind::kSensorModule, robot, sensor};
     }
+    const int lock = PlaceOf(part, "lock");
+    if (lock >= 0 && lock < static_cast<int>(r.locks.size())) {
+      return {SelectionKind::kLock, robot, lock};
+    }
+  }
+  const int loose_frame = PlaceOf(name, "loose_frame");
+  if (loose_frame >= 0 &&
+      loose_frame < static_cast<int>(s.loose_frames.size())) {
+    return {SelectionKind::kLooseFrame, 0, loose_frame};
+  }
+  const int loose_joint = PlaceOf(name, "loose_joint");
+  if (loose_joint >= 0 &&
+      loose_joint < static_cast<int>(s.loose_joints.size())) {
+    return {SelectionKind::kLooseJoint, 0, loose_joint};
+  }
+  const int loose_sm = PlaceOf(name, "loose_sensor_module");
+  if (loose_sm >= 0 &&
+      loose_sm < static_cast<int>(s.loose_sensor_modules.size())) {
+    return {SelectionKind::kLooseSensorModule, 0, loose_sm};
   }
   std::string robots, objects;
   for (const Robot& r : s.robots)
@@ -64,7 +83,8 @@ Selection SelectionNamed(const Scenario& s, const std::string& name) {
                     (robots.empty() ? "none" : robots) +
                     "; objects: " + (objects.empty() ? "none" : objects) +
                     "; or [ROBOT ]module N, [ROBOT ]sensor_module N, "
-                    "terrain, settings, none)");
+                    "[ROBOT ]lock N, loose_frame N, loose_joint N, "
+                    "loose_sensor_module N, terrain, settings, none)");
 }
 
 }  // namespace mrsim::studio

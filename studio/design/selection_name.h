@@ -10,9 +10,11 @@
 
 namespace mrsim::studio {
 
-// NAME is a robot's name, a scene object's guid, "[ROBOT ]module N" or
-// "[ROBOT ]sensor_module N" (N counted from 0 in the robot's list; the
-// first robot when none is named), "terrain", "settings" or "none". Throws
+// NAME is a robot's name, a scene object's guid, "[ROBOT ]module N",
+// "[ROBOT ]sensor_module N" or "[ROBOT ]lock N" (N counted from 0 in the
+// robot's list; the first robot when none is named), "loose_frame N",
+// "loose_joint N", "loose_sensor_module N", "terrain", "settings" or
+// "none". Throws
 // DesignError saying what names the scenario has.
 Selection SelectionNamed(const Scenario& scenario, const std::string& name);
 

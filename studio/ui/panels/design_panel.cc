@@ -6,9 +6,9 @@
 
 #include "sim_core/scenario/part_look.h"
 #include "studio/design/chain_edit.h"
+#include "studio/ui/dialogs/print_section.h"
 #include "studio/ui/panels/chain_drag.h"
 #include "studio/ui/widgets/panel_background.h"
-#include "studio/ui/dialogs/print_section.h"
 #include "studio/ui/widgets/widgets.h"
 
 namespace mrsim::studio {
@@ -45,6 +45,13 @@ ImVec4 Swatch(Look look) {
 }
 
 }  // namespace
+
+void DesignPanel::ScrollToNewSelection(StudioContext& studio,
+                                       const Selection& row) {
+  if (studio.design.selection() != row || scrolled_to_ == row) return;
+  ImGui::SetScrollHereY(0.5f);
+  scrolled_to_ = row;
+}
 
 void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   const float x = rect.x, y = rect.y, w = rect.w, h = rect.h;
@@ -118,8 +125,30 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
     ImGui::PopStyleColor(2);
     if (&p != &parts[2]) ImGui::SameLine();
   }
-  if (studio.Button("another robot", -1)) {
+  if (studio.Button("another robot", third)) {
     studio.Try("add a robot", [&] { studio.design.AddRobot(); });
+  }
+  ImGui::SameLine();
+  // Parts without a robot, beside the robots: a frame, a hinge (two
+  // frames and their joint) or a sensor module.
+  if (studio.Button("Add loose part...", 2 * third + 4)) {
+    ImGui::OpenPopup("add loose part");
+  }
+  if (ImGui::BeginPopup("add loose part")) {
+    const struct {
+      const char* label;
+      LoosePart part;
+    } looses[] = {{"loose frame", LoosePart::kFrame},
+                  {"loose hinge (two frames)", LoosePart::kHinge},
+                  {"loose sensor module", LoosePart::kSensorModule}};
+    for (const auto& l : looses) {
+      if (ImGui::Selectable(l.label)) {
+        studio.Try(std::string("add a ") + l.label,
+                   [&] { studio.design.AddLoose(l.part); });
+      }
+      studio.Record(l.label);
+    }
+    ImGui::EndPopup();
   }
 
   // The chain, front to back. Rows are written in their part's colour, so
@@ -166,6 +195,66 @@ void DesignPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       studio.Record("row " + std::string(ToString(sel.kind)) + " " +
                     std::to_string(r) + " " + std::to_string(sel.index));
       ChainRowDragDrop(studio, r, place++, label.c_str());
+    }
+    // Its locks, each named by the parts it joins: selected here, edited
+    // and detached in the inspector.
+    const std::vector<LockEnd> ends = studio.design.LockEnds(r);
+    auto end_name = [&](const std::string& guid) {
+      for (const LockEnd& e : ends) {
+        if (e.guid == guid) return e.name;
+      }
+      return guid;
+    };
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.7f, 0.7f, 0.7f, 1));
+    for (int k = 0; k < static_cast<int>(robot.locks.size()); ++k) {
+      const Joint& lock = robot.locks[k];
+      const Selection sel{SelectionKind::kLock, r, k};
+      const std::string label =
+          "    " +
+          std::string(IsChainLock(robot, lock) ? "lock " : "loop lock ") +
+          std::to_string(k) + ": " + end_name(lock.left_frame_guid) + " + " +
+          end_name(lock.right_frame_guid) +
+          (lock.break_force > 0 ? " (breaks)" : "") + "##lock" +
+          std::to_string(r) + "_" + std::to_string(k);
+      if (ImGui::Selectable(label.c_str(), studio.design.selection() == sel)) {
+        studio.design.Select(sel);
+      }
+      ScrollToNewSelection(studio, sel);
+      studio.Record("row lock " + std::to_string(r) + " " + std::to_string(k));
+    }
+    ImGui::PopStyleColor();
+  }
+  // Parts without a robot.
+  const struct {
+    SelectionKind kind;
+    size_t count;
+    const char* name;
+  } loose[] = {{SelectionKind::kLooseFrame, s.loose_frames.size(), "frame"},
+               {SelectionKind::kLooseJoint, s.loose_joints.size(), "joint"},
+               {SelectionKind::kLooseSensorModule,
+                s.loose_sensor_modules.size(), "sensor module"}};
+  for (const auto& group : loose) {
+    for (int i = 0; i < static_cast<int>(group.count); ++i) {
+      const Selection sel{group.kind, 0, i};
+      std::string guid;
+      if (group.kind == SelectionKind::kLooseFrame)
+        guid = s.loose_frames[i].guid;
+      if (group.kind == SelectionKind::kLooseJoint) {
+        const Joint& j = s.loose_joints[i];
+        guid = j.guid + " (" + ToString(j.type) + ")";
+      }
+      if (group.kind == SelectionKind::kLooseSensorModule) {
+        guid = s.loose_sensor_modules[i].guid;
+      }
+      const std::string label = "  loose " + std::string(group.name) + " " +
+                                guid + "##" + ToString(group.kind) +
+                                std::to_string(i);
+      if (ImGui::Selectable(label.c_str(), studio.design.selection() == sel)) {
+        studio.design.Select(sel);
+      }
+      ScrollToNewSelection(studio, sel);
+      studio.Record("row " + std::string(ToString(group.kind)) + " " +
+                    std::to_string(i));
     }
   }
   if (s.robots.empty()) {

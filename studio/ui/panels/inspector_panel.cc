@@ -15,7 +15,9 @@
 #include "sim_core/mesh/embedded_mesh.h"
 #include "sim_core/scenario/sensor_face.h"
 #include "sim_core/scenario/sensor_kind.h"
+#include "studio/design/chain_edit.h"
 #include "studio/design/euler_degrees.h"
+#include "studio/design/inert_fields.h"
 #include "studio/design/inspector_fields.h"
 #include "studio/ui/widgets/panel_background.h"
 #include "studio/ui/widgets/widgets.h"
@@ -65,6 +67,14 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
   }
   if (sel.kind == SelectionKind::kSensorModule)
     DrawSensorMounts(studio, view, sel);
+  if (sel.kind == SelectionKind::kLock && !groups.empty()) {
+    DrawLock(studio, view, sel);
+  }
+  if ((sel.kind == SelectionKind::kModule ||
+       sel.kind == SelectionKind::kSensorModule) &&
+      !groups.empty()) {
+    DrawAttach(studio, view, sel);
+  }
   if (sel.kind == SelectionKind::kSceneObject && sel.index >= 0 &&
       sel.index < static_cast<int>(view.scene_objects.size())) {
     DrawCameras(studio, view.scene_objects[sel.index].cameras, sel);
@@ -149,6 +159,10 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
         }
       } else if (f.type() == FieldType::kQuaternion) {
         DrawEulerDegrees(studio, f, address, key, w * 0.5f);
+      } else if (sel.kind == SelectionKind::kSceneObject && g.sub.empty() &&
+                 std::string(info.xml) == "size") {
+        DrawObjectSize(studio, view.scene_objects.at(sel.index), address, key,
+                       w * 0.5f);
       } else {
         TextField(
             key, current, [&](const std::string& text) { f.SetText(text); },
@@ -156,8 +170,12 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
               studio.design.SetField(address, text);
             });
       }
-      // A quaternion records its three rows itself.
-      if (f.type() != FieldType::kQuaternion || info.kept) {
+      // A quaternion and an object's size record their rows themselves.
+      const bool own_rows =
+          (f.type() == FieldType::kQuaternion && !info.kept) ||
+          (sel.kind == SelectionKind::kSceneObject && g.sub.empty() &&
+           std::string(info.xml) == "size");
+      if (!own_rows) {
         studio.Record("field " + g.sub + "/" + info.xml);
       }
       DrawFieldError(field_errors_, key);
@@ -240,6 +258,129 @@ void InspectorPanel::DrawEulerDegrees(StudioContext& studio, const FieldRef& f,
     studio.Record("field " + address.sub + "/" + address.field + " " +
                   kAxes[k]);
     // A refusal shows under the field the student typed in.
+    DrawFieldError(field_errors_, component_key);
+    ImGui::PopID();
+  }
+}
+
+void InspectorPanel::DrawLock(StudioContext& studio, const Scenario& view,
+                              const Selection& sel) {
+  const Robot& robot = view.robots.at(sel.robot);
+  const Joint& lock = robot.locks.at(sel.index);
+  std::string a = lock.left_frame_guid, b = lock.right_frame_guid;
+  for (const LockEnd& end : studio.design.LockEnds(sel.robot)) {
+    if (end.guid == lock.left_frame_guid) a = end.name;
+    if (end.guid == lock.right_frame_guid) b = end.name;
+  }
+  const bool chain = IsChainLock(robot, lock);
+  ImGui::TextWrapped("%s lock between %s and %s", chain ? "Chain" : "Loop",
+                     a.c_str(), b.c_str());
+  if (studio.Button("Detach")) {
+    studio.Try("detach the lock", [&] { studio.design.DetachLock(); });
+  }
+  if (ImGui::IsItemHovered()) {
+    WrappedTooltip(
+        chain ? "This lock holds the chain together: detaching it is "
+                "refused. A breaking force lets it break during the run."
+              : "Removes this lock from the design; the two parts stay "
+                "joined through the rest of the chain.");
+  }
+  ImGui::Separator();
+}
+
+void InspectorPanel::DrawAttach(StudioContext& studio, const Scenario& view,
+                                const Selection& sel) {
+  // The selected part's own ends: a module's two frames, a sensor module.
+  std::vector<LockEnd> own;
+  std::vector<std::string> own_names;
+  if (sel.kind == SelectionKind::kModule) {
+    const Module& m = view.robots.at(sel.robot).modules.at(sel.index);
+    for (int f = 0; f < 2; ++f) {
+      own.push_back({m.frames[f].guid, FrameName(f)});
+    }
+  } else {
+    own.push_back({view.robots.at(sel.robot).sensor_modules.at(sel.index).guid,
+                   "sensor module"});
+  }
+  attach_from_ = std::clamp(attach_from_, 0, static_cast<int>(own.size()) - 1);
+  const std::vector<LockEnd> to =
+      studio.design.AttachableTo(sel.robot, own[attach_from_].guid);
+  if (RecordedHeader(&studio.layout, "Attach lock", false)) {
+    ImGui::TextDisabled("from");
+    ImGui::SameLine(60);
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::BeginCombo("##attach from", own[attach_from_].name.c_str())) {
+      for (int k = 0; k < static_cast<int>(own.size()); ++k) {
+        if (ImGui::Selectable(own[k].name.c_str(), k == attach_from_)) {
+          attach_from_ = k;
+        }
+      }
+      ImGui::EndCombo();
+    }
+    studio.Record("attach from");
+    if (to.empty()) {
+      ImGui::TextWrapped("joined to every part of its robot already");
+    } else {
+      attach_to_ = std::clamp(attach_to_, 0, static_cast<int>(to.size()) - 1);
+      ImGui::TextDisabled("to");
+      ImGui::SameLine(60);
+      ImGui::SetNextItemWidth(-1);
+      if (ImGui::BeginCombo("##attach to", to[attach_to_].name.c_str())) {
+        for (int k = 0; k < static_cast<int>(to.size()); ++k) {
+          if (ImGui::Selectable(to[k].name.c_str(), k == attach_to_)) {
+            attach_to_ = k;
+          }
+        }
+        ImGui::EndCombo();
+      }
+      studio.Record("attach to");
+      if (studio.Button("Attach")) {
+        studio.Try("attach the lock", [&] {
+          studio.design.AttachLock(sel.robot, own[attach_from_].guid,
+                                   to[attach_to_].guid);
+        });
+      }
+      if (ImGui::IsItemHovered()) {
+        WrappedTooltip(
+            "A rigid lock between the two parts; between parts that are not "
+            "next to each other it closes a loop and holds them at the pose "
+            "they have in the design.");
+      }
+    }
+  }
+  ImGui::Separator();
+}
+
+void InspectorPanel::DrawObjectSize(StudioContext& studio,
+                                    const SceneObject& object,
+                                    const FieldAddress& address,
+                                    const std::string& key, float left) {
+  const float width = ImGui::GetContentRegionAvail().x;
+  const std::vector<SizeComponent> parts = SizeComponents(object.shape);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const SizeComponent& part = parts[k];
+    ImGui::PushID(static_cast<int>(k));
+    if (k > 0) ImGui::SetCursorPosX(left);
+    ImGui::TextDisabled("%s", part.label);
+    ImGui::SameLine(left + 60);
+    ImGui::SetNextItemWidth(width - 60);
+    const std::string component_key = key + " " + part.label;
+    const auto with = [&](const std::string& text) {
+      Eigen::Vector3d next = object.size;
+      next[part.axis] = ParseNumber(text);
+      if (!(next[part.axis] > 0)) throw FieldError("expected a positive size");
+      return SizeFor(object.shape, next);
+    };
+    TextField(
+        component_key, ShortNumbers(FormatNumber(object.size[part.axis])),
+        [&](const std::string& text) { with(text); },
+        [&](const std::string& text) {
+          const Eigen::Vector3d size = with(text);
+          studio.design.SetField(address, FormatNumber(size.x()) + " " +
+                                              FormatNumber(size.y()) + " " +
+                                              FormatNumber(size.z()));
+        });
+    studio.Record("field /size " + std::string(part.label));
     DrawFieldError(field_errors_, component_key);
     ImGui::PopID();
   }

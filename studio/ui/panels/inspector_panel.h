@@ -1,7 +1,8 @@
 // The right column of the studio window (unless the Run panel is shown):
 // every field of the selected part, straight from the scenario schema,
 // checked as typed; a sensor module's force plate, distance sensors and
-// cameras, a scene object's cameras.
+// cameras, a scene object's cameras; a lock's Detach, a chain part's
+// Attach lock.
 #pragma once
 
 #include <functional>
@@ -28,6 +29,19 @@ class InspectorPanel {
   void DrawCameras(StudioContext& studio, const std::vector<Camera>& cameras,
                    const Selection& sel);
 
+  // A selected lock: what it joins and its Detach button.
+  void DrawLock(StudioContext& studio, const Scenario& view,
+                const Selection& sel);
+  // A selected module or sensor module: "Attach lock" from one of its
+  // parts to another part of its robot that nothing joins it to yet.
+  void DrawAttach(StudioContext& studio, const Scenario& view,
+                  const Selection& sel);
+  // A scene object's size as its shape reads it: a sphere's diameter, a
+  // cylinder's diameter and length, a box's three sides.
+  void DrawObjectSize(StudioContext& studio, const SceneObject& object,
+                      const FieldAddress& address, const std::string& key,
+                      float left);
+
   // An InputText for `key` that keeps what is typed until Enter or leaving
   // the field: `check` throws on text it refuses (shown as typed), `apply`
   // writes the text to the design. True when applied.
@@ -51,6 +65,8 @@ class InspectorPanel {
   int camera_face_ = 4;  // face for "add camera", defaulted as ray_face_
   long camera_face_revision_ = -1;
   Selection camera_face_selection_;
+  int attach_from_ = 0;  // the selected part's frame a new lock starts at
+  int attach_to_ = 0;    // index into Design::AttachableTo
 };
 
 }  // namespace mrsim::studio

@@ -55,6 +55,17 @@ std::vector<GeomPart> MapGeoms(const mjModel* m, const Scenario& s) {
     MarkBody(m, n::SceneObject(i),
              {{SelectionKind::kSceneObject, 0, i}, Look::kObject}, &geoms);
   }
+  // Parts without a robot: clicked in the view as in the Design panel.
+  const std::string loose = n::LooseRobot();
+  for (int i = 0; i < static_cast<int>(s.loose_frames.size()); ++i) {
+    MarkBody(m, loose + "/f" + std::to_string(i),
+             {{SelectionKind::kLooseFrame, 0, i}, Look::kOther}, &geoms);
+  }
+  for (int j = 0; j < static_cast<int>(s.loose_sensor_modules.size()); ++j) {
+    MarkBody(m, n::SensorModuleBody(loose, j),
+             {{SelectionKind::kLooseSensorModule, 0, j}, Look::kSensorModule},
+             &geoms);
+  }
   MarkGeom(m, n::Terrain(), {{SelectionKind::kScene, 0, 0}, Look::kTerrain},
            &geoms);
   return geoms;

@@ -1,0 +1,190 @@
+// Locks and loose parts from the real mrsim-studio under its own Xvfb,
+// clicked and typed with real events (xdotool), as a student would: a
+// lock picked in the design tree gets a breaking force, a loop lock is
+// attached and detached, loose parts are added, edited and removed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "sim_core/scenario/scenario_xml.h"
+#include "tests/common/child_process.h"
+#include "tests/common/wait_until.h"
+#include "tests/studio/studio_test_util.h"
+
+namespace mrsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool HaveX() {
+  return fs::exists("/usr/bin/Xvfb") && fs::exists("/usr/bin/xdotool");
+}
+
+class StudioLockLooseWindow : public ::testing::Test {
+ protected:
+  void Start(const std::string& name, const std::string& scenario,
+             const std::vector<std::string>& flags = {}) {
+    dir_ = TempDir(name);
+    file_ = dir_ + "/design.xml";
+    fs::copy_file(SourcePath(scenario), file_);
+    layout_ = dir_ + "/layout.txt";
+    xvfb_ = std::make_unique<XvfbDisplay>(dir_);
+    ASSERT_TRUE(xvfb_->ok()) << "Xvfb did not start, see " << dir_;
+    setenv("XDG_CONFIG_HOME", dir_.c_str(), 1);
+    std::vector<std::string> argv = {BinaryPath("studio/mrsim-studio"),
+                                     "--layout-dump", layout_};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    argv.push_back(file_);
+    studio_ = std::make_unique<ChildProcess>(argv, dir_ + "/studio.log");
+    ASSERT_TRUE(WaitForLayout(layout_, "revision", "0")) << studio_->Output();
+  }
+
+  // Clicks the widget recorded as `widget` once it is on screen.
+  void Click(const std::string& widget) {
+    int x = 0, y = 0;
+    ASSERT_TRUE(
+        WaitUntil([&] { return WidgetCentre(layout_, widget, &x, &y); }, 90))
+        << widget << " never shown";
+    ASSERT_TRUE(ClickWhenThere(layout_, x, y)) << widget;
+  }
+
+  // Scrolls the Design panel's parts list to its end (the wheel over its
+  // first row), so `widget`, a row below its fold, is shown.
+  void ScrollPartsTo(const std::string& widget) {
+    int x = 0, y = 0, rx = 0, ry = 0;
+    ASSERT_TRUE(
+        WaitUntil([&] { return WidgetCentre(layout_, widget, &x, &y); }, 90))
+        << widget << " never listed";
+    ASSERT_TRUE(WidgetCentre(layout_, "row robot 0", &rx, &ry));
+    const std::string xs = std::to_string(rx), ys = std::to_string(ry);
+    ASSERT_TRUE(Xdotool({"mousemove", xs, ys}));
+    ASSERT_TRUE(WaitForLayout(layout_, "mouse", xs + " " + ys));
+    ASSERT_TRUE(Xdotool({"click", "--repeat", "10", "--delay", "50", "5"}));
+    // A row shown already (the list at its end) does not move.
+    int now_x = 0, now_y = y;
+    WaitUntil(
+        [&] {
+          return WidgetCentre(layout_, widget, &now_x, &now_y) && now_y < y;
+        },
+        10);
+  }
+
+  void ClickAndWait(const std::string& widget, int revision) {
+    ASSERT_NO_FATAL_FAILURE(Click(widget));
+    ASSERT_TRUE(WaitForLayout(layout_, "revision", std::to_string(revision)))
+        << widget << ": " << ReadLayout(layout_)["message"];
+  }
+
+  // As the inspector tests type: click, type, Return held until taken.
+  void TypeAndEnter(const std::string& widget, const std::string& text,
+                    int revision) {
+    ASSERT_NO_FATAL_FAILURE(Click(widget));
+    ASSERT_TRUE(WaitForLayout(layout_, "active", widget))
+        << ReadLayout(layout_)["active"];
+    ASSERT_TRUE(Xdotool({"type", text}));
+    ASSERT_TRUE(Xdotool({"keydown", "Return"}));
+    const bool taken =
+        WaitForLayout(layout_, "revision", std::to_string(revision));
+    ASSERT_TRUE(Xdotool({"keyup", "Return"}));
+    ASSERT_TRUE(taken) << ReadLayout(layout_)["message"];
+    ASSERT_TRUE(
+        WaitUntil([&] { return ReadLayout(layout_).count("active") == 0; }, 90))
+        << ReadLayout(layout_)["active"];
+  }
+
+  Scenario Save() {
+    Click("Save");
+    EXPECT_TRUE(WaitForLayout(layout_, "dirty", "0"))
+        << ReadLayout(layout_)["message"];
+    return ReadScenarioFile(file_);
+  }
+
+  std::string dir_;
+  std::string file_;
+  std::string layout_;
+  std::unique_ptr<XvfbDisplay> xvfb_;
+  std::unique_ptr<ChildProcess> studio_;
+};
+
+// A lock picked in the design tree shows its breaking force, which is
+// typed and saved; its Detach is refused (it holds the chain together)
+// with the reason on the message line.
+TEST_F(StudioLockLooseWindow, ALockPickedInTheTreeTakesABreakingForce) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(
+      Start("studio_lock_break", "scenarios/case_study.xml"));
+  ASSERT_NO_FATAL_FAILURE(ScrollPartsTo("row lock 0 1"));
+  ASSERT_NO_FATAL_FAILURE(Click("row lock 0 1"));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "lock 0 1"));
+  ASSERT_NO_FATAL_FAILURE(TypeAndEnter("field /breakForce", "25", 1));
+  ASSERT_NO_FATAL_FAILURE(Click("Detach"));
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return ReadLayout(layout_)["message"].find(
+                   "holds the chain together") != std::string::npos;
+      },
+      90))
+      << ReadLayout(layout_)["message"];
+  ASSERT_TRUE(WaitForLayout(layout_, "modal", "refused"));
+  ASSERT_NO_FATAL_FAILURE(Click("refused OK"));
+  ASSERT_TRUE(WaitForLayout(layout_, "modal", "none"));
+  const Scenario saved = Save();
+  EXPECT_EQ(saved.robots.at(0).locks.at(1).break_force, 25);
+  const Scenario original =
+      ReadScenarioFile(SourcePath("scenarios/case_study.xml"));
+  EXPECT_EQ(saved.robots.at(0).locks.size(),
+            original.robots.at(0).locks.size());
+  studio_->Stop();
+}
+
+// From a selected module, "Attach lock" joins its front frame to a part
+// it is not joined to (a loop lock); Detach takes it off again.
+TEST_F(StudioLockLooseWindow, ALoopLockIsAttachedAndDetached) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(Start("studio_lock_loop", "scenarios/case_study.xml",
+                                {"--select", "module 0"}));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "module 0 0"));
+  const Scenario original = ReadScenarioFile(file_);
+  const size_t locks = original.robots.at(0).locks.size();
+  ASSERT_NO_FATAL_FAILURE(Click("header Attach lock"));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("Attach", 1));
+  ASSERT_TRUE(
+      WaitForLayout(layout_, "selected", "lock 0 " + std::to_string(locks)));
+  Scenario saved = Save();
+  ASSERT_EQ(saved.robots.at(0).locks.size(), locks + 1);
+  EXPECT_EQ(saved.robots.at(0).locks.back().left_frame_guid,
+            original.robots.at(0).modules.at(0).frames[0].guid);
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("Detach", 2));
+  saved = Save();
+  EXPECT_EQ(saved.robots.at(0).locks, original.robots.at(0).locks);
+  studio_->Stop();
+}
+
+// "Add loose part..." puts a hinge (two loose frames and their joint)
+// beside the robot; a frame picked in the tree takes a typed mass; Remove
+// takes the other frame and the joint naming it.
+TEST_F(StudioLockLooseWindow, LoosePartsAreAddedEditedAndRemoved) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(
+      Start("studio_loose_parts", "scenarios/case_study.xml"));
+  ASSERT_NO_FATAL_FAILURE(Click("Add loose part..."));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("loose hinge (two frames)", 1));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "loose_joint 0 0"));
+  ASSERT_NO_FATAL_FAILURE(ScrollPartsTo("row loose_frame 1"));
+  ASSERT_NO_FATAL_FAILURE(Click("row loose_frame 1"));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "loose_frame 0 1"));
+  ASSERT_NO_FATAL_FAILURE(TypeAndEnter("field /mass", "0.3", 2));
+  // The list is at its end already.
+  ASSERT_NO_FATAL_FAILURE(Click("row loose_frame 0"));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "loose_frame 0 0"));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("Remove", 3));
+  const Scenario saved = Save();
+  ASSERT_EQ(saved.loose_frames.size(), 1u);
+  EXPECT_EQ(saved.loose_frames[0].mass, 0.3);
+  EXPECT_TRUE(saved.loose_joints.empty());
+  studio_->Stop();
+}
+
+}  // namespace
+}  // namespace mrsim::testing
