@@ -250,6 +250,28 @@ TEST_F(StudioRun, OptimisationFromTheWindowCompletesAndItsBestPlaysLive) {
     idle = WaitForLayout(layout, "live busy", "idle", 20);
   }
   ASSERT_TRUE(idle) << ReadLayout(layout)["live busy"];
+
+  // Save keeps the Optimise form in the design (<optimization>): reopened,
+  // or given to mrsim-opt, it runs this setup.
+  ASSERT_TRUE(Xdotool({"key", "ctrl+s"}));
+  const auto saved = [&] {
+    std::ifstream in(dir + "/case_study.xml");
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return saved().find("<generations>2</generations>") !=
+               std::string::npos;
+      },
+      60))
+      << ReadLayout(layout)["message"];
+  for (const char* field :
+       {"<population>4</population>", "<episode>1</episode>",
+        "<algorithm>cmaes</algorithm>", "<genome>"}) {
+    EXPECT_NE(saved().find(field), std::string::npos) << field;
+  }
   ASSERT_TRUE(Xdotool({"key", "ctrl+q"}));
   EXPECT_EQ(studio.Wait(90), 0) << studio.Output();
 }
