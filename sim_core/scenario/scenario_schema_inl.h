@@ -1009,22 +1009,22 @@ template <typename V>
 void Describe(V& v, OptimizationSettings& o) {
   static const FieldInfo kAlgorithm{
       "algorithm",
-      "algorithm",
+      "search algorithm",
       "algorithm",
       "",
       L::TextUpTo(kMaxOptimizationWordBytes, true),
       "The search algorithm: ga, sa, pso, cmaes or random (mrsim-opt "
       "--algorithm)"};
   static const FieldInfo kGenerations{
-      "generations",    "generations",
+      "generations",    "number of generations",
       "generations",    "",
       L::Range(1, 1e8), "Generations to run (mrsim-opt --generations)"};
   static const FieldInfo kPopulation{
-      "population",     "population",
+      "population",     "individuals per generation",
       "population",     "",
       L::Range(1, 1e6), "Individuals per generation (mrsim-opt --population)"};
   static const FieldInfo kSeed{
-      "seed",           "seed",
+      "seed",           "random seed",
       "seed",           "",
       L::NonNegative(), "Seed of the run's random engine (mrsim-opt --seed)"};
   static const FieldInfo kEpisode{
@@ -1047,11 +1047,11 @@ void Describe(V& v, OptimizationSettings& o) {
       "The gait's genes as a built-in set: sine or cpg (mrsim-opt --genes); "
       "instead of genome");
   static const FieldInfo kGenome = OptionalText(
-      "genome", "genome", "genome", kMaxGenomeTextBytes,
+      "genome", "genes (genome text)", "genome", kMaxGenomeTextBytes,
       "The genes as a genome file's text (docs/optimizer.md; mrsim-opt "
       "--genome); instead of genes");
   static const FieldInfo kTask = OptionalText(
-      "task", "task", "task", kMaxOptimizationWordBytes,
+      "task", "task of the suite", "task", kMaxOptimizationWordBytes,
       "A task of the suite optimised instead of this design's world "
       "(mrsim-opt --task; mrsim tasks lists them)");
   static const FieldInfo kBaseGait = OptionalText(
