@@ -255,6 +255,11 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
                  "mean | worst of the K perturbed episodes")
       ->capture_default_str()
       ->check(CLI::IsMember({"mean", "worst"}));
+  app.add_option("--robust-gap", c.robust_gap,
+                 "NAME=VALUE, repeated: a reality gap value of the robust "
+                 "episodes (motor_noise=0.2; docs/physics.md, 'The reality "
+                 "gap'); the others stay the design's or typical")
+      ->allow_extra_args(false);
   AddEnumOption(app, "--selection", &a.selection, SelectionMethods(),
                 "the GA's parent selection");
   // Each algorithm's own settings, from the registry (the studio's
@@ -323,6 +328,50 @@ void AddOptFlags(CLI::App& app, OptCommand& c) {
   app.add_flag("--allow-overlap", c.allow_overlap,
                "Optimise a scenario whose parts overlap at the start "
                "(refused otherwise, as mrsim-sim refuses to run it)");
+}
+
+void SetGapValues(const std::vector<std::string>& words, RealityGap* gap) {
+  const std::pair<const char*, double*> fields[] = {
+      {"sensor_noise", &gap->sensor_noise},
+      {"sensor_bias", &gap->sensor_bias},
+      {"joint_noise", &gap->joint_noise},
+      {"motor_noise", &gap->motor_noise},
+      {"latency", &gap->latency},
+      {"backlash", &gap->backlash},
+      {"max_accel", &gap->max_accel},
+      {"friction_range", &gap->friction_range},
+      {"mass_range", &gap->mass_range},
+      {"gain_range", &gap->gain_range},
+      {"terrain_range", &gap->terrain_range}};
+  for (const std::string& word : words) {
+    const size_t eq = word.find('=');
+    const std::string name = word.substr(0, eq);
+    double* target = nullptr;
+    std::string names;
+    for (const auto& field : fields) {
+      names += (names.empty() ? "" : ", ") + std::string(field.first);
+      if (name == field.first) target = field.second;
+    }
+    size_t used = 0;
+    double value = 0;
+    try {
+      if (eq != std::string::npos)
+        value = std::stod(word.substr(eq + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (target == nullptr || used == 0 || used != word.size() - eq - 1) {
+      throw OptInputError(fmt::format(
+          "--robust-gap: expected NAME=VALUE with NAME one of {}, got '{}'",
+          names, word));
+    }
+    *target = value;
+  }
+  try {
+    gap->Validate();
+  } catch (const std::invalid_argument& e) {
+    throw OptInputError(std::string("--robust-gap: ") + e.what());
+  }
 }
 
 OptSetup PrepareOpt(const OptCommand& c) {
@@ -413,6 +462,7 @@ OptSetup PrepareOpt(const OptCommand& c) {
                                 1u, std::thread::hardware_concurrency()));
     }
     EpisodeSettings e = c.episode;
+    SetGapValues(c.robust_gap, &e.robust.gap);
     std::optional<Gait> task_gait;
     if (!c.task.empty()) {
       Task task = MakeTask(c.task);

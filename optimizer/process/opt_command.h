@@ -70,6 +70,10 @@ struct OptCommand {
   int hub_port = 0;                        // --hub PORT: start LCM's TCP hub
   AlgorithmSettings algorithm;
   EpisodeSettings episode;
+  // --robust-gap NAME=VALUE (repeated): reality gap values set over the
+  // design file's and RealityGap::Typical() (NAME a RealityGap field,
+  // motor_noise); PrepareOpt applies and checks them.
+  std::vector<std::string> robust_gap;
 };
 
 // Registers every flag of mrsim-opt on `app`, writing into `command`.
@@ -93,6 +97,10 @@ struct OptSetup {
   // checkpoint.
   std::shared_ptr<FileLock> lock;
 };
+
+// Sets the --robust-gap NAME=VALUE words on `gap` and checks the result
+// (RealityGap::Validate). Throws OptInputError naming the word or field.
+void SetGapValues(const std::vector<std::string>& words, RealityGap* gap);
 
 // Reads and checks the scenario, genome, gait and settings; creates the
 // output folder and locks it. Throws OptInputError naming the flag or file,

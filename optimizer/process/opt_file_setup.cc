@@ -123,6 +123,21 @@ void ApplyOptimizationSettings(
     }
     c->episode.robust.mode = o.robust_mode;
   });
+  // The reality gap has no flags: the file's values (RealityGap::Typical()
+  // when left out; the validator held them to RealityGap::Validate's
+  // limits) are the robust episodes' gap. The seed stays the run's.
+  RealityGap& gap = c->episode.robust.gap;
+  gap.sensor_noise = o.gap_sensor_noise;
+  gap.sensor_bias = o.gap_sensor_bias;
+  gap.joint_noise = o.gap_joint_noise;
+  gap.motor_noise = o.gap_motor_noise;
+  gap.latency = o.gap_latency;
+  gap.backlash = o.gap_backlash;
+  gap.max_accel = o.gap_max_accel;
+  gap.friction_range = o.gap_friction_range;
+  gap.mass_range = o.gap_mass_range;
+  gap.gain_range = o.gap_gain_range;
+  gap.terrain_range = o.gap_terrain_range;
   unless("--allow-overlap", [&] { c->allow_overlap = o.allow_overlap; });
   // "flag=value" words, each an algorithm setting of the registry.
   std::istringstream words(o.algorithm_settings);

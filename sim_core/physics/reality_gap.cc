@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim_core/scenario/reality_gap_limits.h"
+
 namespace mrsim {
 namespace {
 
@@ -44,17 +46,17 @@ void Check(const char* name, double value, double max) {
 
 RealityGap RealityGap::Typical() {
   RealityGap g;
-  g.sensor_noise = 0.05;
-  g.sensor_bias = 0.05;
-  g.joint_noise = 0.01;
-  g.motor_noise = 0.1;
-  g.latency = 0.02;
-  g.backlash = 0.02;
-  g.max_accel = 100;
-  g.friction_range = 0.3;
-  g.mass_range = 0.1;
-  g.gain_range = 0.2;
-  g.terrain_range = 0.2;
+  g.sensor_noise = kGapTypicalSensorNoise;
+  g.sensor_bias = kGapTypicalSensorBias;
+  g.joint_noise = kGapTypicalJointNoise;
+  g.motor_noise = kGapTypicalMotorNoise;
+  g.latency = kGapTypicalLatency;
+  g.backlash = kGapTypicalBacklash;
+  g.max_accel = kGapTypicalMaxAccel;
+  g.friction_range = kGapTypicalFrictionRange;
+  g.mass_range = kGapTypicalMassRange;
+  g.gain_range = kGapTypicalGainRange;
+  g.terrain_range = kGapTypicalTerrainRange;
   return g;
 }
 
@@ -64,17 +66,17 @@ bool RealityGap::any_per_step() const {
 }
 
 void RealityGap::Validate() const {
-  Check("sensor_noise", sensor_noise, 1);
-  Check("sensor_bias", sensor_bias, 0.99);
-  Check("joint_noise (rad)", joint_noise, 1);
-  Check("motor_noise (rad/s)", motor_noise, 100);
-  Check("latency (s)", latency, 1);
-  Check("backlash (rad)", backlash, 0.5);
-  Check("max_accel (rad/s^2)", max_accel, 1e6);
-  Check("friction_range", friction_range, 0.99);
-  Check("mass_range", mass_range, 0.99);
-  Check("gain_range", gain_range, 0.99);
-  Check("terrain_range", terrain_range, 0.99);
+  Check("sensor_noise", sensor_noise, kGapMaxSensorNoise);
+  Check("sensor_bias", sensor_bias, kGapMaxSensorBias);
+  Check("joint_noise (rad)", joint_noise, kGapMaxJointNoise);
+  Check("motor_noise (rad/s)", motor_noise, kGapMaxMotorNoise);
+  Check("latency (s)", latency, kGapMaxLatency);
+  Check("backlash (rad)", backlash, kGapMaxBacklash);
+  Check("max_accel (rad/s^2)", max_accel, kGapMaxMaxAccel);
+  Check("friction_range", friction_range, kGapMaxRange);
+  Check("mass_range", mass_range, kGapMaxRange);
+  Check("gain_range", gain_range, kGapMaxRange);
+  Check("terrain_range", terrain_range, kGapMaxRange);
 }
 
 RealityGap RealityGap::ForEpisode(uint64_t index) const {

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <string>
 
+#include "sim_core/scenario/reality_gap_limits.h"
+
 namespace mrsim {
 
 // Bounds on the text an <optimization> element carries (docs/scenario.md,
@@ -49,6 +51,20 @@ struct OptimizationSettings {
   int robust = 0;                    // --robust K
   std::string robust_mode = "mean";  // --robust-mode: mean | worst
   bool allow_overlap = false;        // --allow-overlap
+  // The reality gap of the K robust episodes (RealityGap, docs/physics.md
+  // "The reality gap"); defaults are RealityGap::Typical(), the limits its
+  // Validate's (reality_gap_limits.h). Units as RealityGap's fields.
+  double gap_sensor_noise = kGapTypicalSensorNoise;
+  double gap_sensor_bias = kGapTypicalSensorBias;
+  double gap_joint_noise = kGapTypicalJointNoise;  // rad
+  double gap_motor_noise = kGapTypicalMotorNoise;  // rad/s
+  double gap_latency = kGapTypicalLatency;         // s
+  double gap_backlash = kGapTypicalBacklash;       // rad
+  double gap_max_accel = kGapTypicalMaxAccel;      // rad/s^2
+  double gap_friction_range = kGapTypicalFrictionRange;
+  double gap_mass_range = kGapTypicalMassRange;
+  double gap_gain_range = kGapTypicalGainRange;
+  double gap_terrain_range = kGapTypicalTerrainRange;
   // The chosen algorithm's own settings as "flag=value" words separated by
   // spaces ("cmaes-sigma=0.2"), each a flag of mrsim-opt.
   std::string algorithm_settings;

@@ -15,7 +15,9 @@
 #include <optional>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
+#include "sim_core/scenario/reality_gap_limits.h"
 #include "sim_core/scenario/scenario_schema.h"
 #include "sim_core/scenario/sensor_face.h"
 
@@ -1005,6 +1007,82 @@ inline FieldInfo OptionalText(const char* xml, const char* label,
   return f;
 }
 
+// The reality gap's fields of <optimization>, in RealityGap's order: each
+// between 0 and the maximum RealityGap::Validate allows, left out of the
+// file at RealityGap::Typical()'s value (both from reality_gap_limits.h).
+// One table for every Describe instantiation, built once.
+inline const std::vector<FieldInfo>& RealityGapFields() {
+  struct Row {
+    const char* xml;
+    const char* label;
+    const char* member;
+    const char* unit;
+    double max;
+    double typical;
+    const char* help;
+  };
+  static const std::vector<Row> kRows = {
+      {"gapSensorNoise", "sensor noise", "gap_sensor_noise", "",
+       kGapMaxSensorNoise, kGapTypicalSensorNoise,
+       "Reality gap, per step: sd of the noise on force and distance "
+       "readings, as a share of the reading"},
+      {"gapSensorBias", "sensor bias", "gap_sensor_bias", "", kGapMaxSensorBias,
+       kGapTypicalSensorBias,
+       "Reality gap, per step: each force or distance sensor reads up to "
+       "this share high or low for the whole episode"},
+      {"gapJointNoise", "joint angle noise", "gap_joint_noise", "rad",
+       kGapMaxJointNoise, kGapTypicalJointNoise,
+       "Reality gap, per step: sd of the noise on joint angle readings"},
+      {"gapMotorNoise", "motor noise", "gap_motor_noise", "rad/s",
+       kGapMaxMotorNoise, kGapTypicalMotorNoise,
+       "Reality gap, per step: sd of the noise added to each servo's speed "
+       "command"},
+      {"gapLatency", "servo latency", "gap_latency", "s", kGapMaxLatency,
+       kGapTypicalLatency,
+       "Reality gap, per step: the servo acts on the targets of this long "
+       "ago"},
+      {"gapBacklash", "backlash", "gap_backlash", "rad", kGapMaxBacklash,
+       kGapTypicalBacklash,
+       "Reality gap, per step: dead band of the servo's position loop"},
+      {"gapMaxAccel", "servo acceleration limit", "gap_max_accel", "rad/s^2",
+       kGapMaxMaxAccel, kGapTypicalMaxAccel,
+       "Reality gap, per step: the speed command changes by at most this per "
+       "second (0: no limit)"},
+      {"gapFrictionRange", "friction variation", "gap_friction_range", "",
+       kGapMaxRange, kGapTypicalFrictionRange,
+       "Reality gap, per episode: every contact friction x U(1-r, 1+r)"},
+      {"gapMassRange", "mass variation", "gap_mass_range", "", kGapMaxRange,
+       kGapTypicalMassRange,
+       "Reality gap, per episode: every frame, sensor module, plate and "
+       "object mass x U(1-r, 1+r)"},
+      {"gapGainRange", "servo gain variation", "gap_gain_range", "",
+       kGapMaxRange, kGapTypicalGainRange,
+       "Reality gap, per episode: each hinge's Kp, velocityGain and "
+       "maxTorque x U(1-r, 1+r)"},
+      {"gapTerrainRange", "terrain height variation", "gap_terrain_range", "",
+       kGapMaxRange, kGapTypicalTerrainRange,
+       "Reality gap, per episode: the height field's height x U(1-r, 1+r)"},
+  };
+  // The default's text, as the writer would write it: kept alive here
+  // because FieldInfo::omit_when points into it.
+  static const std::vector<std::string> kTypicalText = [] {
+    std::vector<std::string> texts;
+    for (const Row& r : kRows) texts.push_back(FormatNumber(r.typical));
+    return texts;
+  }();
+  static const std::vector<FieldInfo> kFields = [] {
+    std::vector<FieldInfo> fields;
+    for (size_t i = 0; i < kRows.size(); ++i) {
+      const Row& r = kRows[i];
+      FieldInfo f{r.xml, r.label, r.member, r.unit, L::Range(0, r.max), r.help};
+      f.omit_when = kTypicalText[i].c_str();
+      fields.push_back(f);
+    }
+    return fields;
+  }();
+  return kFields;
+}
+
 template <typename V>
 void Describe(V& v, OptimizationSettings& o) {
   static const FieldInfo kAlgorithm{
@@ -1133,6 +1211,18 @@ void Describe(V& v, OptimizationSettings& o) {
   v.Field(kRobustMode, o.robust_mode);
   v.Field(kAllowOverlap, o.allow_overlap);
   v.Field(kSettings, o.algorithm_settings);
+  const std::vector<FieldInfo>& gap = RealityGapFields();
+  v.Field(gap[0], o.gap_sensor_noise);
+  v.Field(gap[1], o.gap_sensor_bias);
+  v.Field(gap[2], o.gap_joint_noise);
+  v.Field(gap[3], o.gap_motor_noise);
+  v.Field(gap[4], o.gap_latency);
+  v.Field(gap[5], o.gap_backlash);
+  v.Field(gap[6], o.gap_max_accel);
+  v.Field(gap[7], o.gap_friction_range);
+  v.Field(gap[8], o.gap_mass_range);
+  v.Field(gap[9], o.gap_gain_range);
+  v.Field(gap[10], o.gap_terrain_range);
 }
 
 template <typename V>

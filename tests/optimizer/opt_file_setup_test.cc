@@ -80,6 +80,59 @@ TEST(OptFileSetup, TheFilesDefaultsAreMrsimOptsDefaults) {
   EXPECT_EQ(applied.episode.robust.episodes, defaults.episode.robust.episodes);
   EXPECT_EQ(applied.episode.robust.mode, defaults.episode.robust.mode);
   EXPECT_EQ(applied.allow_overlap, defaults.allow_overlap);
+  const RealityGap& g = applied.episode.robust.gap;
+  const RealityGap typical = RealityGap::Typical();
+  EXPECT_EQ(g.sensor_noise, typical.sensor_noise);
+  EXPECT_EQ(g.sensor_bias, typical.sensor_bias);
+  EXPECT_EQ(g.joint_noise, typical.joint_noise);
+  EXPECT_EQ(g.motor_noise, typical.motor_noise);
+  EXPECT_EQ(g.latency, typical.latency);
+  EXPECT_EQ(g.backlash, typical.backlash);
+  EXPECT_EQ(g.max_accel, typical.max_accel);
+  EXPECT_EQ(g.friction_range, typical.friction_range);
+  EXPECT_EQ(g.mass_range, typical.mass_range);
+  EXPECT_EQ(g.gain_range, typical.gain_range);
+  EXPECT_EQ(g.terrain_range, typical.terrain_range);
+}
+
+// The design's reality gap is what the robust episodes perturb by.
+TEST(OptFileSetup, TheFilesRealityGapReachesTheRobustEpisodes) {
+  OptimizationSettings o = SmallCmaes();
+  o.robust = 3;
+  o.gap_motor_noise = 0.7;
+  o.gap_latency = 0;
+  o.gap_friction_range = 0.6;
+  const OptCommand c = ParseWithFile({DesignWith("opt_file_gap", o)});
+  const RobustSettings& r = c.episode.robust;
+  EXPECT_EQ(r.episodes, 3);
+  EXPECT_EQ(r.gap.motor_noise, 0.7);
+  EXPECT_EQ(r.gap.latency, 0);
+  EXPECT_EQ(r.gap.friction_range, 0.6);
+  EXPECT_EQ(r.gap.mass_range, RealityGap::Typical().mass_range);
+  EXPECT_NO_THROW(r.Validate());
+}
+
+// --robust-gap NAME=VALUE sets one value over the file's; the rest stay.
+TEST(OptFileSetup, ARobustGapFlagOverridesTheFilesValue) {
+  OptimizationSettings o = SmallCmaes();
+  o.gap_motor_noise = 0.7;
+  o.gap_backlash = 0.1;
+  const OptCommand c =
+      ParseWithFile({DesignWith("opt_file_gap_flag", o), "--robust-gap",
+                     "motor_noise=0.2", "--robust-gap", "max_accel=0"});
+  RealityGap gap = c.episode.robust.gap;
+  SetGapValues(c.robust_gap, &gap);
+  EXPECT_EQ(gap.motor_noise, 0.2);
+  EXPECT_EQ(gap.max_accel, 0);
+  EXPECT_EQ(gap.backlash, 0.1);  // the file's
+  EXPECT_THROW(SetGapValues({"latency=2"}, &gap), OptInputError);
+  try {
+    SetGapValues({"noise=0.1"}, &gap);
+    ADD_FAILURE() << "accepted an unknown name";
+  } catch (const OptInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("motor_noise"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(OptFileSetup, TheFileFillsWhatTheCommandLineLeavesOut) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/reality_gap_limits.h"
 #include "sim_core/scenario/scenario_validate.h"
 #include "sim_core/scenario/scenario_xml.h"
 
@@ -55,6 +56,17 @@ TEST(OptimizationSettingsXml, RoundTripKeepsEveryField) {
   o.robust_mode = "worst";
   o.allow_overlap = true;
   o.algorithm_settings = "cmaes-sigma=0.2";
+  o.gap_sensor_noise = 0.1;
+  o.gap_sensor_bias = 0.2;
+  o.gap_joint_noise = 0.03;
+  o.gap_motor_noise = 0.5;
+  o.gap_latency = 0.05;
+  o.gap_backlash = 0.04;
+  o.gap_max_accel = 0;
+  o.gap_friction_range = 0.5;
+  o.gap_mass_range = 0.25;
+  o.gap_gain_range = 0;
+  o.gap_terrain_range = 0.75;
   s.optimization = o;
   const std::string xml = WriteScenarioString(s);
   EXPECT_THAT(xml, HasSubstr("<optimization>"));
@@ -65,6 +77,9 @@ TEST(OptimizationSettingsXml, RoundTripKeepsEveryField) {
   EXPECT_EQ(back.optimization->seed, 42);
   EXPECT_EQ(back.optimization->episode, 3.5);
   EXPECT_TRUE(back.optimization->allow_overlap);
+  EXPECT_THAT(xml, HasSubstr("<gapMotorNoise>0.5</gapMotorNoise>"));
+  EXPECT_EQ(back.optimization->gap_latency, 0.05);
+  EXPECT_EQ(back.optimization->gap_max_accel, 0);
   EXPECT_TRUE(*back.optimization == o);
   EXPECT_TRUE(back == s);
   EXPECT_EQ(WriteScenarioString(back), xml);
@@ -90,6 +105,10 @@ TEST(OptimizationSettingsXml, LeftOutFieldsTakeTheDefaults) {
   const std::string xml = WriteScenarioString(s);
   EXPECT_EQ(xml.find("<genome"), std::string::npos);
   EXPECT_EQ(xml.find("<allowOverlap"), std::string::npos);
+  // The reality gap left out is RealityGap::Typical()'s, and not written.
+  EXPECT_EQ(s.optimization->gap_motor_noise, kGapTypicalMotorNoise);
+  EXPECT_EQ(s.optimization->gap_friction_range, kGapTypicalFrictionRange);
+  EXPECT_EQ(xml.find("<gap"), std::string::npos);
 }
 
 int SetupLine(const std::string& xml) {
@@ -130,6 +149,23 @@ TEST(OptimizationSettingsXml, BadValuesNameTheLineAndField) {
       "<optimization><genes>sine</genes><genome>&lt;genome/&gt;</genome>"
       "</optimization>",
       "genes", "expected genes or genome, not both");
+}
+
+TEST(OptimizationSettingsXml, RealityGapBeyondWhatThePhysicsAllowsIsRefused) {
+  ExpectRefused("<optimization><gapLatency>2</gapLatency></optimization>",
+                "gapLatency", "expected");
+  ExpectRefused(
+      "<optimization><gapMotorNoise>-0.1</gapMotorNoise></optimization>",
+      "gapMotorNoise", "expected");
+  // A range of 1 would let a factor reach 0 (a massless frame).
+  ExpectRefused("<optimization><gapMassRange>1</gapMassRange></optimization>",
+                "gapMassRange", "expected");
+  const Scenario at_max = ReadScenarioString(
+      WithSetup("<optimization><gapBacklash>0.5</gapBacklash>"
+                "<gapFrictionRange>0.99</gapFrictionRange></optimization>"),
+      "d.xml", "");
+  EXPECT_EQ(at_max.optimization->gap_backlash, kGapMaxBacklash);
+  EXPECT_EQ(at_max.optimization->gap_friction_range, kGapMaxRange);
 }
 
 }  // namespace
