@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -16,8 +17,8 @@
 #include "common/lcm_url.h"
 #include "launcher/program_locator.h"
 #include "logger/csv_columns.h"
-#include "optimizer/search/algorithm_registry.h"
 #include "optimizer/farm/farm_channels.h"
+#include "optimizer/search/algorithm_registry.h"
 
 namespace mrsim::studio {
 namespace {
@@ -104,6 +105,25 @@ ProcessSpec OptimiseSession::Spec(const OptimiseOptions& o,
     spec.args.insert(spec.args.end(),
                      {"--robust", std::to_string(o.robust.episodes),
                       "--robust-mode", o.robust.mode});
+    // The form's gap, not the saved file's: every value, so an unsaved
+    // edit is what runs.
+    const RealityGap& g = o.robust.gap;
+    for (const auto& [name, value] :
+         std::initializer_list<std::pair<const char*, double>>{
+             {"sensor_noise", g.sensor_noise},
+             {"sensor_bias", g.sensor_bias},
+             {"joint_noise", g.joint_noise},
+             {"motor_noise", g.motor_noise},
+             {"latency", g.latency},
+             {"backlash", g.backlash},
+             {"max_accel", g.max_accel},
+             {"friction_range", g.friction_range},
+             {"mass_range", g.mass_range},
+             {"gain_range", g.gain_range},
+             {"terrain_range", g.terrain_range}}) {
+      spec.args.insert(spec.args.end(),
+                       {"--robust-gap", fmt::format("{}={}", name, value)});
+    }
   }
   const AlgorithmInfo& info = AlgorithmInfoOf(ParseAlgorithm(o.algorithm));
   for (const auto& setting : o.algorithm_settings) {

@@ -31,6 +31,18 @@ OptimizationSettings SavedOptimisation(const OptimiseOptions& o) {
   s.w_fall = o.fitness.w_fall;
   s.robust = o.robust.episodes;
   s.robust_mode = o.robust.mode;
+  const RealityGap& g = o.robust.gap;
+  s.gap_sensor_noise = g.sensor_noise;
+  s.gap_sensor_bias = g.sensor_bias;
+  s.gap_joint_noise = g.joint_noise;
+  s.gap_motor_noise = g.motor_noise;
+  s.gap_latency = g.latency;
+  s.gap_backlash = g.backlash;
+  s.gap_max_accel = g.max_accel;
+  s.gap_friction_range = g.friction_range;
+  s.gap_mass_range = g.mass_range;
+  s.gap_gain_range = g.gain_range;
+  s.gap_terrain_range = g.terrain_range;
   s.allow_overlap = o.allow_overlap;
   for (const auto& [flag, value] : o.algorithm_settings) {
     s.algorithm_settings += fmt::format(
@@ -84,6 +96,18 @@ OptimiseOptions OptionsFromSaved(const OptimizationSettings& s,
   o.fitness.w_fall = s.w_fall;
   o.robust.episodes = s.robust;
   o.robust.mode = s.robust_mode;
+  RealityGap& g = o.robust.gap;
+  g.sensor_noise = s.gap_sensor_noise;
+  g.sensor_bias = s.gap_sensor_bias;
+  g.joint_noise = s.gap_joint_noise;
+  g.motor_noise = s.gap_motor_noise;
+  g.latency = s.gap_latency;
+  g.backlash = s.gap_backlash;
+  g.max_accel = s.gap_max_accel;
+  g.friction_range = s.gap_friction_range;
+  g.mass_range = s.gap_mass_range;
+  g.gain_range = s.gap_gain_range;
+  g.terrain_range = s.gap_terrain_range;
   o.allow_overlap = s.allow_overlap;
   o.algorithm_settings.clear();
   std::istringstream words(s.algorithm_settings);

@@ -33,6 +33,10 @@ OptimiseOptions CmaesForm() {
   o.fitness.w_fall = 2;
   o.robust.episodes = 3;
   o.robust.mode = "worst";
+  o.robust.gap.motor_noise = 0.4;  // a servo noisier than typical
+  o.robust.gap.latency = 0.05;
+  o.robust.gap.max_accel = 0;
+  o.robust.gap.terrain_range = 0.5;
   o.allow_overlap = true;
   o.algorithm_settings["cmaes-sigma"] = 0.25;
   return o;
@@ -53,6 +57,18 @@ void ExpectSameForm(const OptimiseOptions& a, const OptimiseOptions& b) {
   EXPECT_EQ(a.fitness.w_fall, b.fitness.w_fall);
   EXPECT_EQ(a.robust.episodes, b.robust.episodes);
   EXPECT_EQ(a.robust.mode, b.robust.mode);
+  const RealityGap &g = a.robust.gap, &h = b.robust.gap;
+  EXPECT_EQ(g.sensor_noise, h.sensor_noise);
+  EXPECT_EQ(g.sensor_bias, h.sensor_bias);
+  EXPECT_EQ(g.joint_noise, h.joint_noise);
+  EXPECT_EQ(g.motor_noise, h.motor_noise);
+  EXPECT_EQ(g.latency, h.latency);
+  EXPECT_EQ(g.backlash, h.backlash);
+  EXPECT_EQ(g.max_accel, h.max_accel);
+  EXPECT_EQ(g.friction_range, h.friction_range);
+  EXPECT_EQ(g.mass_range, h.mass_range);
+  EXPECT_EQ(g.gain_range, h.gain_range);
+  EXPECT_EQ(g.terrain_range, h.terrain_range);
   EXPECT_EQ(a.allow_overlap, b.allow_overlap);
   EXPECT_EQ(a.algorithm_settings, b.algorithm_settings);
 }
@@ -67,6 +83,10 @@ TEST(SavedOptimisation, OpeningTheSavedDesignGivesTheFormItWasSavedWith) {
   WriteScenarioFile(s, path);
   const Design opened = Design::Open(path);
   ASSERT_TRUE(opened.scenario().optimization.has_value());
+  // The changed reality gap is in the file; the rest stays typical.
+  EXPECT_EQ(opened.scenario().optimization->gap_motor_noise, 0.4);
+  EXPECT_EQ(opened.scenario().optimization->gap_mass_range,
+            RealityGap::Typical().mass_range);
   const OptimiseOptions back =
       OptionsFromSaved(*opened.scenario().optimization, OptimiseOptions{});
   ExpectSameForm(back, CmaesForm());
@@ -86,6 +106,10 @@ TEST(SavedOptimisation, OpeningTheSavedDesignGivesTheFormItWasSavedWith) {
   EXPECT_TRUE(has("--generations", "7"));
   EXPECT_TRUE(has("--robust-mode", "worst"));
   EXPECT_TRUE(has("--cmaes-sigma", "0.25"));
+  // The form's reality gap, every value (an unsaved edit runs too).
+  EXPECT_EQ(std::count(spec.args.begin(), spec.args.end(), "--robust-gap"), 11);
+  EXPECT_NE(std::find(spec.args.begin(), spec.args.end(), "motor_noise=0.4"),
+            spec.args.end());
 }
 
 TEST(SavedOptimisation, ABuiltInGeneSetOpensAsItsGenes) {

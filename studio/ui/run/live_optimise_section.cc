@@ -6,11 +6,61 @@
 #include "optimizer/episode/controller_spec.h"
 #include "optimizer/episode/task.h"
 #include "optimizer/search/algorithm_registry.h"
+#include "sim_core/scenario/scenario_schema.h"
 #include "studio/live/saved_optimisation.h"
 #include "studio/ui/run/live_panel.h"
 #include "studio/ui/run/live_panel_common.h"
 
 namespace mrsim::studio {
+
+// The robust episodes' reality gap, as the design file's <optimization>
+// gap fields: label, unit, help and limits are the schema's rows (so the
+// limits are RealityGap::Validate's), each value clamped to them.
+void LivePanel::DrawRealityGap() {
+  ImGui::Indent(8);
+  if (RecordedHeader(layout_, "reality gap", false)) {
+    RealityGap& g = robust_.gap;
+    const std::pair<const char*, double*> kValues[] = {
+        {"gapSensorNoise", &g.sensor_noise},
+        {"gapSensorBias", &g.sensor_bias},
+        {"gapJointNoise", &g.joint_noise},
+        {"gapMotorNoise", &g.motor_noise},
+        {"gapLatency", &g.latency},
+        {"gapBacklash", &g.backlash},
+        {"gapMaxAccel", &g.max_accel},
+        {"gapFrictionRange", &g.friction_range},
+        {"gapMassRange", &g.mass_range},
+        {"gapGainRange", &g.gain_range},
+        {"gapTerrainRange", &g.terrain_range}};
+    const std::vector<FieldSpec>& specs =
+        FieldSpecsOf(PartKind::kOptimizationSettings);
+    for (const auto& entry : kValues) {
+      const std::string xml = entry.first;
+      double* value = entry.second;
+      const auto spec =
+          std::find_if(specs.begin(), specs.end(),
+                       [&](const FieldSpec& f) { return xml == f.info.xml; });
+      if (spec == specs.end()) continue;
+      const FieldInfo& info = spec->info;
+      const std::string label =
+          *info.unit ? fmt::format("{} ({})", info.label, info.unit)
+                     : std::string(info.label);
+      ImGui::SetNextItemWidth(90);
+      if (ImGui::InputDouble(label.c_str(), value, 0, 0, "%.4g")) {
+        *value = *value >= info.limits.min ? *value : info.limits.min;
+        *value = std::min(*value, info.limits.max);
+      }
+      RecordItem(layout_, label);
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%s\n%s: typical %s, %g..%g (<optimization><%s>)",
+                          info.help, info.unit[0] ? info.unit : "no unit",
+                          spec->default_text.c_str(), info.limits.min,
+                          info.limits.max, info.xml);
+      }
+    }
+  }
+  ImGui::Unindent(8);
+}
 
 void LivePanel::DrawOptimiseSettings() {
   if (!RecordedHeader(layout_, "Fitness and algorithm settings", false)) {
@@ -81,6 +131,7 @@ void LivePanel::DrawOptimiseSettings() {
     robust_.mode = worst ? "worst" : "mean";
   }
   RecordItem(layout_, "robust worst");
+  DrawRealityGap();
   ImGui::SetNextItemWidth(-90);
   ImGui::InputText("base gait", &base_gait_);
   RecordItem(layout_, "base gait");

@@ -140,6 +140,8 @@ class LivePanel {
   void DrawOptimise(const LiveDesign& design, float width);
   // Fitness, base gait and the chosen algorithm's own settings.
   void DrawOptimiseSettings();
+  // Its "reality gap" header: the robust episodes' gap, field by field.
+  void DrawRealityGap();
   // What the genes drive (the gait, the design's Lua script, a network)
   // and, for a script, its declared params; returns whether the gait's
   // genome is the one to edit.
