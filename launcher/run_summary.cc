@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim_core/mjcf/mjcf_names.h"
+#include "sim_core/scenario/scene_object_name.h"
 
 namespace mrsim {
 namespace {
@@ -44,7 +45,8 @@ RunSummary SummarizeRun(const Physics& start, const Physics& end) {
   for (size_t i = 0; i < objects.size(); ++i) {
     if (objects[i].is_static) continue;
     const std::string body = mjcf_names::SceneObject(static_cast<int>(i));
-    summary.objects.push_back({"object" + std::to_string(i),
+    // As the user called it ("ball"), as the overlap check names it.
+    summary.objects.push_back({SceneObjectLabel(objects[i], i),
                                BodyPosition(start, body),
                                BodyPosition(end, body)});
   }

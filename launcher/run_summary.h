@@ -11,7 +11,9 @@
 namespace mrsim {
 
 struct Displacement {
-  std::string name;  // robot name, or "object<i>"
+  // The robot's name; an object's as the user called it ("ball"), or
+  // "object <i>" when it has none (SceneObjectLabel).
+  std::string name;
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
   Eigen::Vector3d end = Eigen::Vector3d::Zero();
   double distance() const { return (end - start).norm(); }
@@ -28,7 +30,7 @@ struct RunSummary {
 RunSummary SummarizeRun(const Physics& start, const Physics& end);
 
 // One line: "20.0 s: case_study moved 0.540 m (dx +0.537, dy +0.000);
-// object0 displaced 0.317 m (dx +0.317, dy +0.000)".
+// ball displaced 0.317 m (dx +0.317, dy +0.000)".
 std::string FormatRunSummary(const RunSummary& summary);
 
 }  // namespace mrsim

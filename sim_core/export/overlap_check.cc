@@ -4,13 +4,13 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <stdexcept>
 
 #include "sim_core/mjcf/mjcf_names.h"
 #include "sim_core/mjcf/model_compiler.h"
 #include "sim_core/mujoco/mujoco_ptr.h"
+#include "sim_core/scenario/scene_object_name.h"
 
 namespace mrsim {
 namespace {
@@ -20,27 +20,12 @@ struct PartName {
   std::string path;
 };
 
-// A generated GUID ("7b579252-58ce-4fb0-937f-57c24696363f", what the
-// original MRSim gave every part) names nothing for a person.
-bool IsGeneratedGuid(const std::string& guid) {
-  if (guid.size() != 36) return false;
-  for (size_t i = 0; i < guid.size(); ++i) {
-    const bool dash = i == 8 || i == 13 || i == 18 || i == 23;
-    if (dash != (guid[i] == '-')) return false;
-    if (!dash && !std::isxdigit(static_cast<unsigned char>(guid[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// "scene object 'ball'": the guid is the name the studio and users give
-// an object; the index when the guid names nothing.
+// "scene object 'ball'" by the name the user gave it
+// (scene_object_name.h); the index when it has none.
 std::string SceneObjectName(const SceneObject& o, size_t i) {
-  if (o.guid.empty() || IsGeneratedGuid(o.guid)) {
-    return fmt::format("scene object {}", i);
-  }
-  return fmt::format("scene object '{}'", o.guid);
+  const std::string name = SceneObjectGivenName(o);
+  if (name.empty()) return fmt::format("scene object {}", i);
+  return fmt::format("scene object '{}'", name);
 }
 
 // MJCF body name -> the part it models, for every body that can collide.

@@ -27,6 +27,30 @@ TEST(RunSummary, ARobotThatDidNotMoveReadsZeroWithoutAMinus) {
       << line;
 }
 
+// Objects by the names the user gave them, as overlap messages name them;
+// an object without one (a generated GUID) by its index in the file.
+TEST(RunSummary, NamesSceneObjectsAsTheUserCalledThem) {
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(ChainOptions{}));
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.position = Eigen::Vector3d(1.0, 0.0, 0.05);
+  SceneObject unnamed = ball;
+  unnamed.guid = "7b579252-58ce-4fb0-937f-57c24696363f";
+  unnamed.position = Eigen::Vector3d(2.0, 0.0, 0.05);
+  scenario.scene_objects = {ball, unnamed};
+  const Physics start(scenario);
+  const RunSummary summary = SummarizeRun(start, start);
+  ASSERT_EQ(summary.objects.size(), 2u);
+  EXPECT_EQ(summary.objects[0].name, "ball");
+  EXPECT_EQ(summary.objects[1].name, "object 1");
+  const std::string line = FormatRunSummary(summary);
+  EXPECT_NE(line.find("; ball displaced 0.000 m"), std::string::npos) << line;
+  EXPECT_NE(line.find("; object 1 displaced 0.000 m"), std::string::npos)
+      << line;
+  EXPECT_EQ(line.find("object0"), std::string::npos) << line;
+}
+
 TEST(RunSummary, AnEndOfAnotherScenarioIsRefused) {
   Scenario one, two;
   one.robots.push_back(MakeChain(ChainOptions{}));
