@@ -546,7 +546,8 @@ void Builder::AddRobot(const std::string& robot_name,
     e.servo = servos;
     edges.push_back(e);
   }
-  // Locks between parts; a loose hinge joint becomes a passive hinge.
+  // Locks between parts; a loose hinge joint becomes a hinge, passive
+  // unless it asks for a servo (Joint::servo), then driven as a module's.
   std::map<std::string, int> guid_uses;
   for (const Joint& j : locks) ++guid_uses[j.guid];
   for (size_t k = 0; k < locks.size(); ++k) {
@@ -578,6 +579,13 @@ void Builder::AddRobot(const std::string& robot_name,
       e.joint_name = robot_name + "/j" + std::to_string(k) + "/hinge";
       e.lower = j.lower_range_limit;
       e.upper = j.upper_range_limit;
+      if (j.servo) {
+        e.actuator_name = robot_name + "/j" + std::to_string(k) + "/servo";
+        e.max_vel = j.max_vel;
+        e.kv = j.velocity_gain;
+        e.max_torque = j.max_torque;
+        e.servo = true;
+      }
     }
     edges.push_back(e);
   }

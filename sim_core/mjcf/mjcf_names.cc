@@ -51,6 +51,12 @@ std::string SceneObjectCamera(int index, int k) {
   return SceneObject(index) + "/camera" + (k == 0 ? "" : std::to_string(k));
 }
 std::string LooseRobot() { return kLooseOwnerName; }
+std::string LooseHinge(int joint) {
+  return LooseRobot() + "/j" + std::to_string(joint) + "/hinge";
+}
+std::string LooseServo(int joint) {
+  return LooseRobot() + "/j" + std::to_string(joint) + "/servo";
+}
 std::string Terrain() { return "scene/terrain"; }
 }  // namespace mjcf_names
 

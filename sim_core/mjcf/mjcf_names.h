@@ -39,6 +39,10 @@ std::string SceneObject(int index);         // "scene/obj<i>"
 std::string SceneObjectCamera(int index, int k);
 // The robot name the loose parts' bodies go by: "loose" ("loose/sm0").
 std::string LooseRobot();
+// Loose joint k's hinge and, when it has one, its servo:
+// "loose/j2/hinge", "loose/j2/servo".
+std::string LooseHinge(int joint);
+std::string LooseServo(int joint);
 std::string Terrain();  // "scene/terrain" (hfield or plane)
 }  // namespace mjcf_names
 }  // namespace mrsim

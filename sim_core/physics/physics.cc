@@ -156,8 +156,14 @@ struct Physics::Impl {
     std::vector<int> frame_bodies;  // two per module
     std::vector<SensorModuleIndex> sensor_modules;
     std::vector<int> bodies;  // every body of the robot, for the CoM
-    // Hinges without a servo (the loose parts' joints): read, not driven.
-    std::vector<int> passive_joints;
+    // The loose parts' hinges in scenario order, as their state lists
+    // them: each with the index of its servo in `servos`, or -1 when it
+    // turns freely (Joint::servo off). A robot lists its servos instead.
+    struct LooseHinge {
+      int joint = -1;
+      int servo = -1;
+    };
+    std::vector<LooseHinge> loose_hinges;
   };
 
   Scenario scenario;
@@ -187,7 +193,8 @@ struct Physics::Impl {
   mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
   // The parts outside any robot (Scenario::loose_*), read as one more
-  // state under kLooseOwnerName; no servos, so the effects never see it.
+  // state under kLooseOwnerName. Its servos (the loose hinges with
+  // Joint::servo) run the nominal law: the effects never see them.
   std::optional<RobotIndex> loose;
   std::vector<const ServoRobot*> servo_robots;  // robots, as effects see them
   // The reality gap's per-step part (SetRealityGap); off by default. Kept
@@ -253,17 +260,33 @@ struct Physics::Impl {
   // control effect's (the reality gap). advance: a real step; false for
   // the force readings' private forward, which replays the last commands.
   void ComputeControls(mjData* d, bool advance = true) {
+    // The reality gap is a robot's servos' imperfection; the loose servos
+    // stay nominal (the law depends on the state alone, so a replay for
+    // the force readings gives the same commands).
+    if (loose) NominalControls(*loose, d);
     if (PhysicsEffect* effect = effects.controls()) {
       effect->Controls(model.get(), servo_robots, d, advance);
       return;
     }
-    for (const RobotIndex& r : robots) {
-      const size_t n = r.servos.size();
-      for (size_t j = 0; j < n; ++j) {
-        const Servo& s = r.servos[j];
-        const double u = s.kp * (r.targets[j] - d->qpos[s.qpos]);
-        d->ctrl[s.actuator] = std::clamp(u, -s.max_vel, s.max_vel);
-      }
+    for (const RobotIndex& r : robots) NominalControls(r, d);
+  }
+  static void NominalControls(const RobotIndex& r, mjData* d) {
+    const size_t n = r.servos.size();
+    for (size_t j = 0; j < n; ++j) {
+      const Servo& s = r.servos[j];
+      const double u = s.kp * (r.targets[j] - d->qpos[s.qpos]);
+      d->ctrl[s.actuator] = std::clamp(u, -s.max_vel, s.max_vel);
+    }
+  }
+  // Every robot's targets, then the loose servos': the checkpoint's order.
+  template <typename F>
+  void ForEachTargets(F&& f) {
+    for (RobotIndex& r : robots) f(r.targets);
+    if (loose) f(loose->targets);
+  }
+  static void ResetTargets(RobotIndex* r) {
+    for (size_t j = 0; j < r->servos.size(); ++j) {
+      r->targets[j] = std::clamp(0.0, r->servos[j].lower, r->servos[j].upper);
     }
   }
   // The body forces the next step of state `from` applies, into `to`
@@ -326,6 +349,8 @@ struct Physics::Impl {
 void Physics::Impl::Build() {
   std::vector<std::vector<double>> old_targets;
   for (const RobotIndex& r : robots) old_targets.push_back(r.targets);
+  const std::vector<double> old_loose_targets =
+      loose ? loose->targets : std::vector<double>();
   MjcfOptions options;
   options.rangefinders = false;
   options.weld_locks = runtime_welds;
@@ -339,6 +364,9 @@ void Physics::Impl::Build() {
   if (old_targets.size() == robots.size()) {
     for (size_t r = 0; r < robots.size(); ++r)
       robots[r].targets = old_targets[r];
+  }
+  if (loose && old_loose_targets.size() == loose->targets.size()) {
+    loose->targets = old_loose_targets;
   }
   eq_active0.assign(m->eq_active, m->eq_active + m->neq);
   data = MakeMjData(m);
@@ -556,11 +584,30 @@ void Physics::Impl::IndexLooseParts() {
     ri.frame_bodies.push_back(b);
     ri.bodies.push_back(b);
   }
+  const mjModel* m = model.get();
   for (size_t k = 0; k < scenario.loose_joints.size(); ++k) {
-    if (scenario.loose_joints[k].type != JointType::kHinge) continue;
-    // Every hinge is a tree edge (ConnectTree), "<loose>/j<k>/hinge".
-    ri.passive_joints.push_back(
-        Id(mjOBJ_JOINT, ri.name + "/j" + std::to_string(k) + "/hinge"));
+    const Joint& joint = scenario.loose_joints[k];
+    if (joint.type != JointType::kHinge) continue;
+    // Every hinge is a tree edge (ConnectTree), so it has a MuJoCo joint.
+    RobotIndex::LooseHinge h;
+    h.joint = Id(mjOBJ_JOINT, mjcf_names::LooseHinge(static_cast<int>(k)));
+    if (joint.servo) {
+      Servo s;
+      s.joint = h.joint;
+      s.qpos = m->jnt_qposadr[s.joint];
+      s.dof = m->jnt_dofadr[s.joint];
+      s.actuator =
+          Id(mjOBJ_ACTUATOR, mjcf_names::LooseServo(static_cast<int>(k)));
+      s.module = static_cast<int>(k);  // its place in Scenario::loose_joints
+      s.kp = joint.kp;
+      s.max_vel = std::abs(joint.max_vel);
+      s.lower = joint.lower_range_limit;
+      s.upper = joint.upper_range_limit;
+      h.servo = static_cast<int>(ri.servos.size());
+      ri.servos.push_back(s);
+      ri.targets.push_back(std::clamp(0.0, s.lower, s.upper));
+    }
+    ri.loose_hinges.push_back(h);
   }
   IndexSensorModules(scenario.loose_sensor_modules, &ri);
   loose = std::move(ri);
@@ -762,22 +809,15 @@ std::vector<std::string> Physics::effects() const {
 void Physics::Reset() {
   if (impl_->split) {
     impl_->split->Reset();
-    for (Impl::RobotIndex& r : impl_->robots) {
-      for (size_t j = 0; j < r.servos.size(); ++j) {
-        r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
-      }
-    }
+    for (Impl::RobotIndex& r : impl_->robots) Impl::ResetTargets(&r);
     if (impl_->view_poked) impl_->split->SyncView(model(), impl_->data.get());
     return;
   }
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
   ResetMjData(impl_->model.get(), impl_->data.get());
-  for (Impl::RobotIndex& r : impl_->robots) {
-    for (size_t j = 0; j < r.servos.size(); ++j) {
-      r.targets[j] = std::clamp(0.0, r.servos[j].lower, r.servos[j].upper);
-    }
-  }
+  for (Impl::RobotIndex& r : impl_->robots) Impl::ResetTargets(&r);
+  if (impl_->loose) Impl::ResetTargets(&*impl_->loose);
   impl_->effects.Restart(impl_->servo_robots);
   impl_->AfterStateChange();
 }
@@ -886,6 +926,36 @@ void Physics::SetJointTargets(int robot, const std::vector<double>& targets) {
   }
 }
 
+int Physics::loose_servo_count() const {
+  return impl_->loose ? static_cast<int>(impl_->loose->servos.size()) : 0;
+}
+
+void Physics::SetLooseTargets(const std::vector<double>& targets) {
+  const int n = loose_servo_count();
+  if (static_cast<int>(targets.size()) != n) {
+    throw std::invalid_argument(fmt::format(
+        "the loose parts have {} servo(s) (loose hinges with <servo>), got {} "
+        "targets",
+        n, targets.size()));
+  }
+  if (n == 0) return;
+  Impl::RobotIndex& r = *impl_->loose;
+  for (size_t j = 0; j < targets.size(); ++j) {
+    if (!std::isfinite(targets[j])) {
+      throw std::invalid_argument(
+          fmt::format("loose servo {}: target is not finite", j));
+    }
+  }
+  for (size_t j = 0; j < targets.size(); ++j) {
+    r.targets[j] = std::clamp(targets[j], r.servos[j].lower, r.servos[j].upper);
+  }
+}
+
+const std::vector<double>& Physics::loose_targets() const {
+  static const std::vector<double> kNone;
+  return impl_->loose ? impl_->loose->targets : kNone;
+}
+
 const std::vector<double>& Physics::joint_targets(int robot) const {
   if (impl_->split) {
     impl_->robot(robot);  // range check
@@ -935,26 +1005,24 @@ RobotState Physics::Impl::Read(const RobotIndex& r,
         state.frames[i].orientation.slerp(0.5, state.frames[i + 1].orientation);
     state.modules.push_back(p);
   }
-  for (const Servo& s : r.servos) {
+  // actuator -1: a passive hinge, no actuator torque.
+  auto add_joint = [&](int joint, int actuator) {
     JointState j;
-    j.angle = d->qpos[s.qpos];
-    j.speed = d->qvel[s.dof];
-    j.torque = d->actuator_force[s.actuator];
-    j.world = BodyPose(d, m->jnt_bodyid[s.joint]);
-    j.world.position =
-        Eigen::Vector3d(d->xanchor[3 * s.joint], d->xanchor[3 * s.joint + 1],
-                        d->xanchor[3 * s.joint + 2]);
-    state.joints.push_back(j);
-  }
-  for (int joint : r.passive_joints) {
-    JointState j;  // no servo: no actuator torque
     j.angle = d->qpos[m->jnt_qposadr[joint]];
     j.speed = d->qvel[m->jnt_dofadr[joint]];
+    j.torque = actuator >= 0 ? d->actuator_force[actuator] : 0.0;
     j.world = BodyPose(d, m->jnt_bodyid[joint]);
     j.world.position =
         Eigen::Vector3d(d->xanchor[3 * joint], d->xanchor[3 * joint + 1],
                         d->xanchor[3 * joint + 2]);
     state.joints.push_back(j);
+  };
+  if (robot >= 0) {
+    for (const Servo& s : r.servos) add_joint(s.joint, s.actuator);
+  } else {
+    for (const RobotIndex::LooseHinge& h : r.loose_hinges) {
+      add_joint(h.joint, h.servo >= 0 ? r.servos[h.servo].actuator : -1);
+    }
   }
   bool need_forces = false;
   // Kinds read through MuJoCo sensors (plate forces, accelerations) need
@@ -1070,9 +1138,9 @@ std::vector<unsigned char> Physics::SaveState() const {
   const mjModel* m = impl_->model.get();
   const mjData* d = impl_->data.get();
   std::vector<double> targets;
-  for (const auto& r : impl_->robots) {
-    targets.insert(targets.end(), r.targets.begin(), r.targets.end());
-  }
+  impl_->ForEachTargets([&](const std::vector<double>& t) {
+    targets.insert(targets.end(), t.begin(), t.end());
+  });
   const int32_t sizes[7] = {m->nq,
                             m->nv,
                             m->na,
@@ -1124,10 +1192,9 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   }
   size_t ntargets = 0;
   size_t nlocks = 0;
-  for (const auto& r : impl_->robots) {
-    ntargets += r.targets.size();
-    nlocks += r.locks.size();
-  }
+  for (const auto& r : impl_->robots) nlocks += r.locks.size();
+  impl_->ForEachTargets(
+      [&](const std::vector<double>& t) { ntargets += t.size(); });
   const int version = StateVersion(bytes);
   if (version == 0) {
     throw std::invalid_argument("physics state: not an mrsim state blob");
@@ -1232,7 +1299,8 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
     const PhysicsStateField& f = kPhysicsStateFields[i];
     if (!InCheckpoint(f, version)) continue;
     if (f.per == StatePer::kTarget) {
-      for (auto& r : impl_->robots) get(r.targets.data(), r.targets.size());
+      impl_->ForEachTargets(
+          [&](std::vector<double>& t) { get(t.data(), t.size()); });
     } else if (f.array == nullptr) {
       get(d->qpos, m->nq);  // the integrated qpos (see qpos_integrated)
       integrated = true;

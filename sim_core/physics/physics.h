@@ -71,6 +71,16 @@ class Physics {
   void SetJointTargets(int robot, const std::vector<double>& targets);
   const std::vector<double>& joint_targets(int robot) const;
 
+  // The loose hinges that have a servo (Joint::servo), in the order
+  // ReadLooseState lists the loose hinges, skipping the passive ones; 0
+  // without. Targets for them as SetJointTargets takes a robot's: one per
+  // loose servo, clamped to its limits; throws std::invalid_argument on a
+  // wrong count or a non-finite value. The reality gap does not act on
+  // them (it is a robot's servos'); checkpoints keep their targets.
+  int loose_servo_count() const;
+  void SetLooseTargets(const std::vector<double>& targets);
+  const std::vector<double>& loose_targets() const;
+
   // Everything about one robot at the current time. Poses and velocities
   // are those of the current state (kinematics are kept up to date after
   // every step); force sensors need a constraint solve and distance sensors
@@ -81,7 +91,7 @@ class Physics {
   // loose_*), and their state as ReadRobotState gives a robot's, under the
   // owner name kLooseOwnerName: `frames` one pose per loose frame in
   // scenario order (no `modules`), `joints` the loose hinges in scenario
-  // order (no servo: torque 0), `sensor_modules` the loose sensor modules
+  // order (a passive one's torque 0), `sensor_modules` the loose sensor modules
   // with their readings (no reality-gap noise), `com` theirs together.
   // ReadLooseState throws std::logic_error when there are none.
   bool has_loose_parts() const;

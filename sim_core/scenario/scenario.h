@@ -45,7 +45,9 @@ struct Frame {
 // law on speed) or a rigid lock. Limits in rad, max_vel in rad/s. The servo
 // commands speed = clamp(kp * (target - angle), +-max_vel) and a velocity
 // loop of gain velocity_gain drives the hinge towards it with at most
-// max_torque, as a hobby servo's stall torque limits it.
+// max_torque, as a hobby servo's stall torque limits it. A module's hinge
+// always has that servo; a loose hinge (Scenario::loose_joints) has it only
+// when `servo` is set, and turns freely otherwise.
 struct Joint {
   std::string guid;
   std::string left_frame_guid;
@@ -58,6 +60,7 @@ struct Joint {
   double velocity_gain = 5.0;  // N m s/rad, hinge only
   double max_torque = 2.0;     // N m, hinge only (stall torque)
   double break_force = 0.0;    // N, lock only; 0: never breaks
+  bool servo = false;          // loose hinge only: driven by the servo above
 };
 
 // A module's frames[i] in words: frames[0] is on the +x side, the front,

@@ -182,12 +182,26 @@ void Describe(V& v, Joint& j) {
       "breakForce",     "breaking force",
       "break_force",    "N",
       L::NonNegative(), "Lock: force at which it breaks; 0 never breaks"};
+  static const FieldInfo kServo = [] {
+    FieldInfo f{"servo",
+                "driven by a servo",
+                "servo",
+                "",
+                L::Any(),
+                "Loose hinge: a servo (Kp, max_vel, velocityGain, maxTorque) "
+                "drives it to the targets sent on COMMAND_loose; off, it "
+                "turns freely. A module's hinge always has one"};
+    f.omit_when = "false";
+    return f;
+  }();
   v.Field(kGuid, j.guid);
   v.Field(kLeft, j.left_frame_guid);
   v.Field(kRight, j.right_frame_guid);
   v.Field(kType, j.type);
   v.Field(kLower, j.lower_range_limit);
   v.Field(kUpper, j.upper_range_limit);
+  // Before the gains it switches on, as the inspector lists them.
+  v.Field(kServo, j.servo);
   v.Field(kKp, j.kp);
   v.Field(kMaxVel, j.max_vel);
   v.Field(kVelocityGain, j.velocity_gain);

@@ -253,6 +253,20 @@ class Validator {
                j.left_frame_guid + "'");
     }
     const bool sensor_lock = lock && in_sensor_module_;
+    if (j.servo) {
+      // Only a loose hinge chooses: a module's hinge always has a servo,
+      // a lock never turns. A flag that would do nothing is refused.
+      if (robot_ >= 0 || lock || in_sensor_module_) {
+        Fail(path_ + "/servo",
+             "only a loose hinge (Scenario/joints/Joint) takes <servo>; a "
+             "module's hinge always has a servo and a lock never turns");
+      }
+      if (j.type != JointType::kHinge) {
+        Fail(path_ + "/servo",
+             "a Lock does not turn, so it takes no servo (set <type> to "
+             "Hinge, or leave <servo> out)");
+      }
+    }
     JointScope scope;
     if (robot_ >= 0) {
       scope = sensor_lock ? JointScope::kSensorLock : JointScope::kRobotBodies;

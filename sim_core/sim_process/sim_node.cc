@@ -20,11 +20,14 @@ namespace {
 constexpr size_t kMaxControlSenders = 1000;
 constexpr size_t kMaxNamedRefusedSenders = 4;
 
+// The robots, then the loose parts (their servos on <prefix>_COMMAND_loose)
+// as one more: commands to them pass the same filter.
 std::vector<std::string> RobotNames(const Physics& physics) {
   std::vector<std::string> names;
   for (int r = 0; r < physics.robot_count(); ++r) {
     names.push_back(physics.robot_name(r));
   }
+  if (physics.has_loose_parts()) names.push_back(kLooseOwnerName);
   return names;
 }
 
@@ -33,6 +36,7 @@ std::vector<int> JointCounts(const Physics& physics) {
   for (int r = 0; r < physics.robot_count(); ++r) {
     counts.push_back(physics.joint_count(r));
   }
+  if (physics.has_loose_parts()) counts.push_back(physics.loose_servo_count());
   return counts;
 }
 
@@ -64,7 +68,7 @@ SimNode::SimNode(std::unique_ptr<Physics> physics, SimOptions options,
       std::max(1, static_cast<int>(std::lround(1.0 / (options_.rate * dt))));
   period_ = steps_per_period_ * dt;
   paused_ = options_.paused;
-  pending_.resize(physics_->robot_count());
+  pending_.resize(RobotNames(*physics_).size());
   last_status_ = wait_start_ = last_republish_ = anchor_ = now;
   last_status_sim_time_ = physics_->time();
 }
@@ -198,7 +202,11 @@ void SimNode::RunPeriod(WallTime now, SimOutbox* out) {
   }
   auto apply = [&](size_t r, const joint_command_t& cmd) {
     try {
-      physics_->SetJointTargets(static_cast<int>(r), cmd.target);
+      if (static_cast<int>(r) == physics_->robot_count()) {
+        physics_->SetLooseTargets(cmd.target);  // the slot after the robots
+      } else {
+        physics_->SetJointTargets(static_cast<int>(r), cmd.target);
+      }
       ++commands_applied_;
     } catch (const std::invalid_argument&) {
       ++rejected_value_;  // the filter should have caught it; never apply
@@ -443,12 +451,28 @@ void SimNode::OnCommand(const joint_command_t& cmd, const std::string& channel,
       break;
     case CommandVerdict::kWrongJointCount:
       ++rejected_joint_count_;
+      if (channel_robot == kLooseOwnerName) {
+        // The counter alone would not tell a passive hinge from a miscount.
+        const int servos = physics_->loose_servo_count();
+        last_error_ =
+            servos == 0
+                ? "COMMAND_loose: the loose parts have no servo (their "
+                  "hinges are passive; give one <servo>true</servo>), "
+                  "command dropped"
+                : "COMMAND_loose: expected " + std::to_string(servos) +
+                      " targets (one per loose servo), got " +
+                      std::to_string(cmd.num_joints) + "; command dropped";
+      }
       return;
     case CommandVerdict::kBadValue:
       ++rejected_value_;
       return;
     case CommandVerdict::kUnknownRobot:
       ++rejected_robot_;
+      if (channel_robot == kLooseOwnerName && !physics_->has_loose_parts()) {
+        last_error_ =
+            "COMMAND_loose: the scenario has no loose parts; command dropped";
+      }
       return;
     case CommandVerdict::kStaleSeq:
       ++rejected_seq_;

@@ -49,7 +49,9 @@ class SimNode {
 
   // The first states and status.
   void Start(WallTime now, SimOutbox* out);
-  // A decoded command received on `channel`.
+  // A decoded command received on `channel`: <prefix>_COMMAND_<robot>, or
+  // <prefix>_COMMAND_loose with one target per loose servo
+  // (Physics::loose_servo_count, in the loose state's joint order).
   void OnCommand(const joint_command_t& cmd, const std::string& channel,
                  WallTime now);
   // A decoded control request; acknowledged by a status in `out`.
@@ -76,8 +78,8 @@ class SimNode {
   const SimOptions& options() const { return options_; }
   int steps_per_period() const { return steps_per_period_; }
   double period() const { return period_; }  // s of sim time
-  // Checkpoint files (sim_core/physics/checkpoint.h). Loading needs the scenario
-  // that runs. Throw std::runtime_error naming the path.
+  // Checkpoint files (sim_core/physics/checkpoint.h). Loading needs the
+  // scenario that runs. Throw std::runtime_error naming the path.
   void SaveCheckpoint(const std::string& path) const;
   void LoadCheckpoint(const std::string& path);
   const std::string& exit_checkpoint_error() const {

@@ -998,6 +998,14 @@ void Design::SetField(const FieldAddress& address, const std::string& text) {
                       Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
                       Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX());
   }
+  // A loose hinge made a Lock keeps no servo: a lock never turns, and the
+  // validator refuses a servo on one.
+  if (address.part.kind == SelectionKind::kLooseJoint &&
+      address.field == "type" && address.part.index >= 0 &&
+      address.part.index < static_cast<int>(next.loose_joints.size())) {
+    Joint& j = next.loose_joints[address.part.index];
+    if (j.type == JointType::kLock) j.servo = false;
+  }
   RefuseUselessRay(scenario_, next);
   Commit(std::move(next), selection_);
 }

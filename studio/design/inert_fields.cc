@@ -28,18 +28,22 @@ std::vector<FieldRef> JointFields(Joint& joint, JointPlace place) {
   std::vector<std::string> inert;
   switch (place) {
     case JointPlace::kModule:
-      inert = {"type", "breakForce"};
+      // Its servo is always on: the switch would do nothing.
+      inert = {"type", "breakForce", "servo"};
       break;
     case JointPlace::kRobotLock:
       inert = kHinge;
       inert.push_back("type");
+      inert.push_back("servo");
       break;
     case JointPlace::kLoose:
       if (joint.type == JointType::kLock) {
         inert = kHinge;
+        inert.push_back("servo");
       } else {
-        // The simulator builds a loose hinge without a servo.
-        inert = kServo;
+        // A loose hinge turns freely unless its servo is on; the gains
+        // mean something only then.
+        if (!joint.servo) inert = kServo;
         inert.push_back("breakForce");
       }
       break;

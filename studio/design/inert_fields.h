@@ -2,8 +2,8 @@
 // (REQ-1.4.5): the original's Euler `rotation` beside the quaternion that
 // places the part, a sensor module's lock positions and its force plate's
 // pose (both follow from the face), a ray's sampling step (rays are cast
-// exactly), a hinge's breakForce (only locks break), a lock's servo and a
-// flat ground's pixels. Files that have
+// exactly), a hinge's breakForce (only locks break), a lock's servo, a
+// passive loose hinge's servo gains and a flat ground's pixels. Files that have
 // them still load and keep them; the inspector does not offer them.
 #pragma once
 
@@ -22,13 +22,14 @@ std::vector<FieldRef> WithoutInert(std::vector<FieldRef> fields,
 enum class JointPlace {
   kModule,     // a module's hinge: Lock is refused there and never breaks
   kRobotLock,  // in Robot::locks: rigid, only its breaking force matters
-  kLoose,      // a loose joint: a Hinge (passive: no servo drives it) or a
-               // Lock, as its type says
+  kLoose,      // a loose joint: a Hinge (passive unless its `servo` is on)
+               // or a Lock, as its type says
 };
 
 // The fields of `joint` that do something where it sits: a lock offers its
 // breaking force (and shows the two parts it joins), a hinge its limits and
-// (a module's) servo, never the other's.
+// servo (a loose hinge the servo switch, and its gains while it is on),
+// never the other's.
 std::vector<FieldRef> JointFields(Joint& joint, JointPlace place);
 
 // The terrain's fields without the height image's pixel height and size

@@ -443,6 +443,79 @@ TEST(PhysicsLooseParts, LooseStateIsWhereThePhysicsMovedThem) {
   EXPECT_THROW(none.ReadLooseState(), std::logic_error);
 }
 
+// A static base in the air with an arm on each side, each on a loose hinge
+// about the vertical (gravity turns neither): the +x arm's hinge has a
+// servo when `servo`, the -x arm's never.
+Scenario LooseArms(bool servo) {
+  Scenario s = testing::FlatScenario();
+  const Eigen::Quaterniond up(
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));  // y -> z
+  for (const auto& [guid, x] :
+       {std::make_pair("base", 0.0), std::make_pair("driven arm", 0.05),
+        std::make_pair("free arm", -0.05)}) {
+    Frame frame;
+    frame.guid = guid;
+    frame.position = Eigen::Vector3d(x, 0, 0.3);
+    frame.quat_rotation = up;
+    frame.is_static = frame.guid == "base";
+    s.loose_frames.push_back(frame);
+  }
+  for (const char* arm : {"driven arm", "free arm"}) {
+    Joint hinge;
+    hinge.guid = std::string(arm) + " hinge";
+    hinge.left_frame_guid = "base";
+    hinge.right_frame_guid = arm;
+    hinge.servo = servo && hinge.guid == "driven arm hinge";
+    s.loose_joints.push_back(hinge);
+  }
+  return s;
+}
+
+// A loose hinge with <servo> is driven to the angle commanded, as a
+// module's hinge is; a passive one beside it, under the same physics, does
+// not move.
+TEST(PhysicsLooseParts, AServoedLooseHingeReachesItsTargetAPassiveOneStays) {
+  Physics physics(LooseArms(true));
+  ASSERT_EQ(physics.loose_servo_count(), 1);
+  EXPECT_EQ(physics.model()->nu, 1);
+  EXPECT_EQ(physics.loose_targets(), std::vector<double>{0.0});
+  physics.SetLooseTargets({0.5});
+  physics.Step(1000);  // 2 s
+  const RobotState state = physics.ReadLooseState();
+  ASSERT_EQ(state.joints.size(), 2u);  // both hinges, in scenario order
+  EXPECT_NEAR(state.joints[0].angle, 0.5, 0.01);
+  EXPECT_NEAR(state.joints[1].angle, 0.0, 1e-3);
+  EXPECT_EQ(state.joints[1].torque, 0.0);  // passive: no actuator
+
+  // Clamped to its limits; a wrong count or a NaN is refused.
+  physics.SetLooseTargets({3.0});
+  EXPECT_EQ(physics.loose_targets(), std::vector<double>{1.5708});
+  EXPECT_THROW(physics.SetLooseTargets({0.1, 0.2}), std::invalid_argument);
+  EXPECT_THROW(physics.SetLooseTargets({std::nan("")}), std::invalid_argument);
+
+  // A checkpoint keeps the loose targets; a reset zeroes them.
+  physics.SetLooseTargets({-0.4});
+  const std::vector<unsigned char> saved = physics.SaveState();
+  Physics resumed(LooseArms(true));
+  resumed.LoadState(saved);
+  EXPECT_EQ(resumed.loose_targets(), std::vector<double>{-0.4});
+  resumed.Reset();
+  EXPECT_EQ(resumed.loose_targets(), std::vector<double>{0.0});
+}
+
+TEST(PhysicsLooseParts, WithoutServoTheLooseHingesArePassive) {
+  Physics physics(LooseArms(false));
+  EXPECT_EQ(physics.loose_servo_count(), 0);
+  EXPECT_EQ(physics.model()->nu, 0);
+  EXPECT_THROW(physics.SetLooseTargets({0.5}), std::invalid_argument);
+  EXPECT_NO_THROW(physics.SetLooseTargets({}));
+  physics.Step(1000);
+  const RobotState state = physics.ReadLooseState();
+  ASSERT_EQ(state.joints.size(), 2u);
+  EXPECT_NEAR(state.joints[0].angle, 0.0, 1e-3);
+  EXPECT_NEAR(state.joints[1].angle, 0.0, 1e-3);
+}
+
 TEST(PhysicsExamples, ExampleScenariosRun) {
   for (const char* name : {"snake11.xml", "case_study.xml", "terrain.xml"}) {
     SCOPED_TRACE(name);

@@ -277,6 +277,21 @@ std::vector<Rule> BuilderRules() {
       {"a timestep that never advances",
        [](Scenario& s) { s.settings.timestep = 1e-300; },
        "Scenario/settings/timestep", "expected 1e-06..1"},
+      {"a servo on a module's hinge, which always has one",
+       [](Scenario& s) { s.robots[0].modules[0].joint.servo = true; },
+       m1 + "/joint/servo", "only a loose hinge (Scenario/joints/Joint)"},
+      {"a servo on a loose lock",
+       [](Scenario& s) {
+         s.loose_joints[0].type = JointType::kLock;
+         s.loose_joints[0].servo = true;
+       },
+       "Scenario/joints/Joint[1]/servo", "a Lock does not turn"},
+      {"a loose servo without torque",
+       [](Scenario& s) {
+         s.loose_joints[0].servo = true;
+         s.loose_joints[0].max_torque = 0;
+       },
+       "Scenario/joints/Joint[1]/maxTorque", "expected a positive value"},
       {"loose joint naming a scene object",
        [](Scenario& s) { s.loose_joints[0].right_frame_guid = "ball"; },
        "Scenario/joints/Joint[1]/rightFrameGuid",

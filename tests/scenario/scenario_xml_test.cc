@@ -24,6 +24,7 @@ namespace mrsim {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::SourcePath;
 using ::testing::StartsWith;
 using testing::TempDir;
@@ -257,6 +258,9 @@ Scenario EveryFieldScenario(const std::string& mesh) {
   hinge.right_frame_guid = "loose_door";
   hinge.lower_range_limit = -0.25;
   hinge.upper_range_limit = 0.5;
+  hinge.servo = true;
+  hinge.kp = 4.5;
+  hinge.max_torque = 0.75;
   s.loose_joints.push_back(hinge);
   return s;
 }
@@ -297,6 +301,12 @@ TEST(ScenarioXml, RoundTripKeepsEveryField) {
   EXPECT_TRUE(changed != s);
   changed = back;
   changed.loose_sensor_modules[0].cameras[0].tilt = 0;
+  EXPECT_TRUE(changed != s);
+  // A loose hinge's servo and its gains.
+  EXPECT_TRUE(back.loose_joints[0].servo);
+  EXPECT_EQ(back.loose_joints[0].kp, 4.5);
+  changed = back;
+  changed.loose_joints[0].servo = false;
   EXPECT_TRUE(changed != s);
 }
 
@@ -620,6 +630,22 @@ TEST(ScenarioXml, LoosePartsLoadWithoutARobot) {
                          "Scenario/joints/Joint[1]/rightFrameGuid: no frame "
                          "or sensor module with guid 'ball' among the loose "
                          "parts (it is not a part this joint can join"));
+}
+
+// A loose hinge's <servo> is written only when on, so files without one
+// are written as before and mean what they meant: a passive hinge.
+TEST(ScenarioXml, ALooseHingeServoIsWrittenOnlyWhenOn) {
+  Scenario s = ReadScenarioString(kLoose, "t.xml", ".");
+  ASSERT_EQ(s.loose_joints.size(), 1u);
+  EXPECT_FALSE(s.loose_joints[0].servo);
+  EXPECT_THAT(WriteScenarioString(s), Not(HasSubstr("<servo>")));
+  s.loose_joints[0].servo = true;
+  const std::string on = WriteScenarioString(s);
+  EXPECT_THAT(on, HasSubstr("<servo>true</servo>"));
+  EXPECT_TRUE(ReadScenarioString(on, "t.xml", ".") == s);
+  // Not a bool: named with its line.
+  const std::string bad = Replace(on, "<servo>true", "<servo>yes");
+  EXPECT_THAT(ErrorOf(bad), HasSubstr("Scenario/joints/Joint[1]/servo: "));
 }
 
 TEST(ScenarioXml, UnreadableImageIsRejected) {

@@ -830,6 +830,110 @@ TEST(SimNode, LoosePartsStateIsPublishedEveryPeriodAndAfterReset) {
   EXPECT_NEAR(after.back().sensor_modules[0].pose.position[2], 0.2, 1e-9);
 }
 
+// The snake and, 1 m beside it, a static loose base with an arm on a
+// loose hinge about the vertical: with a servo when `servo`.
+Scenario SnakeAndALooseArm(bool servo) {
+  Scenario s = Snake();
+  const Eigen::Quaterniond up(
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+  for (int f = 0; f < 2; ++f) {
+    Frame frame;
+    frame.guid = f == 0 ? "base" : "arm";
+    frame.position = Eigen::Vector3d(0.05 * f, 1.0, 0.3);
+    frame.quat_rotation = up;
+    frame.is_static = f == 0;
+    s.loose_frames.push_back(frame);
+  }
+  Joint hinge;
+  hinge.guid = "arm hinge";
+  hinge.left_frame_guid = "base";
+  hinge.right_frame_guid = "arm";
+  hinge.servo = servo;
+  s.loose_joints.push_back(hinge);
+  return s;
+}
+
+joint_command_t LooseCommand(std::vector<double> targets, int64_t seq) {
+  joint_command_t c{};
+  c.seq = seq;
+  c.robot = kLooseOwnerName;
+  c.sender = "arm-ctl";
+  c.state_seq = -1;
+  c.target = std::move(targets);
+  c.num_joints = static_cast<int32_t>(c.target.size());
+  return c;
+}
+
+// <prefix>_COMMAND_loose drives the loose servos as a robot's command
+// drives its hinges: one target per loose servo, applied from the next
+// period, and the loose state shows the hinge turning there.
+TEST(SimNode, LooseServosTakeTheirCommandsOnCommandLoose) {
+  SimOptions o;
+  o.clock = ClockMode::kFast;
+  Driver d(o, SnakeAndALooseArm(true));
+  d.Command(LooseCommand({0.5}, 1));
+  ASSERT_TRUE(
+      d.RunUntil([&] { return d.node().status().state_seq >= 100; }, 60));
+  EXPECT_EQ(d.node().physics().loose_targets(), std::vector<double>{0.5});
+  const sim_status_t s = d.node().status();
+  EXPECT_EQ(s.commands_applied, 1);
+  EXPECT_EQ(s.commands_rejected, 0);
+  const robot_state_t last = LooseStates(d).back();
+  ASSERT_EQ(last.num_joints, 1);
+  EXPECT_NEAR(last.joints[0].angle, 0.5, 0.01);
+  // The snake's targets are untouched.
+  EXPECT_EQ(d.node().physics().joint_targets(0),
+            std::vector<double>(d.node().physics().joint_count(0), 0.0));
+
+  // A wrong count is counted and dropped, and the status says why.
+  d.Command(LooseCommand({0.1, 0.2}, 2));
+  EXPECT_EQ(d.node().status().rejected_joint_count, 1);
+  EXPECT_NE(d.node().status().last_error.find(
+                "COMMAND_loose: expected 1 targets (one per loose servo), "
+                "got 2"),
+            std::string::npos)
+      << d.node().status().last_error;
+  d.Tick();
+  EXPECT_EQ(d.node().physics().loose_targets(), std::vector<double>{0.5});
+}
+
+// Lockstep: a controller that drives the loose servos answers the loose
+// state too, and its answer applies like a robot's.
+TEST(SimNode, LockstepAppliesAnAnswerToTheLooseState) {
+  Driver d(Lockstep(), SnakeAndALooseArm(true));
+  const robot_state_t loose = LooseStates(d).back();
+  joint_command_t answer = LooseCommand({-0.3}, 1);
+  answer.sender = "ctl";
+  answer.state_seq = loose.seq;
+  d.Command(answer);
+  d.Command(Answer(d.states_.back(), "ctl", 2));  // and the snake's
+  d.Tick();
+  EXPECT_EQ(d.node().status().state_seq, 1);
+  EXPECT_EQ(d.node().physics().loose_targets(), std::vector<double>{-0.3});
+  EXPECT_EQ(d.node().status().commands_applied, 2);
+}
+
+// Loose hinges without a servo take no command: counted and dropped, with
+// the reason in the status; no loose parts at all: an unknown robot.
+TEST(SimNode, ACommandForPassiveLoosePartsIsDroppedSayingWhy) {
+  SimOptions o;
+  o.clock = ClockMode::kFast;
+  o.paused = true;
+  Driver d(o, SnakeAndALooseArm(false));
+  d.Command(LooseCommand({0.5}, 1));
+  EXPECT_EQ(d.node().status().rejected_joint_count, 1);
+  EXPECT_EQ(d.node().status().commands_rejected, 1);
+  EXPECT_NE(d.node().status().last_error.find("the loose parts have no servo"),
+            std::string::npos)
+      << d.node().status().last_error;
+
+  Driver none(o);
+  none.Command(LooseCommand({0.5}, 1));
+  EXPECT_EQ(none.node().status().rejected_robot, 1);
+  EXPECT_NE(none.node().status().last_error.find("no loose parts"),
+            std::string::npos);
+}
+
 TEST(SimNode, NoLoosePartsNoLooseState) {
   Driver d(Lockstep());
   DriveLockstep(d, 5);

@@ -632,7 +632,8 @@ TEST(StudioInspector, FieldsThatDoNothingAreNotOffered) {
   ball.position = Eigen::Vector3d(1, 0, 0.1);
   s.scene_objects.push_back(ball);
   const std::map<std::string, std::vector<std::string>> inert = {
-      {"joint", {"type", "breakForce"}},  // Lock is refused on a module
+      // Lock is refused on a module, and its servo is always on.
+      {"joint", {"type", "breakForce", "servo"}},
       {"frames[0]", {"rotation"}},
       {"frames[1]", {"rotation"}},
       {"", {"rotation", "forceLockPosition", "distanceLockPosition"}},

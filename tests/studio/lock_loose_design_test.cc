@@ -49,7 +49,7 @@ TEST(StudioLocks, ALockIsSelectedAndItsBreakingForceEditedAndKept) {
   EXPECT_EQ(offered.count("breakForce"), 1u);
   EXPECT_EQ(offered.count("leftFrameGuid"), 1u);
   for (const char* servo : {"type", "Kp", "max_vel", "velocityGain",
-                            "maxTorque", "lowerRangeLimit"}) {
+                            "maxTorque", "lowerRangeLimit", "servo"}) {
     EXPECT_EQ(offered.count(servo), 0u) << servo << " offered on a lock";
   }
   d.SetField({lock, "", "breakForce"}, "40");
@@ -178,11 +178,24 @@ TEST(StudioLoose, LoosePartsAreAddedBesideTheRobotEditedAndRemoved) {
   EXPECT_EQ(hinge.count("type"), 1u);
   EXPECT_EQ(hinge.count("lowerRangeLimit"), 1u);
   EXPECT_EQ(hinge.count("breakForce"), 0u);
-  EXPECT_EQ(hinge.count("Kp"), 0u);  // a loose hinge has no servo
+  // Passive until its servo is switched on; then the servo's gains show.
+  EXPECT_EQ(hinge.count("servo"), 1u);
+  EXPECT_EQ(hinge.count("Kp"), 0u);
+  d.SetField({joint, "", "servo"}, "true");
+  hinge = Offered(d.scenario(), joint);
+  for (const char* gain : {"Kp", "max_vel", "velocityGain", "maxTorque"}) {
+    EXPECT_EQ(hinge.count(gain), 1u) << gain;
+  }
+  d.SetField({joint, "", "Kp"}, "6");
+  EXPECT_TRUE(d.scenario().loose_joints[0].servo);
+  EXPECT_EQ(d.scenario().loose_joints[0].kp, 6);
+  // Made a Lock, it keeps no servo (a lock never turns).
   d.SetField({joint, "", "type"}, "Lock");
+  EXPECT_FALSE(d.scenario().loose_joints[0].servo);
   std::set<std::string> lock = Offered(d.scenario(), joint);
   EXPECT_EQ(lock.count("breakForce"), 1u);
   EXPECT_EQ(lock.count("lowerRangeLimit"), 0u);
+  EXPECT_EQ(lock.count("servo"), 0u);
   d.SetField({joint, "", "breakForce"}, "12");
   EXPECT_EQ(d.scenario().loose_joints[0].break_force, 12);
   EXPECT_NO_THROW(ValidateScenario(d.scenario()));
