@@ -407,6 +407,32 @@ step).)doc");
       "modules with their readings), what mrsim-sim publishes on "
       "<prefix>_STATE_loose; None when the scenario has no loose frame "
       "or sensor module.");
+  c.def_property_readonly(
+      "loose_servo_count",
+      [](Simulation& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return s.physics().loose_servo_count();
+      },
+      "How many loose hinges have a servo (<servo>true</servo>): the "
+      "targets set_loose_targets() takes.");
+  c.def(
+      "set_loose_targets",
+      [](Simulation& s, const std::vector<double>& targets) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        s.physics().SetLooseTargets(targets);
+      },
+      py::arg("targets"),
+      "Targets (rad) for the loose servos, one per loose hinge with a "
+      "servo in the order loose_state() lists the loose hinges (passive "
+      "ones skipped), as <prefix>_COMMAND_loose takes them; clamped to the "
+      "limits. Raises ValueError on a wrong count or a non-finite value.");
+  c.def(
+      "loose_targets",
+      [](Simulation& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return ArrayOf(s.physics().loose_targets());
+      },
+      "The loose servos' targets in force (rad).");
   c.def(
       "scene_objects",
       [](Simulation& s) {

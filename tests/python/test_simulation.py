@@ -155,3 +155,40 @@ def test_loose_state_is_where_the_physics_moved_the_loose_parts(sim):
     loose.step(1000)
     assert loose.loose_state().sensor_pose[0][2] == pytest.approx(
         0.025, abs=0.005)
+
+
+def _with_loose_arm(scenario, servo):
+    """A static loose base 1 m beside the robot and an arm on a loose hinge
+    about the vertical, driven by a servo when `servo`."""
+    xml = scenario.to_xml()
+    end = xml.rindex("</")
+    up = ("<quatRotation><x>0.7071067811865476</x><y>0</y><z>0</z>"
+          "<w>0.7071067811865476</w></quatRotation>")
+    frames = "".join(
+        f"<Frame><guid>{guid}</guid><position><x>{x}</x><y>1</y>"
+        f"<z>0.3</z></position>{up}<isStatic>{static}</isStatic></Frame>"
+        for guid, x, static in (("base", 0, "true"), ("arm", 0.05, "false")))
+    joint = ("<joints><Joint><guid>arm hinge</guid>"
+             "<leftFrameGuid>base</leftFrameGuid>"
+             "<rightFrameGuid>arm</rightFrameGuid><type>Hinge</type>"
+             f"<servo>{'true' if servo else 'false'}</servo>"
+             "</Joint></joints>")
+    return mrsim.Scenario.from_xml(
+        xml[:end] + "<frames>" + frames + "</frames>" + joint + xml[end:])
+
+
+def test_loose_servo_takes_its_targets(sim):
+    assert sim.loose_servo_count == 0
+    arm = mrsim.Simulation(_with_loose_arm(
+        mrsim.Scenario.chain(modules=3), True))
+    assert arm.loose_servo_count == 1
+    arm.set_loose_targets([0.5])
+    assert list(arm.loose_targets()) == [0.5]
+    arm.step(1000)
+    assert arm.loose_state().joint_angle[0] == pytest.approx(0.5, abs=0.01)
+    with pytest.raises(ValueError):
+        arm.set_loose_targets([0.1, 0.2])
+    passive = mrsim.Simulation(_with_loose_arm(
+        mrsim.Scenario.chain(modules=3), False))
+    with pytest.raises(ValueError):
+        passive.set_loose_targets([0.5])
