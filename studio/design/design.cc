@@ -723,6 +723,9 @@ void Design::MoveOnGround(const Selection& what, const GroundMove& move) {
 }
 
 SensorModule& Design::SelectedSensorModule(Scenario* next) const {
+  if (selection_.kind == SelectionKind::kLooseSensorModule) {
+    return next->loose_sensor_modules.at(selection_.index);
+  }
   if (selection_.kind != SelectionKind::kSensorModule) {
     throw DesignError("select a sensor module first");
   }
@@ -733,6 +736,12 @@ void Design::SetSensorKind(const SensorKind& kind, bool on) {
   Scenario next = scenario_;
   SensorModule& sm = SelectedSensorModule(&next);
   if (kind.set == nullptr || on == (kind.count(sm) > 0)) return;
+  if (kind.mount == SensorMount::kPlate &&
+      selection_.kind == SelectionKind::kLooseSensorModule) {
+    throw DesignError(std::string("a ") + kind.label +
+                      " is what a robot's chain rests on: a loose sensor "
+                      "module has no chain, so it takes none");
+  }
   if (kind.mount != SensorMount::kPlate) {
     kind.set(sm, on);
     Commit(std::move(next), selection_);
@@ -774,7 +783,10 @@ void Design::AddDistanceSensor(int face) {
 
 std::vector<int> Design::OpenRayFaces() const {
   std::vector<int> faces;
-  if (selection_.kind != SelectionKind::kSensorModule) return faces;
+  if (selection_.kind != SelectionKind::kSensorModule &&
+      selection_.kind != SelectionKind::kLooseSensorModule) {
+    return faces;
+  }
   for (int face = 0; face < 6; ++face) {
     Scenario next = scenario_;
     try {
@@ -850,7 +862,8 @@ std::vector<Camera>& Design::SelectedCameras(Scenario* next,
     *owner_guid = o.guid;
     return o.cameras;
   }
-  if (selection_.kind != SelectionKind::kSensorModule) {
+  if (selection_.kind != SelectionKind::kSensorModule &&
+      selection_.kind != SelectionKind::kLooseSensorModule) {
     throw DesignError("select a sensor module or a scene object first");
   }
   SensorModule& sm = SelectedSensorModule(next);
@@ -869,6 +882,7 @@ void Design::AddCamera(int face) {
 std::vector<int> Design::OpenCameraFaces() const {
   std::vector<int> faces;
   if (selection_.kind != SelectionKind::kSensorModule &&
+      selection_.kind != SelectionKind::kLooseSensorModule &&
       selection_.kind != SelectionKind::kSceneObject) {
     return faces;
   }

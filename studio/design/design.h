@@ -130,16 +130,17 @@ class Design {
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);
-  // The selected sensor module gets a sensor of `kind` (sensor_kind.h, a
-  // kind with SensorKind::set: the force plate, the IMU) or loses it. A
-  // plate kind lays the chain out again: it rises onto plates or comes
-  // down when the first arrives or the last goes.
+  // The selected sensor module (a robot's or a loose one) gets a sensor of
+  // `kind` (sensor_kind.h, a kind with SensorKind::set: the force plate,
+  // the IMU) or loses it. A plate kind lays the chain out again: it rises
+  // onto plates or comes down when the first arrives or the last goes; a
+  // loose sensor module has no chain to rest on plates and refuses one.
   void SetSensorKind(const SensorKind& kind, bool on);
   // SetSensorKind of the force plate (on its bottom face).
   void SetForcePlate(bool on);
   // A distance sensor on face `face` (0..5: bottom, left, top, right,
-  // front, back) of the selected sensor module, looking out of that face;
-  // one per face, at most six.
+  // front, back) of the selected sensor module (a robot's or a loose
+  // one), looking out of that face; one per face, at most six.
   void AddDistanceSensor(int face);
   // The faces AddDistanceSensor would take on the selected sensor module
   // (free, and looking out of the robot), for the face picker's default.
@@ -147,10 +148,11 @@ class Design {
   // Removes distance sensor `k` of the selected sensor module.
   void RemoveDistanceSensor(int k);
   // A camera (sensor_kind.h's "camera", default picture) on face `face`
-  // of the selected sensor module or scene object (a face of the box
-  // around it; on a static object, a fixed view of the world), looking out
-  // of that face; one per face, at most six. Refused on a face that looks
-  // into the robot (it would see only its neighbour).
+  // of the selected sensor module (a robot's or a loose one) or scene
+  // object (a face of the box around it; on a static object, a fixed view
+  // of the world), looking out of that face; one per face, at most six.
+  // Refused on a face that looks into the robot (it would see only its
+  // neighbour).
   void AddCamera(int face);
   // The faces AddCamera would take on the selected sensor module or scene
   // object.
@@ -223,7 +225,8 @@ class Design {
   void Commit(Scenario next, const Selection& selection);
   void Changed();
   int TargetRobot() const;
-  // The selected sensor module in `next`, or throws DesignError.
+  // The selected sensor module in `next` (a robot's or a loose one), or
+  // throws DesignError.
   SensorModule& SelectedSensorModule(Scenario* next) const;
   // Mounts a ray on `face` of `sm`, or throws DesignError (not validated).
   static void AddRay(SensorModule* sm, int face);

@@ -65,8 +65,10 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
         "Select a part in the list or click it in the 3-D view to see and "
         "edit every field.");
   }
-  if (sel.kind == SelectionKind::kSensorModule)
+  if (sel.kind == SelectionKind::kSensorModule ||
+      sel.kind == SelectionKind::kLooseSensorModule) {
     DrawSensorMounts(studio, view, sel);
+  }
   if (sel.kind == SelectionKind::kLock && !groups.empty()) {
     DrawLock(studio, view, sel);
   }
@@ -389,12 +391,16 @@ void InspectorPanel::DrawObjectSize(StudioContext& studio,
 void InspectorPanel::DrawSensorMounts(StudioContext& studio,
                                       const Scenario& view,
                                       const Selection& sel) {
+  const bool loose = sel.kind == SelectionKind::kLooseSensorModule;
   const SensorModule& sm =
-      view.robots.at(sel.robot).sensor_modules.at(sel.index);
+      loose ? view.loose_sensor_modules.at(sel.index)
+            : view.robots.at(sel.robot).sensor_modules.at(sel.index);
   // A checkbox per kind a module carries at most one of (force plate,
   // IMU); distance sensors are added per face below.
   for (const SensorKind& kind : SensorKinds()) {
     if (kind.set == nullptr) continue;
+    // A plate is what a robot's chain rests on: a loose module has none.
+    if (loose && kind.mount == SensorMount::kPlate) continue;
     bool on = kind.count(sm) > 0;
     if (ImGui::Checkbox(kind.label, &on)) {
       studio.Try(std::string(on ? "add the " : "remove the ") + kind.label,
