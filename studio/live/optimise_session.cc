@@ -188,6 +188,7 @@ void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
     WriteFileAtomically(ScriptPath(options), options.lua_source);
   }
   options_ = options;
+  command_ = spec.args;
   progress_ = OptimiseProgress{};
   progress_.generations = options.generations;
   csv_size_ = -1;

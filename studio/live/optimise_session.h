@@ -131,6 +131,9 @@ class OptimiseSession {
   // Generation `generation` (the first is 0) as generations.csv has it.
   const GenerationRow* Row(int generation) const;
   const OptimiseOptions& options() const { return options_; }
+  // mrsim-opt's arguments for the run started last (empty before one):
+  // what the form ran, for the window's tests and its layout dump.
+  const std::vector<std::string>& command() const { return command_; }
 
   // Jump to generation N (counted from 1, as "generation k of n"): when
   // the run in options.out_dir already has it, its best is ready at once
@@ -158,6 +161,7 @@ class OptimiseSession {
 
   std::vector<std::string> search_path_;
   OptimiseOptions options_;
+  std::vector<std::string> command_;
   std::unique_ptr<ProcessGroup> group_;
   std::unique_ptr<OptProgressLink> progress_link_;
   std::string progress_dir_;  // out_dir as the messages carry it

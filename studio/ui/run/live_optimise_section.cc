@@ -12,6 +12,35 @@
 #include "studio/ui/run/live_panel_common.h"
 
 namespace mrsim::studio {
+namespace {
+
+// For the window tests (--layout-dump): the genes, task, robust settings
+// and gap the form holds, and the command line Start ran.
+void RecordForm(LayoutRecorder* layout, const GenomeSpec& genome,
+                const std::string& task, const RobustSettings& robust,
+                const std::vector<std::string>& command) {
+  if (layout == nullptr || !layout->enabled()) return;
+  std::string genes;
+  for (const GeneSpec& g : genome.genes) genes += " " + g.name;
+  layout->State("optimise genes", fmt::format("{}{}", genome.size(), genes));
+  layout->State("optimise task", task);
+  const RealityGap& g = robust.gap;
+  layout->State(
+      "optimise robust",
+      fmt::format("{} {} sensor_noise={:g} sensor_bias={:g} joint_noise={:g} "
+                  "motor_noise={:g} latency={:g} backlash={:g} "
+                  "max_accel={:g} friction_range={:g} mass_range={:g} "
+                  "gain_range={:g} terrain_range={:g}",
+                  robust.episodes, robust.mode, g.sensor_noise, g.sensor_bias,
+                  g.joint_noise, g.motor_noise, g.latency, g.backlash,
+                  g.max_accel, g.friction_range, g.mass_range, g.gain_range,
+                  g.terrain_range));
+  std::string line;
+  for (const std::string& a : command) line += (line.empty() ? "" : " ") + a;
+  layout->State("optimise command", line);
+}
+
+}  // namespace
 
 // The robust episodes' reality gap, as the design file's <optimization>
 // gap fields: label, unit, help and limits are the schema's rows (so the
@@ -46,7 +75,9 @@ void LivePanel::DrawRealityGap() {
           *info.unit ? fmt::format("{} ({})", info.label, info.unit)
                      : std::string(info.label);
       ImGui::SetNextItemWidth(90);
-      if (ImGui::InputDouble(label.c_str(), value, 0, 0, "%.4g")) {
+      // A click selects the value whole, as in every number field here.
+      if (ImGui::InputDouble(label.c_str(), value, 0, 0, "%.4g",
+                             kNumberFlags)) {
         *value = *value >= info.limits.min ? *value : info.limits.min;
         *value = std::min(*value, info.limits.max);
       }
@@ -278,6 +309,8 @@ void LivePanel::DrawGenome(const LiveDesign& design) {
 void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   // The optimiser's registry: a new algorithm shows up here by itself.
   const std::vector<AlgorithmInfo>& algorithms = Algorithms();
+  RecordForm(layout_, genome_, task_picker_.task(), robust_,
+             optimise_.command());
   if (DrawGenesDrive()) DrawGenome(design);
   ImGui::SetNextItemWidth(90);
   ImGui::Combo(
@@ -319,7 +352,7 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
   ImGui::InputInt("seed", &seed_);
-  task_picker_.Draw();
+  task_picker_.Draw(layout_);
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("folder", &opt_dir_);
   DrawOptimiseSettings();

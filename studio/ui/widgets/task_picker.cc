@@ -5,19 +5,24 @@
 #include <exception>
 
 #include "optimizer/episode/task.h"
+#include "studio/ui/widgets/widgets.h"
 
 namespace mrsim::studio {
 
-void TaskPicker::Draw() {
+void TaskPicker::Draw(LayoutRecorder* layout) {
   ImGui::SetNextItemWidth(120);
   if (ImGui::BeginCombo("task",
                         task_.empty() ? "(the design)" : task_.c_str())) {
     if (ImGui::Selectable("(the design)", task_.empty())) Pick("");
+    RecordItem(layout, "task (the design)");
     for (const std::string& name : TaskNames()) {
       if (ImGui::Selectable(name.c_str(), name == task_)) Pick(name);
+      RecordItem(layout, "task " + name);
     }
     ImGui::EndCombo();
   }
+  // The combo itself (after EndCombo, ImGui gives its item back).
+  RecordItem(layout, "task");
   if (ImGui::IsItemHovered()) {
     if (task_.empty()) {
       ImGui::SetTooltip(

@@ -5,13 +5,16 @@
 
 #include <string>
 
+#include "studio/ui/widgets/layout_recorder.h"
+
 namespace mrsim::studio {
 
 class TaskPicker {
  public:
   // Draws the combo ("the design" and every task name) with a tooltip
-  // saying what the picked task scores.
-  void Draw();
+  // saying what the picked task scores; the combo is recorded in `layout`
+  // as "task", its rows as "task <name>" and "task (the design)".
+  void Draw(LayoutRecorder* layout = nullptr);
   // The picked task's name; empty: the design.
   const std::string& task() const { return task_; }
   // Picks task `name` (empty: the design), as choosing it in the combo.
