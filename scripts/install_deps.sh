@@ -17,7 +17,7 @@ packages=(
   dpkg-dev help2man desktop-file-utils
   slurm-wlm munge
   python3-dev python3-numpy python3-pytest pybind11-dev python3-matplotlib
-  libzstd-dev libdeflate-dev nodejs
+  libzstd-dev libdeflate-dev libprotobuf-dev python3-protobuf nodejs
   libwebsocketpp-dev libasio-dev nlohmann-json3-dev
   chromium
 )

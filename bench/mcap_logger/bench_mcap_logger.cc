@@ -1,5 +1,5 @@
 // Benchmark: a 50-module robot's state at 1 kHz (bench_logger's stream),
-// recorded at the same time by mrsim-log --mcap (JSON in zstd chunks) and
+// recorded at the same time by mrsim-log --mcap (protobuf in zstd chunks) and
 // by lcm-logger (raw .lcmlog, the baseline), in rounds. Both hear the same
 // datagrams in the same seconds, so each round is a pair (paired_ratio.h):
 //   BENCH mcap_logger_cpu_ratio <median> x   CPU of mrsim-log --mcap over
@@ -10,8 +10,9 @@
 // start-up is counted: mrsim-log's, about 0.1 s of CPU while it loads
 // OpenCV through the camera codec, is some 5 % of a 10 s round), or
 // $MRSIM_BENCH_MCAP_ROUNDS / $MRSIM_BENCH_MCAP_SECONDS. --mcap-compression
-// C is passed on to mrsim-log (default: its own, zstd); each round prints
-// both files' sizes, the other side of that choice.
+// C and --mcap-encoding E (protobuf or json) are passed on to mrsim-log
+// (default: its own, zstd and protobuf); each round prints both files'
+// sizes, the other side of that choice.
 #include <signal.h>
 #include <unistd.h>
 
@@ -154,7 +155,7 @@ struct Round {
 };
 
 Round RunRound(const std::filesystem::path& dir, int round, double seconds,
-               const std::string& compression) {
+               const std::string& compression, const std::string& encoding) {
   const std::string tag = std::to_string(round);
   std::vector<std::string> argv = {
       MRSIM_LOG_EXE,
@@ -168,6 +169,7 @@ Round RunRound(const std::filesystem::path& dir, int round, double seconds,
   if (!compression.empty()) {
     argv.insert(argv.end(), {"--mcap-compression", compression});
   }
+  if (!encoding.empty()) argv.insert(argv.end(), {"--mcap-encoding", encoding});
   Child ours(argv, (dir / ("mrsim-log" + tag + ".txt")).string());
   Child theirs({"/usr/bin/lcm-logger", std::string("--lcm-url=") + kUrl,
                 (dir / ("run" + tag + ".lcmlog")).string()},
@@ -234,6 +236,7 @@ int main(int argc, char** argv) {
   // --mcap-compression X is passed on to mrsim-log (default: its own).
   const std::string compression =
       TextSetting(argc, argv, "--mcap-compression", "");
+  const std::string encoding = TextSetting(argc, argv, "--mcap-encoding", "");
   const int rounds = static_cast<int>(
       Setting(argc, argv, "--rounds", "MRSIM_BENCH_MCAP_ROUNDS", 6));
   if (!(seconds > 0) || rounds < 1) {
@@ -249,7 +252,7 @@ int main(int argc, char** argv) {
     std::vector<double> ours, theirs;
     int64_t lost = 0;
     for (int i = 0; i < rounds; ++i) {
-      const Round r = RunRound(dir, i, seconds, compression);
+      const Round r = RunRound(dir, i, seconds, compression, encoding);
       std::fprintf(stderr,
                    "bench_mcap_logger: round %d: mrsim-log --mcap %.2f s CPU, "
                    "lcm-logger %.2f s CPU, %lld lost; files %.1f MB MCAP, "

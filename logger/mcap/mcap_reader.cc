@@ -153,6 +153,10 @@ class Reader {
                  ", not defined before it");
         }
         m.channel = &it->second;
+        if (m.channel->schema_id != 0) {
+          const auto schema = summary_.schemas.find(m.channel->schema_id);
+          if (schema != summary_.schemas.end()) m.schema = &schema->second;
+        }
         m.sequence = f.U32();
         m.log_time = f.U64();
         m.publish_time = f.U64();

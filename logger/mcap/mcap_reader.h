@@ -37,6 +37,7 @@ struct McapChannel {
 // during the callback.
 struct McapMessage {
   const McapChannel* channel = nullptr;
+  const McapSchema* schema = nullptr;  // the channel's; null for schema 0
   uint32_t sequence = 0;
   uint64_t log_time = 0;  // ns
   uint64_t publish_time = 0;

@@ -4,10 +4,15 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "logger/mcap/lcm_protobuf_schema.h"
+
 namespace mrsim {
 McapRecorder::McapRecorder(McapRecorderOptions options)
     : options_(std::move(options)) {
   if (!options_.report) options_.report = [](const std::string&) {};
+  if (options_.encoding == McapEncoding::kProtobuf) {
+    registry_ = LcmTypeRegistry::WithBuiltinTypes();
+  }
   mcap::McapWriterOptions writer_options;
   writer_options.library = "mrsim-log";
   writer_options.chunk_size = options_.chunk_size;
@@ -60,14 +65,61 @@ void McapRecorder::Record(Channel& ch, const uint8_t* data, size_t size,
   ChannelStats& stats = ledger.stats();
   if (!ledger.CheckSize(size)) return;
   const int64_t hash = LcmFingerprint(data);
-  if (ch.type == nullptr) {
-    ch.type = FindMessageJsonType(hash);
-    if (ch.type == nullptr) {
+  const bool protobuf = options_.encoding == McapEncoding::kProtobuf;
+  if (ch.type == nullptr && ch.encoder == nullptr) {
+    if (!StartChannel(ch, hash)) {
       ledger.UnknownType(hash);
       return;
     }
+  } else if (hash !=
+             (protobuf ? ch.encoder->fingerprint() : ch.type->fingerprint)) {
+    ledger.OtherType(hash);
+    return;
+  }
+  int64_t seq = 0;
+  bool has_seq = false;
+  std::string_view text;
+  if (protobuf) {
+    if (!ch.encoder->Encode(data, size)) {
+      ledger.Malformed(size);
+      return;
+    }
+    text = ch.encoder->view();
+    has_seq = ch.encoder->has_seq();
+    seq = ch.encoder->seq();
+  } else {
+    json_.Clear();
+    if (!ch.type->to_json(data, size, json_, &seq)) {
+      ledger.Malformed(size);
+      return;
+    }
+    text = json_.view();
+    has_seq = ch.type->has_seq;
+  }
+  // The re-send check keeps and compares the LCM bytes: the payload is
+  // made from them (the JSON is about 2.4 times their size to copy).
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  if (has_seq && !ledger.TakeSeq(seq, bytes)) return;
+  // MCAP's sequence is 32 bits: the message's own seq, cut to them.
+  const auto sequence = has_seq ? static_cast<uint32_t>(seq) : ch.count;
+  ++ch.count;
+  writer_->WriteMessage(ch.id, sequence, time, time, text);
+  ++stats.rows;
+  if (has_seq) ledger.Remember(seq, bytes);
+  if (writer_->chunk_messages() > 0 &&
+      time - writer_->chunk_start_time() >= options_.chunk_period_ns &&
+      time > writer_->chunk_start_time()) {
+    writer_->CloseChunk();
+  }
+}
+
+bool McapRecorder::StartChannel(Channel& ch, int64_t hash) {
+  ChannelStats& stats = ch.ledger.stats();
+  auto schema = schema_of_type_.find(hash);
+  if (options_.encoding == McapEncoding::kJson) {
+    ch.type = FindMessageJsonType(hash);
+    if (ch.type == nullptr) return false;
     stats.type = ch.type->name;
-    auto schema = schema_of_type_.find(hash);
     if (schema == schema_of_type_.end()) {
       schema =
           schema_of_type_
@@ -76,33 +128,25 @@ void McapRecorder::Record(Channel& ch, const uint8_t* data, size_t size,
               .first;
     }
     ch.id = writer_->AddChannel(schema->second, stats.channel, "json");
-  } else if (hash != ch.type->fingerprint) {
-    ledger.OtherType(hash);
-    return;
+    return true;
   }
-  json_.Clear();
-  int64_t seq = 0;
-  if (!ch.type->to_json(data, size, json_, &seq)) {
-    ledger.Malformed(size);
-    return;
+  const LcmStruct* type = registry_.FindByHash(hash);
+  if (type == nullptr) return false;
+  auto& encoder = encoders_[hash];
+  if (encoder == nullptr) {
+    encoder = std::make_unique<LcmProtobufEncoder>(registry_, *type);
   }
-  const std::string_view text = json_.view();
-  // The re-send check keeps and compares the LCM bytes: the JSON is made
-  // from them, and is about 2.4 times their size to copy.
-  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  if (ch.type->has_seq && !ledger.TakeSeq(seq, bytes)) return;
-  // MCAP's sequence is 32 bits: the message's own seq, cut to them.
-  const auto sequence =
-      ch.type->has_seq ? static_cast<uint32_t>(seq) : ch.count;
-  ++ch.count;
-  writer_->WriteMessage(ch.id, sequence, time, time, text);
-  ++stats.rows;
-  if (ch.type->has_seq) ledger.Remember(seq, bytes);
-  if (writer_->chunk_messages() > 0 &&
-      time - writer_->chunk_start_time() >= options_.chunk_period_ns &&
-      time > writer_->chunk_start_time()) {
-    writer_->CloseChunk();
+  ch.encoder = encoder.get();
+  stats.type = type->full_name();
+  if (schema == schema_of_type_.end()) {
+    schema = schema_of_type_
+                 .emplace(hash, writer_->AddSchema(
+                                    type->full_name(), "protobuf",
+                                    LcmProtobufDescriptorSet(registry_, *type)))
+                 .first;
   }
+  ch.id = writer_->AddChannel(schema->second, stats.channel, "protobuf");
+  return true;
 }
 
 void McapRecorder::Tick(uint64_t now_ns) {

@@ -365,14 +365,23 @@ void AddLogFlags(CLI::App& app, LogCommand& opt) {
                  "read this .lcmlog (from lcm-logger) instead of the network");
   auto* mcap =
       app.add_option("--mcap", opt.mcap,
-                     "write one indexed MCAP file (JSON messages with JSON "
-                     "Schemas, for Foxglove and PlotJuggler) instead of CSVs");
+                     "write one indexed MCAP file (protobuf or JSON messages "
+                     "with their schemas, for Foxglove and PlotJuggler) "
+                     "instead of CSVs");
   app.add_option("--mcap-compression", opt.mcap_compression,
                  "how --mcap stores its chunks: zstd (a file about a third "
                  "of the .lcmlog's size) or none (no compression CPU, a file "
                  "about 2.4 times the .lcmlog's); every MCAP reader reads both")
       ->capture_default_str()
       ->check(CLI::IsMember({"zstd", "none"}))
+      ->needs(mcap);
+  app.add_option("--mcap-encoding", opt.mcap_encoding,
+                 "how --mcap stores each message: protobuf (schemas made "
+                 "from the .lcm definitions; the least CPU and the smallest "
+                 "file) or json (with JSON Schemas, for readers without "
+                 "protobuf)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"protobuf", "json"}))
       ->needs(mcap);
   app.add_option("--types", opt.types,
                  "extra .lcm files or folders with message definitions "
@@ -465,6 +474,9 @@ int RunLogCommand(const LogCommand& opt, const LogPlan& plan, SignedLcm* lcm,
     mcap_options.compression = opt.mcap_compression == "none"
                                    ? mcap::ChunkCompression::kNone
                                    : mcap::ChunkCompression::kZstd;
+    mcap_options.encoding = opt.mcap_encoding == "json"
+                                ? McapEncoding::kJson
+                                : McapEncoding::kProtobuf;
     sink = std::make_unique<McapSink>(mcap_options);
   }
   LogSink& recorder = *sink;

@@ -33,6 +33,8 @@ struct LogCommand {
   std::string mcap;  // --mcap FILE: one MCAP file instead of the CSVs
   // --mcap-compression: "zstd" or "none" (the chunks as they are).
   std::string mcap_compression = "zstd";
+  // --mcap-encoding: "protobuf" or "json" (for readers without protobuf).
+  std::string mcap_encoding = "protobuf";
   std::vector<std::string> types;
   std::vector<std::string> plots;
   int64_t recv_buf_size = 8 << 20;

@@ -5,8 +5,8 @@
 lcm-logger log, decoding with the logger's own C++ flatteners, so both give
 the same column names (``time``, ``module3.joint.angle``, ``com.x``, ...);
 its camera pictures come as numpy arrays (column ``image``).
-``read_mcap(path)`` reads an MCAP file of mrsim-log --mcap (JSON messages)
-into the same shape, columns named by the JSON paths of the message's
+``read_mcap(path)`` reads an MCAP file of mrsim-log --mcap (protobuf or
+JSON messages) into the same shape, columns named by the JSON paths of the message's
 fields (``modules.3.position.0``, ``com.1``). ``pandas.DataFrame(logs[channel])``
 takes a channel as it is.
 """
@@ -117,7 +117,8 @@ def _columns(rows: List[Dict[str, object]]) -> Dict[str, object]:
 def read_mcap(path: str,
               channels: Optional[str] = None) -> Dict[str, Dict[str, object]]:
     """An MCAP file of mrsim-log --mcap: {channel: {column: array}}, each
-    message's JSON fields flattened into columns named by their path
+    message's fields (protobuf messages decoded by the C++ reader, with the
+    schema in the file, into the JSON the json encoding writes) flattened into columns named by their path
     (``seq``, ``modules.0.position.2``; booleans as 0/1), plus 'log_time'
     (s). channels: a regex of the channels to read (default: all). A file
     whose logger was killed reads up to its last whole chunk, with a

@@ -25,6 +25,7 @@
 #include "logger/generic_flattener.h"
 #include "logger/lcm_type_registry.h"
 #include "logger/mcap/mcap_reader.h"
+#include "logger/mcap/protobuf_json_decoder.h"
 #include "logger/robot_state_flattener.h"
 #include "python/src/bindings.h"
 
@@ -300,8 +301,9 @@ py::dict ReadLcmLog(const std::string& path, const std::string& channels) {
   return out;
 }
 
-// Every message of an MCAP file by topic: its log times (s) and data (the
-// JSON text mrsim-log writes), with the schema's name and whether the file
+// Every message of an MCAP file by topic: its log times (s) and data (JSON
+// text: as mrsim-log --mcap-encoding json writes it, protobuf messages
+// decoded into the same text), with the schema's name and whether the file
 // was finished (false: cut off after its last whole chunk).
 py::tuple ReadMcapMessages(const std::string& path,
                            const std::string& channels) {
@@ -319,6 +321,7 @@ py::tuple ReadMcapMessages(const std::string& path,
     const std::string bytes((std::istreambuf_iterator<char>(in)),
                             std::istreambuf_iterator<char>());
     const std::regex wanted(channels.empty() ? ".*" : channels);
+    mcap::McapJsonPayloads payloads;
     try {
       summary = mcap::ReadMcap(bytes, path, [&](const mcap::McapMessage& m) {
         const std::string& topic = m.channel->topic;
@@ -330,7 +333,7 @@ py::tuple ReadMcapMessages(const std::string& path,
         }
         Topic& t = it->second;
         t.times.push_back(static_cast<double>(m.log_time) / 1e9);
-        t.data.emplace_back(m.data);
+        t.data.emplace_back(payloads.Text(m));
       });
     } catch (const mcap::McapError& e) {
       throw PlotInputError(e.what());
@@ -373,7 +376,9 @@ bytes or JPEG disagree among them) are left out. Raises LogError when the file i
         py::arg("channels") = "",
         R"doc(
 The messages of an MCAP file (as mrsim-log --mcap writes it, or any):
-({topic: (schema_name, log_times_s, [data as str])}, complete). complete
+({topic: (schema_name, log_times_s, [data as JSON str])}, complete);
+protobuf messages are decoded with their schema into the JSON the json
+encoding writes. complete
 is False for a file cut off after its last whole chunk (its writer was
 killed). channels: a regex of the topics to read (default all). Every
 length is checked and every CRC the file has; raises LogError naming the

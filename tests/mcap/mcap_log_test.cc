@@ -2,7 +2,8 @@
 // by the format's reference reader (@mcap/core, tests/mcap/read_mcap.js):
 // indexed and CRC-checked with as many state messages as the CSV logger
 // wrote rows on the same traffic; streamed up to the last chunk when the
-// logger was killed; converted from an lcm-logger log.
+// logger was killed; converted from an lcm-logger log, protobuf (decoded
+// with protobufjs from the file's schema) and JSON reading the same.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -33,7 +34,9 @@ std::string LogExe() { return BinaryPath("logger/process/mrsim-log"); }
 // Why the reference reader cannot run, or "" when it can.
 std::string NodeMissing() {
   if (!std::filesystem::exists(
-          SourcePath("tests/mcap/node_modules/@mcap/core/package.json"))) {
+          SourcePath("tests/mcap/node_modules/@mcap/core/package.json")) ||
+      !std::filesystem::exists(
+          SourcePath("tests/mcap/node_modules/protobufjs/package.json"))) {
     return "tests/mcap/node_modules is missing: scripts/install_deps.sh "
            "installs it (npm ci in tests/mcap)";
   }
@@ -52,6 +55,17 @@ std::string ReadWithNode(const std::string& mode, const std::string& file) {
                     out);
   const int status = node.Wait(120);
   EXPECT_EQ(status, 0) << mode << " " << file << ": " << node.Output();
+  return node.Output();
+}
+
+// read_mcap.js's comparison of two files' messages ("same").
+std::string SameWithNode(const std::string& a, const std::string& b) {
+  const std::string out = b + ".same.json";
+  ChildProcess node({"/usr/bin/env", "node",
+                     SourcePath("tests/mcap/read_mcap.js"), "same", a, b},
+                    out);
+  const int status = node.Wait(120);
+  EXPECT_EQ(status, 0) << "same " << a << " " << b << ": " << node.Output();
   return node.Output();
 }
 
@@ -107,7 +121,7 @@ TEST(McapLog, IndexedFileHoldsAsManyStatesAsTheCsvLoggerWroteRows) {
   EXPECT_EQ(Count(json, kStateChannel), rows) << json.substr(0, 300);
   EXPECT_NE(
       json.find("\"schema\":\"mrsim.robot_state_t\","
-                "\"schemaEncoding\":\"jsonschema\",\"encoding\":\"json\""),
+                "\"schemaEncoding\":\"protobuf\",\"encoding\":\"protobuf\""),
       std::string::npos)
       << json.substr(0, 300);
   EXPECT_NE(json.find("\"dataSectionCrc\":true"), std::string::npos);
@@ -157,7 +171,8 @@ TEST(McapLog, KilledLoggerLeavesAFileReadUpToItsLastChunk) {
       << json.substr(0, 300);
 }
 
-TEST(McapLog, LcmLoggerLogConvertsToAnIndexedFileCompressedOrNot) {
+TEST(McapLog,
+     LcmLoggerLogConvertsToAnIndexedFileInEitherEncodingCompressedOrNot) {
   const std::string skip = NodeMissing();
   if (!skip.empty()) GTEST_SKIP() << skip;
   const std::string dir = TempDir("mcap_log_from");
@@ -195,6 +210,21 @@ TEST(McapLog, LcmLoggerLogConvertsToAnIndexedFileCompressedOrNot) {
   EXPECT_EQ(Count(plain_json, kStateChannel), 250) << plain_json.substr(0, 300);
   EXPECT_NE(plain_json.find("\"dataSectionCrc\":true"), std::string::npos)
       << plain_json.substr(0, 300);
+
+  // The JSON encoding of the same log: @mcap/core with protobufjs reads
+  // every state of the protobuf file as the same values.
+  const std::string as_json = dir + "/json.mcap";
+  ChildProcess convert_json({LogExe(), "--from", lcmlog, "--mcap", as_json,
+                             "--mcap-encoding", "json"},
+                            dir + "/convert_json.txt");
+  ASSERT_EQ(convert_json.Wait(60), 0) << convert_json.Output();
+  const std::string json_json = ReadWithNode("indexed", as_json);
+  EXPECT_NE(json_json.find("\"schemaEncoding\":\"jsonschema\","
+                           "\"encoding\":\"json\""),
+            std::string::npos)
+      << json_json.substr(0, 300);
+  EXPECT_EQ(SameWithNode(as_json, mcap),
+            "{\"compared\":250,\"differ\":0,\"first_difference\":\"\"}\n");
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ TEST(McapRecorder, CountsGapsResendsAndBadMessagesAsTheCsvRecorderDoes) {
   McapRecorderOptions options;
   options.path = path;
   options.report = [&](const std::string& s) { reports.push_back(s); };
+  options.encoding = McapEncoding::kJson;  // the data read back below
   McapRecorder recorder(options);
   const std::string channel = "MRSIM_STATE_snake";
   uint64_t t = 1000;

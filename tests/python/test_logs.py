@@ -72,10 +72,13 @@ def test_mcap_reads_as_many_states_as_the_csv_logger_wrote(tmp_path, children):
     mrsim.Scenario.chain(modules=4, pattern="pitch").save(path)
     url = lcm_url(7568)
     mcap = str(tmp_path / "run.mcap")
+    as_json = str(tmp_path / "json.mcap")
     loggers = [children.start([program("mrsim-log"), "--lcm-url", url] + how +
                               ["--exit-with-sim"], str(tmp_path / name))
                for name, how in (("csv.log", ["--out", str(tmp_path / "csv")]),
-                                 ("mcap.log", ["--mcap", mcap]))]
+                                 ("mcap.log", ["--mcap", mcap]),
+                                 ("json.log", ["--mcap", as_json,
+                                               "--mcap-encoding", "json"]))]
     for logger in loggers:
         wait_until(lambda: "recording channels" in logger.output(), 30,
                    "mrsim-log to listen")
@@ -91,6 +94,16 @@ def test_mcap_reads_as_many_states_as_the_csv_logger_wrote(tmp_path, children):
     assert np.array_equal(state["seq"], csv["seq"])
     assert np.allclose(state["modules.3.position.0"], csv["module3.x"])
     assert np.all(np.diff(state["log_time"]) >= 0)
+    # The protobuf file (the default) reads as the JSON one of the same run.
+    json_state = mrsim.read_mcap(as_json)["MRSIM_STATE_snake"]
+    assert np.array_equal(json_state["seq"], state["seq"])
+    assert set(json_state) == set(state)
+    for column, values in state.items():
+        if isinstance(values, list):
+            assert values == json_state[column], column
+        elif column != "log_time":
+            assert np.array_equal(values, json_state[column], equal_nan=True), \
+                column
     only = mrsim.read_mcap(mcap, channels="MRSIM_SIM_STATUS")
     assert list(only) == ["MRSIM_SIM_STATUS"]
 
