@@ -103,6 +103,9 @@ std::string OneLine(const std::string& message) {
   return line;
 }
 
+// EvalResult::error of a body whose parts overlap at the start.
+constexpr char kOverlapReason[] = "overlap at the start: ";
+
 // One episode; in the world of `gap` when given, else the nominal one.
 EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
                          const std::function<bool()>& stop,
@@ -117,11 +120,18 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     PhysicsLease lease(pool, scenario);
     Physics& physics = *lease;
     // On the model already built (its start pose), not a second compile.
-    if (GenomeBuildsTheBody(problem.genome) &&
-        !FindOverlapsInModel(scenario, physics.model()).empty()) {
-      result.failed = true;
-      result.fitness = kFailedFitness;
-      return result;
+    if (GenomeBuildsTheBody(problem.genome) && !e.allow_overlap) {
+      const std::vector<PartOverlap> overlaps =
+          FindOverlapsInModel(scenario, physics.model());
+      if (!overlaps.empty()) {
+        result.failed = true;
+        result.fitness = kFailedFitness;
+        // The deepest pair, without its depth: individuals grown into the
+        // same part give the same reason, which mrsim-opt counts.
+        result.error = OneLine(kOverlapReason + overlaps[0].first + " / " +
+                               overlaps[0].second);
+        return result;
+      }
     }
     // Always set: a pooled simulation may come from a perturbed episode.
     physics.SetRealityGap(gap ? *gap : RealityGap{});
@@ -185,18 +195,20 @@ EvalResult RunOneEpisode(const Problem& problem, const Genome& genome,
     result = EvalResult{};
     result.failed = true;
     result.fitness = kFailedFitness;
-  } catch (const std::invalid_argument&) {
+    result.error = "the simulation became unstable";
+  } catch (const std::invalid_argument& err) {
     // Gait values the controller refuses (e.g. T below its minimum).
     result = EvalResult{};
     result.failed = true;
     result.fitness = kFailedFitness;
-  } catch (const ScenarioError&) {
-    // A body the validator refuses, or whose parts overlap at the start
-    // (the genome's limits allowed it): a failed individual, the same in
-    // one process and on every worker.
+    result.error = OneLine(std::string("gait values refused: ") + err.what());
+  } catch (const ScenarioError& err) {
+    // A body the validator refuses (the genome's limits allowed it): a
+    // failed individual, the same in one process and on every worker.
     result = EvalResult{};
     result.failed = true;
     result.fitness = kFailedFitness;
+    result.error = OneLine(std::string("body refused: ") + err.what());
   }
   return result;
 }

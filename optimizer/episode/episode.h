@@ -9,8 +9,8 @@
 
 #include "common/enum_table.h"
 #include "gait_controller/gait.h"
-#include "optimizer/search/batch_evaluator.h"
 #include "optimizer/episode/controller_spec.h"
+#include "optimizer/search/batch_evaluator.h"
 #include "optimizer/search/eval_result.h"
 #include "optimizer/search/genome.h"
 #include "sim_core/physics/reality_gap.h"
@@ -71,6 +71,11 @@ struct EpisodeSettings {
   // the genome keep this gait's values); its kind selects the motion.
   Gait base_gait;
   RobustSettings robust;
+  // A body the body genes grow into itself or the scene runs anyway
+  // (mrsim-opt --allow-overlap, the design's allowOverlap); otherwise it
+  // is a failed individual whose EvalResult::error names the parts. In
+  // the payload, so a farm's workers decide as one process does.
+  bool allow_overlap = false;
 
   // Throws std::invalid_argument naming the setting.
   void Validate() const;
@@ -92,11 +97,13 @@ Gait GaitOfGenome(const Problem& problem, const Genome& genome);
 class EpisodePhysicsPool;
 
 // Runs the episode. An unstable simulation, gait values the controller
-// refuses, a controller that fails (a Lua error: its message in
-// EvalResult::error), a body the validator refuses or, built from module_count,
-// module_scale or sensor_after genes, one whose parts overlap at the start
-// (overlap_check.h) give failed = true and
-// kFailedFitness, never an exception; a genome of the wrong size or a
+// refuses, a controller that fails (a Lua error), a body the validator
+// refuses or, built from module_count, module_scale or sensor_after genes
+// without episode.allow_overlap, one whose parts overlap at the start
+// (overlap_check.h) give failed = true and kFailedFitness, never an
+// exception; EvalResult::error then says why in one line ("overlap at the
+// start: robot 'snake' module 0 front frame / scene object 'ball'", the
+// deepest pair), the same on every worker; a genome of the wrong size or a
 // robot not in the scenario throws. `stop` (optional) is polled every ten
 // control periods: when it returns true the episode is abandoned with
 // EvaluationInterrupted, so Ctrl-C does not wait for a long episode.

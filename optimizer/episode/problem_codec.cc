@@ -53,7 +53,9 @@ std::string EncodeEpisode(const EpisodeSettings& e) {
              "w_speed={}\nw_energy={}\nw_drift={}\nw_fall={}\n",
              e.duration, e.control_period, ToString(f.distance_mode),
              f.w_distance, f.w_speed, f.w_energy, f.w_drift, f.w_fall) +
-         EncodeRobust(e.robust);
+         EncodeRobust(e.robust) +
+         // Only when on: a payload without it (and its hash) is as before.
+         (e.allow_overlap ? "allow_overlap=1\n" : "");
 }
 
 EpisodeSettings DecodeEpisode(const std::string& text,
@@ -129,6 +131,14 @@ EpisodeSettings DecodeEpisode(const std::string& text,
     g.terrain_range = number("gap_terrain_range");
   } else {
     e.robust.episodes = 0;
+  }
+  if (kv.count("allow_overlap")) {
+    const std::string& flag = kv["allow_overlap"];
+    if (flag != "0" && flag != "1") {
+      throw ProblemError(source +
+                         ": episode setting allow_overlap: expected 0 or 1");
+    }
+    e.allow_overlap = flag == "1";
   }
   try {
     e.Validate();

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -521,6 +522,8 @@ OptSetup PrepareOpt(const OptCommand& c) {
     // The perturbed worlds follow from the run's seed: same seed, same
     // worlds, on every worker (the payload carries it).
     e.robust.gap.seed = c.algorithm.seed;
+    // Individuals the body genes grow into the scene run too (RunEpisode).
+    e.allow_overlap = c.allow_overlap;
     e.Validate();
     problem.episode = e;
     GenomeRobotIndex(problem.scenario, problem.genome);
@@ -655,14 +658,45 @@ std::string IslandsText(int generations, int islands) {
 
 }  // namespace
 
+std::string FormatFailedReasons(
+    const std::vector<std::pair<std::string, int>>& reasons) {
+  constexpr size_t kShown = 2;
+  auto said = [](const std::string& reason) {
+    return reason.empty() ? std::string("no reason given") : reason;
+  };
+  if (reasons.empty() || (reasons.size() == 1 && reasons[0].first.empty())) {
+    return "";
+  }
+  if (reasons.size() == 1) return said(reasons[0].first);
+  std::string text;
+  int others = 0;
+  for (size_t i = 0; i < reasons.size(); ++i) {
+    if (i < kShown) {
+      text += fmt::format("{}{} {}", i == 0 ? "" : "; ", reasons[i].second,
+                          said(reasons[i].first));
+    } else {
+      others += reasons[i].second;
+    }
+  }
+  if (reasons.size() > kShown) {
+    text += fmt::format("; {} for {} other reason{}", others,
+                        reasons.size() - kShown,
+                        reasons.size() - kShown == 1 ? "" : "s");
+  }
+  return text;
+}
+
 std::string FormatProgress(const GenerationReport& r) {
+  const std::string why = FormatFailedReasons(r.failed_reasons);
   return fmt::format(
       "generation {} of {}{}: best {:.6g} mean {:.6g} best-so-far {:.6g}{} | "
       "{} | workers {} | ETA {}",
       r.generation, r.generations,
       r.island >= 0 ? fmt::format(" (island {})", r.island) : "", r.best,
       r.mean, r.best_so_far,
-      r.failed > 0 ? fmt::format(" failed {}", r.failed) : "",
+      r.failed > 0 ? fmt::format(" failed {}{}", r.failed,
+                                 why.empty() ? "" : " (" + why + ")")
+                   : "",
       r.replayed ? std::string("from checkpoint")
                  : fmt::format("{:.2f} evals/s", r.evals_per_second),
       r.workers, FormatDuration(r.eta_seconds));
@@ -695,6 +729,9 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
     options.described += fmt::format("robust={}\nrobust_mode={}\n",
                                      e.robust.episodes, e.robust.mode);
   }
+  // A resume with or without --allow-overlap names it as what changed.
+  options.described +=
+      fmt::format("allow_overlap={}\n", e.allow_overlap ? 1 : 0);
   const ControllerSpec& controller = setup.problem.controller;
   if (!controller.is_gait()) {
     // A resumed run names the script that differs, not only the hash.
@@ -704,7 +741,23 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                     controller.name, HashHex(Fnv1a64(controller.source)));
     options.error_column = true;
   }
+  // Every generation's failed individuals by reason, for the summary.
+  std::vector<std::pair<std::string, int>> failed_reasons;
+  int failed = 0;
+  long long individuals = 0;
   options.progress = [&](const GenerationReport& r) {
+    failed += r.failed;
+    individuals = r.evaluations;
+    for (const auto& [reason, count] : r.failed_reasons) {
+      auto it = std::find_if(
+          failed_reasons.begin(), failed_reasons.end(),
+          [&reason = reason](const auto& f) { return f.first == reason; });
+      if (it == failed_reasons.end()) {
+        failed_reasons.emplace_back(reason, count);
+      } else {
+        it->second += count;
+      }
+    }
     if (publish) publish(reporter.Generation(r, WallMicros()));
     if (c.quiet) return;
     fmt::print(out, "{}{}\n", FormatProgress(r),
@@ -814,6 +867,21 @@ OptOutcome RunOpt(const OptCommand& c, const OptSetup& setup,
                  : "",
              result.best_generation, result.best_index, b.distance, b.speed,
              b.energy, b.drift, b.fell, genes, outcome.best_dir, best_file);
+  if (failed > 0) {
+    std::stable_sort(
+        failed_reasons.begin(), failed_reasons.end(),
+        [](const auto& x, const auto& y) { return x.second > y.second; });
+    const std::string why = FormatFailedReasons(failed_reasons);
+    const bool overlap = std::any_of(
+        failed_reasons.begin(), failed_reasons.end(), [](const auto& f) {
+          return f.first.rfind("overlap at the start", 0) == 0;
+        });
+    fmt::print(out, "failed individuals: {} of {}{}{}\n", failed, individuals,
+               why.empty() ? "" : " (" + why + ")",
+               overlap ? "; allow overlap (--allow-overlap) to run the bodies "
+                         "the genes grow into the scene anyway"
+                       : "");
+  }
   if (const auto* farm = dynamic_cast<const FarmEvaluator*>(&evaluator)) {
     const FarmCounters& n = farm->counters();
     fmt::print(out,

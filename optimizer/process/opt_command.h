@@ -11,6 +11,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/file_lock.h"
 #include "lcmtypes/runtime/auth_flags.h"
@@ -152,8 +154,16 @@ OptOutcome RunOpt(
     std::FILE* out, std::FILE* err, FarmCluster* cluster = nullptr,
     const std::function<void(const opt_progress_t&)>& publish = {});
 
-// "generation 3 of 20: best ... | 5.20 evals/s | workers 2 | ETA 1m12s".
+// "generation 3 of 20: best ... failed 2 (overlap at the start: robot
+// 'snake' module 0 front frame / scene object 'ball') | 5.20 evals/s |
+// workers 2 | ETA 1m12s".
 std::string FormatProgress(const GenerationReport& report);
+// Failed individuals by reason (GenerationReport::failed_reasons), each
+// once: "overlap at the start: ..." when all share one, else the two most
+// frequent with their counts and "; 3 for 2 other reasons"; "" when none
+// gave a reason.
+std::string FormatFailedReasons(
+    const std::vector<std::pair<std::string, int>>& reasons);
 // 75 -> "1m15s", 3700 -> "1h01m", unknown -> "?".
 std::string FormatDuration(double seconds);
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -211,6 +212,25 @@ void WriteCheckpoint(const std::string& path, const std::string& fingerprint,
   }
   text += "end\n";
   WriteFileAtomically(path, text);
+}
+
+std::vector<std::pair<std::string, int>> CountFailedReasons(
+    const std::vector<EvalResult>& results) {
+  std::vector<std::pair<std::string, int>> reasons;
+  for (const EvalResult& e : results) {
+    if (!e.failed) continue;
+    auto it = std::find_if(reasons.begin(), reasons.end(),
+                           [&](const auto& r) { return r.first == e.error; });
+    if (it == reasons.end()) {
+      reasons.emplace_back(e.error, 1);
+    } else {
+      ++it->second;
+    }
+  }
+  std::stable_sort(
+      reasons.begin(), reasons.end(),
+      [](const auto& a, const auto& b) { return a.second > b.second; });
+  return reasons;
 }
 
 FilePtr OpenCsv(const std::string& path) {
@@ -431,6 +451,7 @@ RunResult RunOptimization(const GenomeSpec& spec,
         report.mean = mean;
         report.best_so_far = result.best_result.fitness;
         report.failed = failed;
+        report.failed_reasons = CountFailedReasons(results);
         report.evaluations = result.evaluations;
         // Past the first generation (of each island), the pace leaves out
         // its start-up.

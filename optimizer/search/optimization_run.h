@@ -25,6 +25,10 @@ struct GenerationReport {
   double mean = 0.0;
   double best_so_far = 0.0;
   int failed = 0;  // failed individuals of this generation (in the mean)
+  // Why they failed (EvalResult::error, "" when none was given): each
+  // reason once with how many, the most frequent first (ties: the first
+  // met first).
+  std::vector<std::pair<std::string, int>> failed_reasons;
   long long evaluations = 0;  // total so far, cached ones included
   // Both from the evaluated generations after the first, once there are
   // any (the first also waits for workers and builds simulations).
@@ -83,8 +87,8 @@ class OptimizationInterrupted : public EvaluationInterrupted {
 };
 
 // A run checkpoint that cannot be used (other settings, corrupt) throws
-// mrsim::CheckpointError (sim_core/physics/checkpoint.h), the one error type for
-// every checkpoint file mrsim reads.
+// mrsim::CheckpointError (sim_core/physics/checkpoint.h), the one error type
+// for every checkpoint file mrsim reads.
 
 // Throws CheckpointError, OptimizationInterrupted (stop requested; the
 // checkpoint holds every completed generation, the exception their best)

@@ -1,5 +1,5 @@
-// mrsim.run_episode: one optimiser episode (optimizer/episode/episode.h) of a gait
-// on a scenario, scored with the optimiser's fitness.
+// mrsim.run_episode: one optimiser episode (optimizer/episode/episode.h) of a
+// gait on a scenario, scored with the optimiser's fitness.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -44,6 +44,7 @@ void BindEpisode(py::module_& m) {
         problem.episode.duration = duration;
         problem.episode.control_period = control_period;
         problem.episode.base_gait = gait->gait();
+        problem.episode.allow_overlap = allow_overlap;
         FitnessSettings& f = problem.episode.fitness;
         f.distance_mode = ParseDistanceMode(distance_mode, "distance_mode");
         f.w_distance = w_distance;

@@ -7,12 +7,13 @@
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode/body_genes.h"
 #include "optimizer/episode/episode_physics_pool.h"
+#include "optimizer/episode/problem_codec.h"
 #include "optimizer/search/local_evaluator.h"
 #include "optimizer/search/optimization_run.h"
-#include "optimizer/episode/problem_codec.h"
 #include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
+#include "tests/optimizer/sim_farm.h"
 
 namespace mrsim {
 namespace {
@@ -172,10 +173,9 @@ TEST(OptimizerBodyGenes, ModuleCountAndScaleRebuildTheChain) {
   EXPECT_FALSE(RunEpisode(problem, Genome{5, 1.5, 4, 0.3, 9}).failed);
 }
 
-// A body the genes grow into the scene (module_count here, past the ball
-// lying behind the chain) overlaps at the start: a failed individual, as
-// mrsim-sim refuses such a file; the body that stays clear runs.
-TEST(OptimizerBodyGenes, ABodyGrownIntoTheBallIsAFailedIndividual) {
+// A snake whose module_count gene (3..14, starting at 11) can grow it into
+// the ball lying where a 14th module would be.
+Problem BallBehindTheChainProblem() {
   Problem problem = SnakeProblem(0.5);
   problem.genome = ReadGenomeString(R"(<genome>
   <gene name="module_count" lower="3" upper="14" start="11"/>
@@ -189,10 +189,88 @@ TEST(OptimizerBodyGenes, ABodyGrownIntoTheBallIsAFailedIndividual) {
   ball.size = Eigen::Vector3d(0.05, 0.05, 0.05);
   ball.position = MakeChain(longer).modules[13].position;
   problem.scenario.scene_objects.push_back(ball);
+  return problem;
+}
+
+// A body the genes grow into the scene (module_count here, past the ball
+// lying behind the chain) overlaps at the start: a failed individual, as
+// mrsim-sim refuses such a file, saying which parts overlap; the body
+// that stays clear runs.
+TEST(OptimizerBodyGenes, ABodyGrownIntoTheBallIsAFailedIndividual) {
+  const Problem problem = BallBehindTheChainProblem();
   EXPECT_FALSE(RunEpisode(problem, Genome{11}).failed);
   const EvalResult grown = RunEpisode(problem, Genome{14});
   EXPECT_TRUE(grown.failed);
   EXPECT_EQ(grown.fitness, kFailedFitness);
+  EXPECT_EQ(grown.error,
+            "overlap at the start: robot 'snake' module 13 back frame / "
+            "scene object 'ball'");
+}
+
+// mrsim-opt --allow-overlap (the design's allowOverlap): the grown body
+// runs, the physics pushing the ball out, as mrsim-sim --allow-overlap
+// runs such a file.
+TEST(OptimizerBodyGenes, ABodyGrownIntoTheBallRunsWhenOverlapIsAllowed) {
+  Problem problem = BallBehindTheChainProblem();
+  problem.episode.allow_overlap = true;
+  const EvalResult grown = RunEpisode(problem, Genome{14});
+  EXPECT_FALSE(grown.failed) << grown.error;
+  EXPECT_EQ(grown.error, "");
+  EXPECT_GT(grown.energy, 0.0);
+}
+
+// The setting travels in the payload a farm's workers decode, so a worker
+// runs (or fails) the grown body as one process does; a payload without
+// it is what it was before the setting existed.
+TEST(OptimizerBodyGenes, AllowingOverlapTravelsInTheProblemPayload) {
+  Problem problem = BallBehindTheChainProblem();
+  const std::string refused = EncodeProblem(problem);
+  EXPECT_EQ(refused.find("allow_overlap"), std::string::npos);
+  EXPECT_FALSE(DecodeProblem(refused, "test").episode.allow_overlap);
+  problem.episode.allow_overlap = true;
+  const Problem allowed = DecodeProblem(EncodeProblem(problem), "test");
+  EXPECT_TRUE(allowed.episode.allow_overlap);
+  EXPECT_FALSE(RunEpisode(allowed, Genome{14}).failed);
+  std::string bad = EncodeProblem(problem);
+  const size_t at = bad.find("allow_overlap=1");
+  ASSERT_NE(at, std::string::npos);
+  bad[at + 14] = '7';
+  try {
+    DecodeProblem(bad, "payload x");
+    ADD_FAILURE() << "allow_overlap=7 was accepted";
+  } catch (const ProblemError& e) {
+    EXPECT_NE(std::string(e.what()).find("allow_overlap: expected 0 or 1"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// On a farm (master and worker cores on a simulated network, the worker
+// decoding the payload and running real episodes) the grown body fails
+// with the same reason, or runs when overlap is allowed, and every
+// result is the one process's, bit for bit.
+TEST(OptimizerBodyGenes, AFarmWorkerDecidesAnOverlappingBodyAsOneProcessDoes) {
+  for (const bool allow : {false, true}) {
+    Problem problem = BallBehindTheChainProblem();
+    problem.episode.allow_overlap = allow;
+    const std::string payload = EncodeProblem(problem);
+    testing::SimFarm farm(payload, FarmSettings{}, testing::SimNetwork{});
+    farm.AddRealWorker("w", 1.0);
+    const std::vector<Genome> batch = {Genome{11}, Genome{14}};
+    std::vector<EvalResult> results;
+    ASSERT_TRUE(farm.Evaluate(batch, 600, &results));
+    ASSERT_EQ(results.size(), batch.size());
+    const Problem local = DecodeProblem(payload, "local");
+    for (size_t i = 0; i < batch.size(); ++i) {
+      const EvalResult here = RunEpisode(local, batch[i]);
+      EXPECT_EQ(results[i].fitness, here.fitness) << i;
+      EXPECT_EQ(results[i].failed, here.failed) << i;
+      EXPECT_EQ(results[i].error, here.error) << i;
+    }
+    EXPECT_EQ(results[1].failed, !allow) << results[1].error;
+    EXPECT_EQ(results[1].error.rfind("overlap at the start: ", 0) == 0, !allow)
+        << results[1].error;
+  }
 }
 
 // A body the validator refuses is a failed individual, not an error that

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <thread>
 
+#include "sim_core/scenario/chain_builder.h"
+#include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 
 namespace mrsim {
@@ -232,6 +234,63 @@ TEST(OptimizerProcess, BadInputExitsWithTwoNamingTheProblem) {
                  dir + "/log2.txt");
   EXPECT_EQ(q.Wait(30), 2);
   EXPECT_NE(q.Output().find("algorithm"), std::string::npos) << q.Output();
+}
+
+// A module_count genome that grows the snake into the ball lying behind
+// it: mrsim-opt says why those individuals failed (the parts, once per
+// line, not per individual) and, in its summary, the flag that runs them;
+// with --allow-overlap they run.
+TEST(OptimizerProcess,
+     SaysWhichPartsOverlapInFailedBodiesAndRunsThemIfAllowed) {
+  const std::string dir = TempDir("opt_overlap_reason");
+  Scenario scenario;
+  scenario.robots.push_back(MakeChain(ChainOptions{}));  // 11 modules
+  ChainOptions longer;
+  longer.modules = 14;
+  SceneObject ball;
+  ball.guid = "ball";
+  ball.shape = PrimitiveShape::kSphere;
+  ball.size = Eigen::Vector3d(0.05, 0.05, 0.05);
+  ball.position = MakeChain(longer).modules[12].position;
+  scenario.scene_objects.push_back(ball);
+  WriteScenarioFile(scenario, dir + "/ball_behind.xml");
+  std::ofstream(dir + "/body.genome.xml") << R"(<genome>
+  <gene name="module_count" lower="11" upper="14" start="11"/>
+</genome>
+)";
+  auto args = [&](const std::string& out) {
+    return std::vector<std::string>{BinaryPath("optimizer/process/mrsim-opt"),
+                                    dir + "/ball_behind.xml",
+                                    "--genome",
+                                    dir + "/body.genome.xml",
+                                    "--generations",
+                                    "2",
+                                    "--population",
+                                    "6",
+                                    "--episode",
+                                    "0.5",
+                                    "--workers",
+                                    "local:2",
+                                    "--out",
+                                    dir + "/" + out};
+  };
+  ChildProcess refused(args("refused"), dir + "/refused.txt");
+  ASSERT_EQ(refused.Wait(120), 0) << refused.Output();
+  const std::string said = refused.Output();
+  EXPECT_NE(said.find(" (overlap at the start: robot 'snake' module 12 "),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("/ scene object 'ball'"), std::string::npos) << said;
+  EXPECT_NE(said.find("failed individuals: "), std::string::npos) << said;
+  EXPECT_NE(said.find("(--allow-overlap) to run"), std::string::npos) << said;
+
+  ChildProcess allowed(With(args("allowed"), {"--allow-overlap"}),
+                       dir + "/allowed.txt");
+  ASSERT_EQ(allowed.Wait(120), 0) << allowed.Output();
+  EXPECT_EQ(allowed.Output().find("overlap at the start"), std::string::npos)
+      << allowed.Output();
+  EXPECT_EQ(allowed.Output().find("failed individuals"), std::string::npos)
+      << allowed.Output();
 }
 
 }  // namespace

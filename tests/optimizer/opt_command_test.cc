@@ -374,6 +374,17 @@ TEST(OptCommand, ProgressAndDurationsReadWell) {
   EXPECT_NE(FormatProgress(r).find("best-so-far 0.45 failed 2 | "),
             std::string::npos)
       << FormatProgress(r);
+  // ... and why, each reason once, not a line per individual.
+  r.failed_reasons = {
+      {"overlap at the start: robot 'snake' module 13 front "
+       "frame / scene object 'ball'",
+       2}};
+  EXPECT_NE(FormatProgress(r).find(
+                "best-so-far 0.45 failed 2 (overlap at the start: robot "
+                "'snake' module 13 front frame / scene object 'ball') | "),
+            std::string::npos)
+      << FormatProgress(r);
+  r.failed_reasons = {};
   r.replayed = true;
   r.eta_seconds = -1;  // only replayed so far: no pace yet
   EXPECT_NE(FormatProgress(r).find("from checkpoint"), std::string::npos);
@@ -384,6 +395,24 @@ TEST(OptCommand, ProgressAndDurationsReadWell) {
   EXPECT_EQ(FormatProgress(r).rfind("generation 3 of 20 (island 1): best", 0),
             0u)
       << FormatProgress(r);
+}
+
+// Failed individuals by reason: one reason alone, the two most frequent
+// with their counts, the rest summed; failures that gave none say nothing
+// more than their count.
+TEST(OptCommand, FailedIndividualsAreCountedByReason) {
+  EXPECT_EQ(FormatFailedReasons({}), "");
+  EXPECT_EQ(FormatFailedReasons({{"", 3}}), "");
+  EXPECT_EQ(FormatFailedReasons({{"the simulation became unstable", 3}}),
+            "the simulation became unstable");
+  EXPECT_EQ(FormatFailedReasons({{"overlap at the start: a / b", 3}, {"", 1}}),
+            "3 overlap at the start: a / b; 1 no reason given");
+  EXPECT_EQ(FormatFailedReasons({{"overlap at the start: a / b", 5},
+                                 {"the simulation became unstable", 2},
+                                 {"gait values refused: T", 1},
+                                 {"body refused: x", 1}}),
+            "5 overlap at the start: a / b; 2 the simulation became "
+            "unstable; 2 for 2 other reasons");
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "optimizer/episode/episode.h"
 #include "optimizer/farm/farm_master_core.h"
 #include "optimizer/farm/farm_worker_core.h"
 #include "optimizer/search/random.h"
@@ -65,6 +66,18 @@ class SimFarm {
           return std::make_shared<const Problem>();
         });
     n.episode = episode;
+    workers_[id] = std::move(n);
+  }
+  // A worker as mrsim-worker is one: it decodes the payload with
+  // DecodeProblem and runs the real episode (RunEpisode, as
+  // FarmWorker::Run does), reporting after `episode` simulated seconds.
+  void AddRealWorker(const std::string& id, double episode) {
+    WorkerSettings s;
+    s.id = id;
+    Node n;
+    n.core = std::make_unique<FarmWorkerCore>(s, "simhost", 1);
+    n.episode = episode;
+    n.real = true;
     workers_[id] = std::move(n);
   }
   void KillWorker(const std::string& id) { workers_.erase(id); }
@@ -129,6 +142,7 @@ class SimFarm {
     bool partitioned = false;
     bool deaf = false;
     bool lies = false;
+    bool real = false;  // AddRealWorker
     int drop_results = 0;
     std::multimap<double, WorkerTask> running;
   };
@@ -249,7 +263,19 @@ class SimFarm {
         r.job_id = task.job_id;
         r.generation = task.generation;
         r.index = task.index;
-        r.fitness = r.distance = SimFitness(task.genome);
+        if (n.real) {
+          const EvalResult e = RunEpisode(*task.problem, task.genome);
+          r.fitness = e.fitness;
+          r.distance = e.distance;
+          r.speed = e.speed;
+          r.energy = e.energy;
+          r.drift = e.drift;
+          r.fell = e.fell;
+          r.failed = e.failed;
+          if (e.failed) r.error = e.error;
+        } else {
+          r.fitness = r.distance = SimFitness(task.genome);
+        }
         if (n.lies) r.fitness += 1.0;
         r.eval_seconds = n.episode;
         n.core->OnEpisodeDone(r, now_);
