@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
@@ -183,6 +184,26 @@ TEST_F(StudioLockLooseWindow, LoosePartsAreAddedEditedAndRemoved) {
   ASSERT_EQ(saved.loose_frames.size(), 1u);
   EXPECT_EQ(saved.loose_frames[0].mass, 0.3);
   EXPECT_TRUE(saved.loose_joints.empty());
+  studio_->Stop();
+}
+
+// A lock is drawn as a marker on top of the parts it joins, and a click
+// on it in the 3-D view selects it, as its row in the Design panel does.
+TEST_F(StudioLockLooseWindow, ALockIsPickedByClickingItInTheView) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(
+      Start("studio_lock_pick", "scenarios/case_study.xml"));
+  int x = 0, y = 0;
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        std::istringstream in(ReadLayout(layout_)["part lock 0 1"]);
+        return static_cast<bool>(in >> x >> y);
+      },
+      90))
+      << "no lock marker in the view";
+  ASSERT_TRUE(ClickWhenThere(layout_, x, y));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "lock 0 1"))
+      << ReadLayout(layout_)["selected"];
   studio_->Stop();
 }
 

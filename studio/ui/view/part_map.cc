@@ -1,5 +1,6 @@
 #include "studio/ui/view/part_map.h"
 
+#include <algorithm>
 #include <string>
 
 #include "sim_core/mjcf/mjcf_names.h"
@@ -69,6 +70,49 @@ std::vector<GeomPart> MapGeoms(const mjModel* m, const Scenario& s) {
   MarkGeom(m, n::Terrain(), {{SelectionKind::kScene, 0, 0}, Look::kTerrain},
            &geoms);
   return geoms;
+}
+
+std::vector<LockSite> MapLocks(const mjModel* m, const Scenario& s) {
+  std::vector<LockSite> locks;
+  for (int r = 0; r < static_cast<int>(s.robots.size()); ++r) {
+    const Robot& robot = s.robots[r];
+    const std::string name = mjcf_names::RobotName(s, r);
+    // A part's body by its guid; a frame merged into its neighbour (flush
+    // boxes) keeps its body name, so every lock finds both ends.
+    auto body_of = [&](const std::string& guid) {
+      for (int i = 0; i < static_cast<int>(robot.modules.size()); ++i) {
+        for (int f = 0; f < 2; ++f) {
+          if (robot.modules[i].frames[f].guid == guid) {
+            return mj_name2id(m, mjOBJ_BODY,
+                              mjcf_names::FrameBody(name, i, f).c_str());
+          }
+        }
+      }
+      for (int j = 0; j < static_cast<int>(robot.sensor_modules.size()); ++j) {
+        if (robot.sensor_modules[j].guid == guid) {
+          return mj_name2id(m, mjOBJ_BODY,
+                            mjcf_names::SensorModuleBody(name, j).c_str());
+        }
+      }
+      return -1;
+    };
+    for (int k = 0; k < static_cast<int>(robot.locks.size()); ++k) {
+      const Joint& lock = robot.locks[k];
+      LockSite site{body_of(lock.left_frame_guid),
+                    body_of(lock.right_frame_guid),
+                    {SelectionKind::kLock, r, k}};
+      if (site.body_a < 0 || site.body_b < 0) continue;
+      for (int g = 0; g < m->ngeom; ++g) {
+        if (m->geom_bodyid[g] == site.body_a ||
+            m->geom_bodyid[g] == site.body_b) {
+          // A box's half height is about 0.6 of its bounding radius.
+          site.lift = std::max(site.lift, 0.6 * m->geom_rbound[g]);
+        }
+      }
+      locks.push_back(site);
+    }
+  }
+  return locks;
 }
 
 std::vector<RaySite> MapRays(const mjModel* m, const Scenario& s) {

@@ -39,4 +39,16 @@ struct RaySite {
 };
 std::vector<RaySite> MapRays(const mjModel* model, const Scenario& scenario);
 
+// A robot's lock as drawn and picked: a small marker between the bodies
+// of the two parts it joins (locks have no geom of their own).
+struct LockSite {
+  int body_a = -1;
+  int body_b = -1;
+  Selection part;  // SelectionKind::kLock
+  // How far above the middle of the two bodies the marker sits: on top of
+  // the parts, which would hide a marker where they meet.
+  double lift = 0.03;
+};
+std::vector<LockSite> MapLocks(const mjModel* model, const Scenario& scenario);
+
 }  // namespace mrsim::studio

@@ -100,6 +100,7 @@ std::string Preview::Rebuild(const Scenario& scenario) {
   mj_camlight(m, data_);
   geoms_ = MapGeoms(m, scenario);
   rays_ = MapRays(m, scenario);
+  locks_ = MapLocks(m, scenario);
   labels_.clear();
   for (int r = 0; r < static_cast<int>(scenario.robots.size()); ++r) {
     for (int g = 0; g < m->ngeom; ++g) {
@@ -214,6 +215,38 @@ void Preview::AddRays() {
   }
 }
 
+std::vector<std::pair<Selection, Eigen::Vector3d>> Preview::LockPoints() const {
+  std::vector<std::pair<Selection, Eigen::Vector3d>> points;
+  if (!physics_) return points;
+  const int nbody = physics_->model()->nbody;
+  for (const LockSite& lock : locks_) {
+    if (lock.body_a >= nbody || lock.body_b >= nbody) continue;
+    const Eigen::Map<const Eigen::Vector3d> a(data_->xpos + 3 * lock.body_a);
+    const Eigen::Map<const Eigen::Vector3d> b(data_->xpos + 3 * lock.body_b);
+    points.emplace_back(lock.part,
+                        (a + b) / 2 + Eigen::Vector3d(0, 0, lock.lift));
+  }
+  return points;
+}
+
+void Preview::AddLocks(const Selection& selected) {
+  // Locks have no body of their own: a marker on top of where the two
+  // parts meet, so a lock can be seen and clicked as the Design panel
+  // lists it.
+  const float normal[4] = {0.85f, 0.85f, 0.9f, 0.9f};
+  const float chosen[4] = {1.0f, 0.95f, 0.3f, 1.0f};
+  for (const auto& [part, point] : LockPoints()) {
+    if (scene_.ngeom >= scene_.maxgeom) return;
+    mjvGeom* g = scene_.geoms + scene_.ngeom++;
+    const bool on = part == selected;
+    const mjtNum r = on ? 0.011 : 0.008;
+    const mjtNum size[3] = {r, r, r};
+    const mjtNum pos[3] = {point.x(), point.y(), point.z()};
+    mjv_initGeom(g, mjGEOM_SPHERE, size, pos, nullptr, on ? chosen : normal);
+    g->category = mjCAT_DECOR;
+  }
+}
+
 void Preview::Bind(bool offscreen) {
   if (context_made_) {
     mjr_setBuffer(offscreen ? mjFB_OFFSCREEN : mjFB_WINDOW, &context_);
@@ -277,6 +310,7 @@ void Preview::Render(const mjrRect& viewport, bool offscreen,
     }
   }
   AddRays();
+  AddLocks(selected);
   if (software_) CoarsenInfinitePlanes(m, context_, &scene_);
   mjr_render(viewport, &scene_, &context_);
 }
@@ -314,6 +348,25 @@ void Preview::Zoom(double amount) {
 
 Selection Preview::Pick(const mjrRect& viewport, double x, double y) const {
   if (!physics_) return {};
+  // A lock's marker first: it sits on the parts it joins, which would
+  // otherwise take the click. Within a few pixels of its centre.
+  constexpr double kLockPixels = 8;
+  Selection lock;
+  double best = kLockPixels * kLockPixels;
+  for (const auto& [part, point] : LockPoints()) {
+    double sx = 0, sy = 0;
+    // Window height = the viewport's top, so y comes out from its top.
+    if (!ScreenPoint(viewport, viewport.bottom + viewport.height, point, &sx,
+                     &sy)) {
+      continue;
+    }
+    const double dx = sx - viewport.left - x, dy = sy - y;
+    if (dx * dx + dy * dy < best) {
+      best = dx * dx + dy * dy;
+      lock = part;
+    }
+  }
+  if (lock.kind != SelectionKind::kNone) return lock;
   mjtNum point[3];
   int geom = -1;
   int skin = -1;
@@ -391,6 +444,12 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
     if (ScreenPoint(viewport, window_height,
                     Eigen::Vector3d(data_->geom_xpos + 3 * g), &x, &y)) {
       markers.push_back({part.part, x, y});
+    }
+  }
+  for (const auto& [part, point] : LockPoints()) {
+    double x = 0, y = 0;
+    if (ScreenPoint(viewport, window_height, point, &x, &y)) {
+      markers.push_back({part, x, y});
     }
   }
   return markers;

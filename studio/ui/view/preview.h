@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "sim_core/physics/physics.h"
+#include "sim_core/physics/scene_object_state.h"
 #include "sim_core/scenario/robot_state.h"
 #include "sim_core/scenario/scenario.h"
-#include "sim_core/physics/scene_object_state.h"
 #include "studio/design/selection.h"
 #include "studio/ui/view/part_map.h"
 #include "viewer/renderer.h"
@@ -78,8 +78,11 @@ class Preview {
   void Reframe() { framed_ = false; }
   // The part under (x, y), viewport pixels from its top left.
   Selection Pick(const mjrRect& viewport, double x, double y) const;
-  // Module and sensor module centres in window pixels (top-left origin) for
-  // a window of height window_height.
+  // Where each lock's marker is now (world), with the lock it stands for:
+  // Pick takes a click on one, and window tests find them by it.
+  std::vector<std::pair<Selection, Eigen::Vector3d>> LockPoints() const;
+  // Module and sensor module centres and lock markers in window pixels
+  // (top-left origin) for a window of height window_height.
   std::vector<PartMarker> Markers(const mjrRect& viewport,
                                   int window_height) const;
 
@@ -123,6 +126,8 @@ class Preview {
 
  private:
   void AddRays();
+  // A small marker on each lock, brighter when selected.
+  void AddLocks(const Selection& selected);
 
   int width_;
   int height_;
@@ -132,6 +137,7 @@ class Preview {
   std::vector<GeomPart> geoms_;
   std::vector<int> flagged_;
   std::vector<RaySite> rays_;
+  std::vector<LockSite> locks_;
   // Live: the measured rays, and which robots they stand for (the others
   // keep their designed rays).
   std::vector<Ray> live_rays_;
