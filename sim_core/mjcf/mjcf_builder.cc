@@ -1100,6 +1100,7 @@ std::string Builder::Build() {
     std::vector<MjcfLock> locks;
     AddRobot(mjcf_names::LooseRobot(), {}, s_.loose_sensor_modules,
              s_.loose_frames, s_.loose_joints, false, &locks);
+    if (info_) info_->loose_locks = std::move(locks);
   }
   AddSceneObjects();
   AddTerrain();
@@ -1374,6 +1375,7 @@ std::string BuildMjcf(const Scenario& scenario, const MjcfOptions& options,
                       MjcfInfo* info) {
   if (info) {
     info->robot_locks.clear();
+    info->loose_locks.clear();
     info->memory_files.clear();
   }
   return Builder(scenario, options, info).Build();

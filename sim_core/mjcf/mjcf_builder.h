@@ -98,6 +98,9 @@ struct MjcfLock {
 // What the builder made of the scenario, for Physics.
 struct MjcfInfo {
   std::vector<std::vector<MjcfLock>> robot_locks;  // per scenario robot
+  // The loose parts' locks (Scenario::loose_joints that are locks), so
+  // that their break forces reach Physics as a robot's do.
+  std::vector<MjcfLock> loose_locks;
   // Files the MJCF names that exist only in memory (assets_in_memory).
   std::vector<std::pair<std::string, std::vector<unsigned char>>> memory_files;
 };

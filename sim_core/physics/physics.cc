@@ -192,6 +192,17 @@ struct Physics::Impl {
   // an mjData of a long chain is large (njmax^2).
   mutable MjDataPtr scratch;
   std::vector<RobotIndex> robots;
+  // Every robot's locks in scenario order, then the loose parts': the
+  // checkpoint's order.
+  template <class F>
+  void ForEachLock(F f) const {
+    for (const RobotIndex& r : robots) {
+      for (const LockIndex& l : r.locks) f(r, l);
+    }
+    if (loose) {
+      for (const LockIndex& l : loose->locks) f(*loose, l);
+    }
+  }
   // The parts outside any robot (Scenario::loose_*), read as one more
   // state under kLooseOwnerName. Its servos (the loose hinges with
   // Joint::servo) run the nominal law: the effects never see them.
@@ -236,7 +247,7 @@ struct Physics::Impl {
   void Index(const MjcfInfo& info);
   void IndexSensorModules(const std::vector<SensorModule>& sensor_modules,
                           RobotIndex* ri) const;
-  void IndexLooseParts();
+  void IndexLooseParts(const MjcfInfo& info);
   // The state of robot (or loose parts) `r`, whose sensor modules are
   // `sensor_modules`; `id` keys the sensors' noise; `robot` is the robot's
   // index for the reading effects, -1 for the loose parts (none apply).
@@ -531,7 +542,7 @@ void Physics::Impl::Index(const MjcfInfo& info) {
   }
   servo_robots.clear();
   for (const RobotIndex& r : robots) servo_robots.push_back(&r);
-  IndexLooseParts();
+  IndexLooseParts(info);
 }
 
 void Physics::Impl::IndexSensorModules(
@@ -570,7 +581,7 @@ void Physics::Impl::IndexSensorModules(
   }
 }
 
-void Physics::Impl::IndexLooseParts() {
+void Physics::Impl::IndexLooseParts(const MjcfInfo& info) {
   loose.reset();
   if (scenario.loose_frames.empty() && scenario.loose_sensor_modules.empty()) {
     return;
@@ -608,6 +619,17 @@ void Physics::Impl::IndexLooseParts() {
       ri.targets.push_back(std::clamp(0.0, s.lower, s.upper));
     }
     ri.loose_hinges.push_back(h);
+  }
+  // A loose lock with a break force is a weld that breaks as a robot's.
+  for (const MjcfLock& l : info.loose_locks) {
+    LockIndex li;
+    li.name = l.name;
+    if (!l.weld.empty()) {
+      li.eq = Id(mjOBJ_EQUALITY, l.weld);
+      eq_break[li.eq] = l.break_force;
+      any_breakable |= l.break_force > 0;
+    }
+    ri.locks.push_back(li);
   }
   IndexSensorModules(scenario.loose_sensor_modules, &ri);
   loose = std::move(ri);
@@ -890,6 +912,13 @@ void Physics::SetLockAttached(const std::string& robot, const std::string& lock,
 std::vector<std::pair<std::string, bool>> Physics::LockStates(
     const std::string& robot) const {
   const int r = robot_index(robot);
+  if (r < 0 && robot == kLooseOwnerName && impl_->loose) {
+    std::vector<std::pair<std::string, bool>> out;
+    for (const Impl::LockIndex& l : impl_->loose->locks) {
+      out.emplace_back(l.name, l.eq < 0 || impl_->model->eq_active[l.eq] != 0);
+    }
+    return out;
+  }
   if (r < 0) throw PhysicsError(fmt::format("no robot named '{}'", robot));
   if (impl_->split) {
     int local = 0;
@@ -1149,16 +1178,14 @@ std::vector<unsigned char> Physics::SaveState() const {
                             m->nsensordata,
                             static_cast<int32_t>(targets.size())};
   std::vector<unsigned char> locks;
-  for (const auto& r : impl_->robots) {
-    for (const Impl::LockIndex& l : r.locks) {
-      unsigned char flags = 0;
-      if (l.eq < 0 || m->eq_active[l.eq]) flags |= kLockAttached;
-      if (impl_->runtime_welds.count(r.name + "/" + l.name)) {
-        flags |= kLockRuntimeWeld;
-      }
-      locks.push_back(flags);
+  impl_->ForEachLock([&](const Impl::RobotIndex& r, const Impl::LockIndex& l) {
+    unsigned char flags = 0;
+    if (l.eq < 0 || m->eq_active[l.eq]) flags |= kLockAttached;
+    if (impl_->runtime_welds.count(r.name + "/" + l.name)) {
+      flags |= kLockRuntimeWeld;
     }
-  }
+    locks.push_back(flags);
+  });
   const int32_t nlocks = static_cast<int32_t>(locks.size());
   std::vector<unsigned char> out;
   Put(out, kStateMagic, sizeof(kStateMagic));
@@ -1192,7 +1219,11 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   }
   size_t ntargets = 0;
   size_t nlocks = 0;
-  for (const auto& r : impl_->robots) nlocks += r.locks.size();
+  impl_->ForEachLock(
+      [&](const Impl::RobotIndex&, const Impl::LockIndex&) { ++nlocks; });
+  // States saved before the loose locks were listed end at the robots'.
+  size_t robot_locks = 0;
+  for (const auto& r : impl_->robots) robot_locks += r.locks.size();
   impl_->ForEachTargets(
       [&](const std::vector<double>& t) { ntargets += t.size(); });
   const int version = StateVersion(bytes);
@@ -1211,17 +1242,19 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
       std::memcpy(&saved_locks, bytes.data() + sizeof(kStateMagic),
                   sizeof(int32_t));
     }
-    if (saved_locks != static_cast<int32_t>(nlocks) ||
-        bytes.size() < sizeof(kStateMagic) + sizeof(int32_t) + nlocks) {
+    const size_t nsaved =
+        saved_locks == static_cast<int32_t>(robot_locks) ? robot_locks : nlocks;
+    if (saved_locks != static_cast<int32_t>(nsaved) ||
+        bytes.size() < sizeof(kStateMagic) + sizeof(int32_t) + nsaved) {
       throw std::invalid_argument(fmt::format(
           "physics state: saved for a different model ({} locks; this model "
           "has {})",
           saved_locks, nlocks));
     }
-    lock_bytes = sizeof(int32_t) + nlocks;
-    if (nlocks > 0) {  // an empty vector's data() may be null
+    lock_bytes = sizeof(int32_t) + nsaved;
+    if (nsaved > 0) {  // an empty vector's data() may be null
       std::memcpy(lock_flags.data(),
-                  bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nlocks);
+                  bytes.data() + sizeof(kStateMagic) + sizeof(int32_t), nsaved);
     }
     std::set<std::string> welds;
     size_t i = 0;
@@ -1320,18 +1353,16 @@ void Physics::LoadState(const std::vector<unsigned char>& bytes) {
   std::copy(impl_->eq_active0.begin(), impl_->eq_active0.end(),
             impl_->model->eq_active);
   size_t li = 0;
-  for (const auto& r : impl_->robots) {
-    for (const Impl::LockIndex& l : r.locks) {
-      const bool attached = lock_flags[li++] & kLockAttached;
-      if (l.eq >= 0) {
-        impl_->model->eq_active[l.eq] = attached ? 1 : 0;
-      } else if (!attached) {
-        throw std::invalid_argument(
-            "physics state: lock '" + l.name + "' of robot '" + r.name +
-            "' is released in the state but rigid in this model");
-      }
+  impl_->ForEachLock([&](const Impl::RobotIndex& r, const Impl::LockIndex& l) {
+    const bool attached = lock_flags[li++] & kLockAttached;
+    if (l.eq >= 0) {
+      impl_->model->eq_active[l.eq] = attached ? 1 : 0;
+    } else if (!attached) {
+      throw std::invalid_argument(
+          "physics state: lock '" + l.name + "' of robot '" + r.name +
+          "' is released in the state but rigid in this model");
     }
-  }
+  });
   impl_->AfterStateChange();
   // The kinematics pass reproduces the saved qpos exactly unless the state
   // was poked between the step and the save; the saved one is kept. The

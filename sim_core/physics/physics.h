@@ -61,7 +61,8 @@ class Physics {
   // its parts back to their relative pose in the scenario.
   void SetLockAttached(const std::string& robot, const std::string& lock,
                        bool attached);
-  // Names and attached state of every lock of `robot`, in scenario order.
+  // Names and attached state of every lock of `robot`, in scenario order;
+  // kLooseOwnerName gives the loose parts' locks (a broken one detached).
   // Throws PhysicsError naming the robot when there is no such robot.
   std::vector<std::pair<std::string, bool>> LockStates(
       const std::string& robot) const;

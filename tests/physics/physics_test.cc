@@ -516,6 +516,62 @@ TEST(PhysicsLooseParts, WithoutServoTheLooseHingesArePassive) {
   EXPECT_NEAR(state.joints[1].angle, 0.0, 1e-3);
 }
 
+// A loose frame welded beside a static one 1 m up by a loose lock of the
+// given break force; without the lock it would fall.
+Scenario HangingLooseFrame(double break_force) {
+  Scenario s = testing::FlatScenario();
+  for (const auto& [guid, x] :
+       {std::make_pair("post", 0.0), std::make_pair("door", 0.06)}) {
+    Frame frame;
+    frame.guid = guid;
+    frame.position = Eigen::Vector3d(x, 0, 1.0);
+    frame.is_static = frame.guid == "post";
+    s.loose_frames.push_back(frame);
+  }
+  Joint lock;
+  lock.guid = "weld";
+  lock.left_frame_guid = "post";
+  lock.right_frame_guid = "door";
+  lock.type = JointType::kLock;
+  lock.break_force = break_force;
+  s.loose_joints.push_back(lock);
+  return s;
+}
+
+// A loose lock breaks at its breakForce as a robot's lock does: a weak one
+// gives way under the hanging frame's weight and the frame falls; a strong
+// one, or 0 (never breaks), holds it.
+TEST(PhysicsLooseParts, ALooseLockBreaksAtItsBreakForce) {
+  Physics weak(HangingLooseFrame(0.001));
+  using LockStates = std::vector<std::pair<std::string, bool>>;
+  EXPECT_EQ(weak.LockStates(kLooseOwnerName), (LockStates{{"weld", true}}));
+  weak.Step(1000);  // 2 s
+  EXPECT_NEAR(weak.ReadLooseState().frames[1].position.z(), 0.025, 0.005);
+  EXPECT_EQ(weak.LockStates(kLooseOwnerName), (LockStates{{"weld", false}}));
+
+  for (double strong : {1000.0, 0.0}) {
+    SCOPED_TRACE(strong);
+    Physics held(HangingLooseFrame(strong));
+    held.Step(1000);
+    EXPECT_NEAR(held.ReadLooseState().frames[1].position.z(), 1.0, 0.01);
+    EXPECT_EQ(held.LockStates(kLooseOwnerName), (LockStates{{"weld", true}}));
+  }
+}
+
+// A checkpoint keeps a broken loose lock broken.
+TEST(PhysicsLooseParts, ACheckpointKeepsABrokenLooseLockBroken) {
+  Physics physics(HangingLooseFrame(0.001));
+  physics.Step(50);
+  ASSERT_FALSE(physics.LockStates(kLooseOwnerName)[0].second);
+  Physics resumed(HangingLooseFrame(0.001));
+  resumed.LoadState(physics.SaveState());
+  EXPECT_FALSE(resumed.LockStates(kLooseOwnerName)[0].second);
+  physics.Step(500);
+  resumed.Step(500);
+  EXPECT_EQ(resumed.ReadLooseState().frames[1].position.z(),
+            physics.ReadLooseState().frames[1].position.z());
+}
+
 TEST(PhysicsExamples, ExampleScenariosRun) {
   for (const char* name : {"snake11.xml", "case_study.xml", "terrain.xml"}) {
     SCOPED_TRACE(name);
