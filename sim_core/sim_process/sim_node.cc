@@ -288,9 +288,11 @@ SimNode::Published SimNode::ReadStates() const {
   // The parts outside any robot, as a robot_state_t of the owner "loose",
   // so every reader of robot states (logger, Python, camera) reads them.
   if (physics_->has_loose_parts()) {
+    robot_state_t msg =
+        ToRobotStateMessage(physics_->ReadLooseState(), state_seq_);
+    SetLockStates(physics_->LockStates(kLooseOwnerName), &msg);
     published.messages.emplace_back(
-        StateChannel(options_.prefix, kLooseOwnerName),
-        ToRobotStateMessage(physics_->ReadLooseState(), state_seq_));
+        StateChannel(options_.prefix, kLooseOwnerName), std::move(msg));
   }
   for (int r = 0; r < physics_->robot_count(); ++r) {
     const std::string& name = physics_->robot_name(r);

@@ -830,6 +830,34 @@ TEST(SimNode, LoosePartsStateIsPublishedEveryPeriodAndAfterReset) {
   EXPECT_NEAR(after.back().sensor_modules[0].pose.position[2], 0.2, 1e-9);
 }
 
+// A loose lock's state goes out with the loose parts' as a robot's locks
+// go out with its state: a weak one is seen to break.
+TEST(SimNode, LoosePartsStateCarriesTheirLocksAndABreak) {
+  Scenario s = Snake();
+  for (int f = 0; f < 2; ++f) {
+    Frame frame;
+    frame.guid = f == 0 ? "post" : "door";
+    frame.position = Eigen::Vector3d(0.06 * f, 1.0, 1.0);
+    frame.is_static = f == 0;
+    s.loose_frames.push_back(frame);
+  }
+  Joint lock;
+  lock.guid = "weld";
+  lock.left_frame_guid = "post";
+  lock.right_frame_guid = "door";
+  lock.type = JointType::kLock;
+  lock.break_force = 0.001;  // N: the door's weight breaks it
+  s.loose_joints.push_back(lock);
+  Driver d(Lockstep(), s);
+  DriveLockstep(d, 100);
+  const std::vector<robot_state_t> loose = LooseStates(d);
+  ASSERT_FALSE(loose.empty());
+  ASSERT_EQ(loose.front().num_locks, 1);
+  EXPECT_EQ(loose.front().lock_names[0], "weld");
+  ASSERT_EQ(loose.back().num_locks, 1);
+  EXPECT_FALSE(loose.back().lock_attached[0]);
+}
+
 // The snake and, 1 m beside it, a static loose base with an arm on a
 // loose hinge about the vertical: with a servo when `servo`.
 Scenario SnakeAndALooseArm(bool servo) {
