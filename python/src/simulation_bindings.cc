@@ -399,6 +399,7 @@ step).)doc");
           std::lock_guard<std::mutex> lock(s.mutex());
           if (!s.physics().has_loose_parts()) return nullptr;
           state->state = s.physics().ReadLooseState();
+          state->locks = s.physics().LockStates(kLooseOwnerName);
         }
         return state;
       },
