@@ -109,7 +109,8 @@ class RandomLcm {
     } else if (type == "int32_t") {
       Put(static_cast<uint64_t>(v), 4);
     } else if (type == "int64_t") {
-      Put(static_cast<uint64_t>(v * 4398046511104LL), 8);
+      // Unsigned: 2^30 * 2^42 wraps (a huge int64), where signed would be UB.
+      Put(static_cast<uint64_t>(v) * 4398046511104ULL, 8);
     } else if (type == "float" || type == "double") {
       const double kReals[] = {0.0, -0.0, 0.1, -2.5e-7, 1e300, std::nan("")};
       double d = kReals[Pick(6)];
