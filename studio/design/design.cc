@@ -510,6 +510,18 @@ std::vector<LockEnd> EndsOf(const Robot& robot) {
   return ends;
 }
 
+// Whether a loose joint joins `a` and `b` directly.
+bool JoinedLoose(const Scenario& s, const std::string& a,
+                 const std::string& b) {
+  for (const Joint& j : s.loose_joints) {
+    if ((j.left_frame_guid == a && j.right_frame_guid == b) ||
+        (j.left_frame_guid == b && j.right_frame_guid == a)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Whether a hinge or lock of `robot` joins `a` and `b` directly.
 bool Joined(const Robot& robot, const std::string& a, const std::string& b) {
   auto joins = [&](const Joint& j) {
@@ -661,6 +673,53 @@ void Design::AttachLock(int robot, const std::string& a, const std::string& b) {
   Commit(std::move(next), selected);
 }
 
+std::vector<LockEnd> Design::LooseEnds() const {
+  std::vector<LockEnd> ends;
+  for (const Frame& f : scenario_.loose_frames) {
+    ends.push_back({f.guid, "loose frame " + f.guid});
+  }
+  for (const SensorModule& sm : scenario_.loose_sensor_modules) {
+    ends.push_back({sm.guid, "loose sensor module " + sm.guid});
+  }
+  return ends;
+}
+
+std::vector<LockEnd> Design::LooseJoinableTo(const std::string& from) const {
+  std::vector<LockEnd> out;
+  for (const LockEnd& end : LooseEnds()) {
+    if (end.guid != from && !JoinedLoose(scenario_, from, end.guid)) {
+      out.push_back(end);
+    }
+  }
+  return out;
+}
+
+void Design::JoinLoose(const std::string& a, const std::string& b,
+                       JointType type) {
+  std::string a_name, b_name;
+  for (const LockEnd& end : LooseEnds()) {
+    if (end.guid == a) a_name = end.name;
+    if (end.guid == b) b_name = end.name;
+  }
+  if (a_name.empty() || b_name.empty()) {
+    throw DesignError(
+        "a loose joint joins two loose frames or loose sensor modules");
+  }
+  if (a == b) throw DesignError("a loose joint joins two different parts");
+  if (JoinedLoose(scenario_, a, b)) {
+    throw DesignError(a_name + " and " + b_name + " are joined already");
+  }
+  Scenario next = scenario_;
+  Joint joint;
+  joint.guid = FreshGuid(AllGuids(next), "loose/j");
+  joint.type = type;
+  joint.left_frame_guid = a;
+  joint.right_frame_guid = b;
+  next.loose_joints.push_back(joint);
+  Commit(std::move(next), {SelectionKind::kLooseJoint, 0,
+                           static_cast<int>(scenario_.loose_joints.size())});
+}
+
 void Design::MoveSelected(int steps) {
   if (!IsChainPart(selection_)) {
     throw DesignError("select a module or sensor module to move");
@@ -716,8 +775,18 @@ void Design::MoveOnGround(const Selection& what, const GroundMove& move) {
         throw DesignError("there is no object " + std::to_string(what.index));
       MoveObject(&next.scene_objects[what.index], move);
       break;
+    case SelectionKind::kLooseFrame:
+    case SelectionKind::kLooseSensorModule:
+    case SelectionKind::kLooseJoint: {
+      const std::vector<Selection> group = LooseGroup(next, what);
+      if (group.empty()) throw DesignError("there is no such loose part");
+      MoveLooseGroup(&next, group, move);
+      break;
+    }
     default:
-      throw DesignError("only robots and objects move on the ground");
+      throw DesignError(
+          "only robots, objects and loose parts move on the "
+          "ground");
   }
   Commit(std::move(next), selection_);
 }

@@ -95,8 +95,10 @@ class Design {
   // (where it is once moved); selects it.
   void MovePart(int robot, int from, int to);
   // Moves a whole robot (a robot, module or sensor module selection names
-  // it) or an object on the ground: shifted and turned about its pivot
-  // (ground_move.h). Only poses change.
+  // it), an object, or a loose part with every loose part joined to it (a
+  // loose frame, sensor module or joint selection names them) on the
+  // ground: shifted and turned about its pivot (ground_move.h). Only poses
+  // change.
   void MoveOnGround(const Selection& what, const GroundMove& move);
   // A second (third, ...) robot: one pitch module, named robot2, ...,
   // beside the others (0.3 m to the left of the leftmost); selects it.
@@ -127,6 +129,19 @@ class Design {
   // another, or one that closes a loop (MuJoCo keeps the two at the pose
   // they have in the design: a weld). Selects it.
   void AttachLock(int robot, const std::string& a, const std::string& b);
+  // The loose parts (frames and sensor modules) a loose joint may join,
+  // named as the Design panel lists them ("loose frame loose/f0").
+  std::vector<LockEnd> LooseEnds() const;
+  // The loose parts a loose joint from `from` may join: not `from` itself,
+  // nor a part a loose joint joins it to already.
+  std::vector<LockEnd> LooseJoinableTo(const std::string& from) const;
+  // A loose joint of `type` between two loose parts (guids of loose frames
+  // or sensor modules): a Lock holds them at the pose they have in the
+  // design (a loose sensor module locked to a loose frame rides on it); a
+  // Hinge turns about the first part's y axis, through the point midway
+  // between them, and turns freely until its servo is switched on. A hinge
+  // that would close a loop is refused. Selects the joint.
+  void JoinLoose(const std::string& a, const std::string& b, JointType type);
   // Moves the selected chain part `steps` places towards the back (> 0) or
   // the front (< 0).
   void MoveSelected(int steps);

@@ -1,6 +1,8 @@
 #include "studio/design/ground_move.h"
 
 #include <cmath>
+#include <map>
+#include <string>
 
 namespace mrsim::studio {
 namespace {
@@ -54,17 +56,19 @@ void TransformRobot(Robot* robot, const Eigen::Isometry3d& t) {
     Place(t, &m.position);
     for (Frame& f : m.frames) Place(t, &f.position, &f.quat_rotation);
   }
-  for (SensorModule& sm : robot->sensor_modules) {
-    Place(t, &sm.position, &sm.quat_rotation);
-    Place(t, &sm.force_lock_position);
-    Place(t, &sm.distance_lock_position);
-    if (sm.force_sensor) {
-      Place(t, &sm.force_sensor->position, &sm.force_sensor->rotation);
-    }
-    // Ray directions are in the sensor module's frame: they turn with it.
-    for (DistanceSensor& d : sm.distance_sensors) {
-      Place(t, &d.position, &d.quat_rotation);
-    }
+  for (SensorModule& sm : robot->sensor_modules) TransformSensorModule(&sm, t);
+}
+
+void TransformSensorModule(SensorModule* sm, const Eigen::Isometry3d& t) {
+  Place(t, &sm->position, &sm->quat_rotation);
+  Place(t, &sm->force_lock_position);
+  Place(t, &sm->distance_lock_position);
+  if (sm->force_sensor) {
+    Place(t, &sm->force_sensor->position, &sm->force_sensor->rotation);
+  }
+  // Ray directions are in the sensor module's frame: they turn with it.
+  for (DistanceSensor& d : sm->distance_sensors) {
+    Place(t, &d.position, &d.quat_rotation);
   }
 }
 
@@ -78,6 +82,80 @@ void MoveObject(SceneObject* object, const GroundMove& move) {
   Place(GroundTransform(object->position, move), &object->position,
         &object->quat_rotation);
   object->rotation.z() += move.turn * 180.0 / M_PI;
+}
+
+std::vector<Selection> LooseGroup(const Scenario& s, const Selection& sel) {
+  const int n = static_cast<int>(sel.index);
+  std::vector<std::string> start;
+  switch (sel.kind) {
+    case SelectionKind::kLooseFrame:
+      if (n < 0 || n >= static_cast<int>(s.loose_frames.size())) return {};
+      start.push_back(s.loose_frames[n].guid);
+      break;
+    case SelectionKind::kLooseSensorModule:
+      if (n < 0 || n >= static_cast<int>(s.loose_sensor_modules.size())) {
+        return {};
+      }
+      start.push_back(s.loose_sensor_modules[n].guid);
+      break;
+    case SelectionKind::kLooseJoint:
+      if (n < 0 || n >= static_cast<int>(s.loose_joints.size())) return {};
+      start.push_back(s.loose_joints[n].left_frame_guid);
+      start.push_back(s.loose_joints[n].right_frame_guid);
+      break;
+    default:
+      return {};
+  }
+  // Every part reached from `start` through loose joints.
+  std::map<std::string, bool> reached;
+  std::vector<std::string> todo = start;
+  while (!todo.empty()) {
+    const std::string guid = todo.back();
+    todo.pop_back();
+    if (reached[guid]) continue;
+    reached[guid] = true;
+    for (const Joint& j : s.loose_joints) {
+      if (j.left_frame_guid == guid) todo.push_back(j.right_frame_guid);
+      if (j.right_frame_guid == guid) todo.push_back(j.left_frame_guid);
+    }
+  }
+  std::vector<Selection> group;
+  for (int i = 0; i < static_cast<int>(s.loose_frames.size()); ++i) {
+    if (reached.count(s.loose_frames[i].guid)) {
+      group.push_back({SelectionKind::kLooseFrame, 0, i});
+    }
+  }
+  for (int i = 0; i < static_cast<int>(s.loose_sensor_modules.size()); ++i) {
+    if (reached.count(s.loose_sensor_modules[i].guid)) {
+      group.push_back({SelectionKind::kLooseSensorModule, 0, i});
+    }
+  }
+  return group;
+}
+
+Eigen::Vector3d LoosePivot(const Scenario& s,
+                           const std::vector<Selection>& group) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Selection& p : group) {
+    sum += p.kind == SelectionKind::kLooseFrame
+               ? s.loose_frames.at(p.index).position
+               : s.loose_sensor_modules.at(p.index).position;
+  }
+  return group.empty() ? sum : Eigen::Vector3d(sum / group.size());
+}
+
+void MoveLooseGroup(Scenario* s, const std::vector<Selection>& group,
+                    const GroundMove& move) {
+  if (move.empty() || group.empty()) return;
+  const Eigen::Isometry3d t = GroundTransform(LoosePivot(*s, group), move);
+  for (const Selection& p : group) {
+    if (p.kind == SelectionKind::kLooseFrame) {
+      Frame& f = s->loose_frames.at(p.index);
+      Place(t, &f.position, &f.quat_rotation);
+    } else {
+      TransformSensorModule(&s->loose_sensor_modules.at(p.index), t);
+    }
+  }
 }
 
 }  // namespace mrsim::studio

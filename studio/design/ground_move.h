@@ -7,8 +7,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "sim_core/scenario/scenario.h"
+#include "studio/design/selection.h"
 
 namespace mrsim::studio {
 
@@ -36,10 +38,27 @@ double RobotHeading(const Robot& robot);
 // Moves every part of `robot` (hinges, frames, sensor modules and what is
 // mounted on them) by `transform`.
 void TransformRobot(Robot* robot, const Eigen::Isometry3d& transform);
+// Moves a sensor module and what is mounted on it by `transform`.
+void TransformSensorModule(SensorModule* sm,
+                           const Eigen::Isometry3d& transform);
 // Moves the robot about its own pivot.
 void MoveRobot(Robot* robot, const GroundMove& move);
 // Moves the object about its own centre (its Euler `rotation` z follows a
 // turn, in degrees, as the original stored it).
 void MoveObject(SceneObject* object, const GroundMove& move);
+
+// The loose parts that move together with the one `selection` names (a
+// loose frame or sensor module, or a loose joint: the parts it joins):
+// it and every loose part joined to it through loose joints, as
+// kLooseFrame and kLooseSensorModule selections, frames first. Empty for
+// any other selection or one out of range. A hinge pair is dragged as one.
+std::vector<Selection> LooseGroup(const Scenario& s,
+                                  const Selection& selection);
+// Where a loose group turns about: the mean of its parts' centres.
+Eigen::Vector3d LoosePivot(const Scenario& s,
+                           const std::vector<Selection>& group);
+// Moves every part of `group` about the group's pivot.
+void MoveLooseGroup(Scenario* s, const std::vector<Selection>& group,
+                    const GroundMove& move);
 
 }  // namespace mrsim::studio

@@ -41,10 +41,6 @@ bool Rect(const std::string& layout, const std::string& name, int r[4]) {
   return static_cast<bool>(in >> r[0] >> r[1] >> r[2] >> r[3]);
 }
 
-std::string Xy(int x, int y) {
-  return std::to_string(x) + " " + std::to_string(y);
-}
-
 class StudioDragWindow : public ::testing::Test {
  protected:
   void Start(const std::string& name, const std::string& scenario) {
@@ -70,24 +66,11 @@ class StudioDragWindow : public ::testing::Test {
         << " " << ReadLayout(layout_)["message"];
   }
 
-  // Presses at (x0, y0), moves a little until the studio reports `key` ==
-  // `started`, moves to (x1, y1) and releases there. Every step waits until
-  // the window has seen it (the "mouse" line of the layout dump).
   void Drag(int x0, int y0, int x1, int y1, const std::string& key,
             const std::string& started) {
-    ASSERT_TRUE(Xdotool({"mousemove", std::to_string(x0), std::to_string(y0)}));
-    ASSERT_TRUE(WaitForLayout(layout_, "mouse", Xy(x0, y0)));
-    ASSERT_TRUE(Xdotool({"mousedown", "1"}));
-    ASSERT_TRUE(WaitForLayout(layout_, "mouse", Xy(x0, y0) + " down"));
-    // Past ImGui's drag threshold, towards the target.
-    const int sx = x0 + (x1 > x0 ? 12 : x1 < x0 ? -12 : 0);
-    const int sy = y0 + (y1 > y0 ? 12 : y1 < y0 ? -12 : 0);
-    ASSERT_TRUE(Xdotool({"mousemove", std::to_string(sx), std::to_string(sy)}));
-    ASSERT_TRUE(WaitForLayout(layout_, key, started))
-        << key << ": " << ReadLayout(layout_)[key];
-    ASSERT_TRUE(Xdotool({"mousemove", std::to_string(x1), std::to_string(y1)}));
-    ASSERT_TRUE(WaitForLayout(layout_, "mouse", Xy(x1, y1) + " down"));
-    ASSERT_TRUE(Xdotool({"mouseup", "1"}));
+    ASSERT_TRUE(DragOnScreen(layout_, x0, y0, x1, y1, key, started))
+        << key << ": " << ReadLayout(layout_)[key] << ", mouse "
+        << ReadLayout(layout_)["mouse"];
   }
 
   void Save() {

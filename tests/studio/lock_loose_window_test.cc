@@ -1,7 +1,8 @@
 // Locks and loose parts from the real mrsim-studio under its own Xvfb,
 // clicked and typed with real events (xdotool), as a student would: a
 // lock picked in the design tree gets a breaking force, a loop lock is
-// attached and detached, loose parts are added, edited and removed.
+// attached and detached, loose parts are added, edited, removed, joined
+// and moved.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -229,6 +230,55 @@ TEST_F(StudioLockLooseWindow, ALooseHingeGetsAServoTickedAndSaved) {
   EXPECT_TRUE(saved.loose_joints[0].servo);
   EXPECT_EQ(saved.loose_joints[0].kp, 4);
   EXPECT_EQ(saved.loose_joints[0].type, JointType::kHinge);
+  studio_->Stop();
+}
+
+// A loose sensor module is locked to a loose frame the student picks in
+// "Join to a loose part", and the two are dragged across the ground as
+// one by the move handle: Save writes the lock and both moved 0.3 m.
+TEST_F(StudioLockLooseWindow,
+       ALooseSensorModuleIsLockedToALooseFrameAndMovedWithIt) {
+  if (!HaveX()) GTEST_SKIP() << "Xvfb or xdotool missing (install_deps.sh)";
+  ASSERT_NO_FATAL_FAILURE(
+      Start("studio_loose_join", "scenarios/case_study.xml"));
+  ASSERT_NO_FATAL_FAILURE(Click("Add loose part..."));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("loose frame", 1));
+  ASSERT_NO_FATAL_FAILURE(Click("Add loose part..."));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("loose sensor module", 2));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "loose_sensor_module 0 0"));
+  ASSERT_NO_FATAL_FAILURE(Click("header Join to a loose part"));
+  ASSERT_NO_FATAL_FAILURE(ClickAndWait("Join with a lock", 3));
+  ASSERT_TRUE(WaitForLayout(layout_, "selected", "loose_joint 0 0"));
+  const Scenario joined = Save();
+  ASSERT_EQ(joined.loose_joints.size(), 1u);
+  EXPECT_EQ(joined.loose_joints[0].type, JointType::kLock);
+  EXPECT_EQ(joined.loose_joints[0].left_frame_guid,
+            joined.loose_sensor_modules.at(0).guid);
+  EXPECT_EQ(joined.loose_joints[0].right_frame_guid,
+            joined.loose_frames.at(0).guid);
+
+  // The lock selected, the move handle drags both parts it joins.
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  auto point = [&](const std::string& key, int* x, int* y) {
+    std::istringstream in(ReadLayout(layout_)[key]);
+    return static_cast<bool>(in >> *x >> *y);
+  };
+  ASSERT_TRUE(WaitUntil([&] { return point("handle move", &x0, &y0); }, 90))
+      << "no move handle on the loose lock";
+  ASSERT_TRUE(point("handle +0.3x", &x1, &y1));
+  ASSERT_TRUE(DragOnScreen(layout_, x0, y0, x1, y1, "handle drag", "move"))
+      << ReadLayout(layout_)["handle drag"];
+  ASSERT_TRUE(WaitForLayout(layout_, "revision", "4"))
+      << ReadLayout(layout_)["message"];
+  const Scenario moved = Save();
+  const Eigen::Vector3d frame =
+      moved.loose_frames.at(0).position - joined.loose_frames.at(0).position;
+  const Eigen::Vector3d sm = moved.loose_sensor_modules.at(0).position -
+                             joined.loose_sensor_modules.at(0).position;
+  EXPECT_NEAR(frame.x(), 0.3, 0.01);
+  EXPECT_NEAR(frame.y(), 0.0, 0.01);
+  EXPECT_NEAR((frame - sm).norm(), 0.0, 1e-9);  // as one
+  EXPECT_EQ(moved.robots, joined.robots);
   studio_->Stop();
 }
 

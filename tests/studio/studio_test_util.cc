@@ -86,4 +86,25 @@ bool ClickWhenThere(const std::string& layout, int x, int y) {
          Xdotool({"click", "1"});
 }
 
+bool DragOnScreen(const std::string& layout, int x0, int y0, int x1, int y1,
+                  const std::string& key, const std::string& started) {
+  auto xy = [](int x, int y) {
+    return std::to_string(x) + " " + std::to_string(y);
+  };
+  if (!Xdotool({"mousemove", std::to_string(x0), std::to_string(y0)}) ||
+      !WaitForLayout(layout, "mouse", xy(x0, y0)) ||
+      !Xdotool({"mousedown", "1"}) ||
+      !WaitForLayout(layout, "mouse", xy(x0, y0) + " down")) {
+    return false;
+  }
+  // Past ImGui's drag threshold, towards the target.
+  const int sx = x0 + (x1 > x0 ? 12 : x1 < x0 ? -12 : 0);
+  const int sy = y0 + (y1 > y0 ? 12 : y1 < y0 ? -12 : 0);
+  return Xdotool({"mousemove", std::to_string(sx), std::to_string(sy)}) &&
+         WaitForLayout(layout, key, started) &&
+         Xdotool({"mousemove", std::to_string(x1), std::to_string(y1)}) &&
+         WaitForLayout(layout, "mouse", xy(x1, y1) + " down") &&
+         Xdotool({"mouseup", "1"});
+}
+
 }  // namespace mrsim::testing

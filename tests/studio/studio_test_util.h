@@ -44,5 +44,11 @@ bool ClickAt(int x, int y);
 // with the mouse there (the layout's "mouse" line), then clicks: a click
 // is never taken for one at the pointer's previous place.
 bool ClickWhenThere(const std::string& layout, int x, int y);
+// Presses at (x0, y0), moves a little until the studio reports `key` ==
+// `started`, moves to (x1, y1) and releases there. Every step waits until
+// the window has seen it (the layout's "mouse" line); false at the first
+// step that does not happen.
+bool DragOnScreen(const std::string& layout, int x0, int y0, int x1, int y1,
+                  const std::string& key, const std::string& started);
 
 }  // namespace mrsim::testing

@@ -48,6 +48,27 @@ bool TargetOf(const Scenario& s, const Selection& sel, Target* t) {
     t->radius = far + 0.08;
     return true;
   }
+  const std::vector<Selection> loose = LooseGroup(s, sel);
+  if (!loose.empty()) {
+    t->pivot = LoosePivot(s, loose);
+    const Selection& first = loose.front();
+    const Eigen::Quaterniond q =
+        first.kind == SelectionKind::kLooseFrame
+            ? s.loose_frames.at(first.index).quat_rotation
+            : s.loose_sensor_modules.at(first.index).quat_rotation;
+    const Eigen::Vector3d x = q * Eigen::Vector3d::UnitX();
+    t->heading = std::hypot(x.x(), x.y()) < 1e-9 ? 0 : std::atan2(x.y(), x.x());
+    double far = 0;
+    for (const Selection& p : loose) {
+      const Eigen::Vector3d at =
+          p.kind == SelectionKind::kLooseFrame
+              ? s.loose_frames.at(p.index).position
+              : s.loose_sensor_modules.at(p.index).position;
+      far = std::max(far, (at - t->pivot).head<2>().norm());
+    }
+    t->radius = far + 0.08;
+    return true;
+  }
   if (sel.kind == SelectionKind::kSceneObject && sel.index >= 0 &&
       sel.index < static_cast<int>(s.scene_objects.size())) {
     const SceneObject& o = s.scene_objects[sel.index];
@@ -244,6 +265,7 @@ bool GroundHandles::Update(StudioContext& studio, const mjrRect& view,
     }
     mode_ = on_move ? Mode::kMove : Mode::kTurn;
     what_ = design.selection();
+    loose_group_ = LooseGroup(design.scenario(), what_);
     pivot_ = target.pivot;
     grab_angle_ = std::atan2(grab_.y() - pivot_.y(), grab_.x() - pivot_.x());
     move_ = GroundMove();
@@ -268,7 +290,7 @@ bool GroundHandles::Update(StudioContext& studio, const mjrRect& view,
       if (io.KeyShift)
         move_.turn = std::round(move_.turn / kSnapTurn) * kSnapTurn;
     }
-    preview.ShowDrag(what_, GroundTransform(pivot_, move_));
+    preview.ShowDrag(what_, GroundTransform(pivot_, move_), loose_group_);
     char text[96];
     std::snprintf(text, sizeof(text), "moving: %+.3f m, %+.3f m, %+.1f deg",
                   move_.shift.x(), move_.shift.y(), move_.turn * 180 / M_PI);
@@ -282,9 +304,11 @@ bool GroundHandles::Update(StudioContext& studio, const mjrRect& view,
     move_ = GroundMove();
     preview.EndDrag();
     if (!move.empty()) {
-      studio.Try(what.kind == SelectionKind::kSceneObject ? "move the object"
-                                                          : "move the robot",
-                 [&] { studio.design.MoveOnGround(what, move); });
+      const char* moving = what.kind == SelectionKind::kSceneObject
+                               ? "move the object"
+                           : loose_group_.empty() ? "move the robot"
+                                                  : "move the loose parts";
+      studio.Try(moving, [&] { studio.design.MoveOnGround(what, move); });
     }
   }
   return true;

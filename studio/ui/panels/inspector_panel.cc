@@ -77,6 +77,14 @@ void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
       !groups.empty()) {
     DrawAttach(studio, view, sel);
   }
+  if ((sel.kind == SelectionKind::kLooseFrame ||
+       sel.kind == SelectionKind::kLooseSensorModule) &&
+      !groups.empty()) {
+    DrawLooseJoin(studio, view, sel);
+  }
+  if (sel.kind == SelectionKind::kLooseJoint && !groups.empty()) {
+    DrawLooseJoint(studio, view, sel);
+  }
   if (sel.kind == SelectionKind::kSceneObject && sel.index >= 0 &&
       sel.index < static_cast<int>(view.scene_objects.size())) {
     DrawCameras(studio, view.scene_objects[sel.index].cameras, sel);
@@ -350,6 +358,72 @@ void InspectorPanel::DrawAttach(StudioContext& studio, const Scenario& view,
       }
     }
   }
+  ImGui::Separator();
+}
+
+void InspectorPanel::DrawLooseJoin(StudioContext& studio, const Scenario& view,
+                                   const Selection& sel) {
+  const std::string from = sel.kind == SelectionKind::kLooseFrame
+                               ? view.loose_frames.at(sel.index).guid
+                               : view.loose_sensor_modules.at(sel.index).guid;
+  const std::vector<LockEnd> to = studio.design.LooseJoinableTo(from);
+  if (RecordedHeader(&studio.layout, "Join to a loose part", false)) {
+    if (to.empty()) {
+      ImGui::TextWrapped(
+          "no other loose part to join: add a loose frame or sensor module "
+          "first");
+    } else {
+      join_to_ = std::clamp(join_to_, 0, static_cast<int>(to.size()) - 1);
+      ImGui::TextDisabled("to");
+      ImGui::SameLine(60);
+      ImGui::SetNextItemWidth(-1);
+      if (ImGui::BeginCombo("##join to", to[join_to_].name.c_str())) {
+        for (int k = 0; k < static_cast<int>(to.size()); ++k) {
+          if (ImGui::Selectable(to[k].name.c_str(), k == join_to_)) {
+            join_to_ = k;
+          }
+        }
+        ImGui::EndCombo();
+      }
+      studio.Record("join to");
+      if (studio.Button("Join with a lock")) {
+        studio.Try("join the loose parts", [&] {
+          studio.design.JoinLoose(from, to[join_to_].guid, JointType::kLock);
+        });
+      }
+      if (ImGui::IsItemHovered()) {
+        WrappedTooltip(
+            "A rigid lock: the two parts keep the pose they have in the "
+            "design and move as one (a sensor module rides on a frame). A "
+            "breaking force lets it break during the run.");
+      }
+      ImGui::SameLine();
+      if (studio.Button("Join with a hinge")) {
+        studio.Try("join the loose parts", [&] {
+          studio.design.JoinLoose(from, to[join_to_].guid, JointType::kHinge);
+        });
+      }
+      if (ImGui::IsItemHovered()) {
+        WrappedTooltip(
+            "A hinge about this part's y axis, midway between the two; it "
+            "turns freely until its servo is switched on.");
+      }
+    }
+  }
+  ImGui::Separator();
+}
+
+void InspectorPanel::DrawLooseJoint(StudioContext& studio, const Scenario& view,
+                                    const Selection& sel) {
+  const Joint& j = view.loose_joints.at(sel.index);
+  std::string a = j.left_frame_guid, b = j.right_frame_guid;
+  for (const LockEnd& end : studio.design.LooseEnds()) {
+    if (end.guid == j.left_frame_guid) a = end.name;
+    if (end.guid == j.right_frame_guid) b = end.name;
+  }
+  ImGui::TextWrapped("%s between %s and %s",
+                     j.type == JointType::kLock ? "Loose lock" : "Loose hinge",
+                     a.c_str(), b.c_str());
   ImGui::Separator();
 }
 

@@ -34,6 +34,13 @@ class InspectorPanel {
                 const Selection& sel);
   // A selected module or sensor module: "Attach lock" from one of its
   // parts to another part of its robot that nothing joins it to yet.
+  // "Join to a loose part": a loose lock or hinge from the selected loose
+  // frame or sensor module to another loose part.
+  void DrawLooseJoin(StudioContext& studio, const Scenario& view,
+                     const Selection& sel);
+  // Which parts the selected loose joint joins, in words.
+  void DrawLooseJoint(StudioContext& studio, const Scenario& view,
+                      const Selection& sel);
   void DrawAttach(StudioContext& studio, const Scenario& view,
                   const Selection& sel);
   // A scene object's size as its shape reads it: a sphere's diameter, a
@@ -67,6 +74,7 @@ class InspectorPanel {
   Selection camera_face_selection_;
   int attach_from_ = 0;  // the selected part's frame a new lock starts at
   int attach_to_ = 0;    // index into Design::AttachableTo
+  int join_to_ = 0;      // index into Design::LooseJoinableTo
 };
 
 }  // namespace mrsim::studio

@@ -455,7 +455,8 @@ std::vector<PartMarker> Preview::Markers(const mjrRect& viewport,
   return markers;
 }
 
-void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
+void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t,
+                       const std::vector<Selection>& loose_group) {
   if (!physics_ || live_) return;
   const mjModel* m = physics_->model();
   // From the design's pose each time, kept at the drag's start (cheaper
@@ -470,12 +471,16 @@ void Preview::ShowDrag(const Selection& what, const Eigen::Isometry3d& t) {
   const Eigen::Matrix3d r = t.linear();
   for (int g = 0; g < m->ngeom && g < static_cast<int>(geoms_.size()); ++g) {
     const Selection& p = geoms_[g].part;
+    const bool loose = std::find(loose_group.begin(), loose_group.end(), p) !=
+                       loose_group.end();
     const bool moves =
         robot ? (p.kind == SelectionKind::kModule ||
                  p.kind == SelectionKind::kSensorModule ||
                  p.kind == SelectionKind::kRobot) &&
                     p.robot == what.robot
-              : p.kind == SelectionKind::kSceneObject && p.index == what.index;
+              : loose || (what.kind == SelectionKind::kSceneObject &&
+                          p.kind == SelectionKind::kSceneObject &&
+                          p.index == what.index);
     if (!moves) continue;
     using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
     Eigen::Map<Eigen::Vector3d>(data_->geom_xpos + 3 * g) =

@@ -87,10 +87,12 @@ class Preview {
                                   int window_height) const;
 
   // Dragging on the ground (ground_handles.h): the part `what` names (a
-  // whole robot for a robot, module or sensor module; an object) drawn
-  // moved by `transform`, no rebuild; EndDrag puts it back where the design
-  // has it (the rebuild after the edit shows the moved design).
-  void ShowDrag(const Selection& what, const Eigen::Isometry3d& transform);
+  // whole robot for a robot, module or sensor module; an object; for a
+  // loose part, the parts of `loose_group`, ground_move.h's LooseGroup)
+  // drawn moved by `transform`, no rebuild; EndDrag puts it back where the
+  // design has it (the rebuild after the edit shows the moved design).
+  void ShowDrag(const Selection& what, const Eigen::Isometry3d& transform,
+                const std::vector<Selection>& loose_group = {});
   void EndDrag();
   // The point on the horizontal plane at height `z` under window pixel
   // (x, y) (top-left origin, window of height window_height), as the last
