@@ -207,7 +207,12 @@ void OptimiseSession::Start(const OptimiseOptions& options, WallTime now) {
       [this](const std::string& name, const std::string& line) {
         // The group's own lines ("opt exited with code 2") come as
         // "launch"; the reason is mrsim-opt's.
-        if (name != "launch") last_line_ = line;
+        if (name != "launch") {
+          last_line_ = line;
+          if (std::string note = FailedNote(line); !note.empty()) {
+            progress_.failed_note = std::move(note);
+          }
+        }
         Line("[" + name + "] " + line);
       });
   group_->Start(spec, FindProgram(spec.program, search_path_));
@@ -221,6 +226,21 @@ void OptimiseSession::Stop() {
     progress_.running = false;
     group_.reset();
   }
+}
+
+std::string OptimiseSession::FailedNote(const std::string& line) {
+  const std::string kGeneration = "generation ";
+  if (line.rfind(kGeneration, 0) != 0) return "";
+  const size_t number_end = line.find(' ', kGeneration.size());
+  const size_t failed = line.find(" failed ");
+  if (number_end == std::string::npos || failed == std::string::npos) {
+    return "";
+  }
+  // The reasons run to the rate column, " | ".
+  const size_t end = line.find(" | ", failed);
+  return line.substr(0, number_end) + ":" +
+         line.substr(failed, end == std::string::npos ? std::string::npos
+                                                      : end - failed);
 }
 
 void OptimiseSession::Line(const std::string& line) {

@@ -86,6 +86,10 @@ struct OptimiseProgress {
   int exit_code = -1;
   // Why a finished run failed: mrsim-opt's last words.
   std::string failure;
+  // The newest generation that had failed individuals, with mrsim-opt's
+  // reasons ("generation 3: failed 2 (the body overlaps scene object
+  // 'ball' ...)"); empty while none failed.
+  std::string failed_note;
 };
 
 class OptimiseSession {
@@ -151,6 +155,11 @@ class OptimiseSession {
   // otherwise.
   std::string StallWarning(WallTime now = WallClock::now()) const;
   const StallWatch& stall_watch() const { return stall_; }
+
+  // From one of mrsim-opt's progress lines ("generation 3 of 10: best ...
+  // failed 2 (REASONS) | ..."), "generation 3: failed 2 (REASONS)"; empty
+  // for a line that reports no failed individual.
+  static std::string FailedNote(const std::string& progress_line);
 
   // Parses generations.csv text (header and rows); throws on a bad row.
   static std::vector<GenerationRow> ParseGenerations(const std::string& csv);

@@ -1,6 +1,7 @@
 // The studio's optimisation settings reach mrsim-opt's command line: the
 // fitness, the base gait and the chosen algorithm's own settings from the
-// algorithm registry.
+// algorithm registry; why individuals failed reaches the panel from
+// mrsim-opt's progress line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "optimizer/process/opt_command.h"
 #include "optimizer/search/algorithm.h"
 #include "optimizer/search/algorithm_registry.h"
 #include "studio/live/optimise_session.h"
@@ -103,6 +105,34 @@ TEST(AlgorithmRegistrySettings, EveryRowsSettingsReadAndWriteTheirField) {
   }
   EXPECT_EQ(FindAlgorithmSetting("no-such-setting"), nullptr);
   EXPECT_FALSE(AlgorithmInfoOf(AlgorithmKind::kPso).settings.empty());
+}
+
+// The Optimise panel shows why individuals failed, from mrsim-opt's own
+// progress line (FormatProgress, the line a run prints).
+TEST(OptimiseSpec, TheReasonIndividualsFailedIsTakenFromTheProgressLine) {
+  GenerationReport r;
+  r.generation = 3;
+  r.generations = 10;
+  r.best = 0.2;
+  r.mean = -1e6;
+  r.best_so_far = 0.25;
+  r.evals_per_second = 4.5;
+  r.workers = 1;
+  r.eta_seconds = 12;
+  EXPECT_EQ(OptimiseSession::FailedNote(FormatProgress(r)), "");
+  r.failed = 2;
+  r.failed_reasons = {
+      {"robot 'snake' module 3 front frame overlaps scene object 'ball' by "
+       "12.0 mm at the start",
+       2}};
+  EXPECT_EQ(OptimiseSession::FailedNote(FormatProgress(r)),
+            "generation 3: failed 2 (robot 'snake' module 3 front frame "
+            "overlaps scene object 'ball' by 12.0 mm at the start)");
+  r.island = 1;
+  EXPECT_EQ(OptimiseSession::FailedNote(FormatProgress(r))
+                .rfind("generation 3: failed 2 (robot", 0),
+            0u);
+  EXPECT_EQ(OptimiseSession::FailedNote("opt exited with code 2"), "");
 }
 
 }  // namespace

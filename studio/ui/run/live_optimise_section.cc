@@ -404,6 +404,14 @@ void LivePanel::DrawOptimise(const LiveDesign& design, float width) {
   if (optimise_.replay_pending()) {
     ImGui::TextDisabled("waiting for generation %d...", jump_to_);
   }
+  if (!p.failed_note.empty()) {
+    // Failed individuals score the worst fitness: the reason tells a
+    // student what to change (an overlap, a body the validator refuses).
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.6f, 0.2f, 1));
+    ImGui::TextWrapped("%s", p.failed_note.c_str());
+    ImGui::PopStyleColor();
+    layout_->State("optimise failed note", p.failed_note);
+  }
   if (const std::string stall = optimise_.StallWarning(); !stall.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.6f, 0.2f, 1));
     ImGui::TextWrapped("%s", stall.c_str());
