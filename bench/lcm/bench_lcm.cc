@@ -58,8 +58,10 @@ constexpr double kRate = 100.0;
 // single lockstep runs swing by half with where the scheduler puts the
 // two processes, so a ratio needs many pairs; the best of three runs of
 // 20 s (as before) moved by 10-40 % between runs. Shorter runs read 2-4 %
-// faster in the median (README), alike for both sides of a ratio.
-constexpr int kRounds = 24;
+// faster in the median (README), alike for both sides of a ratio. With
+// 24 rounds two back-to-back runs on a quiet machine agreed within 2 %,
+// but runs minutes apart moved 7 %: 48 halve the median's variance.
+constexpr int kRounds = 48;
 constexpr double kDuration = 10.0;  // sim s of a lockstep run
 
 std::string Url(int port) {
