@@ -24,12 +24,21 @@
 namespace mrsim::foxglove {
 namespace {
 
-using WsServer = websocketpp::server<websocketpp::config::asio>;
+// A peer that breaks the protocol (a frame over kMaxMessageSize, a bad
+// frame) is dropped at once. Closing politely would wait for a close
+// handshake a hostile peer never answers, and the timeout that ends it
+// overwrites the reason, so the count of frames too big came out 0 or 1
+// by timing; dropped, the connection keeps its reason (get_ec()).
+struct WsConfig : websocketpp::config::asio {
+  typedef WsConfig type;
+  static const bool drop_on_protocol_error = true;
+};
+using WsServer = websocketpp::server<WsConfig>;
 using Hdl = websocketpp::connection_hdl;
 
-// A frame larger than this closes the connection inside websocketpp (close
-// code 1009) before it is buffered; below it, the bridge's parsers refuse
-// what is over their own limits.
+// A frame larger than this drops the connection inside websocketpp before
+// it is buffered; below it, the bridge's parsers refuse what is over their
+// own limits.
 constexpr size_t kMaxMessageSize = 1 << 20;
 constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 constexpr int kSendBuffer = 128 * 1024;
@@ -102,7 +111,10 @@ class FoxgloveServer::Impl {
     });
   }
 
-  ~Impl() {
+  ~Impl() { Stop(); }
+
+  void Stop() {
+    if (!thread_.joinable()) return;
     server_.get_io_service().post([this] {
       stopping_ = true;
       asio::error_code ec;
@@ -270,8 +282,9 @@ class FoxgloveServer::Impl {
   void Closed(Hdl h) {
     WsServer::connection_ptr con = server_.get_con_from_hdl(h);
     std::lock_guard<std::mutex> lock(mutex_);
-    if (con && con->get_local_close_code() ==
-                   websocketpp::close::status::message_too_big) {
+    if (con &&
+        con->get_ec() == websocketpp::processor::error::make_error_code(
+                             websocketpp::processor::error::message_too_big)) {
       ++counts_.too_big;
     }
     const auto it = ids_.find(h);
@@ -335,6 +348,7 @@ FoxgloveServer::FoxgloveServer(FoxgloveBridgeOptions bridge,
                                FoxgloveServerOptions options)
     : impl_(std::make_unique<Impl>(std::move(bridge), std::move(options))) {}
 FoxgloveServer::~FoxgloveServer() = default;
+void FoxgloveServer::Stop() { impl_->Stop(); }
 uint16_t FoxgloveServer::port() const { return impl_->port(); }
 void FoxgloveServer::OnLcm(const std::string& channel, const void* data,
                            size_t size) {

@@ -51,12 +51,17 @@ class FoxgloveServer {
   // address, std::runtime_error naming bind:port when it cannot listen)
   // and starts the server thread.
   FoxgloveServer(FoxgloveBridgeOptions bridge, FoxgloveServerOptions options);
-  ~FoxgloveServer();  // stops the thread, closing every connection
+  ~FoxgloveServer();  // Stop()
   FoxgloveServer(const FoxgloveServer&) = delete;
   FoxgloveServer& operator=(const FoxgloveServer&) = delete;
 
+  // Closes every connection (a second for clients to answer) and stops the
+  // server thread once every connection's end was handled, so counts()
+  // then includes all of them. Later calls do nothing.
+  void Stop();
+
   uint16_t port() const;
-  // One LCM message; returns at once.
+  // One LCM message; returns at once. Not after Stop().
   void OnLcm(const std::string& channel, const void* data, size_t size);
   Counts counts() const;
   FoxgloveBridge::Counts bridge_counts() const;

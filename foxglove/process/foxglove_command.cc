@@ -92,6 +92,9 @@ int RunFoxglove(const FoxgloveCommand& c, SignedLcm& lcm, std::FILE* err) {
   std::fflush(err);
   while (!StopRequested()) HandleFor(lcm, 100);
   lcm.unsubscribe(sub);
+  // Every connection's end counted (a client dropped a moment ago
+  // included) before the counts are read.
+  server.Stop();
   const auto s = server.counts();
   const auto b = server.bridge_counts();
   std::fprintf(err,
