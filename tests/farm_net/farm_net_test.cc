@@ -325,7 +325,8 @@ TEST_F(FarmNet, KillThreeAddTwoEqualsLocal) {
 // the rig's DelayRelay delays every worker's port, each frame on its own
 // draw, so a heartbeat may overtake the result sent before it). The
 // result equals the local run, and no episode ran twice: the episodes the
-// workers ran add up to the results the master accepted.
+// workers ran add up to the results the master accepted, plus at most the
+// jobs it re-queued because their answer missed the deadline.
 TEST_F(FarmNet, JitterEqualsLocalAndRunsNoEpisodeTwice) {
   std::string why;
   if (!FarmRig::DelayAvailable(&why)) GTEST_SKIP() << why;
@@ -357,14 +358,31 @@ TEST_F(FarmNet, JitterEqualsLocalAndRunsNoEpisodeTwice) {
     ran += std::max(0LL, done);
     outputs += out;
   }
-  EXPECT_EQ(ran, accepted) << master->Output() << outputs;
+  // A job whose answer misses its deadline is asked of another worker:
+  // on a machine too busy to finish an episode in time (the first
+  // generation's, while workers still build their simulations) that is
+  // the farm doing its work, not the jitter. Every episode beyond the
+  // results must be such a re-queue; with none, each ran once.
+  const std::string& said = master->Output();
+  long long requeued = 0;
+  for (size_t at = said.find("re-queued: no answer by its deadline");
+       at != std::string::npos;
+       at = said.find("re-queued: no answer by its deadline", at + 1)) {
+    ++requeued;
+  }
+  EXPECT_GE(ran, accepted) << said << outputs;
+  EXPECT_LE(ran, accepted + requeued)
+      << "an episode ran twice without missing its deadline\n"
+      << said << outputs;
   const testing::RelayCounters c = rig.relay_counters();
   EXPECT_GT(c.frames, 0);
   EXPECT_GT(c.reordered, 0) << "no frame overtook another: no jitter?";
   std::fprintf(stderr,
                "relay: %lld frames, %lld overtook, %lld overflowed, %lld "
-               "refused; workers ran %lld episodes for %lld results\n",
-               c.frames, c.reordered, c.overflowed, c.refused, ran, accepted);
+               "refused; workers ran %lld episodes for %lld results (%lld "
+               "re-queued past their deadline)\n",
+               c.frames, c.reordered, c.overflowed, c.refused, ran, accepted,
+               requeued);
 }
 
 TEST_F(FarmNet, PartitionedWorkerEqualsLocal) {
