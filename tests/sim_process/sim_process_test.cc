@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "mrsim/joint_command_t.hpp"
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
 #include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario/scenario_xml.h"
 #include "tests/common/child_process.h"
 #include "tests/sim_process/sim_client.h"
@@ -401,18 +401,17 @@ TEST(SimProcess, SigtermStopsPromptlyAndWritesTheFinalCheckpoint) {
   SimClient client(TestLcmUrl(port));
   const std::string checkpoint = dir + "/final.ckpt";
   // Lockstep with no controller: the sim sits waiting, the hardest case.
-  ChildProcess sim(SimArgs(scenario, port,
-                           {"--clock", "lockstep", "--controllers", "nobody",
-                            "--checkpoint-on-exit", checkpoint}),
-                   dir + "/sim.log");
+  // Its lockstep wait lasts 30 s before it even warns: a stop within 15 s
+  // was the signal's doing, not the wait's end, however busy the machine
+  // (a 1 s bound failed under ctest -j6 on 2 cores).
+  ChildProcess sim(
+      SimArgs(scenario, port,
+              {"--clock", "lockstep", "--controllers", "nobody",
+               "--lockstep-timeout", "30", "--checkpoint-on-exit", checkpoint}),
+      dir + "/sim.log");
   ASSERT_TRUE(client.WaitFor([&] { return client.status().has_value(); }, 10));
-  const auto start = std::chrono::steady_clock::now();
   sim.Signal(SIGTERM);
-  EXPECT_EQ(sim.Wait(1.0), 0) << sim.Output();
-  EXPECT_LT(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count(),
-      1.0);
+  EXPECT_EQ(sim.Wait(15.0), 0) << sim.Output();
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
   EXPECT_NE(sim.Output().find("mrsim-sim: stopped (stop signal)"),
             std::string::npos)
