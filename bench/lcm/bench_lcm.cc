@@ -44,9 +44,9 @@
 #include "lcmtypes/runtime/stop_signal.h"
 #include "mrsim/joint_command_t.hpp"
 #include "mrsim/robot_state_t.hpp"
-#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/codec/state_message.h"
 #include "sim_core/physics/physics.h"
+#include "sim_core/scenario/chain_builder.h"
 #include "sim_core/scenario/scenario_xml.h"
 #include "sim_core/sim_process/sim_server.h"
 
