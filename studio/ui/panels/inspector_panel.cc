@@ -41,6 +41,25 @@ void DrawFieldError(const std::map<std::string, std::string>& errors,
   ImGui::PopTextWrapPos();
 }
 
+// A combo labelled `label` picking one of `ends` into *index (kept in
+// range), recorded for the layout dump as `record`.
+void PickEnd(StudioContext& studio, const char* label,
+             const std::string& record, const std::vector<LockEnd>& ends,
+             int* index) {
+  *index = std::clamp(*index, 0, static_cast<int>(ends.size()) - 1);
+  ImGui::TextDisabled("%s", label);
+  ImGui::SameLine(60);
+  ImGui::SetNextItemWidth(-1);
+  const std::string id = "##" + record;
+  if (ImGui::BeginCombo(id.c_str(), ends[*index].name.c_str())) {
+    for (int k = 0; k < static_cast<int>(ends.size()); ++k) {
+      if (ImGui::Selectable(ends[k].name.c_str(), k == *index)) *index = k;
+    }
+    ImGui::EndCombo();
+  }
+  studio.Record(record);
+}
+
 }  // namespace
 
 void InspectorPanel::Draw(StudioContext& studio, const PanelRect& rect) {
@@ -316,34 +335,11 @@ void InspectorPanel::DrawAttach(StudioContext& studio, const Scenario& view,
   const std::vector<LockEnd> to =
       studio.design.AttachableTo(sel.robot, own[attach_from_].guid);
   if (RecordedHeader(&studio.layout, "Attach lock", false)) {
-    ImGui::TextDisabled("from");
-    ImGui::SameLine(60);
-    ImGui::SetNextItemWidth(-1);
-    if (ImGui::BeginCombo("##attach from", own[attach_from_].name.c_str())) {
-      for (int k = 0; k < static_cast<int>(own.size()); ++k) {
-        if (ImGui::Selectable(own[k].name.c_str(), k == attach_from_)) {
-          attach_from_ = k;
-        }
-      }
-      ImGui::EndCombo();
-    }
-    studio.Record("attach from");
+    PickEnd(studio, "from", "attach from", own, &attach_from_);
     if (to.empty()) {
       ImGui::TextWrapped("joined to every part of its robot already");
     } else {
-      attach_to_ = std::clamp(attach_to_, 0, static_cast<int>(to.size()) - 1);
-      ImGui::TextDisabled("to");
-      ImGui::SameLine(60);
-      ImGui::SetNextItemWidth(-1);
-      if (ImGui::BeginCombo("##attach to", to[attach_to_].name.c_str())) {
-        for (int k = 0; k < static_cast<int>(to.size()); ++k) {
-          if (ImGui::Selectable(to[k].name.c_str(), k == attach_to_)) {
-            attach_to_ = k;
-          }
-        }
-        ImGui::EndCombo();
-      }
-      studio.Record("attach to");
+      PickEnd(studio, "to", "attach to", to, &attach_to_);
       if (studio.Button("Attach")) {
         studio.Try("attach the lock", [&] {
           studio.design.AttachLock(sel.robot, own[attach_from_].guid,
@@ -373,19 +369,7 @@ void InspectorPanel::DrawLooseJoin(StudioContext& studio, const Scenario& view,
           "no other loose part to join: add a loose frame or sensor module "
           "first");
     } else {
-      join_to_ = std::clamp(join_to_, 0, static_cast<int>(to.size()) - 1);
-      ImGui::TextDisabled("to");
-      ImGui::SameLine(60);
-      ImGui::SetNextItemWidth(-1);
-      if (ImGui::BeginCombo("##join to", to[join_to_].name.c_str())) {
-        for (int k = 0; k < static_cast<int>(to.size()); ++k) {
-          if (ImGui::Selectable(to[k].name.c_str(), k == join_to_)) {
-            join_to_ = k;
-          }
-        }
-        ImGui::EndCombo();
-      }
-      studio.Record("join to");
+      PickEnd(studio, "to", "join to", to, &join_to_);
       if (studio.Button("Join with a lock")) {
         studio.Try("join the loose parts", [&] {
           studio.design.JoinLoose(from, to[join_to_].guid, JointType::kLock);
