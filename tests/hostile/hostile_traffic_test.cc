@@ -175,10 +175,13 @@ TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
   ChildProcess* worker = start({BinaryPath("optimizer/process/mrsim-worker"),
                                 "--lcm-url", url, "--id", "w1"},
                                "worker");
+  // A run far longer than the test: it must still be running when the
+  // flood is over. 1000 generations (most individuals found in the
+  // evaluation cache) ended in 29 s on a quiet machine, before the checks.
   ChildProcess* master =
       start({BinaryPath("optimizer/process/mrsim-opt"), scenario, "--genome",
              SourcePath("scenarios/forward_gait.genome.xml"), "--generations",
-             "1000", "--population", "4", "--episode", "0.5", "--seed", "3",
+             "1000000", "--population", "4", "--episode", "0.5", "--seed", "3",
              "--out", dir + "/opt", "--farm", "--lcm-url", url},
             "master");
 
