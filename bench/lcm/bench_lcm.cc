@@ -68,11 +68,12 @@ constexpr double kDuration = 10.0;  // sim s of a lockstep run
 // of 4 sim s. On these VMs a single thread's speed moves by a third from
 // one second to the next (the in-process loop alone read 62-100 sim s/s
 // in twelve runs in a row), and the loop over LCM, which needs both cores,
-// is not moved alike, so one pair ratio scatters with an IQR near 30 %
+// is not moved alike, so one pair ratio scatters with an IQR of 28-41 %
 // however long its runs (10 and 40 sim s scattered alike). Only the number
-// of pairs narrows the median: 600 put its 95 % interval near 4 %, where
+// of pairs narrows the median: 600 put its 95 % interval at 7-8 %, where
 // 48 left 16-31 %. Runs of 4 sim s keep that to about two and a half
-// minutes.
+// minutes. Between runs the host still moves it (0.758 / 0.826 back to
+// back, the in-process loop itself 14 % apart): see docs/sim.md.
 constexpr int kHeadlineRounds = 600;
 constexpr double kHeadlineDuration = 4.0;
 

@@ -177,7 +177,8 @@ TEST(HostileTraffic, EveryProcessSurvivesMutatedCopiesOfItsOwnTraffic) {
                                "worker");
   // A run far longer than the test: it must still be running when the
   // flood is over. 1000 generations (most individuals found in the
-  // evaluation cache) ended in 29 s on a quiet machine, before the checks.
+  // evaluation cache) ended in 29 s during a fresh-clone CI run, before
+  // the checks.
   ChildProcess* master =
       start({BinaryPath("optimizer/process/mrsim-opt"), scenario, "--genome",
              SourcePath("scenarios/forward_gait.genome.xml"), "--generations",
