@@ -7,7 +7,7 @@
 // farm's speed-up (and the CPU this machine gives us, for context), and a
 // worker's episode cost against a bare mj_step loop; (5) a Lua
 // controller's episodes per CPU second over the gait's
-// (lua_episode_efficiency.h), and a network's (mlp_episode_efficiency.h).
+// (lua_episode_rate_ratio.h), and a network's (mlp_episode_rate_ratio.h).
 // The farm's figures come from interleaved rounds, each printed with its
 // spread. LCM ports 7920-7929.
 #include <fmt/format.h>
@@ -29,16 +29,16 @@
 
 #include "bench/common/cpu_available.h"
 #include "bench/common/paired_ratio.h"
-#include "bench/optimizer/lua_episode_efficiency.h"
-#include "bench/optimizer/mlp_episode_efficiency.h"
+#include "bench/optimizer/lua_episode_rate_ratio.h"
+#include "bench/optimizer/mlp_episode_rate_ratio.h"
 #include "common/subprocess.h"
 #include "gait_controller/gait_presets.h"
 #include "optimizer/episode/episode.h"
 #include "optimizer/episode/episode_physics_pool.h"
+#include "optimizer/episode/problem_codec.h"
 #include "optimizer/farm/farm_evaluator.h"
 #include "optimizer/search/local_evaluator.h"
 #include "optimizer/search/optimization_run.h"
-#include "optimizer/episode/problem_codec.h"
 #include "sim_core/physics/physics.h"
 #include "sim_core/scenario/scenario_xml.h"
 
@@ -306,8 +306,8 @@ int main(int argc, char** argv) {
   const bool mlp_only = argc > 1 && std::string(argv[1]) == "--mlp-only";
   try {
     if (cmaes_only) return CmaesVsGa();
-    if (lua_only) return mrsim::BenchLuaEpisodeEfficiency();
-    if (mlp_only) return mrsim::BenchMlpEpisodeEfficiency();
+    if (lua_only) return mrsim::BenchLuaEpisodeRateRatio();
+    if (mlp_only) return mrsim::BenchMlpEpisodeRateRatio();
     // The CPU this machine gives us, for context: the spin's bound on two
     // processes is printed beside the farm's figures.
     const mrsim::CpuAvailability cpu = mrsim::MeasureCpuAvailable();
@@ -406,8 +406,8 @@ int main(int argc, char** argv) {
     if (farm_only) return 0;
 
     if (CmaesVsGa() != 0) return 1;
-    if (mrsim::BenchLuaEpisodeEfficiency() != 0) return 1;
-    if (mrsim::BenchMlpEpisodeEfficiency() != 0) return 1;
+    if (mrsim::BenchLuaEpisodeRateRatio() != 0) return 1;
+    if (mrsim::BenchMlpEpisodeRateRatio() != 0) return 1;
 
     // Optimised gait vs the preset: 20 s episodes, same budget each.
     const mrsim::Problem problem = SnakeProblem(20.0);

@@ -1,4 +1,4 @@
-#include "bench/optimizer/lua_episode_efficiency.h"
+#include "bench/optimizer/lua_episode_rate_ratio.h"
 
 #include <time.h>
 
@@ -28,7 +28,7 @@ Problem Decoded(const Problem& p) {
 
 }  // namespace
 
-int BenchLuaEpisodeEfficiency() {
+int BenchLuaEpisodeRateRatio() {
   const Task task = MakeTask("flat");
   const double seconds = 3.0;
   const Problem gait =
@@ -58,7 +58,7 @@ int BenchLuaEpisodeEfficiency() {
       "# lua episode: %.4f CPU-s, gait episode %.4f CPU-s (medians, "
       "%g s of sim time)\n",
       1.0 / r.median_a, 1.0 / r.median_b, seconds);
-  PrintBench("lua_episode_efficiency", r, "x", "episodes/CPU-s, lua / gait");
+  PrintBench("lua_episode_rate_ratio", r, "x", "episodes/CPU-s, lua / gait");
   if (failed) std::fprintf(stderr, "bench: an episode failed\n");
   return failed ? 1 : 0;
 }

@@ -1,4 +1,4 @@
-#include "bench/optimizer/mlp_episode_efficiency.h"
+#include "bench/optimizer/mlp_episode_rate_ratio.h"
 
 #include <time.h>
 
@@ -29,7 +29,7 @@ Problem Decoded(const Problem& p) {
 
 }  // namespace
 
-int BenchMlpEpisodeEfficiency() {
+int BenchMlpEpisodeRateRatio() {
   const Task task = MakeTask("flat");
   const double seconds = 3.0;
   const Problem gait =
@@ -64,7 +64,7 @@ int BenchMlpEpisodeEfficiency() {
       "# mlp:16 episode (%zu genes): %.4f CPU-s, gait episode %.4f CPU-s "
       "(medians, %g s of sim time)\n",
       mlp_genome.size(), 1.0 / r.median_a, 1.0 / r.median_b, seconds);
-  PrintBench("mlp_episode_efficiency", r, "x", "episodes/CPU-s, mlp / gait");
+  PrintBench("mlp_episode_rate_ratio", r, "x", "episodes/CPU-s, mlp / gait");
   if (failed) std::fprintf(stderr, "bench: an episode failed\n");
   return failed ? 1 : 0;
 }
