@@ -391,6 +391,27 @@ void PrintHeadline(const std::vector<std::vector<double>>& h) {
                      std::to_string(kHeadlineRounds) + " rounds of its own)");
 }
 
+// A folder of its own under the temporary directory, removed with
+// everything in it when the run ends, by an error too.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& prefix)
+      : path_(std::filesystem::temp_directory_path() /
+              (prefix + std::to_string(getpid()))) {
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 // The 11-module snake every loop runs, written into `dir`.
 std::string WriteSnake(const std::filesystem::path& dir) {
   mrsim::Scenario scenario;
@@ -405,21 +426,16 @@ std::string WriteSnake(const std::filesystem::path& dir) {
 
 // --headline: only lockstep_pipelined_ratio.
 int RunHeadlineBench() {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("mrsim_bench_lcm_headline_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const ScratchDir scratch("mrsim_bench_lcm_headline_");
+  const std::filesystem::path& dir = scratch.path();
   PrintHeadline(HeadlineRounds(WriteSnake(dir), dir.string()));
-  std::filesystem::remove_all(dir);
   return 0;
 }
 
 // --signed: only (d), the two signed figures, in rounds of their own.
 int RunSignedBench() {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("mrsim_bench_lcm_signed_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const ScratchDir scratch("mrsim_bench_lcm_signed_");
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = WriteSnake(dir);
   const mrsim::Scenario scenario = mrsim::ReadScenarioFile(path);
   const std::string key = (dir / "bench.key").string();
@@ -467,15 +483,12 @@ int RunSignedBench() {
             "pipelined lockstep sim s/s, key / none");
   CostRatio("signed_publish_ratio", v[3], v[2],
             "publishing sim s/s, key / none");
-  std::filesystem::remove_all(dir);
   return 0;
 }
 
 int RunBench() {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("mrsim_bench_lcm_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const ScratchDir scratch("mrsim_bench_lcm_");
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = WriteSnake(dir);
   const mrsim::Scenario scenario = mrsim::ReadScenarioFile(path);
 
@@ -597,7 +610,6 @@ int RunBench() {
     std::cout << "BENCH lcm_rtt_us " << state_us << " us" << std::endl;
     std::cout << "BENCH raw_rtt_us " << raw_us << " us" << std::endl;
   }
-  std::filesystem::remove_all(dir);
   return 0;
 }
 
